@@ -1,0 +1,24 @@
+/* perifem contact: rigid analytic indenters (sphere, plane) pushing on points. (The penalty
+ * node-to-particle and particle-particle contact of the contact issue will live here too.) */
+#ifndef PF_CONTACT_H
+#define PF_CONTACT_H
+
+#include "core/core.h"
+
+typedef struct pf_indenter pf_indenter;
+extern const pf_key pf_indenter_keys[];
+
+int pf_indenter_create(const pf_deck *d, const pf_node *map, pf_indenter **ind);
+int pf_indenter_destroy(pf_indenter **ind);
+const char *pf_indenter_name(const pf_indenter *ind);
+/* Add the indenter's repulsive force to the points it penetrates (pts->y); the force on the
+ * indenter (the reaction, N) goes to reaction[3] and the penalty energy (J) to *energy. */
+int pf_indenter_force(pf_indenter *ind, pf_points *pts, double reaction[3], double *energy);
+/* Move the indenter from t to t + dt with its prescribed velocity v(t) (midpoint rule) and
+ * accumulate the work done on the points, -reaction . v dt, into *work. */
+void pf_indenter_advance(pf_indenter *ind, double t, double dt, const double reaction[3],
+                         double *work);
+/* Current position (sphere centre or plane point). */
+void pf_indenter_position(const pf_indenter *ind, double x[3]);
+
+#endif

@@ -1,0 +1,107 @@
+/* Prescribed velocities and displacements on point sets chosen by region and body. In the
+ * velocity-Verlet step the mid-step velocity is what moves the points, so a prescribed
+ * velocity v(t) sets it to v(t + dt/2) and a prescribed displacement g(t) sets it to
+ * (g(t + dt) - g(t)) / dt, which lands the point exactly on g(t + dt). */
+#include "core/core.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+struct pf_bc {
+  int is_velocity;
+  pf_expr *e[3]; /* NULL: component free */
+  pf_int n;
+  pf_int *points;
+};
+
+const pf_key pf_bc_keys[] = {
+    {"region", PF_KEY_MAP, 0, "shape: all", "", "where: a region", pf_region_keys},
+    {"body", PF_KEY_STRING, 0, NULL, "", "only the points of this body", NULL},
+    {"velocity", PF_KEY_EXPR3, 0, NULL, "m/s", "expressions in x, y, z, t, or free", NULL},
+    {"displacement", PF_KEY_EXPR3, 0, NULL, "m", "expressions in x, y, z, t, or free", NULL},
+    PF_KEY_END};
+
+static int read_exprs(const pf_deck *d, const pf_node *map, const char *key, pf_bc *bc) {
+  const pf_node *v = pf_node_get(map, key);
+  for (int c = 0; c < 3; c++) {
+    const pf_node *it = pf_node_item(v, c);
+    if (!strcmp(pf_node_text(it), "free")) continue;
+    PF_CALL(pf_expr_create(pf_node_text(it), d, it, key, &bc->e[c]));
+  }
+  return 0;
+}
+
+static int select_points(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
+                         const char *const *body_names, pf_bc *bc) {
+  pf_region r = {.kind = PF_REGION_ALL};
+  if (pf_node_get(map, "region")) PF_CALL(pf_region_from_deck(d, pf_node_get(map, "region"), &r));
+  int body = -1;
+  const char *bname = NULL;
+  PF_CALL(pf_deck_string(d, map, "body", &bname));
+  for (int b = 0; bname && b < nbodies; b++)
+    if (!strcmp(bname, body_names[b])) body = b;
+  if (bname && body < 0) return pf_deck_error(d, pf_node_get(map, "body"), "body", "no body named '%s'", bname);
+  PF_MALLOC(bc->points, pts->n_owned);
+  for (pf_int i = 0; i < pts->n_owned; i++)
+    if ((body < 0 || pts->body[i] == body) && pf_region_contains(&r, &pts->X[3 * i]))
+      bc->points[bc->n++] = i;
+  if (pf_sum_all(bc->n) == 0)
+    return pf_deck_error(d, map, "region", "the boundary condition selects no point");
+  return 0;
+}
+
+static int bc_setup(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
+                    const char *const *body_names, pf_bc *bc) {
+  int hv = pf_node_get(map, "velocity") != NULL, hd = pf_node_get(map, "displacement") != NULL;
+  if (hv == hd) return pf_deck_error(d, map, "velocity", "give exactly one of 'velocity' and 'displacement'");
+  bc->is_velocity = hv;
+  PF_CALL(read_exprs(d, map, hv ? "velocity" : "displacement", bc));
+  return select_points(d, map, pts, nbodies, body_names, bc);
+}
+
+int pf_bc_create(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
+                 const char *const *body_names, pf_bc **out) {
+  *out = NULL;
+  pf_bc *bc;
+  PF_MALLOC(bc, 1);
+  int ierr = bc_setup(d, map, pts, nbodies, body_names, bc);
+  if (ierr) {
+    pf_bc_destroy(&bc);
+    return ierr;
+  }
+  *out = bc;
+  return 0;
+}
+
+int pf_bc_destroy(pf_bc **bc) {
+  if (!*bc) return 0;
+  pf_expr3_destroy((*bc)->e);
+  free((*bc)->points);
+  PF_FREE(*bc);
+  return 0;
+}
+
+pf_int pf_bc_npoints(const pf_bc *bc) { return bc->n; }
+
+void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt) {
+  for (pf_int k = 0; k < bc->n; k++) {
+    pf_int i = bc->points[k];
+    const double *x = &pts->X[3 * i];
+    for (int c = 0; c < 3; c++) {
+      if (!bc->e[c]) continue;
+      if (bc->is_velocity) pts->v[3 * i + c] = pf_expr_eval(bc->e[c], x[0], x[1], x[2], t + 0.5 * dt);
+      else
+        pts->v[3 * i + c] = (pf_expr_eval(bc->e[c], x[0], x[1], x[2], t + dt) - pts->u[3 * i + c]) / dt;
+    }
+  }
+}
+
+void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t) {
+  if (!bc->is_velocity) return; /* keep the mid-step velocity of a prescribed displacement */
+  for (pf_int k = 0; k < bc->n; k++) {
+    pf_int i = bc->points[k];
+    const double *x = &pts->X[3 * i];
+    for (int c = 0; c < 3; c++)
+      if (bc->e[c]) pts->v[3 * i + c] = pf_expr_eval(bc->e[c], x[0], x[1], x[2], t);
+  }
+}

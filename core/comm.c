@@ -1,0 +1,33 @@
+/* Global reductions and rank queries over MPI_COMM_WORLD, and the wall clock. */
+#include "core/core.h"
+
+static int mpi_ready(void) {
+  int init = 0, fin = 0;
+  MPI_Initialized(&init);
+  MPI_Finalized(&fin);
+  return init && !fin;
+}
+
+int pf_comm_rank(void) {
+  int r = 0;
+  if (mpi_ready()) MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+
+int pf_comm_size(void) {
+  int s = 1;
+  if (mpi_ready()) MPI_Comm_size(MPI_COMM_WORLD, &s);
+  return s;
+}
+
+static double reduce(double local, MPI_Op op) {
+  double g = local;
+  if (mpi_ready()) MPI_Allreduce(&local, &g, 1, MPI_DOUBLE, op, MPI_COMM_WORLD);
+  return g;
+}
+
+double pf_sum_all(double local) { return reduce(local, MPI_SUM); }
+double pf_min_all(double local) { return reduce(local, MPI_MIN); }
+double pf_max_all(double local) { return reduce(local, MPI_MAX); }
+
+double pf_wtime(void) { return MPI_Wtime(); }

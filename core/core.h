@@ -1,0 +1,266 @@
+/* perifem core: types, errors, logging, the point store, the deck, expressions,
+ * point generators, regions, output and the state digest.
+ * Everything another module may use from core/ is declared here. */
+#ifndef PF_CORE_H
+#define PF_CORE_H
+
+#include <inttypes.h>
+#include <mpi.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#define PF_PI 3.14159265358979323846
+
+/* ---- integer types (STYLE.md 4) ---------------------------------------- */
+typedef int32_t pf_int; /* local indices */
+typedef int64_t pf_gid; /* global ids and global counts */
+#define PF_INT_FMT PRId32
+#define PF_GID_FMT PRId64
+#define PF_INT_MPI MPI_INT32_T
+#define PF_GID_MPI MPI_INT64_T
+
+/* ---- errors (STYLE.md 5) ------------------------------------------------- */
+enum pf_error_code {
+  PF_SUCCESS = 0,
+  PF_ERR_RUN = 1,   /* a run failed: NaN, instability, I/O */
+  PF_ERR_INPUT = 2, /* bad deck, bad mesh, bad command line */
+  PF_ERR_MEMORY = 3,
+  PF_ERR_LIB = 4, /* a library we call returned an error */
+};
+
+/* Record an error (first one wins) and print it once with its origin. Returns code. */
+int pf_error_raise(int code, const char *file, int line, const char *func, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+/* The message of the first error raised since the last pf_error_clear(). */
+const char *pf_error_message(void);
+void pf_error_clear(void);
+/* When quiet, errors are recorded but not printed (tests of bad input). */
+void pf_error_set_quiet(int quiet);
+
+#define PF_CHECK(cond, code, ...)                                                                  \
+  do {                                                                                             \
+    if (!(cond)) return pf_error_raise((code), __FILE__, __LINE__, __func__, __VA_ARGS__);         \
+  } while (0)
+#define PF_CALL(expr)                                                                              \
+  do {                                                                                             \
+    int pf_call_ierr_ = (expr);                                                                    \
+    if (pf_call_ierr_)                                                                             \
+      return pf_error_raise(pf_call_ierr_, __FILE__, __LINE__, __func__, "called from here");      \
+  } while (0)
+#define PF_MALLOC(ptr, count)                                                                      \
+  do {                                                                                             \
+    size_t pf_n_ = (size_t)(count);                                                                \
+    (ptr) = calloc(pf_n_ ? pf_n_ : 1, sizeof(*(ptr)));                                             \
+    PF_CHECK((ptr), PF_ERR_MEMORY, "out of memory allocating %zu x %zu bytes", pf_n_,             \
+             sizeof(*(ptr)));                                                                      \
+  } while (0)
+#define PF_FREE(ptr)                                                                               \
+  do {                                                                                             \
+    free(ptr);                                                                                     \
+    (ptr) = NULL;                                                                                  \
+  } while (0)
+
+/* ---- logging: rank 0 only ------------------------------------------------ */
+void pf_log_set_quiet(int quiet);
+void pf_log(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/* ---- the point store (DESIGN.md 2) --------------------------------------- */
+enum pf_field_flags {
+  PF_FIELD_GHOST = 1,   /* exchanged with ghosts */
+  PF_FIELD_RESTART = 2, /* written to restart files */
+  PF_FIELD_OUTPUT = 4,  /* written to Exodus output */
+};
+
+#define PF_MAX_FIELDS 32
+typedef struct {
+  char name[32];
+  int ncomp;
+  int flags;
+  double *data; /* [n_total * ncomp], component-minor */
+} pf_field;
+
+typedef struct pf_points {
+  pf_int n_owned;  /* owned points come first */
+  pf_int n_total;  /* owned + ghosts */
+  pf_gid n_global; /* over all ranks */
+  double *X;       /* reference position [3n] */
+  double *u;       /* displacement [3n] */
+  double *v;       /* velocity [3n] */
+  double *f;       /* force [3n], N (force density times volume) */
+  double *y;       /* current position X + u [3n], kept by the integrator */
+  double *m;       /* lumped mass [n], kg */
+  double *vol;     /* volume [n], m^3 */
+  double *cell;    /* edge of the cube cell the point stands for [n], m */
+  pf_gid *gid;     /* global id [n] */
+  int32_t *body;   /* body index [n] */
+  int nfields;
+  pf_field fields[PF_MAX_FIELDS];
+} pf_points;
+
+int pf_points_create(pf_int n, pf_points **pts);
+int pf_points_destroy(pf_points **pts);
+/* Register a per-point field; returns its index in *idx. Re-registering a name with the same
+ * shape returns the existing field. */
+int pf_points_field_register(pf_points *pts, const char *name, int ncomp, int flags, int *idx);
+/* Field data by name, or NULL when no such field is registered. */
+double *pf_points_field_get(const pf_points *pts, const char *name);
+/* Reorder owned points by the permutation perm (new index k takes old point perm[k]). */
+int pf_points_permute(pf_points *pts, const pf_int *perm);
+
+/* ---- deck: YAML tree with source positions (core/deck.c) ------------------ */
+typedef struct pf_deck pf_deck;
+typedef struct pf_node pf_node; /* a node of the YAML tree */
+
+int pf_deck_load(const char *path, pf_deck **deck);
+int pf_deck_destroy(pf_deck **deck);
+const pf_node *pf_deck_root(const pf_deck *deck);
+const char *pf_deck_path(const pf_deck *deck);
+/* A hash of the deck's text (for restart checks and the run log). */
+uint64_t pf_deck_hash(const pf_deck *deck);
+
+/* Kinds of value a key may hold, used by the schema tables. */
+typedef enum {
+  PF_KEY_REAL,
+  PF_KEY_INT,
+  PF_KEY_BOOL,
+  PF_KEY_STRING,
+  PF_KEY_VEC3,    /* [a, b, c] reals */
+  PF_KEY_EXPR3,   /* [ex, ey, ez] expressions in x, y, z, t (or reals) */
+  PF_KEY_MAP,     /* a nested mapping checked by its own table */
+  PF_KEY_LIST,    /* a sequence of mappings, each checked by its own table */
+  PF_KEY_STRLIST, /* a sequence of strings */
+  PF_KEY_ANYMAP,  /* a mapping whose keys are user names (e.g. materials) */
+} pf_key_type;
+
+/* One row of a schema table: the single source for validation and for docs. */
+typedef struct pf_key {
+  const char *name;
+  pf_key_type type;
+  int required;
+  const char *default_value; /* as text, or NULL */
+  const char *units;         /* SI units, or "" */
+  const char *doc;
+  const struct pf_key *sub; /* for MAP / LIST / ANYMAP: the table of the nested mapping */
+} pf_key;
+#define PF_KEY_END {NULL, 0, 0, NULL, NULL, NULL, NULL}
+
+/* Check every key of a mapping node against a table: unknown keys (with a suggestion), wrong
+ * types and missing required keys are errors naming file:line:column and the key. Recurses
+ * into MAP/LIST/ANYMAP rows. */
+int pf_deck_validate(const pf_deck *deck, const pf_node *map, const pf_key *table,
+                     const char *where);
+
+/* Lookups on a validated mapping; a missing optional key leaves *out untouched (callers set
+ * the default first) and returns 0. */
+const pf_node *pf_node_get(const pf_node *map, const char *key);
+int pf_node_count(const pf_node *seq_or_map);
+const pf_node *pf_node_item(const pf_node *seq, int i);              /* i-th sequence item */
+const pf_node *pf_node_map_item(const pf_node *map, int i, const char **key); /* i-th pair */
+const char *pf_node_text(const pf_node *scalar);
+int pf_node_line(const pf_node *n);
+int pf_node_column(const pf_node *n);
+int pf_deck_real(const pf_deck *d, const pf_node *map, const char *key, double *out);
+int pf_deck_int(const pf_deck *d, const pf_node *map, const char *key, long *out);
+int pf_deck_bool(const pf_deck *d, const pf_node *map, const char *key, int *out);
+int pf_deck_string(const pf_deck *d, const pf_node *map, const char *key, const char **out);
+int pf_deck_vec3(const pf_deck *d, const pf_node *map, const char *key, double out[3]);
+/* An error about a node: "deck.yaml:12:5: key 'horizon': <message>". */
+int pf_deck_error(const pf_deck *d, const pf_node *n, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+/* ---- expressions in x, y, z, t (muparser) ------------------------------- */
+typedef struct pf_expr pf_expr;
+/* Compile an expression; errors name the deck position given by (deck, node, key). */
+int pf_expr_create(const char *text, const pf_deck *d, const pf_node *n, const char *key,
+                   pf_expr **e);
+int pf_expr_destroy(pf_expr **e);
+double pf_expr_eval(pf_expr *e, double x, double y, double z, double t);
+/* Three expressions from a PF_KEY_EXPR3 node. */
+int pf_expr3_create(const pf_deck *d, const pf_node *map, const char *key, pf_expr *e[3]);
+void pf_expr3_destroy(pf_expr *e[3]);
+
+/* ---- regions (point sets by geometry) ---------------------------------------- */
+typedef enum { PF_REGION_ALL, PF_REGION_BOX, PF_REGION_CYLINDER, PF_REGION_SPHERE } pf_region_kind;
+typedef struct {
+  pf_region_kind kind;
+  double lo[3], hi[3]; /* box */
+  double center[3];    /* cylinder (base centre) / sphere */
+  int axis;            /* cylinder axis 0,1,2 */
+  double radius, inner_radius, height;
+} pf_region;
+extern const pf_key pf_region_keys[];
+int pf_region_from_deck(const pf_deck *d, const pf_node *map, pf_region *r);
+int pf_region_contains(const pf_region *r, const double x[3]);
+
+/* ---- point generation: lattices and point files -------------------------------- */
+typedef struct {
+  double *X;   /* [3n] */
+  double *vol; /* [n] */
+  double *cell;  /* [n] edge of the cube cell of each point */
+  int32_t *block; /* [n] block id from a point file (0 for lattices) */
+  pf_int n;
+} pf_point_cloud;
+extern const pf_key pf_geometry_keys[];
+/* Points of a body from its `geometry:` mapping: a lattice inside a shape, or a point file. */
+int pf_point_cloud_from_deck(const pf_deck *d, const pf_node *geometry, pf_point_cloud *pc);
+int pf_point_cloud_free(pf_point_cloud *pc);
+/* Simple cubic lattice origin + h*(i,j,k) inside region (boundary inclusive to 1e-9 h). */
+int pf_lattice_fill(const pf_region *r, double h, const double origin[3], pf_point_cloud *pc);
+int pf_point_file_read(const char *path, pf_point_cloud *pc);
+/* Permutation that orders points along a Morton (Z-order) curve. */
+int pf_morton_order(pf_int n, const double *X, pf_int *perm);
+
+/* ---- reductions (MPI_COMM_WORLD) --------------------------------------------- */
+double pf_sum_all(double local);
+double pf_min_all(double local);
+double pf_max_all(double local);
+int pf_comm_rank(void);
+int pf_comm_size(void);
+
+/* ---- prescribed boundary conditions (core/bc.c) -------------------------------- */
+typedef struct pf_bc pf_bc;
+extern const pf_key pf_bc_keys[];
+/* A prescribed velocity or displacement, component by component ("free" leaves a component
+ * alone), on the points of a region (optionally of one body, by index into body_names). */
+int pf_bc_create(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
+                 const char *const *body_names, pf_bc **bc);
+int pf_bc_destroy(pf_bc **bc);
+pf_int pf_bc_npoints(const pf_bc *bc);
+/* Velocity Verlet hooks: after the first half kick (mid-step velocity at t + dt/2) and after
+ * the second half kick (velocity at t). */
+void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt);
+void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t);
+
+/* ---- state digest ------------------------------------------------------- */
+/* FNV-1a 64-bit hash of the displacement of owned points in global-id order. */
+int pf_state_digest(const pf_points *pts, uint64_t *digest);
+
+
+/* ---- output: Exodus II (core/output_exodus.c) and HDF5 history (core/history.c) ---- */
+typedef struct pf_exodus pf_exodus;
+/* Create an Exodus II file: coordinates of the owned points, one SPHERE element block per body
+ * (body_start has nbodies + 1 entries from 0 to n_owned: points are grouped by body, body b
+ * owning [body_start[b], body_start[b+1])), nodal variables displacement_{x,y,z},
+ * velocity_{x,y,z}, force_{x,y,z} and every field flagged PF_FIELD_OUTPUT (a field with ncomp 3
+ * gets _x/_y/_z), and global variables named by global_names. */
+int pf_exodus_create(const char *path, const pf_points *pts, int nbodies,
+                     const char *const *body_names, const pf_int *body_start, int nglobals,
+                     const char *const *global_names, pf_exodus **ex);
+/* Append one output step: time, the nodal variables, the global variables. */
+int pf_exodus_write(pf_exodus *ex, double time, const pf_points *pts, const double *globals);
+int pf_exodus_destroy(pf_exodus **ex);
+
+typedef struct pf_history pf_history;
+/* HDF5 history: one extendible 1-D dataset per column name under "/", plus attribute "units"
+ * on each when given (units may be NULL). Rank 0 writes; others get a NULL handle. */
+int pf_history_create(const char *path, int ncol, const char *const *names,
+                      const char *const *units, pf_history **h);
+int pf_history_append(pf_history *h, const double *row);
+int pf_history_destroy(pf_history **h);
+
+/* ---- wall clock ----------------------------------------------------------- */
+double pf_wtime(void);
+
+#endif

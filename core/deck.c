@@ -1,0 +1,205 @@
+/* The input deck: YAML read with libyaml into a small tree that keeps every node's source
+ * position, and checked against schema tables (pf_key) that are also the source of the deck
+ * documentation. Every error names file:line:column and the key. */
+#include "core/core.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <yaml.h>
+
+#include "core/deck_impl.h"
+
+static void node_free(pf_node *n) {
+  if (!n) return;
+  for (int i = 0; i < n->n; i++) {
+    node_free(n->items[i]);
+    if (n->keys) free(n->keys[i]);
+  }
+  free(n->items);
+  free(n->keys);
+  free(n->key_line);
+  free(n->key_col);
+  free(n->text);
+  free(n);
+}
+
+static int convert(const char *path, yaml_document_t *doc, yaml_node_t *y, int depth,
+                   pf_node **out);
+
+static int convert_map(const char *path, yaml_document_t *doc, yaml_node_t *y, int depth,
+                       pf_node *n) {
+  int count = (int)(y->data.mapping.pairs.top - y->data.mapping.pairs.start);
+  PF_MALLOC(n->items, count);
+  PF_MALLOC(n->keys, count);
+  PF_MALLOC(n->key_line, count);
+  PF_MALLOC(n->key_col, count);
+  for (int i = 0; i < count; i++) {
+    yaml_node_pair_t *pr = &y->data.mapping.pairs.start[i];
+    yaml_node_t *k = yaml_document_get_node(doc, pr->key);
+    int kl = (int)k->start_mark.line + 1, kc = (int)k->start_mark.column + 1;
+    PF_CHECK(k->type == YAML_SCALAR_NODE, PF_ERR_INPUT, "%s:%d:%d: a mapping key must be a plain name",
+             path, kl, kc);
+    const char *key = (const char *)k->data.scalar.value;
+    for (int j = 0; j < n->n; j++)
+      PF_CHECK(strcmp(n->keys[j], key), PF_ERR_INPUT,
+               "%s:%d:%d: key '%s' given twice (first at line %d)", path, kl, kc, key,
+               n->key_line[j]);
+    n->keys[i] = strdup(key);
+    PF_CHECK(n->keys[i], PF_ERR_MEMORY, "out of memory");
+    n->key_line[i] = kl;
+    n->key_col[i] = kc;
+    n->n = i + 1;
+    PF_CALL(convert(path, doc, yaml_document_get_node(doc, pr->value), depth + 1, &n->items[i]));
+  }
+  return 0;
+}
+
+static int convert(const char *path, yaml_document_t *doc, yaml_node_t *y, int depth,
+                   pf_node **out) {
+  PF_CHECK(depth < 64, PF_ERR_INPUT, "%s:%d: nesting deeper than 64 levels", path,
+           (int)y->start_mark.line + 1);
+  pf_node *n;
+  PF_MALLOC(n, 1);
+  *out = n;
+  n->line = (int)y->start_mark.line + 1;
+  n->col = (int)y->start_mark.column + 1;
+  if (y->type == YAML_SCALAR_NODE) {
+    n->kind = NODE_SCALAR;
+    n->text = strdup((const char *)y->data.scalar.value);
+    PF_CHECK(n->text, PF_ERR_MEMORY, "out of memory");
+    n->quoted = y->data.scalar.style == YAML_SINGLE_QUOTED_SCALAR_STYLE ||
+                y->data.scalar.style == YAML_DOUBLE_QUOTED_SCALAR_STYLE;
+    return 0;
+  }
+  if (y->type == YAML_SEQUENCE_NODE) {
+    n->kind = NODE_SEQ;
+    int count = (int)(y->data.sequence.items.top - y->data.sequence.items.start);
+    PF_MALLOC(n->items, count);
+    for (int i = 0; i < count; i++) {
+      n->n = i + 1;
+      yaml_node_t *it = yaml_document_get_node(doc, y->data.sequence.items.start[i]);
+      PF_CALL(convert(path, doc, it, depth + 1, &n->items[i]));
+    }
+    return 0;
+  }
+  n->kind = NODE_MAP;
+  return convert_map(path, doc, y, depth, n);
+}
+
+static uint64_t hash_text(const char *s, size_t len) {
+  uint64_t h = 1469598103934665603ULL;
+  for (size_t i = 0; i < len; i++) h = (h ^ (unsigned char)s[i]) * 1099511628211ULL;
+  return h;
+}
+
+static int read_file(const char *path, char **text, size_t *len) {
+  FILE *fp = fopen(path, "rb");
+  PF_CHECK(fp, PF_ERR_INPUT, "cannot open deck '%s': %s", path, strerror(errno));
+  fseek(fp, 0, SEEK_END);
+  long sz = ftell(fp);
+  fseek(fp, 0, SEEK_SET);
+  if (sz < 0) {
+    fclose(fp);
+    PF_CHECK(0, PF_ERR_INPUT, "cannot read deck '%s'", path);
+  }
+  char *buf = malloc((size_t)sz + 1);
+  if (!buf) fclose(fp);
+  PF_CHECK(buf, PF_ERR_MEMORY, "out of memory reading '%s'", path);
+  size_t got = fread(buf, 1, (size_t)sz, fp);
+  fclose(fp);
+  buf[got] = '\0';
+  *text = buf;
+  *len = got;
+  return 0;
+}
+
+static int parse_text(const char *path, const char *text, size_t len, pf_deck *d) {
+  yaml_parser_t parser;
+  yaml_document_t doc;
+  PF_CHECK(yaml_parser_initialize(&parser), PF_ERR_MEMORY, "libyaml: cannot initialize");
+  yaml_parser_set_input_string(&parser, (const unsigned char *)text, len);
+  if (!yaml_parser_load(&parser, &doc)) {
+    int line = (int)parser.problem_mark.line + 1, col = (int)parser.problem_mark.column + 1;
+    char prob[512];
+    snprintf(prob, sizeof prob, "%s%s%s", parser.problem ? parser.problem : "syntax error",
+             parser.context ? " " : "", parser.context ? parser.context : "");
+    yaml_parser_delete(&parser);
+    PF_CHECK(0, PF_ERR_INPUT, "%s:%d:%d: YAML syntax error: %s", path, line, col, prob);
+  }
+  yaml_node_t *root = yaml_document_get_root_node(&doc);
+  int ierr = 0;
+  if (!root) ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__, "%s: the deck is empty", path);
+  else if (root->type != YAML_MAPPING_NODE)
+    ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
+                          "%s:%d:%d: the deck must be a mapping of keys (title:, bodies:, ...)",
+                          path, (int)root->start_mark.line + 1, (int)root->start_mark.column + 1);
+  else ierr = convert(path, &doc, root, 0, &d->root);
+  yaml_document_delete(&doc);
+  yaml_parser_delete(&parser);
+  return ierr;
+}
+
+int pf_deck_load(const char *path, pf_deck **deck) {
+  *deck = NULL;
+  char *text = NULL;
+  size_t len = 0;
+  PF_CALL(read_file(path, &text, &len));
+  pf_deck *d = calloc(1, sizeof *d);
+  if (!d) free(text);
+  PF_CHECK(d, PF_ERR_MEMORY, "out of memory");
+  d->path = strdup(path);
+  d->hash = hash_text(text, len);
+  int ierr = parse_text(path, text, len, d);
+  free(text);
+  if (ierr) {
+    pf_deck_destroy(&d);
+    return ierr;
+  }
+  *deck = d;
+  return 0;
+}
+
+int pf_deck_destroy(pf_deck **deck) {
+  if (!*deck) return 0;
+  node_free((*deck)->root);
+  free((*deck)->path);
+  PF_FREE(*deck);
+  return 0;
+}
+
+const pf_node *pf_deck_root(const pf_deck *deck) { return deck->root; }
+const char *pf_deck_path(const pf_deck *deck) { return deck->path; }
+uint64_t pf_deck_hash(const pf_deck *deck) { return deck->hash; }
+
+const pf_node *pf_node_get(const pf_node *map, const char *key) {
+  if (!map || map->kind != NODE_MAP) return NULL;
+  for (int i = 0; i < map->n; i++)
+    if (!strcmp(map->keys[i], key)) return map->items[i];
+  return NULL;
+}
+int pf_node_count(const pf_node *n) { return n && n->kind != NODE_SCALAR ? n->n : 0; }
+const pf_node *pf_node_item(const pf_node *seq, int i) {
+  return seq && seq->kind == NODE_SEQ && i < seq->n ? seq->items[i] : NULL;
+}
+const pf_node *pf_node_map_item(const pf_node *map, int i, const char **key) {
+  if (!map || map->kind != NODE_MAP || i >= map->n) return NULL;
+  *key = map->keys[i];
+  return map->items[i];
+}
+const char *pf_node_text(const pf_node *n) { return n && n->kind == NODE_SCALAR ? n->text : NULL; }
+int pf_node_line(const pf_node *n) { return n ? n->line : 0; }
+int pf_node_column(const pf_node *n) { return n ? n->col : 0; }
+
+int pf_deck_error(const pf_deck *d, const pf_node *n, const char *key, const char *fmt, ...) {
+  char msg[1024];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  return pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__, "%s:%d:%d: key '%s': %s",
+                        d->path, pf_node_line(n), pf_node_column(n), key, msg);
+}

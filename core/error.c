@@ -1,0 +1,53 @@
+/* Error recording and logging (STYLE.md 5): the first error raised is kept with its origin
+ * and printed once to stderr; PF_CALL adds one "called from" line per level in debug mode. */
+#include "core/core.h"
+
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+static char first_message[2048];
+static int have_error = 0;
+static int error_quiet = 0;
+static int log_quiet = 0;
+
+int pf_error_raise(int code, const char *file, int line, const char *func, const char *fmt, ...) {
+  if (have_error) return code; /* keep the first, innermost message */
+  have_error = 1;
+  va_list ap;
+  va_start(ap, fmt);
+  char msg[1536];
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  int rank = pf_comm_rank();
+  if (pf_comm_size() > 1)
+    snprintf(first_message, sizeof first_message, "error (rank %d): %s", rank, msg);
+  else
+    snprintf(first_message, sizeof first_message, "error: %s", msg);
+  if (!error_quiet) {
+    fprintf(stderr, "perifem %s\n", first_message);
+    if (getenv("PERIFEM_DEBUG")) fprintf(stderr, "  raised at %s:%d in %s()\n", file, line, func);
+    fflush(stderr);
+  }
+  return code;
+}
+
+const char *pf_error_message(void) { return have_error ? first_message : ""; }
+
+void pf_error_clear(void) {
+  have_error = 0;
+  first_message[0] = '\0';
+}
+
+void pf_error_set_quiet(int quiet) { error_quiet = quiet; }
+
+void pf_log_set_quiet(int quiet) { log_quiet = quiet; }
+
+void pf_log(const char *fmt, ...) {
+  if (log_quiet || pf_comm_rank() != 0) return;
+  va_list ap;
+  va_start(ap, fmt);
+  vfprintf(stdout, fmt, ap);
+  va_end(ap);
+  fflush(stdout);
+}

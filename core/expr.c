@@ -1,0 +1,72 @@
+/* Expressions of position and time from the deck (initial velocities, prescribed motions),
+ * compiled and evaluated by muparser through its C API. */
+#include "core/core.h"
+
+#include <muParserDLL.h>
+#include <stdlib.h>
+
+struct pf_expr {
+  muParserHandle_t parser;
+  double x, y, z, t; /* the variables the parser reads */
+};
+
+int pf_expr_create(const char *text, const pf_deck *d, const pf_node *n, const char *key,
+                   pf_expr **out) {
+  *out = NULL;
+  pf_expr *e;
+  PF_MALLOC(e, 1);
+  e->parser = mupCreate(muBASETYPE_FLOAT);
+  if (!e->parser) {
+    free(e);
+    PF_CHECK(0, PF_ERR_MEMORY, "muparser: cannot create a parser");
+  }
+  mupDefineVar(e->parser, "x", &e->x);
+  mupDefineVar(e->parser, "y", &e->y);
+  mupDefineVar(e->parser, "z", &e->z);
+  mupDefineVar(e->parser, "t", &e->t);
+  mupSetExpr(e->parser, text);
+  (void)mupEval(e->parser); /* compiles; syntax and unknown names show up here */
+  if (mupError(e->parser)) {
+    int ierr = pf_deck_error(d, n, key, "bad expression '%s': %s (at character %d)", text,
+                             mupGetErrorMsg(e->parser), (int)mupGetErrorPos(e->parser) + 1);
+    pf_expr_destroy(&e);
+    return ierr;
+  }
+  *out = e;
+  return 0;
+}
+
+int pf_expr_destroy(pf_expr **e) {
+  if (!*e) return 0;
+  mupRelease((*e)->parser);
+  PF_FREE(*e);
+  return 0;
+}
+
+double pf_expr_eval(pf_expr *e, double x, double y, double z, double t) {
+  e->x = x;
+  e->y = y;
+  e->z = z;
+  e->t = t;
+  return mupEval(e->parser);
+}
+
+int pf_expr3_create(const pf_deck *d, const pf_node *map, const char *key, pf_expr *e[3]) {
+  e[0] = e[1] = e[2] = NULL;
+  const pf_node *v = pf_node_get(map, key);
+  PF_CHECK(v && pf_node_count(v) == 3, PF_ERR_INPUT, "%s: key '%s' needs three expressions",
+           pf_deck_path(d), key);
+  for (int c = 0; c < 3; c++) {
+    const pf_node *it = pf_node_item(v, c);
+    int ierr = pf_expr_create(pf_node_text(it), d, it, key, &e[c]);
+    if (ierr) {
+      pf_expr3_destroy(e);
+      return ierr;
+    }
+  }
+  return 0;
+}
+
+void pf_expr3_destroy(pf_expr *e[3]) {
+  for (int c = 0; c < 3; c++) pf_expr_destroy(&e[c]);
+}

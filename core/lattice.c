@@ -1,0 +1,222 @@
+/* Point generation for a body: a simple cubic lattice inside a shape (with an optional
+ * seeded random perturbation, as Peridigm's and Ruestes et al.'s decks do), or a plain-text
+ * point file "x y z volume block" like Peridigm's text discretization. */
+#include "core/core.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+const pf_key pf_geometry_keys[] = {
+    {"shape", PF_KEY_STRING, 1, NULL, "", "box | cylinder | sphere | points_file", NULL},
+    {"lo", PF_KEY_VEC3, 0, NULL, "m", "box: lower corner", NULL},
+    {"hi", PF_KEY_VEC3, 0, NULL, "m", "box: upper corner", NULL},
+    {"center", PF_KEY_VEC3, 0, "[0, 0, 0]", "m", "cylinder: centre of the base; sphere: centre",
+     NULL},
+    {"axis", PF_KEY_STRING, 0, "z", "", "cylinder axis: x, y or z", NULL},
+    {"radius", PF_KEY_REAL, 0, NULL, "m", "cylinder or sphere radius", NULL},
+    {"inner_radius", PF_KEY_REAL, 0, "0", "m", "cylinder: inner radius (a tube when > 0)", NULL},
+    {"height", PF_KEY_REAL, 0, NULL, "m", "cylinder height along the axis", NULL},
+    {"spacing", PF_KEY_REAL, 0, NULL, "m", "lattice spacing h (each point stands for an h^3 cell)",
+     NULL},
+    {"origin", PF_KEY_VEC3, 0, "[0, 0, 0]", "m",
+     "a lattice point; points are origin + h (i, j, k) inside the shape, boundary included", NULL},
+    {"perturbation", PF_KEY_REAL, 0, "0", "",
+     "random offset of each point, uniform in [-a h, a h] per component", NULL},
+    {"seed", PF_KEY_INT, 0, "1", "", "seed of the perturbation", NULL},
+    {"file", PF_KEY_STRING, 0, NULL, "",
+     "points_file: text file, one point a line: x y z volume block (relative to the deck)", NULL},
+    {"block", PF_KEY_INT, 0, NULL, "", "points_file: take only the points of this block", NULL},
+    PF_KEY_END};
+
+static int cloud_grow(pf_point_cloud *pc, pf_int *cap) {
+  pf_int nc = *cap ? 2 * *cap : 1024;
+  double *X = realloc(pc->X, 3 * sizeof(double) * (size_t)nc);
+  if (X) pc->X = X;
+  double *v = realloc(pc->vol, sizeof(double) * (size_t)nc);
+  if (v) pc->vol = v;
+  double *c = realloc(pc->cell, sizeof(double) * (size_t)nc);
+  if (c) pc->cell = c;
+  int32_t *b = realloc(pc->block, sizeof(int32_t) * (size_t)nc);
+  if (b) pc->block = b;
+  PF_CHECK(X && v && c && b, PF_ERR_MEMORY, "out of memory for %" PF_INT_FMT " points", nc);
+  *cap = nc;
+  return 0;
+}
+
+static int cloud_push(pf_point_cloud *pc, pf_int *cap, const double x[3], double vol,
+                      int32_t block) {
+  if (pc->n == *cap) PF_CALL(cloud_grow(pc, cap));
+  memcpy(&pc->X[3 * pc->n], x, 3 * sizeof(double));
+  pc->vol[pc->n] = vol;
+  pc->cell[pc->n] = cbrt(vol);
+  pc->block[pc->n] = block;
+  pc->n++;
+  return 0;
+}
+
+int pf_point_cloud_free(pf_point_cloud *pc) {
+  PF_FREE(pc->X);
+  PF_FREE(pc->vol);
+  PF_FREE(pc->cell);
+  PF_FREE(pc->block);
+  pc->n = 0;
+  return 0;
+}
+
+/* Bounding box of a region. */
+static void region_bounds(const pf_region *r, double lo[3], double hi[3]) {
+  for (int c = 0; c < 3; c++) {
+    lo[c] = r->center[c] - r->radius;
+    hi[c] = r->center[c] + r->radius;
+  }
+  if (r->kind == PF_REGION_BOX) {
+    memcpy(lo, r->lo, sizeof(double) * 3);
+    memcpy(hi, r->hi, sizeof(double) * 3);
+  } else if (r->kind == PF_REGION_CYLINDER) {
+    lo[r->axis] = r->center[r->axis];
+    hi[r->axis] = r->center[r->axis] + r->height;
+  }
+}
+
+/* The region grown by tol on every face, so points exactly on the boundary are kept whatever
+ * the round-off of origin + h i. */
+static pf_region region_grow(const pf_region *r, double tol) {
+  pf_region g = *r;
+  for (int c = 0; c < 3; c++) g.lo[c] -= tol, g.hi[c] += tol;
+  g.radius += tol;
+  g.inner_radius = r->inner_radius > tol ? r->inner_radius - tol : 0;
+  g.center[g.axis] -= r->kind == PF_REGION_CYLINDER ? tol : 0;
+  g.height += 2 * tol;
+  return g;
+}
+
+int pf_lattice_fill(const pf_region *r, double h, const double origin[3], pf_point_cloud *pc) {
+  PF_CHECK(h > 0, PF_ERR_INPUT, "lattice spacing must be positive (got %g)", h);
+  PF_CHECK(r->kind != PF_REGION_ALL, PF_ERR_INPUT, "a lattice needs a bounded shape");
+  double lo[3], hi[3];
+  long i0[3], i1[3];
+  region_bounds(r, lo, hi);
+  for (int c = 0; c < 3; c++) {
+    i0[c] = (long)floor((lo[c] - origin[c]) / h) - 1;
+    i1[c] = (long)ceil((hi[c] - origin[c]) / h) + 1;
+  }
+  double cells = (double)(i1[0] - i0[0] + 1) * (i1[1] - i0[1] + 1) * (i1[2] - i0[2] + 1);
+  PF_CHECK(cells < 2e9, PF_ERR_INPUT, "lattice of %.3g cells is too large (spacing %g m)", cells,
+           h);
+  pf_region g = region_grow(r, 1e-9 * h);
+  pf_int cap = 0;
+  memset(pc, 0, sizeof *pc);
+  for (long k = i0[2]; k <= i1[2]; k++)
+    for (long j = i0[1]; j <= i1[1]; j++)
+      for (long i = i0[0]; i <= i1[0]; i++) {
+        double x[3] = {origin[0] + h * i, origin[1] + h * j, origin[2] + h * k};
+        if (pf_region_contains(&g, x)) PF_CALL(cloud_push(pc, &cap, x, h * h * h, 0));
+      }
+  return 0;
+}
+
+/* splitmix64: a seeded, platform-independent random stream for the perturbation. */
+static uint64_t splitmix64(uint64_t *s) {
+  uint64_t z = (*s += 0x9E3779B97F4A7C15ULL);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+static void perturb(pf_point_cloud *pc, double amplitude, uint64_t seed) {
+  uint64_t s = seed;
+  for (pf_int i = 0; i < 3 * pc->n; i++) {
+    double u01 = (double)(splitmix64(&s) >> 11) * 0x1.0p-53;
+    pc->X[i] += amplitude * (2 * u01 - 1);
+  }
+}
+
+int pf_point_file_read(const char *path, pf_point_cloud *pc) {
+  memset(pc, 0, sizeof *pc);
+  FILE *fp = fopen(path, "r");
+  PF_CHECK(fp, PF_ERR_INPUT, "cannot open point file '%s': %s", path, strerror(errno));
+  char line[1024];
+  pf_int cap = 0;
+  int lineno = 0, ierr = 0;
+  while (!ierr && fgets(line, sizeof line, fp)) {
+    lineno++;
+    char *p = line;
+    while (*p == ' ' || *p == '\t') p++;
+    if (*p == '#' || *p == '\n' || *p == '\0') continue;
+    double x[3], vol, block = 0;
+    int got = sscanf(p, "%lf %lf %lf %lf %lf", &x[0], &x[1], &x[2], &vol, &block);
+    if (got < 4 || !isfinite(x[0] + x[1] + x[2] + vol) || !(vol > 0) || block != floor(block))
+      ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
+                            "%s:%d: expected 'x y z volume [block]' with a positive volume and an integer block", path,
+                            lineno);
+    else
+      ierr = cloud_push(pc, &cap, x, vol, (int32_t)block);
+  }
+  fclose(fp);
+  if (!ierr && pc->n == 0)
+    ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__, "%s: no points", path);
+  if (ierr) pf_point_cloud_free(pc);
+  return ierr;
+}
+
+/* A file name from the deck, taken relative to the deck's folder. */
+static void deck_relative(const pf_deck *d, const char *name, char *out, size_t len) {
+  const char *dp = pf_deck_path(d), *slash = strrchr(dp, '/');
+  if (name[0] == '/' || !slash) snprintf(out, len, "%s", name);
+  else snprintf(out, len, "%.*s/%s", (int)(slash - dp), dp, name);
+}
+
+static int cloud_from_file(const pf_deck *d, const pf_node *g, pf_point_cloud *pc) {
+  const char *file = NULL;
+  char path[4096];
+  PF_CALL(pf_deck_string(d, g, "file", &file));
+  if (!file) return pf_deck_error(d, g, "file", "shape 'points_file' needs key 'file'");
+  deck_relative(d, file, path, sizeof path);
+  FILE *probe = fopen(path, "r");
+  if (!probe)
+    return pf_deck_error(d, pf_node_get(g, "file"), "file", "cannot open point file '%s': %s",
+                         path, strerror(errno));
+  fclose(probe);
+  PF_CALL(pf_point_file_read(path, pc));
+  long block = -1;
+  PF_CALL(pf_deck_int(d, g, "block", &block));
+  if (block < 0) return 0;
+  pf_int k = 0;
+  for (pf_int i = 0; i < pc->n; i++) {
+    if (pc->block[i] != block) continue;
+    memmove(&pc->X[3 * k], &pc->X[3 * i], 3 * sizeof(double));
+    pc->vol[k] = pc->vol[i];
+    pc->cell[k] = pc->cell[i];
+    pc->block[k++] = pc->block[i];
+  }
+  pc->n = k;
+  if (k == 0) return pf_deck_error(d, pf_node_get(g, "block"), "block", "no point of block %ld in '%s'", block, path);
+  return 0;
+}
+
+int pf_point_cloud_from_deck(const pf_deck *d, const pf_node *g, pf_point_cloud *pc) {
+  memset(pc, 0, sizeof *pc);
+  const char *shape = NULL;
+  PF_CALL(pf_deck_string(d, g, "shape", &shape));
+  if (shape && !strcmp(shape, "points_file")) return cloud_from_file(d, g, pc);
+  pf_region r;
+  PF_CALL(pf_region_from_deck(d, g, &r));
+  if (r.kind == PF_REGION_ALL) return pf_deck_error(d, g, "shape", "a body needs a bounded shape");
+  double h = 0, origin[3] = {0, 0, 0}, amp = 0;
+  long seed = 1;
+  if (!pf_node_get(g, "spacing")) return pf_deck_error(d, g, "spacing", "a lattice needs 'spacing'");
+  PF_CALL(pf_deck_real(d, g, "spacing", &h));
+  if (!(h > 0)) return pf_deck_error(d, pf_node_get(g, "spacing"), "spacing", "must be positive (got %g)", h);
+  PF_CALL(pf_deck_vec3(d, g, "origin", origin));
+  PF_CALL(pf_deck_real(d, g, "perturbation", &amp));
+  PF_CALL(pf_deck_int(d, g, "seed", &seed));
+  if (!(amp >= 0 && amp < 0.5))
+    return pf_deck_error(d, pf_node_get(g, "perturbation"), "perturbation",
+                         "must be in [0, 0.5) of the spacing (got %g)", amp);
+  PF_CALL(pf_lattice_fill(&r, h, origin, pc));
+  if (pc->n == 0) return pf_deck_error(d, g, "shape", "the shape holds no lattice point (spacing %g m)", h);
+  if (amp > 0) perturb(pc, amp * h, (uint64_t)seed);
+  return 0;
+}

@@ -1,0 +1,90 @@
+/* perifem DECK.yaml — the command line. Exit status: 0 success, 1 run failure, 2 bad input. */
+#include "core/simulation.h"
+
+#include <exodusII.h>
+#include <hdf5.h>
+#include <stdlib.h>
+#include <string.h>
+#include <yaml.h>
+
+static void usage(FILE *fp) {
+  fprintf(fp,
+          "usage: perifem [options] DECK.yaml\n"
+          "  --check            load and validate the deck and build the model; run nothing\n"
+          "  --output-dir DIR   write output files into DIR\n"
+          "  --quiet            print only errors, the summary's digest line excepted\n"
+          "  --version          print the version and the libraries it was built with\n"
+          "  --help             this text\n"
+          "exit status: 0 success, 1 run failure, 2 bad input\n");
+}
+
+static void version(void) {
+  unsigned maj, min, rel;
+  H5get_libversion(&maj, &min, &rel);
+  char mpi[MPI_MAX_LIBRARY_VERSION_STRING];
+  int len;
+  MPI_Get_library_version(mpi, &len);
+  char *nl = strchr(mpi, ',');
+  if (nl) *nl = '\0';
+  printf("perifem %s\n  libyaml %s, Exodus II %.2f, HDF5 %u.%u.%u, %s\n", PERIFEM_VERSION,
+         yaml_get_version_string(), (double)EX_API_VERS, maj, min, rel, mpi);
+}
+
+typedef struct {
+  const char *deck, *output_dir;
+  int check, quiet;
+} cli;
+
+/* Returns -1 to go on, or an exit status. */
+static int parse_args(int argc, char **argv, cli *c) {
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage(stdout), 0;
+    if (!strcmp(a, "--version")) return version(), 0;
+    if (!strcmp(a, "--check")) c->check = 1;
+    else if (!strcmp(a, "--quiet")) c->quiet = 1;
+    else if (!strcmp(a, "--output-dir") && i + 1 < argc) c->output_dir = argv[++i];
+    else if (a[0] == '-') {
+      fprintf(stderr, "perifem error: unknown option '%s'\n", a);
+      usage(stderr);
+      return PF_ERR_INPUT;
+    } else if (c->deck) {
+      fprintf(stderr, "perifem error: more than one deck given ('%s' and '%s')\n", c->deck, a);
+      return PF_ERR_INPUT;
+    } else c->deck = a;
+  }
+  if (!c->deck) {
+    usage(stderr);
+    return PF_ERR_INPUT;
+  }
+  return -1;
+}
+
+static int run(const cli *c) {
+  pf_sim_options opt = {.output_dir = c->output_dir};
+  pf_sim *sim = NULL;
+  int ierr = pf_sim_create(c->deck, &opt, &sim);
+  if (ierr) return ierr == PF_ERR_INPUT ? 2 : 1;
+  if (c->check) {
+    pf_log("%s: deck is valid (%" PF_GID_FMT " points, %ld steps of %.4e s)\n", c->deck,
+           pf_sim_points(sim)->n_global, pf_sim_nsteps(sim), pf_sim_dt(sim));
+    pf_sim_destroy(&sim);
+    return 0;
+  }
+  ierr = pf_sim_run(sim);
+  pf_sim_destroy(&sim);
+  return ierr ? (ierr == PF_ERR_INPUT ? 2 : 1) : 0;
+}
+
+int main(int argc, char **argv) {
+  MPI_Init(&argc, &argv);
+  cli c = {0};
+  int status = parse_args(argc, argv, &c);
+  if (status < 0) {
+    pf_log_set_quiet(c.quiet);
+    status = run(&c);
+  }
+  if (status && pf_comm_size() > 1) MPI_Abort(MPI_COMM_WORLD, status);
+  MPI_Finalize();
+  return status;
+}

@@ -1,0 +1,312 @@
+/* Exodus II output of the point cloud (one file, serial for now).
+ * Layout, as ParaView's Exodus reader expects it: a classic netCDF (64-bit offset) Exodus II
+ * file in double precision holding the title, 3-D coordinates of the owned points, one element
+ * block per body of type "SPHERE" with one node per element (element i of block b is point
+ * body_start[b] + i), block names = body names, node and element id maps = global id + 1,
+ * nodal variables displacement_{x,y,z}, velocity_{x,y,z}, force_{x,y,z} and then every field
+ * flagged PF_FIELD_OUTPUT (ncomp 1: name, ncomp 3: name_{x,y,z}, else name_0, name_1, ...),
+ * and global variables. Each pf_exodus_write appends one time step and calls ex_update. */
+#include "core/core.h"
+
+#include <exodusII.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PF_EX_NAME_LEN 64 /* longest variable / block name we hand to Exodus */
+#define PF_EX_NBUILTIN 9  /* displacement, velocity, force: 3 components each */
+
+struct pf_exodus {
+  int exoid;      /* -1 when not open */
+  char *path;     /* for error messages */
+  int step;       /* last written time step (1-based), 0 before the first write */
+  pf_int n;       /* number of nodes (owned points) */
+  int nvars;      /* nodal variables, built-ins first */
+  int nglobals;   /* global variables */
+  int *var_field; /* [nvars - PF_EX_NBUILTIN]: field index in pts->fields */
+  int *var_comp;  /* [nvars - PF_EX_NBUILTIN]: component in that field */
+  double *buf;    /* [n] one component of one variable */
+};
+
+/* Fail with the Exodus call, the file and Exodus's own last message when an ex_* call returns
+ * a negative status (positive values are warnings). */
+#define PF_EX_TRY(ex, status, call)                                                                \
+  do {                                                                                             \
+    if ((status) < 0) return pf_exodus_fail_((ex)->path, (call), __LINE__, __func__);              \
+  } while (0)
+
+static int pf_exodus_fail_(const char *path, const char *call, int line, const char *func) {
+  const char *msg = NULL, *where = NULL;
+  int code = 0;
+  ex_get_err(&msg, &where, &code);
+  return pf_error_raise(PF_ERR_LIB, __FILE__, line, func, "Exodus: %s failed (file %s): %s", call,
+                        path, msg && msg[0] ? msg : "no message");
+}
+
+/* ---- create ---------------------------------------------------------------- */
+
+static int check_bodies(const pf_points *pts, int nbodies, const char *const *body_names,
+                        const pf_int *body_start) {
+  PF_CHECK(nbodies >= 0, PF_ERR_INPUT, "Exodus output: %d bodies", nbodies);
+  if (nbodies == 0) return PF_SUCCESS;
+  PF_CHECK(body_names && body_start, PF_ERR_INPUT, "Exodus output: no body names or starts");
+  PF_CHECK(body_start[0] == 0 && body_start[nbodies] == pts->n_owned, PF_ERR_INPUT,
+           "Exodus output: bodies cover points [%" PF_INT_FMT ", %" PF_INT_FMT
+           "), expected [0, %" PF_INT_FMT ")",
+           body_start[0], body_start[nbodies], pts->n_owned);
+  for (int b = 0; b < nbodies; b++)
+    PF_CHECK(body_start[b] <= body_start[b + 1] && body_names[b], PF_ERR_INPUT,
+             "Exodus output: body %d has no name or a negative point count", b);
+  return PF_SUCCESS;
+}
+
+static int field_is_output(const pf_field *fld) { return (fld->flags & PF_FIELD_OUTPUT) != 0; }
+
+/* Count the nodal variables and record which field component each non-built-in one takes. */
+static int plan_variables(pf_exodus *ex, const pf_points *pts) {
+  int nextra = 0;
+  for (int k = 0; k < pts->nfields; k++)
+    if (field_is_output(&pts->fields[k])) nextra += pts->fields[k].ncomp;
+  ex->nvars = PF_EX_NBUILTIN + nextra;
+  PF_MALLOC(ex->var_field, nextra);
+  PF_MALLOC(ex->var_comp, nextra);
+  int j = 0;
+  for (int k = 0; k < pts->nfields; k++) {
+    if (!field_is_output(&pts->fields[k])) continue;
+    for (int c = 0; c < pts->fields[k].ncomp; c++, j++) {
+      ex->var_field[j] = k;
+      ex->var_comp[j] = c;
+    }
+  }
+  return PF_SUCCESS;
+}
+
+static void variable_name(const pf_field *fld, int comp, char *out) {
+  static const char xyz[3] = {'x', 'y', 'z'};
+  if (fld->ncomp == 1)
+    snprintf(out, PF_EX_NAME_LEN + 1, "%s", fld->name);
+  else if (fld->ncomp == 3)
+    snprintf(out, PF_EX_NAME_LEN + 1, "%s_%c", fld->name, xyz[comp]);
+  else
+    snprintf(out, PF_EX_NAME_LEN + 1, "%s_%d", fld->name, comp);
+}
+
+static int put_variable_names(pf_exodus *ex, const pf_points *pts) {
+  static const char *const builtin[PF_EX_NBUILTIN] = {
+      "displacement_x", "displacement_y", "displacement_z", "velocity_x", "velocity_y",
+      "velocity_z",     "force_x",        "force_y",        "force_z"};
+  char(*store)[PF_EX_NAME_LEN + 1] = NULL;
+  char **names = NULL;
+  PF_MALLOC(store, ex->nvars);
+  names = calloc((size_t)ex->nvars, sizeof(*names));
+  if (!names) {
+    PF_FREE(store);
+    return pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__,
+                          "out of memory for %d Exodus variable names", ex->nvars);
+  }
+  for (int j = 0; j < ex->nvars; j++) {
+    names[j] = store[j];
+    if (j < PF_EX_NBUILTIN)
+      snprintf(store[j], sizeof(store[j]), "%s", builtin[j]);
+    else
+      variable_name(&pts->fields[ex->var_field[j - PF_EX_NBUILTIN]],
+                    ex->var_comp[j - PF_EX_NBUILTIN], store[j]);
+  }
+  int st = ex_put_variable_param(ex->exoid, EX_NODAL, ex->nvars);
+  if (st >= 0) st = ex_put_variable_names(ex->exoid, EX_NODAL, ex->nvars, names);
+  free(names);
+  PF_FREE(store);
+  PF_EX_TRY(ex, st, "ex_put_variable_param/ex_put_variable_names(EX_NODAL)");
+  return PF_SUCCESS;
+}
+
+static int put_global_names(pf_exodus *ex, int nglobals, const char *const *global_names) {
+  ex->nglobals = nglobals;
+  if (nglobals <= 0) return PF_SUCCESS;
+  PF_CHECK(global_names, PF_ERR_INPUT, "Exodus output: %d globals but no names", nglobals);
+  PF_EX_TRY(ex, ex_put_variable_param(ex->exoid, EX_GLOBAL, nglobals),
+            "ex_put_variable_param(EX_GLOBAL)");
+  /* Exodus takes char **; it does not modify the names. */
+  PF_EX_TRY(ex, ex_put_variable_names(ex->exoid, EX_GLOBAL, nglobals, (char **)global_names),
+            "ex_put_variable_names(EX_GLOBAL)");
+  return PF_SUCCESS;
+}
+
+static int put_coordinates(pf_exodus *ex, const pf_points *pts) {
+  char *cnames[3] = {"x", "y", "z"};
+  PF_EX_TRY(ex, ex_put_coord_names(ex->exoid, cnames), "ex_put_coord_names");
+  if (ex->n == 0) return PF_SUCCESS;
+  double *xyz = NULL;
+  PF_MALLOC(xyz, 3 * (size_t)ex->n);
+  for (pf_int i = 0; i < ex->n; i++)
+    for (int d = 0; d < 3; d++) xyz[(size_t)d * ex->n + i] = pts->X[3 * (size_t)i + d];
+  int st = ex_put_coord(ex->exoid, xyz, xyz + ex->n, xyz + 2 * (size_t)ex->n);
+  PF_FREE(xyz);
+  PF_EX_TRY(ex, st, "ex_put_coord");
+  return PF_SUCCESS;
+}
+
+/* Node and element id maps: global id + 1 (Exodus ids are 1-based). Elements are the points in
+ * order, so both maps are the same array. */
+static int put_id_maps(pf_exodus *ex, const pf_points *pts, int nbodies) {
+  if (ex->n == 0) return PF_SUCCESS;
+  int64_t *ids = NULL;
+  PF_MALLOC(ids, ex->n);
+  for (pf_int i = 0; i < ex->n; i++) ids[i] = (int64_t)pts->gid[i] + 1;
+  int st = ex_put_id_map(ex->exoid, EX_NODE_MAP, ids);
+  const char *call = "ex_put_id_map(EX_NODE_MAP)";
+  if (st >= 0 && nbodies > 0) {
+    st = ex_put_id_map(ex->exoid, EX_ELEM_MAP, ids);
+    call = "ex_put_id_map(EX_ELEM_MAP)";
+  }
+  PF_FREE(ids);
+  PF_EX_TRY(ex, st, call);
+  return PF_SUCCESS;
+}
+
+static int put_block(pf_exodus *ex, int b, pf_int start, pf_int count) {
+  PF_EX_TRY(ex, ex_put_block(ex->exoid, EX_ELEM_BLOCK, b + 1, "SPHERE", count, 1, 0, 0, 0),
+            "ex_put_block");
+  if (count == 0) return PF_SUCCESS;
+  int64_t *conn = NULL;
+  PF_MALLOC(conn, count);
+  for (pf_int i = 0; i < count; i++) conn[i] = (int64_t)start + i + 1;
+  int st = ex_put_conn(ex->exoid, EX_ELEM_BLOCK, b + 1, conn, NULL, NULL);
+  PF_FREE(conn);
+  PF_EX_TRY(ex, st, "ex_put_conn");
+  return PF_SUCCESS;
+}
+
+static int put_blocks(pf_exodus *ex, int nbodies, const char *const *body_names,
+                      const pf_int *body_start) {
+  if (nbodies == 0) return PF_SUCCESS;
+  for (int b = 0; b < nbodies; b++)
+    PF_CALL(put_block(ex, b, body_start[b], body_start[b + 1] - body_start[b]));
+  /* Exodus takes char **; it does not modify the names. */
+  PF_EX_TRY(ex, ex_put_names(ex->exoid, EX_ELEM_BLOCK, (char **)body_names),
+            "ex_put_names(EX_ELEM_BLOCK)");
+  return PF_SUCCESS;
+}
+
+static int open_file(pf_exodus *ex, int nbodies) {
+  int cpu_ws = 8, io_ws = 8;
+  int mode = EX_CLOBBER | EX_LARGE_MODEL | EX_MAPS_INT64_API | EX_BULK_INT64_API;
+  ex->exoid = ex_create(ex->path, mode, &cpu_ws, &io_ws);
+  PF_EX_TRY(ex, ex->exoid, "ex_create");
+  PF_EX_TRY(ex, ex_set_max_name_length(ex->exoid, PF_EX_NAME_LEN), "ex_set_max_name_length");
+  int64_t nelem = nbodies > 0 ? ex->n : 0; /* one SPHERE element per point */
+  PF_EX_TRY(ex, ex_put_init(ex->exoid, "perifem output", 3, ex->n, nelem, nbodies, 0, 0),
+            "ex_put_init");
+  return PF_SUCCESS;
+}
+
+static int setup(pf_exodus *ex, const pf_points *pts, int nbodies, const char *const *body_names,
+                 const pf_int *body_start, int nglobals, const char *const *global_names) {
+  PF_CALL(plan_variables(ex, pts));
+  PF_MALLOC(ex->buf, ex->n);
+  PF_CALL(open_file(ex, nbodies));
+  PF_CALL(put_coordinates(ex, pts));
+  PF_CALL(put_blocks(ex, nbodies, body_names, body_start));
+  PF_CALL(put_id_maps(ex, pts, nbodies));
+  PF_CALL(put_variable_names(ex, pts));
+  PF_CALL(put_global_names(ex, nglobals, global_names));
+  PF_EX_TRY(ex, ex_update(ex->exoid), "ex_update");
+  return PF_SUCCESS;
+}
+
+int pf_exodus_create(const char *path, const pf_points *pts, int nbodies,
+                     const char *const *body_names, const pf_int *body_start, int nglobals,
+                     const char *const *global_names, pf_exodus **ex) {
+  PF_CHECK(path && pts && ex, PF_ERR_INPUT, "pf_exodus_create: NULL argument");
+  *ex = NULL;
+  PF_CALL(check_bodies(pts, nbodies, body_names, body_start));
+  PF_CHECK(pts->n_global < INT32_MAX, PF_ERR_INPUT,
+           "Exodus output %s: %" PF_GID_FMT " points exceed the 32-bit id maps", path,
+           pts->n_global);
+  pf_exodus *e = NULL;
+  PF_MALLOC(e, 1);
+  e->exoid = -1;
+  e->n = pts->n_owned;
+  size_t len = strlen(path) + 1;
+  e->path = malloc(len);
+  if (!e->path) {
+    PF_FREE(e);
+    return pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__,
+                          "out of memory for the Exodus path %s", path);
+  }
+  memcpy(e->path, path, len);
+  int err = setup(e, pts, nbodies, body_names, body_start, nglobals, global_names);
+  if (err) {
+    pf_exodus_destroy(&e);
+    return err;
+  }
+  *ex = e;
+  return PF_SUCCESS;
+}
+
+/* ---- write ----------------------------------------------------------------- */
+
+/* Copy component `comp` of an interleaved array with `ncomp` components into ex->buf. */
+static void gather(pf_exodus *ex, const double *data, int ncomp, int comp) {
+  for (pf_int i = 0; i < ex->n; i++) ex->buf[i] = data[(size_t)i * ncomp + comp];
+}
+
+static int put_nodal(pf_exodus *ex, int var) {
+  if (ex->n == 0) return PF_SUCCESS;
+  PF_EX_TRY(ex, ex_put_var(ex->exoid, ex->step, EX_NODAL, var + 1, 1, ex->n, ex->buf),
+            "ex_put_var(EX_NODAL)");
+  return PF_SUCCESS;
+}
+
+static int check_fields(const pf_exodus *ex, const pf_points *pts) {
+  PF_CHECK(pts->n_owned == ex->n, PF_ERR_RUN,
+           "Exodus output %s: %" PF_INT_FMT " points, the file was created with %" PF_INT_FMT,
+           ex->path, pts->n_owned, ex->n);
+  for (int j = 0; j < ex->nvars - PF_EX_NBUILTIN; j++) {
+    int k = ex->var_field[j];
+    PF_CHECK(k < pts->nfields && field_is_output(&pts->fields[k]) &&
+                 ex->var_comp[j] < pts->fields[k].ncomp,
+             PF_ERR_RUN, "Exodus output %s: the output fields changed since the file was created",
+             ex->path);
+  }
+  return PF_SUCCESS;
+}
+
+int pf_exodus_write(pf_exodus *ex, double time, const pf_points *pts, const double *globals) {
+  PF_CHECK(ex && pts, PF_ERR_INPUT, "pf_exodus_write: NULL argument");
+  PF_CALL(check_fields(ex, pts));
+  ex->step++;
+  PF_EX_TRY(ex, ex_put_time(ex->exoid, ex->step, &time), "ex_put_time");
+  const double *vec[3] = {pts->u, pts->v, pts->f};
+  for (int j = 0; j < PF_EX_NBUILTIN; j++) {
+    gather(ex, vec[j / 3], 3, j % 3);
+    PF_CALL(put_nodal(ex, j));
+  }
+  for (int j = PF_EX_NBUILTIN; j < ex->nvars; j++) {
+    const pf_field *fld = &pts->fields[ex->var_field[j - PF_EX_NBUILTIN]];
+    gather(ex, fld->data, fld->ncomp, ex->var_comp[j - PF_EX_NBUILTIN]);
+    PF_CALL(put_nodal(ex, j));
+  }
+  if (ex->nglobals > 0) {
+    PF_CHECK(globals, PF_ERR_INPUT, "Exodus output %s: no global values", ex->path);
+    PF_EX_TRY(ex, ex_put_var(ex->exoid, ex->step, EX_GLOBAL, 1, 0, ex->nglobals, globals),
+              "ex_put_var(EX_GLOBAL)");
+  }
+  PF_EX_TRY(ex, ex_update(ex->exoid), "ex_update");
+  return PF_SUCCESS;
+}
+
+/* ---- destroy --------------------------------------------------------------- */
+
+int pf_exodus_destroy(pf_exodus **ex) {
+  if (!ex || !*ex) return PF_SUCCESS;
+  pf_exodus *e = *ex;
+  *ex = NULL;
+  int st = e->exoid >= 0 ? ex_close(e->exoid) : 0;
+  int err = st < 0 ? pf_exodus_fail_(e->path, "ex_close", __LINE__, __func__) : PF_SUCCESS;
+  PF_FREE(e->var_field);
+  PF_FREE(e->var_comp);
+  PF_FREE(e->buf);
+  PF_FREE(e->path);
+  PF_FREE(e);
+  return err;
+}

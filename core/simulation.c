@@ -1,0 +1,178 @@
+/* Building a simulation from a deck: validate every key first, then generate the points of
+ * each body (grouped by body, each body in Morton order), families and materials, initial
+ * velocities, indenters, boundary conditions, and the time step. No file is written here. */
+#include "core/simulation_impl.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static const pf_key time_keys[] = {
+    {"final_time", PF_KEY_REAL, 0, NULL, "s", "end time (give this or steps)", NULL},
+    {"steps", PF_KEY_INT, 0, NULL, "", "number of steps (give this or final_time)", NULL},
+    {"dt", PF_KEY_REAL, 0, "stable", "s", "fixed time step; default: safety_factor x stable step", NULL},
+    {"safety_factor", PF_KEY_REAL, 0, "0.8", "", "fraction of the Silling–Askari stable step", NULL},
+    PF_KEY_END};
+
+static const pf_key output_keys[] = {
+    {"file", PF_KEY_STRING, 0, "<deck name>.e", "", "Exodus II output file", NULL},
+    {"interval", PF_KEY_INT, 0, "100", "", "steps between Exodus outputs (0: first and last only)", NULL},
+    {"history_file", PF_KEY_STRING, 0, "<deck name>.h5", "", "HDF5 history of global quantities", NULL},
+    {"history_interval", PF_KEY_INT, 0, "10", "", "steps between history rows", NULL},
+    PF_KEY_END};
+
+const pf_key pf_deck_keys[] = {
+    {"title", PF_KEY_STRING, 0, "", "", "a title for the output", NULL},
+    {"units", PF_KEY_STRING, 0, "SI", "", "unit system; only SI is accepted", NULL},
+    {"materials", PF_KEY_ANYMAP, 1, NULL, "", "named materials", pf_pd_material_keys},
+    {"bodies", PF_KEY_LIST, 1, NULL, "", "the bodies", pf_pd_body_keys},
+    {"indenters", PF_KEY_LIST, 0, NULL, "", "rigid indenters with prescribed motion", pf_indenter_keys},
+    {"boundary_conditions", PF_KEY_LIST, 0, NULL, "", "prescribed velocities/displacements", pf_bc_keys},
+    {"time", PF_KEY_MAP, 1, NULL, "", "time stepping", time_keys},
+    {"output", PF_KEY_MAP, 0, NULL, "", "output files and intervals", output_keys},
+    PF_KEY_END};
+
+/* Generate every body's points into one store, bodies contiguous, each in Morton order. */
+static int build_points(pf_sim *sim, const pf_node *bodies) {
+  pf_point_cloud pc[PF_MAX_BODIES];
+  memset(pc, 0, sizeof pc);
+  int ierr = 0;
+  pf_int total = 0;
+  for (int b = 0; b < sim->nbodies && !ierr; b++) {
+    const pf_node *body = pf_node_item(bodies, b);
+    ierr = pf_point_cloud_from_deck(sim->deck, pf_node_get(body, "geometry"), &pc[b]);
+    sim->body_start[b] = total;
+    total += pc[b].n;
+  }
+  sim->body_start[sim->nbodies] = total;
+  if (!ierr) ierr = pf_points_create(total, &sim->pts);
+  for (int b = 0; b < sim->nbodies && !ierr; b++) {
+    pf_int first = sim->body_start[b], *perm = malloc(sizeof(pf_int) * (size_t)(pc[b].n + 1));
+    if (!perm) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+    else ierr = pf_morton_order(pc[b].n, pc[b].X, perm);
+    for (pf_int k = 0; k < pc[b].n && !ierr; k++) {
+      pf_int i = first + k, src = perm[k];
+      memcpy(&sim->pts->X[3 * i], &pc[b].X[3 * src], 3 * sizeof(double));
+      memcpy(&sim->pts->y[3 * i], &pc[b].X[3 * src], 3 * sizeof(double));
+      sim->pts->vol[i] = pc[b].vol[src];
+      sim->pts->cell[i] = pc[b].cell[src];
+      sim->pts->gid[i] = first + src; /* generation order: independent of any partition */
+      sim->pts->body[i] = b;
+    }
+    free(perm);
+  }
+  for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
+  return ierr;
+}
+
+static int set_initial_velocity(pf_sim *sim, int b, const pf_node *body) {
+  if (!pf_node_get(body, "initial_velocity")) return 0;
+  pf_expr *e[3];
+  PF_CALL(pf_expr3_create(sim->deck, body, "initial_velocity", e));
+  pf_points *p = sim->pts;
+  for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++)
+    for (int c = 0; c < 3; c++)
+      p->v[3 * i + c] = pf_expr_eval(e[c], p->X[3 * i], p->X[3 * i + 1], p->X[3 * i + 2], 0.0);
+  pf_expr3_destroy(e);
+  return 0;
+}
+
+static int build_bodies(pf_sim *sim, const pf_node *root) {
+  const pf_node *bodies = pf_node_get(root, "bodies");
+  sim->nbodies = pf_node_count(bodies);
+  PF_CHECK(sim->nbodies > 0 && sim->nbodies <= PF_MAX_BODIES, PF_ERR_INPUT,
+           "%s:%d: 'bodies' must list 1 to %d bodies (got %d)", pf_deck_path(sim->deck),
+           pf_node_line(bodies), PF_MAX_BODIES, sim->nbodies);
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_node *body = pf_node_item(bodies, b);
+    PF_CALL(pf_deck_string(sim->deck, body, "name", &sim->body_name[b]));
+    for (int q = 0; q < b; q++)
+      if (!strcmp(sim->body_name[q], sim->body_name[b]))
+        return pf_deck_error(sim->deck, pf_node_get(body, "name"), "name", "two bodies named '%s'",
+                             sim->body_name[b]);
+  }
+  PF_CALL(build_points(sim, bodies));
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_node *body = pf_node_item(bodies, b);
+    pf_int first = sim->body_start[b], n = sim->body_start[b + 1] - first;
+    PF_CALL(pf_pd_body_create(sim->deck, body, pf_node_get(root, "materials"), sim->pts, first, n,
+                              &sim->body[b]));
+    PF_CALL(set_initial_velocity(sim, b, body));
+  }
+  return 0;
+}
+
+static int build_loads(pf_sim *sim, const pf_node *root) {
+  const pf_node *inds = pf_node_get(root, "indenters"), *bcs = pf_node_get(root, "boundary_conditions");
+  sim->nindenters = pf_node_count(inds);
+  PF_MALLOC(sim->indenters, sim->nindenters);
+  PF_MALLOC(sim->reaction, sim->nindenters);
+  for (int k = 0; k < sim->nindenters; k++)
+    PF_CALL(pf_indenter_create(sim->deck, pf_node_item(inds, k), &sim->indenters[k]));
+  sim->nbcs = pf_node_count(bcs);
+  PF_MALLOC(sim->bcs, sim->nbcs);
+  for (int k = 0; k < sim->nbcs; k++)
+    PF_CALL(pf_bc_create(sim->deck, pf_node_item(bcs, k), sim->pts, sim->nbodies, sim->body_name,
+                         &sim->bcs[k]));
+  return 0;
+}
+
+static int check_units(const pf_sim *sim, const pf_node *root) {
+  const char *units = "SI";
+  PF_CALL(pf_deck_string(sim->deck, root, "units", &units));
+  if (strcmp(units, "SI"))
+    return pf_deck_error(sim->deck, pf_node_get(root, "units"), "units",
+                         "only SI units are supported (got '%s')", units);
+  return 0;
+}
+
+static int sim_build(pf_sim *sim, const char *deck_path) {
+  PF_CALL(pf_deck_load(deck_path, &sim->deck));
+  const pf_node *root = pf_deck_root(sim->deck);
+  PF_CALL(pf_deck_validate(sim->deck, root, pf_deck_keys, "the deck"));
+  PF_CALL(check_units(sim, root));
+  PF_CHECK(pf_comm_size() == 1, PF_ERR_INPUT,
+           "this build runs on one MPI rank only (domain decomposition is not there yet); "
+           "run without mpirun or with -np 1");
+  PF_CALL(build_bodies(sim, root));
+  PF_CALL(build_loads(sim, root));
+  PF_CALL(pf_sim_setup_time(sim));
+  PF_CALL(pf_sim_setup_output(sim));
+  return 0;
+}
+
+int pf_sim_create(const char *deck_path, const pf_sim_options *opt, pf_sim **out) {
+  *out = NULL;
+  pf_sim *sim;
+  PF_MALLOC(sim, 1);
+  if (opt) sim->opt = *opt;
+  int ierr = sim_build(sim, deck_path);
+  if (ierr) {
+    pf_sim_destroy(&sim);
+    return ierr;
+  }
+  *out = sim;
+  return 0;
+}
+
+int pf_sim_destroy(pf_sim **s) {
+  pf_sim *sim = *s;
+  if (!sim) return 0;
+  pf_exodus_destroy(&sim->exo);
+  pf_history_destroy(&sim->hist);
+  for (int b = 0; b < sim->nbodies; b++) pf_pd_body_destroy(&sim->body[b]);
+  for (int k = 0; k < sim->nindenters && sim->indenters; k++) pf_indenter_destroy(&sim->indenters[k]);
+  for (int k = 0; k < sim->nbcs && sim->bcs; k++) pf_bc_destroy(&sim->bcs[k]);
+  free(sim->indenters);
+  free(sim->reaction);
+  free(sim->bcs);
+  pf_points_destroy(&sim->pts);
+  pf_deck_destroy(&sim->deck);
+  PF_FREE(*s);
+  return 0;
+}
+
+pf_points *pf_sim_points(pf_sim *sim) { return sim->pts; }
+int pf_sim_nbodies(const pf_sim *sim) { return sim->nbodies; }
+pf_pd_body *pf_sim_body(pf_sim *sim, int b) { return sim->body[b]; }
+double pf_sim_dt(const pf_sim *sim) { return sim->dt; }
+long pf_sim_nsteps(const pf_sim *sim) { return sim->nsteps; }

@@ -1,0 +1,40 @@
+/* The driver: a simulation built from a deck, and its time loop. Used by main() and by tests
+ * that run whole decks. */
+#ifndef PF_SIMULATION_H
+#define PF_SIMULATION_H
+
+#include "core/core.h"
+#include "pd/pd.h"
+
+typedef struct pf_sim pf_sim;
+
+typedef struct {
+  const char *output_dir; /* NULL: the current directory */
+  int no_output;          /* 1: write no Exodus or history file (tests) */
+} pf_sim_options;
+
+/* Load and validate the deck and build everything; writes no file. */
+int pf_sim_create(const char *deck_path, const pf_sim_options *opt, pf_sim **sim);
+/* Run to the final time; writes output, prints the summary and the state digest. */
+int pf_sim_run(pf_sim *sim);
+int pf_sim_destroy(pf_sim **sim);
+
+pf_points *pf_sim_points(pf_sim *sim);
+int pf_sim_nbodies(const pf_sim *sim);
+pf_pd_body *pf_sim_body(pf_sim *sim, int b);
+double pf_sim_dt(const pf_sim *sim);
+long pf_sim_nsteps(const pf_sim *sim);
+/* Global quantities of the current state. */
+typedef struct {
+  double time, kinetic, elastic, contact, external_work, momentum[3];
+  double damage_fraction;
+} pf_sim_globals;
+int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g);
+/* Advance n steps (no output). */
+int pf_sim_step(pf_sim *sim, long n);
+uint64_t pf_sim_digest(pf_sim *sim);
+
+/* The top-level deck keys (for validation and docs). */
+extern const pf_key pf_deck_keys[];
+
+#endif

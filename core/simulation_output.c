@@ -1,0 +1,142 @@
+/* Running a simulation with its output: Exodus fields at the output interval, the HDF5
+ * history of global quantities, the progress line, the end-of-run summary and the digest. */
+#include "core/simulation_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { G_KE, G_EL, G_CONTACT, G_WEXT, G_EERR, G_PX, G_PY, G_PZ, G_DAMAGE, G_FIXED };
+static const char *const fixed_names[G_FIXED] = {
+    "kinetic_energy", "elastic_energy", "contact_energy", "external_work", "energy_error",
+    "momentum_x",     "momentum_y",     "momentum_z",     "damage_fraction"};
+static const char *const fixed_units[G_FIXED] = {"J", "J", "J", "J", "J", "kg m/s", "kg m/s", "kg m/s", ""};
+
+typedef struct {
+  int n;
+  char **names;
+  const char **units;
+  double *values;
+  double e0; /* initial total energy */
+} globals;
+
+static int globals_init(const pf_sim *sim, globals *g) {
+  g->n = G_FIXED + 3 * sim->nindenters;
+  PF_MALLOC(g->names, g->n + 2);
+  PF_MALLOC(g->units, g->n + 2);
+  PF_MALLOC(g->values, g->n + 2);
+  /* history columns: time, step, then the globals */
+  g->names[0] = strdup("time"), g->units[0] = "s";
+  g->names[1] = strdup("step"), g->units[1] = "";
+  for (int k = 0; k < G_FIXED; k++) g->names[2 + k] = strdup(fixed_names[k]), g->units[2 + k] = fixed_units[k];
+  for (int k = 0; k < sim->nindenters; k++)
+    for (int a = 0; a < 3; a++) {
+      char buf[128];
+      snprintf(buf, sizeof buf, "%s_force_%c", pf_indenter_name(sim->indenters[k]), 'x' + a);
+      g->names[2 + G_FIXED + 3 * k + a] = strdup(buf);
+      g->units[2 + G_FIXED + 3 * k + a] = "N";
+    }
+  for (int k = 0; k < g->n + 2; k++) PF_CHECK(g->names[k], PF_ERR_MEMORY, "out of memory");
+  return 0;
+}
+
+static void globals_free(globals *g) {
+  for (int k = 0; g->names && k < g->n + 2; k++) free(g->names[k]);
+  PF_FREE(g->names);
+  PF_FREE(g->units);
+  PF_FREE(g->values);
+}
+
+/* Fill values[0..n+1]: time, step, globals. */
+static int globals_eval(pf_sim *sim, globals *g, int first) {
+  pf_sim_globals s;
+  PF_CALL(pf_sim_globals_get(sim, &s));
+  double total = s.kinetic + s.elastic + s.contact - s.external_work;
+  if (first) g->e0 = total;
+  double *v = g->values + 2;
+  g->values[0] = sim->t;
+  g->values[1] = (double)sim->step;
+  v[G_KE] = s.kinetic, v[G_EL] = s.elastic, v[G_CONTACT] = s.contact, v[G_WEXT] = s.external_work;
+  v[G_EERR] = total - g->e0;
+  for (int a = 0; a < 3; a++) v[G_PX + a] = s.momentum[a];
+  v[G_DAMAGE] = s.damage_fraction;
+  for (int k = 0; k < sim->nindenters; k++)
+    for (int a = 0; a < 3; a++) v[G_FIXED + 3 * k + a] = sim->reaction[k][a];
+  return 0;
+}
+
+static int open_output(pf_sim *sim, globals *g) {
+  if (sim->opt.no_output) return 0;
+  PF_CALL(pf_exodus_create(sim->exodus_path, sim->pts, sim->nbodies, sim->body_name, sim->body_start,
+                           g->n, (const char *const *)g->names + 2, &sim->exo));
+  PF_CALL(pf_history_create(sim->history_path, g->n + 2, (const char *const *)g->names, g->units, &sim->hist));
+  return 0;
+}
+
+static int write_output(pf_sim *sim, globals *g, int exodus, int history) {
+  if (sim->opt.no_output) return 0;
+  if (exodus) PF_CALL(pf_exodus_write(sim->exo, sim->t, sim->pts, g->values + 2));
+  if (history) PF_CALL(pf_history_append(sim->hist, g->values));
+  return 0;
+}
+
+static void progress(const pf_sim *sim, double wall0) {
+  double el = pf_wtime() - wall0, rate = sim->step / fmax(el, 1e-9);
+  pf_log("step %ld/%ld  t = %.4e s  %.1f steps/s  about %.0f s left\n", sim->step, sim->nsteps,
+         sim->t, rate, (sim->nsteps - sim->step) / fmax(rate, 1e-9));
+}
+
+static void summary(const pf_sim *sim, const globals *g, double wall) {
+  double nb = 0;
+  for (int b = 0; b < sim->nbodies; b++) nb += (double)pf_pd_body_nbonds(sim->body[b]);
+  nb = pf_sum_all(nb);
+  const double *v = g->values + 2;
+  double scale = fmax(fabs(g->e0), fmax(fabs(v[G_WEXT]), v[G_KE] + v[G_EL] + v[G_CONTACT]));
+  pf_log("perifem: %ld steps of %.4e s to t = %.4e s in %.2f s (time loop %.2f s)\n", sim->step,
+         sim->dt, sim->t, wall, sim->wall_loop);
+  pf_log("  points %" PF_GID_FMT ", directed bonds %.0f, bond evaluations per second %.4g\n",
+         sim->pts->n_global, nb, sim->wall_loop > 0 ? nb * sim->step / sim->wall_loop : 0.0);
+  pf_log("  final damage fraction %.6g, energy balance error %.3g (relative %.3g)\n", v[G_DAMAGE],
+         v[G_EERR], scale > 0 ? fabs(v[G_EERR]) / scale : 0.0);
+  if (!sim->opt.no_output) pf_log("  output: %s, %s\n", sim->exodus_path, sim->history_path);
+}
+
+static int run_loop(pf_sim *sim, globals *g, double wall0) {
+  long every = sim->nsteps / 20 > 0 ? sim->nsteps / 20 : 1;
+  double loop0 = pf_wtime();
+  while (sim->step < sim->nsteps) {
+    PF_CALL(pf_sim_step(sim, 1));
+    int last = sim->step == sim->nsteps;
+    int exo = last || (sim->output_interval > 0 && sim->step % sim->output_interval == 0);
+    int his = last || sim->step % sim->history_interval == 0;
+    if (exo || his) {
+      double t0 = pf_wtime();
+      PF_CALL(globals_eval(sim, g, 0));
+      PF_CALL(write_output(sim, g, exo, his));
+      loop0 += pf_wtime() - t0; /* output is not part of the step rate */
+    }
+    if (sim->step % every == 0 && !last) progress(sim, wall0);
+  }
+  sim->wall_loop = pf_wtime() - loop0;
+  return 0;
+}
+
+int pf_sim_run(pf_sim *sim) {
+  double wall0 = pf_wtime();
+  globals g = {0};
+  int ierr = globals_init(sim, &g);
+  if (!ierr) ierr = pf_sim_step(sim, 0); /* forces at t = 0 */
+  if (!ierr) ierr = globals_eval(sim, &g, 1);
+  if (!ierr) ierr = open_output(sim, &g);
+  if (!ierr) ierr = write_output(sim, &g, 1, 1);
+  if (!ierr) ierr = run_loop(sim, &g, wall0);
+  if (!ierr) summary(sim, &g, pf_wtime() - wall0);
+  globals_free(&g);
+  pf_exodus_destroy(&sim->exo);
+  pf_history_destroy(&sim->hist);
+  if (ierr) return ierr;
+  uint64_t h;
+  PF_CALL(pf_state_digest(sim->pts, &h));
+  pf_log("state digest: %016" PRIx64 "\n", h);
+  return 0;
+}

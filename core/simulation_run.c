@@ -1,0 +1,168 @@
+/* The time loop (DESIGN.md 3): explicit velocity Verlet,
+ *   v(t+dt/2) = v(t) + dt/2 a(t);  u(t+dt) = u(t) + dt v(t+dt/2);
+ *   f(t+dt) from PD bodies and indenters;  v(t+dt) = v(t+dt/2) + dt/2 a(t+dt),
+ * with prescribed motions applied to the mid-step velocity, a NaN/Inf guard that names the
+ * point, and the Exodus and HDF5 output. */
+#include "core/simulation_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+int pf_sim_setup_time(pf_sim *sim) {
+  const pf_deck *d = sim->deck;
+  const pf_node *tm = pf_node_get(pf_deck_root(d), "time");
+  double safety = 0.8, stable = INFINITY;
+  PF_CALL(pf_deck_real(d, tm, "safety_factor", &safety));
+  if (!(safety > 0 && safety <= 1))
+    return pf_deck_error(d, pf_node_get(tm, "safety_factor"), "safety_factor", "must be in (0, 1] (got %g)", safety);
+  for (int b = 0; b < sim->nbodies; b++) stable = fmin(stable, pf_pd_body_stable_dt(sim->body[b], sim->pts));
+  stable = pf_min_all(stable);
+  sim->dt = safety * stable;
+  if (pf_node_get(tm, "dt")) {
+    PF_CALL(pf_deck_real(d, tm, "dt", &sim->dt));
+    if (!(sim->dt > 0)) return pf_deck_error(d, pf_node_get(tm, "dt"), "dt", "must be positive (got %g)", sim->dt);
+    if (sim->dt > stable)
+      pf_log("warning: dt = %g s exceeds the stable step %g s\n", sim->dt, stable);
+  }
+  int hf = pf_node_get(tm, "final_time") != NULL, hs = pf_node_get(tm, "steps") != NULL;
+  if (hf == hs) return pf_deck_error(d, tm, "final_time", "give exactly one of 'final_time' and 'steps'");
+  if (hs) {
+    PF_CALL(pf_deck_int(d, tm, "steps", &sim->nsteps));
+    if (sim->nsteps < 0) return pf_deck_error(d, pf_node_get(tm, "steps"), "steps", "must not be negative");
+    sim->final_time = sim->nsteps * sim->dt;
+  } else {
+    PF_CALL(pf_deck_real(d, tm, "final_time", &sim->final_time));
+    if (!(sim->final_time >= 0))
+      return pf_deck_error(d, pf_node_get(tm, "final_time"), "final_time", "must not be negative");
+    sim->nsteps = (long)ceil(sim->final_time / sim->dt - 1e-9);
+  }
+  return 0;
+}
+
+static void output_name(const pf_sim *sim, const char *given, const char *ext, char *out, size_t len) {
+  char base[2048];
+  if (given) snprintf(base, sizeof base, "%s", given);
+  else {
+    const char *p = pf_deck_path(sim->deck), *slash = strrchr(p, '/'), *name = slash ? slash + 1 : p;
+    const char *dot = strrchr(name, '.');
+    snprintf(base, sizeof base, "%.*s%s", (int)(dot ? dot - name : (long)strlen(name)), name, ext);
+  }
+  if (sim->opt.output_dir && base[0] != '/') snprintf(out, len, "%s/%s", sim->opt.output_dir, base);
+  else snprintf(out, len, "%s", base);
+}
+
+int pf_sim_setup_output(pf_sim *sim) {
+  const pf_deck *d = sim->deck;
+  const pf_node *out = pf_node_get(pf_deck_root(d), "output");
+  const char *file = NULL, *hfile = NULL;
+  sim->output_interval = 100;
+  sim->history_interval = 10;
+  PF_CALL(pf_deck_string(d, out, "file", &file));
+  PF_CALL(pf_deck_string(d, out, "history_file", &hfile));
+  PF_CALL(pf_deck_int(d, out, "interval", &sim->output_interval));
+  PF_CALL(pf_deck_int(d, out, "history_interval", &sim->history_interval));
+  if (sim->output_interval < 0)
+    return pf_deck_error(d, pf_node_get(out, "interval"), "interval", "must not be negative");
+  if (sim->history_interval < 1)
+    return pf_deck_error(d, pf_node_get(out, "history_interval"), "history_interval", "must be at least 1");
+  output_name(sim, file, ".e", sim->exodus_path, sizeof sim->exodus_path);
+  output_name(sim, hfile, ".h5", sim->history_path, sizeof sim->history_path);
+  return 0;
+}
+
+static void half_kick(pf_points *p, double dt) {
+  for (pf_int i = 0; i < p->n_owned; i++) {
+    const double s = 0.5 * dt / p->m[i];
+    for (int a = 0; a < 3; a++) p->v[3 * i + a] += s * p->f[3 * i + a];
+  }
+}
+
+static void drift(pf_points *p, double dt) {
+  for (pf_int i = 0; i < 3 * p->n_owned; i++) {
+    p->u[i] += dt * p->v[i];
+    p->y[i] = p->X[i] + p->u[i];
+  }
+}
+
+/* Stop on a NaN/Inf force or velocity, naming the point (the instability guard). */
+static int check_finite(const pf_sim *sim) {
+  const pf_points *p = sim->pts;
+  for (pf_int i = 0; i < p->n_owned; i++) {
+    double s = p->f[3 * i] + p->f[3 * i + 1] + p->f[3 * i + 2] + p->v[3 * i] + p->v[3 * i + 1] + p->v[3 * i + 2];
+    if (isfinite(s)) continue;
+    PF_CHECK(0, PF_ERR_RUN,
+             "non-finite force or velocity at point %" PF_GID_FMT " (body '%s') at (%g, %g, %g) m, "
+             "time %g s, step %ld: the run is unstable (reduce time.dt or time.safety_factor)",
+             p->gid[i], sim->body_name[p->body[i]], p->X[3 * i], p->X[3 * i + 1], p->X[3 * i + 2], sim->t, sim->step);
+  }
+  return 0;
+}
+
+static int compute_forces(pf_sim *sim) {
+  pf_points *p = sim->pts;
+  memset(p->f, 0, sizeof(double) * 3 * (size_t)p->n_owned);
+  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_pd_body_force(sim->body[b], p));
+  sim->contact_energy = 0;
+  for (int k = 0; k < sim->nindenters; k++) {
+    double U;
+    PF_CALL(pf_indenter_force(sim->indenters[k], p, sim->reaction[k], &U));
+    sim->contact_energy += U;
+  }
+  return 0;
+}
+
+static int one_step(pf_sim *sim) {
+  pf_points *p = sim->pts;
+  const double dt = sim->dt;
+  half_kick(p, dt);
+  for (int k = 0; k < sim->nbcs; k++) pf_bc_apply_midstep(sim->bcs[k], p, sim->t, dt);
+  drift(p, dt);
+  for (int k = 0; k < sim->nindenters; k++)
+    pf_indenter_advance(sim->indenters[k], sim->t, dt, sim->reaction[k], &sim->external_work);
+  sim->t += dt;
+  sim->step++;
+  PF_CALL(compute_forces(sim));
+  half_kick(p, dt);
+  for (int k = 0; k < sim->nbcs; k++) pf_bc_apply_endstep(sim->bcs[k], p, sim->t);
+  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_pd_body_post_step(sim->body[b], p));
+  return check_finite(sim);
+}
+
+int pf_sim_step(pf_sim *sim, long n) {
+  if (sim->step == 0 && sim->t == 0) PF_CALL(compute_forces(sim));
+  for (long s = 0; s < n; s++) PF_CALL(one_step(sim));
+  return 0;
+}
+
+int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g) {
+  memset(g, 0, sizeof *g);
+  const pf_points *p = sim->pts;
+  double ke = 0, mom[3] = {0, 0, 0};
+  for (pf_int i = 0; i < p->n_owned; i++)
+    for (int a = 0; a < 3; a++) {
+      ke += 0.5 * p->m[i] * p->v[3 * i + a] * p->v[3 * i + a];
+      mom[a] += p->m[i] * p->v[3 * i + a];
+    }
+  double el = 0, nb = 0, nbroken = 0;
+  for (int b = 0; b < sim->nbodies; b++) {
+    el += pf_pd_body_energy(sim->body[b], sim->pts);
+    nbroken += (double)pf_pd_body_damage(sim->body[b], sim->pts);
+    nb += (double)pf_pd_body_nbonds(sim->body[b]);
+  }
+  g->time = sim->t;
+  g->kinetic = pf_sum_all(ke);
+  g->elastic = pf_sum_all(el);
+  g->contact = sim->contact_energy;
+  g->external_work = sim->external_work;
+  for (int a = 0; a < 3; a++) g->momentum[a] = pf_sum_all(mom[a]);
+  nb = pf_sum_all(nb);
+  g->damage_fraction = nb > 0 ? pf_sum_all(nbroken) / nb : 0;
+  return 0;
+}
+
+uint64_t pf_sim_digest(pf_sim *sim) {
+  uint64_t h = 0;
+  if (pf_state_digest(sim->pts, &h)) return 0;
+  return h;
+}

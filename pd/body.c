@@ -1,0 +1,243 @@
+/* A peridynamic body: its deck keys, material lookup by name, family, and the per-step entry
+ * points that dispatch to the material's ops table. */
+#include "pd/pd_impl.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+int pf_pd_damage_setup(const pf_deck *d, const pf_node *map, pf_pd_body *b, pf_points *pts);
+
+static const pf_pd_material_ops *const material_list[] = {
+#define PF_PD_MATERIAL(id) &pf_pd_material_##id,
+#include "pd/materials.h"
+#undef PF_PD_MATERIAL
+};
+enum { NMATERIALS = sizeof material_list / sizeof material_list[0] };
+
+const pf_key pf_pd_material_keys[] = {
+    {"model", PF_KEY_STRING, 1, NULL, "", "peridynamic material: pmb | lps", NULL},
+    {"density", PF_KEY_REAL, 1, NULL, "kg/m^3", "mass density", NULL},
+    {"bulk_modulus", PF_KEY_REAL, 0, NULL, "Pa", "bulk modulus K", NULL},
+    {"shear_modulus", PF_KEY_REAL, 0, NULL, "Pa", "shear modulus G (lps)", NULL},
+    PF_KEY_END};
+
+static const pf_key crack_keys[] = {
+    {"shape", PF_KEY_STRING, 1, NULL, "", "rectangle | disk", NULL},
+    {"corner", PF_KEY_VEC3, 0, NULL, "m", "rectangle: one corner p0", NULL},
+    {"edge_a", PF_KEY_VEC3, 0, NULL, "m", "rectangle: first edge vector from the corner", NULL},
+    {"edge_b", PF_KEY_VEC3, 0, NULL, "m", "rectangle: second edge vector from the corner", NULL},
+    {"center", PF_KEY_VEC3, 0, NULL, "m", "disk: centre", NULL},
+    {"normal", PF_KEY_VEC3, 0, NULL, "", "disk: normal", NULL},
+    {"radius", PF_KEY_REAL, 0, NULL, "m", "disk: radius", NULL},
+    PF_KEY_END};
+
+const pf_key pf_pd_body_keys[] = {
+    {"name", PF_KEY_STRING, 1, NULL, "", "body name (the Exodus block name)", NULL},
+    {"type", PF_KEY_STRING, 0, "peridynamic", "", "peridynamic", NULL},
+    {"material", PF_KEY_STRING, 1, NULL, "", "a name under materials:", NULL},
+    {"geometry", PF_KEY_MAP, 1, NULL, "", "where the points are", pf_geometry_keys},
+    {"horizon", PF_KEY_REAL, 1, NULL, "m", "horizon delta (bonds with |xi| <= delta)", NULL},
+    {"influence", PF_KEY_STRING, 0, "constant", "", "constant | inverse_distance | gaussian", NULL},
+    {"influence_length", PF_KEY_REAL, 0, "horizon/2", "m", "gaussian: sigma in exp(-r^2/sigma^2)", NULL},
+    {"partial_volumes", PF_KEY_BOOL, 0, "false", "",
+     "weigh neighbours by the fraction of their cell inside the horizon", NULL},
+    {"damage", PF_KEY_MAP, 0, "law: none", "", "bond failure law", pf_pd_damage_keys},
+    {"precracks", PF_KEY_LIST, 0, NULL, "", "planar cracks: bonds crossing them are not created", crack_keys},
+    {"initial_velocity", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m/s", "expressions in x, y, z", NULL},
+    PF_KEY_END};
+
+double pf_pd_pmb_micromodulus(double K, const pf_influence *w, double delta) {
+  return 18.0 * K / pf_pd_influence_moment(w, delta, 3);
+}
+
+double pf_pd_pmb_critical_stretch(double G0, double K, double delta) {
+  return sqrt(5.0 * G0 / (9.0 * K * delta));
+}
+
+static int find_material(const pf_deck *d, const pf_node *mat, const char *model,
+                         const pf_pd_material_ops **ops) {
+  char known[256] = "";
+  for (int k = 0; k < NMATERIALS; k++) {
+    if (!strcmp(material_list[k]->name, model)) {
+      *ops = material_list[k];
+      return 0;
+    }
+    strcat(known, k ? ", " : "");
+    strcat(known, material_list[k]->name);
+  }
+  return pf_deck_error(d, pf_node_get(mat, "model"), "model",
+                       "unknown peridynamic material '%s' (known: %s)", model, known);
+}
+
+static int read_cracks(const pf_deck *d, const pf_node *list, int *n, pf_precrack **out) {
+  *n = pf_node_count(list);
+  PF_MALLOC(*out, *n);
+  for (int q = 0; q < *n; q++) {
+    const pf_node *c = pf_node_item(list, q);
+    pf_precrack *pc = &(*out)[q];
+    const char *shape = "";
+    PF_CALL(pf_deck_string(d, c, "shape", &shape));
+    if (!strcmp(shape, "rectangle")) {
+      pc->kind = PF_CRACK_RECTANGLE;
+      if (!pf_node_get(c, "corner") || !pf_node_get(c, "edge_a") || !pf_node_get(c, "edge_b"))
+        return pf_deck_error(d, c, "corner", "a rectangle needs corner, edge_a and edge_b");
+      PF_CALL(pf_deck_vec3(d, c, "corner", pc->p0));
+      PF_CALL(pf_deck_vec3(d, c, "edge_a", pc->a));
+      PF_CALL(pf_deck_vec3(d, c, "edge_b", pc->b));
+    } else if (!strcmp(shape, "disk")) {
+      pc->kind = PF_CRACK_DISK;
+      if (!pf_node_get(c, "center") || !pf_node_get(c, "normal") || !pf_node_get(c, "radius"))
+        return pf_deck_error(d, c, "center", "a disk needs center, normal and radius");
+      PF_CALL(pf_deck_vec3(d, c, "center", pc->center));
+      PF_CALL(pf_deck_vec3(d, c, "normal", pc->normal));
+      PF_CALL(pf_deck_real(d, c, "radius", &pc->radius));
+    } else {
+      return pf_deck_error(d, pf_node_get(c, "shape"), "shape",
+                           "unknown pre-crack shape '%s' (known: rectangle, disk)", shape);
+    }
+  }
+  return 0;
+}
+
+/* Material name -> its mapping under materials:, model, and elastic constants. */
+static int read_material(const pf_deck *d, const pf_node *body, const pf_node *materials,
+                         pf_pd_body *b, const pf_node **mat) {
+  const char *mname = NULL, *model = NULL;
+  PF_CALL(pf_deck_string(d, body, "material", &mname));
+  *mat = pf_node_get(materials, mname);
+  if (!*mat)
+    return pf_deck_error(d, pf_node_get(body, "material"), "material",
+                         "no material named '%s' under materials:", mname);
+  PF_CALL(pf_deck_string(d, *mat, "model", &model));
+  PF_CALL(find_material(d, *mat, model, &b->ops));
+  PF_CALL(pf_deck_real(d, *mat, "density", &b->density));
+  PF_CALL(pf_deck_real(d, *mat, "bulk_modulus", &b->bulk_modulus));
+  PF_CALL(pf_deck_real(d, *mat, "shear_modulus", &b->shear_modulus));
+  const char *keys[] = {"density", "bulk_modulus", "shear_modulus"};
+  const double vals[] = {b->density, b->bulk_modulus, b->shear_modulus};
+  for (int k = 0; k < 3; k++)
+    if (pf_node_get(*mat, keys[k]) && !(vals[k] > 0))
+      return pf_deck_error(d, pf_node_get(*mat, keys[k]), keys[k], "must be positive (got %g)", vals[k]);
+  return 0;
+}
+
+static int read_influence(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
+  const char *name = "constant";
+  PF_CALL(pf_deck_string(d, body, "influence", &name));
+  if (pf_pd_influence_by_name(name, &b->influence.kind))
+    return pf_deck_error(d, pf_node_get(body, "influence"), "influence",
+                         "unknown influence function '%s' (known: %s)", name, pf_pd_influence_names());
+  b->influence.length = 0.5 * b->horizon;
+  PF_CALL(pf_deck_real(d, body, "influence_length", &b->influence.length));
+  if (!(b->influence.length > 0))
+    return pf_deck_error(d, pf_node_get(body, "influence_length"), "influence_length", "must be positive");
+  return 0;
+}
+
+static int body_setup(const pf_deck *d, const pf_node *body, const pf_node *materials,
+                      pf_points *pts, pf_pd_body *b) {
+  const char *name = "";
+  PF_CALL(pf_deck_string(d, body, "name", &name));
+  snprintf(b->name, sizeof b->name, "%s", name);
+  PF_CALL(pf_deck_real(d, body, "horizon", &b->horizon));
+  if (!(b->horizon > 0))
+    return pf_deck_error(d, pf_node_get(body, "horizon"), "horizon", "must be positive (got %g)", b->horizon);
+  const pf_node *mat = NULL;
+  PF_CALL(read_material(d, body, materials, b, &mat));
+  PF_CALL(read_influence(d, body, b));
+  PF_CALL(b->ops->create(d, mat, b));
+  int partial = 0, ncracks = 0;
+  pf_precrack *cracks = NULL;
+  PF_CALL(pf_deck_bool(d, body, "partial_volumes", &partial));
+  int ierr = read_cracks(d, pf_node_get(body, "precracks"), &ncracks, &cracks);
+  if (!ierr) ierr = pf_pd_family_build(pts, b->first, b->n, b->horizon, partial, ncracks, cracks, &b->fam);
+  free(cracks);
+  if (ierr) return ierr;
+  for (pf_int i = b->first; i < b->first + b->n; i++) pts->m[i] = b->density * pts->vol[i];
+  PF_CALL(pf_pd_damage_setup(d, pf_node_get(body, "damage"), b, pts));
+  if (b->ops->setup) PF_CALL(b->ops->setup(b, pts));
+  int idx;
+  PF_CALL(pf_points_field_register(pts, "damage", 1, PF_FIELD_OUTPUT, &idx));
+  return 0;
+}
+
+int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *materials,
+                      pf_points *pts, pf_int first, pf_int n, pf_pd_body **out) {
+  *out = NULL;
+  pf_pd_body *b;
+  PF_MALLOC(b, 1);
+  b->first = first;
+  b->n = n;
+  int ierr = body_setup(d, body, materials, pts, b);
+  if (ierr) {
+    pf_pd_body_destroy(&b);
+    return ierr;
+  }
+  *out = b;
+  return 0;
+}
+
+int pf_pd_body_destroy(pf_pd_body **b) {
+  if (!*b) return 0;
+  if ((*b)->ops && (*b)->ops->destroy && (*b)->mat) (*b)->ops->destroy(*b);
+  pf_pd_family_free(&(*b)->fam);
+  free((*b)->smin);
+  PF_FREE(*b);
+  return 0;
+}
+
+int pf_pd_family_free(pf_family *fam) {
+  PF_FREE(fam->offset);
+  PF_FREE(fam->neighbor);
+  PF_FREE(fam->broken);
+  PF_FREE(fam->vfrac);
+  return 0;
+}
+
+int64_t pf_pd_family_nbonds(const pf_family *fam) { return fam->offset ? fam->offset[fam->n] : 0; }
+double pf_pd_body_density(const pf_pd_body *b) { return b->density; }
+const pf_family *pf_pd_body_family(const pf_pd_body *b) { return &b->fam; }
+int64_t pf_pd_body_nbonds(const pf_pd_body *b) { return pf_pd_family_nbonds(&b->fam); }
+
+int pf_pd_body_force(pf_pd_body *b, pf_points *pts) { return b->ops->force(b, pts); }
+
+double pf_pd_body_energy(const pf_pd_body *b, const pf_points *pts) { return b->ops->energy(b, pts); }
+
+int64_t pf_pd_body_damage(const pf_pd_body *b, pf_points *pts) {
+  double *phi = pf_points_field_get(pts, "damage");
+  const pf_family *fam = &b->fam;
+  int64_t nbroken = 0;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    double all = 0, intact = 0;
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      double v = pf_pd_bond_volume(fam, pts->vol, k, fam->neighbor[k]);
+      all += v;
+      intact += fam->broken[k] ? 0 : v;
+      nbroken += fam->broken[k];
+    }
+    phi[i] = all > 0 ? 1.0 - intact / all : 0.0;
+  }
+  return nbroken;
+}
+
+double pf_pd_stable_dt_point(const pf_family *fam, const pf_points *pts, pf_int i, double rho,
+                             double c, const pf_influence *w) {
+  double sum = 0;
+  for (int64_t k = fam->offset[i - fam->first]; k < fam->offset[i - fam->first + 1]; k++) {
+    pf_int j = fam->neighbor[k];
+    double r2 = 0;
+    for (int a = 0; a < 3; a++) r2 += pow(pts->X[3 * j + a] - pts->X[3 * i + a], 2);
+    double r0 = sqrt(r2);
+    sum += pf_pd_bond_volume(fam, pts->vol, k, j) * c * pf_pd_omega(w, r0) / r0;
+  }
+  return sum > 0 ? sqrt(2.0 * rho / sum) : INFINITY;
+}
+
+double pf_pd_body_stable_dt(const pf_pd_body *b, const pf_points *pts) {
+  double c = b->ops->micromodulus ? b->ops->micromodulus(b)
+                                  : pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, b->horizon);
+  double dt = INFINITY;
+  for (pf_int i = b->first; i < b->first + b->n; i++)
+    dt = fmin(dt, pf_pd_stable_dt_point(&b->fam, pts, i, b->density, c, &b->influence));
+  return dt;
+}

@@ -1,0 +1,76 @@
+/* Bond failure by critical stretch (Silling & Askari 2005): a bond fails for good when its
+ * stretch exceeds min(s0_i, s0_j). s0 is either constant (given, or from the energy release
+ * rate G0 through the material's closed form, e.g. PMB s0 = sqrt(5 G0 / (9 K delta)), eq. 9),
+ * or follows s0 = s00 - alpha s_min (Silling & Askari 2005, eq. 10), s_min being the smallest
+ * stretch among the point's intact bonds in the previous step (as LAMMPS' peri/pmb). */
+#include "pd/pd_impl.h"
+
+#include <string.h>
+
+const pf_key pf_pd_damage_keys[] = {
+    {"law", PF_KEY_STRING, 1, NULL, "", "none | critical_stretch | silling_askari", NULL},
+    {"critical_stretch", PF_KEY_REAL, 0, NULL, "", "critical_stretch: s0", NULL},
+    {"energy_release_rate", PF_KEY_REAL, 0, NULL, "J/m^2",
+     "critical_stretch: G0, converted to s0 by the material's closed form", NULL},
+    {"s00", PF_KEY_REAL, 0, NULL, "", "silling_askari: s00 in s0 = s00 - alpha s_min", NULL},
+    {"alpha", PF_KEY_REAL, 0, "0.25", "", "silling_askari: alpha in s0 = s00 - alpha s_min", NULL},
+    PF_KEY_END};
+
+static int positive(const pf_deck *d, const pf_node *map, const char *key, double *v) {
+  if (!pf_node_get(map, key)) return pf_deck_error(d, map, key, "this damage law needs '%s'", key);
+  PF_CALL(pf_deck_real(d, map, key, v));
+  if (!(*v > 0)) return pf_deck_error(d, pf_node_get(map, key), key, "must be positive (got %g)", *v);
+  return 0;
+}
+
+/* Read the damage law and fill the per-point s0 field. */
+int pf_pd_damage_setup(const pf_deck *d, const pf_node *map, pf_pd_body *b, pf_points *pts) {
+  int idx;
+  PF_CALL(pf_points_field_register(pts, "critical_stretch", 1, PF_FIELD_GHOST | PF_FIELD_RESTART, &idx));
+  b->s0 = pts->fields[idx].data;
+  PF_MALLOC(b->smin, b->n);
+  double s0 = INFINITY;
+  const char *law = "none";
+  if (map) PF_CALL(pf_deck_string(d, map, "law", &law));
+  if (!strcmp(law, "none")) {
+    b->law = PF_DAMAGE_NONE;
+  } else if (!strcmp(law, "critical_stretch")) {
+    b->law = PF_DAMAGE_CRITICAL_STRETCH;
+    int has_s0 = pf_node_get(map, "critical_stretch") != NULL;
+    int has_g0 = pf_node_get(map, "energy_release_rate") != NULL;
+    if (has_s0 == has_g0)
+      return pf_deck_error(d, map, "critical_stretch",
+                           "give exactly one of 'critical_stretch' and 'energy_release_rate'");
+    if (has_s0) PF_CALL(positive(d, map, "critical_stretch", &s0));
+    else {
+      double G0;
+      PF_CALL(positive(d, map, "energy_release_rate", &G0));
+      s0 = b->ops->critical_stretch ? b->ops->critical_stretch(b, G0) : NAN;
+      if (!isfinite(s0))
+        return pf_deck_error(d, pf_node_get(map, "energy_release_rate"), "energy_release_rate",
+                             "no closed form s0(G0) for material '%s' with this influence "
+                             "function; give 'critical_stretch'", b->ops->name);
+    }
+  } else if (!strcmp(law, "silling_askari")) {
+    b->law = PF_DAMAGE_SILLING_ASKARI;
+    PF_CALL(positive(d, map, "s00", &b->s00));
+    b->alpha = 0.25;
+    PF_CALL(pf_deck_real(d, map, "alpha", &b->alpha));
+    s0 = b->s00;
+  } else {
+    return pf_deck_error(d, pf_node_get(map, "law"), "law",
+                         "unknown damage law '%s' (known: none, critical_stretch, silling_askari)", law);
+  }
+  for (pf_int i = b->first; i < b->first + b->n; i++) b->s0[i] = s0;
+  return 0;
+}
+
+/* Silling–Askari: s0_i = s00 - alpha * s_min_i for the next step (eq. 10). */
+int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts) {
+  (void)pts;
+  if (b->law != PF_DAMAGE_SILLING_ASKARI) return 0;
+  for (pf_int k = 0; k < b->n; k++)
+    if (isfinite(b->smin[k])) b->s0[b->first + k] = b->s00 - b->alpha * b->smin[k];
+  /* (MPI: s0 is a ghosted field; the next halo exchange carries it.) */
+  return 0;
+}

@@ -1,0 +1,219 @@
+/* Families: O(n) cell-list neighbour search into CSR full neighbour lists, each row sorted by
+ * global id (DESIGN.md 2: owner-computes, partition-independent summation order), with the
+ * pre-crack bond filter and Peridigm's partial-volume fractions. */
+#include "pd/pd_impl.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* Fraction of the cube (centre c, edge h) inside the sphere (x, delta): all eight corners in
+ * -> 1, all out -> 0, else the 16^3 sub-cell midpoint rule. This is the rule of Peridigm's
+ * partial-volume calculator, which produces its published weighted-volume convergence table. */
+double pf_pd_partial_volume(const double x[3], const double c[3], double h, double delta) {
+  const double d2 = delta * delta;
+  int in = 0;
+  for (int k = 0; k < 8; k++) {
+    double s = 0;
+    for (int a = 0; a < 3; a++) {
+      double q = c[a] + ((k >> a & 1) ? 0.5 : -0.5) * h - x[a];
+      s += q * q;
+    }
+    in += s <= d2;
+  }
+  if (in == 8) return 1.0;
+  if (in == 0) return 0.0;
+  enum { NS = 16 };
+  int count = 0;
+  for (int k = 0; k < NS; k++) {
+    double dz = c[2] + (-0.5 + (k + 0.5) / NS) * h - x[2];
+    for (int j = 0; j < NS; j++) {
+      double dy = c[1] + (-0.5 + (j + 0.5) / NS) * h - x[1];
+      for (int i = 0; i < NS; i++) {
+        double dx = c[0] + (-0.5 + (i + 0.5) / NS) * h - x[0];
+        count += dx * dx + dy * dy + dz * dz <= d2;
+      }
+    }
+  }
+  return (double)count / (NS * NS * NS);
+}
+
+/* Does the segment xi -> xj cross the pre-crack? */
+static int crosses(const pf_precrack *c, const double xi[3], const double xj[3]) {
+  double n[3], p[3], d[3];
+  if (c->kind == PF_CRACK_RECTANGLE) {
+    n[0] = c->a[1] * c->b[2] - c->a[2] * c->b[1];
+    n[1] = c->a[2] * c->b[0] - c->a[0] * c->b[2];
+    n[2] = c->a[0] * c->b[1] - c->a[1] * c->b[0];
+    memcpy(p, c->p0, sizeof p);
+  } else {
+    memcpy(n, c->normal, sizeof n);
+    memcpy(p, c->center, sizeof p);
+  }
+  double nd = 0, np = 0;
+  for (int a = 0; a < 3; a++) {
+    d[a] = xj[a] - xi[a];
+    nd += n[a] * d[a];
+    np += n[a] * (p[a] - xi[a]);
+  }
+  if (nd == 0) return 0;
+  double t = np / nd;
+  if (t < 0 || t > 1) return 0;
+  double q[3];
+  for (int a = 0; a < 3; a++) q[a] = xi[a] + t * d[a] - p[a];
+  if (c->kind == PF_CRACK_DISK) return q[0] * q[0] + q[1] * q[1] + q[2] * q[2] <= c->radius * c->radius;
+  double qa = 0, qb = 0, aa = 0, bb = 0;
+  for (int a = 0; a < 3; a++) {
+    qa += q[a] * c->a[a], qb += q[a] * c->b[a];
+    aa += c->a[a] * c->a[a], bb += c->b[a] * c->b[a];
+  }
+  return qa >= 0 && qa <= aa && qb >= 0 && qb <= bb;
+}
+
+typedef struct {
+  double lo[3], size;
+  long dim[3];
+  pf_int *start; /* [ncells + 1] */
+  pf_int *items; /* point indices (relative to first) grouped by cell */
+} cell_list;
+
+static long cell_of(const cell_list *cl, const double x[3], long idx[3]) {
+  for (int a = 0; a < 3; a++) {
+    long q = (long)((x[a] - cl->lo[a]) / cl->size);
+    idx[a] = q < 0 ? 0 : q >= cl->dim[a] ? cl->dim[a] - 1 : q;
+  }
+  return (idx[2] * cl->dim[1] + idx[1]) * cl->dim[0] + idx[0];
+}
+
+static int cell_list_build(const double *X, pf_int n, double size, cell_list *cl) {
+  double hi[3];
+  for (int a = 0; a < 3; a++) cl->lo[a] = INFINITY, hi[a] = -INFINITY;
+  for (pf_int i = 0; i < n; i++)
+    for (int a = 0; a < 3; a++) {
+      cl->lo[a] = fmin(cl->lo[a], X[3 * i + a]);
+      hi[a] = fmax(hi[a], X[3 * i + a]);
+    }
+  cl->size = size;
+  long ncell = 1;
+  for (int a = 0; a < 3; a++) {
+    cl->dim[a] = (long)((hi[a] - cl->lo[a]) / size) + 1;
+    if (cl->dim[a] > 2048) cl->dim[a] = 2048; /* clamp: coarser bins, same neighbours */
+    ncell *= cl->dim[a];
+  }
+  if (cl->dim[0] == 2048 || cl->dim[1] == 2048 || cl->dim[2] == 2048)
+    for (int a = 0; a < 3; a++) cl->size = fmax(cl->size, (hi[a] - cl->lo[a]) / 2047.0);
+  PF_MALLOC(cl->start, ncell + 1);
+  PF_MALLOC(cl->items, n);
+  long idx[3];
+  for (pf_int i = 0; i < n; i++) cl->start[cell_of(cl, &X[3 * i], idx) + 1]++;
+  for (long c = 0; c < ncell; c++) cl->start[c + 1] += cl->start[c];
+  pf_int *fill;
+  PF_MALLOC(fill, ncell);
+  for (pf_int i = 0; i < n; i++) {
+    long c = cell_of(cl, &X[3 * i], idx);
+    cl->items[cl->start[c] + fill[c]++] = i;
+  }
+  free(fill);
+  return 0;
+}
+
+typedef struct {
+  pf_gid gid;
+  pf_int j;
+  float frac;
+} candidate;
+
+static int by_gid(const void *a, const void *b) {
+  const candidate *p = a, *q = b;
+  return (p->gid > q->gid) - (p->gid < q->gid);
+}
+
+typedef struct {
+  const pf_points *pts;
+  pf_int first;
+  double horizon, reach;
+  int partial, ncracks;
+  const pf_precrack *cracks;
+} search_ctx;
+
+/* Neighbours of point i (store index) into row[]; returns their count. */
+static pf_int find_row(const search_ctx *s, const cell_list *cl, pf_int i, candidate *row) {
+  const double *X = s->pts->X, *xi = &X[3 * i];
+  long idx[3];
+  cell_of(cl, xi, idx);
+  pf_int count = 0;
+  for (long cz = idx[2] - 1; cz <= idx[2] + 1; cz++)
+    for (long cy = idx[1] - 1; cy <= idx[1] + 1; cy++)
+      for (long cx = idx[0] - 1; cx <= idx[0] + 1; cx++) {
+        if (cx < 0 || cy < 0 || cz < 0 || cx >= cl->dim[0] || cy >= cl->dim[1] || cz >= cl->dim[2])
+          continue;
+        long c = (cz * cl->dim[1] + cy) * cl->dim[0] + cx;
+        for (pf_int k = cl->start[c]; k < cl->start[c + 1]; k++) {
+          pf_int j = s->first + cl->items[k];
+          const double *xj = &X[3 * j];
+          double dx = xj[0] - xi[0], dy = xj[1] - xi[1], dz = xj[2] - xi[2];
+          double r2 = dx * dx + dy * dy + dz * dz;
+          if (j == i || r2 > s->reach * s->reach) continue;
+          double frac = 1.0;
+          if (s->partial) frac = pf_pd_partial_volume(xi, xj, s->pts->cell[j], s->horizon);
+          else if (r2 > s->horizon * s->horizon) continue;
+          if (frac <= 0) continue;
+          int cut = 0;
+          for (int q = 0; q < s->ncracks && !cut; q++) cut = crosses(&s->cracks[q], xi, xj);
+          if (cut) continue;
+          row[count++] = (candidate){s->pts->gid[j], j, (float)frac};
+        }
+      }
+  qsort(row, (size_t)count, sizeof *row, by_gid);
+  return count;
+}
+
+static int append_row(pf_family *fam, int64_t *cap, const candidate *row, pf_int count,
+                      int partial) {
+  int64_t at = fam->offset[fam->n];
+  if (at + count > *cap) {
+    int64_t nc = (*cap + count) * 3 / 2 + 1024;
+    pf_int *nb = realloc(fam->neighbor, sizeof(pf_int) * (size_t)nc);
+    if (nb) fam->neighbor = nb;
+    float *vf = partial ? realloc(fam->vfrac, sizeof(float) * (size_t)nc) : NULL;
+    if (vf) fam->vfrac = vf;
+    PF_CHECK(nb && (!partial || vf), PF_ERR_MEMORY, "out of memory for %" PRId64 " bonds", nc);
+    *cap = nc;
+  }
+  for (pf_int k = 0; k < count; k++) {
+    fam->neighbor[at + k] = row[k].j;
+    if (partial) fam->vfrac[at + k] = row[k].frac;
+  }
+  fam->offset[fam->n + 1] = at + count;
+  fam->n++;
+  return 0;
+}
+
+int pf_pd_family_build(const pf_points *pts, pf_int first, pf_int n, double horizon,
+                       int partial_volumes, int ncracks, const pf_precrack *cracks,
+                       pf_family *fam) {
+  PF_CHECK(horizon > 0, PF_ERR_INPUT, "horizon must be positive (got %g)", horizon);
+  memset(fam, 0, sizeof *fam);
+  fam->first = first;
+  double hmax = 0;
+  for (pf_int i = first; i < first + n; i++) hmax = fmax(hmax, pts->cell[i]);
+  search_ctx s = {pts, first, horizon, horizon + (partial_volumes ? 0.8660254037844387 * hmax : 0),
+                  partial_volumes, ncracks, cracks};
+  cell_list cl = {0};
+  PF_CALL(cell_list_build(&pts->X[3 * (size_t)first], n, s.reach, &cl));
+  PF_MALLOC(fam->offset, n + 1);
+  int64_t cap = 0;
+  pf_int maxocc = 0; /* a row never holds more than the points of 27 cells */
+  for (long c = 0; c < cl.dim[0] * cl.dim[1] * cl.dim[2]; c++)
+    if (cl.start[c + 1] - cl.start[c] > maxocc) maxocc = cl.start[c + 1] - cl.start[c];
+  candidate *row;
+  PF_MALLOC(row, 27 * (size_t)maxocc);
+  int ierr = 0;
+  for (pf_int i = first; i < first + n && !ierr; i++)
+    ierr = append_row(fam, &cap, row, find_row(&s, &cl, i, row), partial_volumes);
+  free(row);
+  free(cl.start);
+  free(cl.items);
+  if (ierr) return ierr;
+  PF_MALLOC(fam->broken, fam->offset[n]);
+  return 0;
+}

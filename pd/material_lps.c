@@ -1,0 +1,155 @@
+/* Linear peridynamic solid (LPS), ordinary state-based (Silling et al. 2007, J. Elasticity
+ * 88:151, eqs. 90-94; the form used by Peridigm, Mitchell 2011):
+ *   m_i     = sum_j omega |xi|^2 V_j                        (weighted volume)
+ *   theta_i = (3 / m_i) sum_j omega |xi| e V_j,  e = |eta + xi| - |xi|   (dilatation)
+ *   t_ij    = omega [ (3 K theta_i / m_i) |xi| + (15 G / m_i) (e - theta_i |xi| / 3) ]
+ *   f_i     = sum_j (t_ij + t_ji) M_ij V_j,  M_ij = (y_j - y_i) / |y_j - y_i|
+ * m and theta use the same quadrature (same neighbour volumes), so theta = 3 eps exactly under
+ * u = eps x. Bonds fail in the dilatation pass, so both passes see the same bonds. */
+#include "pd/pd_impl.h"
+
+#include <stdlib.h>
+
+typedef struct {
+  double *m;     /* field "weighted_volume" */
+  double *theta; /* field "dilatation" */
+} lps;
+
+static int lps_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
+  if (!pf_node_get(mat, "bulk_modulus") || !pf_node_get(mat, "shear_modulus"))
+    return pf_deck_error(d, mat, pf_node_get(mat, "bulk_modulus") ? "shear_modulus" : "bulk_modulus",
+                         "model 'lps' needs 'bulk_modulus' and 'shear_modulus'");
+  lps *p;
+  PF_MALLOC(p, 1);
+  b->mat = p;
+  return 0;
+}
+
+static int lps_setup(pf_pd_body *b, pf_points *pts) {
+  lps *p = b->mat;
+  int im, it;
+  PF_CALL(pf_points_field_register(pts, "weighted_volume", 1, PF_FIELD_GHOST | PF_FIELD_RESTART, &im));
+  PF_CALL(pf_points_field_register(pts, "dilatation", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT, &it));
+  p->m = pts->fields[im].data;
+  p->theta = pts->fields[it].data;
+  const pf_family *fam = &b->fam;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    double m = 0;
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      pf_int j = fam->neighbor[k];
+      double r2 = 0;
+      for (int a = 0; a < 3; a++) r2 += pow(pts->X[3 * j + a] - pts->X[3 * i + a], 2);
+      m += pf_pd_omega(&b->influence, sqrt(r2)) * r2 * pf_pd_bond_volume(fam, pts->vol, k, j);
+    }
+    PF_CHECK(m > 0, PF_ERR_INPUT,
+             "body '%s': point %" PF_GID_FMT " at (%g, %g, %g) has no neighbour within the horizon %g m",
+             b->name, pts->gid[i], pts->X[3 * i], pts->X[3 * i + 1], pts->X[3 * i + 2], b->horizon);
+    p->m[i] = m;
+  }
+  return 0;
+}
+
+/* Bond geometry: reference length r0, current length r, current bond vector e[3]. */
+static inline void bond_lengths(const double *restrict X, const double *restrict Y, pf_int i,
+                                pf_int j, double *r0, double *r, double e[3]) {
+  double d2 = 0, e2 = 0;
+  for (int a = 0; a < 3; a++) {
+    double d = X[3 * j + a] - X[3 * i + a];
+    e[a] = Y[3 * j + a] - Y[3 * i + a];
+    d2 += d * d, e2 += e[a] * e[a];
+  }
+  *r0 = sqrt(d2), *r = sqrt(e2);
+}
+
+/* Pass 1: dilatation of point i; fails bonds beyond the critical stretch. */
+static double lps_dilatation(pf_pd_body *b, const pf_points *pts, pf_int i, double m) {
+  const pf_family *fam = &b->fam;
+  double sum = 0, smin = INFINITY, e[3], r0, r;
+  for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+    if (fam->broken[k]) continue;
+    pf_int j = fam->neighbor[k];
+    bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+    double s = (r - r0) / r0;
+    if (s > fmin(b->s0[i], b->s0[j])) {
+      fam->broken[k] = 1;
+      continue;
+    }
+    smin = fmin(smin, s);
+    sum += pf_pd_omega(&b->influence, r0) * r0 * (r - r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+  }
+  b->smin[i - b->first] = smin;
+  return 3.0 * sum / m;
+}
+
+static int lps_force(pf_pd_body *b, pf_points *pts) {
+  lps *p = b->mat;
+  const double K = b->bulk_modulus, G = b->shear_modulus;
+  const pf_family *fam = &b->fam;
+  for (pf_int i = b->first; i < b->first + b->n; i++) p->theta[i] = lps_dilatation(b, pts, i, p->m[i]);
+  /* (MPI: the halo exchange of theta goes here, between the passes.) */
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    double f[3] = {0, 0, 0}, e[3], r0, r;
+    const double ai = 3 * K * p->theta[i] / p->m[i], bi = 15 * G / p->m[i];
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      if (fam->broken[k]) continue;
+      pf_int j = fam->neighbor[k];
+      bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+      const double ext = r - r0, w = pf_pd_omega(&b->influence, r0);
+      const double aj = 3 * K * p->theta[j] / p->m[j], bj = 15 * G / p->m[j];
+      const double tij = w * (ai * r0 + bi * (ext - p->theta[i] * r0 / 3));
+      const double tji = w * (aj * r0 + bj * (ext - p->theta[j] * r0 / 3));
+      const double fs = (tij + tji) * pf_pd_bond_volume(fam, pts->vol, k, j) / r;
+      for (int a = 0; a < 3; a++) f[a] += fs * e[a];
+    }
+    for (int a = 0; a < 3; a++) pts->f[3 * i + a] += pts->vol[i] * f[a];
+  }
+  return 0;
+}
+
+/* W_i = (K/2) theta^2 + (15 G / (2 m)) sum_j omega (e^d)^2 V_j (Silling et al. 2007, eq. 92). */
+static double lps_energy(const pf_pd_body *b, const pf_points *pts) {
+  const lps *p = b->mat;
+  const pf_family *fam = &b->fam;
+  double w = 0, e[3], r0, r;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    double dev = 0;
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      if (fam->broken[k]) continue;
+      pf_int j = fam->neighbor[k];
+      bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+      double ed = (r - r0) - p->theta[i] * r0 / 3;
+      dev += pf_pd_omega(&b->influence, r0) * ed * ed * pf_pd_bond_volume(fam, pts->vol, k, j);
+    }
+    w += pts->vol[i] * (0.5 * b->bulk_modulus * p->theta[i] * p->theta[i] +
+                        7.5 * b->shear_modulus / p->m[i] * dev);
+  }
+  return w;
+}
+
+/* For the stable step: the PMB micromodulus of equal P-wave modulus, K_eq = (K + 4G/3) / 1.8. */
+static double lps_micromodulus(const pf_pd_body *b) {
+  double keq = (b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / 1.8;
+  return pf_pd_pmb_micromodulus(keq, &b->influence, b->horizon);
+}
+
+/* Critical stretch from G0 (Madenci & Oterkus 2014 / CabanaPD's LPS):
+ * omega = 1/|xi|: sqrt(5 G0 / (9 K delta)); omega = 1: sqrt(8 G0 / (15 K delta)). */
+static double lps_critical_stretch(const pf_pd_body *b, double G0) {
+  double K = b->bulk_modulus, d = b->horizon;
+  if (b->influence.kind == PF_INFLUENCE_INVERSE_DISTANCE) return sqrt(5 * G0 / (9 * K * d));
+  if (b->influence.kind == PF_INFLUENCE_CONSTANT) return sqrt(8 * G0 / (15 * K * d));
+  return NAN;
+}
+
+static void lps_destroy(pf_pd_body *b) { PF_FREE(b->mat); }
+
+const pf_pd_material_ops pf_pd_material_lps = {
+    .name = "lps",
+    .create = lps_create,
+    .setup = lps_setup,
+    .force = lps_force,
+    .energy = lps_energy,
+    .micromodulus = lps_micromodulus,
+    .critical_stretch = lps_critical_stretch,
+    .destroy = lps_destroy,
+};

@@ -1,0 +1,112 @@
+/* Prototype microelastic brittle (PMB) material, bond-based (Silling 2000; Silling & Askari
+ * 2005). Pairwise force density f = c omega(|xi|) s e_eta, s = (|eta + xi| - |xi|) / |xi|,
+ * with c = 18 K / (4 pi int omega r^3 dr) = 18 K / (pi delta^4) for omega = 1
+ * (Silling & Askari 2005, eq. 7; docs/theory/pd.md). */
+#include "pd/pd_impl.h"
+
+#include <stdlib.h>
+
+typedef struct {
+  double c; /* micromodulus, N/m^6 (times omega) */
+} pmb;
+
+static int pmb_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
+  if (!pf_node_get(mat, "bulk_modulus"))
+    return pf_deck_error(d, mat, "bulk_modulus", "model 'pmb' needs 'bulk_modulus'");
+  pmb *p;
+  PF_MALLOC(p, 1);
+  p->c = pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, b->horizon);
+  b->mat = p;
+  return 0;
+}
+
+/* One point's bond loop: returns the force density sum in f[3] and the smallest stretch of
+ * its intact bonds; fails bonds whose stretch exceeds min(s0_i, s0_j). */
+static inline double pmb_point(const pf_pd_body *restrict b, const pf_points *restrict pts,
+                               pf_int i, double c, double f[3]) {
+  const pf_family *fam = &b->fam;
+  const double *restrict X = pts->X, *restrict Y = pts->y, *restrict vol = pts->vol;
+  const double *restrict s0 = b->s0;
+  uint8_t *restrict broken = fam->broken;
+  const pf_int *restrict nb = fam->neighbor;
+  const double xi0 = X[3 * i], xi1 = X[3 * i + 1], xi2 = X[3 * i + 2];
+  const double yi0 = Y[3 * i], yi1 = Y[3 * i + 1], yi2 = Y[3 * i + 2], s0i = s0[i];
+  double f0 = 0, f1 = 0, f2 = 0, smin = INFINITY;
+  const int64_t end = fam->offset[i - fam->first + 1];
+  for (int64_t k = fam->offset[i - fam->first]; k < end; k++) {
+    if (broken[k]) continue;
+    const pf_int j = nb[k];
+    const double d0 = X[3 * j] - xi0, d1 = X[3 * j + 1] - xi1, d2 = X[3 * j + 2] - xi2;
+    const double e0 = Y[3 * j] - yi0, e1 = Y[3 * j + 1] - yi1, e2 = Y[3 * j + 2] - yi2;
+    const double r0 = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+    const double r = sqrt(e0 * e0 + e1 * e1 + e2 * e2);
+    const double s = (r - r0) / r0;
+    if (s > fmin(s0i, s0[j])) {
+      broken[k] = 1;
+      continue;
+    }
+    smin = fmin(smin, s);
+    const double fs = c * pf_pd_omega(&b->influence, r0) * s * pf_pd_bond_volume(fam, vol, k, j) / r;
+    f0 += fs * e0;
+    f1 += fs * e1;
+    f2 += fs * e2;
+  }
+  f[0] = f0, f[1] = f1, f[2] = f2;
+  return smin;
+}
+
+static int pmb_force(pf_pd_body *b, pf_points *pts) {
+  const double c = ((const pmb *)b->mat)->c;
+  double *restrict F = pts->f;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    double f[3];
+    b->smin[i - b->first] = pmb_point(b, pts, i, c, f);
+    F[3 * i] += pts->vol[i] * f[0];
+    F[3 * i + 1] += pts->vol[i] * f[1];
+    F[3 * i + 2] += pts->vol[i] * f[2];
+  }
+  return 0;
+}
+
+/* Stored energy: W = sum_i V_i sum_j (1/4) c omega s^2 |xi| V_j (Silling & Askari 2005, eq. 6,
+ * half of each bond's micropotential to each end). */
+static double pmb_energy(const pf_pd_body *b, const pf_points *pts) {
+  const pf_family *fam = &b->fam;
+  const double c = ((const pmb *)b->mat)->c;
+  double w = 0;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    double wi = 0;
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      if (fam->broken[k]) continue;
+      pf_int j = fam->neighbor[k];
+      double r0 = 0, r = 0;
+      for (int a = 0; a < 3; a++) {
+        double d = pts->X[3 * j + a] - pts->X[3 * i + a], e = pts->y[3 * j + a] - pts->y[3 * i + a];
+        r0 += d * d, r += e * e;
+      }
+      r0 = sqrt(r0), r = sqrt(r);
+      double s = (r - r0) / r0;
+      wi += 0.25 * c * pf_pd_omega(&b->influence, r0) * s * s * r0 * pf_pd_bond_volume(fam, pts->vol, k, j);
+    }
+    w += wi * pts->vol[i];
+  }
+  return w;
+}
+
+static double pmb_micromodulus(const pf_pd_body *b) { return ((const pmb *)b->mat)->c; }
+
+static double pmb_critical_stretch(const pf_pd_body *b, double G0) {
+  return pf_pd_pmb_critical_stretch(G0, b->bulk_modulus, b->horizon);
+}
+
+static void pmb_destroy(pf_pd_body *b) { PF_FREE(b->mat); }
+
+const pf_pd_material_ops pf_pd_material_pmb = {
+    .name = "pmb",
+    .create = pmb_create,
+    .force = pmb_force,
+    .energy = pmb_energy,
+    .micromodulus = pmb_micromodulus,
+    .critical_stretch = pmb_critical_stretch,
+    .destroy = pmb_destroy,
+};

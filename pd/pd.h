@@ -1,0 +1,90 @@
+/* perifem peridynamic core: families (bonds), influence functions, materials, bond failure
+ * and damage, the critical time step. */
+#ifndef PF_PD_H
+#define PF_PD_H
+
+#include "core/core.h"
+
+typedef struct pf_pd_body pf_pd_body;
+
+/* CSR family of the points [first, first + n) of the point store. Full lists (each bond seen
+ * from both ends), each row sorted by the neighbour's global id. */
+typedef struct {
+  pf_int first, n;
+  int64_t *offset;  /* [n + 1] */
+  pf_int *neighbor; /* [nbonds] local index into the point store */
+  uint8_t *broken;  /* [nbonds] 1 once the bond has failed */
+  float *vfrac;     /* [nbonds] partial-volume fraction of the neighbour, or NULL */
+} pf_family;
+
+/* Bond filters applied while building families: planar pre-cracks. */
+typedef enum { PF_CRACK_RECTANGLE, PF_CRACK_DISK } pf_crack_kind;
+typedef struct {
+  pf_crack_kind kind;
+  double p0[3], a[3], b[3]; /* rectangle: corner p0, edges a and b */
+  double center[3], normal[3], radius; /* disk */
+} pf_precrack;
+
+/* Build the family of points [first, first+n) with every point of the same range within
+ * `horizon` (|xi| <= horizon). With partial_volumes, neighbours whose cell only partly lies in
+ * the horizon sphere are kept with the fraction of the cell inside (16^3 sub-cell midpoint
+ * rule, as Peridigm). Bonds crossing a pre-crack are left out. O(n) cell-list search. */
+int pf_pd_family_build(const pf_points *pts, pf_int first, pf_int n, double horizon,
+                       int partial_volumes, int ncracks, const pf_precrack *cracks,
+                       pf_family *fam);
+int pf_pd_family_free(pf_family *fam);
+int64_t pf_pd_family_nbonds(const pf_family *fam);
+/* Volume fraction of the cube (centre c, edge h) inside the sphere (centre x, radius delta). */
+double pf_pd_partial_volume(const double x[3], const double c[3], double h, double delta);
+
+/* Influence functions omega(|xi|), registered by name (pd/influence.c). */
+typedef enum { PF_INFLUENCE_CONSTANT, PF_INFLUENCE_INVERSE_DISTANCE, PF_INFLUENCE_GAUSSIAN } pf_influence_kind;
+typedef struct {
+  pf_influence_kind kind;
+  double length; /* Gaussian: sigma in exp(-r^2 / sigma^2) */
+} pf_influence;
+int pf_pd_influence_by_name(const char *name, pf_influence_kind *kind);
+const char *pf_pd_influence_names(void);
+double pf_pd_influence(const pf_influence *w, double r);
+/* 4 pi * int_0^delta omega(r) r^p dr, by Gauss-Legendre quadrature (exact for the polynomial
+ * cases): the moments that calibrate micromoduli and critical stretches. */
+double pf_pd_influence_moment(const pf_influence *w, double delta, int p);
+
+/* Closed forms. */
+/* PMB micromodulus c = 18 K / (pi delta^4) for omega = 1 (Silling & Askari 2005, eq. 7);
+ * in general c = 18 K / (4 pi int omega r^3 dr). */
+double pf_pd_pmb_micromodulus(double bulk_modulus, const pf_influence *w, double delta);
+/* Critical stretch from the energy release rate: PMB s0 = sqrt(5 G0 / (9 K delta))
+ * (Silling & Askari 2005, eq. 9). */
+double pf_pd_pmb_critical_stretch(double G0, double bulk_modulus, double delta);
+
+/* A body of peridynamic points, read from the deck (`bodies[i]`, with its material from
+ * `materials`). Builds the family and lets the material register its fields. */
+extern const pf_key pf_pd_body_keys[];
+extern const pf_key pf_pd_material_keys[];
+extern const pf_key pf_pd_damage_keys[];
+int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *materials,
+                      pf_points *pts, pf_int first, pf_int n, pf_pd_body **b);
+int pf_pd_body_destroy(pf_pd_body **b);
+double pf_pd_body_density(const pf_pd_body *b);
+const pf_family *pf_pd_body_family(const pf_pd_body *b);
+/* Add the body's internal forces (N) to pts->f; fails bonds per the damage law. */
+int pf_pd_body_force(pf_pd_body *b, pf_points *pts);
+/* After the step: update damage-law state (e.g. Silling–Askari s0 from the step's s_min). */
+int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts);
+/* Stored elastic energy (J) of the body's owned points. */
+double pf_pd_body_energy(const pf_pd_body *b, const pf_points *pts);
+/* Point damage phi = 1 - intact bond volume / family volume into the "damage" field;
+ * returns the number of broken directed bonds. */
+int64_t pf_pd_body_damage(const pf_pd_body *b, pf_points *pts);
+/* Silling–Askari critical time step of the body: min_i sqrt(2 rho / sum_j V_j c / |xi|). */
+double pf_pd_body_stable_dt(const pf_pd_body *b, const pf_points *pts);
+/* Number of directed bonds (intact or broken) of the body. */
+int64_t pf_pd_body_nbonds(const pf_pd_body *b);
+
+/* Stable step of one point: sqrt(2 rho / sum_j V_j c omega / |xi|) (Silling & Askari 2005,
+ * eq. 15 with the Peridigm form). */
+double pf_pd_stable_dt_point(const pf_family *fam, const pf_points *pts, pf_int i, double rho,
+                             double c, const pf_influence *w);
+
+#endif

@@ -1,0 +1,65 @@
+/* Private to pd/: the body structure and the material and damage plug-in tables. */
+#ifndef PF_PD_IMPL_H
+#define PF_PD_IMPL_H
+
+#include "pd/pd.h"
+
+#include <math.h>
+
+typedef struct pf_pd_material_ops pf_pd_material_ops;
+
+/* Damage laws: how each point's critical stretch s0 evolves. A bond fails when its stretch
+ * exceeds min(s0_i, s0_j) (both ends, as LAMMPS' peri pair styles). */
+typedef enum { PF_DAMAGE_NONE, PF_DAMAGE_CRITICAL_STRETCH, PF_DAMAGE_SILLING_ASKARI } pf_damage_law;
+
+struct pf_pd_body {
+  char name[64];
+  pf_int first, n;
+  double horizon, density;
+  double bulk_modulus, shear_modulus;
+  pf_influence influence;
+  pf_family fam;
+  const pf_pd_material_ops *ops;
+  void *mat; /* the material's own data */
+  /* damage */
+  pf_damage_law law;
+  double s00, alpha; /* Silling–Askari: s0 = s00 - alpha s_min */
+  double *s0;        /* field "critical_stretch": per point, used by the force kernels */
+  double *smin;      /* [n] smallest stretch of each point's intact bonds this step */
+};
+
+/* A material: one file, one line in pd/materials.h (STYLE.md 2). Required: create, force,
+ * energy. Optional: setup (NULL: nothing to precompute), micromodulus (NULL: the bulk-modulus
+ * estimate 18 K / (pi delta^4) is used for the time step). */
+struct pf_pd_material_ops {
+  const char *name;
+  int (*create)(const pf_deck *d, const pf_node *mat, pf_pd_body *b);
+  int (*setup)(pf_pd_body *b, pf_points *pts);
+  int (*force)(pf_pd_body *b, pf_points *pts);
+  double (*energy)(const pf_pd_body *b, const pf_points *pts);
+  double (*micromodulus)(const pf_pd_body *b); /* c for the stable step */
+  double (*critical_stretch)(const pf_pd_body *b, double G0); /* from G0, or NULL */
+  void (*destroy)(pf_pd_body *b);
+};
+
+#define PF_PD_MATERIAL(id) extern const pf_pd_material_ops pf_pd_material_##id;
+#include "pd/materials.h"
+#undef PF_PD_MATERIAL
+
+/* omega(r), inlined in the bond loops. */
+static inline double pf_pd_omega(const pf_influence *w, double r) {
+  switch (w->kind) {
+  case PF_INFLUENCE_CONSTANT: return 1.0;
+  case PF_INFLUENCE_INVERSE_DISTANCE: return 1.0 / r;
+  case PF_INFLUENCE_GAUSSIAN: return exp(-r * r / (w->length * w->length));
+  }
+  return 1.0;
+}
+
+/* Volume of bond b's neighbour j as seen from its owner: V_j times the partial-volume fraction. */
+static inline double pf_pd_bond_volume(const pf_family *fam, const double *vol, int64_t b,
+                                       pf_int j) {
+  return fam->vfrac ? vol[j] * fam->vfrac[b] : vol[j];
+}
+
+#endif

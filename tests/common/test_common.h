@@ -1,0 +1,20 @@
+/* Helpers for perifem's C tests: they print only on failure and exit non-zero. */
+#ifndef PF_TEST_COMMON_H
+#define PF_TEST_COMMON_H
+#include "core/core.h"
+
+extern int pf_test_failures;
+/* Start MPI and silence logging. */
+void pf_test_init(int *argc, char ***argv);
+/* Finalize MPI; returns the process exit status (0 when every check passed). */
+int pf_test_finish(void);
+
+/* |got - want| <= tol_rel * |want| + tol_abs, else print both and count a failure. */
+#define PF_TEST_CLOSE(got, want, tol_rel, tol_abs)                                                 \
+  pf_test_close((got), (want), (tol_rel), (tol_abs), #got, __FILE__, __LINE__)
+#define PF_TEST_TRUE(cond) pf_test_true((cond), #cond, __FILE__, __LINE__)
+#define PF_TEST_OK(expr) pf_test_true((expr) == 0, #expr " returned 0", __FILE__, __LINE__)
+void pf_test_close(double got, double want, double tol_rel, double tol_abs, const char *what,
+                   const char *file, int line);
+void pf_test_true(int cond, const char *what, const char *file, int line);
+#endif
