@@ -2,6 +2,10 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "core/simulation.h"
 
 int pf_test_failures = 0;
 
@@ -32,4 +36,28 @@ void pf_test_true(int cond, const char *what, const char *file, int line) {
     fprintf(stderr, "%s:%d: check failed: %s\n", file, line, what);
     pf_test_failures++;
   }
+}
+
+const char *pf_test_write_file(int slot, const char *tag, const char *text) {
+  static char paths[8][256];
+  snprintf(paths[slot], sizeof paths[slot], "/tmp/pf_test_%s_%d_%d.txt", tag, (int)getpid(), slot);
+  FILE *fp = fopen(paths[slot], "w");
+  if (!fp || fputs(text, fp) < 0) {
+    fprintf(stderr, "cannot write %s\n", paths[slot]);
+    exit(1);
+  }
+  fclose(fp);
+  return paths[slot];
+}
+
+struct pf_sim *pf_test_sim(const char *tag, const char *deck_text) {
+  const char *path = pf_test_write_file(7, tag, deck_text);
+  pf_sim_options opt = {.no_output = 1};
+  pf_sim *sim = NULL;
+  if (pf_sim_create(path, &opt, &sim)) {
+    fprintf(stderr, "%s: cannot build the simulation from deck %s\n", tag, path);
+    exit(1);
+  }
+  remove(path);
+  return sim;
 }

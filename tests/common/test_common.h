@@ -17,4 +17,10 @@ int pf_test_finish(void);
 void pf_test_close(double got, double want, double tol_rel, double tol_abs, const char *what,
                    const char *file, int line);
 void pf_test_true(int cond, const char *what, const char *file, int line);
+/* Write text to a fresh file under /tmp named after tag and the process id; returns its path
+ * (static storage, valid until the next call with the same slot 0..7). */
+const char *pf_test_write_file(int slot, const char *tag, const char *text);
+/* Build a simulation from deck text (no output files); aborts the test on failure. */
+struct pf_sim;
+struct pf_sim *pf_test_sim(const char *tag, const char *deck_text);
 #endif
