@@ -27,6 +27,9 @@ long pf_sim_nsteps(const pf_sim *sim);
 /* Global quantities of the current state. */
 typedef struct {
   double time, kinetic, elastic, contact, external_work, momentum[3];
+  /* sum m (|v|^2 - (dt/2)^2 |a|^2) / 2 = sum m v(t-dt/2).v(t+dt/2) / 2: the kinetic part of
+   * the energy that velocity Verlet conserves exactly for linear forces (docs/theory/pd.md) */
+  double kinetic_centred;
   double damage_fraction;
 } pf_sim_globals;
 int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g);

@@ -51,7 +51,7 @@ static void globals_free(globals *g) {
 static int globals_eval(pf_sim *sim, globals *g, int first) {
   pf_sim_globals s;
   PF_CALL(pf_sim_globals_get(sim, &s));
-  double total = s.kinetic + s.elastic + s.contact - s.external_work;
+  double total = s.kinetic_centred + s.elastic + s.contact - s.external_work;
   if (first) g->e0 = total;
   double *v = g->values + 2;
   g->values[0] = sim->t;

@@ -138,11 +138,13 @@ int pf_sim_step(pf_sim *sim, long n) {
 int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g) {
   memset(g, 0, sizeof *g);
   const pf_points *p = sim->pts;
-  double ke = 0, mom[3] = {0, 0, 0};
+  double ke = 0, kc = 0, mom[3] = {0, 0, 0}, h = 0.5 * sim->dt;
   for (pf_int i = 0; i < p->n_owned; i++)
     for (int a = 0; a < 3; a++) {
-      ke += 0.5 * p->m[i] * p->v[3 * i + a] * p->v[3 * i + a];
-      mom[a] += p->m[i] * p->v[3 * i + a];
+      double v = p->v[3 * i + a], acc = p->f[3 * i + a] / p->m[i];
+      ke += 0.5 * p->m[i] * v * v;
+      kc += 0.5 * p->m[i] * (v * v - h * h * acc * acc);
+      mom[a] += p->m[i] * v;
     }
   double el = 0, nb = 0, nbroken = 0;
   for (int b = 0; b < sim->nbodies; b++) {
@@ -152,6 +154,7 @@ int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g) {
   }
   g->time = sim->t;
   g->kinetic = pf_sum_all(ke);
+  g->kinetic_centred = pf_sum_all(kc);
   g->elastic = pf_sum_all(el);
   g->contact = sim->contact_energy;
   g->external_work = sim->external_work;
