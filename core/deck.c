@@ -9,6 +9,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <yaml.h>
 
 #include "core/deck_impl.h"
@@ -60,8 +61,12 @@ static int convert_map(const char *path, yaml_document_t *doc, yaml_node_t *y, i
 
 static int convert(const char *path, yaml_document_t *doc, yaml_node_t *y, int depth,
                    pf_node **out) {
-  PF_CHECK(depth < 64, PF_ERR_INPUT, "%s:%d: nesting deeper than 64 levels", path,
-           (int)y->start_mark.line + 1);
+  PF_CHECK(depth < 64, PF_ERR_INPUT, "%s:%d:%d: nesting deeper than 64 levels", path,
+           (int)y->start_mark.line + 1, (int)y->start_mark.column + 1);
+  static long budget; /* aliases can make a small file expand exponentially */
+  if (depth == 0) budget = 1000000;
+  PF_CHECK(--budget > 0, PF_ERR_INPUT, "%s:%d:%d: the deck expands to more than a million nodes "
+           "(recursive YAML aliases?)", path, (int)y->start_mark.line + 1, (int)y->start_mark.column + 1);
   pf_node *n;
   PF_MALLOC(n, 1);
   *out = n;
@@ -99,6 +104,11 @@ static uint64_t hash_text(const char *s, size_t len) {
 static int read_file(const char *path, char **text, size_t *len) {
   FILE *fp = fopen(path, "rb");
   PF_CHECK(fp, PF_ERR_INPUT, "cannot open deck '%s': %s", path, strerror(errno));
+  struct stat st;
+  if (fstat(fileno(fp), &st) == 0 && S_ISDIR(st.st_mode)) {
+    fclose(fp);
+    PF_CHECK(0, PF_ERR_INPUT, "the deck '%s' is a directory, not a file", path);
+  }
   fseek(fp, 0, SEEK_END);
   long sz = ftell(fp);
   fseek(fp, 0, SEEK_SET);
@@ -132,7 +142,17 @@ static int parse_text(const char *path, const char *text, size_t len, pf_deck *d
   }
   yaml_node_t *root = yaml_document_get_root_node(&doc);
   int ierr = 0;
-  if (!root) ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__, "%s: the deck is empty", path);
+  yaml_document_t next;
+  if (root && yaml_parser_load(&parser, &next)) {
+    yaml_node_t *nroot = yaml_document_get_root_node(&next);
+    if (nroot)
+      ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
+                            "%s:%d:%d: a second YAML document; a deck is one document", path,
+                            (int)nroot->start_mark.line + 1, (int)nroot->start_mark.column + 1);
+    yaml_document_delete(&next);
+  }
+  if (ierr) (void)0;
+  else if (!root) ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__, "%s: the deck is empty", path);
   else if (root->type != YAML_MAPPING_NODE)
     ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
                           "%s:%d:%d: the deck must be a mapping of keys (title:, bodies:, ...)",

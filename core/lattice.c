@@ -146,7 +146,13 @@ int pf_point_file_read(const char *path, pf_point_cloud *pc) {
     while (*p == ' ' || *p == '\t') p++;
     if (*p == '#' || *p == '\n' || *p == '\0') continue;
     double x[3], vol, block = 0;
-    int got = sscanf(p, "%lf %lf %lf %lf %lf", &x[0], &x[1], &x[2], &vol, &block);
+    int used = 0, got = sscanf(p, "%lf %lf %lf %lf %n", &x[0], &x[1], &x[2], &vol, &used);
+    if (got == 4 && p[used] != '\0' && p[used] != '#') {
+      int more = 0;
+      got += sscanf(p + used, "%lf %n", &block, &more) == 1;
+      used += more;
+    }
+    if (got >= 4 && p[used] != '\0' && p[used] != '#' && p[used] != '\n') got = 0; /* trailing text */
     if (got < 4 || !isfinite(x[0] + x[1] + x[2] + vol) || !(vol > 0) || block != floor(block))
       ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
                             "%s:%d: expected 'x y z volume [block]' with a positive volume and an integer block", path,
@@ -168,6 +174,33 @@ static void deck_relative(const pf_deck *d, const char *name, char *out, size_t 
   else snprintf(out, len, "%.*s/%s", (int)(slash - dp), dp, name);
 }
 
+static const double *sort_base;
+static int by_position(const void *a, const void *b) {
+  const double *p = &sort_base[3 * *(const pf_int *)a], *q = &sort_base[3 * *(const pf_int *)b];
+  for (int c = 0; c < 3; c++)
+    if (p[c] != q[c]) return p[c] < q[c] ? -1 : 1;
+  return 0;
+}
+
+/* Two points at one position would make a bond of zero length. */
+static int check_distinct(const char *path, const pf_point_cloud *pc) {
+  pf_int *order;
+  PF_MALLOC(order, pc->n);
+  for (pf_int i = 0; i < pc->n; i++) order[i] = i;
+  sort_base = pc->X;
+  qsort(order, (size_t)pc->n, sizeof *order, by_position);
+  for (pf_int k = 1; k < pc->n; k++) {
+    if (by_position(&order[k - 1], &order[k])) continue;
+    pf_int a = order[k - 1] < order[k] ? order[k - 1] : order[k], b = order[k - 1] ^ order[k] ^ a;
+    const double *x = &pc->X[3 * a];
+    free(order);
+    PF_CHECK(0, PF_ERR_INPUT, "%s: points %" PF_INT_FMT " and %" PF_INT_FMT " (counting from 1 in file order) "
+             "coincide at (%g, %g, %g)", path, a + 1, b + 1, x[0], x[1], x[2]);
+  }
+  free(order);
+  return 0;
+}
+
 static int cloud_from_file(const pf_deck *d, const pf_node *g, pf_point_cloud *pc) {
   const char *file = NULL;
   char path[4096];
@@ -180,6 +213,7 @@ static int cloud_from_file(const pf_deck *d, const pf_node *g, pf_point_cloud *p
                          path, strerror(errno));
   fclose(probe);
   PF_CALL(pf_point_file_read(path, pc));
+  PF_CALL(check_distinct(path, pc));
   long block = -1;
   PF_CALL(pf_deck_int(d, g, "block", &block));
   if (block < 0) return 0;
@@ -215,6 +249,12 @@ int pf_point_cloud_from_deck(const pf_deck *d, const pf_node *g, pf_point_cloud 
   if (!(amp >= 0 && amp < 0.5))
     return pf_deck_error(d, pf_node_get(g, "perturbation"), "perturbation",
                          "must be in [0, 0.5) of the spacing (got %g)", amp);
+  double cells = 1, lo[3], hi[3];
+  region_bounds(&r, lo, hi);
+  for (int c = 0; c < 3; c++) cells *= (hi[c] - lo[c]) / h + 3;
+  if (cells > 2e9)
+    return pf_deck_error(d, pf_node_get(g, "spacing"), "spacing",
+                         "the lattice of %.3g cells is too large for spacing %g m", cells, h);
   PF_CALL(pf_lattice_fill(&r, h, origin, pc));
   if (pc->n == 0) return pf_deck_error(d, g, "shape", "the shape holds no lattice point (spacing %g m)", h);
   if (amp > 0) perturb(pc, amp * h, (uint64_t)seed);

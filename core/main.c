@@ -43,7 +43,13 @@ static int parse_args(int argc, char **argv, cli *c) {
     if (!strcmp(a, "--version")) return version(), 0;
     if (!strcmp(a, "--check")) c->check = 1;
     else if (!strcmp(a, "--quiet")) c->quiet = 1;
-    else if (!strcmp(a, "--output-dir") && i + 1 < argc) c->output_dir = argv[++i];
+    else if (!strcmp(a, "--output-dir")) {
+      if (i + 1 >= argc) {
+        fprintf(stderr, "perifem error: --output-dir needs a directory\n");
+        return PF_ERR_INPUT;
+      }
+      c->output_dir = argv[++i];
+    }
     else if (a[0] == '-') {
       fprintf(stderr, "perifem error: unknown option '%s'\n", a);
       usage(stderr);

@@ -3,6 +3,7 @@
  * velocities, indenters, boundary conditions, and the time step. No file is written here. */
 #include "core/simulation_impl.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -70,8 +71,15 @@ static int set_initial_velocity(pf_sim *sim, int b, const pf_node *body) {
   PF_CALL(pf_expr3_create(sim->deck, body, "initial_velocity", e));
   pf_points *p = sim->pts;
   for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++)
-    for (int c = 0; c < 3; c++)
-      p->v[3 * i + c] = pf_expr_eval(e[c], p->X[3 * i], p->X[3 * i + 1], p->X[3 * i + 2], 0.0);
+    for (int c = 0; c < 3; c++) {
+      const double *x = &p->X[3 * i];
+      p->v[3 * i + c] = pf_expr_eval(e[c], x[0], x[1], x[2], 0.0);
+      if (isfinite(p->v[3 * i + c])) continue;
+      pf_expr3_destroy(e);
+      return pf_deck_error(sim->deck, pf_node_item(pf_node_get(body, "initial_velocity"), c),
+                           "initial_velocity", "component %d is %g at the point (%g, %g, %g)", c,
+                           p->v[3 * i + c], x[0], x[1], x[2]);
+    }
   pf_expr3_destroy(e);
   return 0;
 }
@@ -80,8 +88,8 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
   const pf_node *bodies = pf_node_get(root, "bodies");
   sim->nbodies = pf_node_count(bodies);
   PF_CHECK(sim->nbodies > 0 && sim->nbodies <= PF_MAX_BODIES, PF_ERR_INPUT,
-           "%s:%d: 'bodies' must list 1 to %d bodies (got %d)", pf_deck_path(sim->deck),
-           pf_node_line(bodies), PF_MAX_BODIES, sim->nbodies);
+           "%s:%d:%d: 'bodies' must list 1 to %d bodies (got %d)", pf_deck_path(sim->deck),
+           pf_node_line(bodies), pf_node_column(bodies), PF_MAX_BODIES, sim->nbodies);
   for (int b = 0; b < sim->nbodies; b++) {
     const pf_node *body = pf_node_item(bodies, b);
     PF_CALL(pf_deck_string(sim->deck, body, "name", &sim->body_name[b]));

@@ -137,6 +137,6 @@ int pf_sim_run(pf_sim *sim) {
   if (ierr) return ierr;
   uint64_t h;
   PF_CALL(pf_state_digest(sim->pts, &h));
-  pf_log("state digest: %016" PRIx64 "\n", h);
+  if (pf_comm_rank() == 0) printf("state digest: %016" PRIx64 "\n", h); /* even with --quiet */
   return 0;
 }

@@ -153,6 +153,10 @@ static int body_setup(const pf_deck *d, const pf_node *body, const pf_node *mate
   if (!ierr) ierr = pf_pd_family_build(pts, b->first, b->n, b->horizon, partial, ncracks, cracks, &b->fam);
   free(cracks);
   if (ierr) return ierr;
+  if (pf_pd_family_nbonds(&b->fam) == 0 && b->n > 1)
+    return pf_deck_error(d, pf_node_get(body, "horizon"), "horizon",
+                         "no point of body '%s' has a neighbour within the horizon %g m; the "
+                         "horizon must exceed the point spacing (typically 3 spacings)", b->name, b->horizon);
   for (pf_int i = b->first; i < b->first + b->n; i++) pts->m[i] = b->density * pts->vol[i];
   PF_CALL(pf_pd_damage_setup(d, pf_node_get(body, "damage"), b, pts));
   if (b->ops->setup) PF_CALL(b->ops->setup(b, pts));

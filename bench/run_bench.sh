@@ -1,0 +1,153 @@
+#!/usr/bin/env bash
+# perifem vs LAMMPS (PERI package) on the same particles, one rank each.
+#
+#   bash bench/run_bench.sh [path/to/perifem]
+#
+# Generates the LAMMPS examples/peri target scaled by 3 (cylinder r = 15 mm, 15 mm long,
+# 0.5 mm simple cubic lattice, ~87k points) as a perifem point file and a LAMMPS data file,
+# runs PMB and LPS for 150 steps of 1e-7 s with a rigid sphere indenter in both codes, and
+# prints directed bond evaluations per second (directed bonds x steps / time-loop seconds).
+# The table also goes to bench/results/latest.txt. See bench/README.md.
+#
+# Environment: LMP=/path/to/lmp (default: first of lmp, lmp_serial, lmp_stable on PATH),
+#   LMP_SKIN=neighbour skin in m (default 0.0001), BENCH_STEPS (default 150),
+#   BENCH_KEEP=1 keeps the work directory.
+set -euo pipefail
+
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+root=$(cd "$here/.." && pwd)
+perifem=${1:-$root/build/perifem}
+steps=${BENCH_STEPS:-150}
+skin=${LMP_SKIN:-0.0001}
+horizon=0.0015001
+
+die() { echo "run_bench.sh: error: $*" >&2; exit 1; }
+
+# --- tools -----------------------------------------------------------------------------------
+[[ -x $perifem ]] || die "perifem binary '$perifem' not found or not executable (build it: cd build && cmake .. && make -j2, or pass its path as the first argument)"
+perifem=$(cd "$(dirname "$perifem")" && pwd)/$(basename "$perifem")
+
+lmp=${LMP:-}
+if [[ -z $lmp ]]; then
+  for c in lmp lmp_serial lmp_stable; do
+    if command -v "$c" >/dev/null 2>&1; then lmp=$(command -v "$c"); break; fi
+  done
+fi
+[[ -n $lmp ]] || die "LAMMPS not found: none of lmp, lmp_serial, lmp_stable is on PATH. Install it (Debian: apt-get install -y lammps) or set LMP=/path/to/lmp."
+command -v "$lmp" >/dev/null 2>&1 || die "LMP='$lmp' is not an executable"
+lmp_help=$("$lmp" -h 2>&1 || true)
+for style in peri/pmb peri/lps; do
+  grep -qw -- "$style" <<<"$lmp_help" || die "$lmp has no pair style $style (LAMMPS must be built with the PERI package)"
+done
+lmp_version=$(sed -n 's/^Large-scale Atomic\/Molecular Massively Parallel Simulator - //p' <<<"$lmp_help" | head -1)
+
+py=$(command -v python3 || command -v /usr/bin/python3 || true)
+[[ -n $py ]] || die "python3 not found"
+
+# MPI-built binaries run as singletons; these only matter if someone wraps them in mpirun as root.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+
+load_start=$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo unknown)
+work=$(mktemp -d /tmp/perifem_bench.XXXXXX)
+cleanup() { if [[ ${BENCH_KEEP:-0} == 1 ]]; then echo "work directory kept: $work" >&2; else rm -rf "$work"; fi; }
+trap cleanup EXIT
+
+# --- inputs ----------------------------------------------------------------------------------
+echo "== generating inputs in $work" >&2
+"$py" "$here/gen_bench.py" generate "$work" --skin "$skin" --steps "$steps" >"$work/gen.log" \
+  || { cat "$work/gen.log" >&2; die "input generation failed"; }
+cat "$work/gen.log" >&2
+npoints=$(sed -n 's/^points //p' "$work/gen.log")
+pair_pmb=$(sed -n 's/^pmb: pair_coeff //p' "$work/gen.log")
+pair_lps=$(sed -n 's/^lps: pair_coeff //p' "$work/gen.log")
+
+echo "== counting directed bonds |xi| <= $horizon independently (python, grid hashing)" >&2
+bonds_ref=$("$py" "$here/gen_bench.py" count "$work/points.txt" "$horizon")
+echo "   $bonds_ref" >&2
+
+# --- runs ------------------------------------------------------------------------------------
+# field VALUE from a log: first match of a sed -n expression, or die
+grab() {
+  local v
+  v=$(sed -n "$1" "$2" | head -1)
+  [[ -n $v ]] || die "could not find '$3' in $2; last lines:"$'\n'"$(tail -20 "$2")"
+  echo "$v"
+}
+
+declare -A pf_loop pf_bonds pf_rate lmp_loop lmp_bonds lmp_neigh lmp_builds lmp_danger lmp_update
+for m in pmb lps; do
+  echo "== perifem $m (1 rank)" >&2
+  mkdir -p "$work/out_$m"
+  "$perifem" --output-dir "$work/out_$m" "$work/$m.yaml" >"$work/perifem_$m.log" 2>&1 \
+    || { tail -30 "$work/perifem_$m.log" >&2; die "perifem failed on $m.yaml (log above)"; }
+  grep -E '^perifem:|points|damage' "$work/perifem_$m.log" >&2 || true
+  pf_loop[$m]=$(grab 's/.*(time loop \([0-9.eE+-]*\) s).*/\1/p' "$work/perifem_$m.log" "time loop")
+  pf_bonds[$m]=$(grab 's/.*directed bonds \([0-9]*\),.*/\1/p' "$work/perifem_$m.log" "directed bonds")
+  pf_rate[$m]=$(grab 's/.*bond evaluations per second \([0-9.eE+-]*\).*/\1/p' "$work/perifem_$m.log" "bond evaluations per second")
+
+  echo "== LAMMPS $m (1 rank)" >&2
+  (cd "$work" && "$lmp" -in "in.$m" -log "log.lammps.$m" -echo none -nocite >"lmp_$m.out" 2>&1) \
+    || { tail -30 "$work/lmp_$m.out" >&2; die "LAMMPS failed on in.$m (output above)"; }
+  grep -E 'Loop time|total # of bonds' "$work/lmp_$m.out" >&2 || true
+  lmp_loop[$m]=$(grab "s/^Loop time of \([0-9.eE+-]*\) on 1 procs for $steps steps.*/\1/p" "$work/lmp_$m.out" "Loop time of X on 1 procs for $steps steps")
+  lmp_bonds[$m]=$(grab 's/^ *total # of bonds = \([0-9]*\).*/\1/p' "$work/lmp_$m.out" "total # of bonds")
+  lmp_neigh[$m]=$(grab 's/^Ave neighs\/atom = \([0-9.eE+-]*\).*/\1/p' "$work/lmp_$m.out" "Ave neighs/atom")
+  lmp_builds[$m]=$(grab 's/^Neighbor list builds = \([0-9]*\).*/\1/p' "$work/lmp_$m.out" "Neighbor list builds")
+  lmp_danger[$m]=$(grab 's/^Dangerous builds = \([0-9]*\).*/\1/p' "$work/lmp_$m.out" "Dangerous builds")
+  lmp_update[$m]=$(grab 's/^ *update every \(.*\)$/\1/p' "$work/lmp_$m.out" "update every")
+done
+
+# --- table -----------------------------------------------------------------------------------
+cpu=$(sed -n 's/^model name[[:space:]]*:[[:space:]]*//p' /proc/cpuinfo 2>/dev/null | head -1)
+# The repository's commit describes the binary only when the binary lives in this checkout.
+src_desc="binary outside this checkout, commit unknown"
+if [[ $perifem == "$root"/* ]] && commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null); then
+  src_desc="checkout at $commit"
+  if [[ -n $(git -C "$root" status --porcelain --untracked-files=no 2>/dev/null) ]]; then
+    src_desc="$src_desc + uncommitted changes"
+  fi
+fi
+pf_version=$("$perifem" --version 2>/dev/null | head -1 || echo perifem)
+
+ok=1
+mkdir -p "$here/results"
+table=$work/table.txt
+{
+  echo "perifem vs LAMMPS PERI: directed bond evaluations per second, 1 rank each"
+  echo "date:     $(date -u '+%Y-%m-%d %H:%M UTC')"
+  echo "machine:  ${cpu:-unknown CPU}, nproc $(nproc), load average at start $load_start"
+  echo "perifem:  $pf_version, $perifem ($src_desc)"
+  echo "LAMMPS:   ${lmp_version:-unknown version}, $lmp"
+  echo "problem:  LAMMPS examples/peri target x3: cylinder r = 15 mm, y in [-15, 0] mm, h = 0.5 mm,"
+  echo "          $npoints points, horizon $horizon m, rigid sphere r = 5 mm at 100 m/s (k = 1e17),"
+  echo "          $steps steps of 1e-7 s; same points in the same order in both codes"
+  echo "LAMMPS:   PMB pair_coeff $pair_pmb"
+  echo "          LPS pair_coeff $pair_lps"
+  echo
+  printf '%-5s %12s %12s %12s %14s %14s %10s\n' model "dir. bonds" "perifem [s]" "LAMMPS [s]" "perifem ev/s" "LAMMPS ev/s" "pf/LAMMPS"
+  for m in pmb lps; do
+    awk -v m="${m^^}" -v b="${pf_bonds[$m]}" -v s="$steps" -v tp="${pf_loop[$m]}" -v tl="${lmp_loop[$m]}" 'BEGIN {
+      rp = b * s / tp; rl = b * s / tl;
+      printf "%-5s %12d %12.2f %12.2f %14.4g %14.4g %10.2f\n", m, b, tp, tl, rp, rl, rp / rl }'
+  done
+  echo
+  echo "directed bonds (|xi| <= $horizon): independent python count $bonds_ref"
+  for m in pmb lps; do
+    status=match
+    if [[ ${pf_bonds[$m]} != "$bonds_ref" || ${lmp_bonds[$m]} != "$bonds_ref" ]]; then status=MISMATCH; ok=0; fi
+    echo "  ${m^^}: perifem ${pf_bonds[$m]}, LAMMPS ${lmp_bonds[$m]} (fix PERI_NEIGH 'total # of bonds') -> $status"
+  done
+  echo "perifem's own summary rate: PMB ${pf_rate[pmb]}, LPS ${pf_rate[lps]} bond evaluations/s"
+  echo "times: perifem 'time loop' seconds; LAMMPS 'Loop time of X on 1 procs for $steps steps'."
+  echo "rates: directed bonds x steps / time (LAMMPS's bond count is the same number)."
+  echo "caveat: LAMMPS peri/* pair styles also compute a short-range contact force over their"
+  echo "  neighbour list (horizon + skin, ${lmp_neigh[pmb]} / ${lmp_neigh[lps]} full neighbours per atom for PMB / LPS)"
+  echo "  in the same force call; perifem has no contact loop yet, so LAMMPS's neighbour skin is kept"
+  echo "  at its minimum ($skin m): neighbour list builds PMB ${lmp_builds[pmb]}, LPS ${lmp_builds[lps]}"
+  echo "  (dangerous ${lmp_danger[pmb]}, ${lmp_danger[lps]}). LAMMPS's default list updates otherwise (update every ${lmp_update[pmb]})."
+} >"$table"
+
+cat "$table"
+cp "$table" "$here/results/latest.txt"
+echo "(saved to $here/results/latest.txt)" >&2
+[[ $ok == 1 ]] || die "directed bond counts differ (see the table)"
