@@ -28,11 +28,18 @@ static void node_free(pf_node *n) {
   free(n);
 }
 
-static int convert(const char *path, yaml_document_t *doc, yaml_node_t *y, int depth,
-                   pf_node **out);
+/* What the YAML-to-tree conversion carries along. */
+typedef struct {
+  const char *path;
+  yaml_document_t *doc;
+  long budget; /* nodes left: aliases can make a small file expand exponentially */
+} convert_ctx;
 
-static int convert_map(const char *path, yaml_document_t *doc, yaml_node_t *y, int depth,
-                       pf_node *n) {
+static int convert(convert_ctx *cx, yaml_node_t *y, int depth, pf_node **out);
+
+static int convert_map(convert_ctx *cx, yaml_node_t *y, int depth, pf_node *n) {
+  const char *path = cx->path;
+  yaml_document_t *doc = cx->doc;
   int count = (int)(y->data.mapping.pairs.top - y->data.mapping.pairs.start);
   PF_MALLOC(n->items, count);
   PF_MALLOC(n->keys, count);
@@ -54,18 +61,16 @@ static int convert_map(const char *path, yaml_document_t *doc, yaml_node_t *y, i
     n->key_line[i] = kl;
     n->key_col[i] = kc;
     n->n = i + 1;
-    PF_CALL(convert(path, doc, yaml_document_get_node(doc, pr->value), depth + 1, &n->items[i]));
+    PF_CALL(convert(cx, yaml_document_get_node(doc, pr->value), depth + 1, &n->items[i]));
   }
   return 0;
 }
 
-static int convert(const char *path, yaml_document_t *doc, yaml_node_t *y, int depth,
-                   pf_node **out) {
+static int convert(convert_ctx *cx, yaml_node_t *y, int depth, pf_node **out) {
+  const char *path = cx->path;
   PF_CHECK(depth < 64, PF_ERR_INPUT, "%s:%d:%d: nesting deeper than 64 levels", path,
            (int)y->start_mark.line + 1, (int)y->start_mark.column + 1);
-  static long budget; /* aliases can make a small file expand exponentially */
-  if (depth == 0) budget = 1000000;
-  PF_CHECK(--budget > 0, PF_ERR_INPUT, "%s:%d:%d: the deck expands to more than a million nodes "
+  PF_CHECK(--cx->budget > 0, PF_ERR_INPUT, "%s:%d:%d: the deck expands to more than a million nodes "
            "(recursive YAML aliases?)", path, (int)y->start_mark.line + 1, (int)y->start_mark.column + 1);
   pf_node *n;
   PF_MALLOC(n, 1);
@@ -86,13 +91,13 @@ static int convert(const char *path, yaml_document_t *doc, yaml_node_t *y, int d
     PF_MALLOC(n->items, count);
     for (int i = 0; i < count; i++) {
       n->n = i + 1;
-      yaml_node_t *it = yaml_document_get_node(doc, y->data.sequence.items.start[i]);
-      PF_CALL(convert(path, doc, it, depth + 1, &n->items[i]));
+      yaml_node_t *it = yaml_document_get_node(cx->doc, y->data.sequence.items.start[i]);
+      PF_CALL(convert(cx, it, depth + 1, &n->items[i]));
     }
     return 0;
   }
   n->kind = NODE_MAP;
-  return convert_map(path, doc, y, depth, n);
+  return convert_map(cx, y, depth, n);
 }
 
 static uint64_t hash_text(const char *s, size_t len) {
@@ -157,7 +162,10 @@ static int parse_text(const char *path, const char *text, size_t len, pf_deck *d
     ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
                           "%s:%d:%d: the deck must be a mapping of keys (title:, bodies:, ...)",
                           path, (int)root->start_mark.line + 1, (int)root->start_mark.column + 1);
-  else ierr = convert(path, &doc, root, 0, &d->root);
+  else {
+    convert_ctx cx = {path, &doc, 1000000};
+    ierr = convert(&cx, root, 0, &d->root);
+  }
   yaml_document_delete(&doc);
   yaml_parser_delete(&parser);
   return ierr;

@@ -1,5 +1,6 @@
 /* Error recording and logging (STYLE.md 5): the first error raised is kept with its origin
- * and printed once to stderr; PF_CALL adds one "called from" line per level in debug mode. */
+ * and printed once to stderr (with its source position when PERIFEM_DEBUG is set); the
+ * PF_CALL levels above it return the same code without printing again. */
 #include "core/core.h"
 
 #include <stdarg.h>

@@ -92,18 +92,28 @@ static pf_region region_grow(const pf_region *r, double tol) {
   return g;
 }
 
+/* The index range [i0, i1] of lattice sites that cover the region; returns their number. */
+static double lattice_range(const pf_region *r, double h, const double origin[3], long i0[3],
+                            long i1[3]) {
+  double lo[3], hi[3];
+  region_bounds(r, lo, hi);
+  for (int c = 0; c < 3; c++) {
+    double a = floor((lo[c] - origin[c]) / h) - 1, b = ceil((hi[c] - origin[c]) / h) + 1;
+    if (!(b - a < 4e9)) return INFINITY; /* would overflow long on the way */
+    i0[c] = (long)a;
+    i1[c] = (long)b;
+  }
+  return (double)(i1[0] - i0[0] + 1) * (i1[1] - i0[1] + 1) * (i1[2] - i0[2] + 1);
+}
+
+#define PF_LATTICE_MAX_CELLS 2e9
+
 int pf_lattice_fill(const pf_region *r, double h, const double origin[3], pf_point_cloud *pc) {
   PF_CHECK(h > 0, PF_ERR_INPUT, "lattice spacing must be positive (got %g)", h);
   PF_CHECK(r->kind != PF_REGION_ALL, PF_ERR_INPUT, "a lattice needs a bounded shape");
-  double lo[3], hi[3];
   long i0[3], i1[3];
-  region_bounds(r, lo, hi);
-  for (int c = 0; c < 3; c++) {
-    i0[c] = (long)floor((lo[c] - origin[c]) / h) - 1;
-    i1[c] = (long)ceil((hi[c] - origin[c]) / h) + 1;
-  }
-  double cells = (double)(i1[0] - i0[0] + 1) * (i1[1] - i0[1] + 1) * (i1[2] - i0[2] + 1);
-  PF_CHECK(cells < 2e9, PF_ERR_INPUT, "lattice of %.3g cells is too large (spacing %g m)", cells,
+  double cells = lattice_range(r, h, origin, i0, i1);
+  PF_CHECK(cells < PF_LATTICE_MAX_CELLS, PF_ERR_INPUT, "lattice of %.3g cells is too large (spacing %g m)", cells,
            h);
   pf_region g = region_grow(r, 1e-9 * h);
   pf_int cap = 0;
@@ -249,10 +259,9 @@ int pf_point_cloud_from_deck(const pf_deck *d, const pf_node *g, pf_point_cloud 
   if (!(amp >= 0 && amp < 0.5))
     return pf_deck_error(d, pf_node_get(g, "perturbation"), "perturbation",
                          "must be in [0, 0.5) of the spacing (got %g)", amp);
-  double cells = 1, lo[3], hi[3];
-  region_bounds(&r, lo, hi);
-  for (int c = 0; c < 3; c++) cells *= (hi[c] - lo[c]) / h + 3;
-  if (cells > 2e9)
+  long i0[3], i1[3];
+  double cells = lattice_range(&r, h, origin, i0, i1);
+  if (!(cells < PF_LATTICE_MAX_CELLS))
     return pf_deck_error(d, pf_node_get(g, "spacing"), "spacing",
                          "the lattice of %.3g cells is too large for spacing %g m", cells, h);
   PF_CALL(pf_lattice_fill(&r, h, origin, pc));

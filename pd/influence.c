@@ -26,7 +26,6 @@ const char *pf_pd_influence_names(void) {
 #undef NAME
 }
 
-double pf_pd_influence(const pf_influence *w, double r) { return pf_pd_omega(w, r); }
 
 /* 4 pi int_0^delta omega(r) r^p dr with 20-point Gauss-Legendre on 8 sub-intervals: exact for
  * polynomial integrands of the degrees used here, 1e-15 relative for the Gaussian. */

@@ -45,7 +45,6 @@ typedef struct {
 } pf_influence;
 int pf_pd_influence_by_name(const char *name, pf_influence_kind *kind);
 const char *pf_pd_influence_names(void);
-double pf_pd_influence(const pf_influence *w, double r);
 /* 4 pi * int_0^delta omega(r) r^p dr, by Gauss-Legendre quadrature (exact for the polynomial
  * cases): the moments that calibrate micromoduli and critical stretches. */
 double pf_pd_influence_moment(const pf_influence *w, double delta, int p);

@@ -110,54 +110,36 @@ for deck in "${list[@]}"; do
   report "$name"
 done
 
-cli=$scratch/cli_check_valid
 # The command line.
-cli=$scratch/cli_check_valid
-run check_valid "$cli" --check --output-dir "$cli" "$valid_deck"
-[ "$status" -eq 0 ] || problem "exit status $status, expected 0 (a valid deck)"
-check_run "$cli"
-report "--check $(basename "$valid_deck")"
+# cli_case LABEL STATUS STREAM TEXT ARGS...: run perifem with ARGS (@DIR@ stands for a fresh
+# folder, also its cwd) and check the exit status, that STREAM (out or err) contains TEXT
+# (!TEXT: does not contain it; -: no check), and the common checks.
+cli_n=0
+cli_case() {
+  local label=$1 want=$2 stream=$3 text=$4
+  shift 4
+  cli_n=$((cli_n + 1))
+  local dir=$scratch/cli_$cli_n
+  run "cli_$cli_n" "$dir" "${@//@DIR@/$dir}"
+  local file=$err
+  [ "$stream" = out ] && file=$out
+  [ "$status" -eq "$want" ] || problem "exit status $status, expected $want"
+  case "$text" in
+    -) ;;
+    !*) ! grep -qF -- "${text#!}" "$file" || problem "$stream says '${text#!}'" ;;
+    *) grep -qF -- "$text" "$file" || problem "$stream lacks '$text'" ;;
+  esac
+  check_run "$dir"
+  report "$label"
+}
 
-cli=$scratch/cli_help
-run help "$cli" --help
-[ "$status" -eq 0 ] || problem "exit status $status, expected 0"
-grep -q usage "$out" || problem "no usage text on stdout"
-check_run "$cli"
-report "--help"
-
-cli=$scratch/cli_nonsense
-run nonsense "$cli" --nonsense
-[ "$status" -eq 2 ] || problem "exit status $status, expected 2"
-grep -qF -- "--nonsense" "$err" || problem "stderr does not name the option"
-check_run "$cli"
-report "--nonsense"
-
-cli=$scratch/cli_no_deck
-run no_deck "$cli"
-[ "$status" -eq 2 ] || problem "exit status $status, expected 2"
-check_run "$cli"
-report "(no deck given)"
-
-cli=$scratch/cli_missing_deck
-run missing_deck "$cli" --output-dir "$cli" "$decks/no_such_deck.yaml"
-[ "$status" -eq 2 ] || problem "exit status $status, expected 2"
-grep -qF "cannot open deck" "$err" || problem "stderr lacks 'cannot open deck'"
-check_run "$cli"
-report "no_such_deck.yaml"
-
-cli=$scratch/cli_dir_deck
-run dir_deck "$cli" --output-dir "$cli" "$decks"
-[ "$status" -eq 2 ] || problem "exit status $status, expected 2"
-grep -qF "$decks" "$err" || problem "stderr does not name the path"
-check_run "$cli"
-report "(a directory as the deck)"
-
-cli=$scratch/cli_output_dir_no_value
-run output_dir_no_value "$cli" "$decks/02_unknown_top_key.yaml" --output-dir
-[ "$status" -eq 2 ] || problem "exit status $status, expected 2"
-grep -qF "unknown option" "$err" && problem "calls a known option unknown instead of saying it needs a directory"
-check_run "$cli"
-report "--output-dir with no value"
+cli_case "--check $(basename "$valid_deck")" 0 err - --check --output-dir @DIR@ "$valid_deck"
+cli_case "--help" 0 out usage --help
+cli_case "--nonsense" 2 err --nonsense --nonsense
+cli_case "(no deck given)" 2 err -
+cli_case "no_such_deck.yaml" 2 err "cannot open deck" --output-dir @DIR@ "$decks/no_such_deck.yaml"
+cli_case "(a directory as the deck)" 2 err "$decks" --output-dir @DIR@ "$decks"
+cli_case "--output-dir with no value" 2 err "!unknown option" "$decks/02_unknown_top_key.yaml" --output-dir
 
 [ "$failures" -eq 0 ] || exit 1
 exit 0
