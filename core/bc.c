@@ -10,8 +10,10 @@
 struct pf_bc {
   int is_velocity;
   pf_expr *e[3]; /* NULL: component free */
+  pf_region region;
+  int body;      /* -1: every body */
   pf_int n;
-  pf_int *points;
+  pf_int *points; /* owned points selected */
 };
 
 const pf_key pf_bc_keys[] = {
@@ -31,20 +33,27 @@ static int read_exprs(const pf_deck *d, const pf_node *map, const char *key, pf_
   return 0;
 }
 
+int pf_bc_select(pf_bc *bc, const pf_points *pts) {
+  PF_FREE(bc->points);
+  bc->n = 0;
+  PF_MALLOC(bc->points, pts->n_owned);
+  for (pf_int i = 0; i < pts->n_owned; i++)
+    if ((bc->body < 0 || pts->body[i] == bc->body) && pf_region_contains(&bc->region, &pts->X[3 * i]))
+      bc->points[bc->n++] = i;
+  return 0;
+}
+
 static int select_points(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
                          const char *const *body_names, pf_bc *bc) {
-  pf_region r = {.kind = PF_REGION_ALL};
-  if (pf_node_get(map, "region")) PF_CALL(pf_region_from_deck(d, pf_node_get(map, "region"), &r));
-  int body = -1;
+  bc->region.kind = PF_REGION_ALL;
+  if (pf_node_get(map, "region")) PF_CALL(pf_region_from_deck(d, pf_node_get(map, "region"), &bc->region));
+  bc->body = -1;
   const char *bname = NULL;
   PF_CALL(pf_deck_string(d, map, "body", &bname));
   for (int b = 0; bname && b < nbodies; b++)
-    if (!strcmp(bname, body_names[b])) body = b;
-  if (bname && body < 0) return pf_deck_error(d, pf_node_get(map, "body"), "body", "no body named '%s'", bname);
-  PF_MALLOC(bc->points, pts->n_owned);
-  for (pf_int i = 0; i < pts->n_owned; i++)
-    if ((body < 0 || pts->body[i] == body) && pf_region_contains(&r, &pts->X[3 * i]))
-      bc->points[bc->n++] = i;
+    if (!strcmp(bname, body_names[b])) bc->body = b;
+  if (bname && bc->body < 0) return pf_deck_error(d, pf_node_get(map, "body"), "body", "no body named '%s'", bname);
+  PF_CALL(pf_bc_select(bc, pts));
   if (pf_sum_all(bc->n) == 0)
     return pf_deck_error(d, map, "region", "the boundary condition selects no point");
   return 0;

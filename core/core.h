@@ -97,9 +97,13 @@ typedef struct pf_points {
   int32_t *body;   /* body index [n] */
   int nfields;
   pf_field fields[PF_MAX_FIELDS];
+  struct pf_halo *halo; /* who sends which owned point to whom (core/halo.c); NULL: no ghosts */
 } pf_points;
 
 int pf_points_create(pf_int n, pf_points **pts);
+/* Keep the first n_owned points and make room for n_ghost ghosts after them (every array and
+ * field); new entries are zero. */
+int pf_points_resize(pf_points *pts, pf_int n_owned, pf_int n_ghost);
 int pf_points_destroy(pf_points **pts);
 /* Register a per-point field; returns its index in *idx. Re-registering a name with the same
  * shape returns the existing field. */
@@ -219,6 +223,49 @@ double pf_max_all(double local);
 int pf_comm_rank(void);
 int pf_comm_size(void);
 
+/* ---- MPI domain decomposition (core/partition.c, migrate.c, halo.c) -------------- */
+/* Bond lists in transit between ranks: one row per owned point, neighbours by global id, each
+ * row ascending, with the per-bond state that travels with them. */
+typedef struct {
+  pf_int n;        /* rows */
+  int64_t *offset; /* [n + 1] */
+  pf_gid *gid;     /* [offset[n]] */
+  uint8_t *broken; /* [offset[n]] */
+  float *vfrac;    /* [offset[n]] partial-volume fraction (1 when unused) */
+  int64_t cap;     /* room for bonds */
+  pf_int row_cap;  /* room for rows */
+} pf_bond_rows;
+int pf_bond_rows_init(pf_bond_rows *r);
+/* Append one row (broken / vfrac may be NULL: intact, whole). */
+int pf_bond_rows_append(pf_bond_rows *r, pf_int count, const pf_gid *gid, const uint8_t *broken,
+                        const float *vfrac);
+int pf_bond_rows_free(pf_bond_rows *r);
+
+typedef enum { PF_PARTITION_RCB, PF_PARTITION_METIS } pf_partition_method;
+/* The owner rank of every global id (owner_of[n_global], the same on every rank) after
+ * partitioning the owned points: Zoltan recursive coordinate bisection of X weighted by each
+ * point's bond count, or METIS k-way on the bond graph with the same vertex weights.
+ * Collective. */
+int pf_partition_compute(pf_partition_method method, const pf_points *pts,
+                         const pf_bond_rows *rows, int **owner_of);
+/* Send each owned point (every array and field) and its bond row to rank dest[i]. Afterwards
+ * the store holds what this rank received, no ghosts, grouped by body (ascending) and in Morton
+ * order within a body; body_start[nbodies + 1] gives the ranges. Collective. */
+int pf_points_migrate(pf_points *pts, pf_bond_rows *rows, const int *dest, int nbodies,
+                      pf_int *body_start);
+/* Append as ghosts every neighbour in rows that this rank does not own, ordered by owner rank
+ * and global id; build the halo; fill the ghosts' X, vol, cell, m, body and PF_FIELD_GHOST
+ * fields; and write the local index of each bond's neighbour into local[offset[n]].
+ * Collective. */
+int pf_points_add_ghosts(pf_points *pts, const pf_bond_rows *rows, const int *owner_of,
+                         pf_int *local);
+/* Copy the owners' values of data (ncomp per point) into the ghosts. Collective; a no-op
+ * without ghosts on one rank. */
+int pf_points_exchange(pf_points *pts, double *data, int ncomp);
+/* Exchange u and set y = X + u on the ghosts (the per-step halo update). */
+int pf_points_exchange_positions(pf_points *pts);
+void pf_halo_destroy(struct pf_halo **h);
+
 /* ---- prescribed boundary conditions (core/bc.c) -------------------------------- */
 typedef struct pf_bc pf_bc;
 extern const pf_key pf_bc_keys[];
@@ -227,6 +274,8 @@ extern const pf_key pf_bc_keys[];
 int pf_bc_create(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
                  const char *const *body_names, pf_bc **bc);
 int pf_bc_destroy(pf_bc **bc);
+/* (Re)select the owned points of the condition's region and body (after a re-partition). */
+int pf_bc_select(pf_bc *bc, const pf_points *pts);
 pf_int pf_bc_npoints(const pf_bc *bc);
 /* Velocity Verlet hooks: after the first half kick (mid-step velocity at t + dt/2) and after
  * the second half kick (velocity at t). */
@@ -234,7 +283,8 @@ void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt);
 void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t);
 
 /* ---- state digest ------------------------------------------------------- */
-/* FNV-1a 64-bit hash of the displacement of owned points in global-id order. */
+/* FNV-1a 64-bit hash of the displacement of all owned points in global-id order (gathered on
+ * rank 0, broadcast to all). Collective. */
 int pf_state_digest(const pf_points *pts, uint64_t *digest);
 
 
@@ -248,6 +298,10 @@ typedef struct pf_exodus pf_exodus;
 int pf_exodus_create(const char *path, const pf_points *pts, int nbodies,
                      const char *const *body_names, const pf_int *body_start, int nglobals,
                      const char *const *global_names, pf_exodus **ex);
+/* The joined view: rank 0 gets (*all, created on the first call) a copy of every owned point
+ * in global-id order — X, u, v, f, body and the PF_FIELD_OUTPUT fields; other ranks get NULL.
+ * Collective. */
+int pf_points_gather(const pf_points *pts, pf_points **all);
 /* Append one output step: time, the nodal variables, the global variables. */
 int pf_exodus_write(pf_exodus *ex, double time, const pf_points *pts, const double *globals);
 int pf_exodus_destroy(pf_exodus **ex);

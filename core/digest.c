@@ -16,17 +16,35 @@ static uint64_t fnv1a(uint64_t h, const void *data, size_t len) {
 }
 
 int pf_state_digest(const pf_points *pts, uint64_t *digest) {
-  PF_CHECK(pf_comm_size() == 1, PF_ERR_RUN, "the state digest is serial for now");
-  pf_gid n = pts->n_owned;
-  double *byid;
-  PF_MALLOC(byid, 3 * (size_t)n);
-  for (pf_int i = 0; i < pts->n_owned; i++) {
-    pf_gid g = pts->gid[i];
-    PF_CHECK(g >= 0 && g < n, PF_ERR_RUN, "global id %" PF_GID_FMT " outside [0, %" PF_GID_FMT ")",
-             g, n);
-    memcpy(&byid[3 * g], &pts->u[3 * i], 3 * sizeof(double));
+  int size = pf_comm_size(), rank = pf_comm_rank(), n = pts->n_owned, *cnt, *dsp;
+  PF_MALLOC(cnt, size);
+  PF_MALLOC(dsp, size + 1);
+  MPI_Gather(&n, 1, MPI_INT, cnt, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  for (int r = 0; r < size; r++) dsp[r + 1] = dsp[r] + cnt[r];
+  pf_gid *gid = NULL;
+  double *u = NULL, *byid = NULL;
+  if (rank == 0) {
+    PF_CHECK(dsp[size] == pts->n_global, PF_ERR_RUN, "the ranks own %d points, expected %" PF_GID_FMT,
+             dsp[size], pts->n_global);
+    PF_MALLOC(gid, pts->n_global);
+    PF_MALLOC(u, 3 * (size_t)pts->n_global);
+    PF_MALLOC(byid, 3 * (size_t)pts->n_global);
   }
-  *digest = fnv1a(1469598103934665603ULL, byid, 3 * (size_t)n * sizeof(double));
-  free(byid);
+  MPI_Gatherv(pts->gid, n, PF_GID_MPI, gid, cnt, dsp, PF_GID_MPI, 0, MPI_COMM_WORLD);
+  for (int r = 0; r <= size; r++) dsp[r] *= 3;
+  for (int r = 0; r < size; r++) cnt[r] *= 3;
+  MPI_Gatherv(pts->u, 3 * n, MPI_DOUBLE, u, cnt, dsp, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  uint64_t h = 0;
+  if (rank == 0) {
+    for (pf_gid k = 0; k < pts->n_global; k++) {
+      PF_CHECK(gid[k] >= 0 && gid[k] < pts->n_global, PF_ERR_RUN,
+               "global id %" PF_GID_FMT " outside [0, %" PF_GID_FMT ")", gid[k], pts->n_global);
+      memcpy(&byid[3 * gid[k]], &u[3 * k], 3 * sizeof(double));
+    }
+    h = fnv1a(1469598103934665603ULL, byid, 3 * (size_t)pts->n_global * sizeof(double));
+  }
+  MPI_Bcast(&h, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  *digest = h;
+  free(cnt), free(dsp), free(gid), free(u), free(byid);
   return 0;
 }

@@ -41,6 +41,7 @@ int pf_points_destroy(pf_points **pts) {
   free(p->gid);
   free(p->body);
   for (int i = 0; i < p->nfields; i++) free(p->fields[i].data);
+  pf_halo_destroy(&p->halo);
   PF_FREE(*pts);
   return 0;
 }
@@ -71,6 +72,32 @@ double *pf_points_field_get(const pf_points *pts, const char *name) {
   for (int i = 0; i < pts->nfields; i++)
     if (!strcmp(pts->fields[i].name, name)) return pts->fields[i].data;
   return NULL;
+}
+
+/* Reallocate *a from `keep` to `total` entries of `width` bytes, zeroing the new ones. */
+static int resize_array(void **a, size_t width, pf_int keep, pf_int total) {
+  char *p = realloc(*a, width * (size_t)(total > 0 ? total : 1));
+  PF_CHECK(p, PF_ERR_MEMORY, "out of memory resizing a point array to %" PF_INT_FMT " entries", total);
+  if (total > keep) memset(p + width * (size_t)keep, 0, width * (size_t)(total - keep));
+  *a = p;
+  return 0;
+}
+
+int pf_points_resize(pf_points *pts, pf_int n_owned, pf_int n_ghost) {
+  PF_CHECK(n_owned >= 0 && n_ghost >= 0, PF_ERR_RUN, "negative point count");
+  pf_int keep = n_owned < pts->n_owned ? n_owned : pts->n_owned, total = n_owned + n_ghost;
+  void **vec[] = {(void **)&pts->X, (void **)&pts->u, (void **)&pts->v, (void **)&pts->f, (void **)&pts->y};
+  for (int k = 0; k < 5; k++) PF_CALL(resize_array(vec[k], 3 * sizeof(double), keep, total));
+  PF_CALL(resize_array((void **)&pts->m, sizeof(double), keep, total));
+  PF_CALL(resize_array((void **)&pts->vol, sizeof(double), keep, total));
+  PF_CALL(resize_array((void **)&pts->cell, sizeof(double), keep, total));
+  PF_CALL(resize_array((void **)&pts->gid, sizeof(pf_gid), keep, total));
+  PF_CALL(resize_array((void **)&pts->body, sizeof(int32_t), keep, total));
+  for (int i = 0; i < pts->nfields; i++)
+    PF_CALL(resize_array((void **)&pts->fields[i].data, pts->fields[i].ncomp * sizeof(double), keep, total));
+  pts->n_owned = n_owned;
+  pts->n_total = total;
+  return 0;
 }
 
 /* Gather array a (count entries of width bytes per point) through perm. */

@@ -19,6 +19,9 @@ static const pf_key output_keys[] = {
     {"interval", PF_KEY_INT, 0, "100", "", "steps between Exodus outputs (0: first and last only)", NULL},
     {"history_file", PF_KEY_STRING, 0, "<deck name>.h5", "", "HDF5 history of global quantities", NULL},
     {"history_interval", PF_KEY_INT, 0, "10", "", "steps between history rows", NULL},
+    {"layout", PF_KEY_STRING, 0, "joined", "",
+     "on several ranks: joined (one Exodus file, written by rank 0) | spread (one file per rank, "
+     "<file>.<ranks>.<rank>, which ParaView opens as one data set)", NULL},
     PF_KEY_END};
 
 const pf_key pf_deck_keys[] = {
@@ -30,40 +33,8 @@ const pf_key pf_deck_keys[] = {
     {"boundary_conditions", PF_KEY_LIST, 0, NULL, "", "prescribed velocities/displacements", pf_bc_keys},
     {"time", PF_KEY_MAP, 1, NULL, "", "time stepping", time_keys},
     {"output", PF_KEY_MAP, 0, NULL, "", "output files and intervals", output_keys},
+    {"parallel", PF_KEY_MAP, 0, NULL, "", "domain decomposition over MPI ranks", pf_parallel_keys},
     PF_KEY_END};
-
-/* Generate every body's points into one store, bodies contiguous, each in Morton order. */
-static int build_points(pf_sim *sim, const pf_node *bodies) {
-  pf_point_cloud pc[PF_MAX_BODIES];
-  memset(pc, 0, sizeof pc);
-  int ierr = 0;
-  pf_int total = 0;
-  for (int b = 0; b < sim->nbodies && !ierr; b++) {
-    const pf_node *body = pf_node_item(bodies, b);
-    ierr = pf_point_cloud_from_deck(sim->deck, pf_node_get(body, "geometry"), &pc[b]);
-    sim->body_start[b] = total;
-    total += pc[b].n;
-  }
-  sim->body_start[sim->nbodies] = total;
-  if (!ierr) ierr = pf_points_create(total, &sim->pts);
-  for (int b = 0; b < sim->nbodies && !ierr; b++) {
-    pf_int first = sim->body_start[b], *perm = malloc(sizeof(pf_int) * (size_t)(pc[b].n + 1));
-    if (!perm) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
-    else ierr = pf_morton_order(pc[b].n, pc[b].X, perm);
-    for (pf_int k = 0; k < pc[b].n && !ierr; k++) {
-      pf_int i = first + k, src = perm[k];
-      memcpy(&sim->pts->X[3 * i], &pc[b].X[3 * src], 3 * sizeof(double));
-      memcpy(&sim->pts->y[3 * i], &pc[b].X[3 * src], 3 * sizeof(double));
-      sim->pts->vol[i] = pc[b].vol[src];
-      sim->pts->cell[i] = pc[b].cell[src];
-      sim->pts->gid[i] = first + src; /* generation order: independent of any partition */
-      sim->pts->body[i] = b;
-    }
-    free(perm);
-  }
-  for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
-  return ierr;
-}
 
 static int set_initial_velocity(pf_sim *sim, int b, const pf_node *body) {
   if (!pf_node_get(body, "initial_velocity")) return 0;
@@ -71,7 +42,7 @@ static int set_initial_velocity(pf_sim *sim, int b, const pf_node *body) {
   PF_CALL(pf_expr3_create(sim->deck, body, "initial_velocity", e));
   pf_points *p = sim->pts;
   for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++)
-    for (int c = 0; c < 3; c++) {
+    for (int c = 0; c < 3; c++) { /* owned points only: an error here may be one rank's */
       const double *x = &p->X[3 * i];
       p->v[3 * i + c] = pf_expr_eval(e[c], x[0], x[1], x[2], 0.0);
       if (isfinite(p->v[3 * i + c])) continue;
@@ -97,15 +68,17 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
       if (!strcmp(sim->body_name[q], sim->body_name[b]))
         return pf_deck_error(sim->deck, pf_node_get(body, "name"), "name", "two bodies named '%s'",
                              sim->body_name[b]);
+    PF_CALL(pf_pd_body_create(sim->deck, body, pf_node_get(root, "materials"), &sim->body[b]));
   }
-  PF_CALL(build_points(sim, bodies));
-  for (int b = 0; b < sim->nbodies; b++) {
-    const pf_node *body = pf_node_item(bodies, b);
-    pf_int first = sim->body_start[b], n = sim->body_start[b + 1] - first;
-    PF_CALL(pf_pd_body_create(sim->deck, body, pf_node_get(root, "materials"), sim->pts, first, n,
-                              &sim->body[b]));
-    PF_CALL(set_initial_velocity(sim, b, body));
-  }
+  pf_point_cloud pc[PF_MAX_BODIES];
+  memset(pc, 0, sizeof pc);
+  int ierr = 0;
+  for (int b = 0; b < sim->nbodies && !ierr; b++)
+    ierr = pf_point_cloud_from_deck(sim->deck, pf_node_get(pf_node_item(bodies, b), "geometry"), &pc[b]);
+  if (!ierr) ierr = pf_sim_distribute(sim, pc);
+  for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
+  if (ierr) return ierr;
+  for (int b = 0; b < sim->nbodies; b++) PF_CALL(set_initial_velocity(sim, b, pf_node_item(bodies, b)));
   return 0;
 }
 
@@ -138,9 +111,7 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   const pf_node *root = pf_deck_root(sim->deck);
   PF_CALL(pf_deck_validate(sim->deck, root, pf_deck_keys, "the deck"));
   PF_CALL(check_units(sim, root));
-  PF_CHECK(pf_comm_size() == 1, PF_ERR_INPUT,
-           "this build runs on one MPI rank only (domain decomposition is not there yet); "
-           "run without mpirun or with -np 1");
+  PF_CALL(pf_sim_setup_parallel(sim));
   PF_CALL(build_bodies(sim, root));
   PF_CALL(build_loads(sim, root));
   PF_CALL(pf_sim_setup_time(sim));
@@ -174,6 +145,7 @@ int pf_sim_destroy(pf_sim **s) {
   free(sim->reaction);
   free(sim->bcs);
   pf_points_destroy(&sim->pts);
+  pf_points_destroy(&sim->joined);
   pf_deck_destroy(&sim->deck);
   PF_FREE(*s);
   return 0;

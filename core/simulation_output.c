@@ -65,17 +65,46 @@ static int globals_eval(pf_sim *sim, globals *g, int first) {
   return 0;
 }
 
+static int spread(const pf_sim *sim) { return sim->spread_output && pf_comm_size() > 1; }
+
+/* The spread form <file>.<ranks>.<rank>, the rank zero-padded to the width of <ranks> (the
+ * Nemesis convention by which ParaView's Exodus reader opens the set as one data set). */
+static void spread_name(const char *path, char *out, size_t len) {
+  int size = pf_comm_size(), width = snprintf(NULL, 0, "%d", size);
+  snprintf(out, len, "%s.%d.%0*d", path, size, width, pf_comm_rank());
+}
+
+static int open_exodus(pf_sim *sim, globals *g) {
+  const char *const *names = (const char *const *)g->names + 2;
+  if (spread(sim)) {
+    char path[sizeof sim->exodus_path + 32];
+    spread_name(sim->exodus_path, path, sizeof path);
+    return pf_exodus_create(path, sim->pts, sim->nbodies, sim->body_name, sim->body_start, g->n, names, &sim->exo);
+  }
+  PF_CALL(pf_points_gather(sim->pts, &sim->joined));
+  if (!sim->joined) return 0; /* rank 0 writes */
+  pf_int start[PF_MAX_BODIES + 1] = {0};
+  for (pf_int i = 0; i < sim->joined->n_owned; i++) start[sim->joined->body[i] + 1]++;
+  for (int b = 0; b < sim->nbodies; b++) start[b + 1] += start[b];
+  return pf_exodus_create(sim->exodus_path, sim->joined, sim->nbodies, sim->body_name, start, g->n, names, &sim->exo);
+}
+
 static int open_output(pf_sim *sim, globals *g) {
   if (sim->opt.no_output) return 0;
-  PF_CALL(pf_exodus_create(sim->exodus_path, sim->pts, sim->nbodies, sim->body_name, sim->body_start,
-                           g->n, (const char *const *)g->names + 2, &sim->exo));
+  PF_CALL(open_exodus(sim, g));
   PF_CALL(pf_history_create(sim->history_path, g->n + 2, (const char *const *)g->names, g->units, &sim->hist));
   return 0;
 }
 
+static int write_exodus(pf_sim *sim, const double *values) {
+  if (spread(sim)) return pf_exodus_write(sim->exo, sim->t, sim->pts, values);
+  PF_CALL(pf_points_gather(sim->pts, &sim->joined));
+  return sim->joined ? pf_exodus_write(sim->exo, sim->t, sim->joined, values) : 0;
+}
+
 static int write_output(pf_sim *sim, globals *g, int exodus, int history) {
   if (sim->opt.no_output) return 0;
-  if (exodus) PF_CALL(pf_exodus_write(sim->exo, sim->t, sim->pts, g->values + 2));
+  if (exodus) PF_CALL(write_exodus(sim, g->values + 2));
   if (history) PF_CALL(pf_history_append(sim->hist, g->values));
   return 0;
 }
@@ -98,7 +127,8 @@ static void summary(const pf_sim *sim, const globals *g, double wall) {
          sim->pts->n_global, nb, sim->wall_loop > 0 ? nb * sim->step / sim->wall_loop : 0.0);
   pf_log("  final damage fraction %.6g, energy balance error %.3g (relative %.3g)\n", v[G_DAMAGE],
          v[G_EERR], scale > 0 ? fabs(v[G_EERR]) / scale : 0.0);
-  if (!sim->opt.no_output) pf_log("  output: %s, %s\n", sim->exodus_path, sim->history_path);
+  if (!sim->opt.no_output)
+    pf_log("  output: %s%s, %s\n", sim->exodus_path, spread(sim) ? ".<ranks>.<rank>" : "", sim->history_path);
 }
 
 static int run_loop(pf_sim *sim, globals *g, double wall0) {
@@ -111,6 +141,7 @@ static int run_loop(pf_sim *sim, globals *g, double wall0) {
     int his = last || sim->step % sim->history_interval == 0;
     if (exo || his) {
       double t0 = pf_wtime();
+      if (exo) PF_CALL(pf_sim_rebalance(sim));
       PF_CALL(globals_eval(sim, g, 0));
       PF_CALL(write_output(sim, g, exo, his));
       loop0 += pf_wtime() - t0; /* output is not part of the step rate */

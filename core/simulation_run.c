@@ -104,6 +104,7 @@ static int check_finite(const pf_sim *sim) {
 
 static int compute_forces(pf_sim *sim) {
   pf_points *p = sim->pts;
+  PF_CALL(pf_points_exchange_positions(p)); /* the ghosts' u and y */
   memset(p->f, 0, sizeof(double) * 3 * (size_t)p->n_owned);
   for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_pd_body_force(sim->body[b], p));
   sim->contact_energy = 0;

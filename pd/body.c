@@ -5,8 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-int pf_pd_damage_setup(const pf_deck *d, const pf_node *map, pf_pd_body *b, pf_points *pts);
-
 static const pf_pd_material_ops *const material_list[] = {
 #define PF_PD_MATERIAL(id) &pf_pd_material_##id,
 #include "pd/materials.h"
@@ -134,9 +132,11 @@ static int read_influence(const pf_deck *d, const pf_node *body, pf_pd_body *b) 
   return 0;
 }
 
-static int body_setup(const pf_deck *d, const pf_node *body, const pf_node *materials,
-                      pf_points *pts, pf_pd_body *b) {
+static int body_read(const pf_deck *d, const pf_node *body, const pf_node *materials,
+                     pf_pd_body *b) {
   const char *name = "";
+  b->deck = d;
+  b->node = body;
   PF_CALL(pf_deck_string(d, body, "name", &name));
   snprintf(b->name, sizeof b->name, "%s", name);
   PF_CALL(pf_deck_real(d, body, "horizon", &b->horizon));
@@ -146,33 +146,18 @@ static int body_setup(const pf_deck *d, const pf_node *body, const pf_node *mate
   PF_CALL(read_material(d, body, materials, b, &mat));
   PF_CALL(read_influence(d, body, b));
   PF_CALL(b->ops->create(d, mat, b));
-  int partial = 0, ncracks = 0;
-  pf_precrack *cracks = NULL;
-  PF_CALL(pf_deck_bool(d, body, "partial_volumes", &partial));
-  int ierr = read_cracks(d, pf_node_get(body, "precracks"), &ncracks, &cracks);
-  if (!ierr) ierr = pf_pd_family_build(pts, b->first, b->n, b->horizon, partial, ncracks, cracks, &b->fam);
-  free(cracks);
-  if (ierr) return ierr;
-  if (pf_pd_family_nbonds(&b->fam) == 0 && b->n > 1)
-    return pf_deck_error(d, pf_node_get(body, "horizon"), "horizon",
-                         "no point of body '%s' has a neighbour within the horizon %g m; the "
-                         "horizon must exceed the point spacing (typically 3 spacings)", b->name, b->horizon);
-  for (pf_int i = b->first; i < b->first + b->n; i++) pts->m[i] = b->density * pts->vol[i];
-  PF_CALL(pf_pd_damage_setup(d, pf_node_get(body, "damage"), b, pts));
-  if (b->ops->setup) PF_CALL(b->ops->setup(b, pts));
-  int idx;
-  PF_CALL(pf_points_field_register(pts, "damage", 1, PF_FIELD_OUTPUT, &idx));
+  PF_CALL(pf_deck_bool(d, body, "partial_volumes", &b->partial));
+  PF_CALL(read_cracks(d, pf_node_get(body, "precracks"), &b->ncracks, &b->cracks));
+  PF_CALL(pf_pd_damage_read(d, pf_node_get(body, "damage"), b));
   return 0;
 }
 
 int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *materials,
-                      pf_points *pts, pf_int first, pf_int n, pf_pd_body **out) {
+                      pf_pd_body **out) {
   *out = NULL;
   pf_pd_body *b;
   PF_MALLOC(b, 1);
-  b->first = first;
-  b->n = n;
-  int ierr = body_setup(d, body, materials, pts, b);
+  int ierr = body_read(d, body, materials, b);
   if (ierr) {
     pf_pd_body_destroy(&b);
     return ierr;
@@ -181,11 +166,42 @@ int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *mate
   return 0;
 }
 
+int pf_pd_body_find_bonds(const pf_pd_body *b, const pf_pd_cloud *cloud, const pf_points *pts,
+                          pf_int first, pf_int n, pf_bond_rows *rows) {
+  return pf_pd_family_build(cloud, pts, first, n, b->horizon, b->partial, b->ncracks, b->cracks, rows);
+}
+
+int pf_pd_body_attach(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n,
+                      const pf_bond_rows *rows, const pf_int *local, int fresh) {
+  b->first = first;
+  b->n = n;
+  PF_CALL(pf_pd_family_from_rows(rows, local, first, n, b->partial, &b->fam));
+  if (pf_sum_all((double)pf_pd_family_nbonds(&b->fam)) == 0 && pf_sum_all(n) > 1)
+    return pf_deck_error(b->deck, pf_node_get(b->node, "horizon"), "horizon",
+                         "no point of body '%s' has a neighbour within the horizon %g m; the "
+                         "horizon must exceed the point spacing (typically 3 spacings)", b->name, b->horizon);
+  free(b->smin);
+  PF_MALLOC(b->smin, n);
+  if (fresh)
+    for (pf_int i = first; i < first + n; i++) pts->m[i] = b->density * pts->vol[i];
+  PF_CALL(pf_points_exchange(pts, pts->m, 1));
+  PF_CALL(pf_pd_damage_setup(b, pts, fresh));
+  if (b->ops->setup) PF_CALL(b->ops->setup(b, pts));
+  int idx;
+  PF_CALL(pf_points_field_register(pts, "damage", 1, PF_FIELD_OUTPUT, &idx));
+  return 0;
+}
+
+int pf_pd_body_bond_rows(const pf_pd_body *b, const pf_points *pts, pf_bond_rows *rows) {
+  return pf_pd_family_to_rows(&b->fam, pts, rows);
+}
+
 int pf_pd_body_destroy(pf_pd_body **b) {
   if (!*b) return 0;
   if ((*b)->ops && (*b)->ops->destroy && (*b)->mat) (*b)->ops->destroy(*b);
   pf_pd_family_free(&(*b)->fam);
   free((*b)->smin);
+  free((*b)->cracks);
   PF_FREE(*b);
   return 0;
 }

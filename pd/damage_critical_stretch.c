@@ -23,12 +23,8 @@ static int positive(const pf_deck *d, const pf_node *map, const char *key, doubl
   return 0;
 }
 
-/* Read the damage law and fill the per-point s0 field. */
-int pf_pd_damage_setup(const pf_deck *d, const pf_node *map, pf_pd_body *b, pf_points *pts) {
-  int idx;
-  PF_CALL(pf_points_field_register(pts, "critical_stretch", 1, PF_FIELD_GHOST | PF_FIELD_RESTART, &idx));
-  b->s0 = pts->fields[idx].data;
-  PF_MALLOC(b->smin, b->n);
+/* Read the damage law and the initial s0. */
+int pf_pd_damage_read(const pf_deck *d, const pf_node *map, pf_pd_body *b) {
   double s0 = INFINITY;
   const char *law = "none";
   if (map) PF_CALL(pf_deck_string(d, map, "law", &law));
@@ -61,16 +57,24 @@ int pf_pd_damage_setup(const pf_deck *d, const pf_node *map, pf_pd_body *b, pf_p
     return pf_deck_error(d, pf_node_get(map, "law"), "law",
                          "unknown damage law '%s' (known: none, critical_stretch, silling_askari)", law);
   }
-  for (pf_int i = b->first; i < b->first + b->n; i++) b->s0[i] = s0;
+  b->s0_init = s0;
   return 0;
+}
+
+/* The per-point s0 field: initial values when fresh; ghosts from their owners. */
+int pf_pd_damage_setup(pf_pd_body *b, pf_points *pts, int fresh) {
+  int idx;
+  PF_CALL(pf_points_field_register(pts, "critical_stretch", 1, PF_FIELD_GHOST | PF_FIELD_RESTART, &idx));
+  b->s0 = pts->fields[idx].data;
+  if (fresh)
+    for (pf_int i = b->first; i < b->first + b->n; i++) b->s0[i] = b->s0_init;
+  return pf_points_exchange(pts, b->s0, 1);
 }
 
 /* Silling–Askari: s0_i = s00 - alpha * s_min_i for the next step (eq. 10). */
 int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts) {
-  (void)pts;
   if (b->law != PF_DAMAGE_SILLING_ASKARI) return 0;
   for (pf_int k = 0; k < b->n; k++)
     if (isfinite(b->smin[k])) b->s0[b->first + k] = b->s00 - b->alpha * b->smin[k];
-  /* (MPI: s0 is a ghosted field; the next halo exchange carries it.) */
-  return 0;
+  return pf_points_exchange(pts, b->s0, 1); /* the ghosts' s0 for the next step's bond test */
 }

@@ -73,7 +73,7 @@ typedef struct {
   double lo[3], size;
   long dim[3];
   pf_int *start; /* [ncells + 1] */
-  pf_int *items; /* point indices (relative to first) grouped by cell */
+  pf_int *items; /* cloud indices grouped by cell */
 } cell_list;
 
 static long cell_of(const cell_list *cl, const double x[3], long idx[3]) {
@@ -118,7 +118,6 @@ static int cell_list_build(const double *X, pf_int n, double size, cell_list *cl
 
 typedef struct {
   pf_gid gid;
-  pf_int j;
   float frac;
 } candidate;
 
@@ -128,16 +127,16 @@ static int by_gid(const void *a, const void *b) {
 }
 
 typedef struct {
-  const pf_points *pts;
-  pf_int first;
+  const pf_pd_cloud *src;
   double horizon, reach;
   int partial, ncracks;
   const pf_precrack *cracks;
 } search_ctx;
 
-/* Neighbours of point i (store index) into row[]; returns their count. */
-static pf_int find_row(const search_ctx *s, const cell_list *cl, pf_int i, candidate *row) {
-  const double *X = s->pts->X, *xi = &X[3 * i];
+/* Neighbours of the point at xi (cloud index self) into row[]; returns their count. */
+static pf_int find_row(const search_ctx *s, const cell_list *cl, const double *xi, pf_int self,
+                       candidate *row) {
+  const double *X = s->src->X;
   long idx[3];
   cell_of(cl, xi, idx);
   pf_int count = 0;
@@ -148,72 +147,91 @@ static pf_int find_row(const search_ctx *s, const cell_list *cl, pf_int i, candi
           continue;
         long c = (cz * cl->dim[1] + cy) * cl->dim[0] + cx;
         for (pf_int k = cl->start[c]; k < cl->start[c + 1]; k++) {
-          pf_int j = s->first + cl->items[k];
+          pf_int j = cl->items[k];
           const double *xj = &X[3 * j];
           double dx = xj[0] - xi[0], dy = xj[1] - xi[1], dz = xj[2] - xi[2];
           double r2 = dx * dx + dy * dy + dz * dz;
-          if (j == i || r2 > s->reach * s->reach) continue;
+          if (j == self || r2 > s->reach * s->reach) continue;
           double frac = 1.0;
-          if (s->partial) frac = pf_pd_partial_volume(xi, xj, s->pts->cell[j], s->horizon);
+          if (s->partial) frac = pf_pd_partial_volume(xi, xj, s->src->cell[j], s->horizon);
           else if (r2 > s->horizon * s->horizon) continue;
           if (frac <= 0) continue;
           int cut = 0;
           for (int q = 0; q < s->ncracks && !cut; q++) cut = crosses(&s->cracks[q], xi, xj);
           if (cut) continue;
-          row[count++] = (candidate){s->pts->gid[j], j, (float)frac};
+          row[count++] = (candidate){s->src->gid0 + j, (float)frac};
         }
       }
   qsort(row, (size_t)count, sizeof *row, by_gid);
   return count;
 }
 
-static int append_row(pf_family *fam, int64_t *cap, const candidate *row, pf_int count,
-                      int partial) {
-  int64_t at = fam->offset[fam->n];
-  if (at + count > *cap) {
-    int64_t nc = (*cap + count) * 3 / 2 + 1024;
-    pf_int *nb = realloc(fam->neighbor, sizeof(pf_int) * (size_t)nc);
-    if (nb) fam->neighbor = nb;
-    float *vf = partial ? realloc(fam->vfrac, sizeof(float) * (size_t)nc) : NULL;
-    if (vf) fam->vfrac = vf;
-    PF_CHECK(nb && (!partial || vf), PF_ERR_MEMORY, "out of memory for %" PRId64 " bonds", nc);
-    *cap = nc;
-  }
-  for (pf_int k = 0; k < count; k++) {
-    fam->neighbor[at + k] = row[k].j;
-    if (partial) fam->vfrac[at + k] = row[k].frac;
-  }
-  fam->offset[fam->n + 1] = at + count;
-  fam->n++;
-  return 0;
+static int append_row(pf_bond_rows *rows, const candidate *row, pf_int count, pf_gid *gid, float *frac) {
+  for (pf_int k = 0; k < count; k++) gid[k] = row[k].gid, frac[k] = row[k].frac;
+  return pf_bond_rows_append(rows, count, gid, NULL, frac);
 }
 
-int pf_pd_family_build(const pf_points *pts, pf_int first, pf_int n, double horizon,
-                       int partial_volumes, int ncracks, const pf_precrack *cracks,
-                       pf_family *fam) {
+int pf_pd_family_build(const pf_pd_cloud *src, const pf_points *pts, pf_int first, pf_int n,
+                       double horizon, int partial_volumes, int ncracks, const pf_precrack *cracks,
+                       pf_bond_rows *rows) {
   PF_CHECK(horizon > 0, PF_ERR_INPUT, "horizon must be positive (got %g)", horizon);
-  memset(fam, 0, sizeof *fam);
-  fam->first = first;
   double hmax = 0;
-  for (pf_int i = first; i < first + n; i++) hmax = fmax(hmax, pts->cell[i]);
-  search_ctx s = {pts, first, horizon, horizon + (partial_volumes ? 0.8660254037844387 * hmax : 0),
+  for (pf_int j = 0; j < src->n; j++) hmax = fmax(hmax, src->cell[j]);
+  search_ctx s = {src, horizon, horizon + (partial_volumes ? 0.8660254037844387 * hmax : 0),
                   partial_volumes, ncracks, cracks};
   cell_list cl = {0};
-  PF_CALL(cell_list_build(&pts->X[3 * (size_t)first], n, s.reach, &cl));
-  PF_MALLOC(fam->offset, n + 1);
-  int64_t cap = 0;
+  PF_CALL(cell_list_build(src->X, src->n, s.reach, &cl));
   pf_int maxocc = 0; /* a row never holds more than the points of 27 cells */
   for (long c = 0; c < cl.dim[0] * cl.dim[1] * cl.dim[2]; c++)
     if (cl.start[c + 1] - cl.start[c] > maxocc) maxocc = cl.start[c + 1] - cl.start[c];
   candidate *row;
+  pf_gid *gid;
+  float *frac;
   PF_MALLOC(row, 27 * (size_t)maxocc);
+  PF_MALLOC(gid, 27 * (size_t)maxocc);
+  PF_MALLOC(frac, 27 * (size_t)maxocc);
   int ierr = 0;
-  for (pf_int i = first; i < first + n && !ierr; i++)
-    ierr = append_row(fam, &cap, row, find_row(&s, &cl, i, row), partial_volumes);
-  free(row);
+  for (pf_int i = first; i < first + n && !ierr; i++) {
+    pf_int self = (pf_int)(pts->gid[i] - src->gid0);
+    ierr = append_row(rows, row, find_row(&s, &cl, &pts->X[3 * i], self, row), gid, frac);
+  }
+  free(row), free(gid), free(frac);
   free(cl.start);
   free(cl.items);
-  if (ierr) return ierr;
-  PF_MALLOC(fam->broken, fam->offset[n]);
+  return ierr;
+}
+
+int pf_pd_family_from_rows(const pf_bond_rows *rows, const pf_int *local, pf_int first, pf_int n,
+                           int partial_volumes, pf_family *fam) {
+  pf_pd_family_free(fam);
+  fam->first = first;
+  fam->n = n;
+  int64_t o0 = rows->offset[first], nb = rows->offset[first + n] - o0;
+  PF_MALLOC(fam->offset, n + 1);
+  PF_MALLOC(fam->neighbor, nb);
+  PF_MALLOC(fam->broken, nb);
+  if (partial_volumes) PF_MALLOC(fam->vfrac, nb);
+  for (pf_int i = 0; i <= n; i++) fam->offset[i] = rows->offset[first + i] - o0;
+  for (int64_t k = 0; k < nb; k++) {
+    fam->neighbor[k] = local[o0 + k];
+    fam->broken[k] = rows->broken[o0 + k];
+    if (partial_volumes) fam->vfrac[k] = rows->vfrac[o0 + k];
+  }
   return 0;
+}
+
+int pf_pd_family_to_rows(const pf_family *fam, const pf_points *pts, pf_bond_rows *rows) {
+  pf_gid *gid;
+  int64_t maxrow = 0;
+  for (pf_int i = 0; i < fam->n; i++) maxrow = fam->offset[i + 1] - fam->offset[i] > maxrow ? fam->offset[i + 1] - fam->offset[i] : maxrow;
+  PF_MALLOC(gid, maxrow);
+  int ierr = 0;
+  for (pf_int i = 0; i < fam->n && !ierr; i++) {
+    int64_t o = fam->offset[i];
+    pf_int cnt = (pf_int)(fam->offset[i + 1] - o);
+    for (pf_int k = 0; k < cnt; k++) gid[k] = pts->gid[fam->neighbor[o + k]];
+    ierr = pf_bond_rows_append(rows, cnt, gid, &fam->broken[o], fam->vfrac ? &fam->vfrac[o] : NULL);
+  }
+  free(gid);
+  return ierr;
 }

@@ -46,7 +46,7 @@ static int lps_setup(pf_pd_body *b, pf_points *pts) {
              b->name, pts->gid[i], pts->X[3 * i], pts->X[3 * i + 1], pts->X[3 * i + 2], b->horizon);
     p->m[i] = m;
   }
-  return 0;
+  return pf_points_exchange(pts, p->m, 1); /* the ghosts' m for the force pass */
 }
 
 /* Bond geometry: reference length r0, current length r, current bond vector e[3]. */
@@ -86,7 +86,7 @@ static int lps_force(pf_pd_body *b, pf_points *pts) {
   const double K = b->bulk_modulus, G = b->shear_modulus;
   const pf_family *fam = &b->fam;
   for (pf_int i = b->first; i < b->first + b->n; i++) p->theta[i] = lps_dilatation(b, pts, i, p->m[i]);
-  /* (MPI: the halo exchange of theta goes here, between the passes.) */
+  PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta for the force pass */
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     double f[3] = {0, 0, 0}, e[3], r0, r;
     const double ai = 3 * K * p->theta[i] / p->m[i], bi = 15 * G / p->m[i];

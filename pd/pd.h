@@ -25,13 +25,29 @@ typedef struct {
   double center[3], normal[3], radius; /* disk */
 } pf_precrack;
 
-/* Build the family of points [first, first+n) with every point of the same range within
- * `horizon` (|xi| <= horizon). With partial_volumes, neighbours whose cell only partly lies in
- * the horizon sphere are kept with the fraction of the cell inside (16^3 sub-cell midpoint
- * rule, as Peridigm). Bonds crossing a pre-crack are left out. O(n) cell-list search. */
-int pf_pd_family_build(const pf_points *pts, pf_int first, pf_int n, double horizon,
-                       int partial_volumes, int ncracks, const pf_precrack *cracks,
-                       pf_family *fam);
+/* The points a body's bonds may reach: the whole body (every rank generates it at set-up);
+ * point j of the cloud has global id gid0 + j. */
+typedef struct {
+  const double *X;    /* [3n] */
+  const double *cell; /* [n] */
+  pf_int n;
+  pf_gid gid0;
+} pf_pd_cloud;
+
+/* Append to rows the bonds of points [first, first+n) of pts (which are points of the cloud)
+ * to every cloud point within `horizon` (|xi| <= horizon), each row ascending in global id.
+ * With partial_volumes, neighbours whose cell only partly lies in the horizon sphere are kept
+ * with the fraction of the cell inside (16^3 sub-cell midpoint rule, as Peridigm). Bonds
+ * crossing a pre-crack are left out. O(n) cell-list search. */
+int pf_pd_family_build(const pf_pd_cloud *src, const pf_points *pts, pf_int first, pf_int n,
+                       double horizon, int partial_volumes, int ncracks, const pf_precrack *cracks,
+                       pf_bond_rows *rows);
+/* The family of the owned points [first, first+n) from their rows (row i of rows is store
+ * point i), local[] giving the store index of each bond's neighbour. */
+int pf_pd_family_from_rows(const pf_bond_rows *rows, const pf_int *local, pf_int first, pf_int n,
+                           int partial_volumes, pf_family *fam);
+/* Append the family's rows (neighbours by global id, with their state) to rows. */
+int pf_pd_family_to_rows(const pf_family *fam, const pf_points *pts, pf_bond_rows *rows);
 int pf_pd_family_free(pf_family *fam);
 int64_t pf_pd_family_nbonds(const pf_family *fam);
 /* Volume fraction of the cube (centre c, edge h) inside the sphere (centre x, radius delta). */
@@ -58,12 +74,24 @@ double pf_pd_pmb_micromodulus(double bulk_modulus, const pf_influence *w, double
 double pf_pd_pmb_critical_stretch(double G0, double bulk_modulus, double delta);
 
 /* A body of peridynamic points, read from the deck (`bodies[i]`, with its material from
- * `materials`). Builds the family and lets the material register its fields. */
+ * `materials`): material, horizon, influence function, damage law, pre-cracks. */
 extern const pf_key pf_pd_body_keys[];
 extern const pf_key pf_pd_material_keys[];
 extern const pf_key pf_pd_damage_keys[];
 int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *materials,
-                      pf_points *pts, pf_int first, pf_int n, pf_pd_body **b);
+                      pf_pd_body **b);
+/* Append to rows the bonds of store points [first, first+n), points of this body, found in
+ * the body's whole cloud. */
+int pf_pd_body_find_bonds(const pf_pd_body *b, const pf_pd_cloud *cloud, const pf_points *pts,
+                          pf_int first, pf_int n, pf_bond_rows *rows);
+/* Give the body its owned points [first, first+n) and their family (rows of those points, with
+ * local[] the store index of each neighbour). When fresh: masses, initial critical stretch,
+ * the material's per-point set-up. Otherwise (after a re-partition) the migrated fields are
+ * kept. Collective (halo exchanges); fails on every rank alike when the body has no bond. */
+int pf_pd_body_attach(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n,
+                      const pf_bond_rows *rows, const pf_int *local, int fresh);
+/* Append the rows of the body's owned points (neighbours by global id) to rows. */
+int pf_pd_body_bond_rows(const pf_pd_body *b, const pf_points *pts, pf_bond_rows *rows);
 int pf_pd_body_destroy(pf_pd_body **b);
 double pf_pd_body_density(const pf_pd_body *b);
 const pf_family *pf_pd_body_family(const pf_pd_body *b);

@@ -14,7 +14,12 @@ typedef enum { PF_DAMAGE_NONE, PF_DAMAGE_CRITICAL_STRETCH, PF_DAMAGE_SILLING_ASK
 
 struct pf_pd_body {
   char name[64];
-  pf_int first, n;
+  const pf_deck *deck; /* for error messages naming the deck position */
+  const pf_node *node; /* this body's mapping in the deck */
+  pf_int first, n;     /* owned points [first, first + n) of the store */
+  int partial;         /* partial-volume fractions */
+  int ncracks;
+  pf_precrack *cracks;
   double horizon, density;
   double bulk_modulus, shear_modulus;
   pf_influence influence;
@@ -23,6 +28,7 @@ struct pf_pd_body {
   void *mat; /* the material's own data */
   /* damage */
   pf_damage_law law;
+  double s0_init;    /* initial critical stretch */
   double s00, alpha; /* Silling–Askari: s0 = s00 - alpha s_min */
   double *s0;        /* field "critical_stretch": per point, used by the force kernels */
   double *smin;      /* [n] smallest stretch of each point's intact bonds this step */
@@ -41,6 +47,10 @@ struct pf_pd_material_ops {
   double (*critical_stretch)(const pf_pd_body *b, double G0); /* from G0, or NULL */
   void (*destroy)(pf_pd_body *b);
 };
+
+/* pd/damage_critical_stretch.c: read the damage law (create), fill s0 (attach). */
+int pf_pd_damage_read(const pf_deck *d, const pf_node *map, pf_pd_body *b);
+int pf_pd_damage_setup(pf_pd_body *b, pf_points *pts, int fresh);
 
 #define PF_PD_MATERIAL(id) extern const pf_pd_material_ops pf_pd_material_##id;
 #include "pd/materials.h"
