@@ -207,7 +207,7 @@ static int setup(pf_exodus *ex, const pf_points *pts, int nbodies, const char *c
   PF_CALL(put_coordinates(ex, pts));
   PF_CALL(put_blocks(ex, nbodies, body_names, body_start));
   PF_CALL(put_id_maps(ex, pts, nbodies));
-  PF_CALL(put_variable_names(ex, pts));
+  if (ex->n > 0) PF_CALL(put_variable_names(ex, pts)); /* Exodus refuses nodal variables without nodes */
   PF_CALL(put_global_names(ex, nglobals, global_names));
   PF_EX_TRY(ex, ex_update(ex->exoid), "ex_update");
   return PF_SUCCESS;

@@ -178,7 +178,14 @@ int pf_partition_compute(pf_partition_method method, const pf_points *pts, const
   PF_CHECK(pts->n_global < (pf_gid)INT32_MAX, PF_ERR_INPUT,
            "%" PF_GID_FMT " points: partitioning handles fewer than 2^31", pts->n_global);
   PF_MALLOC(*owner_of, pts->n_global);
-  if (pf_comm_size() == 1) return 0;
+  int size = pf_comm_size();
+  if (size == 1) return 0;
+  if (pts->n_global < 2 * (pf_gid)size) { /* too few points to bisect: one block of ids a rank */
+    pf_log("%" PF_GID_FMT " points on %d ranks: points split by global id%s\n", pts->n_global, size,
+           pts->n_global < size ? ", some ranks hold none" : "");
+    for (pf_gid g = 0; g < pts->n_global; g++) (*owner_of)[g] = (int)(g * size / pts->n_global);
+    return 0;
+  }
   if (method == PF_PARTITION_METIS) return metis(pts, rows, *owner_of);
   int *part;
   PF_MALLOC(part, pts->n_owned);

@@ -96,7 +96,8 @@ static int check_finite(const pf_sim *sim) {
     if (isfinite(s)) continue;
     PF_CHECK(0, PF_ERR_RUN,
              "non-finite force or velocity at point %" PF_GID_FMT " (body '%s') at (%g, %g, %g) m, "
-             "time %g s, step %ld: the run is unstable (reduce time.dt or time.safety_factor)",
+             "time %g s, step %ld: the run is unstable (reduce time.dt or time.safety_factor) or a "
+             "prescribed motion is not finite",
              p->gid[i], sim->body_name[p->body[i]], p->X[3 * i], p->X[3 * i + 1], p->X[3 * i + 2], sim->t, sim->step);
   }
   return 0;

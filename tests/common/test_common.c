@@ -61,3 +61,8 @@ struct pf_sim *pf_test_sim(const char *tag, const char *deck_text) {
   remove(path);
   return sim;
 }
+
+void pf_test_print_digest(const char *tag, struct pf_sim *sim) {
+  uint64_t h = pf_sim_digest(sim);
+  if (getenv("PF_TEST_DIGESTS") && pf_comm_rank() == 0) printf("state digest (%s): %016" PRIx64 "\n", tag, h);
+}

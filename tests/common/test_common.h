@@ -23,4 +23,7 @@ const char *pf_test_write_file(int slot, const char *tag, const char *text);
 /* Build a simulation from deck text (no output files); aborts the test on failure. */
 struct pf_sim;
 struct pf_sim *pf_test_sim(const char *tag, const char *deck_text);
+/* With PF_TEST_DIGESTS set, rank 0 prints "state digest (tag): <hex>" (tests/regression/mpi_verify.sh
+ * compares them over rank counts). Collective. */
+void pf_test_print_digest(const char *tag, struct pf_sim *sim);
 #endif

@@ -1,0 +1,9 @@
+# Shared by the mpi_*.sh tests (sourced, not run): mpirun as root and oversubscribed, and a
+# python3 that has netCDF4.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+PY=python3
+[ -x /usr/bin/python3 ] && PY=/usr/bin/python3
+# run NP ARGS...: mpirun on NP ranks, output to stdout
+run() { local np=$1; shift; mpirun --oversubscribe -np "$np" "$@"; }
+# digest_of TEXT: the "state digest: X" value
+digest_of() { echo "$1" | sed -n 's/^state digest: //p'; }

@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# Every shipped deck, at a reduced size, plus variants (LPS with METIS, re-partitioning at every
+# output step, spread output, more ranks than points), runs on 1, 2 and 3 ranks and ends with
+# bitwise the same state digest. The spread Exodus files of a 3-rank run hold every point once,
+# with the same displacement as the joined file of the 1-rank run.
+# usage: mpi_digests.sh PERIFEM SCRATCH   (from the tests/ folder)
+set -u
+exe=$1 scratch=$2 fail=0
+source common/mpi_env.sh
+rm -rf "$scratch" && mkdir -p "$scratch"
+cd "$scratch"
+
+# name: sed script applied to the shipped deck (reduced size and length)
+declare -A reduce=(
+  [disk_impact_rigid]='s/radius: 0.037/radius: 0.012/; s/^(\s*)final_time:.*/\1steps: 150/'
+  [fragmenting_cylinder]='s/height: 0.100/height: 0.024/; s/^(\s*)final_time:.*/\1steps: 40/; s/interval: 250/interval: 10/'
+  [wave_in_bar]='s/^(\s*)final_time:.*/\1steps: 60/'
+)
+for name in "${!reduce[@]}"; do sed -E "${reduce[$name]}" "$OLDPWD/../inputs/$name.yaml" > "$name.yaml"; done
+# variants of the reduced cylinder
+sed -E 's/model: pmb/model: lps/' fragmenting_cylinder.yaml > cylinder_lps_metis.yaml
+printf 'parallel:\n  decomposition: metis\n' >> cylinder_lps_metis.yaml
+cp fragmenting_cylinder.yaml cylinder_rebalance.yaml
+printf 'parallel:\n  rebalance_threshold: 1.0\n' >> cylinder_rebalance.yaml
+sed -E 's/^output:/output:\n  layout: spread/' wave_in_bar.yaml > wave_spread.yaml
+cat > two_points.yaml <<'DECK'
+materials: {m: {model: pmb, density: 1000, bulk_modulus: 1.0e9}}
+bodies:
+  - {name: pair, material: m, horizon: 0.0015, initial_velocity: ["x > 0 ? 1 : 0", "0", "0"],
+     geometry: {shape: box, lo: [0, 0, 0], hi: [0.001, 0, 0], spacing: 0.001}}
+time: {steps: 20}
+DECK
+
+for deck in disk_impact_rigid fragmenting_cylinder wave_in_bar cylinder_lps_metis cylinder_rebalance wave_spread two_points; do
+  ref=""
+  for np in 1 2 3; do
+    mkdir -p "np$np"
+    out=$(run $np "$exe" --output-dir "np$np" "$deck.yaml" 2>&1) || { echo "$deck on $np ranks: exit $?: $out"; fail=1; continue; }
+    d=$(digest_of "$out")
+    [ -n "$d" ] || { echo "$deck on $np ranks: no digest"; fail=1; continue; }
+    [ -n "$ref" ] || ref=$d
+    [ "$d" = "$ref" ] || { echo "$deck: digest on $np ranks $d differs from $ref on 1 rank"; fail=1; }
+    if [ "$deck" = cylinder_rebalance ] && [ $np -gt 1 ]; then
+      echo "$out" | grep -q "re-partitioned" || { echo "$deck on $np ranks: no re-partition logged"; fail=1; }
+    fi
+  done
+  echo "$deck: $ref" >> digests.txt
+done
+
+# spread files (3 ranks) against the joined file (1 rank)
+$PY - np1/wave_spread.e np3/wave_spread.e.3.0 np3/wave_spread.e.3.1 np3/wave_spread.e.3.2 <<'PY' || fail=1
+import sys, numpy as np, netCDF4
+joined = netCDF4.Dataset(sys.argv[1])
+names = [netCDF4.chartostring(n) for n in joined.variables["name_nod_var"][:]]
+ux = names.index("displacement_x") + 1
+ref = dict(zip(joined.variables["node_num_map"][:], joined.variables["vals_nod_var%d" % ux][-1, :]))
+seen = {}
+for path in sys.argv[2:]:
+    d = netCDF4.Dataset(path)
+    for gid, u in zip(d.variables["node_num_map"][:], d.variables["vals_nod_var%d" % ux][-1, :]):
+        if gid in seen: sys.exit("point %d in two spread files" % gid)
+        seen[gid] = u
+if sorted(seen) != sorted(ref): sys.exit("spread files hold %d points, the joined file %d" % (len(seen), len(ref)))
+bad = [g for g in ref if seen[g] != ref[g]]
+if bad: sys.exit("%d points differ between spread and joined output, e.g. id %d" % (len(bad), bad[0]))
+PY
+exit $fail

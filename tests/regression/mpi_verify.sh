@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Every verification test passes on 1, 2 and 3 ranks, and the state digests it prints (with
+# PF_TEST_DIGESTS set) are the same on every rank count.
+# usage: mpi_verify.sh PERIFEM SCRATCH TESTS_BINARY_DIR   (from the tests/ folder)
+set -u
+bindir=$3 fail=0
+source common/mpi_env.sh
+export PF_TEST_DIGESTS=1
+for src in verification/test_*.c; do
+  name=$(basename "$src" .c)
+  ref=""
+  for np in 1 2 3; do
+    out=$(run $np "$bindir/$name" 2>&1) || { echo "$name on $np ranks failed: $out"; fail=1; continue; }
+    d=$(echo "$out" | grep "^state digest")
+    [ -n "$d" ] || { echo "$name on $np ranks printed no digest"; fail=1; continue; }
+    [ -n "$ref" ] || ref=$d
+    [ "$d" = "$ref" ] || { echo "$name: digests on $np ranks"; echo "$d"; echo "differ from 1 rank"; echo "$ref"; fail=1; }
+  done
+done
+exit $fail
