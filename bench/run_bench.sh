@@ -1,17 +1,18 @@
 #!/usr/bin/env bash
-# perifem vs LAMMPS (PERI package) on the same particles, one rank each.
+# perifem vs LAMMPS (PERI package) on the same particles, on 1 and on 2 MPI ranks.
 #
 #   bash bench/run_bench.sh [path/to/perifem]
 #
 # Generates the LAMMPS examples/peri target scaled by 3 (cylinder r = 15 mm, 15 mm long,
 # 0.5 mm simple cubic lattice, ~87k points) as a perifem point file and a LAMMPS data file,
 # runs PMB and LPS for 150 steps of 1e-7 s with a rigid sphere indenter in both codes, and
-# prints directed bond evaluations per second (directed bonds x steps / time-loop seconds).
+# prints directed bond evaluations per second (directed bonds x steps / time-loop seconds) and
+# the parallel efficiency of each code, rate on 2 ranks / (2 x rate on 1 rank).
 # The table also goes to bench/results/latest.txt. See bench/README.md.
 #
 # Environment: LMP=/path/to/lmp (default: first of lmp, lmp_serial, lmp_stable on PATH),
 #   LMP_SKIN=neighbour skin in m (default 0.0001), BENCH_STEPS (default 150),
-#   BENCH_KEEP=1 keeps the work directory.
+#   BENCH_KEEP=1 keeps the work directory, BENCH_RANKS (default "1 2").
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -44,8 +45,11 @@ lmp_version=$(sed -n 's/^Large-scale Atomic\/Molecular Massively Parallel Simula
 py=$(command -v python3 || command -v /usr/bin/python3 || true)
 [[ -n $py ]] || die "python3 not found"
 
-# MPI-built binaries run as singletons; these only matter if someone wraps them in mpirun as root.
+# mpirun as root (containers, CI) needs these.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+ranks=${BENCH_RANKS:-1 2}
+# launch NP COMMAND...: the command itself on one rank, under mpirun otherwise
+launch() { local np=$1; shift; if [[ $np == 1 ]]; then "$@"; else mpirun --oversubscribe -np "$np" "$@"; fi; }
 
 load_start=$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo unknown)
 work=$(mktemp -d /tmp/perifem_bench.XXXXXX)
@@ -75,26 +79,29 @@ grab() {
 }
 
 declare -A pf_loop pf_bonds pf_rate lmp_loop lmp_bonds lmp_neigh lmp_builds lmp_danger lmp_update
+for np in $ranks; do
 for m in pmb lps; do
-  echo "== perifem $m (1 rank)" >&2
-  mkdir -p "$work/out_$m"
-  "$perifem" --output-dir "$work/out_$m" "$work/$m.yaml" >"$work/perifem_$m.log" 2>&1 \
-    || { tail -30 "$work/perifem_$m.log" >&2; die "perifem failed on $m.yaml (log above)"; }
-  grep -E '^perifem:|points|damage' "$work/perifem_$m.log" >&2 || true
-  pf_loop[$m]=$(grab 's/.*(time loop \([0-9.eE+-]*\) s).*/\1/p' "$work/perifem_$m.log" "time loop")
-  pf_bonds[$m]=$(grab 's/.*directed bonds \([0-9]*\),.*/\1/p' "$work/perifem_$m.log" "directed bonds")
-  pf_rate[$m]=$(grab 's/.*bond evaluations per second \([0-9.eE+-]*\).*/\1/p' "$work/perifem_$m.log" "bond evaluations per second")
+  k=$m,$np
+  echo "== perifem $m ($np rank(s))" >&2
+  mkdir -p "$work/out_$m$np"
+  launch "$np" "$perifem" --output-dir "$work/out_$m$np" "$work/$m.yaml" >"$work/perifem_$m$np.log" 2>&1 \
+    || { tail -30 "$work/perifem_$m$np.log" >&2; die "perifem failed on $m.yaml on $np ranks (log above)"; }
+  grep -E '^perifem:|points|damage' "$work/perifem_$m$np.log" >&2 || true
+  pf_loop[$k]=$(grab 's/.*(time loop \([0-9.eE+-]*\) s).*/\1/p' "$work/perifem_$m$np.log" "time loop")
+  pf_bonds[$k]=$(grab 's/.*directed bonds \([0-9]*\),.*/\1/p' "$work/perifem_$m$np.log" "directed bonds")
+  pf_rate[$k]=$(grab 's/.*bond evaluations per second \([0-9.eE+-]*\).*/\1/p' "$work/perifem_$m$np.log" "bond evaluations per second")
 
-  echo "== LAMMPS $m (1 rank)" >&2
-  (cd "$work" && "$lmp" -in "in.$m" -log "log.lammps.$m" -echo none -nocite >"lmp_$m.out" 2>&1) \
-    || { tail -30 "$work/lmp_$m.out" >&2; die "LAMMPS failed on in.$m (output above)"; }
-  grep -E 'Loop time|total # of bonds' "$work/lmp_$m.out" >&2 || true
-  lmp_loop[$m]=$(grab "s/^Loop time of \([0-9.eE+-]*\) on 1 procs for $steps steps.*/\1/p" "$work/lmp_$m.out" "Loop time of X on 1 procs for $steps steps")
-  lmp_bonds[$m]=$(grab 's/^ *total # of bonds = \([0-9]*\).*/\1/p' "$work/lmp_$m.out" "total # of bonds")
-  lmp_neigh[$m]=$(grab 's/^Ave neighs\/atom = \([0-9.eE+-]*\).*/\1/p' "$work/lmp_$m.out" "Ave neighs/atom")
-  lmp_builds[$m]=$(grab 's/^Neighbor list builds = \([0-9]*\).*/\1/p' "$work/lmp_$m.out" "Neighbor list builds")
-  lmp_danger[$m]=$(grab 's/^Dangerous builds = \([0-9]*\).*/\1/p' "$work/lmp_$m.out" "Dangerous builds")
-  lmp_update[$m]=$(grab 's/^ *update every \(.*\)$/\1/p' "$work/lmp_$m.out" "update every")
+  echo "== LAMMPS $m ($np rank(s))" >&2
+  (cd "$work" && launch "$np" "$lmp" -in "in.$m" -log "log.lammps.$m$np" -echo none -nocite >"lmp_$m$np.out" 2>&1) \
+    || { tail -30 "$work/lmp_$m$np.out" >&2; die "LAMMPS failed on in.$m on $np ranks (output above)"; }
+  grep -E 'Loop time|total # of bonds' "$work/lmp_$m$np.out" >&2 || true
+  lmp_loop[$k]=$(grab "s/^Loop time of \([0-9.eE+-]*\) on $np procs for $steps steps.*/\1/p" "$work/lmp_$m$np.out" "Loop time of X on $np procs for $steps steps")
+  lmp_bonds[$k]=$(grab 's/^ *total # of bonds = \([0-9]*\).*/\1/p' "$work/lmp_$m$np.out" "total # of bonds")
+  lmp_neigh[$k]=$(grab 's/^Ave neighs\/atom = \([0-9.eE+-]*\).*/\1/p' "$work/lmp_$m$np.out" "Ave neighs/atom")
+  lmp_builds[$k]=$(grab 's/^Neighbor list builds = \([0-9]*\).*/\1/p' "$work/lmp_$m$np.out" "Neighbor list builds")
+  lmp_danger[$k]=$(grab 's/^Dangerous builds = \([0-9]*\).*/\1/p' "$work/lmp_$m$np.out" "Dangerous builds")
+  lmp_update[$k]=$(grab 's/^ *update every \(.*\)$/\1/p' "$work/lmp_$m$np.out" "update every")
+done
 done
 
 # --- table -----------------------------------------------------------------------------------
@@ -113,7 +120,7 @@ ok=1
 mkdir -p "$here/results"
 table=$work/table.txt
 {
-  echo "perifem vs LAMMPS PERI: directed bond evaluations per second, 1 rank each"
+  echo "perifem vs LAMMPS PERI: directed bond evaluations per second, on $(echo $ranks | sed 's/ / and /g') MPI rank(s)"
   echo "date:     $(date -u '+%Y-%m-%d %H:%M UTC')"
   echo "machine:  ${cpu:-unknown CPU}, nproc $(nproc), load average at start $load_start"
   echo "perifem:  $pf_version, $perifem ($src_desc)"
@@ -124,27 +131,42 @@ table=$work/table.txt
   echo "LAMMPS:   PMB pair_coeff $pair_pmb"
   echo "          LPS pair_coeff $pair_lps"
   echo
-  printf '%-5s %12s %12s %12s %14s %14s %10s\n' model "dir. bonds" "perifem [s]" "LAMMPS [s]" "perifem ev/s" "LAMMPS ev/s" "pf/LAMMPS"
+  printf '%-5s %5s %12s %12s %12s %14s %14s %10s\n' model ranks "dir. bonds" "perifem [s]" "LAMMPS [s]" "perifem ev/s" "LAMMPS ev/s" "pf/LAMMPS"
   for m in pmb lps; do
-    awk -v m="${m^^}" -v b="${pf_bonds[$m]}" -v s="$steps" -v tp="${pf_loop[$m]}" -v tl="${lmp_loop[$m]}" 'BEGIN {
-      rp = b * s / tp; rl = b * s / tl;
-      printf "%-5s %12d %12.2f %12.2f %14.4g %14.4g %10.2f\n", m, b, tp, tl, rp, rl, rp / rl }'
+    for np in $ranks; do
+      k=$m,$np
+      awk -v m="${m^^}" -v np="$np" -v b="${pf_bonds[$k]}" -v s="$steps" -v tp="${pf_loop[$k]}" -v tl="${lmp_loop[$k]}" 'BEGIN {
+        rp = b * s / tp; rl = b * s / tl;
+        printf "%-5s %5d %12d %12.2f %12.2f %14.4g %14.4g %10.2f\n", m, np, b, tp, tl, rp, rl, rp / rl }'
+    done
   done
+  if [[ " $ranks " == *" 1 "* && " $ranks " == *" 2 "* ]]; then
+    echo
+    echo "parallel efficiency, rate on 2 ranks / (2 x rate on 1 rank) = time on 1 / (2 x time on 2):"
+    for m in pmb lps; do
+      awk -v m="${m^^}" -v p1="${pf_loop[$m,1]}" -v p2="${pf_loop[$m,2]}" -v l1="${lmp_loop[$m,1]}" -v l2="${lmp_loop[$m,2]}" 'BEGIN {
+        printf "  %s: perifem %.3f, LAMMPS %.3f\n", m, p1 / (2 * p2), l1 / (2 * l2) }'
+    done
+  fi
   echo
   echo "directed bonds (|xi| <= $horizon): independent python count $bonds_ref"
   for m in pmb lps; do
-    status=match
-    if [[ ${pf_bonds[$m]} != "$bonds_ref" || ${lmp_bonds[$m]} != "$bonds_ref" ]]; then status=MISMATCH; ok=0; fi
-    echo "  ${m^^}: perifem ${pf_bonds[$m]}, LAMMPS ${lmp_bonds[$m]} (fix PERI_NEIGH 'total # of bonds') -> $status"
+    for np in $ranks; do
+      k=$m,$np
+      status=match
+      if [[ ${pf_bonds[$k]} != "$bonds_ref" || ${lmp_bonds[$k]} != "$bonds_ref" ]]; then status=MISMATCH; ok=0; fi
+      echo "  ${m^^} on $np rank(s): perifem ${pf_bonds[$k]}, LAMMPS ${lmp_bonds[$k]} (fix PERI_NEIGH 'total # of bonds') -> $status"
+    done
   done
-  echo "perifem's own summary rate: PMB ${pf_rate[pmb]}, LPS ${pf_rate[lps]} bond evaluations/s"
-  echo "times: perifem 'time loop' seconds; LAMMPS 'Loop time of X on 1 procs for $steps steps'."
+  r1=${ranks%% *}
+  echo "perifem's own summary rate on $r1 rank(s): PMB ${pf_rate[pmb,$r1]}, LPS ${pf_rate[lps,$r1]} bond evaluations/s"
+  echo "times: perifem 'time loop' seconds; LAMMPS 'Loop time of X on N procs for $steps steps'."
   echo "rates: directed bonds x steps / time (LAMMPS's bond count is the same number)."
   echo "caveat: LAMMPS peri/* pair styles also compute a short-range contact force over their"
-  echo "  neighbour list (horizon + skin, ${lmp_neigh[pmb]} / ${lmp_neigh[lps]} full neighbours per atom for PMB / LPS)"
+  echo "  neighbour list (horizon + skin, ${lmp_neigh[pmb,$r1]} / ${lmp_neigh[lps,$r1]} full neighbours per atom for PMB / LPS)"
   echo "  in the same force call; perifem has no contact loop yet, so LAMMPS's neighbour skin is kept"
-  echo "  at its minimum ($skin m): neighbour list builds PMB ${lmp_builds[pmb]}, LPS ${lmp_builds[lps]}"
-  echo "  (dangerous ${lmp_danger[pmb]}, ${lmp_danger[lps]}). LAMMPS's default list updates otherwise (update every ${lmp_update[pmb]})."
+  echo "  at its minimum ($skin m): neighbour list builds PMB ${lmp_builds[pmb,$r1]}, LPS ${lmp_builds[lps,$r1]}"
+  echo "  (dangerous ${lmp_danger[pmb,$r1]}, ${lmp_danger[lps,$r1]}). LAMMPS's default list updates otherwise (update every ${lmp_update[pmb,$r1]})."
 } >"$table"
 
 cat "$table"
