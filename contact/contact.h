@@ -20,5 +20,7 @@ void pf_indenter_advance(pf_indenter *ind, double t, double dt, const double rea
                          double *work);
 /* Current position (sphere centre or plane point). */
 void pf_indenter_position(const pf_indenter *ind, double x[3]);
+/* Move the indenter to x (restart). */
+void pf_indenter_set_position(pf_indenter *ind, const double x[3]);
 
 #endif

@@ -100,6 +100,8 @@ const char *pf_indenter_name(const pf_indenter *ind) { return ind->name; }
 
 void pf_indenter_position(const pf_indenter *ind, double x[3]) { memcpy(x, ind->x, 3 * sizeof(double)); }
 
+void pf_indenter_set_position(pf_indenter *ind, const double x[3]) { memcpy(ind->x, x, 3 * sizeof(double)); }
+
 int pf_indenter_force(pf_indenter *ind, pf_points *pts, double reaction[3], double *energy) {
   double R[3] = {0, 0, 0}, U = 0, k = ind->stiffness;
   for (pf_int i = 0; i < pts->n_owned; i++) {

@@ -170,6 +170,8 @@ int pf_deck_int(const pf_deck *d, const pf_node *map, const char *key, long *out
 int pf_deck_bool(const pf_deck *d, const pf_node *map, const char *key, int *out);
 int pf_deck_string(const pf_deck *d, const pf_node *map, const char *key, const char **out);
 int pf_deck_vec3(const pf_deck *d, const pf_node *map, const char *key, double out[3]);
+/* A hash of a node's content (keys and scalar text, not layout or comments); 0-safe for NULL. */
+uint64_t pf_node_hash(const pf_node *n);
 /* An error about a node: "deck.yaml:12:5: key 'horizon': <message>". */
 int pf_deck_error(const pf_deck *d, const pf_node *n, const char *key, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
@@ -281,6 +283,18 @@ pf_int pf_bc_npoints(const pf_bc *bc);
  * the second half kick (velocity at t). */
 void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt);
 void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t);
+
+/* ---- checkpoints (core/checkpoint.c): parallel HDF5 ---------------------------------- */
+/* Write the owned points (every array and field) and their bond rows, plus named scalars, to
+ * path (through path.tmp, renamed when complete, so a kill leaves the previous checkpoint).
+ * Collective. */
+int pf_checkpoint_write(const char *path, const pf_points *pts, const pf_bond_rows *rows,
+                        int nscalars, const char *const *names, const double *values);
+/* Read a checkpoint written on any number of ranks: this rank gets an equal slice of its
+ * points (a new store, n_global set, fields registered) with their rows, and the scalars. A
+ * missing scalar is an error. Collective. */
+int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, int nscalars,
+                       const char *const *names, double *values);
 
 /* ---- state digest ------------------------------------------------------- */
 /* FNV-1a 64-bit hash of the displacement of all owned points in global-id order (gathered on

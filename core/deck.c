@@ -231,3 +231,24 @@ int pf_deck_error(const pf_deck *d, const pf_node *n, const char *key, const cha
   return pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__, "%s:%d:%d: key '%s': %s",
                         d->path, pf_node_line(n), pf_node_column(n), key, msg);
 }
+
+/* FNV-1a over a node's kind, keys and scalar text, depth first: equal for decks that say the
+ * same thing however they are laid out or commented. */
+static uint64_t hash_bytes(uint64_t h, const void *p, size_t n) {
+  const unsigned char *c = p;
+  for (size_t i = 0; i < n; i++) h = (h ^ c[i]) * 1099511628211ULL;
+  return h;
+}
+
+static uint64_t hash_node(uint64_t h, const pf_node *n) {
+  if (!n) return hash_bytes(h, "~", 1);
+  h = hash_bytes(h, &n->kind, sizeof n->kind);
+  if (n->kind == NODE_SCALAR) return hash_bytes(h, n->text, strlen(n->text) + 1);
+  for (int i = 0; i < n->n; i++) {
+    if (n->kind == NODE_MAP) h = hash_bytes(h, n->keys[i], strlen(n->keys[i]) + 1);
+    h = hash_node(h, n->items[i]);
+  }
+  return h;
+}
+
+uint64_t pf_node_hash(const pf_node *n) { return hash_node(1469598103934665603ULL, n); }

@@ -12,6 +12,7 @@ static void usage(FILE *fp) {
           "usage: perifem [options] DECK.yaml\n"
           "  --check            load and validate the deck and build the model; run nothing\n"
           "  --output-dir DIR   write output files into DIR\n"
+          "  --restart FILE     continue from the checkpoint FILE (any number of ranks)\n"
           "  --quiet            print only errors, the summary's digest line excepted\n"
           "  --version          print the version and the libraries it was built with\n"
           "  --help             this text\n"
@@ -31,7 +32,7 @@ static void version(void) {
 }
 
 typedef struct {
-  const char *deck, *output_dir;
+  const char *deck, *output_dir, *restart;
   int check, quiet;
 } cli;
 
@@ -43,12 +44,13 @@ static int parse_args(int argc, char **argv, cli *c) {
     if (!strcmp(a, "--version")) return version(), 0;
     if (!strcmp(a, "--check")) c->check = 1;
     else if (!strcmp(a, "--quiet")) c->quiet = 1;
-    else if (!strcmp(a, "--output-dir")) {
+    else if (!strcmp(a, "--output-dir") || !strcmp(a, "--restart")) {
       if (i + 1 >= argc) {
-        fprintf(stderr, "perifem error: --output-dir needs a directory\n");
+        fprintf(stderr, "perifem error: %s needs a %s\n", a, a[2] == 'o' ? "directory" : "checkpoint file");
         return PF_ERR_INPUT;
       }
-      c->output_dir = argv[++i];
+      if (a[2] == 'o') c->output_dir = argv[++i];
+      else c->restart = argv[++i];
     }
     else if (a[0] == '-') {
       fprintf(stderr, "perifem error: unknown option '%s'\n", a);
@@ -67,7 +69,7 @@ static int parse_args(int argc, char **argv, cli *c) {
 }
 
 static int run(const cli *c) {
-  pf_sim_options opt = {.output_dir = c->output_dir};
+  pf_sim_options opt = {.output_dir = c->output_dir, .restart_from = c->restart};
   pf_sim *sim = NULL;
   int ierr = pf_sim_create(c->deck, &opt, &sim);
   if (ierr) return ierr == PF_ERR_INPUT ? 2 : 1;

@@ -34,6 +34,7 @@ const pf_key pf_deck_keys[] = {
     {"time", PF_KEY_MAP, 1, NULL, "", "time stepping", time_keys},
     {"output", PF_KEY_MAP, 0, NULL, "", "output files and intervals", output_keys},
     {"parallel", PF_KEY_MAP, 0, NULL, "", "domain decomposition over MPI ranks", pf_parallel_keys},
+    {"restart", PF_KEY_MAP, 0, NULL, "", "checkpoints for restart", pf_restart_keys},
     PF_KEY_END};
 
 static int set_initial_velocity(pf_sim *sim, int b, const pf_node *body) {
@@ -70,6 +71,7 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
                              sim->body_name[b]);
     PF_CALL(pf_pd_body_create(sim->deck, body, pf_node_get(root, "materials"), &sim->body[b]));
   }
+  if (sim->opt.restart_from) return pf_sim_restore_points(sim); /* points and velocities from the file */
   pf_point_cloud pc[PF_MAX_BODIES];
   memset(pc, 0, sizeof pc);
   int ierr = 0;
@@ -82,13 +84,18 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
   return 0;
 }
 
-static int build_loads(pf_sim *sim, const pf_node *root) {
-  const pf_node *inds = pf_node_get(root, "indenters"), *bcs = pf_node_get(root, "boundary_conditions");
+static int build_indenters(pf_sim *sim, const pf_node *root) {
+  const pf_node *inds = pf_node_get(root, "indenters");
   sim->nindenters = pf_node_count(inds);
   PF_MALLOC(sim->indenters, sim->nindenters);
   PF_MALLOC(sim->reaction, sim->nindenters);
   for (int k = 0; k < sim->nindenters; k++)
     PF_CALL(pf_indenter_create(sim->deck, pf_node_item(inds, k), &sim->indenters[k]));
+  return 0;
+}
+
+static int build_bcs(pf_sim *sim, const pf_node *root) {
+  const pf_node *bcs = pf_node_get(root, "boundary_conditions");
   sim->nbcs = pf_node_count(bcs);
   PF_MALLOC(sim->bcs, sim->nbcs);
   for (int k = 0; k < sim->nbcs; k++)
@@ -112,10 +119,13 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   PF_CALL(pf_deck_validate(sim->deck, root, pf_deck_keys, "the deck"));
   PF_CALL(check_units(sim, root));
   PF_CALL(pf_sim_setup_parallel(sim));
+  PF_CALL(build_indenters(sim, root));
   PF_CALL(build_bodies(sim, root));
-  PF_CALL(build_loads(sim, root));
+  PF_CALL(build_bcs(sim, root));
   PF_CALL(pf_sim_setup_time(sim));
   PF_CALL(pf_sim_setup_output(sim));
+  PF_CALL(pf_sim_setup_restart(sim));
+  if (sim->opt.restart_from) PF_CALL(pf_sim_restore_state(sim));
   return 0;
 }
 
@@ -146,6 +156,7 @@ int pf_sim_destroy(pf_sim **s) {
   free(sim->bcs);
   pf_points_destroy(&sim->pts);
   pf_points_destroy(&sim->joined);
+  pf_sim_restart_free(sim);
   pf_deck_destroy(&sim->deck);
   PF_FREE(*s);
   return 0;

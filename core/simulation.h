@@ -11,6 +11,7 @@ typedef struct pf_sim pf_sim;
 typedef struct {
   const char *output_dir; /* NULL: the current directory */
   int no_output;          /* 1: write no Exodus or history file (tests) */
+  const char *restart_from; /* a checkpoint to continue from, or NULL */
 } pf_sim_options;
 
 /* Load and validate the deck and build everything; writes no file. */

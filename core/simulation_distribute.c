@@ -66,8 +66,7 @@ static int make_slice(const pf_sim *sim, const pf_point_cloud *pc, const pf_gid 
   return 0;
 }
 
-/* Partition, migrate, add ghosts, attach the bodies (fresh: initial state). */
-static int settle(pf_sim *sim, pf_bond_rows *rows, int fresh) {
+int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh) {
   int *owner_of = NULL, *dest = NULL;
   pf_int *local = NULL;
   int ierr = pf_partition_compute(sim->decomposition, sim->pts, rows, &owner_of);
@@ -101,7 +100,7 @@ int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc) {
     ierr = pf_pd_body_find_bonds(sim->body[b], &cloud, sim->pts, first, n, &rows);
     first += n;
   }
-  if (!ierr) ierr = settle(sim, &rows, 1);
+  if (!ierr) ierr = pf_sim_settle(sim, &rows, 1);
   pf_bond_rows_free(&rows);
   return ierr;
 }
@@ -124,7 +123,7 @@ int pf_sim_rebalance(pf_sim *sim) {
   PF_CALL(pf_bond_rows_init(&rows));
   int ierr = 0;
   for (int b = 0; b < sim->nbodies && !ierr; b++) ierr = pf_pd_body_bond_rows(sim->body[b], sim->pts, &rows);
-  if (!ierr) ierr = settle(sim, &rows, 0);
+  if (!ierr) ierr = pf_sim_settle(sim, &rows, 0);
   pf_bond_rows_free(&rows);
   for (int k = 0; k < sim->nbcs && !ierr; k++) ierr = pf_bc_select(sim->bcs[k], sim->pts);
   if (ierr) return ierr;

@@ -7,6 +7,14 @@
 
 #define PF_MAX_BODIES 64
 
+/* Named scalars of a checkpoint (core/simulation_restart.c). */
+typedef struct {
+  int n;
+  char (*name)[96];
+  const char **names;
+  double *value;
+} pf_sim_scalars;
+
 struct pf_sim {
   pf_deck *deck;
   pf_sim_options opt;
@@ -29,6 +37,13 @@ struct pf_sim {
   long step, nsteps;
   /* energy bookkeeping */
   double contact_energy, external_work;
+  double e0;   /* total energy at the start of the run (kept across restarts) */
+  int have_e0;
+  /* checkpoints */
+  char restart_path[4096];
+  long restart_interval;
+  int stopped; /* a signal stopped the run after a checkpoint */
+  pf_sim_scalars restart_scalars; /* read from the checkpoint we restart from */
   /* output */
   long output_interval, history_interval;
   char exodus_path[4096], history_path[4096];
@@ -46,6 +61,19 @@ int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc);
 /* Re-partition when the work imbalance exceeds the deck's threshold (at output steps). */
 int pf_sim_rebalance(pf_sim *sim);
 int pf_sim_setup_time(pf_sim *sim);
+/* Partition, migrate, add ghosts and attach the bodies; fresh: initial state (set-up). */
+int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh);
+/* Output file name: the deck's `given` or <deck name><ext>, under --output-dir. */
+void pf_sim_output_name(const pf_sim *sim, const char *given, const char *ext, char *out, size_t len);
+extern const pf_key pf_restart_keys[];
+int pf_sim_setup_restart(pf_sim *sim);
+int pf_sim_checkpoint(pf_sim *sim);
+int pf_sim_restore_points(pf_sim *sim);
+int pf_sim_restore_state(pf_sim *sim);
+void pf_sim_restart_free(pf_sim *sim);
+void pf_sim_catch_signals(void);
+/* The largest signal number received by any rank (0: none). Collective. */
+int pf_sim_signalled(void);
 int pf_sim_setup_output(pf_sim *sim);
 
 #endif

@@ -52,7 +52,8 @@ static int globals_eval(pf_sim *sim, globals *g, int first) {
   pf_sim_globals s;
   PF_CALL(pf_sim_globals_get(sim, &s));
   double total = s.kinetic_centred + s.elastic + s.contact - s.external_work;
-  if (first) g->e0 = total;
+  if (first && !sim->have_e0) sim->e0 = total, sim->have_e0 = 1;
+  g->e0 = sim->e0;
   double *v = g->values + 2;
   g->values[0] = sim->t;
   g->values[1] = (double)sim->step;
@@ -131,12 +132,25 @@ static void summary(const pf_sim *sim, const globals *g, double wall) {
     pf_log("  output: %s%s, %s\n", sim->exodus_path, spread(sim) ? ".<ranks>.<rank>" : "", sim->history_path);
 }
 
+/* Checkpoint at the deck's interval; on SIGTERM/SIGINT checkpoint and stop (*stop = 1). */
+static int checkpoints(pf_sim *sim, int *stop) {
+  int sig = pf_sim_signalled();
+  if (sig || (sim->restart_interval > 0 && sim->step % sim->restart_interval == 0)) PF_CALL(pf_sim_checkpoint(sim));
+  if (sig) {
+    pf_log("perifem: signal %d: stopped at step %ld, t = %.6e s; continue with --restart %s\n", sig, sim->step,
+           sim->t, sim->restart_path);
+    *stop = 1;
+  }
+  return 0;
+}
+
 static int run_loop(pf_sim *sim, globals *g, double wall0) {
   long every = sim->nsteps / 20 > 0 ? sim->nsteps / 20 : 1;
   double loop0 = pf_wtime();
-  while (sim->step < sim->nsteps) {
+  while (sim->step < sim->nsteps && !sim->stopped) {
     PF_CALL(pf_sim_step(sim, 1));
-    int last = sim->step == sim->nsteps;
+    PF_CALL(checkpoints(sim, &sim->stopped));
+    int last = sim->step == sim->nsteps || sim->stopped;
     int exo = last || (sim->output_interval > 0 && sim->step % sim->output_interval == 0);
     int his = last || sim->step % sim->history_interval == 0;
     if (exo || his) {
@@ -154,6 +168,7 @@ static int run_loop(pf_sim *sim, globals *g, double wall0) {
 
 int pf_sim_run(pf_sim *sim) {
   double wall0 = pf_wtime();
+  pf_sim_catch_signals();
   globals g = {0};
   int ierr = globals_init(sim, &g);
   if (!ierr) ierr = pf_sim_step(sim, 0); /* forces at t = 0 */
@@ -165,7 +180,7 @@ int pf_sim_run(pf_sim *sim) {
   globals_free(&g);
   pf_exodus_destroy(&sim->exo);
   pf_history_destroy(&sim->hist);
-  if (ierr) return ierr;
+  if (ierr || sim->stopped) return ierr;
   uint64_t h;
   PF_CALL(pf_state_digest(sim->pts, &h));
   if (pf_comm_rank() == 0) printf("state digest: %016" PRIx64 "\n", h); /* even with --quiet */

@@ -40,7 +40,7 @@ int pf_sim_setup_time(pf_sim *sim) {
   return 0;
 }
 
-static void output_name(const pf_sim *sim, const char *given, const char *ext, char *out, size_t len) {
+void pf_sim_output_name(const pf_sim *sim, const char *given, const char *ext, char *out, size_t len) {
   char base[2048];
   if (given) snprintf(base, sizeof base, "%s", given);
   else {
@@ -66,8 +66,8 @@ int pf_sim_setup_output(pf_sim *sim) {
     return pf_deck_error(d, pf_node_get(out, "interval"), "interval", "must not be negative");
   if (sim->history_interval < 1)
     return pf_deck_error(d, pf_node_get(out, "history_interval"), "history_interval", "must be at least 1");
-  output_name(sim, file, ".e", sim->exodus_path, sizeof sim->exodus_path);
-  output_name(sim, hfile, ".h5", sim->history_path, sizeof sim->history_path);
+  pf_sim_output_name(sim, file, ".e", sim->exodus_path, sizeof sim->exodus_path);
+  pf_sim_output_name(sim, hfile, ".h5", sim->history_path, sizeof sim->history_path);
   if (!strcmp(sim->exodus_path, sim->history_path))
     return pf_deck_error(d, pf_node_get(out, "history_file"), "history_file",
                          "the history would overwrite the Exodus file '%s'", sim->exodus_path);

@@ -1,0 +1,281 @@
+/* Checkpoints in parallel HDF5 (MPI-IO, collective writes). Layout:
+ *   /points/{gid,body,X,u,v,f,m,vol,cell}   one row per point, ranks' points one after another
+ *   /fields/<name>                          [n][ncomp], attributes ncomp, flags
+ *   /bonds/{count,gid,broken,vfrac}         row lengths per point, then the bonds in that order
+ *   attributes of "/": the named scalars (time, step, ...), written alike by every rank.
+ * The file is written as path.tmp and renamed by rank 0 once every rank has closed it, so a
+ * kill at any moment leaves the previous checkpoint whole. A reader on any number of ranks
+ * takes an equal slice of the rows; the caller re-partitions. */
+#include "core/core.h"
+
+#include <hdf5.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+  hid_t file;
+  const char *path;
+  hsize_t total, offset, count; /* rows: over all ranks, this rank's first and number */
+} h5io;
+
+#define H5_TRY(io, ok, what) PF_CHECK((ok), PF_ERR_LIB, "HDF5: %s failed (checkpoint %s)", (what), (io)->path)
+
+/* This rank's range of n items among all ranks' (an exclusive scan). */
+static void rank_range(hsize_t n, hsize_t *total, hsize_t *offset) {
+  unsigned long long mine = n, before = 0, all = 0;
+  MPI_Exscan(&mine, &before, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+  if (pf_comm_rank() == 0) before = 0;
+  MPI_Allreduce(&mine, &all, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+  *total = all, *offset = before;
+}
+
+/* Select rows [offset, offset + count) x ncomp of a [total][ncomp] space, and the memory space. */
+static void select_rows(hid_t fspace, hid_t *mspace, hsize_t offset, hsize_t count, int ncomp) {
+  hsize_t start[2] = {offset, 0}, cnt[2] = {count, (hsize_t)ncomp}, one[2] = {1, (hsize_t)ncomp};
+  int rank = ncomp > 1 ? 2 : 1;
+  *mspace = H5Screate_simple(rank, count ? cnt : one, NULL);
+  if (count) H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, cnt, NULL);
+  else H5Sselect_none(fspace), H5Sselect_none(*mspace);
+}
+
+static int write_rows(const h5io *io, const char *name, hid_t type, int ncomp, const void *data) {
+  hsize_t dims[2] = {io->total, (hsize_t)ncomp};
+  hid_t fspace = H5Screate_simple(ncomp > 1 ? 2 : 1, dims, NULL), mspace;
+  hid_t dset = H5Dcreate2(io->file, name, type, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  select_rows(fspace, &mspace, io->offset, io->count, ncomp);
+  hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
+  H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
+  herr_t st = dset >= 0 ? H5Dwrite(dset, type, mspace, fspace, dxpl, data) : -1;
+  H5Pclose(dxpl), H5Sclose(mspace), H5Sclose(fspace);
+  if (dset >= 0) H5Dclose(dset);
+  H5_TRY(io, st >= 0, name);
+  return 0;
+}
+
+static int read_rows(const h5io *io, const char *name, hid_t type, int ncomp, void *data) {
+  hid_t dset = H5Dopen2(io->file, name, H5P_DEFAULT);
+  H5_TRY(io, dset >= 0, name);
+  hid_t fspace = H5Dget_space(dset), mspace;
+  select_rows(fspace, &mspace, io->offset, io->count, ncomp);
+  hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
+  H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
+  herr_t st = H5Dread(dset, type, mspace, fspace, dxpl, data);
+  H5Pclose(dxpl), H5Sclose(mspace), H5Sclose(fspace), H5Dclose(dset);
+  H5_TRY(io, st >= 0, name);
+  return 0;
+}
+
+static int int_attr(const h5io *io, hid_t obj, const char *name, int *value, int write) {
+  hid_t a;
+  if (write) {
+    hid_t sp = H5Screate(H5S_SCALAR);
+    a = H5Acreate2(obj, name, H5T_NATIVE_INT, sp, H5P_DEFAULT, H5P_DEFAULT);
+    H5Sclose(sp);
+  } else a = H5Aopen(obj, name, H5P_DEFAULT);
+  H5_TRY(io, a >= 0, name);
+  herr_t st = write ? H5Awrite(a, H5T_NATIVE_INT, value) : H5Aread(a, H5T_NATIVE_INT, value);
+  H5Aclose(a);
+  H5_TRY(io, st >= 0, name);
+  return 0;
+}
+
+static hid_t open_file(const char *path, int create) {
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  H5Pset_fapl_mpio(fapl, MPI_COMM_WORLD, MPI_INFO_NULL);
+  hid_t f = create ? H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl) : H5Fopen(path, H5F_ACC_RDONLY, fapl);
+  H5Pclose(fapl);
+  return f;
+}
+
+/* ---- write ------------------------------------------------------------------ */
+
+static int write_points(const h5io *io, const pf_points *p) {
+  PF_CALL(write_rows(io, "/points/gid", H5T_NATIVE_INT64, 1, p->gid));
+  PF_CALL(write_rows(io, "/points/body", H5T_NATIVE_INT32, 1, p->body));
+  const char *vec[] = {"/points/X", "/points/u", "/points/v", "/points/f"};
+  const double *vdata[] = {p->X, p->u, p->v, p->f};
+  for (int k = 0; k < 4; k++) PF_CALL(write_rows(io, vec[k], H5T_NATIVE_DOUBLE, 3, vdata[k]));
+  PF_CALL(write_rows(io, "/points/m", H5T_NATIVE_DOUBLE, 1, p->m));
+  PF_CALL(write_rows(io, "/points/vol", H5T_NATIVE_DOUBLE, 1, p->vol));
+  PF_CALL(write_rows(io, "/points/cell", H5T_NATIVE_DOUBLE, 1, p->cell));
+  for (int k = 0; k < p->nfields; k++) {
+    char name[64];
+    snprintf(name, sizeof name, "/fields/%s", p->fields[k].name);
+    PF_CALL(write_rows(io, name, H5T_NATIVE_DOUBLE, p->fields[k].ncomp, p->fields[k].data));
+    hid_t d = H5Dopen2(io->file, name, H5P_DEFAULT);
+    H5_TRY(io, d >= 0, name);
+    int ncomp = p->fields[k].ncomp, flags = p->fields[k].flags;
+    int ierr = int_attr(io, d, "ncomp", &ncomp, 1);
+    if (!ierr) ierr = int_attr(io, d, "flags", &flags, 1);
+    H5Dclose(d);
+    if (ierr) return ierr;
+  }
+  return 0;
+}
+
+static int write_bonds(const h5io *pio, const pf_points *p, const pf_bond_rows *rows) {
+  int32_t *count;
+  PF_MALLOC(count, p->n_owned);
+  for (pf_int i = 0; i < p->n_owned; i++) count[i] = (int32_t)(rows->offset[i + 1] - rows->offset[i]);
+  int ierr = write_rows(pio, "/bonds/count", H5T_NATIVE_INT32, 1, count);
+  free(count);
+  if (ierr) return ierr;
+  h5io io = *pio;
+  io.count = (hsize_t)rows->offset[rows->n];
+  rank_range(io.count, &io.total, &io.offset);
+  PF_CALL(write_rows(&io, "/bonds/gid", H5T_NATIVE_INT64, 1, rows->gid));
+  PF_CALL(write_rows(&io, "/bonds/broken", H5T_NATIVE_UINT8, 1, rows->broken));
+  PF_CALL(write_rows(&io, "/bonds/vfrac", H5T_NATIVE_FLOAT, 1, rows->vfrac));
+  return 0;
+}
+
+static int write_scalars(const h5io *io, int n, const char *const *names, const double *values) {
+  for (int k = 0; k < n; k++) {
+    hid_t sp = H5Screate(H5S_SCALAR);
+    hid_t a = H5Acreate2(io->file, names[k], H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, H5P_DEFAULT);
+    herr_t st = a >= 0 ? H5Awrite(a, H5T_NATIVE_DOUBLE, &values[k]) : -1;
+    if (a >= 0) H5Aclose(a);
+    H5Sclose(sp);
+    H5_TRY(io, st >= 0, names[k]);
+  }
+  return 0;
+}
+
+static int write_all(const h5io *io, const pf_points *pts, const pf_bond_rows *rows, int n,
+                     const char *const *names, const double *values) {
+  const char *groups[] = {"/points", "/fields", "/bonds"};
+  for (int k = 0; k < 3; k++) {
+    hid_t g = H5Gcreate2(io->file, groups[k], H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5_TRY(io, g >= 0, groups[k]);
+    H5Gclose(g);
+  }
+  PF_CALL(write_points(io, pts));
+  PF_CALL(write_bonds(io, pts, rows));
+  return write_scalars(io, n, names, values);
+}
+
+int pf_checkpoint_write(const char *path, const pf_points *pts, const pf_bond_rows *rows, int nscalars,
+                        const char *const *names, const double *values) {
+  char tmp[4200];
+  snprintf(tmp, sizeof tmp, "%s.tmp", path);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  h5io io = {open_file(tmp, 1), tmp, 0, 0, (hsize_t)pts->n_owned};
+  H5_TRY(&io, io.file >= 0, "H5Fcreate");
+  rank_range(io.count, &io.total, &io.offset);
+  int ierr = write_all(&io, pts, rows, nscalars, names, values);
+  herr_t st = H5Fclose(io.file);
+  if (ierr) return ierr;
+  H5_TRY(&io, st >= 0, "H5Fclose");
+  MPI_Barrier(MPI_COMM_WORLD);
+  int ok = 1;
+  if (pf_comm_rank() == 0) ok = rename(tmp, path) == 0;
+  MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  PF_CHECK(ok, PF_ERR_RUN, "cannot rename checkpoint %s to %s", tmp, path);
+  return 0;
+}
+
+/* ---- read ------------------------------------------------------------------- */
+
+static int read_fields(const h5io *io, pf_points *p) {
+  hid_t g = H5Gopen2(io->file, "/fields", H5P_DEFAULT);
+  H5_TRY(io, g >= 0, "/fields");
+  H5G_info_t info;
+  herr_t st = H5Gget_info(g, &info);
+  int ierr = st < 0;
+  for (hsize_t k = 0; k < info.nlinks && !ierr; k++) {
+    char name[40], full[64];
+    if (H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name, H5P_DEFAULT) < 0) {
+      ierr = 1;
+      break;
+    }
+    snprintf(full, sizeof full, "/fields/%s", name);
+    hid_t d = H5Dopen2(io->file, full, H5P_DEFAULT);
+    int ncomp = 0, flags = 0, idx;
+    ierr = d < 0 || int_attr(io, d, "ncomp", &ncomp, 0) || int_attr(io, d, "flags", &flags, 0);
+    if (d >= 0) H5Dclose(d);
+    if (!ierr) ierr = pf_points_field_register(p, name, ncomp, flags, &idx);
+    if (!ierr) ierr = read_rows(io, full, H5T_NATIVE_DOUBLE, ncomp, p->fields[idx].data);
+  }
+  H5Gclose(g);
+  H5_TRY(io, !ierr, "reading /fields");
+  return 0;
+}
+
+static int read_points(const h5io *io, pf_points *p) {
+  PF_CALL(read_rows(io, "/points/gid", H5T_NATIVE_INT64, 1, p->gid));
+  PF_CALL(read_rows(io, "/points/body", H5T_NATIVE_INT32, 1, p->body));
+  const char *vec[] = {"/points/X", "/points/u", "/points/v", "/points/f"};
+  double *vdata[] = {p->X, p->u, p->v, p->f};
+  for (int k = 0; k < 4; k++) PF_CALL(read_rows(io, vec[k], H5T_NATIVE_DOUBLE, 3, vdata[k]));
+  PF_CALL(read_rows(io, "/points/m", H5T_NATIVE_DOUBLE, 1, p->m));
+  PF_CALL(read_rows(io, "/points/vol", H5T_NATIVE_DOUBLE, 1, p->vol));
+  PF_CALL(read_rows(io, "/points/cell", H5T_NATIVE_DOUBLE, 1, p->cell));
+  for (size_t i = 0; i < 3 * (size_t)p->n_owned; i++) p->y[i] = p->X[i] + p->u[i];
+  return read_fields(io, p);
+}
+
+static int read_bonds(const h5io *pio, pf_bond_rows *rows) {
+  int32_t *count;
+  PF_MALLOC(count, pio->count);
+  int ierr = read_rows(pio, "/bonds/count", H5T_NATIVE_INT32, 1, count);
+  h5io io = *pio;
+  io.count = 0;
+  for (hsize_t i = 0; i < pio->count; i++) io.count += (hsize_t)count[i];
+  rank_range(io.count, &io.total, &io.offset);
+  pf_gid *gid = malloc(sizeof(pf_gid) * (io.count + 1));
+  uint8_t *broken = malloc(io.count + 1);
+  float *vfrac = malloc(sizeof(float) * (io.count + 1));
+  if (!gid || !broken || !vfrac) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+  if (!ierr) ierr = read_rows(&io, "/bonds/gid", H5T_NATIVE_INT64, 1, gid);
+  if (!ierr) ierr = read_rows(&io, "/bonds/broken", H5T_NATIVE_UINT8, 1, broken);
+  if (!ierr) ierr = read_rows(&io, "/bonds/vfrac", H5T_NATIVE_FLOAT, 1, vfrac);
+  for (hsize_t i = 0, at = 0; i < pio->count && !ierr; at += (hsize_t)count[i], i++)
+    ierr = pf_bond_rows_append(rows, count[i], gid + at, broken + at, vfrac + at);
+  free(count), free(gid), free(broken), free(vfrac);
+  return ierr;
+}
+
+static int read_scalars(const h5io *io, int n, const char *const *names, double *values) {
+  for (int k = 0; k < n; k++) {
+    hid_t a = H5Aopen(io->file, names[k], H5P_DEFAULT);
+    PF_CHECK(a >= 0, PF_ERR_INPUT, "checkpoint %s has no '%s': not a perifem checkpoint of this kind", io->path,
+             names[k]);
+    herr_t st = H5Aread(a, H5T_NATIVE_DOUBLE, &values[k]);
+    H5Aclose(a);
+    H5_TRY(io, st >= 0, names[k]);
+  }
+  return 0;
+}
+
+static int read_all(h5io *io, pf_points **pts, pf_bond_rows *rows, int n, const char *const *names,
+                    double *values) {
+  hid_t d = H5Dopen2(io->file, "/points/gid", H5P_DEFAULT);
+  PF_CHECK(d >= 0, PF_ERR_INPUT, "checkpoint %s has no /points/gid: not a perifem checkpoint", io->path);
+  hid_t sp = H5Dget_space(d);
+  hsize_t total = 0;
+  H5Sget_simple_extent_dims(sp, &total, NULL);
+  H5Sclose(sp), H5Dclose(d);
+  int rank = pf_comm_rank(), size = pf_comm_size();
+  io->total = total;
+  io->offset = total * (hsize_t)rank / (hsize_t)size;
+  io->count = total * (hsize_t)(rank + 1) / (hsize_t)size - io->offset;
+  PF_CALL(pf_points_create((pf_int)io->count, pts));
+  (*pts)->n_global = (pf_gid)total;
+  PF_CALL(read_points(io, *pts));
+  PF_CALL(read_bonds(io, rows));
+  return read_scalars(io, n, names, values);
+}
+
+int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, int nscalars,
+                       const char *const *names, double *values) {
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  FILE *fp = fopen(path, "rb");
+  PF_CHECK(fp, PF_ERR_INPUT, "cannot open the checkpoint %s", path);
+  fclose(fp);
+  h5io io = {open_file(path, 0), path, 0, 0, 0};
+  PF_CHECK(io.file >= 0, PF_ERR_INPUT, "%s is not an HDF5 file (a perifem checkpoint)", path);
+  int ierr = read_all(&io, pts, rows, nscalars, names, values);
+  H5Fclose(io.file);
+  return ierr;
+}

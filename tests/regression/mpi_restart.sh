@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# Checkpoint/restart (HDF5, MPI-IO). The reference is the uninterrupted run's state digest.
+#  1. Killed (SIGKILL of every rank) after a checkpoint, restarted on the same rank count
+#     (1 and 2) and on another (2 -> 3, 3 -> 1): the final digest equals the reference.
+#  2. SIGTERM to every rank (as a batch system sends it): the run writes a checkpoint, says so, exits 0 without a digest; the restart ends
+#     with the reference digest.
+#  3. Atomicity: checkpoints at every step, killed at random moments (often mid-write): the
+#     checkpoint left behind always restarts to the reference digest.
+#  4. A deck whose physics differs (density) is refused naming the part; an output-only change
+#     (interval) is accepted (every restart here uses a deck with other output settings).
+# usage: mpi_restart.sh PERIFEM SCRATCH   (from the tests/ folder)
+set -u
+exe=$1 scratch=$2 fail=0
+source common/mpi_env.sh
+rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch"
+tag=rs$$ # names this test's processes for pkill
+sed -E 's/^(\s*)final_time:.*/\1steps: 240/' "$OLDPWD/../inputs/wave_in_bar.yaml" > $tag.yaml
+printf 'restart:\n  file: ck.h5\n  interval: 40\n' >> $tag.yaml
+sed -E 's/interval: 50/interval: 120/; s/interval: 40/interval: 0/' $tag.yaml > ${tag}_out.yaml
+ref=$(digest_of "$(run 1 "$exe" --quiet $tag.yaml 2>&1)")
+[ -n "$ref" ] || { echo "no reference digest"; exit 1; }
+
+# kill every rank of this test's run once ck.h5 exists (after the first checkpoint)
+kill_after_checkpoint() {
+  local np=$1
+  rm -f ck.h5 ck.h5.tmp
+  run $np "$exe" --quiet $tag.yaml > /dev/null 2>&1 &
+  local pid=$!
+  for _ in $(seq 1 600); do [ -f ck.h5 ] && break; sleep 0.05; done
+  pkill -9 -f "perifem --quiet $tag.yaml"
+  wait $pid 2>/dev/null
+  [ -f ck.h5 ] || { echo "run on $np ranks: no checkpoint appeared"; fail=1; }
+}
+restart_digest() { digest_of "$(run $1 "$exe" --quiet --restart ck.h5 ${tag}_out.yaml 2>&1)"; }
+
+for pair in "1 1" "2 2" "2 3" "3 1"; do
+  set -- $pair
+  kill_after_checkpoint $1
+  d=$(restart_digest $2)
+  [ "$d" = "$ref" ] || { echo "killed on $1 ranks, restarted on $2: digest '$d', uninterrupted $ref"; fail=1; }
+done
+
+# SIGTERM to every rank: checkpoint, message, clean exit, then restart
+rm -f ck.h5
+out=$(run 2 "$exe" $tag.yaml 2>&1 & pid=$!; sleep 1.5; pkill -TERM -f "^$exe $tag.yaml"; wait $pid; echo "exit $?")
+echo "$out" | grep -q "stopped at step .* continue with --restart" || { echo "SIGTERM: no stop message: $out"; fail=1; }
+echo "$out" | grep -q "^exit 0" || { echo "SIGTERM: exit status not 0: $out"; fail=1; }
+echo "$out" | grep -q "state digest" && { echo "SIGTERM: printed a digest for an unfinished run"; fail=1; }
+d=$(restart_digest 2)
+[ "$d" = "$ref" ] || { echo "after SIGTERM: digest '$d', uninterrupted $ref"; fail=1; }
+
+# atomicity: a checkpoint every step, killed at random moments
+sed -E 's/interval: 40/interval: 1/' $tag.yaml > ${tag}_every.yaml
+for k in 1 2 3 4; do
+  rm -f ck.h5 ck.h5.tmp
+  run 2 "$exe" --quiet ${tag}_every.yaml > /dev/null 2>&1 &
+  pid=$!
+  for _ in $(seq 1 600); do [ -f ck.h5 ] && break; sleep 0.02; done
+  sleep "0.$((RANDOM % 9 + 1))"
+  pkill -9 -f "perifem --quiet ${tag}_every.yaml"
+  wait $pid 2>/dev/null
+  d=$(restart_digest 1)
+  [ "$d" = "$ref" ] || { echo "atomicity, kill $k: restart digest '$d', uninterrupted $ref"; fail=1; }
+done
+
+# a physics change is refused, naming the part
+sed -E 's/density: 2200/density: 2300/' ${tag}_out.yaml > ${tag}_bad.yaml
+out=$(run 1 "$exe" --restart ck.h5 ${tag}_bad.yaml 2>&1)
+status=$?
+[ $status -eq 2 ] || { echo "changed density: exit $status, expected 2"; fail=1; }
+echo "$out" | grep -q "'materials' differs from the deck the checkpoint" || { echo "changed density: message: $out"; fail=1; }
+exit $fail
