@@ -1,6 +1,7 @@
 /* The joined view for output (DESIGN.md 6): rank 0 holds a copy of every owned point in
  * global-id order (positions, displacement, velocity, force, body and the output fields), so
- * one Exodus file is the same whatever the number of ranks. */
+ * one Exodus file is the same whatever the number of ranks. Positions and bodies, which a
+ * point keeps for good, are gathered once, when the view is created. */
 #include "core/core.h"
 
 #include <stdlib.h>
@@ -33,7 +34,9 @@ static int gather_array(const pf_points *pts, const double *data, int ncomp, con
 
 int pf_points_gather(const pf_points *pts, pf_points **all) {
   int rank = pf_comm_rank(), size = pf_comm_size(), n = pts->n_owned, *cnt, *dsp;
-  if (rank == 0 && !*all) PF_CALL(create_joined(pts, all));
+  int first = rank == 0 && !*all; /* create the view (ids 0..n-1 in order) and fill X, body */
+  MPI_Bcast(&first, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  if (rank == 0 && first) PF_CALL(create_joined(pts, all));
   pf_points *a = rank == 0 ? *all : NULL;
   PF_MALLOC(cnt, size);
   PF_MALLOC(dsp, size + 1);
@@ -52,18 +55,20 @@ int pf_points_gather(const pf_points *pts, pf_points **all) {
   pf_gid *gid = NULL; /* gathered ids, in rank order */
   if (a) PF_MALLOC(gid, pts->n_global);
   MPI_Gatherv(pts->gid, n, PF_GID_MPI, gid, cnt, dsp, PF_GID_MPI, 0, MPI_COMM_WORLD);
-  PF_CALL(gather_array(pts, pts->X, 3, gid, cnt, dsp, tmp, a ? a->X : NULL));
+  if (first) {
+    PF_CALL(gather_array(pts, pts->X, 3, gid, cnt, dsp, tmp, a ? a->X : NULL));
+    PF_CALL(gather_array(pts, mybody, 1, gid, cnt, dsp, tmp, body));
+    if (a)
+      for (pf_gid k = 0; k < pts->n_global; k++) a->body[k] = (int32_t)body[k];
+  }
   PF_CALL(gather_array(pts, pts->u, 3, gid, cnt, dsp, tmp, a ? a->u : NULL));
   PF_CALL(gather_array(pts, pts->v, 3, gid, cnt, dsp, tmp, a ? a->v : NULL));
   PF_CALL(gather_array(pts, pts->f, 3, gid, cnt, dsp, tmp, a ? a->f : NULL));
-  PF_CALL(gather_array(pts, mybody, 1, gid, cnt, dsp, tmp, body));
   for (int k = 0; k < pts->nfields; k++) {
     const pf_field *fl = &pts->fields[k];
     if (fl->flags & PF_FIELD_OUTPUT)
       PF_CALL(gather_array(pts, fl->data, fl->ncomp, gid, cnt, dsp, tmp, a ? pf_points_field_get(a, fl->name) : NULL));
   }
-  if (a)
-    for (pf_gid k = 0; k < pts->n_global; k++) a->gid[k] = k, a->body[k] = (int32_t)body[k];
   free(cnt), free(dsp), free(tmp), free(body), free(mybody), free(gid);
   return 0;
 }

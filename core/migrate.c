@@ -25,40 +25,51 @@ static char *put(char *p, const void *src, size_t n) {
   return p + n;
 }
 
-static char *pack(const pf_points *pts, const pf_bond_rows *rows, pf_int i, int nreal, char *p) {
+static char *pack(const pf_points *pts, const pf_bond_rows *rows, pf_int i, char *p) {
   int32_t nb = (int32_t)(rows->offset[i + 1] - rows->offset[i]);
-  double *real = malloc(sizeof(double) * (size_t)nreal), *r = real;
-  if (!real) return NULL;
-  for (int a = 0; a < 3; a++) r[a] = pts->X[3 * i + a], r[3 + a] = pts->u[3 * i + a],
-                              r[6 + a] = pts->v[3 * i + a], r[9 + a] = pts->f[3 * i + a];
-  r[12] = pts->m[i], r[13] = pts->vol[i], r[14] = pts->cell[i];
-  r += NFIXED;
-  for (int k = 0; k < pts->nfields; k++) {
-    const pf_field *fl = &pts->fields[k];
-    memcpy(r, &fl->data[(size_t)i * fl->ncomp], sizeof(double) * fl->ncomp);
-    r += fl->ncomp;
-  }
   int64_t o = rows->offset[i];
   p = put(p, &pts->gid[i], sizeof(pf_gid));
   p = put(p, &pts->body[i], sizeof(int32_t));
   p = put(p, &nb, sizeof(int32_t));
-  p = put(p, real, sizeof(double) * (size_t)nreal);
+  const double *vec[4] = {pts->X, pts->u, pts->v, pts->f}, *scal[3] = {pts->m, pts->vol, pts->cell};
+  for (int k = 0; k < 4; k++) p = put(p, &vec[k][3 * i], 3 * sizeof(double));
+  for (int k = 0; k < 3; k++) p = put(p, &scal[k][i], sizeof(double));
+  for (int k = 0; k < pts->nfields; k++) {
+    const pf_field *fl = &pts->fields[k];
+    p = put(p, &fl->data[(size_t)i * fl->ncomp], sizeof(double) * fl->ncomp);
+  }
   p = put(p, &rows->gid[o], sizeof(pf_gid) * (size_t)nb);
   p = put(p, &rows->broken[o], (size_t)nb);
-  p = put(p, &rows->vfrac[o], sizeof(float) * (size_t)nb);
-  free(real);
-  return p;
+  return put(p, &rows->vfrac[o], sizeof(float) * (size_t)nb);
+}
+
+/* Aligned copies of one record's parts, reused from record to record. */
+typedef struct {
+  double *real;
+  pf_gid *gid;
+  float *vfrac;
+  int32_t cap; /* bonds */
+} scratch;
+
+static int scratch_fit(scratch *sc, int32_t nb) {
+  if (nb <= sc->cap) return 0;
+  free(sc->gid), free(sc->vfrac);
+  sc->cap = 0;
+  PF_MALLOC(sc->gid, nb);
+  PF_MALLOC(sc->vfrac, nb);
+  sc->cap = nb;
+  return 0;
 }
 
 /* Unpack one record into point k of pts and append its row; returns the next record. */
 static const char *unpack(const char *p, pf_points *pts, pf_bond_rows *rows, pf_int k, int nreal,
-                          double *real, int *ierr) {
+                          scratch *sc, int *ierr) {
   int32_t nb;
   memcpy(&pts->gid[k], p, sizeof(pf_gid)), p += sizeof(pf_gid);
   memcpy(&pts->body[k], p, sizeof(int32_t)), p += sizeof(int32_t);
   memcpy(&nb, p, sizeof(int32_t)), p += sizeof(int32_t);
-  memcpy(real, p, sizeof(double) * (size_t)nreal), p += sizeof(double) * (size_t)nreal;
-  const double *r = real;
+  memcpy(sc->real, p, sizeof(double) * (size_t)nreal), p += sizeof(double) * (size_t)nreal;
+  const double *r = sc->real;
   for (int a = 0; a < 3; a++) {
     pts->X[3 * k + a] = r[a], pts->u[3 * k + a] = r[3 + a];
     pts->v[3 * k + a] = r[6 + a], pts->f[3 * k + a] = r[9 + a];
@@ -71,19 +82,12 @@ static const char *unpack(const char *p, pf_points *pts, pf_bond_rows *rows, pf_
     memcpy(&fl->data[(size_t)k * fl->ncomp], r, sizeof(double) * fl->ncomp);
     r += fl->ncomp;
   }
-  const pf_gid *g = (const pf_gid *)(const void *)p;
-  const uint8_t *b = (const uint8_t *)(p + sizeof(pf_gid) * (size_t)nb);
-  const float *vf = (const float *)(const void *)(p + (sizeof(pf_gid) + 1) * (size_t)nb);
-  /* the record may be unaligned for gid/float: copy through aligned buffers */
-  pf_gid *ga = malloc(sizeof(pf_gid) * ((size_t)nb + 1));
-  float *fa = malloc(sizeof(float) * ((size_t)nb + 1));
-  if (!ga || !fa) *ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
-  else {
-    memcpy(ga, g, sizeof(pf_gid) * (size_t)nb);
-    memcpy(fa, vf, sizeof(float) * (size_t)nb);
-    *ierr = pf_bond_rows_append(rows, nb, ga, b, fa);
-  }
-  free(ga), free(fa);
+  *ierr = scratch_fit(sc, nb);
+  if (*ierr) return p;
+  memcpy(sc->gid, p, sizeof(pf_gid) * (size_t)nb);
+  const uint8_t *broken = (const uint8_t *)(p + sizeof(pf_gid) * (size_t)nb);
+  memcpy(sc->vfrac, p + (sizeof(pf_gid) + 1) * (size_t)nb, sizeof(float) * (size_t)nb);
+  *ierr = pf_bond_rows_append(rows, nb, sc->gid, broken, sc->vfrac);
   return p + (sizeof(pf_gid) + 1 + sizeof(float)) * (size_t)nb;
 }
 
@@ -107,14 +111,8 @@ static int pack_all(const pf_points *pts, const pf_bond_rows *rows, const int *d
     total += bytes[r];
   }
   PF_MALLOC(*buf, total);
-  int ok = 1;
-  for (pf_int i = 0; i < pts->n_owned && ok; i++) {
-    char *end = pack(pts, rows, i, nreal, *buf + at[dest[i]]);
-    ok = end != NULL;
-    if (ok) at[dest[i]] = (size_t)(end - *buf);
-  }
+  for (pf_int i = 0; i < pts->n_owned; i++) at[dest[i]] = (size_t)(pack(pts, rows, i, *buf + at[dest[i]]) - *buf);
   free(bytes), free(at);
-  PF_CHECK(ok, PF_ERR_MEMORY, "out of memory packing points");
   return 0;
 }
 
@@ -190,12 +188,12 @@ int pf_points_migrate(pf_points *pts, pf_bond_rows *rows, const int *dest, int n
   PF_CALL(pf_points_resize(pts, n, 0));
   pf_bond_rows_free(rows);
   PF_CALL(pf_bond_rows_init(rows));
-  double *real;
-  PF_MALLOC(real, nreal);
+  scratch sc = {0};
+  PF_MALLOC(sc.real, nreal);
   const char *p = rbuf;
   int ierr = 0;
-  for (pf_int k = 0; k < n && !ierr; k++) p = unpack(p, pts, rows, k, nreal, real, &ierr);
-  free(real), free(rbuf), free(rdispl);
+  for (pf_int k = 0; k < n && !ierr; k++) p = unpack(p, pts, rows, k, nreal, &sc, &ierr);
+  free(sc.real), free(sc.gid), free(sc.vfrac), free(rbuf), free(rdispl);
   if (ierr) return ierr;
   pf_int *perm;
   PF_MALLOC(perm, n);

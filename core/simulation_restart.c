@@ -32,9 +32,7 @@ static uint64_t part_hash(const pf_deck *d, const char *part) {
 
 /* Scalar names and values: time, step, dt, contact_energy, external_work, initial_energy, the
  * deck-part hashes (two 32-bit halves each) and per indenter its position and reaction. */
-typedef pf_sim_scalars scalars;
-
-static int scalars_make(const pf_sim *sim, scalars *s) {
+static int scalars_make(const pf_sim *sim, pf_sim_scalars *s) {
   s->n = NFIXED + 2 * NPARTS + 6 * sim->nindenters;
   PF_MALLOC(s->name, s->n);
   PF_MALLOC(s->names, s->n);
@@ -55,13 +53,13 @@ static int scalars_make(const pf_sim *sim, scalars *s) {
   return 0;
 }
 
-static void scalars_free(scalars *s) {
+static void scalars_free(pf_sim_scalars *s) {
   PF_FREE(s->name);
   PF_FREE(s->names);
   PF_FREE(s->value);
 }
 
-static void scalars_fill(const pf_sim *sim, scalars *s) {
+static void scalars_fill(const pf_sim *sim, pf_sim_scalars *s) {
   double *v = s->value;
   v[0] = sim->t, v[1] = (double)sim->step, v[2] = sim->dt;
   v[3] = sim->contact_energy, v[4] = sim->external_work, v[5] = sim->e0;
@@ -90,7 +88,7 @@ int pf_sim_setup_restart(pf_sim *sim) {
 
 int pf_sim_checkpoint(pf_sim *sim) {
   pf_bond_rows rows;
-  scalars s = {0};
+  pf_sim_scalars s = {0};
   PF_CALL(pf_bond_rows_init(&rows));
   int ierr = scalars_make(sim, &s);
   for (int b = 0; b < sim->nbodies && !ierr; b++) ierr = pf_pd_body_bond_rows(sim->body[b], sim->pts, &rows);
@@ -107,7 +105,7 @@ int pf_sim_checkpoint(pf_sim *sim) {
 }
 
 /* Refuse a checkpoint written with a deck whose physics differs, naming the part. */
-static int check_deck(const pf_sim *sim, const scalars *saved, const scalars *now) {
+static int check_deck(const pf_sim *sim, const pf_sim_scalars *saved, const pf_sim_scalars *now) {
   for (int p = 0; p < NPARTS; p++) {
     int k = NFIXED + 2 * p;
     if (saved->value[k] == now->value[k] && saved->value[k + 1] == now->value[k + 1]) continue;
@@ -123,7 +121,7 @@ int pf_sim_restore_points(pf_sim *sim) {
   pf_bond_rows rows;
   PF_CALL(pf_bond_rows_init(&rows));
   PF_CALL(scalars_make(sim, &sim->restart_scalars));
-  scalars *s = &sim->restart_scalars;
+  pf_sim_scalars *s = &sim->restart_scalars;
   int ierr = pf_checkpoint_read(sim->opt.restart_from, &sim->pts, &rows, s->n, s->names, s->value);
   if (!ierr) ierr = pf_sim_settle(sim, &rows, 0);
   pf_bond_rows_free(&rows);
@@ -140,7 +138,7 @@ static void rename_output(char *path, size_t len, long step) {
 
 /* After the set-up: check the deck and take time, energies and indenter state from the file. */
 int pf_sim_restore_state(pf_sim *sim) {
-  scalars now = {0}, *saved = &sim->restart_scalars;
+  pf_sim_scalars now = {0}, *saved = &sim->restart_scalars;
   PF_CALL(scalars_make(sim, &now));
   scalars_fill(sim, &now);
   int ierr = check_deck(sim, saved, &now);

@@ -182,9 +182,10 @@ int pf_pd_body_attach(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n,
                          "horizon must exceed the point spacing (typically 3 spacings)", b->name, b->horizon);
   free(b->smin);
   PF_MALLOC(b->smin, n);
-  if (fresh)
+  if (fresh) { /* (after a re-partition the masses came with the points and their ghosts) */
     for (pf_int i = first; i < first + n; i++) pts->m[i] = b->density * pts->vol[i];
-  PF_CALL(pf_points_exchange(pts, pts->m, 1));
+    PF_CALL(pf_points_exchange(pts, pts->m, 1));
+  }
   PF_CALL(pf_pd_damage_setup(b, pts, fresh));
   if (b->ops->setup) PF_CALL(b->ops->setup(b, pts));
   int idx;

@@ -223,7 +223,8 @@ int pf_pd_family_from_rows(const pf_bond_rows *rows, const pf_int *local, pf_int
 int pf_pd_family_to_rows(const pf_family *fam, const pf_points *pts, pf_bond_rows *rows) {
   pf_gid *gid;
   int64_t maxrow = 0;
-  for (pf_int i = 0; i < fam->n; i++) maxrow = fam->offset[i + 1] - fam->offset[i] > maxrow ? fam->offset[i + 1] - fam->offset[i] : maxrow;
+  for (pf_int i = 0; i < fam->n; i++)
+    if (fam->offset[i + 1] - fam->offset[i] > maxrow) maxrow = fam->offset[i + 1] - fam->offset[i];
   PF_MALLOC(gid, maxrow);
   int ierr = 0;
   for (pf_int i = 0; i < fam->n && !ierr; i++) {
