@@ -23,4 +23,18 @@ void pf_indenter_position(const pf_indenter *ind, double x[3]);
 /* Move the indenter to x (restart). */
 void pf_indenter_set_position(pf_indenter *ind, const double x[3]);
 
+/* A rigid, fixed, frictionless plane that points cannot cross (contact/wall.c). */
+typedef struct pf_wall pf_wall;
+extern const pf_key pf_wall_keys[];
+int pf_wall_create(const pf_deck *d, const pf_node *map, int nbodies, const char *const *body_names,
+                   pf_wall **w);
+int pf_wall_destroy(pf_wall **w);
+const char *pf_wall_name(const pf_wall *w);
+/* After the drift: owned points behind the plane go back onto it and lose their inward normal
+ * velocity; the kinetic energy removed is added to *loss (J). */
+void pf_wall_enforce_position(const pf_wall *w, pf_points *pts, double *loss);
+/* After the forces: points on the plane lose the inward normal part of their force;
+ * reaction[3] gets the total force on the wall over all ranks (N). Collective. */
+void pf_wall_enforce_force(const pf_wall *w, pf_points *pts, double reaction[3]);
+
 #endif

@@ -114,3 +114,9 @@ void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t) {
       if (bc->e[c]) pts->v[3 * i + c] = pf_expr_eval(bc->e[c], x[0], x[1], x[2], t);
   }
 }
+
+void pf_bc_mark(const pf_bc *bc, uint8_t *mask) {
+  for (pf_int k = 0; k < bc->n; k++)
+    for (int c = 0; c < 3; c++)
+      if (bc->e[c]) mask[3 * (size_t)bc->points[k] + c] = 1;
+}

@@ -121,6 +121,8 @@ int pf_deck_load(const char *path, pf_deck **deck);
 int pf_deck_destroy(pf_deck **deck);
 const pf_node *pf_deck_root(const pf_deck *deck);
 const char *pf_deck_path(const pf_deck *deck);
+/* A file named in the deck, relative to the deck's folder unless absolute. */
+void pf_deck_relative_path(const pf_deck *d, const char *name, char *out, size_t len);
 /* A hash of the deck's text (for restart checks and the run log). */
 uint64_t pf_deck_hash(const pf_deck *deck);
 
@@ -146,7 +148,9 @@ typedef struct pf_key {
   const char *default_value; /* as text, or NULL */
   const char *units;         /* SI units, or "" */
   const char *doc;
-  const struct pf_key *sub; /* for MAP / LIST / ANYMAP: the table of the nested mapping */
+  const struct pf_key *sub; /* for MAP / LIST / ANYMAP: the table of the nested mapping; NULL for
+                               LIST / ANYMAP: checked later by their owner (bodies by type,
+                               materials by model) */
 } pf_key;
 #define PF_KEY_END {NULL, 0, 0, NULL, NULL, NULL, NULL}
 
@@ -283,6 +287,8 @@ pf_int pf_bc_npoints(const pf_bc *bc);
  * the second half kick (velocity at t). */
 void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt);
 void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t);
+/* Set mask[3 i + c] = 1 for every component c of owned point i the condition prescribes. */
+void pf_bc_mark(const pf_bc *bc, uint8_t *mask);
 
 /* ---- checkpoints (core/checkpoint.c): parallel HDF5 ---------------------------------- */
 /* Write the owned points (every array and field) and their bond rows, plus named scalars, to
@@ -312,6 +318,18 @@ typedef struct pf_exodus pf_exodus;
 int pf_exodus_create(const char *path, const pf_points *pts, int nbodies,
                      const char *const *body_names, const pf_int *body_start, int nglobals,
                      const char *const *global_names, pf_exodus **ex);
+/* An FE body's block: HEX8 elements whose nodes are points of the file (0-based indices in the
+ * order of pts), element ids first_id + 1, first_id + 2, ... */
+typedef struct {
+  pf_int nelem; /* 0: the body is a SPHERE block of its points */
+  const pf_int *conn; /* [8 nelem] */
+  int64_t first_id;
+} pf_exodus_hexes;
+/* As pf_exodus_create, with hexes[b] (nbodies entries, or NULL) making body b a HEX8 block. */
+int pf_exodus_create_mixed(const char *path, const pf_points *pts, int nbodies,
+                           const char *const *body_names, const pf_int *body_start,
+                           const pf_exodus_hexes *hexes, int nglobals,
+                           const char *const *global_names, pf_exodus **ex);
 /* The joined view: rank 0 gets (*all, created on the first call) a copy of every owned point
  * in global-id order — X, u, v, f, body and the PF_FIELD_OUTPUT fields; other ranks get NULL.
  * Collective. */

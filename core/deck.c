@@ -252,3 +252,9 @@ static uint64_t hash_node(uint64_t h, const pf_node *n) {
 }
 
 uint64_t pf_node_hash(const pf_node *n) { return hash_node(1469598103934665603ULL, n); }
+
+void pf_deck_relative_path(const pf_deck *d, const char *name, char *out, size_t len) {
+  const char *dp = pf_deck_path(d), *slash = strrchr(dp, '/');
+  if (name[0] == '/' || !slash) snprintf(out, len, "%s", name);
+  else snprintf(out, len, "%.*s/%s", (int)(slash - dp), dp, name);
+}

@@ -125,6 +125,7 @@ static int check_value(const pf_deck *d, const pf_node *map, int i, const pf_key
     snprintf(sub, sizeof sub, "%s.%s", where, k->name);
     return pf_deck_validate(d, v, k->sub, sub);
   }
+  if (!k->sub) return 0; /* the nested mappings are checked by their owner (e.g. by body type) */
   if (k->type == PF_KEY_LIST) {
     for (int j = 0; j < v->n; j++) {
       snprintf(sub, sizeof sub, "%s.%s[%d]", where, k->name, j);

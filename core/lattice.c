@@ -178,12 +178,6 @@ int pf_point_file_read(const char *path, pf_point_cloud *pc) {
 }
 
 /* A file name from the deck, taken relative to the deck's folder. */
-static void deck_relative(const pf_deck *d, const char *name, char *out, size_t len) {
-  const char *dp = pf_deck_path(d), *slash = strrchr(dp, '/');
-  if (name[0] == '/' || !slash) snprintf(out, len, "%s", name);
-  else snprintf(out, len, "%.*s/%s", (int)(slash - dp), dp, name);
-}
-
 static const double *sort_base;
 static int by_position(const void *a, const void *b) {
   const double *p = &sort_base[3 * *(const pf_int *)a], *q = &sort_base[3 * *(const pf_int *)b];
@@ -216,7 +210,7 @@ static int cloud_from_file(const pf_deck *d, const pf_node *g, pf_point_cloud *p
   char path[4096];
   PF_CALL(pf_deck_string(d, g, "file", &file));
   if (!file) return pf_deck_error(d, g, "file", "shape 'points_file' needs key 'file'");
-  deck_relative(d, file, path, sizeof path);
+  pf_deck_relative_path(d, file, path, sizeof path);
   FILE *probe = fopen(path, "r");
   if (!probe)
     return pf_deck_error(d, pf_node_get(g, "file"), "file", "cannot open point file '%s': %s",

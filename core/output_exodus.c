@@ -20,6 +20,7 @@ struct pf_exodus {
   char *path;     /* for error messages */
   int step;       /* last written time step (1-based), 0 before the first write */
   pf_int n;       /* number of nodes (owned points) */
+  int64_t nelem;  /* elements over all blocks */
   int nvars;      /* nodal variables, built-ins first */
   int nglobals;   /* global variables */
   int *var_field; /* [nvars - PF_EX_NBUILTIN]: field index in pts->fields */
@@ -145,21 +146,28 @@ static int put_coordinates(pf_exodus *ex, const pf_points *pts) {
   return PF_SUCCESS;
 }
 
-/* Node and element id maps: global id + 1 (Exodus ids are 1-based). Elements are the points in
- * order, so both maps are the same array. */
-static int put_id_maps(pf_exodus *ex, const pf_points *pts, int nbodies) {
+/* Node id map: global id + 1 (Exodus ids are 1-based). Element id map: a SPHERE element takes
+ * its point's id; a HEX8 element takes first_id + its index + 1. */
+static int put_id_maps(pf_exodus *ex, const pf_points *pts, int nbodies, const pf_int *body_start,
+                       const pf_exodus_hexes *hexes) {
   if (ex->n == 0) return PF_SUCCESS;
   int64_t *ids = NULL;
   PF_MALLOC(ids, ex->n);
   for (pf_int i = 0; i < ex->n; i++) ids[i] = (int64_t)pts->gid[i] + 1;
   int st = ex_put_id_map(ex->exoid, EX_NODE_MAP, ids);
-  const char *call = "ex_put_id_map(EX_NODE_MAP)";
-  if (st >= 0 && nbodies > 0) {
-    st = ex_put_id_map(ex->exoid, EX_ELEM_MAP, ids);
-    call = "ex_put_id_map(EX_ELEM_MAP)";
-  }
   PF_FREE(ids);
-  PF_EX_TRY(ex, st, call);
+  PF_EX_TRY(ex, st, "ex_put_id_map(EX_NODE_MAP)");
+  if (nbodies == 0) return PF_SUCCESS;
+  PF_MALLOC(ids, ex->nelem);
+  int64_t k = 0;
+  for (int b = 0; b < nbodies; b++)
+    if (hexes && hexes[b].nelem > 0)
+      for (pf_int e = 0; e < hexes[b].nelem; e++) ids[k++] = hexes[b].first_id + e + 1;
+    else
+      for (pf_int i = body_start[b]; i < body_start[b + 1]; i++) ids[k++] = (int64_t)pts->gid[i] + 1;
+  st = ex_put_id_map(ex->exoid, EX_ELEM_MAP, ids);
+  PF_FREE(ids);
+  PF_EX_TRY(ex, st, "ex_put_id_map(EX_ELEM_MAP)");
   return PF_SUCCESS;
 }
 
@@ -176,37 +184,53 @@ static int put_block(pf_exodus *ex, int b, pf_int start, pf_int count) {
   return PF_SUCCESS;
 }
 
+static int put_hex_block(pf_exodus *ex, int b, const pf_exodus_hexes *h) {
+  PF_EX_TRY(ex, ex_put_block(ex->exoid, EX_ELEM_BLOCK, b + 1, "HEX8", h->nelem, 8, 0, 0, 0), "ex_put_block");
+  int64_t *conn = NULL;
+  PF_MALLOC(conn, 8 * (size_t)h->nelem);
+  for (size_t k = 0; k < 8 * (size_t)h->nelem; k++) conn[k] = (int64_t)h->conn[k] + 1;
+  int st = ex_put_conn(ex->exoid, EX_ELEM_BLOCK, b + 1, conn, NULL, NULL);
+  PF_FREE(conn);
+  PF_EX_TRY(ex, st, "ex_put_conn(HEX8)");
+  return PF_SUCCESS;
+}
+
 static int put_blocks(pf_exodus *ex, int nbodies, const char *const *body_names,
-                      const pf_int *body_start) {
+                      const pf_int *body_start, const pf_exodus_hexes *hexes) {
   if (nbodies == 0) return PF_SUCCESS;
   for (int b = 0; b < nbodies; b++)
-    PF_CALL(put_block(ex, b, body_start[b], body_start[b + 1] - body_start[b]));
+    if (hexes && hexes[b].nelem > 0) PF_CALL(put_hex_block(ex, b, &hexes[b]));
+    else PF_CALL(put_block(ex, b, body_start[b], body_start[b + 1] - body_start[b]));
   /* Exodus takes char **; it does not modify the names. */
   PF_EX_TRY(ex, ex_put_names(ex->exoid, EX_ELEM_BLOCK, (char **)body_names),
             "ex_put_names(EX_ELEM_BLOCK)");
   return PF_SUCCESS;
 }
 
-static int open_file(pf_exodus *ex, int nbodies) {
+static int open_file(pf_exodus *ex, int nbodies, const pf_int *body_start, const pf_exodus_hexes *hexes) {
   int cpu_ws = 8, io_ws = 8;
   int mode = EX_CLOBBER | EX_LARGE_MODEL | EX_MAPS_INT64_API | EX_BULK_INT64_API;
   ex->exoid = ex_create(ex->path, mode, &cpu_ws, &io_ws);
   PF_EX_TRY(ex, ex->exoid, "ex_create");
   PF_EX_TRY(ex, ex_set_max_name_length(ex->exoid, PF_EX_NAME_LEN), "ex_set_max_name_length");
-  int64_t nelem = nbodies > 0 ? ex->n : 0; /* one SPHERE element per point */
+  int64_t nelem = 0; /* one SPHERE element per point of a PD body, the hexahedra of an FE body */
+  for (int b = 0; b < nbodies; b++)
+    nelem += hexes && hexes[b].nelem > 0 ? hexes[b].nelem : body_start[b + 1] - body_start[b];
+  ex->nelem = nelem;
   PF_EX_TRY(ex, ex_put_init(ex->exoid, "perifem output", 3, ex->n, nelem, nbodies, 0, 0),
             "ex_put_init");
   return PF_SUCCESS;
 }
 
 static int setup(pf_exodus *ex, const pf_points *pts, int nbodies, const char *const *body_names,
-                 const pf_int *body_start, int nglobals, const char *const *global_names) {
+                 const pf_int *body_start, const pf_exodus_hexes *hexes, int nglobals,
+                 const char *const *global_names) {
   PF_CALL(plan_variables(ex, pts));
   PF_MALLOC(ex->buf, ex->n);
-  PF_CALL(open_file(ex, nbodies));
+  PF_CALL(open_file(ex, nbodies, body_start, hexes));
   PF_CALL(put_coordinates(ex, pts));
-  PF_CALL(put_blocks(ex, nbodies, body_names, body_start));
-  PF_CALL(put_id_maps(ex, pts, nbodies));
+  PF_CALL(put_blocks(ex, nbodies, body_names, body_start, hexes));
+  PF_CALL(put_id_maps(ex, pts, nbodies, body_start, hexes));
   if (ex->n > 0) PF_CALL(put_variable_names(ex, pts)); /* Exodus refuses nodal variables without nodes */
   PF_CALL(put_global_names(ex, nglobals, global_names));
   PF_EX_TRY(ex, ex_update(ex->exoid), "ex_update");
@@ -216,6 +240,14 @@ static int setup(pf_exodus *ex, const pf_points *pts, int nbodies, const char *c
 int pf_exodus_create(const char *path, const pf_points *pts, int nbodies,
                      const char *const *body_names, const pf_int *body_start, int nglobals,
                      const char *const *global_names, pf_exodus **ex) {
+  return pf_exodus_create_mixed(path, pts, nbodies, body_names, body_start, NULL, nglobals,
+                                global_names, ex);
+}
+
+int pf_exodus_create_mixed(const char *path, const pf_points *pts, int nbodies,
+                           const char *const *body_names, const pf_int *body_start,
+                           const pf_exodus_hexes *hexes, int nglobals,
+                           const char *const *global_names, pf_exodus **ex) {
   PF_CHECK(path && pts && ex, PF_ERR_INPUT, "pf_exodus_create: NULL argument");
   *ex = NULL;
   PF_CALL(check_bodies(pts, nbodies, body_names, body_start));
@@ -234,7 +266,7 @@ int pf_exodus_create(const char *path, const pf_points *pts, int nbodies,
                           "out of memory for the Exodus path %s", path);
   }
   memcpy(e->path, path, len);
-  int err = setup(e, pts, nbodies, body_names, body_start, nglobals, global_names);
+  int err = setup(e, pts, nbodies, body_names, body_start, hexes, nglobals, global_names);
   if (err) {
     pf_exodus_destroy(&e);
     return err;

@@ -27,15 +27,52 @@ static const pf_key output_keys[] = {
 const pf_key pf_deck_keys[] = {
     {"title", PF_KEY_STRING, 0, "", "", "a title for the output", NULL},
     {"units", PF_KEY_STRING, 0, "SI", "", "unit system; only SI is accepted", NULL},
-    {"materials", PF_KEY_ANYMAP, 1, NULL, "", "named materials", pf_pd_material_keys},
-    {"bodies", PF_KEY_LIST, 1, NULL, "", "the bodies", pf_pd_body_keys},
+    {"materials", PF_KEY_ANYMAP, 1, NULL, "",
+     "named materials: peridynamic models (keys of pf_pd_material_keys) or finite-element / "
+     "continuum models (pf_fem_material_keys), checked by model", NULL},
+    {"bodies", PF_KEY_LIST, 1, NULL, "",
+     "the bodies: type peridynamic (pf_pd_body_keys) or finite_element (pf_fem_body_keys), "
+     "checked by type", NULL},
     {"indenters", PF_KEY_LIST, 0, NULL, "", "rigid indenters with prescribed motion", pf_indenter_keys},
+    {"walls", PF_KEY_LIST, 0, NULL, "", "rigid frictionless planes", pf_wall_keys},
     {"boundary_conditions", PF_KEY_LIST, 0, NULL, "", "prescribed velocities/displacements", pf_bc_keys},
     {"time", PF_KEY_MAP, 1, NULL, "", "time stepping", time_keys},
     {"output", PF_KEY_MAP, 0, NULL, "", "output files and intervals", output_keys},
     {"parallel", PF_KEY_MAP, 0, NULL, "", "domain decomposition over MPI ranks", pf_parallel_keys},
     {"restart", PF_KEY_MAP, 0, NULL, "", "checkpoints for restart", pf_restart_keys},
     PF_KEY_END};
+
+/* Each material against the table of its kind, chosen by its model. */
+static int validate_materials(const pf_deck *d, const pf_node *materials) {
+  for (int k = 0; k < pf_node_count(materials); k++) {
+    const char *name, *model = NULL;
+    const pf_node *mat = pf_node_map_item(materials, k, &name);
+    char where[160];
+    snprintf(where, sizeof where, "materials.%s", name);
+    if (pf_node_get(mat, "model")) PF_CALL(pf_deck_string(d, mat, "model", &model));
+    if (model && pf_fem_material_known(model)) PF_CALL(pf_deck_validate(d, mat, pf_fem_material_keys, where));
+    else if (model && pf_pd_material_known(model)) PF_CALL(pf_deck_validate(d, mat, pf_pd_material_keys, where));
+    else if (model)
+      return pf_deck_error(d, pf_node_get(mat, "model"), "model", "unknown model '%s' (known: %s, %s)", model,
+                           pf_pd_material_names(), pf_fem_material_names());
+    else
+      return pf_deck_error(d, mat, "model", "material '%s' has no 'model' (known: %s, %s)", name,
+                           pf_pd_material_names(), pf_fem_material_names());
+  }
+  return 0;
+}
+
+/* 1 for a finite-element body, 0 for a peridynamic one; each body against its table. */
+static int body_kind(const pf_deck *d, const pf_node *body, int b, int *fem) {
+  const char *type = "peridynamic";
+  char where[64];
+  snprintf(where, sizeof where, "bodies[%d]", b);
+  if (pf_node_get(body, "type")) PF_CALL(pf_deck_string(d, body, "type", &type));
+  *fem = !strcmp(type, "finite_element");
+  if (!*fem && strcmp(type, "peridynamic"))
+    return pf_deck_error(d, pf_node_get(body, "type"), "type", "unknown body type '%s' (known: peridynamic, finite_element)", type);
+  return pf_deck_validate(d, body, *fem ? pf_fem_body_keys : pf_pd_body_keys, where);
+}
 
 static int set_initial_velocity(pf_sim *sim, int b, const pf_node *body) {
   if (!pf_node_get(body, "initial_velocity")) return 0;
@@ -69,14 +106,22 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
       if (!strcmp(sim->body_name[q], sim->body_name[b]))
         return pf_deck_error(sim->deck, pf_node_get(body, "name"), "name", "two bodies named '%s'",
                              sim->body_name[b]);
-    PF_CALL(pf_pd_body_create(sim->deck, body, pf_node_get(root, "materials"), &sim->body[b]));
+    int fem = 0;
+    PF_CALL(body_kind(sim->deck, body, b, &fem));
+    if (fem) PF_CALL(pf_fem_body_create(sim->deck, body, pf_node_get(root, "materials"), &sim->fem[b]));
+    else PF_CALL(pf_pd_body_create(sim->deck, body, pf_node_get(root, "materials"), &sim->body[b]));
+    sim->nfem += fem;
   }
+  if (sim->opt.restart_from && sim->nfem)
+    PF_CHECK(0, PF_ERR_INPUT, "--restart %s: checkpoints do not yet hold finite-element state; "
+             "decks with finite_element bodies cannot restart", sim->opt.restart_from);
   if (sim->opt.restart_from) return pf_sim_restore_points(sim); /* points and velocities from the file */
   pf_point_cloud pc[PF_MAX_BODIES];
   memset(pc, 0, sizeof pc);
   int ierr = 0;
   for (int b = 0; b < sim->nbodies && !ierr; b++)
-    ierr = pf_point_cloud_from_deck(sim->deck, pf_node_get(pf_node_item(bodies, b), "geometry"), &pc[b]);
+    ierr = sim->fem[b] ? pf_fem_body_cloud(sim->fem[b], &pc[b])
+                       : pf_point_cloud_from_deck(sim->deck, pf_node_get(pf_node_item(bodies, b), "geometry"), &pc[b]);
   if (!ierr) ierr = pf_sim_distribute(sim, pc);
   for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
   if (ierr) return ierr;
@@ -104,6 +149,16 @@ static int build_bcs(pf_sim *sim, const pf_node *root) {
   return 0;
 }
 
+static int build_walls(pf_sim *sim, const pf_node *root) {
+  const pf_node *walls = pf_node_get(root, "walls");
+  sim->nwalls = pf_node_count(walls);
+  PF_MALLOC(sim->walls, sim->nwalls);
+  PF_MALLOC(sim->wall_reaction, sim->nwalls);
+  for (int k = 0; k < sim->nwalls; k++)
+    PF_CALL(pf_wall_create(sim->deck, pf_node_item(walls, k), sim->nbodies, sim->body_name, &sim->walls[k]));
+  return 0;
+}
+
 static int check_units(const pf_sim *sim, const pf_node *root) {
   const char *units = "SI";
   PF_CALL(pf_deck_string(sim->deck, root, "units", &units));
@@ -118,10 +173,12 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   const pf_node *root = pf_deck_root(sim->deck);
   PF_CALL(pf_deck_validate(sim->deck, root, pf_deck_keys, "the deck"));
   PF_CALL(check_units(sim, root));
+  PF_CALL(validate_materials(sim->deck, pf_node_get(root, "materials")));
   PF_CALL(pf_sim_setup_parallel(sim));
   PF_CALL(build_indenters(sim, root));
   PF_CALL(build_bodies(sim, root));
   PF_CALL(build_bcs(sim, root));
+  PF_CALL(build_walls(sim, root));
   PF_CALL(pf_sim_setup_time(sim));
   PF_CALL(pf_sim_setup_output(sim));
   PF_CALL(pf_sim_setup_restart(sim));
@@ -148,7 +205,9 @@ int pf_sim_destroy(pf_sim **s) {
   if (!sim) return 0;
   pf_exodus_destroy(&sim->exo);
   pf_history_destroy(&sim->hist);
-  for (int b = 0; b < sim->nbodies; b++) pf_pd_body_destroy(&sim->body[b]);
+  for (int b = 0; b < sim->nbodies; b++) pf_pd_body_destroy(&sim->body[b]), pf_fem_body_destroy(&sim->fem[b]);
+  for (int k = 0; k < sim->nwalls && sim->walls; k++) pf_wall_destroy(&sim->walls[k]);
+  free(sim->walls), free(sim->wall_reaction);
   for (int k = 0; k < sim->nindenters && sim->indenters; k++) pf_indenter_destroy(&sim->indenters[k]);
   for (int k = 0; k < sim->nbcs && sim->bcs; k++) pf_bc_destroy(&sim->bcs[k]);
   free(sim->indenters);
@@ -165,5 +224,6 @@ int pf_sim_destroy(pf_sim **s) {
 pf_points *pf_sim_points(pf_sim *sim) { return sim->pts; }
 int pf_sim_nbodies(const pf_sim *sim) { return sim->nbodies; }
 pf_pd_body *pf_sim_body(pf_sim *sim, int b) { return sim->body[b]; }
+pf_fem_body *pf_sim_fem_body(pf_sim *sim, int b) { return sim->fem[b]; }
 double pf_sim_dt(const pf_sim *sim) { return sim->dt; }
 long pf_sim_nsteps(const pf_sim *sim) { return sim->nsteps; }

@@ -22,7 +22,8 @@ int pf_sim_destroy(pf_sim **sim);
 
 pf_points *pf_sim_points(pf_sim *sim);
 int pf_sim_nbodies(const pf_sim *sim);
-pf_pd_body *pf_sim_body(pf_sim *sim, int b);
+pf_pd_body *pf_sim_body(pf_sim *sim, int b);     /* NULL for an FE body */
+struct pf_fem_body *pf_sim_fem_body(pf_sim *sim, int b); /* NULL for a PD body */
 double pf_sim_dt(const pf_sim *sim);
 long pf_sim_nsteps(const pf_sim *sim);
 /* Global quantities of the current state. */
@@ -32,8 +33,13 @@ typedef struct {
    * the energy that velocity Verlet conserves exactly for linear forces (docs/theory/pd.md) */
   double kinetic_centred;
   double damage_fraction;
+  /* finite elements: stress work (internal energy), hourglass energy, bulk-viscosity work; and
+   * the kinetic energy rigid walls removed, J */
+  double fe_internal, hourglass, bulk_viscosity, wall_loss;
 } pf_sim_globals;
 int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g);
+/* 1 when the run has reached its final time (or step count). */
+int pf_sim_finished(const pf_sim *sim);
 /* Advance n steps (no output). */
 int pf_sim_step(pf_sim *sim, long n);
 uint64_t pf_sim_digest(pf_sim *sim);

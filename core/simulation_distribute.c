@@ -19,6 +19,16 @@ const pf_key pf_parallel_keys[] = {
      "this multiple of the mean; 0: never", NULL},
     PF_KEY_END};
 
+/* 1 when some body of the deck is a finite_element body. */
+static int deck_has_fem(const pf_deck *d) {
+  const pf_node *bodies = pf_node_get(pf_deck_root(d), "bodies");
+  for (int b = 0; b < pf_node_count(bodies); b++) {
+    const pf_node *t = pf_node_get(pf_node_item(bodies, b), "type");
+    if (t && !strcmp(pf_node_text(t), "finite_element")) return 1;
+  }
+  return 0;
+}
+
 int pf_sim_setup_parallel(pf_sim *sim) {
   const pf_deck *d = sim->deck;
   const pf_node *root = pf_deck_root(d), *par = pf_node_get(root, "parallel"), *out = pf_node_get(root, "output");
@@ -37,6 +47,14 @@ int pf_sim_setup_parallel(pf_sim *sim) {
   if (strcmp(layout, "joined") && strcmp(layout, "spread"))
     return pf_deck_error(d, pf_node_get(out, "layout"), "layout", "unknown layout '%s' (known: joined, spread)", layout);
   sim->spread_output = !strcmp(layout, "spread");
+  if (sim->rebalance_threshold > 0 && pf_node_get(par, "rebalance_threshold") && deck_has_fem(d))
+    return pf_deck_error(d, pf_node_get(par, "rebalance_threshold"), "rebalance_threshold",
+                         "re-partitioning does not yet move finite-element state (stress, "
+                         "hourglass forces); with finite_element bodies use 0");
+  if (sim->spread_output && deck_has_fem(d))
+    return pf_deck_error(d, pf_node_get(out, "layout"), "layout",
+                         "finite_element bodies are written joined (a spread file set would cut "
+                         "elements at the rank boundaries); use output.layout: joined");
   if (sim->spread_output && sim->rebalance_threshold > 0)
     return pf_deck_error(d, pf_node_get(par, "rebalance_threshold"), "rebalance_threshold",
                          "re-partitioning changes each rank's points, which a spread Exodus file "
@@ -78,15 +96,18 @@ int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh) {
   if (!ierr && !(local = malloc(sizeof(pf_int) * ((size_t)rows->offset[rows->n] + 1))))
     ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
   if (!ierr) ierr = pf_points_add_ghosts(sim->pts, rows, owner_of, local);
-  for (int b = 0; b < sim->nbodies && !ierr; b++)
-    ierr = pf_pd_body_attach(sim->body[b], sim->pts, sim->body_start[b],
-                             sim->body_start[b + 1] - sim->body_start[b], rows, local, fresh);
+  for (int b = 0; b < sim->nbodies && !ierr; b++) {
+    pf_int first = sim->body_start[b], n = sim->body_start[b + 1] - first;
+    ierr = sim->fem[b] ? pf_fem_body_attach(sim->fem[b], b, sim->pts, first, n, sim->gid0[b])
+                       : pf_pd_body_attach(sim->body[b], sim->pts, first, n, rows, local, fresh);
+  }
   free(owner_of), free(local);
   return ierr;
 }
 
 int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc) {
-  pf_gid gid0[PF_MAX_BODIES + 1] = {0};
+  pf_gid *gid0 = sim->gid0;
+  gid0[0] = 0;
   for (int b = 0; b < sim->nbodies; b++) gid0[b + 1] = gid0[b] + pc[b].n;
   PF_CALL(make_slice(sim, pc, gid0, &sim->pts));
   pf_bond_rows rows;
@@ -97,7 +118,8 @@ int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc) {
     pf_int n = 0;
     while (first + n < sim->pts->n_owned && sim->pts->body[first + n] == b) n++;
     pf_pd_cloud cloud = {pc[b].X, pc[b].cell, pc[b].n, gid0[b]};
-    ierr = pf_pd_body_find_bonds(sim->body[b], &cloud, sim->pts, first, n, &rows);
+    ierr = sim->fem[b] ? pf_fem_body_node_rows(sim->fem[b], sim->pts, first, n, gid0[b], &rows)
+                       : pf_pd_body_find_bonds(sim->body[b], &cloud, sim->pts, first, n, &rows);
     first += n;
   }
   if (!ierr) ierr = pf_sim_settle(sim, &rows, 1);
@@ -109,6 +131,7 @@ int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc) {
 static double local_work(const pf_sim *sim) {
   double w = sim->pts->n_owned;
   for (int b = 0; b < sim->nbodies; b++) {
+    if (!sim->body[b]) continue;
     const pf_family *fam = pf_pd_body_family(sim->body[b]);
     for (int64_t k = 0; k < pf_pd_family_nbonds(fam); k++) w += !fam->broken[k];
   }

@@ -4,6 +4,7 @@
 
 #include "contact/contact.h"
 #include "core/simulation.h"
+#include "fem/fem.h"
 
 #define PF_MAX_BODIES 64
 
@@ -20,7 +21,10 @@ struct pf_sim {
   pf_sim_options opt;
   pf_points *pts;
   int nbodies;
-  pf_pd_body *body[PF_MAX_BODIES];
+  pf_pd_body *body[PF_MAX_BODIES]; /* peridynamic bodies (NULL for an FE body) */
+  pf_fem_body *fem[PF_MAX_BODIES]; /* finite-element bodies (NULL for a PD body) */
+  int nfem;                        /* how many FE bodies */
+  pf_gid gid0[PF_MAX_BODIES + 1];  /* global ids of body b: [gid0[b], gid0[b+1]) */
   const char *body_name[PF_MAX_BODIES];
   pf_int body_start[PF_MAX_BODIES + 1];
   int nindenters;
@@ -28,6 +32,9 @@ struct pf_sim {
   double (*reaction)[3]; /* [nindenters] force on each indenter, N */
   int nbcs;
   pf_bc **bcs;
+  int nwalls;
+  pf_wall **walls;
+  double (*wall_reaction)[3]; /* [nwalls] force of the points on each wall, N */
   /* parallel */
   pf_partition_method decomposition;
   double rebalance_threshold; /* re-partition when max/mean work exceeds this (0: never) */
@@ -35,8 +42,11 @@ struct pf_sim {
   /* time */
   double t, dt, final_time;
   long step, nsteps;
+  int adaptive;         /* dt follows the FE stable step each step */
+  double safety;        /* fraction of the stable step */
+  double pd_stable;     /* the PD bodies' stable step (fixed) */
   /* energy bookkeeping */
-  double contact_energy, external_work;
+  double contact_energy, external_work, wall_loss;
   double e0;   /* total energy at the start of the run (kept across restarts) */
   int have_e0;
   /* checkpoints */

@@ -6,11 +6,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { G_KE, G_EL, G_CONTACT, G_WEXT, G_EERR, G_PX, G_PY, G_PZ, G_DAMAGE, G_FIXED };
+enum { G_KE, G_EL, G_CONTACT, G_WEXT, G_EERR, G_PX, G_PY, G_PZ, G_DAMAGE,
+       G_FEINT, G_HG, G_BV, G_WALL, G_FIXED };
 static const char *const fixed_names[G_FIXED] = {
     "kinetic_energy", "elastic_energy", "contact_energy", "external_work", "energy_error",
-    "momentum_x",     "momentum_y",     "momentum_z",     "damage_fraction"};
-static const char *const fixed_units[G_FIXED] = {"J", "J", "J", "J", "J", "kg m/s", "kg m/s", "kg m/s", ""};
+    "momentum_x",     "momentum_y",     "momentum_z",     "damage_fraction",
+    "fe_internal_energy", "hourglass_energy", "bulk_viscosity_work", "wall_dissipation"};
+static const char *const fixed_units[G_FIXED] = {"J", "J", "J", "J", "J", "kg m/s", "kg m/s", "kg m/s", "",
+                                                 "J", "J", "J", "J"};
 
 typedef struct {
   int n;
@@ -21,7 +24,7 @@ typedef struct {
 } globals;
 
 static int globals_init(const pf_sim *sim, globals *g) {
-  g->n = G_FIXED + 3 * sim->nindenters;
+  g->n = G_FIXED + 3 * sim->nindenters + 3 * sim->nwalls;
   PF_MALLOC(g->names, g->n + 2);
   PF_MALLOC(g->units, g->n + 2);
   PF_MALLOC(g->values, g->n + 2);
@@ -35,6 +38,14 @@ static int globals_init(const pf_sim *sim, globals *g) {
       snprintf(buf, sizeof buf, "%s_force_%c", pf_indenter_name(sim->indenters[k]), 'x' + a);
       g->names[2 + G_FIXED + 3 * k + a] = strdup(buf);
       g->units[2 + G_FIXED + 3 * k + a] = "N";
+    }
+  for (int k = 0; k < sim->nwalls; k++)
+    for (int a = 0; a < 3; a++) {
+      char buf[128];
+      int j = 2 + G_FIXED + 3 * sim->nindenters + 3 * k + a;
+      snprintf(buf, sizeof buf, "%s_force_%c", pf_wall_name(sim->walls[k]), 'x' + a);
+      g->names[j] = strdup(buf);
+      g->units[j] = "N";
     }
   for (int k = 0; k < g->n + 2; k++) PF_CHECK(g->names[k], PF_ERR_MEMORY, "out of memory");
   return 0;
@@ -51,7 +62,8 @@ static void globals_free(globals *g) {
 static int globals_eval(pf_sim *sim, globals *g, int first) {
   pf_sim_globals s;
   PF_CALL(pf_sim_globals_get(sim, &s));
-  double total = s.kinetic_centred + s.elastic + s.contact - s.external_work;
+  double total = s.kinetic_centred + s.elastic + s.contact - s.external_work + s.fe_internal + s.hourglass +
+                 s.bulk_viscosity + s.wall_loss;
   if (first && !sim->have_e0) sim->e0 = total, sim->have_e0 = 1;
   g->e0 = sim->e0;
   double *v = g->values + 2;
@@ -61,8 +73,11 @@ static int globals_eval(pf_sim *sim, globals *g, int first) {
   v[G_EERR] = total - g->e0;
   for (int a = 0; a < 3; a++) v[G_PX + a] = s.momentum[a];
   v[G_DAMAGE] = s.damage_fraction;
+  v[G_FEINT] = s.fe_internal, v[G_HG] = s.hourglass, v[G_BV] = s.bulk_viscosity, v[G_WALL] = s.wall_loss;
   for (int k = 0; k < sim->nindenters; k++)
     for (int a = 0; a < 3; a++) v[G_FIXED + 3 * k + a] = sim->reaction[k][a];
+  for (int k = 0; k < sim->nwalls; k++)
+    for (int a = 0; a < 3; a++) v[G_FIXED + 3 * sim->nindenters + 3 * k + a] = sim->wall_reaction[k][a];
   return 0;
 }
 
@@ -87,7 +102,29 @@ static int open_exodus(pf_sim *sim, globals *g) {
   pf_int start[PF_MAX_BODIES + 1] = {0};
   for (pf_int i = 0; i < sim->joined->n_owned; i++) start[sim->joined->body[i] + 1]++;
   for (int b = 0; b < sim->nbodies; b++) start[b + 1] += start[b];
-  return pf_exodus_create(sim->exodus_path, sim->joined, sim->nbodies, sim->body_name, start, g->n, names, &sim->exo);
+  /* FE bodies: HEX8 blocks; the joined view is in global-id order, so node k of body b's mesh
+   * is point gid0[b] + k of the file */
+  pf_exodus_hexes hex[PF_MAX_BODIES];
+  pf_int *conn[PF_MAX_BODIES] = {NULL};
+  int64_t next_id = sim->pts->n_global;
+  int ierr = 0;
+  for (int b = 0; b < sim->nbodies; b++) {
+    hex[b] = (pf_exodus_hexes){0, NULL, 0};
+    if (!sim->fem[b] || ierr) continue;
+    const pf_fem_mesh *m = pf_fem_body_mesh(sim->fem[b]);
+    if (!(conn[b] = malloc(sizeof(pf_int) * 8 * ((size_t)m->nelem + 1)))) {
+      ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+      break;
+    }
+    for (size_t k = 0; k < 8 * (size_t)m->nelem; k++) conn[b][k] = (pf_int)(sim->gid0[b] + m->conn[k]);
+    hex[b] = (pf_exodus_hexes){m->nelem, conn[b], next_id};
+    next_id += m->nelem;
+  }
+  if (!ierr)
+    ierr = pf_exodus_create_mixed(sim->exodus_path, sim->joined, sim->nbodies, sim->body_name, start, hex, g->n,
+                                  names, &sim->exo);
+  for (int b = 0; b < sim->nbodies; b++) free(conn[b]);
+  return ierr;
 }
 
 static int open_output(pf_sim *sim, globals *g) {
@@ -98,6 +135,8 @@ static int open_output(pf_sim *sim, globals *g) {
 }
 
 static int write_exodus(pf_sim *sim, const double *values) {
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->fem[b]) PF_CALL(pf_fem_body_output_fields(sim->fem[b], sim->pts));
   if (spread(sim)) return pf_exodus_write(sim->exo, sim->t, sim->pts, values);
   PF_CALL(pf_points_gather(sim->pts, &sim->joined));
   return sim->joined ? pf_exodus_write(sim->exo, sim->t, sim->joined, values) : 0;
@@ -112,20 +151,34 @@ static int write_output(pf_sim *sim, globals *g, int exodus, int history) {
 
 static void progress(const pf_sim *sim, double wall0) {
   double el = pf_wtime() - wall0, rate = sim->step / fmax(el, 1e-9);
+  if (sim->adaptive && isfinite(sim->final_time)) { /* the step count is not known ahead */
+    double frac = sim->t / sim->final_time;
+    pf_log("step %ld  t = %.4e s (%.0f %%)  dt = %.3e s  %.1f steps/s  about %.0f s left\n", sim->step, sim->t,
+           100 * frac, sim->dt, rate, el * (1 - frac) / fmax(frac, 1e-9));
+    return;
+  }
   pf_log("step %ld/%ld  t = %.4e s  %.1f steps/s  about %.0f s left\n", sim->step, sim->nsteps,
          sim->t, rate, (sim->nsteps - sim->step) / fmax(rate, 1e-9));
 }
 
 static void summary(const pf_sim *sim, const globals *g, double wall) {
   double nb = 0;
-  for (int b = 0; b < sim->nbodies; b++) nb += (double)pf_pd_body_nbonds(sim->body[b]);
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->body[b]) nb += (double)pf_pd_body_nbonds(sim->body[b]);
   nb = pf_sum_all(nb);
   const double *v = g->values + 2;
-  double scale = fmax(fabs(g->e0), fmax(fabs(v[G_WEXT]), v[G_KE] + v[G_EL] + v[G_CONTACT]));
+  double scale = fmax(fabs(g->e0), fmax(fabs(v[G_WEXT]), v[G_KE] + v[G_EL] + v[G_CONTACT] + fabs(v[G_FEINT])));
   pf_log("perifem: %ld steps of %.4e s to t = %.4e s in %.2f s (time loop %.2f s)\n", sim->step,
          sim->dt, sim->t, wall, sim->wall_loop);
   pf_log("  points %" PF_GID_FMT ", directed bonds %.0f, bond evaluations per second %.4g\n",
          sim->pts->n_global, nb, sim->wall_loop > 0 ? nb * sim->step / sim->wall_loop : 0.0);
+  double nel = 0;
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->fem[b]) nel += pf_fem_body_mesh(sim->fem[b])->nelem;
+  if (nel > 0)
+    pf_log("  elements %.0f, element cycles per second %.4g, hourglass energy %.3g J (%.3g of the internal)\n",
+           nel, sim->wall_loop > 0 ? nel * sim->step / sim->wall_loop : 0.0, v[G_HG],
+           v[G_FEINT] != 0 ? v[G_HG] / v[G_FEINT] : 0.0);
   pf_log("  final damage fraction %.6g, energy balance error %.3g (relative %.3g)\n", v[G_DAMAGE],
          v[G_EERR], scale > 0 ? fabs(v[G_EERR]) / scale : 0.0);
   if (!sim->opt.no_output)
@@ -145,12 +198,12 @@ static int checkpoints(pf_sim *sim, int *stop) {
 }
 
 static int run_loop(pf_sim *sim, globals *g, double wall0) {
-  long every = sim->nsteps / 20 > 0 ? sim->nsteps / 20 : 1;
+  long every = sim->nsteps / 20 > 0 ? sim->nsteps / 20 : 1; /* adaptive steps: a first estimate */
   double loop0 = pf_wtime();
-  while (sim->step < sim->nsteps && !sim->stopped) {
+  while (!pf_sim_finished(sim) && !sim->stopped) {
     PF_CALL(pf_sim_step(sim, 1));
     PF_CALL(checkpoints(sim, &sim->stopped));
-    int last = sim->step == sim->nsteps || sim->stopped;
+    int last = pf_sim_finished(sim) || sim->stopped;
     int exo = last || (sim->output_interval > 0 && sim->step % sim->output_interval == 0);
     int his = last || sim->step % sim->history_interval == 0;
     if (exo || his) {

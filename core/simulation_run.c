@@ -12,13 +12,18 @@
 int pf_sim_setup_time(pf_sim *sim) {
   const pf_deck *d = sim->deck;
   const pf_node *tm = pf_node_get(pf_deck_root(d), "time");
-  double safety = 0.8, stable = INFINITY;
+  double safety = 0.8, stable = INFINITY, fe = INFINITY;
   PF_CALL(pf_deck_real(d, tm, "safety_factor", &safety));
   if (!(safety > 0 && safety <= 1))
     return pf_deck_error(d, pf_node_get(tm, "safety_factor"), "safety_factor", "must be in (0, 1] (got %g)", safety);
-  for (int b = 0; b < sim->nbodies; b++) stable = fmin(stable, pf_pd_body_stable_dt(sim->body[b], sim->pts));
-  stable = pf_min_all(stable);
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->body[b]) stable = fmin(stable, pf_pd_body_stable_dt(sim->body[b], sim->pts));
+    else fe = fmin(fe, pf_fem_body_stable_dt(sim->fem[b]));
+  sim->pd_stable = pf_min_all(stable);
+  stable = fmin(sim->pd_stable, pf_min_all(fe));
+  sim->safety = safety;
   sim->dt = safety * stable;
+  sim->adaptive = sim->nfem > 0 && !pf_node_get(tm, "dt"); /* FE elements change their stable step */
   if (pf_node_get(tm, "dt")) {
     PF_CALL(pf_deck_real(d, tm, "dt", &sim->dt));
     if (!(sim->dt > 0)) return pf_deck_error(d, pf_node_get(tm, "dt"), "dt", "must be positive (got %g)", sim->dt);
@@ -37,7 +42,26 @@ int pf_sim_setup_time(pf_sim *sim) {
       return pf_deck_error(d, pf_node_get(tm, "final_time"), "final_time", "must not be negative");
     sim->nsteps = (long)ceil(sim->final_time / sim->dt - 1e-9);
   }
+  if (hs) sim->final_time = INFINITY; /* a step count: adaptive steps end by count */
   return 0;
+}
+
+/* The step to take next: with FE bodies, the safety factor times the smaller of the PD step
+ * and the elements' current stable step (bulk viscosity included). The run ends with the first
+ * step that reaches final_time (as with a fixed step: the last step is not cut short, which
+ * would change the step abruptly). The minimum over ranks keeps every rank on the same step.
+ * Collective. */
+static void next_dt(pf_sim *sim) {
+  if (!sim->adaptive) return;
+  double fe = INFINITY;
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->fem[b]) fe = fmin(fe, pf_fem_body_stable_dt(sim->fem[b]));
+  sim->dt = sim->safety * fmin(sim->pd_stable, pf_min_all(fe));
+}
+
+int pf_sim_finished(const pf_sim *sim) {
+  if (sim->adaptive && isfinite(sim->final_time)) return sim->t >= sim->final_time * (1 - 1e-12);
+  return sim->step >= sim->nsteps;
 }
 
 void pf_sim_output_name(const pf_sim *sim, const char *given, const char *ext, char *out, size_t len) {
@@ -103,39 +127,48 @@ static int check_finite(const pf_sim *sim) {
   return 0;
 }
 
-static int compute_forces(pf_sim *sim) {
+/* Forces at the current positions; dt is the step just taken (0 for the initial forces: no
+ * time has passed, so the element stresses must not advance). */
+static int compute_forces(pf_sim *sim, double dt) {
   pf_points *p = sim->pts;
   PF_CALL(pf_points_exchange_positions(p)); /* the ghosts' u and y */
+  if (sim->nfem) PF_CALL(pf_points_exchange(p, p->v, 3)); /* element rates of deformation */
   memset(p->f, 0, sizeof(double) * 3 * (size_t)p->n_owned);
-  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_pd_body_force(sim->body[b], p));
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->body[b]) PF_CALL(pf_pd_body_force(sim->body[b], p));
+    else PF_CALL(pf_fem_body_force(sim->fem[b], p, dt, sim->t, sim->step));
   sim->contact_energy = 0;
   for (int k = 0; k < sim->nindenters; k++) {
     double U;
     PF_CALL(pf_indenter_force(sim->indenters[k], p, sim->reaction[k], &U));
     sim->contact_energy += U;
   }
+  for (int k = 0; k < sim->nwalls; k++) pf_wall_enforce_force(sim->walls[k], p, sim->wall_reaction[k]);
   return 0;
 }
 
 static int one_step(pf_sim *sim) {
   pf_points *p = sim->pts;
+  next_dt(sim);
   const double dt = sim->dt;
   half_kick(p, dt);
   for (int k = 0; k < sim->nbcs; k++) pf_bc_apply_midstep(sim->bcs[k], p, sim->t, dt);
   drift(p, dt);
+  for (int k = 0; k < sim->nwalls; k++) pf_wall_enforce_position(sim->walls[k], p, &sim->wall_loss);
   for (int k = 0; k < sim->nindenters; k++)
     pf_indenter_advance(sim->indenters[k], sim->t, dt, sim->reaction[k], &sim->external_work);
   sim->t += dt;
   sim->step++;
-  PF_CALL(compute_forces(sim));
+  PF_CALL(compute_forces(sim, dt));
   half_kick(p, dt);
   for (int k = 0; k < sim->nbcs; k++) pf_bc_apply_endstep(sim->bcs[k], p, sim->t);
-  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_pd_body_post_step(sim->body[b], p));
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->body[b]) PF_CALL(pf_pd_body_post_step(sim->body[b], p));
   return check_finite(sim);
 }
 
 int pf_sim_step(pf_sim *sim, long n) {
-  if (sim->step == 0 && sim->t == 0) PF_CALL(compute_forces(sim));
+  if (sim->step == 0 && sim->t == 0) PF_CALL(compute_forces(sim, 0.0));
   for (long s = 0; s < n; s++) PF_CALL(one_step(sim));
   return 0;
 }
@@ -143,16 +176,28 @@ int pf_sim_step(pf_sim *sim, long n) {
 int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g) {
   memset(g, 0, sizeof *g);
   const pf_points *p = sim->pts;
+  /* a prescribed component's force is a reaction, not an acceleration: it does not enter the
+   * centred kinetic energy */
+  uint8_t *fixed = calloc(3 * (size_t)p->n_owned + 1, 1);
+  PF_CHECK(fixed, PF_ERR_MEMORY, "out of memory");
+  for (int k = 0; k < sim->nbcs; k++) pf_bc_mark(sim->bcs[k], fixed);
   double ke = 0, kc = 0, mom[3] = {0, 0, 0}, h = 0.5 * sim->dt;
   for (pf_int i = 0; i < p->n_owned; i++)
     for (int a = 0; a < 3; a++) {
-      double v = p->v[3 * i + a], acc = p->f[3 * i + a] / p->m[i];
+      double v = p->v[3 * i + a], acc = fixed[3 * i + a] ? 0 : p->f[3 * i + a] / p->m[i];
       ke += 0.5 * p->m[i] * v * v;
       kc += 0.5 * p->m[i] * (v * v - h * h * acc * acc);
       mom[a] += p->m[i] * v;
     }
-  double el = 0, nb = 0, nbroken = 0;
+  free(fixed);
+  double el = 0, nb = 0, nbroken = 0, fe[3] = {0, 0, 0};
   for (int b = 0; b < sim->nbodies; b++) {
+    if (sim->fem[b]) {
+      double e[3];
+      pf_fem_body_energies(sim->fem[b], e);
+      for (int c = 0; c < 3; c++) fe[c] += e[c];
+      continue;
+    }
     el += pf_pd_body_energy(sim->body[b], sim->pts);
     nbroken += (double)pf_pd_body_damage(sim->body[b], sim->pts);
     nb += (double)pf_pd_body_nbonds(sim->body[b]);
@@ -161,6 +206,10 @@ int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g) {
   g->kinetic = pf_sum_all(ke);
   g->kinetic_centred = pf_sum_all(kc);
   g->elastic = pf_sum_all(el);
+  g->fe_internal = pf_sum_all(fe[0]);
+  g->hourglass = pf_sum_all(fe[1]);
+  g->bulk_viscosity = pf_sum_all(fe[2]);
+  g->wall_loss = pf_sum_all(sim->wall_loss);
   g->contact = sim->contact_energy;
   g->external_work = sim->external_work;
   for (int a = 0; a < 3; a++) g->momentum[a] = pf_sum_all(mom[a]);

@@ -52,19 +52,31 @@ double pf_pd_pmb_critical_stretch(double G0, double K, double delta) {
   return sqrt(5.0 * G0 / (9.0 * K * delta));
 }
 
+int pf_pd_material_known(const char *model) {
+  for (int k = 0; k < NMATERIALS; k++)
+    if (!strcmp(material_list[k]->name, model)) return 1;
+  return 0;
+}
+
+const char *pf_pd_material_names(void) {
+  static char known[256];
+  known[0] = '\0';
+  for (int k = 0; k < NMATERIALS; k++) {
+    strcat(known, k ? ", " : "");
+    strcat(known, material_list[k]->name);
+  }
+  return known;
+}
+
 static int find_material(const pf_deck *d, const pf_node *mat, const char *model,
                          const pf_pd_material_ops **ops) {
-  char known[256] = "";
-  for (int k = 0; k < NMATERIALS; k++) {
+  for (int k = 0; k < NMATERIALS; k++)
     if (!strcmp(material_list[k]->name, model)) {
       *ops = material_list[k];
       return 0;
     }
-    strcat(known, k ? ", " : "");
-    strcat(known, material_list[k]->name);
-  }
   return pf_deck_error(d, pf_node_get(mat, "model"), "model",
-                       "unknown peridynamic material '%s' (known: %s)", model, known);
+                       "'%s' is not a peridynamic material (known: %s)", model, pf_pd_material_names());
 }
 
 static int read_cracks(const pf_deck *d, const pf_node *list, int *n, pf_precrack **out) {

@@ -78,6 +78,9 @@ double pf_pd_pmb_critical_stretch(double G0, double bulk_modulus, double delta);
 extern const pf_key pf_pd_body_keys[];
 extern const pf_key pf_pd_material_keys[];
 extern const pf_key pf_pd_damage_keys[];
+/* 1 when model names a peridynamic material; the known names, comma separated. */
+int pf_pd_material_known(const char *model);
+const char *pf_pd_material_names(void);
 int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *materials,
                       pf_pd_body **b);
 /* Append to rows the bonds of store points [first, first+n), points of this body, found in

@@ -11,7 +11,7 @@ PACKAGES=(build-essential cmake pkg-config
   libopenmpi-dev openmpi-bin
   libtrilinos-zoltan-dev libmetis-dev
   libexodusii-dev libnetcdf-mpi-dev libhdf5-openmpi-dev
-  libgmsh-dev libyaml-dev libmuparser-dev
+  libgmsh-dev libtrilinos-pamgen-dev libyaml-dev libmuparser-dev calculix-ccx
   python3 python3-numpy python3-h5py python3-netcdf4 netcdf-bin)
 
 missing=()

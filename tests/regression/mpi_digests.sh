@@ -15,6 +15,7 @@ declare -A reduce=(
   [disk_impact_rigid]='s/radius: 0.037/radius: 0.012/; s/^(\s*)final_time:.*/\1steps: 150/'
   [fragmenting_cylinder]='s/height: 0.100/height: 0.024/; s/^(\s*)final_time:.*/\1steps: 40/; s/interval: 250/interval: 10/'
   [wave_in_bar]='s/^(\s*)final_time:.*/\1steps: 60/'
+  [taylor_impact]='s/^(\s*)final_time:.*/\1steps: 120/; s#\.\./meshes/#'"$OLDPWD"'/../meshes/#'
 )
 for name in "${!reduce[@]}"; do sed -E "${reduce[$name]}" "$OLDPWD/../inputs/$name.yaml" > "$name.yaml"; done
 # variants of the reduced cylinder
@@ -31,7 +32,41 @@ bodies:
 time: {steps: 20}
 DECK
 
-for deck in disk_impact_rigid fragmenting_cylinder wave_in_bar cylinder_lps_metis cylinder_rebalance wave_spread two_points; do
+# a peridynamic plate beside a finite-element (B-bar, neo-Hookean) bar on a Pamgen mesh, with a
+# rigid wall: both kinds in one run and one Exodus file
+cat > mixed.yaml <<'DECK'
+materials:
+  glass: {model: pmb, density: 2200, bulk_modulus: 14.9e9}
+  rubber: {model: neo_hookean, density: 1100, youngs_modulus: 0.1e9, poissons_ratio: 0.45}
+bodies:
+  - {name: plate, material: glass, horizon: 0.0015001, initial_velocity: ["0", "0", "-20 * z / 0.0025"],
+     geometry: {shape: box, lo: [0, 0, 0], hi: [0.006, 0.006, 0.0015], spacing: 0.0005}}
+  - name: bar
+    type: finite_element
+    material: rubber
+    element: bbar
+    initial_velocity: ["0", "0", "-50"]
+    mesh:
+      pamgen: |
+        mesh
+          rectilinear
+            nx = 3
+            ny = 3
+            nz = 8
+            bx = 1
+            by = 1
+            bz = 1
+            gmin = 0.0 0.0 0.004
+            gmax = 0.003 0.003 0.012
+          end
+        end
+walls:
+  - {name: floor, point: [0, 0, 0.0038], normal: [0, 0, 1], bodies: [bar]}
+time: {steps: 80}
+output: {interval: 20}
+DECK
+
+for deck in disk_impact_rigid fragmenting_cylinder wave_in_bar cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed; do
   ref=""
   for np in 1 2 3; do
     mkdir -p "np$np"
@@ -46,6 +81,10 @@ for deck in disk_impact_rigid fragmenting_cylinder wave_in_bar cylinder_lps_meti
   done
   echo "$deck: $ref" >> digests.txt
 done
+
+# the mixed deck's Exodus file holds a SPHERE block and a HEX8 block
+ncdump -h np3/mixed.e | grep -q SPHERE && ncdump -h np3/mixed.e | grep -q HEX8 ||
+  { echo "mixed.e: expected a SPHERE and a HEX8 block"; fail=1; }
 
 # spread files (3 ranks) against the joined file (1 rank)
 $PY - np1/wave_spread.e np3/wave_spread.e.3.0 np3/wave_spread.e.3.1 np3/wave_spread.e.3.2 <<'PY' || fail=1

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every shipped deck, cut to a few steps, runs to the end: exit 0, a state digest, an Exodus
-# file with one SPHERE block per body that ncdump reads, a history file; and a second run gives
-# the same digest (determinism).
+# file that ncdump reads with a SPHERE block for a peridynamic body and a HEX8 block for a
+# finite-element body, a history file; and a second run gives the same digest (determinism).
 # usage: run_examples.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
@@ -10,7 +10,8 @@ for deck in ../inputs/*.yaml; do
   name=$(basename "$deck" .yaml)
   short="$scratch/$name.yaml"
   # keep the deck, replace the run length by 5 steps
-  sed -E 's/^(\s*)final_time:.*/\1steps: 5/' "$deck" > "$short"
+  # and point the decks' relative mesh paths at the source tree's meshes/
+  sed -E 's/^(\s*)final_time:.*/\1steps: 5/; s#\.\./meshes/#'"$PWD"'/../meshes/#' "$deck" > "$short"
   for run in 1 2; do
     out=$(cd "$scratch" && "$exe" "$name.yaml" 2>&1) || { echo "$name: exit $?: $out"; fail=1; continue; }
     digest[$run]=$(echo "$out" | sed -n 's/^state digest: //p')
@@ -20,7 +21,12 @@ for deck in ../inputs/*.yaml; do
   exo=$(ls "$scratch"/*.e 2>/dev/null | grep -F "$(grep -E '^\s*file:' "$short" | sed -E 's/.*file:\s*//' | head -1)" | head -1)
   [ -n "$exo" ] || exo="$scratch/$name.e"
   ncdump -h "$exo" > "$scratch/$name.cdl" 2>&1 || { echo "$name: ncdump cannot read $exo"; fail=1; continue; }
-  grep -q '"SPHERE"\|SPHERE' "$scratch/$name.cdl" || { echo "$name: no SPHERE block in $exo"; fail=1; }
+  if grep -q "type: peridynamic\|horizon:" "$short"; then
+    grep -q 'SPHERE' "$scratch/$name.cdl" || { echo "$name: no SPHERE block in $exo"; fail=1; }
+  fi
+  if grep -q "type: finite_element" "$short"; then
+    grep -q 'HEX8' "$scratch/$name.cdl" || { echo "$name: no HEX8 block in $exo"; fail=1; }
+  fi
   grep -q "num_nod_var" "$scratch/$name.cdl" || { echo "$name: no nodal variables in $exo"; fail=1; }
   ls "$scratch"/*.h5 > /dev/null 2>&1 || { echo "$name: no history file"; fail=1; }
   rm -f "$scratch"/*.e "$scratch"/*.h5

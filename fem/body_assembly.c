@@ -1,0 +1,194 @@
+/* An FE body on this rank: its local elements, the node -> element lists of its owned nodes,
+ * lumped masses, the force assembly, and the nodal output fields. */
+#include "fem/fem_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Store index of every mesh node present on this rank (owned or ghost), -1 elsewhere. */
+static int local_index(const pf_fem_body *b, int body, const pf_points *pts, pf_int first, pf_int n, pf_gid gid0,
+                       pf_int **loc) {
+  PF_MALLOC(*loc, b->mesh.nnodes);
+  for (pf_int k = 0; k < b->mesh.nnodes; k++) (*loc)[k] = -1;
+  for (pf_int i = first; i < first + n; i++) (*loc)[pts->gid[i] - gid0] = i;
+  for (pf_int i = pts->n_owned; i < pts->n_total; i++)
+    if (pts->body[i] == body) (*loc)[pts->gid[i] - gid0] = i;
+  return 0;
+}
+
+/* Elements with at least one owned node, ascending; their connectivity in store indices. */
+static int local_elements(pf_fem_body *b, const pf_points *pts, pf_int first, pf_int n, const pf_int *loc) {
+  const pf_fem_mesh *m = &b->mesh;
+  uint8_t *mark = NULL;
+  PF_MALLOC(mark, m->nelem);
+  for (pf_int e = 0; e < m->nelem; e++)
+    for (int I = 0; I < 8; I++) {
+      pf_int i = loc[m->conn[8 * (size_t)e + I]];
+      if (i >= first && i < first + n) mark[e] = 1;
+    }
+  b->nel = 0;
+  for (pf_int e = 0; e < m->nelem; e++) b->nel += mark[e];
+  free(b->eid), free(b->conn), free(b->own);
+  b->eid = malloc(sizeof(pf_int) * ((size_t)b->nel + 1));
+  b->conn = malloc(sizeof(pf_int) * (8 * (size_t)b->nel + 1));
+  b->own = malloc((size_t)b->nel + 1);
+  PF_CHECK(b->eid && b->conn && b->own, PF_ERR_MEMORY, "out of memory for %" PF_INT_FMT " elements", b->nel);
+  pf_int k = 0;
+  for (pf_int e = 0; e < m->nelem; e++) {
+    if (!mark[e]) continue;
+    b->eid[k] = e;
+    for (int I = 0; I < 8; I++) {
+      pf_int i = loc[m->conn[8 * (size_t)e + I]];
+      if (i < 0) free(mark);
+      PF_CHECK(i >= 0, PF_ERR_RUN, "body '%s': node %" PF_INT_FMT " of element %" PF_INT_FMT " is not on this rank",
+               b->name, m->conn[8 * (size_t)e + I] + 1, e + 1);
+      b->conn[8 * (size_t)k + I] = i;
+    }
+    b->own[k] = b->conn[8 * (size_t)k] < pts->n_owned;
+    k++;
+  }
+  free(mark);
+  return 0;
+}
+
+/* For each owned node, its (element, corner) pairs in ascending element order. */
+static int node_lists(pf_fem_body *b) {
+  free(b->node_off), free(b->node_item);
+  PF_MALLOC(b->node_off, b->n + 1);
+  PF_MALLOC(b->node_item, 8 * (size_t)b->nel);
+  for (pf_int e = 0; e < b->nel; e++)
+    for (int I = 0; I < 8; I++) {
+      pf_int i = b->conn[8 * (size_t)e + I] - b->first;
+      if (i >= 0 && i < b->n) b->node_off[i + 1]++;
+    }
+  for (pf_int i = 0; i < b->n; i++) b->node_off[i + 1] += b->node_off[i];
+  int64_t *fill = malloc(sizeof(int64_t) * ((size_t)b->n + 1));
+  PF_CHECK(fill, PF_ERR_MEMORY, "out of memory");
+  memcpy(fill, b->node_off, sizeof(int64_t) * ((size_t)b->n + 1));
+  for (pf_int e = 0; e < b->nel; e++)
+    for (int I = 0; I < 8; I++) {
+      pf_int i = b->conn[8 * (size_t)e + I] - b->first;
+      if (i >= 0 && i < b->n) b->node_item[fill[i]++] = 8 * e + I;
+    }
+  free(fill);
+  return 0;
+}
+
+static void element_reference(const pf_fem_body *b, const pf_points *p, pf_int e, double x[8][3]) {
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) x[I][i] = p->X[3 * (size_t)b->conn[8 * (size_t)e + I] + i];
+}
+
+/* Lumped masses m_I = sum_e rho int N_I dV, each node summing its elements in order. */
+static void lumped_masses(const pf_fem_body *b, pf_points *p) {
+  for (pf_int i = 0; i < b->n; i++) {
+    double m = 0;
+    for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
+      pf_int e = b->node_item[q] / 8, I = b->node_item[q] % 8;
+      double x[8][3], w[8];
+      element_reference(b, p, e, x);
+      pf_hex8_lumped_mass(x, b->rho, w);
+      m += w[I];
+    }
+    p->m[b->first + i] = m;
+  }
+}
+
+static double reference_stable_dt(const pf_fem_body *b, const pf_points *p) {
+  double c = sqrt((b->K + 4.0 * b->G / 3.0) / b->rho), dt = INFINITY;
+  for (pf_int e = 0; e < b->nel; e++) {
+    double x[8][3], B[8][3];
+    element_reference(b, p, e, x);
+    dt = fmin(dt, pf_hex8_char_length(x, pf_hex8_mean_gradient(x, B)) / c);
+  }
+  return dt;
+}
+
+static int register_fields(const pf_fem_body *b, pf_points *pts) {
+  int idx;
+  PF_CALL(pf_points_field_register(pts, "stress", 6, PF_FIELD_OUTPUT, &idx));
+  for (int k = 0; k < b->nstate; k++)
+    PF_CALL(pf_points_field_register(pts, pf_fem_material_state_name(b->mat, k), 1, PF_FIELD_OUTPUT, &idx));
+  return 0;
+}
+
+int pf_fem_body_attach(pf_fem_body *b, int body, pf_points *pts, pf_int first, pf_int n, pf_gid gid0) {
+  pf_int *loc = NULL;
+  b->first = first, b->n = n, b->gid0 = gid0;
+  PF_CALL(local_index(b, body, pts, first, n, gid0, &loc));
+  int ierr = local_elements(b, pts, first, n, loc);
+  free(loc);
+  if (ierr) return ierr;
+  PF_CALL(node_lists(b));
+  lumped_masses(b, pts);
+  size_t nq = (size_t)b->nqp * b->nel;
+  free(b->sigma), free(b->state), free(b->hgq), free(b->fe), free(b->energy), free(b->buf), free(b->ref);
+  PF_MALLOC(b->ref, 25 * (size_t)b->nel);
+  for (pf_int e = 0; e < b->nel; e++) {
+    double x[8][3];
+    element_reference(b, pts, e, x);
+    b->ref[25 * (size_t)e + 24] = pf_hex8_mean_gradient(x, (double(*)[3]) & b->ref[25 * (size_t)e]);
+  }
+  PF_MALLOC(b->sigma, 6 * nq);
+  PF_MALLOC(b->state, (size_t)b->nstate * nq);
+  PF_MALLOC(b->hgq, 12 * (size_t)b->nel);
+  PF_MALLOC(b->fe, 24 * (size_t)b->nel);
+  PF_MALLOC(b->energy, 3 * (size_t)b->nel);
+  PF_MALLOC(b->buf, pf_fem_chunk_doubles(b->nqp, b->nstate));
+  pf_fem_material_init(b->mat, (pf_int)nq, b->state);
+  b->stable_dt = reference_stable_dt(b, pts);
+  return register_fields(b, pts);
+}
+
+int pf_fem_body_force(pf_fem_body *b, pf_points *pts, double dt, double t, long step) {
+  b->t = t, b->step = step;
+  PF_CALL(pf_fem_elements_evaluate(b, pts, dt));
+  for (pf_int i = 0; i < b->n; i++) {
+    double f[3] = {0, 0, 0};
+    for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
+      const double *fe = &b->fe[3 * (size_t)b->node_item[q]];
+      f[0] += fe[0], f[1] += fe[1], f[2] += fe[2];
+    }
+    for (int a = 0; a < 3; a++) pts->f[3 * (size_t)(b->first + i) + a] += f[a];
+  }
+  return 0;
+}
+
+double pf_fem_body_stable_dt(const pf_fem_body *b) { return b->stable_dt; }
+
+void pf_fem_body_energies(const pf_fem_body *b, double e[3]) {
+  e[0] = e[1] = e[2] = 0;
+  for (pf_int k = 0; k < b->nel; k++)
+    if (b->own[k])
+      for (int c = 0; c < 3; c++) e[c] += b->energy[3 * (size_t)k + c];
+}
+
+const pf_fem_mesh *pf_fem_body_mesh(const pf_fem_body *b) { return &b->mesh; }
+
+int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts) {
+  double *stress = pf_points_field_get(pts, "stress");
+  PF_CHECK(stress, PF_ERR_RUN, "body '%s': no stress field", b->name);
+  double *st[16];
+  for (int k = 0; k < b->nstate && k < 16; k++) st[k] = pf_points_field_get(pts, pf_fem_material_state_name(b->mat, k));
+  const int nq = b->nqp;
+  for (pf_int i = 0; i < b->n; i++) {
+    double w = 0, s[6] = {0}, h[16] = {0};
+    for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
+      pf_int e = b->node_item[q] / 8;
+      double x[8][3], B[8][3];
+      for (int I = 0; I < 8; I++)
+        for (int a = 0; a < 3; a++) x[I][a] = pts->y[3 * (size_t)b->conn[8 * (size_t)e + I] + a];
+      double V = pf_hex8_mean_gradient(x, B) / nq;
+      for (int g = 0; g < nq; g++) {
+        for (int c = 0; c < 6; c++) s[c] += V * b->sigma[6 * ((size_t)nq * e + g) + c];
+        for (int k = 0; k < b->nstate && k < 16; k++) h[k] += V * b->state[(size_t)b->nstate * (nq * (size_t)e + g) + k];
+        w += V;
+      }
+    }
+    pf_int p = b->first + i;
+    for (int c = 0; c < 6; c++) stress[6 * (size_t)p + c] = w > 0 ? s[c] / w : 0;
+    for (int k = 0; k < b->nstate && k < 16; k++) st[k][p] = w > 0 ? h[k] / w : 0;
+  }
+  return 0;
+}

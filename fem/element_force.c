@@ -1,0 +1,262 @@
+/* Internal forces of 8-node hexahedra, updated Lagrangian, explicit (DESIGN.md 3).
+ *
+ * Kinematics at mid-step (Belytschko, Liu & Moran 2000, Box 6.1): the velocity gradient
+ * L = sum_I v_I (x) dN_I/dx on the mid-step configuration x_{n+1/2} = x_{n+1} - dt/2 v_{n+1/2},
+ * D = sym L, W = skew L. On that configuration a rigid rotation gives an exactly skew L (a Cayley
+ * transform of the rotation), so D = 0 to round-off.
+ * Objective rate: the previous stress is rotated by the Hughes & Winget (1980) increment
+ * R = (I - dt W/2)^-1 (I + dt W/2), sigma* = R sigma R^T (the Jaumann rate, integrated so that a
+ * rigid rotation leaves the stress invariants exact). The material then adds the constitutive
+ * increment (hypoelastic models) or evaluates sigma(F) (hyperelastic models), batched over a
+ * chunk of elements.
+ * Integration: one point with the Flanagan & Belytschko (1981) mean gradient B and hourglass
+ * control, f_iI = -V (sigma_ij - q delta_ij) B_jI - hourglass; or the selective-reduced B-bar
+ * option (Hughes 1980): 2x2x2 Gauss with the dilatational part of each point's gradient
+ * replaced by the element mean,
+ *   f_iI = -sum_g V_g [sigma_ij dN_I/dx_j + tr(sigma)/3 (B_iI - dN_I/dx_i)].
+ * Bulk viscosity (von Neumann & Richtmyer 1950; Wilkins 1980; LS-DYNA Theory Manual eq. 18.4):
+ * q = rho l (C_q l tr D^2 - C_l c tr D) when tr D < 0, else 0.
+ * Stable step (LS-DYNA Theory Manual eq. 20.2): dt_e = l / (Q + sqrt(Q^2 + c^2)),
+ * Q = C_l c + C_q l |tr D| in compression, l = V / A_max. */
+#include "fem/fem_impl.h"
+
+#include <math.h>
+#include <string.h>
+
+/* Per-element scratch of one chunk. */
+typedef struct {
+  double s_old[8][6]; /* rotated previous stress per quadrature point */
+  double vmid[8];     /* quadrature-point volumes at mid-step */
+  double trD;         /* tr D of the element mean velocity gradient */
+  double V0;          /* reference volume */
+  double Q_old[12];   /* rotated hourglass generalized forces */
+  double B[8][3], V;  /* mean gradient and volume at the end of the step */
+} scratch;
+
+size_t pf_fem_chunk_doubles(int nqp, int nstate) {
+  (void)nstate;
+  return (size_t)PF_FEM_CHUNK * (16 * (size_t)nqp + sizeof(scratch) / sizeof(double) + 1);
+}
+
+static void gather_nodes(const pf_fem_body *b, const pf_points *p, pf_int e, double dt, double X[8][3],
+                         double x[8][3], double xm[8][3], double v[8][3]) {
+  const pf_int *c = &b->conn[8 * (size_t)e];
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) {
+      X[I][i] = p->X[3 * c[I] + i];
+      x[I][i] = p->y[3 * c[I] + i];
+      v[I][i] = p->v[3 * c[I] + i];
+      xm[I][i] = x[I][i] - 0.5 * dt * v[I][i];
+    }
+}
+
+static void grad_product(double a[8][3], double g[8][3], double M[3][3]) {
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      double s = 0;
+      for (int I = 0; I < 8; I++) s += a[I][i] * g[I][j];
+      M[i][j] = s;
+    }
+}
+
+static double det3(double A[3][3]) {
+  return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+         A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+}
+
+/* R = (I - h W)^-1 (I + h W), h = dt/2 (Hughes & Winget 1980, eq. 34). */
+static void hughes_winget(double L[3][3], double dt, double R[3][3]) {
+  double Am[3][3], Ap[3][3], inv[3][3];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      double w = 0.5 * (L[i][j] - L[j][i]) * 0.5 * dt;
+      Am[i][j] = (i == j) - w;
+      Ap[i][j] = (i == j) + w;
+    }
+  pf_mat3_inverse(Am, inv);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) R[i][j] = inv[i][0] * Ap[0][j] + inv[i][1] * Ap[1][j] + inv[i][2] * Ap[2][j];
+}
+
+static const int voigt_i[6] = {0, 1, 2, 1, 0, 0}, voigt_j[6] = {0, 1, 2, 2, 2, 1};
+
+static void sym_to_mat(const double s[6], double S[3][3]) {
+  for (int k = 0; k < 6; k++) S[voigt_i[k]][voigt_j[k]] = S[voigt_j[k]][voigt_i[k]] = s[k];
+}
+
+/* s <- R s R^T */
+static void rotate_sym(double R[3][3], double s[6]) {
+  double S[3][3], T[3][3];
+  sym_to_mat(s, S);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) T[i][j] = S[i][0] * R[j][0] + S[i][1] * R[j][1] + S[i][2] * R[j][2];
+  for (int k = 0; k < 6; k++) {
+    int i = voigt_i[k], j = voigt_j[k];
+    s[k] = R[i][0] * T[0][j] + R[i][1] * T[1][j] + R[i][2] * T[2][j];
+  }
+}
+
+static double sym_dot(const double a[6], const double d[6]) {
+  return a[0] * d[0] + a[1] * d[1] + a[2] * d[2] + 2 * (a[3] * d[3] + a[4] * d[4] + a[5] * d[5]);
+}
+
+/* F scaled so that det F = J: the element's volume ratio, consistent with the mesh volumes. */
+static void store_F(double Fm[3][3], double J, double *F) {
+  double s = cbrt(J / det3(Fm));
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) F[3 * i + j] = s * Fm[i][j];
+}
+
+static void store_D(double L[3][3], double *D) {
+  for (int k = 0; k < 6; k++) D[k] = 0.5 * (L[voigt_i[k]][voigt_j[k]] + L[voigt_j[k]][voigt_i[k]]);
+}
+
+static int bad_element(const pf_fem_body *b, pf_int e, double x[8][3], const char *what, double value) {
+  double c[3] = {0, 0, 0};
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) c[i] += 0.125 * x[I][i];
+  return pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+           "element %" PF_INT_FMT " of body '%s' (centroid (%g, %g, %g) m) at time %g s, step %ld: "
+           "%s %g: the element is inverted or the run is unstable (reduce time.safety_factor, "
+           "raise the hourglass or bulk viscosity coefficients, or refine the mesh)",
+           b->eid[e] + 1, b->name, c[0], c[1], c[2], b->t, b->step, what, value);
+}
+
+/* Pass 1: kinematics at mid-step, rotate stress and hourglass forces, F and D for the material. */
+static int kinematics(pf_fem_body *b, const pf_points *p, pf_int e, double dt, double *F, double *D, scratch *s) {
+  double X[8][3], x[8][3], xm[8][3], v[8][3], Bm[8][3], L[3][3], Lm[3][3], R[3][3];
+  double(*B0)[3] = (double(*)[3]) & b->ref[25 * (size_t)e];
+  gather_nodes(b, p, e, dt, X, x, xm, v);
+  double V0 = s->V0 = b->ref[25 * (size_t)e + 24], Vm = pf_hex8_mean_gradient(xm, Bm);
+  double V = s->V = pf_hex8_mean_gradient(x, s->B);
+  if (!(V > 0)) return bad_element(b, e, x, "volume", V);
+  if (!(Vm > 0)) return bad_element(b, e, xm, "mid-step volume", Vm);
+  grad_product(v, Bm, Lm);
+  s->trD = Lm[0][0] + Lm[1][1] + Lm[2][2];
+  hughes_winget(Lm, dt, R);
+  for (int a = 0; a < 4 && b->hg == PF_HG_STIFFNESS; a++)
+    for (int i = 0; i < 3; i++)
+      s->Q_old[3 * a + i] = R[i][0] * b->hgq[12 * e + 3 * a] + R[i][1] * b->hgq[12 * e + 3 * a + 1] +
+                            R[i][2] * b->hgq[12 * e + 3 * a + 2];
+  double *sig = &b->sigma[6 * (size_t)b->nqp * e];
+  if (!b->bbar) {
+    double Fm[3][3];
+    grad_product(x, B0, Fm);
+    store_F(Fm, V / V0, F);
+    store_D(Lm, D);
+    s->vmid[0] = Vm;
+    rotate_sym(R, sig);
+    memcpy(s->s_old[0], sig, sizeof s->s_old[0]);
+    return 0;
+  }
+  for (int g = 0; g < 8; g++) {
+    double xi[3], g0[8][3], gm[8][3], Fm[3][3];
+    pf_hex8_gauss_point(g, xi);
+    pf_hex8_gradients(X, xi, g0);
+    s->vmid[g] = pf_hex8_gradients(xm, xi, gm);
+    if (!(s->vmid[g] > 0)) return bad_element(b, e, xm, "mid-step Jacobian", s->vmid[g]);
+    grad_product(v, gm, L);
+    double corr = (s->trD - (L[0][0] + L[1][1] + L[2][2])) / 3.0; /* B-bar: mean dilatation */
+    for (int i = 0; i < 3; i++) L[i][i] += corr;
+    grad_product(x, g0, Fm);
+    store_F(Fm, V / V0, &F[9 * g]); /* F-bar: det F = the element's volume ratio */
+    store_D(L, &D[6 * g]);
+    hughes_winget(L, dt, R);
+    rotate_sym(R, &sig[6 * g]);
+    memcpy(s->s_old[g], &sig[6 * g], sizeof s->s_old[g]);
+  }
+  return 0;
+}
+
+static void hourglass_force(pf_fem_body *b, pf_int e, double x[8][3], double v[8][3], double B[8][3],
+                            double V, double c, double rho, double dt, const scratch *s, double f[8][3]) {
+  double gam[4][8], qd[4][3] = {{0}}, *en = &b->energy[3 * (size_t)e];
+  pf_hex8_hourglass_vectors(x, B, gam);
+  for (int a = 0; a < 4; a++)
+    for (int I = 0; I < 8; I++)
+      for (int i = 0; i < 3; i++) qd[a][i] += v[I][i] * gam[a][I];
+  if (b->hg == PF_HG_VISCOUS) { /* FB eq. 88: Q = q_hv rho c V^(2/3) / 4 qdot */
+    double cv = b->hg_coef * rho * c * cbrt(V * V) / 4.0;
+    for (int a = 0; a < 4; a++)
+      for (int i = 0; i < 3; i++) {
+        en[1] += dt * cv * qd[a][i] * qd[a][i];
+        for (int I = 0; I < 8; I++) f[I][i] -= cv * qd[a][i] * gam[a][I];
+      }
+    return;
+  }
+  /* Stiffness form (FB eq. 90): Qdot = k qdot, k = q_hs (K + 4G/3) V B_iI B_iI / 48, scaled so
+   * that q_hs = 1 gives an hourglass mode of a cube about the stiffness it has in a fully
+   * integrated element (docs/theory/fem.md §4). */
+  double bb = 0;
+  for (int I = 0; I < 8; I++) bb += B[I][0] * B[I][0] + B[I][1] * B[I][1] + B[I][2] * B[I][2];
+  double k = b->hg_coef * (b->K + 4.0 * b->G / 3.0) * V * bb / 48.0, *Q = &b->hgq[12 * (size_t)e];
+  for (int a = 0; a < 4; a++)
+    for (int i = 0; i < 3; i++) {
+      Q[3 * a + i] = s->Q_old[3 * a + i] + dt * k * qd[a][i];
+      en[1] += dt * 0.5 * (s->Q_old[3 * a + i] + Q[3 * a + i]) * qd[a][i];
+      for (int I = 0; I < 8; I++) f[I][i] -= Q[3 * a + i] * gam[a][I];
+    }
+}
+
+/* Pass 2: forces from the new stress, bulk viscosity, hourglass; energies; stable step. */
+static int element_forces(pf_fem_body *b, const pf_points *p, pf_int e, double dt, const double *c,
+                          const double *D, const scratch *s) {
+  double X[8][3], x[8][3], xm[8][3], v[8][3], f[8][3] = {{0}};
+  double(*B)[3] = (double(*)[3])s->B;
+  gather_nodes(b, p, e, dt, X, x, xm, v);
+  double V = s->V, l = pf_hex8_char_length(x, V), cmax = 0;
+  double rho = b->rho * s->V0 / V, Vmid = 0;
+  for (int g = 0; g < b->nqp; g++) cmax = fmax(cmax, c[g]);
+  double q = 0;
+  if (s->trD < 0) q = rho * l * (b->bv_quadratic * l * s->trD * s->trD - b->bv_linear * cmax * s->trD);
+  const double *sig = &b->sigma[6 * (size_t)b->nqp * e];
+  double *en = &b->energy[3 * (size_t)e];
+  for (int g = 0; g < b->nqp; g++) {
+    double S[3][3], gr[8][3], Vg = V;
+    sym_to_mat(&sig[6 * g], S);
+    double mean = (S[0][0] + S[1][1] + S[2][2]) / 3.0;
+    for (int i = 0; i < 3; i++) S[i][i] -= q;
+    if (b->bbar) {
+      double xi[3];
+      pf_hex8_gauss_point(g, xi);
+      Vg = pf_hex8_gradients(x, xi, gr);
+      if (!(Vg > 0)) return bad_element(b, e, x, "Jacobian", Vg);
+    } else
+      memcpy(gr, B, sizeof gr);
+    for (int I = 0; I < 8; I++)
+      for (int i = 0; i < 3; i++) {
+        double t = S[i][0] * gr[I][0] + S[i][1] * gr[I][1] + S[i][2] * gr[I][2];
+        if (b->bbar) t += mean * (B[I][i] - gr[I][i]);
+        f[I][i] -= Vg * t;
+      }
+  }
+  /* stress work: trapezoid in time on the mid-step volumes, sum_g V_g (s_old + s_new)/2 : D */
+  for (int g = 0; g < b->nqp; g++) {
+    double avg[6];
+    for (int k = 0; k < 6; k++) avg[k] = 0.5 * (s->s_old[g][k] + sig[6 * g + k]);
+    en[0] += dt * s->vmid[g] * sym_dot(avg, &D[6 * g]);
+    Vmid += s->vmid[g];
+  }
+  en[2] += dt * q * (-s->trD) * Vmid; /* bulk-viscosity work, >= 0 */
+  if (!b->bbar && b->hg != PF_HG_NONE) hourglass_force(b, e, x, v, B, V, cmax, rho, dt, s, f);
+  memcpy(&b->fe[24 * (size_t)e], f, sizeof f);
+  double Qb = s->trD < 0 ? b->bv_linear * cmax + b->bv_quadratic * l * fabs(s->trD) : 0;
+  b->stable_dt = fmin(b->stable_dt, l / (Qb + sqrt(Qb * Qb + cmax * cmax)));
+  return 0;
+}
+
+int pf_fem_elements_evaluate(pf_fem_body *b, const pf_points *pts, double dt) {
+  const int nq = b->nqp;
+  double *F = b->buf, *D = F + 9 * (size_t)nq * PF_FEM_CHUNK, *c = D + 6 * (size_t)nq * PF_FEM_CHUNK;
+  scratch *s = (scratch *)(c + (size_t)nq * PF_FEM_CHUNK);
+  b->stable_dt = INFINITY;
+  for (pf_int e0 = 0; e0 < b->nel; e0 += PF_FEM_CHUNK) {
+    pf_int ne = b->nel - e0 < PF_FEM_CHUNK ? b->nel - e0 : PF_FEM_CHUNK;
+    for (pf_int k = 0; k < ne; k++)
+      PF_CALL(kinematics(b, pts, e0 + k, dt, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
+    pf_fem_material_update(b->mat, ne * nq, dt, F, D, &b->sigma[6 * (size_t)nq * e0],
+                           &b->state[(size_t)b->nstate * nq * e0], c);
+    for (pf_int k = 0; k < ne; k++) PF_CALL(element_forces(b, pts, e0 + k, dt, &c[(size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
+  }
+  return 0;
+}

@@ -1,0 +1,68 @@
+/* Private to fem/: hexahedron geometry kernels and the FE body structure. */
+#ifndef PF_FEM_IMPL_H
+#define PF_FEM_IMPL_H
+
+#include "fem/fem.h"
+
+/* ---- hexahedron geometry (fem/hex8.c) ---- */
+extern const double pf_hex8_node_sign[8][3];
+extern const int pf_hex8_face[6][4];
+void pf_hex8_gauss_point(int g, double xi[3]);
+/* Gradients dN_I/dx_i at parent point xi; returns det J. */
+double pf_hex8_gradients(double x[8][3], const double xi[3], double grad[8][3]);
+/* Mean gradient B[I][i] (Flanagan & Belytschko 1981) of the element with nodes x; returns V. */
+double pf_hex8_mean_gradient(double x[8][3], double B[8][3]);
+void pf_hex8_lumped_mass(double x[8][3], double rho, double m[8]);
+double pf_hex8_char_length(double x[8][3], double V);
+double pf_mat3_inverse(double A[3][3], double inv[3][3]);
+void pf_vec3_cross(const double a[3], const double b[3], double c[3]);
+
+/* ---- Flanagan-Belytschko hourglass control (fem/hourglass.c) ---- */
+typedef enum { PF_HG_NONE, PF_HG_VISCOUS, PF_HG_STIFFNESS } pf_hourglass_kind;
+/* gamma[a][I] = Gamma_aI - B_iI sum_J Gamma_aJ x_iJ (FB 1981, eq. 57). */
+void pf_hex8_hourglass_vectors(double x[8][3], double B[8][3], double gamma[4][8]);
+
+/* ---- FE bodies ---- */
+#define PF_FEM_CHUNK 64 /* elements per batched material call */
+
+struct pf_fem_body {
+  char name[64];
+  const pf_deck *deck;
+  const pf_node *node;
+  pf_fem_mesh mesh; /* the whole mesh, read on every rank */
+  pf_fem_material *mat;
+  double rho, K, G;
+  int bbar; /* 0: one-point + hourglass control; 1: selective-reduced 2x2x2 (B-bar) */
+  int nqp;  /* quadrature points per element: 1 or 8 */
+  int nstate;
+  pf_hourglass_kind hg;
+  double hg_coef;
+  double bv_linear, bv_quadratic; /* bulk viscosity C_l, C_q */
+  double *node_volume;            /* [mesh.nnodes] lumped nodal volume (the points' vol) */
+  /* this rank */
+  pf_gid gid0;       /* global id of mesh node 0 */
+  pf_int first, n;   /* owned nodes [first, first + n) of the store */
+  pf_int nel;        /* elements with an owned node, ascending global element index */
+  pf_int *eid;       /* [nel] mesh element index */
+  pf_int *conn;      /* [8 nel] store index of each node */
+  uint8_t *own;      /* [nel] this rank owns the element (owns its node 0): sums and output */
+  double *sigma;     /* [6 nqp nel] Cauchy stress */
+  double *state;     /* [nstate nqp nel] material history */
+  double *hgq;       /* [12 nel] stiffness-form hourglass generalized forces Q_ia */
+  double *ref;       /* [25 nel] reference mean gradient B0 (24) and volume V0 */
+  double *fe;        /* [24 nel] element nodal forces of the last evaluation */
+  double *energy;    /* [3 nel] internal (stress work), hourglass, bulk-viscosity work, J */
+  int64_t *node_off; /* [n + 1] CSR: elements of each owned node */
+  pf_int *node_item; /* element * 8 + corner, ascending element */
+  double *buf;       /* chunk scratch */
+  double stable_dt;  /* from the last force evaluation */
+  double t;          /* time and step of the evaluation, for error messages */
+  long step;
+};
+
+/* fem/element_force.c: element forces of the body's local elements into b->fe, energies and
+ * the stable step; returns 0 or an error naming a negative-Jacobian element. */
+int pf_fem_elements_evaluate(pf_fem_body *b, const pf_points *pts, double dt);
+size_t pf_fem_chunk_doubles(int nqp, int nstate);
+
+#endif

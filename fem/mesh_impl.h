@@ -1,0 +1,56 @@
+/* Private to the mesh readers (fem/mesh*.c): the reader ops table, the raw mesh a reader hands
+ * back, and the helpers the readers share. A new reader is one file defining
+ * `const pf_fem_mesh_reader pf_fem_mesh_reader_<name>` and one line in fem/mesh_readers.h. */
+#ifndef PF_FEM_MESH_IMPL_H
+#define PF_FEM_MESH_IMPL_H
+
+#include "fem/fem.h"
+
+/* What a reader reads: a file (path set) or inline text (text set, for Pamgen). */
+typedef struct {
+  const char *path;    /* the mesh file, resolved against the deck's folder; NULL for text */
+  const char *text;    /* inline mesh description; NULL for files */
+  const char *label;   /* names the source in messages: the path, or "pamgen mesh at deck:l:c" */
+  double element_size; /* element edge in the file's units (the deck's m / scale); 0: none */
+} pf_fem_mesh_source;
+
+/* A mesh as a reader returns it, before the common steps (block selection, dropping unused
+ * nodes, scale and translate, validation). Elements must come block by block; nodes may be
+ * unused. */
+typedef struct {
+  pf_fem_mesh mesh;
+  int64_t *elem_id; /* [nelem] the element's number in the source (for messages), or NULL: e+1 */
+  int64_t *node_id; /* [nnodes] the node's number in the source (for messages), or NULL: i+1 */
+} pf_fem_mesh_raw;
+
+/* The ops table of a mesh reader. */
+typedef struct {
+  const char *name;       /* "gmsh", "exodus", "pamgen": the name in mesh_readers.h */
+  const char *extensions; /* file extensions it reads, space separated (".geo .msh"); "" for none */
+  /* Required: read the source into raw (zeroed on entry). On error the caller frees raw, so a
+   * reader may return with raw half filled; everything else it allocated it frees itself. */
+  int (*read)(const pf_fem_mesh_source *src, pf_fem_mesh_raw *raw);
+} pf_fem_mesh_reader;
+
+/* Exodus HEX8 faces (sides 1..6 as 0..5), each counter-clockwise seen from outside:
+ * 0: y=-1 {0,1,5,4}, 1: x=+1 {1,2,6,5}, 2: y=+1 {2,3,7,6}, 3: x=-1 {0,4,7,3},
+ * 4: z=-1 {0,3,2,1}, 5: z=+1 {4,5,6,7} (nodes 0-3 the face zeta = -1, 4-7 above them). */
+extern const int pf_fem_mesh_hex_face[6][4];
+/* Natural coordinates of the 8 nodes in Exodus HEX8 order (the same as gmsh's hexahedron). */
+extern const double pf_fem_mesh_hex_node[8][3];
+
+/* Allocate raw's nodes, elements and blocks (zeroed; ids too). */
+int pf_fem_mesh_raw_alloc(pf_fem_mesh_raw *raw, int64_t nnodes, int64_t nelem, int nblocks);
+void pf_fem_mesh_raw_free(pf_fem_mesh_raw *raw);
+/* Append an empty set of n items to *sets (a side set when with_face): returns it in *out. */
+int pf_fem_mesh_add_set(pf_fem_set **sets, int *nsets, const char *name, int64_t n, int with_face,
+                        pf_fem_set **out);
+/* Copy a name into a 64-byte slot: trailing blanks dropped; fallback when the name is empty. */
+void pf_fem_mesh_set_name(char out[64], const char *name, const char *fallback, int64_t id);
+/* Raise a PF_ERR_INPUT error whose message starts with the source label. */
+#define PF_MESH_ERROR(src, ...)                                                                    \
+  pf_fem_mesh_error_((src)->label, __FILE__, __LINE__, __func__, __VA_ARGS__)
+int pf_fem_mesh_error_(const char *label, const char *file, int line, const char *func,
+                       const char *fmt, ...) __attribute__((format(printf, 5, 6)));
+
+#endif

@@ -1,0 +1,111 @@
+/* Hexahedron kernels against closed forms: the mean gradient reproduces linear fields exactly
+ * (sum_I x_jI B_iI = delta_ij, sum_I B_iI = 0) and gives the exact volume of a distorted element
+ * (checked against a 6x6x6 Gauss rule of det J, exact for any trilinear hexahedron); the
+ * Flanagan-Belytschko stabilization vectors are orthogonal to linear fields; the lumped masses
+ * add up to rho V; the characteristic length of a cube is its edge. */
+#include "fem/fem_impl.h"
+#include "test_common.h"
+
+#include <math.h>
+
+static const double gl6_x[6] = {-0.9324695142031521, -0.6612093864662645, -0.2386191860831969,
+                                0.2386191860831969,  0.6612093864662645,  0.9324695142031521};
+static const double gl6_w[6] = {0.1713244923791704, 0.3607615730481386, 0.4679139345726910,
+                                0.4679139345726910, 0.3607615730481386, 0.1713244923791704};
+
+/* Volume by a 6-point Gauss-Legendre rule in each direction of det J (from a finite difference
+ * free evaluation: J from the trilinear map written out here independently). */
+static double volume_gl6(double x[8][3]) {
+  double V = 0;
+  for (int a = 0; a < 6; a++)
+    for (int b = 0; b < 6; b++)
+      for (int c = 0; c < 6; c++) {
+        double xi[3] = {gl6_x[a], gl6_x[b], gl6_x[c]}, J[3][3] = {{0}};
+        for (int I = 0; I < 8; I++) {
+          const double *s = pf_hex8_node_sign[I];
+          double d[3] = {s[0] * (1 + s[1] * xi[1]) * (1 + s[2] * xi[2]) / 8,
+                         s[1] * (1 + s[0] * xi[0]) * (1 + s[2] * xi[2]) / 8,
+                         s[2] * (1 + s[0] * xi[0]) * (1 + s[1] * xi[1]) / 8};
+          for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 3; k++) J[i][k] += x[I][i] * d[k];
+        }
+        double det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+                     J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+                     J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+        V += gl6_w[a] * gl6_w[b] * gl6_w[c] * det;
+      }
+  return V;
+}
+
+static void distorted(double x[8][3]) {
+  static const double jitter[8][3] = {{0.02, -0.01, 0.03}, {0.05, 0.02, -0.04}, {-0.03, 0.06, 0.01},
+                                      {0.01, -0.05, 0.02}, {-0.04, 0.03, -0.02}, {0.03, 0.01, 0.05},
+                                      {0.06, -0.02, -0.03}, {-0.02, -0.04, 0.04}};
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) x[I][i] = 1e-3 * (0.5 * (1 + pf_hex8_node_sign[I][i]) * (1 + i * 0.3) + jitter[I][i]);
+}
+
+static void test_mean_gradient(void) {
+  double x[8][3], B[8][3];
+  distorted(x);
+  double V = pf_hex8_mean_gradient(x, B), ref = volume_gl6(x);
+  PF_TEST_CLOSE(V, ref, 1e-13, 0);
+  for (int i = 0; i < 3; i++) {
+    double s = 0;
+    for (int I = 0; I < 8; I++) s += B[I][i];
+    PF_TEST_CLOSE(s, 0.0, 0, 1e-9 / 1e-3);
+    for (int j = 0; j < 3; j++) {
+      double t = 0;
+      for (int I = 0; I < 8; I++) t += x[I][j] * B[I][i];
+      PF_TEST_CLOSE(t, i == j ? 1.0 : 0.0, 0, 1e-13);
+    }
+  }
+  /* a parallelepiped: V = |det(edges)| */
+  double e[3][3] = {{2e-3, 0.3e-3, 0}, {0.1e-3, 1e-3, 0.2e-3}, {0, -0.4e-3, 1.5e-3}}, p[8][3];
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) {
+      p[I][i] = 0;
+      for (int k = 0; k < 3; k++) p[I][i] += 0.5 * (1 + pf_hex8_node_sign[I][k]) * e[k][i];
+    }
+  double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+               e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+  PF_TEST_CLOSE(pf_hex8_mean_gradient(p, B), fabs(det), 1e-13, 0);
+}
+
+static void test_hourglass_vectors(void) {
+  double x[8][3], B[8][3], g[4][8];
+  distorted(x);
+  pf_hex8_mean_gradient(x, B);
+  pf_hex8_hourglass_vectors(x, B, g);
+  for (int a = 0; a < 4; a++) {
+    double s = 0, n = 0;
+    for (int I = 0; I < 8; I++) s += g[a][I], n += g[a][I] * g[a][I];
+    PF_TEST_CLOSE(s, 0.0, 0, 1e-12);
+    PF_TEST_TRUE(n > 1.0); /* not degenerate: |Gamma|^2 = 8 for a parallelepiped */
+    for (int j = 0; j < 3; j++) {
+      double t = 0;
+      for (int I = 0; I < 8; I++) t += g[a][I] * x[I][j];
+      PF_TEST_CLOSE(t, 0.0, 0, 1e-15);
+    }
+  }
+}
+
+static void test_mass_and_length(void) {
+  double x[8][3], m[8], total = 0, B[8][3];
+  distorted(x);
+  pf_hex8_lumped_mass(x, 7800.0, m);
+  for (int I = 0; I < 8; I++) total += m[I], PF_TEST_TRUE(m[I] > 0);
+  PF_TEST_CLOSE(total, 7800.0 * volume_gl6(x), 1e-13, 0);
+  double c[8][3], h = 2.5e-3;
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) c[I][i] = 0.5 * h * (1 + pf_hex8_node_sign[I][i]);
+  PF_TEST_CLOSE(pf_hex8_char_length(c, pf_hex8_mean_gradient(c, B)), h, 1e-14, 0);
+}
+
+int main(int argc, char **argv) {
+  pf_test_init(&argc, &argv);
+  test_mean_gradient();
+  test_hourglass_vectors();
+  test_mass_and_length();
+  return pf_test_finish();
+}
