@@ -2,6 +2,7 @@
  *   /points/{gid,body,X,u,v,f,m,vol,cell}   one row per point, ranks' points one after another
  *   /fields/<name>                          [n][ncomp], attributes ncomp, flags
  *   /bonds/{count,gid,broken,vfrac}         row lengths per point, then the bonds in that order
+ *   /tables/<name>                          [total][ncomp] whole tables (written by rank 0)
  *   attributes of "/": the named scalars (time, step, ...), written alike by every rank.
  * The file is written as path.tmp and renamed by rank 0 once every rank has closed it, so a
  * kill at any moment leaves the previous checkpoint whole. A reader on any number of ranks
@@ -142,28 +143,43 @@ static int write_scalars(const h5io *io, int n, const char *const *names, const 
   return 0;
 }
 
+/* A whole table, gathered and written by rank 0 (tables are small beside the points). */
+static int write_table(const h5io *pio, const pf_table *t) {
+  double *full = NULL;
+  PF_MALLOC(full, (size_t)t->total * t->ncomp);
+  int ierr = pf_table_allgather(t, full);
+  char name[128];
+  snprintf(name, sizeof name, "/tables/%s", t->name);
+  h5io io = *pio;
+  io.total = (hsize_t)t->total, io.offset = 0, io.count = pf_comm_rank() == 0 ? (hsize_t)t->total : 0;
+  if (!ierr) ierr = write_rows(&io, name, H5T_NATIVE_DOUBLE, t->ncomp, full);
+  free(full);
+  return ierr;
+}
+
 static int write_all(const h5io *io, const pf_points *pts, const pf_bond_rows *rows, int n,
-                     const char *const *names, const double *values) {
-  const char *groups[] = {"/points", "/fields", "/bonds"};
-  for (int k = 0; k < 3; k++) {
+                     const char *const *names, const double *values, int ntables, const pf_table *tables) {
+  const char *groups[] = {"/points", "/fields", "/bonds", "/tables"};
+  for (int k = 0; k < 4; k++) {
     hid_t g = H5Gcreate2(io->file, groups[k], H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     H5_TRY(io, g >= 0, groups[k]);
     H5Gclose(g);
   }
   PF_CALL(write_points(io, pts));
   PF_CALL(write_bonds(io, pts, rows));
+  for (int k = 0; k < ntables; k++) PF_CALL(write_table(io, &tables[k]));
   return write_scalars(io, n, names, values);
 }
 
 int pf_checkpoint_write(const char *path, const pf_points *pts, const pf_bond_rows *rows, int nscalars,
-                        const char *const *names, const double *values) {
+                        const char *const *names, const double *values, int ntables, const pf_table *tables) {
   char tmp[4200];
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   h5io io = {open_file(tmp, 1), tmp, 0, 0, (hsize_t)pts->n_owned};
   H5_TRY(&io, io.file >= 0, "H5Fcreate");
   rank_range(io.count, &io.total, &io.offset);
-  int ierr = write_all(&io, pts, rows, nscalars, names, values);
+  int ierr = write_all(&io, pts, rows, nscalars, names, values, ntables, tables);
   herr_t st = H5Fclose(io.file);
   if (ierr) return ierr;
   H5_TRY(&io, st >= 0, "H5Fclose");
@@ -276,6 +292,29 @@ int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, in
   h5io io = {open_file(path, 0), path, 0, 0, 0};
   PF_CHECK(io.file >= 0, PF_ERR_INPUT, "%s is not an HDF5 file (a perifem checkpoint)", path);
   int ierr = read_all(&io, pts, rows, nscalars, names, values);
+  H5Fclose(io.file);
+  return ierr;
+}
+
+int pf_checkpoint_read_table(const char *path, const pf_table *t, double *full) {
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  h5io io = {open_file(path, 0), path, (hsize_t)t->total, 0, (hsize_t)t->total};
+  PF_CHECK(io.file >= 0, PF_ERR_INPUT, "%s is not an HDF5 file (a perifem checkpoint)", path);
+  char name[128];
+  snprintf(name, sizeof name, "/tables/%s", t->name);
+  hid_t d = H5Dopen2(io.file, name, H5P_DEFAULT);
+  hsize_t dims[2] = {0, 1};
+  if (d >= 0) {
+    hid_t sp = H5Dget_space(d);
+    H5Sget_simple_extent_dims(sp, dims, NULL);
+    H5Sclose(sp), H5Dclose(d);
+  }
+  int ierr = 0;
+  if (d < 0 || dims[0] != (hsize_t)t->total || (t->ncomp > 1 && dims[1] != (hsize_t)t->ncomp))
+    ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
+                          "checkpoint %s has no table %s of %" PF_GID_FMT " x %d (the mesh or the model changed?)",
+                          path, name, t->total, t->ncomp);
+  if (!ierr) ierr = read_rows(&io, name, H5T_NATIVE_DOUBLE, t->ncomp, full);
   H5Fclose(io.file);
   return ierr;
 }

@@ -290,17 +290,35 @@ void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t);
 /* Set mask[3 i + c] = 1 for every component c of owned point i the condition prescribes. */
 void pf_bc_mark(const pf_bc *bc, uint8_t *mask);
 
+/* ---- tables of global rows (core/table.c) ------------------------------------------- */
+/* Rows of a global [total][ncomp] table, each rank holding some of them (row id[k] is data[k]):
+ * element state of FE bodies, which several ranks compute but one owns. */
+typedef struct {
+  char name[64];
+  pf_gid total; /* rows */
+  int ncomp;
+  pf_int n;            /* this rank's rows */
+  const pf_gid *id;    /* [n] */
+  const double *data;  /* [n * ncomp] */
+} pf_table;
+/* The whole table on every rank: full[total * ncomp], rows no rank holds left zero. Collective. */
+int pf_table_allgather(const pf_table *t, double *full);
+
 /* ---- checkpoints (core/checkpoint.c): parallel HDF5 ---------------------------------- */
-/* Write the owned points (every array and field) and their bond rows, plus named scalars, to
- * path (through path.tmp, renamed when complete, so a kill leaves the previous checkpoint).
- * Collective. */
+/* Write the owned points (every array and field) and their bond rows, plus named scalars and
+ * tables (each written whole, under /tables/<name>), to path (through path.tmp, renamed when
+ * complete, so a kill leaves the previous checkpoint). Collective. */
 int pf_checkpoint_write(const char *path, const pf_points *pts, const pf_bond_rows *rows,
-                        int nscalars, const char *const *names, const double *values);
+                        int nscalars, const char *const *names, const double *values,
+                        int ntables, const pf_table *tables);
 /* Read a checkpoint written on any number of ranks: this rank gets an equal slice of its
  * points (a new store, n_global set, fields registered) with their rows, and the scalars. A
  * missing scalar is an error. Collective. */
 int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, int nscalars,
                        const char *const *names, double *values);
+/* Read a table written with the checkpoint whole on every rank: full[total * ncomp] (name,
+ * total and ncomp as written; a mismatch is an error). Collective. */
+int pf_checkpoint_read_table(const char *path, const pf_table *t, double *full);
 
 /* ---- state digest ------------------------------------------------------- */
 /* FNV-1a 64-bit hash of the displacement of all owned points in global-id order (gathered on

@@ -112,9 +112,6 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
     else PF_CALL(pf_pd_body_create(sim->deck, body, pf_node_get(root, "materials"), &sim->body[b]));
     sim->nfem += fem;
   }
-  if (sim->opt.restart_from && sim->nfem)
-    PF_CHECK(0, PF_ERR_INPUT, "--restart %s: checkpoints do not yet hold finite-element state; "
-             "decks with finite_element bodies cannot restart", sim->opt.restart_from);
   if (sim->opt.restart_from) return pf_sim_restore_points(sim); /* points and velocities from the file */
   pf_point_cloud pc[PF_MAX_BODIES];
   memset(pc, 0, sizeof pc);

@@ -47,10 +47,6 @@ int pf_sim_setup_parallel(pf_sim *sim) {
   if (strcmp(layout, "joined") && strcmp(layout, "spread"))
     return pf_deck_error(d, pf_node_get(out, "layout"), "layout", "unknown layout '%s' (known: joined, spread)", layout);
   sim->spread_output = !strcmp(layout, "spread");
-  if (sim->rebalance_threshold > 0 && pf_node_get(par, "rebalance_threshold") && deck_has_fem(d))
-    return pf_deck_error(d, pf_node_get(par, "rebalance_threshold"), "rebalance_threshold",
-                         "re-partitioning does not yet move finite-element state (stress, "
-                         "hourglass forces); with finite_element bodies use 0");
   if (sim->spread_output && deck_has_fem(d))
     return pf_deck_error(d, pf_node_get(out, "layout"), "layout",
                          "finite_element bodies are written joined (a spread file set would cut "
@@ -145,8 +141,8 @@ int pf_sim_rebalance(pf_sim *sim) {
   pf_bond_rows rows;
   PF_CALL(pf_bond_rows_init(&rows));
   int ierr = 0;
-  for (int b = 0; b < sim->nbodies && !ierr; b++) ierr = pf_pd_body_bond_rows(sim->body[b], sim->pts, &rows);
-  if (!ierr) ierr = pf_sim_settle(sim, &rows, 0);
+  if (!ierr) ierr = pf_sim_bond_rows(sim, &rows);
+  if (!ierr) ierr = pf_sim_settle_keeping_fem(sim, &rows);
   pf_bond_rows_free(&rows);
   for (int k = 0; k < sim->nbcs && !ierr; k++) ierr = pf_bc_select(sim->bcs[k], sim->pts);
   if (ierr) return ierr;

@@ -85,5 +85,13 @@ void pf_sim_catch_signals(void);
 /* The largest signal number received by any rank (0: none). Collective. */
 int pf_sim_signalled(void);
 int pf_sim_setup_output(pf_sim *sim);
+/* core/simulation_fem_state.c: the bond rows of every owned point (PD families, FE node
+ * adjacency); the FE bodies' element state as tables (name fem_<body>); a re-partition that
+ * keeps the element state. */
+int pf_sim_bond_rows(const pf_sim *sim, pf_bond_rows *rows);
+void pf_sim_fem_table_name(const pf_sim *sim, int b, char *out, size_t len);
+int pf_sim_fem_tables(const pf_sim *sim, pf_table *t, int *n);
+void pf_sim_fem_tables_free(pf_table *t, int n);
+int pf_sim_settle_keeping_fem(pf_sim *sim, pf_bond_rows *rows);
 
 #endif

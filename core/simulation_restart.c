@@ -1,7 +1,9 @@
 /* Checkpoint and restart of a simulation (core/checkpoint.c holds the file format). A
- * checkpoint holds the owned points with every field, the bond rows with their broken flags,
- * and the scalars of the run: time, step, dt, energies booked so far, the indenters' positions
- * and reactions, and a hash of each part of the deck that sets the physics. A restart reads
+ * checkpoint holds the owned points with every field, the bond rows with their broken flags
+ * (PD families, FE node adjacency), the FE bodies' element state as whole tables, and the
+ * scalars of the run: time, step, dt, energies booked so far, the indenters' positions and
+ * reactions, the FE bodies' stable steps, and a hash of each part of the deck that sets the
+ * physics. A restart reads
  * the points on any number of ranks and re-partitions them like the set-up does, so the run
  * continues bitwise as if it had not stopped. */
 #include "core/simulation_impl.h"
@@ -18,8 +20,8 @@ const pf_key pf_restart_keys[] = {
 /* The parts of the deck whose change changes the physics (output, parallel and the run length
  * may change on restart). */
 static const char *const physics_parts[] = {"units", "materials", "bodies", "indenters", "boundary_conditions",
-                                            "time.dt", "time.safety_factor"};
-enum { NPARTS = sizeof physics_parts / sizeof physics_parts[0], NFIXED = 6 };
+                                            "walls", "time.dt", "time.safety_factor"};
+enum { NPARTS = sizeof physics_parts / sizeof physics_parts[0], NFIXED = 7 };
 
 static uint64_t part_hash(const pf_deck *d, const char *part) {
   const pf_node *root = pf_deck_root(d);
@@ -30,14 +32,15 @@ static uint64_t part_hash(const pf_deck *d, const char *part) {
   return pf_node_hash(pf_node_get(pf_node_get(root, top), dot + 1));
 }
 
-/* Scalar names and values: time, step, dt, contact_energy, external_work, initial_energy, the
- * deck-part hashes (two 32-bit halves each) and per indenter its position and reaction. */
+/* Scalar names and values: time, step, dt, contact_energy, external_work, initial_energy,
+ * wall_loss, the deck-part hashes (two 32-bit halves each), per indenter its position and
+ * reaction, and per body the FE stable step of the last force evaluation (0 for PD bodies). */
 static int scalars_make(const pf_sim *sim, pf_sim_scalars *s) {
-  s->n = NFIXED + 2 * NPARTS + 6 * sim->nindenters;
+  s->n = NFIXED + 2 * NPARTS + 6 * sim->nindenters + sim->nbodies;
   PF_MALLOC(s->name, s->n);
   PF_MALLOC(s->names, s->n);
   PF_MALLOC(s->value, s->n);
-  const char *fixed[NFIXED] = {"time", "step", "dt", "contact_energy", "external_work", "initial_energy"};
+  const char *fixed[NFIXED] = {"time", "step", "dt", "contact_energy", "external_work", "initial_energy", "wall_loss"};
   int k = 0;
   for (; k < NFIXED; k++) snprintf(s->name[k], 96, "%s", fixed[k]);
   for (int p = 0; p < NPARTS; p++, k += 2) {
@@ -49,6 +52,8 @@ static int scalars_make(const pf_sim *sim, pf_sim_scalars *s) {
       snprintf(s->name[at + 6 * q + a], 96, "indenter_%d_%s_position_%c", q, pf_indenter_name(sim->indenters[q]), 'x' + a);
       snprintf(s->name[at + 6 * q + 3 + a], 96, "indenter_%d_%s_reaction_%c", q, pf_indenter_name(sim->indenters[q]), 'x' + a);
     }
+  for (int b = 0, at = k + 6 * sim->nindenters; b < sim->nbodies; b++)
+    snprintf(s->name[at + b], 96, "body_%d_%s_stable_dt", b, sim->body_name[b]);
   for (int q = 0; q < s->n; q++) s->names[q] = s->name[q];
   return 0;
 }
@@ -62,7 +67,7 @@ static void scalars_free(pf_sim_scalars *s) {
 static void scalars_fill(const pf_sim *sim, pf_sim_scalars *s) {
   double *v = s->value;
   v[0] = sim->t, v[1] = (double)sim->step, v[2] = sim->dt;
-  v[3] = sim->contact_energy, v[4] = sim->external_work, v[5] = sim->e0;
+  v[3] = sim->contact_energy, v[4] = sim->external_work, v[5] = sim->e0, v[6] = sim->wall_loss;
   for (int p = 0; p < NPARTS; p++) {
     uint64_t h = part_hash(sim->deck, physics_parts[p]);
     v[NFIXED + 2 * p] = (double)(h >> 32), v[NFIXED + 2 * p + 1] = (double)(h & 0xffffffffu);
@@ -72,6 +77,8 @@ static void scalars_fill(const pf_sim *sim, pf_sim_scalars *s) {
     pf_indenter_position(sim->indenters[q], x);
     for (int a = 0; a < 3; a++) v[at + 6 * q + a] = x[a], v[at + 6 * q + 3 + a] = sim->reaction[q][a];
   }
+  for (int b = 0, at = NFIXED + 2 * NPARTS + 6 * sim->nindenters; b < sim->nbodies; b++)
+    v[at + b] = sim->fem[b] ? pf_min_all(pf_fem_body_stable_dt(sim->fem[b])) : 0; /* collective */
 }
 
 int pf_sim_setup_restart(pf_sim *sim) {
@@ -83,29 +90,25 @@ int pf_sim_setup_restart(pf_sim *sim) {
   if (sim->restart_interval < 0)
     return pf_deck_error(d, pf_node_get(r, "interval"), "interval", "must not be negative");
   pf_sim_output_name(sim, file, ".restart.h5", sim->restart_path, sizeof sim->restart_path);
-  if (sim->nfem > 0 && (sim->restart_interval > 0 || sim->opt.restart_from))
-    return pf_deck_error(d, r ? r : pf_deck_root(d), "restart",
-                         "checkpoints do not yet hold finite-element state (stress, hourglass "
-                         "forces, material history); finite_element bodies cannot restart");
   return 0;
 }
 
 int pf_sim_checkpoint(pf_sim *sim) {
-  if (sim->nfem > 0) { /* a signal: no checkpoint can hold the FE state yet */
-    pf_log("step %ld: no checkpoint written (finite-element state cannot be checkpointed yet)\n", sim->step);
-    return 0;
-  }
   pf_bond_rows rows;
   pf_sim_scalars s = {0};
+  pf_table tables[PF_MAX_BODIES];
+  int ntables = 0;
   PF_CALL(pf_bond_rows_init(&rows));
   int ierr = scalars_make(sim, &s);
-  for (int b = 0; b < sim->nbodies && !ierr; b++) ierr = pf_pd_body_bond_rows(sim->body[b], sim->pts, &rows);
+  if (!ierr) ierr = pf_sim_bond_rows(sim, &rows);
+  if (!ierr) ierr = pf_sim_fem_tables(sim, tables, &ntables);
   if (!ierr) {
     scalars_fill(sim, &s);
     pf_points owned = *sim->pts; /* the owned points only */
     owned.n_total = owned.n_owned;
-    ierr = pf_checkpoint_write(sim->restart_path, &owned, &rows, s.n, s.names, s.value);
+    ierr = pf_checkpoint_write(sim->restart_path, &owned, &rows, s.n, s.names, s.value, ntables, tables);
   }
+  pf_sim_fem_tables_free(tables, ntables);
   pf_bond_rows_free(&rows);
   scalars_free(&s);
   if (!ierr) pf_log("step %ld: checkpoint %s\n", sim->step, sim->restart_path);
@@ -133,6 +136,17 @@ int pf_sim_restore_points(pf_sim *sim) {
   int ierr = pf_checkpoint_read(sim->opt.restart_from, &sim->pts, &rows, s->n, s->names, s->value);
   if (!ierr) ierr = pf_sim_settle(sim, &rows, 0);
   pf_bond_rows_free(&rows);
+  for (int b = 0; b < sim->nbodies && !ierr; b++) { /* the elements' state, whole on every rank */
+    if (!sim->fem[b]) continue;
+    pf_table t = {.total = pf_fem_body_mesh(sim->fem[b])->nelem, .ncomp = pf_fem_body_state_ncomp(sim->fem[b])};
+    pf_sim_fem_table_name(sim, b, t.name, sizeof t.name);
+    double *full = malloc(sizeof(double) * ((size_t)t.total * t.ncomp + 1));
+    if (!full) return pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+    ierr = pf_checkpoint_read_table(sim->opt.restart_from, &t, full);
+    if (!ierr) pf_fem_body_state_set(sim->fem[b], full);
+    if (!ierr) pf_fem_body_set_stable_dt(sim->fem[b], s->value[NFIXED + 2 * NPARTS + 6 * sim->nindenters + b]);
+    free(full);
+  }
   return ierr;
 }
 
@@ -153,10 +167,11 @@ int pf_sim_restore_state(pf_sim *sim) {
   scalars_free(&now);
   if (ierr) return ierr;
   const double *v = saved->value;
+  if (sim->adaptive) sim->dt = v[2]; /* the step follows the elements: the last one taken */
   PF_CHECK(v[2] == sim->dt, PF_ERR_INPUT, "the checkpoint %s was written with dt = %.17g s, this set-up gives %.17g s",
            sim->opt.restart_from, v[2], sim->dt);
   sim->t = v[0], sim->step = (long)v[1], sim->contact_energy = v[3], sim->external_work = v[4];
-  sim->e0 = v[5], sim->have_e0 = 1;
+  sim->e0 = v[5], sim->have_e0 = 1, sim->wall_loss = v[6];
   for (int q = 0, at = NFIXED + 2 * NPARTS; q < sim->nindenters; q++) {
     pf_indenter_set_position(sim->indenters[q], &v[at + 6 * q]);
     for (int a = 0; a < 3; a++) sim->reaction[q][a] = v[at + 6 * q + 3 + a];

@@ -110,6 +110,17 @@ double pf_fem_body_stable_dt(const pf_fem_body *b);
 void pf_fem_body_energies(const pf_fem_body *b, double e[3]);
 /* Element count of the mesh; the mesh (for output connectivity). */
 const pf_fem_mesh *pf_fem_body_mesh(const pf_fem_body *b);
+/* Element state as table rows (checkpoints, re-partitioning): ncomp doubles per element. */
+int pf_fem_body_state_ncomp(const pf_fem_body *b);
+/* Elements evaluated on this rank (those with an owned node). */
+pf_int pf_fem_body_nlocal(const pf_fem_body *b);
+/* The rows of the elements this rank owns: ids[k] the mesh element, data[k * ncomp] its state
+ * (room for pf_fem_body_nlocal rows); returns how many. */
+pf_int pf_fem_body_state_get(const pf_fem_body *b, pf_gid *ids, double *data);
+/* Set every local element's state from the whole table full[nelem * ncomp] (after attach). */
+void pf_fem_body_state_set(pf_fem_body *b, const double *full);
+/* Restore the stable step of the last force evaluation (restart, re-partition). */
+void pf_fem_body_set_stable_dt(pf_fem_body *b, double dt);
 /* Fill the nodal output fields "stress" (6) and the material's state names with the
  * volume-weighted average over each owned node's elements. */
 int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts);

@@ -66,7 +66,10 @@ time: {steps: 80}
 output: {interval: 20}
 DECK
 
-for deck in disk_impact_rigid fragmenting_cylinder wave_in_bar cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed; do
+cp mixed.yaml mixed_rebalance.yaml
+printf 'parallel:\n  rebalance_threshold: 1.0\n' >> mixed_rebalance.yaml
+
+for deck in disk_impact_rigid fragmenting_cylinder wave_in_bar cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance; do
   ref=""
   for np in 1 2 3; do
     mkdir -p "np$np"
@@ -75,7 +78,7 @@ for deck in disk_impact_rigid fragmenting_cylinder wave_in_bar cylinder_lps_meti
     [ -n "$d" ] || { echo "$deck on $np ranks: no digest"; fail=1; continue; }
     [ -n "$ref" ] || ref=$d
     [ "$d" = "$ref" ] || { echo "$deck: digest on $np ranks $d differs from $ref on 1 rank"; fail=1; }
-    if [ "$deck" = cylinder_rebalance ] && [ $np -gt 1 ]; then
+    if { [ "$deck" = cylinder_rebalance ] || [ "$deck" = mixed_rebalance ]; } && [ $np -gt 1 ]; then
       echo "$out" | grep -q "re-partitioned" || { echo "$deck on $np ranks: no re-partition logged"; fail=1; }
     fi
   done

@@ -8,6 +8,9 @@
 #     checkpoint left behind always restarts to the reference digest.
 #  4. A deck whose physics differs (density) is refused naming the part; an output-only change
 #     (interval) is accepted (every restart here uses a deck with other output settings).
+#  5. Finite elements (the Taylor bar, cut to 200 steps: J2 history, viscous hourglass,
+#     adaptive step, rigid wall): a run with a checkpoint at step 160 on 2 ranks, restarted on
+#     3 and on 1, ends with the uninterrupted 1-rank run's digest.
 # usage: mpi_restart.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
@@ -69,4 +72,14 @@ out=$(run 1 "$exe" --restart ck.h5 ${tag}_bad.yaml 2>&1)
 status=$?
 [ $status -eq 2 ] || { echo "changed density: exit $status, expected 2"; fail=1; }
 echo "$out" | grep -q "'materials' differs from the deck the checkpoint" || { echo "changed density: message: $out"; fail=1; }
+# finite elements
+sed -E 's/^(\s*)final_time:.*/\1steps: 200/; s#\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/../inputs/taylor_impact.yaml" > fe$tag.yaml
+printf 'restart:\n  file: ckfe.h5\n  interval: 80\n' >> fe$tag.yaml
+ref=$(digest_of "$(run 1 "$exe" --quiet fe$tag.yaml 2>&1)")
+rm -f ckfe.h5
+run 2 "$exe" --quiet fe$tag.yaml > /dev/null 2>&1 || { echo "FE run with checkpoints failed"; fail=1; }
+for np in 3 1; do
+  d=$(digest_of "$(run $np "$exe" --quiet --restart ckfe.h5 fe$tag.yaml 2>&1)")
+  [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "FE: restarted on $np ranks: digest '$d', uninterrupted '$ref'"; fail=1; }
+done
 exit $fail

@@ -1,0 +1,48 @@
+/* The state of an FE body's elements as rows of a global table (one row per mesh element):
+ * stress and material history at each quadrature point, the stiffness-form hourglass forces and
+ * the element energies. Checkpoints write it, a restart or a re-partition gives it back. */
+#include "fem/fem_impl.h"
+
+#include <string.h>
+
+int pf_fem_body_state_ncomp(const pf_fem_body *b) { return b->nqp * (6 + b->nstate) + 12 + 3; }
+
+static void pack(const pf_fem_body *b, pf_int e, double *row) {
+  const size_t nq = (size_t)b->nqp;
+  memcpy(row, &b->sigma[6 * nq * e], sizeof(double) * 6 * nq);
+  row += 6 * nq;
+  memcpy(row, &b->state[(size_t)b->nstate * nq * e], sizeof(double) * b->nstate * nq);
+  row += (size_t)b->nstate * nq;
+  memcpy(row, &b->hgq[12 * (size_t)e], sizeof(double) * 12);
+  memcpy(row + 12, &b->energy[3 * (size_t)e], sizeof(double) * 3);
+}
+
+static void unpack(pf_fem_body *b, pf_int e, const double *row) {
+  const size_t nq = (size_t)b->nqp;
+  memcpy(&b->sigma[6 * nq * e], row, sizeof(double) * 6 * nq);
+  row += 6 * nq;
+  memcpy(&b->state[(size_t)b->nstate * nq * e], row, sizeof(double) * b->nstate * nq);
+  row += (size_t)b->nstate * nq;
+  memcpy(&b->hgq[12 * (size_t)e], row, sizeof(double) * 12);
+  memcpy(&b->energy[3 * (size_t)e], row + 12, sizeof(double) * 3);
+}
+
+pf_int pf_fem_body_state_get(const pf_fem_body *b, pf_gid *ids, double *data) {
+  const int nc = pf_fem_body_state_ncomp(b);
+  pf_int k = 0;
+  for (pf_int e = 0; e < b->nel; e++)
+    if (b->own[e]) {
+      ids[k] = b->eid[e];
+      pack(b, e, &data[(size_t)nc * k++]);
+    }
+  return k;
+}
+
+void pf_fem_body_state_set(pf_fem_body *b, const double *full) {
+  const int nc = pf_fem_body_state_ncomp(b);
+  for (pf_int e = 0; e < b->nel; e++) unpack(b, e, &full[(size_t)nc * b->eid[e]]);
+}
+
+pf_int pf_fem_body_nlocal(const pf_fem_body *b) { return b->nel; }
+
+void pf_fem_body_set_stable_dt(pf_fem_body *b, double dt) { b->stable_dt = dt; }
