@@ -332,7 +332,7 @@ typedef struct pf_exodus pf_exodus;
  * (body_start has nbodies + 1 entries from 0 to n_owned: points are grouped by body, body b
  * owning [body_start[b], body_start[b+1])), nodal variables displacement_{x,y,z},
  * velocity_{x,y,z}, force_{x,y,z} and every field flagged PF_FIELD_OUTPUT (a field with ncomp 3
- * gets _x/_y/_z), and global variables named by global_names. */
+ * gets _x/_y/_z, ncomp 6 _xx/_yy/_zz/_yz/_xz/_xy), and global variables named by global_names. */
 int pf_exodus_create(const char *path, const pf_points *pts, int nbodies,
                      const char *const *body_names, const pf_int *body_start, int nglobals,
                      const char *const *global_names, pf_exodus **ex);

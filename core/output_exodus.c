@@ -4,7 +4,8 @@
  * block per body of type "SPHERE" with one node per element (element i of block b is point
  * body_start[b] + i), block names = body names, node and element id maps = global id + 1,
  * nodal variables displacement_{x,y,z}, velocity_{x,y,z}, force_{x,y,z} and then every field
- * flagged PF_FIELD_OUTPUT (ncomp 1: name, ncomp 3: name_{x,y,z}, else name_0, name_1, ...),
+ * flagged PF_FIELD_OUTPUT (ncomp 1: name, ncomp 3: name_{x,y,z}, ncomp 6: name_{xx,yy,zz,yz,xz,xy},
+ * else name_0, name_1, ...),
  * and global variables. Each pf_exodus_write appends one time step and calls ex_update. */
 #include "core/core.h"
 
@@ -87,6 +88,8 @@ static void variable_name(const pf_field *fld, int comp, char *out) {
     snprintf(out, PF_EX_NAME_LEN + 1, "%s", fld->name);
   else if (fld->ncomp == 3)
     snprintf(out, PF_EX_NAME_LEN + 1, "%s_%c", fld->name, xyz[comp]);
+  else if (fld->ncomp == 6) /* a symmetric tensor in Voigt order */
+    snprintf(out, PF_EX_NAME_LEN + 1, "%s_%s", fld->name, (const char *[]){"xx", "yy", "zz", "yz", "xz", "xy"}[comp]);
   else
     snprintf(out, PF_EX_NAME_LEN + 1, "%s_%d", fld->name, comp);
 }

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "core/simulation.h"
+#include "fem/fem.h"
 
 int pf_test_failures = 0;
 
@@ -65,4 +66,20 @@ struct pf_sim *pf_test_sim(const char *tag, const char *deck_text) {
 void pf_test_print_digest(const char *tag, struct pf_sim *sim) {
   uint64_t h = pf_sim_digest(sim);
   if (getenv("PF_TEST_DIGESTS") && pf_comm_rank() == 0) printf("state digest (%s): %016" PRIx64 "\n", tag, h);
+}
+
+const char *pf_test_write_mesh(const char *tag, const void *mesh) {
+  static char path[256];
+  int id = (int)getpid();
+  MPI_Bcast(&id, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  snprintf(path, sizeof path, "/tmp/pf_test_%s_%d.e", tag, id);
+  int ok = pf_comm_rank() != 0 || pf_fem_mesh_write_exodus(path, (const pf_fem_mesh *)mesh) == 0;
+  pf_test_true(ok, "pf_fem_mesh_write_exodus", __FILE__, __LINE__);
+  MPI_Barrier(MPI_COMM_WORLD);
+  return path;
+}
+
+void pf_test_remove_shared(const char *path) {
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (pf_comm_rank() == 0) remove(path);
 }

@@ -20,6 +20,11 @@ void pf_test_true(int cond, const char *what, const char *file, int line);
 /* Write text to a fresh file under /tmp named after tag and the process id; returns its path
  * (static storage, valid until the next call with the same slot 0..7). */
 const char *pf_test_write_file(int slot, const char *tag, const char *text);
+/* Write an FE mesh as an Exodus file on rank 0, under a /tmp name every rank shares (rank 0's
+ * process id); returns the path (static storage). Remove it with pf_test_remove_shared. */
+const char *pf_test_write_mesh(const char *tag, const void *mesh); /* mesh: a pf_fem_mesh */
+/* Rank 0 removes path once every rank is past this point. Collective. */
+void pf_test_remove_shared(const char *path);
 /* Build a simulation from deck text (no output files); aborts the test on failure. */
 struct pf_sim;
 struct pf_sim *pf_test_sim(const char *tag, const char *deck_text);

@@ -13,13 +13,12 @@
 
 #include <math.h>
 #include <string.h>
-#include <unistd.h>
 
 #define N1 40
 #define N2 200
 #define DT 1.0e-8
 
-static void write_cube(const char *path) {
+static const char *write_cube(void) {
   pf_fem_mesh m;
   memset(&m, 0, sizeof m);
   m.nnodes = 8, m.nelem = 1, m.nblocks = 1;
@@ -30,7 +29,7 @@ static void write_cube(const char *path) {
   for (int I = 0; I < 8; I++)
     for (int i = 0; i < 3; i++) X[I][i] *= 1e-3;
   m.X = &X[0][0], m.conn = conn, m.block = block, m.block_name = name;
-  PF_TEST_OK(pf_fem_mesh_write_exodus(path, &m));
+  return pf_test_write_mesh("objectivity", &m);
 }
 
 static void run(const char *mesh, const char *model, const char *element, double eps) {
@@ -82,19 +81,14 @@ static void run(const char *mesh, const char *model, const char *element, double
 
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
-  char mesh[128];
-  int id = (int)getpid(); /* rank 0's process id names the mesh file for every rank */
-  MPI_Bcast(&id, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  snprintf(mesh, sizeof mesh, "/tmp/pf_objectivity_%d.e", id);
-  if (pf_comm_rank() == 0) write_cube(mesh);
-  MPI_Barrier(MPI_COMM_WORLD);
+  char mesh[256];
+  snprintf(mesh, sizeof mesh, "%s", write_cube());
   const char *models[] = {"elastic", "neo_hookean", "j2"}, *elements[] = {"reduced", "bbar"};
   for (int k = 0; k < 3; k++)
     for (int e = 0; e < 2; e++) {
       run(mesh, models[k], elements[e], 0.0);
       run(mesh, models[k], elements[e], 1e-3);
     }
-  MPI_Barrier(MPI_COMM_WORLD);
-  if (pf_comm_rank() == 0) remove(mesh);
+  pf_test_remove_shared(mesh);
   return pf_test_finish();
 }

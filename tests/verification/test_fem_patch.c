@@ -13,7 +13,6 @@
 
 #include <math.h>
 #include <string.h>
-#include <unistd.h>
 
 #define NE 3
 #define H 1.0e-3
@@ -22,7 +21,7 @@ static const double A[3][3] = {{1.0, 0.4, -0.2}, {0.3, -0.6, 0.5}, {-0.1, 0.2, 0
 
 static int node_id(int i, int j, int k) { return i + (NE + 1) * (j + (NE + 1) * k); }
 
-static void write_mesh(const char *path) {
+static const char *write_mesh(void) {
   pf_fem_mesh m;
   memset(&m, 0, sizeof m);
   m.nnodes = (NE + 1) * (NE + 1) * (NE + 1);
@@ -52,8 +51,9 @@ static void write_mesh(const char *path) {
       for (int i = 0; i < NE; i++, e++)
         for (int I = 0; I < 8; I++)
           m.conn[8 * e + I] = node_id(i + corner[I][0], j + corner[I][1], k + corner[I][2]);
-  PF_TEST_OK(pf_fem_mesh_write_exodus(path, &m));
+  const char *path = pf_test_write_mesh("patch", &m);
   free(m.X), free(m.conn), free(m.block), free(m.block_name);
+  return path;
 }
 
 static void run(const char *mesh, const char *element) {
@@ -128,15 +128,10 @@ static void run(const char *mesh, const char *element) {
 
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
-  char mesh[128];
-  int id = (int)getpid(); /* rank 0's process id names the mesh file for every rank */
-  MPI_Bcast(&id, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  snprintf(mesh, sizeof mesh, "/tmp/pf_patch_%d.e", id);
-  if (pf_comm_rank() == 0) write_mesh(mesh);
-  MPI_Barrier(MPI_COMM_WORLD);
+  char mesh[256];
+  snprintf(mesh, sizeof mesh, "%s", write_mesh());
   run(mesh, "reduced");
   run(mesh, "bbar");
-  MPI_Barrier(MPI_COMM_WORLD);
-  if (pf_comm_rank() == 0) remove(mesh);
+  pf_test_remove_shared(mesh);
   return pf_test_finish();
 }
