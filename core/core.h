@@ -284,9 +284,10 @@ int pf_bc_destroy(pf_bc **bc);
 int pf_bc_select(pf_bc *bc, const pf_points *pts);
 pf_int pf_bc_npoints(const pf_bc *bc);
 /* Velocity Verlet hooks: after the first half kick (mid-step velocity at t + dt/2) and after
- * the second half kick (velocity at t). */
-void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt);
-void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t);
+ * the second half kick (velocity at t; dt the step just taken). The work of the conditions'
+ * reactions on the owned points is added to *work (J; core/bc.c gives the rule). */
+void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt, double *work);
+void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t, double dt, double *work);
 /* Set mask[3 i + c] = 1 for every component c of owned point i the condition prescribes. */
 void pf_bc_mark(const pf_bc *bc, uint8_t *mask);
 

@@ -47,6 +47,7 @@ struct pf_sim {
   double pd_stable;     /* the PD bodies' stable step (fixed) */
   /* energy bookkeeping */
   double contact_energy, external_work, wall_loss;
+  double bc_work; /* work of the prescribed motions on this rank's points (summed in the globals) */
   double e0;   /* total energy at the start of the run (kept across restarts) */
   int have_e0;
   /* checkpoints */

@@ -21,7 +21,7 @@ const pf_key pf_restart_keys[] = {
  * may change on restart). */
 static const char *const physics_parts[] = {"units", "materials", "bodies", "indenters", "boundary_conditions",
                                             "walls", "time.dt", "time.safety_factor"};
-enum { NPARTS = sizeof physics_parts / sizeof physics_parts[0], NFIXED = 7 };
+enum { NPARTS = sizeof physics_parts / sizeof physics_parts[0], NFIXED = 8 };
 
 static uint64_t part_hash(const pf_deck *d, const char *part) {
   const pf_node *root = pf_deck_root(d);
@@ -33,14 +33,14 @@ static uint64_t part_hash(const pf_deck *d, const char *part) {
 }
 
 /* Scalar names and values: time, step, dt, contact_energy, external_work, initial_energy,
- * wall_loss, the deck-part hashes (two 32-bit halves each), per indenter its position and
+ * wall_loss and bc_work (sums over the ranks), the deck-part hashes (two 32-bit halves each), per indenter its position and
  * reaction, and per body the FE stable step of the last force evaluation (0 for PD bodies). */
 static int scalars_make(const pf_sim *sim, pf_sim_scalars *s) {
   s->n = NFIXED + 2 * NPARTS + 6 * sim->nindenters + sim->nbodies;
   PF_MALLOC(s->name, s->n);
   PF_MALLOC(s->names, s->n);
   PF_MALLOC(s->value, s->n);
-  const char *fixed[NFIXED] = {"time", "step", "dt", "contact_energy", "external_work", "initial_energy", "wall_loss"};
+  const char *fixed[NFIXED] = {"time", "step", "dt", "contact_energy", "external_work", "initial_energy", "wall_loss", "bc_work"};
   int k = 0;
   for (; k < NFIXED; k++) snprintf(s->name[k], 96, "%s", fixed[k]);
   for (int p = 0; p < NPARTS; p++, k += 2) {
@@ -67,7 +67,8 @@ static void scalars_free(pf_sim_scalars *s) {
 static void scalars_fill(const pf_sim *sim, pf_sim_scalars *s) {
   double *v = s->value;
   v[0] = sim->t, v[1] = (double)sim->step, v[2] = sim->dt;
-  v[3] = sim->contact_energy, v[4] = sim->external_work, v[5] = sim->e0, v[6] = sim->wall_loss;
+  v[3] = sim->contact_energy, v[4] = sim->external_work, v[5] = sim->e0;
+  v[6] = pf_sum_all(sim->wall_loss), v[7] = pf_sum_all(sim->bc_work); /* collective */
   for (int p = 0; p < NPARTS; p++) {
     uint64_t h = part_hash(sim->deck, physics_parts[p]);
     v[NFIXED + 2 * p] = (double)(h >> 32), v[NFIXED + 2 * p + 1] = (double)(h & 0xffffffffu);
@@ -171,7 +172,9 @@ int pf_sim_restore_state(pf_sim *sim) {
   PF_CHECK(v[2] == sim->dt, PF_ERR_INPUT, "the checkpoint %s was written with dt = %.17g s, this set-up gives %.17g s",
            sim->opt.restart_from, v[2], sim->dt);
   sim->t = v[0], sim->step = (long)v[1], sim->contact_energy = v[3], sim->external_work = v[4];
-  sim->e0 = v[5], sim->have_e0 = 1, sim->wall_loss = v[6];
+  sim->e0 = v[5], sim->have_e0 = 1;
+  int root = pf_comm_rank() == 0; /* per-rank sums: rank 0 carries the total */
+  sim->wall_loss = root ? v[6] : 0, sim->bc_work = root ? v[7] : 0;
   for (int q = 0, at = NFIXED + 2 * NPARTS; q < sim->nindenters; q++) {
     pf_indenter_set_position(sim->indenters[q], &v[at + 6 * q]);
     for (int a = 0; a < 3; a++) sim->reaction[q][a] = v[at + 6 * q + 3 + a];

@@ -152,7 +152,7 @@ static int one_step(pf_sim *sim) {
   next_dt(sim);
   const double dt = sim->dt;
   half_kick(p, dt);
-  for (int k = 0; k < sim->nbcs; k++) pf_bc_apply_midstep(sim->bcs[k], p, sim->t, dt);
+  for (int k = 0; k < sim->nbcs; k++) pf_bc_apply_midstep(sim->bcs[k], p, sim->t, dt, &sim->bc_work);
   drift(p, dt);
   for (int k = 0; k < sim->nwalls; k++) pf_wall_enforce_position(sim->walls[k], p, &sim->wall_loss);
   for (int k = 0; k < sim->nindenters; k++)
@@ -161,7 +161,7 @@ static int one_step(pf_sim *sim) {
   sim->step++;
   PF_CALL(compute_forces(sim, dt));
   half_kick(p, dt);
-  for (int k = 0; k < sim->nbcs; k++) pf_bc_apply_endstep(sim->bcs[k], p, sim->t);
+  for (int k = 0; k < sim->nbcs; k++) pf_bc_apply_endstep(sim->bcs[k], p, sim->t, dt, &sim->bc_work);
   for (int b = 0; b < sim->nbodies; b++)
     if (sim->body[b]) PF_CALL(pf_pd_body_post_step(sim->body[b], p));
   return check_finite(sim);
@@ -211,7 +211,7 @@ int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g) {
   g->bulk_viscosity = pf_sum_all(fe[2]);
   g->wall_loss = pf_sum_all(sim->wall_loss);
   g->contact = sim->contact_energy;
-  g->external_work = sim->external_work;
+  g->external_work = sim->external_work + pf_sum_all(sim->bc_work);
   for (int a = 0; a < 3; a++) g->momentum[a] = pf_sum_all(mom[a]);
   nb = pf_sum_all(nb);
   g->damage_fraction = nb > 0 ? pf_sum_all(nbroken) / nb : 0;
