@@ -12,6 +12,9 @@ static const pf_key time_keys[] = {
     {"steps", PF_KEY_INT, 0, NULL, "", "number of steps (give this or final_time)", NULL},
     {"dt", PF_KEY_REAL, 0, "stable", "s", "fixed time step; default: safety_factor x stable step", NULL},
     {"safety_factor", PF_KEY_REAL, 0, "0.8", "", "fraction of the Silling–Askari stable step", NULL},
+    {"max_motion", PF_KEY_REAL, 0, "0.5", "",
+     "instability guard: the largest motion of a point in one step, as a fraction of its horizon "
+     "(PD) or cell (FE node); beyond it the run stops and writes the last good state", NULL},
     PF_KEY_END};
 
 static const pf_key output_keys[] = {
@@ -213,6 +216,7 @@ int pf_sim_destroy(pf_sim **s) {
   pf_points_destroy(&sim->pts);
   pf_points_destroy(&sim->joined);
   pf_sim_restart_free(sim);
+  pf_sim_guard_free(sim);
   pf_deck_destroy(&sim->deck);
   PF_FREE(*s);
   return 0;

@@ -44,6 +44,7 @@ struct pf_sim {
   long step, nsteps;
   int adaptive;         /* dt follows the FE stable step each step */
   double safety;        /* fraction of the stable step */
+  double max_motion;    /* guard: largest step motion, as a fraction of horizon (PD) or cell (FE) */
   double pd_stable;     /* the PD bodies' stable step (fixed) */
   /* energy bookkeeping */
   double contact_energy, external_work, wall_loss;
@@ -62,6 +63,13 @@ struct pf_sim {
   pf_points *joined; /* rank 0: every point in global-id order, for the joined Exodus file */
   pf_history *hist;
   double wall_loop;
+  /* instability guards (core/simulation_guard.c) */
+  int guard_tripped;    /* this rank found a NaN, a runaway point or an inverted element */
+  int last_good;        /* the run stopped and the points hold the last good state */
+  double *good_u, *good_v; /* [3 n_owned] state at the start of the step */
+  pf_int good_n;
+  double good_t;
+  long good_step;
 };
 
 extern const pf_key pf_parallel_keys[];
@@ -86,6 +94,14 @@ void pf_sim_catch_signals(void);
 /* The largest signal number received by any rank (0: none). Collective. */
 int pf_sim_signalled(void);
 int pf_sim_setup_output(pf_sim *sim);
+/* Instability guards: keep the state at the start of each step; flag a point moving more than
+ * time.max_motion of its horizon (PD) or cell (FE node) in one step; at the step's end check
+ * forces and velocities for NaN/Inf and, on every rank together, go back to the last good
+ * state and fail. */
+int pf_sim_guard_save(pf_sim *sim);
+void pf_sim_guard_motion(pf_sim *sim, double dt);
+int pf_sim_guard_check(pf_sim *sim);
+void pf_sim_guard_free(pf_sim *sim);
 /* core/simulation_fem_state.c: the bond rows of every owned point (PD families, FE node
  * adjacency); the FE bodies' element state as tables (name fem_<body>); a re-partition that
  * keeps the element state. */

@@ -149,6 +149,16 @@ static int write_output(pf_sim *sim, globals *g, int exodus, int history) {
   return 0;
 }
 
+/* The guards stopped the run with every rank back at the start of the failed step: write that
+ * state as a last Exodus step (the global variables are those of the last history row; FE
+ * stresses are those of the failed step), then fail with the guard's error. Collective. */
+static int write_last_good(pf_sim *sim, globals *g, int ierr) {
+  if (sim->opt.no_output || write_exodus(sim, g->values + 2)) return ierr;
+  pf_log("perifem: the last good state (step %ld, t = %.6e s) is the last step of %s\n", sim->step, sim->t,
+         sim->exodus_path);
+  return ierr;
+}
+
 static void progress(const pf_sim *sim, double wall0) {
   double el = pf_wtime() - wall0, rate = sim->step / fmax(el, 1e-9);
   if (sim->adaptive && isfinite(sim->final_time)) { /* the step count is not known ahead */
@@ -201,7 +211,9 @@ static int run_loop(pf_sim *sim, globals *g, double wall0) {
   long every = sim->nsteps / 20 > 0 ? sim->nsteps / 20 : 1; /* adaptive steps: a first estimate */
   double loop0 = pf_wtime();
   while (!pf_sim_finished(sim) && !sim->stopped) {
-    PF_CALL(pf_sim_step(sim, 1));
+    int ierr = pf_sim_step(sim, 1);
+    if (ierr && sim->last_good) return write_last_good(sim, g, ierr);
+    if (ierr) return ierr;
     PF_CALL(checkpoints(sim, &sim->stopped));
     int last = pf_sim_finished(sim) || sim->stopped;
     int exo = last || (sim->output_interval > 0 && sim->step % sim->output_interval == 0);

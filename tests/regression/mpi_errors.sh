@@ -2,7 +2,10 @@
 # An error raised on one rank only stops every rank, non-zero, within 30 s, with a message that
 # names the rank: (1) a NaN initial velocity at the points of one end of the bar (found during
 # set-up, after partitioning, by the rank that owns them); (2) a prescribed velocity that turns
-# NaN at step 5 on the points of one end (found by the time loop's guard).
+# NaN at step 5 on the points of one end (found by the time loop's guard); (3) the bar with a
+# time step 3.7 times its stable step (the motion guard): on 1, 2 and 3 ranks the run stops
+# with the point, body, motion and step, and the Exodus file's last step is the last good state
+# (a time before the failing step), the same on every rank count.
 # usage: mpi_errors.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
@@ -30,5 +33,20 @@ for deck in setup_nan run_nan; do
       { echo "$deck on $np ranks: no error naming the rank and '${expect[$k]}':"; echo "$out"; fail=1; }
   done
   k=$((k + 1))
+done
+# (3) the motion guard, with the last good state written
+sed -E 's/^(\s*)final_time:.*/\1final_time: 2.0e-5\n\1dt: 1.0e-7/' ../inputs/wave_in_bar.yaml > "$scratch/unstable.yaml"
+ref=""
+for np in 1 2 3; do
+  out=$(cd "$scratch" && rm -f unstable.e && run $np "$exe" unstable.yaml 2>&1)
+  [ $? -ne 0 ] || { echo "unstable on $np ranks: exit 0"; fail=1; }
+  msg=$(echo "$out" | grep -o "point [0-9]* (body 'bar') at .* moved .* in step [0-9]* at time [^ ]* s, more than time.max_motion" | head -1)
+  [ -n "$msg" ] || { echo "unstable on $np ranks: no motion-guard message:"; echo "$out"; fail=1; continue; }
+  step=$(echo "$msg" | sed -E 's/.* in step ([0-9]+) .*/\1/')
+  last=$(ncdump -v time_whole "$scratch/unstable.e" | sed -n 's/.*time_whole = \(.*\) ;/\1/p' | tr -d ' ' | awk -F, '{print $NF}')
+  awk -v t="$last" -v s="$step" 'BEGIN { exit !(t < s * 1.0e-7 - 1e-12) }' ||
+    { echo "unstable on $np ranks: last Exodus time $last is not before step $step"; fail=1; }
+  [ -n "$ref" ] || ref="$step $last"
+  [ "$step $last" = "$ref" ] || { echo "unstable on $np ranks: step/time '$step $last', 1 rank '$ref'"; fail=1; }
 done
 exit $fail
