@@ -79,16 +79,22 @@ static void build_triples(void) {
 
 double pf_hex8_mean_gradient(double x[8][3], double B[8][3]) {
   if (nw < 0) build_triples(); /* first call: at set-up, before any threaded loop */
-  double cr[8][8][3];
+  /* B and V do not change under translation; taking the nodes relative to their centroid keeps
+   * the cross products from cancelling (elements far from the origin lose no digits) */
+  double c[8][3], o[3] = {0, 0, 0}, cr[8][8][3];
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) o[i] += 0.125 * x[I][i];
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) c[I][i] = x[I][i] - o[i];
   for (int J = 0; J < 8; J++)
-    for (int K = J + 1; K < 8; K++) pf_vec3_cross(x[J], x[K], cr[J][K]);
+    for (int K = J + 1; K < 8; K++) pf_vec3_cross(c[J], c[K], cr[J][K]);
   for (int I = 0; I < 8; I++) B[I][0] = B[I][1] = B[I][2] = 0;
   for (int t = 0; t < nw; t++) {
     const triple *q = &wtab[t];
     for (int i = 0; i < 3; i++) B[q->I][i] += q->w * cr[q->J][q->K][i];
   }
   double V = 0;
-  for (int I = 0; I < 8; I++) V += x[I][0] * B[I][0] + x[I][1] * B[I][1] + x[I][2] * B[I][2];
+  for (int I = 0; I < 8; I++) V += c[I][0] * B[I][0] + c[I][1] * B[I][1] + c[I][2] * B[I][2];
   V /= 3.0;
   for (int I = 0; I < 8; I++)
     for (int i = 0; i < 3; i++) B[I][i] /= V;

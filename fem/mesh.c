@@ -85,10 +85,6 @@ static void known_extensions(char *out, size_t len) {
 }
 
 /* ---- shared helpers (fem/mesh_impl.h) ---------------------------------------------------- */
-const int pf_fem_mesh_hex_face[6][4] = {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6},
-                                        {0, 4, 7, 3}, {0, 3, 2, 1}, {4, 5, 6, 7}};
-const double pf_fem_mesh_hex_node[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-                                           {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
 
 int pf_fem_mesh_error_(const char *label, const char *file, int line, const char *func,
                        const char *fmt, ...) {
@@ -178,7 +174,7 @@ int pf_fem_mesh_free(pf_fem_mesh *m) {
 static double hex_det_j(const double x[8][3], const double xi[3]) {
   double J[3][3] = {{0}};
   for (int a = 0; a < 8; a++) {
-    const double *s = pf_fem_mesh_hex_node[a];
+    const double *s = pf_hex8_node_sign[a];
     double f[3] = {1 + s[0] * xi[0], 1 + s[1] * xi[1], 1 + s[2] * xi[2]};
     double dN[3] = {s[0] * f[1] * f[2] / 8, s[1] * f[0] * f[2] / 8, s[2] * f[0] * f[1] / 8};
     for (int i = 0; i < 3; i++)
@@ -197,14 +193,9 @@ static double hex_det_j(const double x[8][3], const double xi[3]) {
  * of the same volume as a sum of triple products: J. Grandy, "Efficient computation of volume
  * of hexahedral cells", LLNL UCRL-ID-128886, 1997). */
 double pf_fem_hex_volume(const double x[8][3]) {
-  const double g = 0.57735026918962576451; /* 1/sqrt(3) */
-  double V = 0;
-  for (int k = 0; k < 8; k++) {
-    double xi[3] = {pf_fem_mesh_hex_node[k][0] * g, pf_fem_mesh_hex_node[k][1] * g,
-                    pf_fem_mesh_hex_node[k][2] * g};
-    V += hex_det_j(x, xi);
-  }
-  return V;
+  double c[8][3], B[8][3]; /* the element kernels' exact volume (fem/hex8.c) */
+  memcpy(c, x, sizeof c);
+  return pf_hex8_mean_gradient(c, B);
 }
 
 static void element_nodes(const pf_fem_mesh *m, pf_int e, double x[8][3]) {
@@ -219,7 +210,7 @@ static int hex_orientation(const double x[8][3], double *det_min, int *corner) {
   *det_min = INFINITY;
   *corner = 0;
   for (int k = 0; k < 8; k++) {
-    double d = hex_det_j(x, pf_fem_mesh_hex_node[k]);
+    double d = hex_det_j(x, pf_hex8_node_sign[k]);
     npos += d > 0;
     nneg += d < 0;
     if (!(d >= *det_min)) *det_min = d, *corner = k;
@@ -427,8 +418,8 @@ static int validate(pf_fem_mesh_raw *raw, const char *label) {
       for (int i = 0; i < 3; i++) c[i] += x[a][i] / 8;
     for (int f = 0; f < 6; f++)
       for (int v = 0; v < 4; v++) {
-        const double *p = x[pf_fem_mesh_hex_face[f][v]],
-                     *q = x[pf_fem_mesh_hex_face[f][(v + 1) % 4]];
+        const double *p = x[pf_hex8_face[f][v]],
+                     *q = x[pf_hex8_face[f][(v + 1) % 4]];
         L = fmax(L, sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
                          (p[2] - q[2]) * (p[2] - q[2])));
       }

@@ -140,7 +140,7 @@ static int check_node_order(gmsh_reader *r) {
   int code = gmsh_check(r, ierr, "describing its hexahedron");
   int same = !code && nn == 8 && nlc == 24;
   for (int a = 0; same && a < 8; a++)
-    for (int i = 0; i < 3; i++) same &= lc[3 * a + i] == pf_fem_mesh_hex_node[a][i];
+    for (int i = 0; i < 3; i++) same &= lc[3 * a + i] == pf_hex8_node_sign[a][i];
   if (!code && !same)
     code = PF_MESH_ERROR(r->src,
                          "this gmsh's 8-node hexahedron does not have the Exodus HEX8 node order");
@@ -369,7 +369,7 @@ static int build_faces(gmsh_reader *r, const pf_fem_mesh *m) {
   for (pf_int e = 0; e < m->nelem; e++)
     for (int f = 0; f < 6; f++) {
       struct hex_face *hf = &r->faces[6 * (size_t)e + f];
-      for (int i = 0; i < 4; i++) hf->key[i] = m->conn[8 * (size_t)e + pf_fem_mesh_hex_face[f][i]];
+      for (int i = 0; i < 4; i++) hf->key[i] = m->conn[8 * (size_t)e + pf_hex8_face[f][i]];
       sort4(hf->key);
       hf->elem = e;
       hf->face = (int8_t)f;

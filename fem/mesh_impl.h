@@ -4,7 +4,7 @@
 #ifndef PF_FEM_MESH_IMPL_H
 #define PF_FEM_MESH_IMPL_H
 
-#include "fem/fem.h"
+#include "fem/fem_impl.h"
 
 /* What a reader reads: a file (path set) or inline text (text set, for Pamgen). */
 typedef struct {
@@ -32,12 +32,10 @@ typedef struct {
   int (*read)(const pf_fem_mesh_source *src, pf_fem_mesh_raw *raw);
 } pf_fem_mesh_reader;
 
-/* Exodus HEX8 faces (sides 1..6 as 0..5), each counter-clockwise seen from outside:
- * 0: y=-1 {0,1,5,4}, 1: x=+1 {1,2,6,5}, 2: y=+1 {2,3,7,6}, 3: x=-1 {0,4,7,3},
- * 4: z=-1 {0,3,2,1}, 5: z=+1 {4,5,6,7} (nodes 0-3 the face zeta = -1, 4-7 above them). */
-extern const int pf_fem_mesh_hex_face[6][4];
-/* Natural coordinates of the 8 nodes in Exodus HEX8 order (the same as gmsh's hexahedron). */
-extern const double pf_fem_mesh_hex_node[8][3];
+/* The Exodus HEX8 faces and node coordinates are fem/hex8.c's (fem_impl.h): pf_hex8_face
+ * (sides 1..6 as 0..5, each counter-clockwise seen from outside: 0: y=-1 {0,1,5,4}, 1: x=+1
+ * {1,2,6,5}, 2: y=+1 {2,3,7,6}, 3: x=-1 {0,4,7,3}, 4: z=-1 {0,3,2,1}, 5: z=+1 {4,5,6,7}) and
+ * pf_hex8_node_sign (natural coordinates, the same order as gmsh's hexahedron). */
 
 /* Allocate raw's nodes, elements and blocks (zeroed; ids too). */
 int pf_fem_mesh_raw_alloc(pf_fem_mesh_raw *raw, int64_t nnodes, int64_t nelem, int nblocks);

@@ -2,7 +2,8 @@
  * (sum_I x_jI B_iI = delta_ij, sum_I B_iI = 0) and gives the exact volume of a distorted element
  * (checked against a 6x6x6 Gauss rule of det J, exact for any trilinear hexahedron); the
  * Flanagan-Belytschko stabilization vectors are orthogonal to linear fields; the lumped masses
- * add up to rho V; the characteristic length of a cube is its edge. */
+ * add up to rho V; the characteristic length of a cube is its edge; an element far from the
+ * origin keeps its volume and gradient. */
 #include "fem/fem_impl.h"
 #include "test_common.h"
 
@@ -72,6 +73,19 @@ static void test_mean_gradient(void) {
   PF_TEST_CLOSE(pf_hex8_mean_gradient(p, B), fabs(det), 1e-13, 0);
 }
 
+/* An element 10 m from the origin (10^4 element sizes) has the same volume and gradient as
+ * the same element at the origin: translation invariance, to round-off of the element's size. */
+static void test_far_from_origin(void) {
+  double x[8][3], y[8][3], B[8][3], C[8][3];
+  distorted(x);
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) y[I][i] = x[I][i] + 10.0;
+  double V = pf_hex8_mean_gradient(x, B), W = pf_hex8_mean_gradient(y, C);
+  PF_TEST_CLOSE(W, V, 1e-11, 0);
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) PF_TEST_CLOSE(C[I][i], B[I][i], 0, 1e-10 / 1e-3);
+}
+
 static void test_hourglass_vectors(void) {
   double x[8][3], B[8][3], g[4][8];
   distorted(x);
@@ -105,6 +119,7 @@ static void test_mass_and_length(void) {
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
   test_mean_gradient();
+  test_far_from_origin();
   test_hourglass_vectors();
   test_mass_and_length();
   return pf_test_finish();
