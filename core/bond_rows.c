@@ -36,7 +36,7 @@ int pf_bond_rows_append(pf_bond_rows *r, pf_int count, const pf_gid *gid, const 
   }
   int64_t at = r->offset[r->n];
   PF_CALL(grow(r, at + count));
-  memcpy(r->gid + at, gid, sizeof(pf_gid) * (size_t)count);
+  if (count > 0) memcpy(r->gid + at, gid, sizeof(pf_gid) * (size_t)count); /* gid may be NULL then */
   for (pf_int k = 0; k < count; k++) {
     r->broken[at + k] = broken ? broken[k] : 0;
     r->vfrac[at + k] = vfrac ? vfrac[k] : 1.0f;

@@ -1,18 +1,30 @@
 /* The time loop (DESIGN.md 3): explicit velocity Verlet,
  *   v(t+dt/2) = v(t) + dt/2 a(t);  u(t+dt) = u(t) + dt v(t+dt/2);
- *   f(t+dt) from PD bodies and indenters;  v(t+dt) = v(t+dt/2) + dt/2 a(t+dt),
- * with prescribed motions applied to the mid-step velocity, a NaN/Inf guard that names the
- * point, and the Exodus and HDF5 output. */
+ *   f(t+dt) from PD bodies, FE bodies, indenters and walls;  v(t+dt) = v(t+dt/2) + dt/2 a(t+dt),
+ * with prescribed motions applied to the mid-step velocity, walls to the new positions, a step
+ * that follows the FE elements' stable step, and the instability guards
+ * (core/simulation_guard.c). */
 #include "core/simulation_impl.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+/* The stable step of the set-up: the PD bodies' (kept in pd_stable) and the FE elements' in
+ * their reference shape. Collective. */
+static double stable_step(pf_sim *sim) {
+  double pd = INFINITY, fe = INFINITY;
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->body[b]) pd = fmin(pd, pf_pd_body_stable_dt(sim->body[b], sim->pts));
+    else fe = fmin(fe, pf_fem_body_stable_dt(sim->fem[b]));
+  sim->pd_stable = pf_min_all(pd);
+  return fmin(sim->pd_stable, pf_min_all(fe));
+}
+
 int pf_sim_setup_time(pf_sim *sim) {
   const pf_deck *d = sim->deck;
   const pf_node *tm = pf_node_get(pf_deck_root(d), "time");
-  double safety = 0.8, stable = INFINITY, fe = INFINITY;
+  double safety = 0.8;
   PF_CALL(pf_deck_real(d, tm, "safety_factor", &safety));
   sim->max_motion = 0.5;
   PF_CALL(pf_deck_real(d, tm, "max_motion", &sim->max_motion));
@@ -20,11 +32,7 @@ int pf_sim_setup_time(pf_sim *sim) {
     return pf_deck_error(d, pf_node_get(tm, "max_motion"), "max_motion", "must be positive (got %g)", sim->max_motion);
   if (!(safety > 0 && safety <= 1))
     return pf_deck_error(d, pf_node_get(tm, "safety_factor"), "safety_factor", "must be in (0, 1] (got %g)", safety);
-  for (int b = 0; b < sim->nbodies; b++)
-    if (sim->body[b]) stable = fmin(stable, pf_pd_body_stable_dt(sim->body[b], sim->pts));
-    else fe = fmin(fe, pf_fem_body_stable_dt(sim->fem[b]));
-  sim->pd_stable = pf_min_all(stable);
-  stable = fmin(sim->pd_stable, pf_min_all(fe));
+  double stable = stable_step(sim);
   sim->safety = safety;
   sim->dt = safety * stable;
   sim->adaptive = sim->nfem > 0 && !pf_node_get(tm, "dt"); /* FE elements change their stable step */

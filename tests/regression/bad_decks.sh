@@ -27,16 +27,18 @@ mkdir -p -- "$scratch/logs" || exit 1
 
 # Keep a runaway deck (e.g. an alias bomb) from taking the machine's memory: a 2 GB address
 # space limit, or for a sanitizer build (which reserves huge address ranges) an RSS limit.
-# In a sanitizer build, the leaks of the MPI stack at exit are suppressed (they are reached
+# In a sanitizer build, the leaks of the MPI stack, gmsh and Pamgen are suppressed (reached
 # through libmpi/libopen-pal only with the slow unwinder), so that any leak left is perifem's.
 if grep -aq __asan_init "$exe" 2>/dev/null; then
   printf 'leak:%s\n' libmpi.so libopen-pal.so libopen-rte.so libhwloc.so libevent libpmix.so \
-    libucs libucp libfabric >"$scratch/logs/lsan.supp"
+    libucs libucp libfabric libgmsh.so libtrilinos_pamgen.so >"$scratch/logs/lsan.supp"
   export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}hard_rss_limit_mb=2048"
   export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$scratch/logs/lsan.supp:fast_unwind_on_malloc=0:print_suppressions=0"
   memlimit=unlimited
+  limit=90 # the sanitizers make e.g. the alias-bomb deck's expansion several times slower
 else
   memlimit=2097152
+  limit=20
 fi
 crash_re='Segmentation|Abort|abort\(\)|core dumped|Bus error|Floating point exception|Illegal instruction|AddressSanitizer|LeakSanitizer|UndefinedBehaviorSanitizer|runtime error:|stack smashing|double free|free\(\): |malloc\(\): '
 src_root=$(cd "$here/.." && pwd)
@@ -54,7 +56,7 @@ report() { # case name
   problems=""
 }
 
-# run NAME DIR ARGS...: perifem with cwd DIR (made if need be), 20 s timeout, memory limit;
+# run NAME DIR ARGS...: perifem with cwd DIR (made if need be), a 20 s timeout (90 s in a sanitizer build), memory limit;
 # sets $status and leaves stdout/stderr in $scratch/logs/NAME.{out,err}.
 run() {
   local name=$1 dir=$2
@@ -62,14 +64,14 @@ run() {
   mkdir -p "$dir"
   out=$scratch/logs/$name.out
   err=$scratch/logs/$name.err
-  (ulimit -v "$memlimit" 2>/dev/null; cd "$dir" && exec timeout -k 5 20 "$exe" "$@") >"$out" 2>"$err"
+  (ulimit -v "$memlimit" 2>/dev/null; cd "$dir" && exec timeout -k 5 "$limit" "$exe" "$@") >"$out" 2>"$err"
   status=$?
 }
 
 # common checks after a run: timeout, crash text, files left in DIR.
 check_run() { # dir
   local left
-  if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then problem "timed out after 20 s (exit $status)"; fi
+  if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then problem "timed out after $limit s (exit $status)"; fi
   if grep -Eq "$crash_re" "$out" "$err"; then problem "output looks like a crash"; fi
   local leak
   leak=$(awk -v root="$src_root/" '
