@@ -169,6 +169,7 @@ static int check_units(const pf_sim *sim, const pf_node *root) {
 }
 
 static int sim_build(pf_sim *sim, const char *deck_path) {
+  pf_sim_catch_signals(); /* a SIGTERM during the set-up stops the run at its first step */
   PF_CALL(pf_deck_load(deck_path, &sim->deck));
   const pf_node *root = pf_deck_root(sim->deck);
   PF_CALL(pf_deck_validate(sim->deck, root, pf_deck_keys, "the deck"));

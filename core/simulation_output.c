@@ -233,7 +233,6 @@ static int run_loop(pf_sim *sim, globals *g, double wall0) {
 
 int pf_sim_run(pf_sim *sim) {
   double wall0 = pf_wtime();
-  pf_sim_catch_signals();
   globals g = {0};
   int ierr = globals_init(sim, &g);
   if (!ierr) ierr = pf_sim_step(sim, 0); /* forces at t = 0 */
