@@ -21,7 +21,7 @@ static size_t record_size(int nreal, int64_t nbonds) {
 }
 
 static char *put(char *p, const void *src, size_t n) {
-  memcpy(p, src, n);
+  if (n) memcpy(p, src, n); /* src may be NULL when n is 0 (a body without bonds) */
   return p + n;
 }
 
@@ -84,9 +84,11 @@ static const char *unpack(const char *p, pf_points *pts, pf_bond_rows *rows, pf_
   }
   *ierr = scratch_fit(sc, nb);
   if (*ierr) return p;
-  memcpy(sc->gid, p, sizeof(pf_gid) * (size_t)nb);
   const uint8_t *broken = (const uint8_t *)(p + sizeof(pf_gid) * (size_t)nb);
-  memcpy(sc->vfrac, p + (sizeof(pf_gid) + 1) * (size_t)nb, sizeof(float) * (size_t)nb);
+  if (nb > 0) { /* the scratch is not allocated before the first bond */
+    memcpy(sc->gid, p, sizeof(pf_gid) * (size_t)nb);
+    memcpy(sc->vfrac, p + (sizeof(pf_gid) + 1) * (size_t)nb, sizeof(float) * (size_t)nb);
+  }
   *ierr = pf_bond_rows_append(rows, nb, sc->gid, broken, sc->vfrac);
   return p + (sizeof(pf_gid) + 1 + sizeof(float)) * (size_t)nb;
 }
