@@ -115,6 +115,10 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
     else PF_CALL(pf_pd_body_create(sim->deck, body, pf_node_get(root, "materials"), &sim->body[b]));
     sim->nfem += fem;
   }
+  if (sim->spread_output && sim->nfem)
+    return pf_deck_error(sim->deck, pf_node_get(pf_node_get(root, "output"), "layout"), "layout",
+                         "finite_element bodies are written joined (a spread file set would cut "
+                         "elements at the rank boundaries); use output.layout: joined");
   if (sim->opt.restart_from) return pf_sim_restore_points(sim); /* points and velocities from the file */
   pf_point_cloud pc[PF_MAX_BODIES];
   memset(pc, 0, sizeof pc);

@@ -19,16 +19,6 @@ const pf_key pf_parallel_keys[] = {
      "this multiple of the mean; 0: never", NULL},
     PF_KEY_END};
 
-/* 1 when some body of the deck is a finite_element body. */
-static int deck_has_fem(const pf_deck *d) {
-  const pf_node *bodies = pf_node_get(pf_deck_root(d), "bodies");
-  for (int b = 0; b < pf_node_count(bodies); b++) {
-    const pf_node *t = pf_node_get(pf_node_item(bodies, b), "type");
-    if (t && !strcmp(pf_node_text(t), "finite_element")) return 1;
-  }
-  return 0;
-}
-
 int pf_sim_setup_parallel(pf_sim *sim) {
   const pf_deck *d = sim->deck;
   const pf_node *root = pf_deck_root(d), *par = pf_node_get(root, "parallel"), *out = pf_node_get(root, "output");
@@ -47,10 +37,6 @@ int pf_sim_setup_parallel(pf_sim *sim) {
   if (strcmp(layout, "joined") && strcmp(layout, "spread"))
     return pf_deck_error(d, pf_node_get(out, "layout"), "layout", "unknown layout '%s' (known: joined, spread)", layout);
   sim->spread_output = !strcmp(layout, "spread");
-  if (sim->spread_output && deck_has_fem(d))
-    return pf_deck_error(d, pf_node_get(out, "layout"), "layout",
-                         "finite_element bodies are written joined (a spread file set would cut "
-                         "elements at the rank boundaries); use output.layout: joined");
   if (sim->spread_output && sim->rebalance_threshold > 0)
     return pf_deck_error(d, pf_node_get(par, "rebalance_threshold"), "rebalance_threshold",
                          "re-partitioning changes each rank's points, which a spread Exodus file "

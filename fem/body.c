@@ -96,6 +96,22 @@ static int nodal_volumes(pf_fem_body *b) {
   return 0;
 }
 
+/* Node -> element CSR of the whole mesh, elements ascending. */
+static int mesh_node_elements(const pf_fem_mesh *m, int64_t **off, pf_int **item) {
+  PF_MALLOC(*off, m->nnodes + 1);
+  PF_MALLOC(*item, 8 * (size_t)m->nelem);
+  int64_t *o = *off;
+  for (size_t k = 0; k < 8 * (size_t)m->nelem; k++) o[m->conn[k] + 1]++;
+  for (pf_int k = 0; k < m->nnodes; k++) o[k + 1] += o[k];
+  int64_t *fill = malloc(sizeof(int64_t) * ((size_t)m->nnodes + 1));
+  PF_CHECK(fill, PF_ERR_MEMORY, "out of memory");
+  memcpy(fill, o, sizeof(int64_t) * ((size_t)m->nnodes + 1));
+  for (pf_int e = 0; e < m->nelem; e++)
+    for (int I = 0; I < 8; I++) (*item)[fill[m->conn[8 * (size_t)e + I]]++] = e;
+  free(fill);
+  return 0;
+}
+
 int pf_fem_body_create(const pf_deck *d, const pf_node *body, const pf_node *materials, pf_fem_body **out) {
   *out = NULL;
   pf_fem_body *b;
@@ -108,6 +124,7 @@ int pf_fem_body_create(const pf_deck *d, const pf_node *body, const pf_node *mat
   if (!ierr) ierr = read_material(d, body, materials, b);
   if (!ierr) ierr = pf_fem_mesh_read(d, pf_node_get(body, "mesh"), &b->mesh);
   if (!ierr) ierr = nodal_volumes(b);
+  if (!ierr) ierr = mesh_node_elements(&b->mesh, &b->mesh_node_off, &b->mesh_node_item);
   if (ierr) {
     pf_fem_body_destroy(&b);
     return ierr;
@@ -121,7 +138,7 @@ int pf_fem_body_destroy(pf_fem_body **pb) {
   if (!b) return 0;
   pf_fem_mesh_free(&b->mesh);
   pf_fem_material_destroy(&b->mat);
-  free(b->node_volume), free(b->eid), free(b->conn), free(b->own), free(b->sigma), free(b->state);
+  free(b->node_volume), free(b->mesh_node_off), free(b->mesh_node_item), free(b->eid), free(b->conn), free(b->own), free(b->sigma), free(b->state);
   free(b->hgq), free(b->ref), free(b->fe), free(b->energy), free(b->node_off), free(b->node_item), free(b->buf);
   PF_FREE(*pb);
   return 0;
@@ -140,22 +157,6 @@ int pf_fem_body_cloud(const pf_fem_body *b, pf_point_cloud *pc) {
   return 0;
 }
 
-/* Node -> element CSR of the whole mesh, elements ascending. */
-static int mesh_node_elements(const pf_fem_mesh *m, int64_t **off, pf_int **item) {
-  PF_MALLOC(*off, m->nnodes + 1);
-  PF_MALLOC(*item, 8 * (size_t)m->nelem);
-  int64_t *o = *off;
-  for (size_t k = 0; k < 8 * (size_t)m->nelem; k++) o[m->conn[k] + 1]++;
-  for (pf_int k = 0; k < m->nnodes; k++) o[k + 1] += o[k];
-  int64_t *fill = malloc(sizeof(int64_t) * ((size_t)m->nnodes + 1));
-  PF_CHECK(fill, PF_ERR_MEMORY, "out of memory");
-  memcpy(fill, o, sizeof(int64_t) * ((size_t)m->nnodes + 1));
-  for (pf_int e = 0; e < m->nelem; e++)
-    for (int I = 0; I < 8; I++) (*item)[fill[m->conn[8 * (size_t)e + I]]++] = e;
-  free(fill);
-  return 0;
-}
-
 static int cmp_gid(const void *a, const void *b) {
   pf_gid x = *(const pf_gid *)a, y = *(const pf_gid *)b;
   return (x > y) - (x < y);
@@ -164,10 +165,10 @@ static int cmp_gid(const void *a, const void *b) {
 int pf_fem_body_node_rows(const pf_fem_body *b, const pf_points *pts, pf_int first, pf_int n, pf_gid gid0,
                           pf_bond_rows *rows) {
   const pf_fem_mesh *m = &b->mesh;
-  int64_t *off = NULL;
-  pf_int *item = NULL;
+  const int64_t *off = b->mesh_node_off;
+  const pf_int *item = b->mesh_node_item;
   pf_gid row[27 * 8 + 8];
-  int ierr = mesh_node_elements(m, &off, &item);
+  int ierr = 0;
   for (pf_int i = first; i < first + n && !ierr; i++) {
     pf_int k = (pf_int)(pts->gid[i] - gid0), cnt = 0;
     for (int64_t q = off[k]; q < off[k + 1]; q++)
@@ -184,6 +185,5 @@ int pf_fem_body_node_rows(const pf_fem_body *b, const pf_points *pts, pf_int fir
     qsort(row, (size_t)cnt, sizeof row[0], cmp_gid);
     if (!ierr) ierr = pf_bond_rows_append(rows, cnt, row, NULL, NULL);
   }
-  free(off), free(item);
   return ierr;
 }

@@ -80,19 +80,23 @@ static void element_reference(const pf_fem_body *b, const pf_points *p, pf_int e
     for (int i = 0; i < 3; i++) x[I][i] = p->X[3 * (size_t)b->conn[8 * (size_t)e + I] + i];
 }
 
-/* Lumped masses m_I = sum_e rho int N_I dV, each node summing its elements in order. */
-static void lumped_masses(const pf_fem_body *b, pf_points *p) {
+/* Lumped masses m_I = sum_e rho int N_I dV: each element's 8 contributions once, then each node
+ * sums its elements in order. */
+static int lumped_masses(const pf_fem_body *b, pf_points *p) {
+  double *w = NULL;
+  PF_MALLOC(w, 8 * (size_t)b->nel);
+  for (pf_int e = 0; e < b->nel; e++) {
+    double x[8][3];
+    element_reference(b, p, e, x);
+    pf_hex8_lumped_mass(x, b->rho, &w[8 * (size_t)e]);
+  }
   for (pf_int i = 0; i < b->n; i++) {
     double m = 0;
-    for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
-      pf_int e = b->node_item[q] / 8, I = b->node_item[q] % 8;
-      double x[8][3], w[8];
-      element_reference(b, p, e, x);
-      pf_hex8_lumped_mass(x, b->rho, w);
-      m += w[I];
-    }
+    for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) m += w[b->node_item[q]];
     p->m[b->first + i] = m;
   }
+  free(w);
+  return 0;
 }
 
 static double reference_stable_dt(const pf_fem_body *b, const pf_points *p) {
@@ -121,7 +125,7 @@ int pf_fem_body_attach(pf_fem_body *b, int body, pf_points *pts, pf_int first, p
   free(loc);
   if (ierr) return ierr;
   PF_CALL(node_lists(b));
-  lumped_masses(b, pts);
+  PF_CALL(lumped_masses(b, pts));
   size_t nq = (size_t)b->nqp * b->nel;
   free(b->sigma), free(b->state), free(b->hgq), free(b->fe), free(b->energy), free(b->buf), free(b->ref);
   PF_MALLOC(b->ref, 25 * (size_t)b->nel);
@@ -169,26 +173,30 @@ const pf_fem_mesh *pf_fem_body_mesh(const pf_fem_body *b) { return &b->mesh; }
 int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts) {
   double *stress = pf_points_field_get(pts, "stress");
   PF_CHECK(stress, PF_ERR_RUN, "body '%s': no stress field", b->name);
-  double *st[16];
+  double *st[16], *vq = NULL;
   for (int k = 0; k < b->nstate && k < 16; k++) st[k] = pf_points_field_get(pts, pf_fem_material_state_name(b->mat, k));
   const int nq = b->nqp;
+  PF_MALLOC(vq, b->nel); /* each element's current volume per quadrature point, once */
+  for (pf_int e = 0; e < b->nel; e++) {
+    double x[8][3], B[8][3];
+    for (int I = 0; I < 8; I++)
+      for (int a = 0; a < 3; a++) x[I][a] = pts->y[3 * (size_t)b->conn[8 * (size_t)e + I] + a];
+    vq[e] = pf_hex8_mean_gradient(x, B) / nq;
+  }
   for (pf_int i = 0; i < b->n; i++) {
     double w = 0, s[6] = {0}, h[16] = {0};
     for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
       pf_int e = b->node_item[q] / 8;
-      double x[8][3], B[8][3];
-      for (int I = 0; I < 8; I++)
-        for (int a = 0; a < 3; a++) x[I][a] = pts->y[3 * (size_t)b->conn[8 * (size_t)e + I] + a];
-      double V = pf_hex8_mean_gradient(x, B) / nq;
       for (int g = 0; g < nq; g++) {
-        for (int c = 0; c < 6; c++) s[c] += V * b->sigma[6 * ((size_t)nq * e + g) + c];
-        for (int k = 0; k < b->nstate && k < 16; k++) h[k] += V * b->state[(size_t)b->nstate * (nq * (size_t)e + g) + k];
-        w += V;
+        for (int c = 0; c < 6; c++) s[c] += vq[e] * b->sigma[6 * ((size_t)nq * e + g) + c];
+        for (int k = 0; k < b->nstate && k < 16; k++) h[k] += vq[e] * b->state[(size_t)b->nstate * (nq * (size_t)e + g) + k];
+        w += vq[e];
       }
     }
     pf_int p = b->first + i;
     for (int c = 0; c < 6; c++) stress[6 * (size_t)p + c] = w > 0 ? s[c] / w : 0;
     for (int k = 0; k < b->nstate && k < 16; k++) st[k][p] = w > 0 ? h[k] / w : 0;
   }
+  free(vq);
   return 0;
 }

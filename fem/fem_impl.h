@@ -39,6 +39,8 @@ struct pf_fem_body {
   double hg_coef;
   double bv_linear, bv_quadratic; /* bulk viscosity C_l, C_q */
   double *node_volume;            /* [mesh.nnodes] lumped nodal volume (the points' vol) */
+  int64_t *mesh_node_off;         /* [mesh.nnodes + 1] CSR: the elements of each mesh node */
+  pf_int *mesh_node_item;         /* ascending element indices */
   /* this rank */
   pf_gid gid0;       /* global id of mesh node 0 */
   pf_int first, n;   /* owned nodes [first, first + n) of the store */

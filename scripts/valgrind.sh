@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# A small mixed PD/FE run under valgrind memcheck: no invalid read or write, no use of
-# uninitialised values, and no leak through perifem's own code (the MPI stack's allocations at
-# start-up are its own). Needs a build without -march=native (valgrind does not decode
+# A small mixed PD/FE run (tests/data/mixed_pd_fe.yaml) under valgrind memcheck: no invalid
+# read or write, no use of uninitialised values, and no leak through perifem's own code (the
+# MPI stack's allocations at start-up are its own). Needs a build without -march=native (valgrind does not decode
 # AVX-512): it configures build-valgrind/ with PERIFEM_NATIVE=OFF.
 #   bash scripts/valgrind.sh
 set -euo pipefail
@@ -11,38 +11,9 @@ cmake -S . -B build-valgrind -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPERIFEM_NATIVE=
 cmake --build build-valgrind -j"$(nproc)" --target perifem 2>&1 | grep -v "^\[" || true
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-cat > "$work/small.yaml" <<'DECK'
-materials:
-  glass: {model: pmb, density: 2200, bulk_modulus: 14.9e9}
-  copper: {model: j2, density: 8930, youngs_modulus: 117.0e9, poissons_ratio: 0.35, yield_stress: 400.0e6, hardening_modulus: 100.0e6}
-bodies:
-  - {name: plate, material: glass, horizon: 0.0015001, damage: {law: critical_stretch, critical_stretch: 0.0005},
-     initial_velocity: ["0", "0", "-20 * z / 0.0025"],
-     geometry: {shape: box, lo: [0, 0, 0], hi: [0.004, 0.004, 0.0015], spacing: 0.0005}}
-  - name: bar
-    type: finite_element
-    material: copper
-    initial_velocity: ["0", "0", "-200"]
-    mesh:
-      pamgen: |
-        mesh
-          rectilinear
-            nx = 2
-            ny = 2
-            nz = 4
-            bx = 1
-            by = 1
-            bz = 1
-            gmin = 0.0 0.0 0.004
-            gmax = 0.002 0.002 0.008
-          end
-        end
-walls:
-  - {name: floor, point: [0, 0, 0.0039], normal: [0, 0, 1], bodies: [bar]}
-time: {steps: 20}
-output: {interval: 10}
-restart: {interval: 10}
-DECK
+# the mixed PD/FE deck of the tests, cut to 20 steps, with output and checkpoints
+sed -E 's/time: \{steps: 80\}/time: {steps: 20}/' tests/data/mixed_pd_fe.yaml > "$work/small.yaml"
+printf 'restart: {interval: 10}\n' >> "$work/small.yaml"
 (cd "$work" && valgrind --error-exitcode=9 --leak-check=full --show-leak-kinds=definite \
    --errors-for-leak-kinds=none --track-origins=yes \
    --suppressions=/usr/share/openmpi/openmpi-valgrind.supp \

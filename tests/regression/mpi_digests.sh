@@ -32,39 +32,8 @@ bodies:
 time: {steps: 20}
 DECK
 
-# a peridynamic plate beside a finite-element (B-bar, neo-Hookean) bar on a Pamgen mesh, with a
-# rigid wall: both kinds in one run and one Exodus file
-cat > mixed.yaml <<'DECK'
-materials:
-  glass: {model: pmb, density: 2200, bulk_modulus: 14.9e9}
-  rubber: {model: neo_hookean, density: 1100, youngs_modulus: 0.1e9, poissons_ratio: 0.45}
-bodies:
-  - {name: plate, material: glass, horizon: 0.0015001, initial_velocity: ["0", "0", "-20 * z / 0.0025"],
-     geometry: {shape: box, lo: [0, 0, 0], hi: [0.006, 0.006, 0.0015], spacing: 0.0005}}
-  - name: bar
-    type: finite_element
-    material: rubber
-    element: bbar
-    initial_velocity: ["0", "0", "-50"]
-    mesh:
-      pamgen: |
-        mesh
-          rectilinear
-            nx = 3
-            ny = 3
-            nz = 8
-            bx = 1
-            by = 1
-            bz = 1
-            gmin = 0.0 0.0 0.004
-            gmax = 0.003 0.003 0.012
-          end
-        end
-walls:
-  - {name: floor, point: [0, 0, 0.0038], normal: [0, 0, 1], bodies: [bar]}
-time: {steps: 80}
-output: {interval: 20}
-DECK
+# a peridynamic plate beside a finite-element bar hitting a wall (tests/data/mixed_pd_fe.yaml)
+cp "$OLDPWD/data/mixed_pd_fe.yaml" mixed.yaml
 
 cp mixed.yaml mixed_rebalance.yaml
 printf 'parallel:\n  rebalance_threshold: 1.0\n' >> mixed_rebalance.yaml

@@ -14,32 +14,6 @@ run 1 "$exe" --quiet --output-dir "$scratch/np1" "$scratch/bar.yaml" > /dev/null
 run 3 "$exe" --quiet --output-dir "$scratch/np3" "$scratch/bar.yaml" > /dev/null || exit 1
 # pvbatch embeds its own Python: keep a user's Python environment out of it
 env -i PATH=/usr/bin:/bin HOME="$scratch" pvbatch ../scripts/paraview_read.py "$scratch/np1/bar.e" "$scratch/np3/bar.e.3.0" || exit 1
-cat > "$scratch/mixed.yaml" <<'DECK'
-materials:
-  glass: {model: pmb, density: 2200, bulk_modulus: 14.9e9}
-  steel: {model: elastic, density: 7800, youngs_modulus: 200.0e9, poissons_ratio: 0.3}
-bodies:
-  - {name: plate, material: glass, horizon: 0.0015001,
-     geometry: {shape: box, lo: [0, 0, 0], hi: [0.004, 0.004, 0.0015], spacing: 0.0005}}
-  - name: bar
-    type: finite_element
-    material: steel
-    initial_velocity: ["0", "0", "-10"]
-    mesh:
-      pamgen: |
-        mesh
-          rectilinear
-            nx = 2
-            ny = 2
-            nz = 4
-            bx = 1
-            by = 1
-            bz = 1
-            gmin = 0.0 0.0 0.004
-            gmax = 0.002 0.002 0.008
-          end
-        end
-time: {steps: 10}
-DECK
+cp data/mixed_pd_fe.yaml "$scratch/mixed.yaml"
 run 2 "$exe" --quiet --output-dir "$scratch" "$scratch/mixed.yaml" > /dev/null || exit 1
 env -i PATH=/usr/bin:/bin HOME="$scratch" pvbatch ../scripts/paraview_blocks.py "$scratch/mixed.e"
