@@ -1,29 +1,50 @@
-/* perifem contact: rigid analytic indenters (sphere, plane) pushing on points. (The penalty
- * node-to-particle and particle-particle contact of the contact issue will live here too.) */
+/* perifem contact (DESIGN.md 3): rigid analytic surfaces (sphere, plane, cylinder) pushing on
+ * points, rigid planar walls, and the contact of bodies with each other: node-to-particle
+ * penalty with a particle-to-face check between FE and PD bodies, short-range forces between PD
+ * particles (other bodies, or fragments of one body), over a binned search with a skin that
+ * works across MPI ranks. */
 #ifndef PF_CONTACT_H
 #define PF_CONTACT_H
 
 #include "core/core.h"
+#include "fem/fem.h"
+#include "pd/pd.h"
 
-typedef struct pf_indenter pf_indenter;
-extern const pf_key pf_indenter_keys[];
+/* ---- rigid analytic surfaces (contact/rigid.c) ---------------------------------------------
+ * A sphere, a plane or a cylinder with a prescribed velocity v(t), acting on the points of the
+ * bodies it names (all bodies when it names none). The force on a point of depth d (how far it
+ * is inside the surface) is along the surface's outward normal:
+ *   law quadratic (default; the foundation's indenter, LAMMPS fix indent with PERI):
+ *     F = k d^2 V_i, k in N/m^5, energy k d^3 V_i / 3;
+ *   law linear: F = k d, k in N/m, energy k d^2 / 2;
+ * plus regularized Coulomb friction opposing the tangential velocity of the point relative to
+ * the surface: F_t = min(mu |F|, m_i |v_t| / dt) (never more than stops the sliding in one
+ * step). Written under `contact: rigid_surfaces:` or (the foundation's syntax) `indenters:`. */
+typedef struct pf_rigid pf_rigid;
+extern const pf_key pf_rigid_keys[];
+int pf_rigid_create(const pf_deck *d, const pf_node *map, int nbodies,
+                    const char *const *body_names, pf_rigid **r);
+int pf_rigid_destroy(pf_rigid **r);
+const char *pf_rigid_name(const pf_rigid *r);
+/* Add the surface's forces to the owned points it penetrates (pts->f), with friction from the
+ * mid-step velocities pts->v over the step dt (dt 0: no friction). reaction[3] gets the total
+ * force of the points on the surface (N) and *energy the penalty energy (J), both summed over
+ * the ranks; the friction work of this rank's points over dt is added to *dissipation (J, >= 0).
+ * Collective. */
+int pf_rigid_force(pf_rigid *r, pf_points *pts, double dt, double reaction[3], double *energy,
+                   double *dissipation);
+/* Move the surface from t to t + dt with its prescribed velocity v(t + dt/2) and add the work
+ * done on the points, -reaction . v dt, to *work. */
+void pf_rigid_advance(pf_rigid *r, double t, double dt, const double reaction[3], double *work);
+/* The stable step the penalty allows the owned points it may touch, 2 sqrt(m_min / k) for the
+ * linear law (INFINITY for the quadratic law, whose stiffness grows from zero with the depth,
+ * and when it touches no body). Collective. */
+double pf_rigid_stable_dt(const pf_rigid *r, const pf_points *pts);
+/* Current position (sphere centre, plane point, point of the cylinder axis); restart. */
+void pf_rigid_position(const pf_rigid *r, double x[3]);
+void pf_rigid_set_position(pf_rigid *r, const double x[3]);
 
-int pf_indenter_create(const pf_deck *d, const pf_node *map, pf_indenter **ind);
-int pf_indenter_destroy(pf_indenter **ind);
-const char *pf_indenter_name(const pf_indenter *ind);
-/* Add the indenter's repulsive force to the points it penetrates (pts->y); the force on the
- * indenter (the reaction, N) goes to reaction[3] and the penalty energy (J) to *energy. */
-int pf_indenter_force(pf_indenter *ind, pf_points *pts, double reaction[3], double *energy);
-/* Move the indenter from t to t + dt with its prescribed velocity v(t) (midpoint rule) and
- * accumulate the work done on the points, -reaction . v dt, into *work. */
-void pf_indenter_advance(pf_indenter *ind, double t, double dt, const double reaction[3],
-                         double *work);
-/* Current position (sphere centre or plane point). */
-void pf_indenter_position(const pf_indenter *ind, double x[3]);
-/* Move the indenter to x (restart). */
-void pf_indenter_set_position(pf_indenter *ind, const double x[3]);
-
-/* A rigid, fixed, frictionless plane that points cannot cross (contact/wall.c). */
+/* ---- rigid, fixed, frictionless walls for FE nodes (contact/wall.c) ------------------------ */
 typedef struct pf_wall pf_wall;
 extern const pf_key pf_wall_keys[];
 int pf_wall_create(const pf_deck *d, const pf_node *map, int nbodies, const char *const *body_names,
@@ -36,5 +57,70 @@ void pf_wall_enforce_position(const pf_wall *w, pf_points *pts, double *loss);
 /* After the forces: points on the plane lose the inward normal part of their force;
  * reaction[3] gets the total force on the wall over all ranks (N). Collective. */
 void pf_wall_enforce_force(const pf_wall *w, pf_points *pts, double reaction[3]);
+
+/* ---- contact between bodies (contact/contact.c, search.c, surface.c, pairs.c) --------------- */
+typedef struct pf_contact pf_contact;
+extern const pf_key pf_contact_keys[];      /* the `contact:` mapping */
+extern const pf_key pf_contact_pair_keys[]; /* one entry of `contact: pairs:` */
+
+/* What the contact module needs to know of a body. */
+typedef struct {
+  const char *name;
+  int is_fe;
+  double bulk_modulus; /* Pa */
+  double density;      /* kg/m^3 */
+  double horizon;      /* PD: the horizon, m (FE: 0) */
+  double spacing;      /* the largest cell edge of the body's points (PD) or element edge (FE), m */
+  pf_gid gid0;         /* global id of the body's first point (FE: of mesh node 0) */
+  pf_int first, n;     /* the body's owned points [first, first + n) of the store */
+  const pf_fem_mesh *mesh; /* FE: the whole mesh (every rank) */
+  const pf_family *fam;    /* PD: the family of the owned points (for bonded-pair exclusion) */
+} pf_contact_body;
+
+/* Read `contact:` (pairs, skin): bodies named by pairs must exist and a pair of two FE bodies
+ * is refused. Returns *c = NULL when the deck has no pair. */
+int pf_contact_create(const pf_deck *d, const pf_node *map, int nbodies,
+                      const pf_contact_body *bodies, pf_contact **c);
+int pf_contact_destroy(pf_contact **c);
+/* Give the contact the bodies' current owned ranges and families (after every (re)partition);
+ * the next force evaluation rebuilds the search. */
+int pf_contact_attach(pf_contact *c, const pf_contact_body *bodies);
+/* Add the contact forces at the current positions pts->y (friction from the mid-step velocities
+ * pts->v over the step dt; dt 0: none) to the owned points, each point summing its
+ * interactions in an order independent of the partition. *energy gets the penalty energy
+ * (summed over the ranks); the friction work of this rank over dt is added to *dissipation.
+ * The per-point contact force goes to the output field "contact_force". Collective. */
+int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *energy,
+                     double *dissipation);
+/* The stable step the penalties allow (2 / omega of the stiffest contact a point can see).
+ * Collective. */
+double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts);
+/* The pairs: count, names (history columns) and the total force on the pair's first body (the
+ * FE body of an FE <-> PD pair) at the last evaluation, N. */
+int pf_contact_npairs(const pf_contact *c);
+const char *pf_contact_pair_name(const pf_contact *c, int k);
+void pf_contact_pair_force(const pf_contact *c, int k, double f[3]);
+/* Search statistics: rebuilds so far, and the contact share of the time (seconds spent). */
+void pf_contact_stats(const pf_contact *c, long *rebuilds, double *seconds);
+
+/* ---- geometry of FE surfaces (contact/surface.c) ----------------------------------------- */
+/* A boundary face of a hexahedral mesh: its 4 mesh nodes ordered so that the right-hand rule
+ * gives the outward normal, and the element and face (0..5) it comes from. */
+typedef struct {
+  pf_int node[4];
+  pf_int elem;
+  int face;
+} pf_contact_face;
+/* The boundary faces of a mesh (faces of exactly one element), or the sides of side set
+ * `sideset` (index into m->sideset; -1: the whole boundary). Sorted by (elem, face). */
+int pf_contact_surface_faces(const pf_fem_mesh *m, int sideset, pf_contact_face **faces,
+                             pf_int *nfaces);
+/* The point of quadrilateral face x[4] closest to p, the face taken as the four triangles
+ * (x_a, x_a+1, centre), exact for a flat face. Returns the signed distance (positive on the
+ * outward side); c[3] the closest point; w[4] the node weights of c (sum 1, >= 0); n[3] the unit
+ * outward contact normal at c (from c towards p when p is outside, away from p when inside; the
+ * triangle normal when p lies on the face). */
+double pf_contact_face_closest(const double x[4][3], const double p[3], double c[3], double w[4],
+                               double n[3]);
 
 #endif

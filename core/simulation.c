@@ -1,6 +1,6 @@
 /* Building a simulation from a deck: validate every key first, then generate the points of
  * each body (grouped by body, each body in Morton order), families and materials, initial
- * velocities, indenters, boundary conditions, and the time step. No file is written here. */
+ * velocities, rigid surfaces and contact, boundary conditions, and the time step. No file is written here. */
 #include "core/simulation_impl.h"
 
 #include <math.h>
@@ -36,7 +36,8 @@ const pf_key pf_deck_keys[] = {
     {"bodies", PF_KEY_LIST, 1, NULL, "",
      "the bodies: type peridynamic (pf_pd_body_keys) or finite_element (pf_fem_body_keys), "
      "checked by type", NULL},
-    {"indenters", PF_KEY_LIST, 0, NULL, "", "rigid indenters with prescribed motion", pf_indenter_keys},
+    {"indenters", PF_KEY_LIST, 0, NULL, "", "rigid surfaces with prescribed motion (the same as contact.rigid_surfaces)", pf_rigid_keys},
+    {"contact", PF_KEY_MAP, 0, NULL, "", "contact between bodies and rigid surfaces", pf_contact_keys},
     {"walls", PF_KEY_LIST, 0, NULL, "", "rigid frictionless planes", pf_wall_keys},
     {"boundary_conditions", PF_KEY_LIST, 0, NULL, "", "prescribed velocities/displacements", pf_bc_keys},
     {"time", PF_KEY_MAP, 1, NULL, "", "time stepping", time_keys},
@@ -133,16 +134,6 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
   return 0;
 }
 
-static int build_indenters(pf_sim *sim, const pf_node *root) {
-  const pf_node *inds = pf_node_get(root, "indenters");
-  sim->nindenters = pf_node_count(inds);
-  PF_MALLOC(sim->indenters, sim->nindenters);
-  PF_MALLOC(sim->reaction, sim->nindenters);
-  for (int k = 0; k < sim->nindenters; k++)
-    PF_CALL(pf_indenter_create(sim->deck, pf_node_item(inds, k), &sim->indenters[k]));
-  return 0;
-}
-
 static int build_bcs(pf_sim *sim, const pf_node *root) {
   const pf_node *bcs = pf_node_get(root, "boundary_conditions");
   sim->nbcs = pf_node_count(bcs);
@@ -180,8 +171,8 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   PF_CALL(check_units(sim, root));
   PF_CALL(validate_materials(sim->deck, pf_node_get(root, "materials")));
   PF_CALL(pf_sim_setup_parallel(sim));
-  PF_CALL(build_indenters(sim, root));
   PF_CALL(build_bodies(sim, root));
+  PF_CALL(pf_sim_build_contact(sim));
   PF_CALL(build_bcs(sim, root));
   PF_CALL(build_walls(sim, root));
   PF_CALL(pf_sim_setup_time(sim));
@@ -213,9 +204,10 @@ int pf_sim_destroy(pf_sim **s) {
   for (int b = 0; b < sim->nbodies; b++) pf_pd_body_destroy(&sim->body[b]), pf_fem_body_destroy(&sim->fem[b]);
   for (int k = 0; k < sim->nwalls && sim->walls; k++) pf_wall_destroy(&sim->walls[k]);
   free(sim->walls), free(sim->wall_reaction);
-  for (int k = 0; k < sim->nindenters && sim->indenters; k++) pf_indenter_destroy(&sim->indenters[k]);
+  for (int k = 0; k < sim->nrigid && sim->rigid; k++) pf_rigid_destroy(&sim->rigid[k]);
+  pf_contact_destroy(&sim->contact);
   for (int k = 0; k < sim->nbcs && sim->bcs; k++) pf_bc_destroy(&sim->bcs[k]);
-  free(sim->indenters);
+  free(sim->rigid);
   free(sim->reaction);
   free(sim->bcs);
   pf_points_destroy(&sim->pts);

@@ -36,6 +36,7 @@ typedef struct {
   /* finite elements: stress work (internal energy), hourglass energy, bulk-viscosity work; and
    * the kinetic energy rigid walls removed, J */
   double fe_internal, hourglass, bulk_viscosity, wall_loss;
+  double contact_dissipation; /* friction work of contacts and rigid surfaces, J */
 } pf_sim_globals;
 int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g);
 /* 1 when the run has reached its final time (or step count). */

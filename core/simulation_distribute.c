@@ -84,6 +84,7 @@ int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh) {
                        : pf_pd_body_attach(sim->body[b], sim->pts, first, n, rows, local, fresh);
   }
   free(owner_of), free(local);
+  if (!ierr) ierr = pf_sim_contact_attach(sim);
   return ierr;
 }
 

@@ -27,9 +27,10 @@ struct pf_sim {
   pf_gid gid0[PF_MAX_BODIES + 1];  /* global ids of body b: [gid0[b], gid0[b+1]) */
   const char *body_name[PF_MAX_BODIES];
   pf_int body_start[PF_MAX_BODIES + 1];
-  int nindenters;
-  pf_indenter **indenters;
-  double (*reaction)[3]; /* [nindenters] force on each indenter, N */
+  int nrigid;
+  pf_rigid **rigid;      /* rigid surfaces: `contact: rigid_surfaces:` and `indenters:` */
+  double (*reaction)[3]; /* [nrigid] force on each rigid surface, N */
+  pf_contact *contact;   /* contact between bodies (NULL: no pair) */
   int nbcs;
   pf_bc **bcs;
   int nwalls;
@@ -48,6 +49,7 @@ struct pf_sim {
   double pd_stable;     /* the PD bodies' stable step (fixed) */
   /* energy bookkeeping */
   double contact_energy, external_work, wall_loss;
+  double contact_dissipation; /* friction work of this rank's contacts (summed in the globals) */
   double bc_work; /* work of the prescribed motions on this rank's points (summed in the globals) */
   double e0;   /* total energy at the start of the run (kept across restarts) */
   int have_e0;
@@ -110,5 +112,14 @@ void pf_sim_fem_table_name(const pf_sim *sim, int b, char *out, size_t len);
 int pf_sim_fem_tables(const pf_sim *sim, pf_table *t, int *n);
 void pf_sim_fem_tables_free(pf_table *t, int n);
 int pf_sim_settle_keeping_fem(pf_sim *sim, pf_bond_rows *rows);
+/* core/simulation_contact.c: rigid surfaces and contact pairs from the deck (after the bodies);
+ * the contact's view of the bodies after every (re)partition. */
+int pf_sim_build_contact(pf_sim *sim);
+int pf_sim_contact_attach(pf_sim *sim);
+/* Contact forces (rigid surfaces and pairs) at the current positions, dt the step just taken;
+ * sets contact_energy. Collective. */
+int pf_sim_contact_forces(pf_sim *sim, double dt);
+/* The stable step of the penalties. Collective. */
+double pf_sim_contact_stable_dt(pf_sim *sim);
 
 #endif

@@ -7,13 +7,13 @@
 #include <string.h>
 
 enum { G_KE, G_EL, G_CONTACT, G_WEXT, G_EERR, G_PX, G_PY, G_PZ, G_DAMAGE,
-       G_FEINT, G_HG, G_BV, G_WALL, G_FIXED };
+       G_FEINT, G_HG, G_BV, G_WALL, G_CDISS, G_FIXED };
 static const char *const fixed_names[G_FIXED] = {
     "kinetic_energy", "elastic_energy", "contact_energy", "external_work", "energy_error",
     "momentum_x",     "momentum_y",     "momentum_z",     "damage_fraction",
-    "fe_internal_energy", "hourglass_energy", "bulk_viscosity_work", "wall_dissipation"};
+    "fe_internal_energy", "hourglass_energy", "bulk_viscosity_work", "wall_dissipation", "contact_dissipation"};
 static const char *const fixed_units[G_FIXED] = {"J", "J", "J", "J", "J", "kg m/s", "kg m/s", "kg m/s", "",
-                                                 "J", "J", "J", "J"};
+                                                 "J", "J", "J", "J", "J"};
 
 typedef struct {
   int n;
@@ -24,7 +24,8 @@ typedef struct {
 } globals;
 
 static int globals_init(const pf_sim *sim, globals *g) {
-  g->n = G_FIXED + 3 * sim->nindenters + 3 * sim->nwalls;
+  int npairs = pf_contact_npairs(sim->contact);
+  g->n = G_FIXED + 3 * sim->nrigid + 3 * sim->nwalls + 3 * npairs;
   PF_MALLOC(g->names, g->n + 2);
   PF_MALLOC(g->units, g->n + 2);
   PF_MALLOC(g->values, g->n + 2);
@@ -32,18 +33,26 @@ static int globals_init(const pf_sim *sim, globals *g) {
   g->names[0] = strdup("time"), g->units[0] = "s";
   g->names[1] = strdup("step"), g->units[1] = "";
   for (int k = 0; k < G_FIXED; k++) g->names[2 + k] = strdup(fixed_names[k]), g->units[2 + k] = fixed_units[k];
-  for (int k = 0; k < sim->nindenters; k++)
+  for (int k = 0; k < sim->nrigid; k++)
     for (int a = 0; a < 3; a++) {
       char buf[128];
-      snprintf(buf, sizeof buf, "%s_force_%c", pf_indenter_name(sim->indenters[k]), 'x' + a);
+      snprintf(buf, sizeof buf, "%s_force_%c", pf_rigid_name(sim->rigid[k]), 'x' + a);
       g->names[2 + G_FIXED + 3 * k + a] = strdup(buf);
       g->units[2 + G_FIXED + 3 * k + a] = "N";
     }
   for (int k = 0; k < sim->nwalls; k++)
     for (int a = 0; a < 3; a++) {
       char buf[128];
-      int j = 2 + G_FIXED + 3 * sim->nindenters + 3 * k + a;
+      int j = 2 + G_FIXED + 3 * sim->nrigid + 3 * k + a;
       snprintf(buf, sizeof buf, "%s_force_%c", pf_wall_name(sim->walls[k]), 'x' + a);
+      g->names[j] = strdup(buf);
+      g->units[j] = "N";
+    }
+  for (int k = 0; k < npairs; k++)
+    for (int a = 0; a < 3; a++) {
+      char buf[128];
+      int j = 2 + G_FIXED + 3 * (sim->nrigid + sim->nwalls + k) + a;
+      snprintf(buf, sizeof buf, "%s_force_%c", pf_contact_pair_name(sim->contact, k), 'x' + a);
       g->names[j] = strdup(buf);
       g->units[j] = "N";
     }
@@ -63,7 +72,7 @@ static int globals_eval(pf_sim *sim, globals *g, int first) {
   pf_sim_globals s;
   PF_CALL(pf_sim_globals_get(sim, &s));
   double total = s.kinetic_centred + s.elastic + s.contact - s.external_work + s.fe_internal + s.hourglass +
-                 s.bulk_viscosity + s.wall_loss;
+                 s.bulk_viscosity + s.wall_loss + s.contact_dissipation;
   if (first && !sim->have_e0) sim->e0 = total, sim->have_e0 = 1;
   g->e0 = sim->e0;
   double *v = g->values + 2;
@@ -74,10 +83,13 @@ static int globals_eval(pf_sim *sim, globals *g, int first) {
   for (int a = 0; a < 3; a++) v[G_PX + a] = s.momentum[a];
   v[G_DAMAGE] = s.damage_fraction;
   v[G_FEINT] = s.fe_internal, v[G_HG] = s.hourglass, v[G_BV] = s.bulk_viscosity, v[G_WALL] = s.wall_loss;
-  for (int k = 0; k < sim->nindenters; k++)
+  v[G_CDISS] = s.contact_dissipation;
+  for (int k = 0; k < sim->nrigid; k++)
     for (int a = 0; a < 3; a++) v[G_FIXED + 3 * k + a] = sim->reaction[k][a];
   for (int k = 0; k < sim->nwalls; k++)
-    for (int a = 0; a < 3; a++) v[G_FIXED + 3 * sim->nindenters + 3 * k + a] = sim->wall_reaction[k][a];
+    for (int a = 0; a < 3; a++) v[G_FIXED + 3 * sim->nrigid + 3 * k + a] = sim->wall_reaction[k][a];
+  for (int k = 0; k < pf_contact_npairs(sim->contact); k++)
+    pf_contact_pair_force(sim->contact, k, &v[G_FIXED + 3 * (sim->nrigid + sim->nwalls + k)]);
   return 0;
 }
 
@@ -189,6 +201,14 @@ static void summary(const pf_sim *sim, const globals *g, double wall) {
     pf_log("  elements %.0f, element cycles per second %.4g, hourglass energy %.3g J (%.3g of the internal)\n",
            nel, sim->wall_loop > 0 ? nel * sim->step / sim->wall_loop : 0.0, v[G_HG],
            v[G_FEINT] != 0 ? v[G_HG] / v[G_FEINT] : 0.0);
+  if (sim->contact) {
+    long rebuilds;
+    double sec;
+    pf_contact_stats(sim->contact, &rebuilds, &sec);
+    sec = pf_max_all(sec);
+    pf_log("  contact: %ld search rebuilds, %.3g s (%.1f %% of the time loop), dissipation %.3g J\n", rebuilds, sec,
+           sim->wall_loop > 0 ? 100 * sec / sim->wall_loop : 0.0, v[G_CDISS]);
+  }
   pf_log("  final damage fraction %.6g, energy balance error %.3g (relative %.3g)\n", v[G_DAMAGE],
          v[G_EERR], scale > 0 ? fabs(v[G_EERR]) / scale : 0.0);
   if (!sim->opt.no_output)

@@ -19,9 +19,9 @@ const pf_key pf_restart_keys[] = {
 
 /* The parts of the deck whose change changes the physics (output, parallel and the run length
  * may change on restart). */
-static const char *const physics_parts[] = {"units", "materials", "bodies", "indenters", "boundary_conditions",
+static const char *const physics_parts[] = {"units", "materials", "bodies", "indenters", "contact", "boundary_conditions",
                                             "walls", "time.dt", "time.safety_factor"};
-enum { NPARTS = sizeof physics_parts / sizeof physics_parts[0], NFIXED = 8 };
+enum { NPARTS = sizeof physics_parts / sizeof physics_parts[0], NFIXED = 9 };
 
 static uint64_t part_hash(const pf_deck *d, const char *part) {
   const pf_node *root = pf_deck_root(d);
@@ -33,26 +33,26 @@ static uint64_t part_hash(const pf_deck *d, const char *part) {
 }
 
 /* Scalar names and values: time, step, dt, contact_energy, external_work, initial_energy,
- * wall_loss and bc_work (sums over the ranks), the deck-part hashes (two 32-bit halves each), per indenter its position and
+ * wall_loss, bc_work and contact_dissipation (sums over the ranks), the deck-part hashes (two 32-bit halves each), per rigid surface its position and
  * reaction, and per body the FE stable step of the last force evaluation (0 for PD bodies). */
 static int scalars_make(const pf_sim *sim, pf_sim_scalars *s) {
-  s->n = NFIXED + 2 * NPARTS + 6 * sim->nindenters + sim->nbodies;
+  s->n = NFIXED + 2 * NPARTS + 6 * sim->nrigid + sim->nbodies;
   PF_MALLOC(s->name, s->n);
   PF_MALLOC(s->names, s->n);
   PF_MALLOC(s->value, s->n);
-  const char *fixed[NFIXED] = {"time", "step", "dt", "contact_energy", "external_work", "initial_energy", "wall_loss", "bc_work"};
+  const char *fixed[NFIXED] = {"time", "step", "dt", "contact_energy", "external_work", "initial_energy", "wall_loss", "bc_work", "contact_dissipation"};
   int k = 0;
   for (; k < NFIXED; k++) snprintf(s->name[k], 96, "%s", fixed[k]);
   for (int p = 0; p < NPARTS; p++, k += 2) {
     snprintf(s->name[k], 96, "deck_hash_%s_hi", physics_parts[p]);
     snprintf(s->name[k + 1], 96, "deck_hash_%s_lo", physics_parts[p]);
   }
-  for (int q = 0, at = k; q < sim->nindenters; q++)
+  for (int q = 0, at = k; q < sim->nrigid; q++)
     for (int a = 0; a < 3; a++) {
-      snprintf(s->name[at + 6 * q + a], 96, "indenter_%d_%s_position_%c", q, pf_indenter_name(sim->indenters[q]), 'x' + a);
-      snprintf(s->name[at + 6 * q + 3 + a], 96, "indenter_%d_%s_reaction_%c", q, pf_indenter_name(sim->indenters[q]), 'x' + a);
+      snprintf(s->name[at + 6 * q + a], 96, "indenter_%d_%s_position_%c", q, pf_rigid_name(sim->rigid[q]), 'x' + a);
+      snprintf(s->name[at + 6 * q + 3 + a], 96, "indenter_%d_%s_reaction_%c", q, pf_rigid_name(sim->rigid[q]), 'x' + a);
     }
-  for (int b = 0, at = k + 6 * sim->nindenters; b < sim->nbodies; b++)
+  for (int b = 0, at = k + 6 * sim->nrigid; b < sim->nbodies; b++)
     snprintf(s->name[at + b], 96, "body_%d_%s_stable_dt", b, sim->body_name[b]);
   for (int q = 0; q < s->n; q++) s->names[q] = s->name[q];
   return 0;
@@ -69,16 +69,17 @@ static void scalars_fill(const pf_sim *sim, pf_sim_scalars *s) {
   v[0] = sim->t, v[1] = (double)sim->step, v[2] = sim->dt;
   v[3] = sim->contact_energy, v[4] = sim->external_work, v[5] = sim->e0;
   v[6] = pf_sum_all(sim->wall_loss), v[7] = pf_sum_all(sim->bc_work); /* collective */
+  v[8] = pf_sum_all(sim->contact_dissipation);
   for (int p = 0; p < NPARTS; p++) {
     uint64_t h = part_hash(sim->deck, physics_parts[p]);
     v[NFIXED + 2 * p] = (double)(h >> 32), v[NFIXED + 2 * p + 1] = (double)(h & 0xffffffffu);
   }
-  for (int q = 0, at = NFIXED + 2 * NPARTS; q < sim->nindenters; q++) {
+  for (int q = 0, at = NFIXED + 2 * NPARTS; q < sim->nrigid; q++) {
     double x[3];
-    pf_indenter_position(sim->indenters[q], x);
+    pf_rigid_position(sim->rigid[q], x);
     for (int a = 0; a < 3; a++) v[at + 6 * q + a] = x[a], v[at + 6 * q + 3 + a] = sim->reaction[q][a];
   }
-  for (int b = 0, at = NFIXED + 2 * NPARTS + 6 * sim->nindenters; b < sim->nbodies; b++)
+  for (int b = 0, at = NFIXED + 2 * NPARTS + 6 * sim->nrigid; b < sim->nbodies; b++)
     v[at + b] = sim->fem[b] ? pf_min_all(pf_fem_body_stable_dt(sim->fem[b])) : 0; /* collective */
 }
 
@@ -145,7 +146,7 @@ int pf_sim_restore_points(pf_sim *sim) {
     if (!full) return pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
     ierr = pf_checkpoint_read_table(sim->opt.restart_from, &t, full);
     if (!ierr) pf_fem_body_state_set(sim->fem[b], full);
-    if (!ierr) pf_fem_body_set_stable_dt(sim->fem[b], s->value[NFIXED + 2 * NPARTS + 6 * sim->nindenters + b]);
+    if (!ierr) pf_fem_body_set_stable_dt(sim->fem[b], s->value[NFIXED + 2 * NPARTS + 6 * sim->nrigid + b]);
     free(full);
   }
   return ierr;
@@ -175,8 +176,9 @@ int pf_sim_restore_state(pf_sim *sim) {
   sim->e0 = v[5], sim->have_e0 = 1;
   int root = pf_comm_rank() == 0; /* per-rank sums: rank 0 carries the total */
   sim->wall_loss = root ? v[6] : 0, sim->bc_work = root ? v[7] : 0;
-  for (int q = 0, at = NFIXED + 2 * NPARTS; q < sim->nindenters; q++) {
-    pf_indenter_set_position(sim->indenters[q], &v[at + 6 * q]);
+  sim->contact_dissipation = root ? v[8] : 0;
+  for (int q = 0, at = NFIXED + 2 * NPARTS; q < sim->nrigid; q++) {
+    pf_rigid_set_position(sim->rigid[q], &v[at + 6 * q]);
     for (int a = 0; a < 3; a++) sim->reaction[q][a] = v[at + 6 * q + 3 + a];
   }
   rename_output(sim->exodus_path, sizeof sim->exodus_path, sim->step);

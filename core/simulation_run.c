@@ -1,6 +1,6 @@
 /* The time loop (DESIGN.md 3): explicit velocity Verlet,
  *   v(t+dt/2) = v(t) + dt/2 a(t);  u(t+dt) = u(t) + dt v(t+dt/2);
- *   f(t+dt) from PD bodies, FE bodies, indenters and walls;  v(t+dt) = v(t+dt/2) + dt/2 a(t+dt),
+ *   f(t+dt) from PD bodies, FE bodies, contact and walls;  v(t+dt) = v(t+dt/2) + dt/2 a(t+dt),
  * with prescribed motions applied to the mid-step velocity, walls to the new positions, a step
  * that follows the FE elements' stable step, and the instability guards
  * (core/simulation_guard.c). */
@@ -17,7 +17,7 @@ static double stable_step(pf_sim *sim) {
   for (int b = 0; b < sim->nbodies; b++)
     if (sim->body[b]) pd = fmin(pd, pf_pd_body_stable_dt(sim->body[b], sim->pts));
     else fe = fmin(fe, pf_fem_body_stable_dt(sim->fem[b]));
-  sim->pd_stable = pf_min_all(pd);
+  sim->pd_stable = fmin(pf_min_all(pd), pf_sim_contact_stable_dt(sim)); /* with the penalties' */
   return fmin(sim->pd_stable, pf_min_all(fe));
 }
 
@@ -135,12 +135,7 @@ static int compute_forces(pf_sim *sim, double dt) {
     if (sim->body[b]) PF_CALL(pf_pd_body_force(sim->body[b], p));
     else if (pf_fem_body_force(sim->fem[b], p, dt, sim->t, sim->step))
       sim->guard_tripped = 1; /* an inverted element: the step's end decides, on every rank */
-  sim->contact_energy = 0;
-  for (int k = 0; k < sim->nindenters; k++) {
-    double U;
-    PF_CALL(pf_indenter_force(sim->indenters[k], p, sim->reaction[k], &U));
-    sim->contact_energy += U;
-  }
+  PF_CALL(pf_sim_contact_forces(sim, dt));
   for (int k = 0; k < sim->nwalls; k++) pf_wall_enforce_force(sim->walls[k], p, sim->wall_reaction[k]);
   return 0;
 }
@@ -155,8 +150,8 @@ static int one_step(pf_sim *sim) {
   drift(p, dt);
   pf_sim_guard_motion(sim, dt);
   for (int k = 0; k < sim->nwalls; k++) pf_wall_enforce_position(sim->walls[k], p, &sim->wall_loss);
-  for (int k = 0; k < sim->nindenters; k++)
-    pf_indenter_advance(sim->indenters[k], sim->t, dt, sim->reaction[k], &sim->external_work);
+  for (int k = 0; k < sim->nrigid; k++)
+    pf_rigid_advance(sim->rigid[k], sim->t, dt, sim->reaction[k], &sim->external_work);
   sim->t += dt;
   sim->step++;
   PF_CALL(compute_forces(sim, dt));
@@ -212,6 +207,7 @@ int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g) {
   g->bulk_viscosity = pf_sum_all(fe[2]);
   g->wall_loss = pf_sum_all(sim->wall_loss);
   g->contact = sim->contact_energy;
+  g->contact_dissipation = pf_sum_all(sim->contact_dissipation);
   g->external_work = sim->external_work + pf_sum_all(sim->bc_work);
   for (int a = 0; a < 3; a++) g->momentum[a] = pf_sum_all(mom[a]);
   nb = pf_sum_all(nb);

@@ -169,6 +169,7 @@ void pf_fem_body_energies(const pf_fem_body *b, double e[3]) {
 }
 
 const pf_fem_mesh *pf_fem_body_mesh(const pf_fem_body *b) { return &b->mesh; }
+const pf_fem_material *pf_fem_body_material(const pf_fem_body *b) { return b->mat; }
 
 int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts) {
   double *stress = pf_points_field_get(pts, "stress");

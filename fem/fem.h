@@ -110,6 +110,7 @@ double pf_fem_body_stable_dt(const pf_fem_body *b);
 void pf_fem_body_energies(const pf_fem_body *b, double e[3]);
 /* Element count of the mesh; the mesh (for output connectivity). */
 const pf_fem_mesh *pf_fem_body_mesh(const pf_fem_body *b);
+const pf_fem_material *pf_fem_body_material(const pf_fem_body *b);
 /* Element state as table rows (checkpoints, re-partitioning): ncomp doubles per element. */
 int pf_fem_body_state_ncomp(const pf_fem_body *b);
 /* Elements evaluated on this rank (those with an owned node). */

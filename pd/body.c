@@ -230,6 +230,7 @@ int pf_pd_family_free(pf_family *fam) {
 int64_t pf_pd_family_nbonds(const pf_family *fam) { return fam->offset ? fam->offset[fam->n] : 0; }
 double pf_pd_body_density(const pf_pd_body *b) { return b->density; }
 double pf_pd_body_horizon(const pf_pd_body *b) { return b->horizon; }
+double pf_pd_body_bulk_modulus(const pf_pd_body *b) { return b->bulk_modulus; }
 const pf_family *pf_pd_body_family(const pf_pd_body *b) { return &b->fam; }
 int64_t pf_pd_body_nbonds(const pf_pd_body *b) { return pf_pd_family_nbonds(&b->fam); }
 

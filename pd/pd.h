@@ -98,6 +98,7 @@ int pf_pd_body_bond_rows(const pf_pd_body *b, const pf_points *pts, pf_bond_rows
 int pf_pd_body_destroy(pf_pd_body **b);
 double pf_pd_body_density(const pf_pd_body *b);
 double pf_pd_body_horizon(const pf_pd_body *b);
+double pf_pd_body_bulk_modulus(const pf_pd_body *b); /* Pa */
 const pf_family *pf_pd_body_family(const pf_pd_body *b);
 /* Add the body's internal forces (N) to pts->f; fails bonds per the damage law. */
 int pf_pd_body_force(pf_pd_body *b, pf_points *pts);

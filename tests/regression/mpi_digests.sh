@@ -24,6 +24,14 @@ printf 'parallel:\n  decomposition: metis\n' >> cylinder_lps_metis.yaml
 cp fragmenting_cylinder.yaml cylinder_rebalance.yaml
 printf 'parallel:\n  rebalance_threshold: 1.0\n' >> cylinder_rebalance.yaml
 sed -E 's/^output:/output:\n  layout: spread/' wave_in_bar.yaml > wave_spread.yaml
+# the foundation's indenter written as a rigid surface of the contact section: the same run
+sed -E 's/^indenters:/contact:\n  rigid_surfaces:/' disk_impact_rigid.yaml > disk_rigid_surface.yaml
+# FE <-> PD contact with friction and PD self-contact (tests/data/sphere_on_block.yaml); PD
+# self-contact between every pair of neighbours of the cylinder (all points, radius above the
+# spacing: active from the first step) with re-partitioning at every output step
+sed -E 's#\.\./\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/data/sphere_on_block.yaml" > sphere_on_block.yaml
+cp fragmenting_cylinder.yaml cylinder_contact.yaml
+printf 'contact:\n  pairs:\n    - {bodies: [cylinder, cylinder], radius: 0.0012, all_points: true, friction: 0.1}\nparallel:\n  rebalance_threshold: 1.0\n' >> cylinder_contact.yaml
 cat > two_points.yaml <<'DECK'
 materials: {m: {model: pmb, density: 1000, bulk_modulus: 1.0e9}}
 bodies:
@@ -38,7 +46,7 @@ cp "$OLDPWD/data/mixed_pd_fe.yaml" mixed.yaml
 cp mixed.yaml mixed_rebalance.yaml
 printf 'parallel:\n  rebalance_threshold: 1.0\n' >> mixed_rebalance.yaml
 
-for deck in disk_impact_rigid fragmenting_cylinder wave_in_bar cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance; do
+for deck in disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block cylinder_contact; do
   ref=""
   for np in 1 2 3; do
     mkdir -p "np$np"
@@ -47,13 +55,16 @@ for deck in disk_impact_rigid fragmenting_cylinder wave_in_bar cylinder_lps_meti
     [ -n "$d" ] || { echo "$deck on $np ranks: no digest"; fail=1; continue; }
     [ -n "$ref" ] || ref=$d
     [ "$d" = "$ref" ] || { echo "$deck: digest on $np ranks $d differs from $ref on 1 rank"; fail=1; }
-    if { [ "$deck" = cylinder_rebalance ] || [ "$deck" = mixed_rebalance ]; } && [ $np -gt 1 ]; then
+    if { [ "$deck" = cylinder_rebalance ] || [ "$deck" = mixed_rebalance ] || [ "$deck" = cylinder_contact ]; } && [ $np -gt 1 ]; then
       echo "$out" | grep -q "re-partitioned" || { echo "$deck on $np ranks: no re-partition logged"; fail=1; }
     fi
   done
   echo "$deck: $ref" >> digests.txt
 done
 
+# the rigid surface of the contact section gives the foundation indenter's run, bit for bit
+d1=$(grep '^disk_impact_rigid:' digests.txt | cut -d' ' -f2) d2=$(grep '^disk_rigid_surface:' digests.txt | cut -d' ' -f2)
+[ -n "$d1" ] && [ "$d1" = "$d2" ] || { echo "disk_rigid_surface digest $d2 differs from disk_impact_rigid $d1"; fail=1; }
 # the mixed deck's Exodus file holds a SPHERE block and a HEX8 block
 ncdump -h np3/mixed.e | grep -q SPHERE && ncdump -h np3/mixed.e | grep -q HEX8 ||
   { echo "mixed.e: expected a SPHERE and a HEX8 block"; fail=1; }

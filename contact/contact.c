@@ -1,0 +1,300 @@
+/* Contact between bodies: the `contact:` deck section, defaults derived from the materials and
+ * the discretization, the stable step of the penalties, and the per-step entry point.
+ *
+ * Short range (PD <-> PD, and a PD body with itself): Littlewood (seed 001, "Contact in
+ * peridynamic simulations"; Silling & Askari 2005) f = C (r_c - r) V_i V_j for r < r_c, along
+ * the line of centres, with C = 18 k_s / (pi delta^5): Peridigm's short-range force
+ * c = 9 k_s / (pi delta^4) per unit volume per unit (r_c - r)/delta, which Peridigm applies from
+ * both ends of each pair (REFERENCES.md "Contact"), so one pair carries twice it. By default
+ * bonded points do not interact (their bond carries the load); `all_points: true` acts on
+ * every pair within r_c, as Peridigm does.
+ *
+ * FE <-> PD (Tupek et al. 2013, seed 000 sec. 3.2: penalty forces between the FE nodes and the
+ * particles): `method: nodes` is the node-to-particle penalty f = k (r_c - d) between every
+ * surface node and particle closer than r_c; `method: surface` (the default) takes the gap of a
+ * particle to the closest point of the FE surface - a node, an edge or a face (the
+ * particle-to-face check that stops particles between the nodes of a coarse mesh) - and pushes
+ * with f = k (r_c - g) along the surface normal, the reaction going to the face's nodes with
+ * the weights of the closest point (docs/theory/contact.md). */
+#include "contact/contact_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+const pf_key pf_contact_pair_keys[] = {
+    {"bodies", PF_KEY_STRLIST, 1, NULL, "", "the two bodies (the same name twice: self-contact of a PD body)", NULL},
+    {"name", PF_KEY_STRING, 0, NULL, "", "name in the history (default <a>_<b>)", NULL},
+    {"method", PF_KEY_STRING, 0, "surface", "", "FE <-> PD: surface (closest point of the FE surface) | nodes (node-to-particle only)", NULL},
+    {"surface", PF_KEY_STRING, 0, NULL, "", "FE <-> PD: side set of the FE mesh in contact (default: the whole boundary)", NULL},
+    {"radius", PF_KEY_REAL, 0, NULL, "m", "contact radius (default: short range 0.9 x the larger spacing; FE <-> PD half the PD spacing)", NULL},
+    {"stiffness", PF_KEY_REAL, 0, NULL, "N/m | N/m^7", "FE <-> PD: k (default K h of the PD body); short range: C (default 18 k_s / (pi delta^5))", NULL},
+    {"spring_constant", PF_KEY_REAL, 0, NULL, "Pa", "short range: k_s (default: the larger bulk modulus)", NULL},
+    {"horizon", PF_KEY_REAL, 0, NULL, "m", "short range: delta (default: the larger horizon)", NULL},
+    {"friction", PF_KEY_REAL, 0, "0", "", "Coulomb friction coefficient", NULL},
+    {"all_points", PF_KEY_BOOL, 0, "false", "", "short range: also between bonded points", NULL},
+    PF_KEY_END};
+
+const pf_key pf_contact_keys[] = {
+    {"skin", PF_KEY_REAL, 0, NULL, "m", "search skin: the search is rebuilt when a point has moved half of it (default: the largest contact radius)", NULL},
+    {"pairs", PF_KEY_LIST, 0, NULL, "", "bodies in contact", pf_contact_pair_keys},
+    {"rigid_surfaces", PF_KEY_LIST, 0, NULL, "", "rigid spheres, planes, cylinders", pf_rigid_keys},
+    PF_KEY_END};
+
+static int body_index(const pf_deck *d, const pf_node *item, int nbodies, const pf_contact_body *bodies) {
+  const char *name = pf_node_text(item);
+  for (int b = 0; b < nbodies; b++)
+    if (!strcmp(bodies[b].name, name)) return b;
+  pf_deck_error(d, item, "bodies", "no body is named '%s'", name);
+  return -1;
+}
+
+static int pair_bodies(const pf_deck *d, const pf_node *map, int nbodies, const pf_contact_body *bodies,
+                       pf_contact_pair *p) {
+  const pf_node *list = pf_node_get(map, "bodies");
+  if (pf_node_count(list) != 2)
+    return pf_deck_error(d, list, "bodies", "a pair names exactly two bodies (got %d)", pf_node_count(list));
+  int a = body_index(d, pf_node_item(list, 0), nbodies, bodies);
+  int b = a < 0 ? -1 : body_index(d, pf_node_item(list, 1), nbodies, bodies);
+  if (a < 0 || b < 0) return PF_ERR_INPUT;
+  if (bodies[a].is_fe && bodies[b].is_fe)
+    return pf_deck_error(d, list, "bodies", "contact between two finite-element bodies ('%s', '%s') is not supported",
+                         bodies[a].name, bodies[b].name);
+  if (bodies[b].is_fe) { int t = a; a = b; b = t; }
+  p->a = a, p->b = b;
+  snprintf(p->name, sizeof p->name, "%s_%s", bodies[a].name, bodies[b].name);
+  const char *name = NULL;
+  PF_CALL(pf_deck_string(d, map, "name", &name));
+  if (name) snprintf(p->name, sizeof p->name, "%s", name);
+  return 0;
+}
+
+static int positive(const pf_deck *d, const pf_node *map, const char *key, double *v) {
+  PF_CALL(pf_deck_real(d, map, key, v));
+  if (!(*v > 0)) return pf_deck_error(d, pf_node_get(map, key), key, "must be positive (got %g)", *v);
+  return 0;
+}
+
+static int fe_pair(const pf_deck *d, const pf_node *map, const pf_contact_body *fe, const pf_contact_body *pd,
+                   pf_contact_pair *p) {
+  const char *method = "surface", *surface = NULL;
+  PF_CALL(pf_deck_string(d, map, "method", &method));
+  if (!strcmp(method, "surface")) p->kind = PF_PAIR_SURFACE;
+  else if (!strcmp(method, "nodes")) p->kind = PF_PAIR_NODES;
+  else return pf_deck_error(d, pf_node_get(map, "method"), "method", "unknown method '%s' (known: surface, nodes)", method);
+  for (const char *const *k = (const char *const[]){"spring_constant", "horizon", "all_points", NULL}; *k; k++)
+    if (pf_node_get(map, *k))
+      return pf_deck_error(d, pf_node_get(map, *k), *k, "'%s' is a key of short-range (PD <-> PD) pairs", *k);
+  int sideset = -1;
+  PF_CALL(pf_deck_string(d, map, "surface", &surface));
+  if (surface) {
+    for (int s = 0; s < fe->mesh->nsidesets; s++)
+      if (!strcmp(fe->mesh->sideset[s].name, surface)) sideset = s;
+    if (sideset < 0)
+      return pf_deck_error(d, pf_node_get(map, "surface"), "surface", "the mesh of body '%s' has no side set '%s'",
+                           fe->name, surface);
+  }
+  PF_CALL(pf_contact_surface_faces(fe->mesh, sideset, &p->face, &p->nface));
+  p->radius = 0.5 * pd->spacing;
+  p->stiffness = pd->bulk_modulus * pd->spacing;
+  PF_CALL(positive(d, map, "radius", &p->radius));
+  PF_CALL(positive(d, map, "stiffness", &p->stiffness));
+  return 0;
+}
+
+static int short_range_pair(const pf_deck *d, const pf_node *map, const pf_contact_body *a, const pf_contact_body *b,
+                            pf_contact_pair *p) {
+  p->kind = PF_PAIR_SHORT_RANGE;
+  for (const char *const *k = (const char *const[]){"method", "surface", NULL}; *k; k++)
+    if (pf_node_get(map, *k))
+      return pf_deck_error(d, pf_node_get(map, *k), *k, "'%s' is a key of FE <-> PD pairs", *k);
+  double ks = fmax(a->bulk_modulus, b->bulk_modulus), delta = fmax(a->horizon, b->horizon);
+  PF_CALL(positive(d, map, "spring_constant", &ks));
+  PF_CALL(positive(d, map, "horizon", &delta));
+  p->stiffness = 18.0 * ks / (PF_PI * pow(delta, 5));
+  p->radius = 0.9 * fmax(a->spacing, b->spacing);
+  PF_CALL(positive(d, map, "stiffness", &p->stiffness));
+  PF_CALL(positive(d, map, "radius", &p->radius));
+  PF_CALL(pf_deck_bool(d, map, "all_points", &p->all_points));
+  return 0;
+}
+
+static int read_pair(const pf_deck *d, const pf_node *map, int nbodies, const pf_contact_body *bodies,
+                     pf_contact_pair *p) {
+  PF_CALL(pair_bodies(d, map, nbodies, bodies, p));
+  const pf_contact_body *a = &bodies[p->a], *b = &bodies[p->b];
+  if (a->is_fe) PF_CALL(fe_pair(d, map, a, b, p));
+  else PF_CALL(short_range_pair(d, map, a, b, p));
+  PF_CALL(pf_deck_real(d, map, "friction", &p->friction));
+  if (!(p->friction >= 0))
+    return pf_deck_error(d, pf_node_get(map, "friction"), "friction", "must not be negative (got %g)", p->friction);
+  return 0;
+}
+
+/* Mark the mesh nodes of each FE body that lie on some pair's surface. */
+static int mark_surfaces(pf_contact *c) {
+  PF_MALLOC(c->surface_node, c->nbodies);
+  PF_MALLOC(c->node_view, c->nbodies);
+  PF_MALLOC(c->body_used, c->nbodies);
+  for (int k = 0; k < c->npairs; k++) {
+    const pf_contact_pair *p = &c->pair[k];
+    c->body_used[p->a] = c->body_used[p->b] = 1;
+    if (p->kind == PF_PAIR_SHORT_RANGE) continue;
+    pf_int nn = c->body[p->a].mesh->nnodes;
+    if (!c->surface_node[p->a]) {
+      PF_MALLOC(c->surface_node[p->a], nn);
+      PF_MALLOC(c->node_view[p->a], nn);
+    }
+    for (pf_int f = 0; f < p->nface; f++)
+      for (int q = 0; q < 4; q++) c->surface_node[p->a][p->face[f].node[q]] = 1;
+  }
+  return 0;
+}
+
+static int contact_setup(const pf_deck *d, const pf_node *map, pf_contact *c) {
+  const pf_node *pairs = pf_node_get(map, "pairs");
+  PF_MALLOC(c->pair, c->npairs);
+  double rmax = 0;
+  for (int k = 0; k < c->npairs; k++) {
+    PF_CALL(read_pair(d, pf_node_item(pairs, k), c->nbodies, c->body, &c->pair[k]));
+    rmax = fmax(rmax, c->pair[k].radius);
+  }
+  c->skin = rmax;
+  PF_CALL(positive(d, map, "skin", &c->skin));
+  PF_CALL(mark_surfaces(c));
+  c->nranks = pf_comm_size();
+  PF_MALLOC(c->scount, 4 * c->nranks);
+  c->sdispl = c->scount + c->nranks, c->rcount = c->sdispl + c->nranks, c->rdispl = c->rcount + c->nranks;
+  return 0;
+}
+
+int pf_contact_create(const pf_deck *d, const pf_node *map, int nbodies, const pf_contact_body *bodies,
+                      pf_contact **out) {
+  *out = NULL;
+  int npairs = pf_node_count(pf_node_get(map, "pairs"));
+  if (!npairs) {
+    if (pf_node_get(map, "skin")) pf_log("warning: contact: 'skin' given but no pair\n");
+    return 0;
+  }
+  pf_contact *c;
+  PF_MALLOC(c, 1);
+  c->npairs = npairs, c->nbodies = nbodies;
+  int ierr = 0;
+  c->body = malloc(sizeof *c->body * (size_t)nbodies);
+  if (!c->body) ierr = PF_ERR_MEMORY;
+  else memcpy(c->body, bodies, sizeof *c->body * (size_t)nbodies);
+  if (!ierr) ierr = contact_setup(d, map, c);
+  if (ierr) {
+    pf_contact_destroy(&c);
+    return ierr;
+  }
+  *out = c;
+  return 0;
+}
+
+int pf_contact_destroy(pf_contact **cp) {
+  pf_contact *c = *cp;
+  if (!c) return 0;
+  for (int k = 0; c->pair && k < c->npairs; k++) free(c->pair[k].face);
+  for (int b = 0; b < c->nbodies; b++) {
+    if (c->surface_node) free(c->surface_node[b]);
+    if (c->node_view) free(c->node_view[b]);
+  }
+  free(c->surface_node), free(c->node_view), free(c->body_used);
+  free(c->pair), free(c->body);
+  free(c->local), free(c->gid), free(c->vbody), free(c->rank);
+  free(c->y), free(c->v), free(c->vol), free(c->m), free(c->y_build);
+  free(c->scount), free(c->send), free(c->cand_off), free(c->cand), free(c->force);
+  PF_FREE(*cp);
+  return 0;
+}
+
+int pf_contact_attach(pf_contact *c, const pf_contact_body *bodies) {
+  for (int b = 0; b < c->nbodies; b++) {
+    c->body[b].first = bodies[b].first;
+    c->body[b].n = bodies[b].n;
+    c->body[b].fam = bodies[b].fam;
+  }
+  c->built = 0;
+  return 0;
+}
+
+/* The contact force of every owned point into the output field "contact_force". */
+static int store_force_field(pf_contact *c, pf_points *pts) {
+  int idx;
+  PF_CALL(pf_points_field_register(pts, "contact_force", 3, PF_FIELD_OUTPUT, &idx));
+  double *fc = pts->fields[idx].data;
+  memset(fc, 0, sizeof(double) * 3 * (size_t)pts->n_owned);
+  for (pf_int e = 0; e < c->nown; e++)
+    for (int a = 0; a < 3; a++) fc[3 * c->local[e] + a] = c->force[3 * e + a];
+  return 0;
+}
+
+/* The pairs' forces and the energy summed over the ranks, in one reduction. Collective. */
+static int sum_over_ranks(pf_contact *c, double *energy) {
+  double *buf;
+  PF_MALLOC(buf, 3 * c->npairs + 1);
+  for (int k = 0; k < c->npairs; k++) memcpy(&buf[3 * k], c->pair[k].force, sizeof c->pair[k].force);
+  buf[3 * c->npairs] = *energy;
+  int ierr = MPI_Allreduce(MPI_IN_PLACE, buf, 3 * c->npairs + 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  for (int k = 0; k < c->npairs; k++) memcpy(c->pair[k].force, &buf[3 * k], sizeof c->pair[k].force);
+  *energy = buf[3 * c->npairs];
+  free(buf);
+  PF_CHECK(ierr == MPI_SUCCESS, PF_ERR_LIB, "MPI_Allreduce failed summing the contact forces");
+  return 0;
+}
+
+int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *energy, double *dissipation) {
+  double t0 = pf_wtime();
+  if (!c->built) PF_CALL(pf_contact_collect_owned(c, pts));
+  PF_CALL(pf_contact_exchange(c, pts));
+  PF_CALL(pf_contact_search(c, pts));
+  double U = 0;
+  PF_CALL(pf_contact_pairs_evaluate(c, pts, dt, &U, dissipation));
+  for (pf_int e = 0; e < c->nown; e++)
+    for (int a = 0; a < 3; a++) pts->f[3 * c->local[e] + a] += c->force[3 * e + a];
+  PF_CALL(store_force_field(c, pts));
+  PF_CALL(sum_over_ranks(c, &U));
+  *energy = U;
+  c->seconds += pf_wtime() - t0;
+  return 0;
+}
+
+/* Smallest mass of the owned points of body b (INFINITY when none). */
+static double min_mass(const pf_contact_body *b, const pf_points *pts) {
+  double m = INFINITY;
+  for (pf_int i = b->first; i < b->first + b->n; i++) m = fmin(m, pts->m[i]);
+  return m;
+}
+
+/* 2 / omega for each pair: short range, a particle inside the spheres of radius r_c + h/2 of
+ * partners filling it, omega^2 = C (4/3) pi (r_c + h/2)^3 / rho_min; FE <-> PD, a particle on one
+ * face and a node carrying up to (face diagonal / h)^2 particles, omega^2 = k / m_p +
+ * k max(1, (l / h)^2) / m_n (docs/theory/contact.md). */
+double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts) {
+  double dt = INFINITY;
+  for (int k = 0; k < c->npairs; k++) {
+    const pf_contact_pair *p = &c->pair[k];
+    const pf_contact_body *a = &c->body[p->a], *b = &c->body[p->b];
+    double w2;
+    if (p->kind == PF_PAIR_SHORT_RANGE) {
+      double h = fmax(a->spacing, b->spacing), rho = fmin(a->density, b->density);
+      w2 = p->stiffness * 4.0 / 3.0 * PF_PI * pow(p->radius + 0.5 * h, 3) / rho;
+    } else {
+      double mp = pf_min_all(min_mass(b, pts)), mn = pf_min_all(min_mass(a, pts));
+      double l = a->spacing * sqrt(2.0), many = fmax(1.0, (l / b->spacing) * (l / b->spacing));
+      w2 = p->stiffness / mp + p->stiffness * many / mn;
+    }
+    dt = fmin(dt, 2.0 / sqrt(w2));
+  }
+  return dt;
+}
+
+void pf_contact_stats(const pf_contact *c, long *rebuilds, double *seconds) {
+  *rebuilds = c->rebuilds;
+  *seconds = c->seconds;
+}
+
+int pf_contact_npairs(const pf_contact *c) { return c ? c->npairs : 0; }
+const char *pf_contact_pair_name(const pf_contact *c, int k) { return c->pair[k].name; }
+void pf_contact_pair_force(const pf_contact *c, int k, double f[3]) { memcpy(f, c->pair[k].force, sizeof c->pair[k].force); }

@@ -1,0 +1,92 @@
+/* Private to contact/contact.c, search.c and pairs.c. */
+#ifndef PF_CONTACT_IMPL_H
+#define PF_CONTACT_IMPL_H
+
+#include "contact/contact.h"
+
+typedef enum { PF_PAIR_SHORT_RANGE, PF_PAIR_SURFACE, PF_PAIR_NODES } pf_pair_kind;
+
+/* One entry of `contact: pairs:`. */
+typedef struct {
+  char name[64];
+  pf_pair_kind kind;
+  int a, b;          /* bodies; SURFACE / NODES: a the FE body, b the PD body */
+  int all_points;    /* short range: also between bonded points */
+  double radius;     /* contact radius r_c, m */
+  double stiffness;  /* short range: C in f = C (r_c - r) V_i V_j (N/m^7); FE: k in f = k (r_c - g) (N/m) */
+  double friction;   /* Coulomb coefficient */
+  pf_contact_face *face; /* SURFACE / NODES: the FE surface (mesh node indices) */
+  pf_int nface;
+  double face_size;  /* largest face diagonal at the last build, m */
+  double force[3];   /* total force on body a at the last evaluation (all ranks), N */
+} pf_contact_pair;
+
+/* A uniform grid of bins over a set of points (counting sort, O(n + bins)). */
+typedef struct {
+  double lo[3], cell;
+  int dim[3];
+  pf_int *start; /* [nbins + 1] */
+  pf_int *item;  /* [n] */
+} pf_grid;
+
+/* Per owned entity: the candidates found at the last build, sorted by (pair, partner gid). */
+typedef struct {
+  int32_t pair;
+  pf_int j;      /* view index (short range, nodes) or face index of the pair (surface) */
+  pf_gid key;    /* partner gid (short range, nodes) or face index (surface) */
+} pf_candidate;
+
+struct pf_contact {
+  int npairs;
+  pf_contact_pair *pair;
+  int nbodies;
+  pf_contact_body *body;  /* [nbodies] */
+  uint8_t *body_used;     /* [nbodies] the body takes part in some pair */
+  uint8_t **surface_node; /* [nbodies] FE bodies: [nnodes] 1 when on a pair's surface */
+  double skin;
+  double margin;          /* ghost margin of the last build, m */
+  /* the view: owned entities (points of contact bodies: PD particles, FE surface nodes), then
+   * ghosts received from other ranks at the last build */
+  pf_int nown, nview;
+  pf_int *local;          /* [nown] store index of each owned entity */
+  pf_gid *gid;            /* [nview] */
+  int32_t *vbody;         /* [nview] body index */
+  int *rank;              /* [nview] owner rank */
+  double *y, *v, *vol, *m; /* [3 nview], [3 nview], [nview], [nview] */
+  double *y_build;        /* [3 nown] positions at the last build */
+  pf_int cap;             /* room in the view arrays */
+  /* ghost exchange lists of the last build */
+  int nranks;
+  int *scount, *sdispl, *rcount, *rdispl; /* [nranks] entities */
+  pf_int *send;           /* [sum scount] view index of each entity sent */
+  /* FE nodes: view index of each mesh node of each FE body in a pair (-1: not in the view) */
+  pf_int **node_view;     /* [nbodies][nnodes] */
+  /* candidates of each owned entity: CSR */
+  int64_t *cand_off;      /* [nown + 1] */
+  pf_candidate *cand;
+  int64_t cand_cap;
+  int built;
+  /* results */
+  double *force;          /* [3 nown] contact force of the last evaluation */
+  long rebuilds;
+  double seconds;
+};
+
+/* contact/search.c */
+int pf_contact_grid_build(pf_grid *g, pf_int n, const double *x, double cell);
+void pf_contact_grid_free(pf_grid *g);
+/* The bins overlapping the box [p - r, p + r]: lo/hi bin ranges (inclusive), clamped. */
+void pf_contact_grid_range(const pf_grid *g, const double p[3], double r, int lo[3], int hi[3]);
+/* Refresh the owned entities' y, v from the store and the ghosts' from their owners. */
+int pf_contact_exchange(pf_contact *c, const pf_points *pts);
+/* Rebuild when some entity moved more than half the skin since the last build (or never
+ * built): the ghosts and the candidate lists. Collective. */
+int pf_contact_search(pf_contact *c, const pf_points *pts);
+/* Owned entities from the bodies' owned ranges (after attach). */
+int pf_contact_collect_owned(pf_contact *c, const pf_points *pts);
+
+/* contact/pairs.c */
+int pf_contact_pairs_evaluate(pf_contact *c, const pf_points *pts, double dt, double *energy,
+                              double *dissipation);
+
+#endif

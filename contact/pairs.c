@@ -1,0 +1,240 @@
+/* Contact forces of the candidates of each owned particle (contact/contact.c gives the laws).
+ *
+ * Friction (all pairs): regularized Coulomb on the tangential part v_t of the relative
+ * mid-step velocity, F_t = -min(mu |F_n|, m* |v_t| / dt) v_t / |v_t| with m* the reduced mass of
+ * the two sides: never more than stops the sliding in one step (the stick limit of explicit
+ * codes), so the regularization adds no stability limit. Its work |F_t| |v_t| dt is dissipated.
+ *
+ * Each interaction is computed by the owner of its particle (short range: by each end's owner,
+ * with the same arithmetic on the pair ordered by global id, so the two ends get exactly
+ * opposite forces). An FE node receives its shares from the particles' owners, sorted by
+ * (pair, particle id) before they are summed: every point sums its contact forces in an order
+ * that does not depend on the partition. */
+#include "contact/contact_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A share of an interaction's force for an FE node (7 doubles on the wire). */
+typedef struct {
+  double body, node, pair, key, f[3];
+} node_share;
+
+typedef struct {
+  node_share *s;
+  int64_t n, cap;
+} share_list;
+
+static int share_push(share_list *l, int body, pf_gid node, int pair, pf_gid key, const double f[3], double w) {
+  if (l->n == l->cap) {
+    int64_t cap = 2 * l->cap + 256;
+    node_share *q = realloc(l->s, sizeof *q * (size_t)cap);
+    PF_CHECK(q, PF_ERR_MEMORY, "out of memory for contact node forces");
+    l->s = q, l->cap = cap;
+  }
+  l->s[l->n++] = (node_share){body, (double)node, pair, (double)key, {-w * f[0], -w * f[1], -w * f[2]}};
+  return 0;
+}
+
+/* Tangential friction force for normal force Fn (>= 0) along unit n, relative velocity vrel of
+ * the side that receives +f, reduced mass mr; adds |F_t| |v_t| dt * share to *diss. */
+static void friction(double mu, double Fn, const double n[3], const double vrel[3], double mr, double dt,
+                     double share, double ft[3], double *diss) {
+  ft[0] = ft[1] = ft[2] = 0;
+  if (mu == 0 || dt == 0) return;
+  double vn = vrel[0] * n[0] + vrel[1] * n[1] + vrel[2] * n[2], vt[3], s = 0;
+  for (int a = 0; a < 3; a++) vt[a] = vrel[a] - vn * n[a], s += vt[a] * vt[a];
+  s = sqrt(s);
+  if (s == 0) return;
+  double F = fmin(mu * Fn, mr * s / dt);
+  for (int a = 0; a < 3; a++) ft[a] = -F * vt[a] / s;
+  *diss += share * F * s * dt;
+}
+
+/* 1 when view entities e and j are closer than r. */
+static int within(const pf_contact *c, pf_int e, pf_int j, double r) {
+  const double *a = &c->y[3 * e], *b = &c->y[3 * j];
+  double d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
+  return d0 * d0 + d1 * d1 + d2 * d2 < r * r;
+}
+
+/* 1 when owned particle i (store index) has an intact bond to global id g. */
+static int bonded(const pf_family *fam, const pf_points *pts, pf_int i, pf_gid g) {
+  int64_t lo = fam->offset[i - fam->first], hi = fam->offset[i - fam->first + 1] - 1;
+  while (lo <= hi) {
+    int64_t mid = (lo + hi) / 2;
+    pf_gid x = pts->gid[fam->neighbor[mid]];
+    if (x == g) return !fam->broken[mid];
+    if (x < g) lo = mid + 1;
+    else hi = mid - 1;
+  }
+  return 0;
+}
+
+/* Short range between owned particle e and view entity j: the force on e. The pair is
+ * evaluated ordered by global id (lo, hi), f on lo = C (r_c - r) V_lo V_hi (y_lo - y_hi) / r. */
+static void short_range(pf_contact *c, pf_contact_pair *p, pf_int e, pf_int j, double dt, double *U, double *diss) {
+  int flip = c->gid[e] > c->gid[j];
+  pf_int lo = flip ? j : e, hi = flip ? e : j;
+  double d[3], r = 0;
+  for (int a = 0; a < 3; a++) d[a] = c->y[3 * lo + a] - c->y[3 * hi + a], r += d[a] * d[a];
+  r = sqrt(r);
+  if (r >= p->radius || r == 0) return;
+  double n[3] = {d[0] / r, d[1] / r, d[2] / r}, vrel[3], ft[3];
+  double F = p->stiffness * (p->radius - r) * (c->vol[lo] * c->vol[hi]);
+  for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * lo + a] - c->v[3 * hi + a];
+  double mr = c->m[lo] * c->m[hi] / (c->m[lo] + c->m[hi]);
+  friction(p->friction, F, n, vrel, mr, dt, 0.5, ft, diss);
+  const double sign = flip ? -1.0 : 1.0;
+  for (int a = 0; a < 3; a++) {
+    double fa = sign * (F * n[a] + ft[a]);
+    c->force[3 * e + a] += fa;
+    if (c->vbody[e] == p->a && p->a != p->b) p->force[a] += fa;
+  }
+  *U += 0.5 * 0.5 * p->stiffness * (c->vol[lo] * c->vol[hi]) * (p->radius - r) * (p->radius - r);
+}
+
+/* Push particle e by f = k (r_c - g) n + friction against a surface point of weights w on the
+ * nodes nv[4] (n outward of the FE body, towards the particle); the nodes' shares go to l. */
+static int push(pf_contact *c, pf_contact_pair *p, int k, pf_int e, const pf_int *nv, int nn, const double *w,
+                double g, const double n[3], double dt, share_list *l, double *U, double *diss) {
+  double vs[3] = {0, 0, 0}, ms = 0, vrel[3], ft[3], f[3];
+  for (int q = 0; q < nn; q++) {
+    ms += w[q] * c->m[nv[q]];
+    for (int a = 0; a < 3; a++) vs[a] += w[q] * c->v[3 * nv[q] + a];
+  }
+  for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * e + a] - vs[a];
+  double F = p->stiffness * (p->radius - g);
+  friction(p->friction, F, n, vrel, c->m[e] * ms / (c->m[e] + ms), dt, 1.0, ft, diss);
+  for (int a = 0; a < 3; a++) f[a] = F * n[a] + ft[a], c->force[3 * e + a] += f[a], p->force[a] -= f[a];
+  *U += 0.5 * p->stiffness * (p->radius - g) * (p->radius - g);
+  for (int q = 0; q < nn; q++)
+    if (w[q] != 0) PF_CALL(share_push(l, p->a, c->gid[nv[q]], k, c->gid[e], f, w[q]));
+  return 0;
+}
+
+/* Particle e against the closest face among its candidates [s, t) of pair k. */
+static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double dt, share_list *l, double *U,
+                   double *diss) {
+  pf_contact_pair *p = &c->pair[k];
+  const pf_int *view = c->node_view[p->a];
+  double best = INFINITY, bg = 0, bn[3] = {0, 0, 0}, bw[4] = {0, 0, 0, 0};
+  pf_int bv[4] = {0, 0, 0, 0};
+  for (int64_t q = s; q < t; q++) {
+    const pf_int *nd = p->face[c->cand[q].j].node;
+    double x[4][3], cp[3], w[4], n[3];
+    pf_int nv[4];
+    for (int v = 0; v < 4; v++) {
+      nv[v] = view[nd[v]];
+      if (nv[v] < 0) return PF_ERR_RUN; /* cannot happen: candidates have every node in the view */
+      memcpy(x[v], &c->y[3 * nv[v]], sizeof x[v]);
+    }
+    double g = pf_contact_face_closest((const double(*)[3])x, &c->y[3 * e], cp, w, n);
+    if (fabs(g) < best) {
+      best = fabs(g), bg = g;
+      memcpy(bn, n, sizeof bn), memcpy(bw, w, sizeof bw), memcpy(bv, nv, sizeof bv);
+    }
+  }
+  if (best == INFINITY || bg >= p->radius) return 0;
+  return push(c, p, k, e, bv, 4, bw, bg, bn, dt, l, U, diss);
+}
+
+/* Node-to-particle: particle e against surface node j. */
+static int node(pf_contact *c, int k, pf_int e, pf_int j, double dt, share_list *l, double *U, double *diss) {
+  pf_contact_pair *p = &c->pair[k];
+  double d[3], r = 0;
+  for (int a = 0; a < 3; a++) d[a] = c->y[3 * e + a] - c->y[3 * j + a], r += d[a] * d[a];
+  r = sqrt(r);
+  if (r >= p->radius || r == 0) return 0;
+  double n[3] = {d[0] / r, d[1] / r, d[2] / r}, w = 1;
+  return push(c, p, k, e, &j, 1, &w, r, n, dt, l, U, diss);
+}
+
+static int particle_forces(pf_contact *c, const pf_points *pts, double dt, share_list *l, double *U, double *diss) {
+  for (pf_int e = 0; e < c->nown; e++) {
+    for (int64_t q = c->cand_off[e]; q < c->cand_off[e + 1];) {
+      int k = c->cand[q].pair;
+      pf_contact_pair *p = &c->pair[k];
+      int64_t t = q;
+      while (t < c->cand_off[e + 1] && c->cand[t].pair == k) t++;
+      if (p->kind == PF_PAIR_SURFACE) PF_CALL(surface(c, k, e, q, t, dt, l, U, diss));
+      for (int64_t s = q; s < t && p->kind != PF_PAIR_SURFACE; s++) {
+        pf_int j = c->cand[s].j;
+        if (p->kind == PF_PAIR_NODES) PF_CALL(node(c, k, e, j, dt, l, U, diss));
+        else if (within(c, e, j, p->radius) &&
+                 (p->all_points || c->vbody[j] != c->vbody[e] ||
+                  !bonded(c->body[c->vbody[e]].fam, pts, c->local[e], c->gid[j])))
+          short_range(c, p, e, j, dt, U, diss);
+      }
+      q = t;
+    }
+  }
+  return 0;
+}
+
+/* Send the shares of nodes other ranks own to them; keep ours. Collective. */
+static int route_shares(pf_contact *c, share_list *l, share_list *mine) {
+  int R = c->nranks, *cnt, *sc, *sd, *rc, *rd;
+  PF_MALLOC(cnt, 5 * R);
+  sc = cnt + R, sd = sc + R, rc = sd + R, rd = rc + R;
+  int *dest;
+  PF_MALLOC(dest, l->n);
+  for (int64_t q = 0; q < l->n; q++) {
+    pf_int j = c->node_view[(int)l->s[q].body][(pf_int)((pf_gid)l->s[q].node - c->body[(int)l->s[q].body].gid0)];
+    dest[q] = c->rank[j];
+    cnt[dest[q]]++;
+  }
+  int64_t total = 0;
+  for (int r = 0; r < R; r++) sd[r] = (int)(7 * total), sc[r] = 7 * cnt[r], total += cnt[r];
+  node_share *buf;
+  PF_MALLOC(buf, total);
+  int *at;
+  PF_MALLOC(at, R);
+  for (int r = 0; r < R; r++) at[r] = sd[r] / 7;
+  for (int64_t q = 0; q < l->n; q++) buf[at[dest[q]]++] = l->s[q];
+  free(at), free(dest);
+  MPI_Alltoall(sc, 1, MPI_INT, rc, 1, MPI_INT, MPI_COMM_WORLD);
+  int64_t nrecv = 0;
+  for (int r = 0; r < R; r++) rd[r] = (int)nrecv, nrecv += rc[r];
+  mine->n = nrecv / 7;
+  mine->cap = mine->n;
+  mine->s = malloc(sizeof *mine->s * (size_t)(mine->n + 1));
+  int ierr = mine->s ? 0 : PF_ERR_MEMORY;
+  if (!ierr)
+    ierr = MPI_Alltoallv(buf, sc, sd, MPI_DOUBLE, mine->s, rc, rd, MPI_DOUBLE, MPI_COMM_WORLD) != MPI_SUCCESS;
+  free(buf), free(cnt);
+  PF_CHECK(!ierr, PF_ERR_LIB, "the exchange of contact node forces failed");
+  return 0;
+}
+
+static int share_cmp(const void *a, const void *b) {
+  const node_share *x = a, *y = b;
+  if (x->body != y->body) return x->body < y->body ? -1 : 1;
+  if (x->node != y->node) return x->node < y->node ? -1 : 1;
+  if (x->pair != y->pair) return x->pair < y->pair ? -1 : 1;
+  return x->key < y->key ? -1 : x->key > y->key;
+}
+
+/* Sum each owned node's shares in (pair, particle) order. */
+static void sum_shares(pf_contact *c, share_list *mine) {
+  qsort(mine->s, (size_t)mine->n, sizeof *mine->s, share_cmp);
+  for (int64_t q = 0; q < mine->n; q++) {
+    const node_share *s = &mine->s[q];
+    pf_int j = c->node_view[(int)s->body][(pf_int)((pf_gid)s->node - c->body[(int)s->body].gid0)];
+    for (int a = 0; a < 3; a++) c->force[3 * j + a] += s->f[a];
+  }
+}
+
+int pf_contact_pairs_evaluate(pf_contact *c, const pf_points *pts, double dt, double *energy, double *dissipation) {
+  memset(c->force, 0, sizeof(double) * 3 * (size_t)c->nown);
+  for (int k = 0; k < c->npairs; k++) memset(c->pair[k].force, 0, sizeof c->pair[k].force);
+  share_list l = {NULL, 0, 0}, mine = {NULL, 0, 0};
+  int ierr = particle_forces(c, pts, dt, &l, energy, dissipation);
+  int fe = 0;
+  for (int k = 0; k < c->npairs; k++) fe |= c->pair[k].kind != PF_PAIR_SHORT_RANGE;
+  if (!ierr && fe) ierr = route_shares(c, &l, &mine);
+  if (!ierr) sum_shares(c, &mine);
+  free(l.s), free(mine.s);
+  return ierr;
+}
