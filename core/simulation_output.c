@@ -198,7 +198,7 @@ static void summary(const pf_sim *sim, const globals *g, double wall) {
   for (int b = 0; b < sim->nbodies; b++)
     if (sim->fem[b]) nel += pf_fem_body_mesh(sim->fem[b])->nelem;
   if (nel > 0)
-    pf_log("  elements %.0f, element cycles per second %.4g, hourglass energy %.3g J (%.3g of the internal)\n",
+    pf_log("  elements %.0f, element cycles per second %.4g, hourglass energy %.3g J (%.3g times the internal)\n",
            nel, sim->wall_loop > 0 ? nel * sim->step / sim->wall_loop : 0.0, v[G_HG],
            v[G_FEINT] != 0 ? v[G_HG] / v[G_FEINT] : 0.0);
   if (sim->contact) {

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # perifem set-up on Debian 12: install what the build and the tests need (only what is
 # missing), configure and build, then run the main example (--example) or the tests (--test).
-#   bash scripts/setup.sh --example   # install, build, run inputs/disk_impact_rigid.yaml
+#   bash scripts/setup.sh --example   # install, build, run inputs/disk_impact_elastic.yaml
 #   bash scripts/setup.sh --test      # install, build (warnings as errors), run ctest
 #   bash scripts/setup.sh             # install and build only
 set -euo pipefail
@@ -39,8 +39,8 @@ test -x build/perifem || { echo "setup: build failed" >&2; exit 1; }
 case "$mode" in
   --example)
     mkdir -p run
-    cd run && ../build/perifem ../inputs/disk_impact_rigid.yaml
-    echo "open run/disk_impact_rigid.e in ParaView (File > Open; colour by 'damage')"
+    cd run && ../build/perifem ../inputs/disk_impact_elastic.yaml
+    echo "open run/disk_impact_elastic.e in ParaView (File > Open; colour by 'damage')"
     ;;
   --test)
     ctest --test-dir build --output-on-failure -LE slow -j"$(nproc)"
