@@ -41,22 +41,16 @@ const pf_key pf_contact_keys[] = {
     {"rigid_surfaces", PF_KEY_LIST, 0, NULL, "", "rigid spheres, planes, cylinders", pf_rigid_keys},
     PF_KEY_END};
 
-static int body_index(const pf_deck *d, const pf_node *item, int nbodies, const pf_contact_body *bodies) {
-  const char *name = pf_node_text(item);
-  for (int b = 0; b < nbodies; b++)
-    if (!strcmp(bodies[b].name, name)) return b;
-  pf_deck_error(d, item, "bodies", "no body is named '%s'", name);
-  return -1;
-}
-
 static int pair_bodies(const pf_deck *d, const pf_node *map, int nbodies, const pf_contact_body *bodies,
                        pf_contact_pair *p) {
   const pf_node *list = pf_node_get(map, "bodies");
   if (pf_node_count(list) != 2)
     return pf_deck_error(d, list, "bodies", "a pair names exactly two bodies (got %d)", pf_node_count(list));
-  int a = body_index(d, pf_node_item(list, 0), nbodies, bodies);
-  int b = a < 0 ? -1 : body_index(d, pf_node_item(list, 1), nbodies, bodies);
-  if (a < 0 || b < 0) return PF_ERR_INPUT;
+  const char *names[nbodies];
+  for (int k = 0; k < nbodies; k++) names[k] = bodies[k].name;
+  int a, b;
+  PF_CALL(pf_deck_body_index(d, pf_node_item(list, 0), "bodies", nbodies, names, &a));
+  PF_CALL(pf_deck_body_index(d, pf_node_item(list, 1), "bodies", nbodies, names, &b));
   if (bodies[a].is_fe && bodies[b].is_fe)
     return pf_deck_error(d, list, "bodies", "contact between two finite-element bodies ('%s', '%s') is not supported",
                          bodies[a].name, bodies[b].name);
@@ -66,12 +60,6 @@ static int pair_bodies(const pf_deck *d, const pf_node *map, int nbodies, const 
   const char *name = NULL;
   PF_CALL(pf_deck_string(d, map, "name", &name));
   if (name) snprintf(p->name, sizeof p->name, "%s", name);
-  return 0;
-}
-
-static int positive(const pf_deck *d, const pf_node *map, const char *key, double *v) {
-  PF_CALL(pf_deck_real(d, map, key, v));
-  if (!(*v > 0)) return pf_deck_error(d, pf_node_get(map, key), key, "must be positive (got %g)", *v);
   return 0;
 }
 
@@ -97,8 +85,8 @@ static int fe_pair(const pf_deck *d, const pf_node *map, const pf_contact_body *
   PF_CALL(pf_contact_surface_faces(fe->mesh, sideset, &p->face, &p->nface));
   p->radius = 0.5 * pd->spacing;
   p->stiffness = pd->bulk_modulus * pd->spacing;
-  PF_CALL(positive(d, map, "radius", &p->radius));
-  PF_CALL(positive(d, map, "stiffness", &p->stiffness));
+  PF_CALL(pf_deck_positive(d, map, "radius", &p->radius));
+  PF_CALL(pf_deck_positive(d, map, "stiffness", &p->stiffness));
   return 0;
 }
 
@@ -109,12 +97,12 @@ static int short_range_pair(const pf_deck *d, const pf_node *map, const pf_conta
     if (pf_node_get(map, *k))
       return pf_deck_error(d, pf_node_get(map, *k), *k, "'%s' is a key of FE <-> PD pairs", *k);
   double ks = fmax(a->bulk_modulus, b->bulk_modulus), delta = fmax(a->horizon, b->horizon);
-  PF_CALL(positive(d, map, "spring_constant", &ks));
-  PF_CALL(positive(d, map, "horizon", &delta));
+  PF_CALL(pf_deck_positive(d, map, "spring_constant", &ks));
+  PF_CALL(pf_deck_positive(d, map, "horizon", &delta));
   p->stiffness = 18.0 * ks / (PF_PI * pow(delta, 5));
   p->radius = 0.9 * fmax(a->spacing, b->spacing);
-  PF_CALL(positive(d, map, "stiffness", &p->stiffness));
-  PF_CALL(positive(d, map, "radius", &p->radius));
+  PF_CALL(pf_deck_positive(d, map, "stiffness", &p->stiffness));
+  PF_CALL(pf_deck_positive(d, map, "radius", &p->radius));
   PF_CALL(pf_deck_bool(d, map, "all_points", &p->all_points));
   return 0;
 }
@@ -158,9 +146,10 @@ static int contact_setup(const pf_deck *d, const pf_node *map, pf_contact *c) {
   for (int k = 0; k < c->npairs; k++) {
     PF_CALL(read_pair(d, pf_node_item(pairs, k), c->nbodies, c->body, &c->pair[k]));
     rmax = fmax(rmax, c->pair[k].radius);
+    c->has_fe |= c->pair[k].kind != PF_PAIR_SHORT_RANGE;
   }
   c->skin = rmax;
-  PF_CALL(positive(d, map, "skin", &c->skin));
+  PF_CALL(pf_deck_positive(d, map, "skin", &c->skin));
   PF_CALL(mark_surfaces(c));
   c->nranks = pf_comm_size();
   PF_MALLOC(c->scount, 4 * c->nranks);

@@ -70,7 +70,7 @@ typedef struct {
   double bulk_modulus; /* Pa */
   double density;      /* kg/m^3 */
   double horizon;      /* PD: the horizon, m (FE: 0) */
-  double spacing;      /* the largest cell edge of the body's points (PD) or element edge (FE), m */
+  double spacing;      /* the largest cell edge of the body's points (FE nodes: cube root of the nodal volume), m */
   pf_gid gid0;         /* global id of the body's first point (FE: of mesh node 0) */
   pf_int first, n;     /* the body's owned points [first, first + n) of the store */
   const pf_fem_mesh *mesh; /* FE: the whole mesh (every rank) */

@@ -45,6 +45,7 @@ struct pf_contact {
   uint8_t **surface_node; /* [nbodies] FE bodies: [nnodes] 1 when on a pair's surface */
   double skin;
   double margin;          /* ghost margin of the last build, m */
+  int has_fe;             /* some pair is FE <-> PD: node shares travel between ranks */
   /* the view: owned entities (points of contact bodies: PD particles, FE surface nodes), then
    * ghosts received from other ranks at the last build */
   pf_int nown, nview;
@@ -86,6 +87,12 @@ int pf_contact_search(pf_contact *c, const pf_points *pts);
 int pf_contact_collect_owned(pf_contact *c, const pf_points *pts);
 
 /* contact/pairs.c */
+/* Regularized Coulomb friction (pairs.c file head) on the side moving at vrel relative to the
+ * other, pressed with the normal force Fn >= 0 along the unit normal n, m the (reduced) mass:
+ * the tangential force into ft[3] (zero when mu, dt or the sliding is zero); returns the work
+ * dissipated over dt, |F_t| |v_t| dt. Used by the pairs and the rigid surfaces. */
+double pf_contact_friction(double mu, double Fn, const double n[3], const double vrel[3], double m, double dt,
+                           double ft[3]);
 int pf_contact_pairs_evaluate(pf_contact *c, const pf_points *pts, double dt, double *energy,
                               double *dissipation);
 

@@ -37,19 +37,17 @@ static int share_push(share_list *l, int body, pf_gid node, int pair, pf_gid key
   return 0;
 }
 
-/* Tangential friction force for normal force Fn (>= 0) along unit n, relative velocity vrel of
- * the side that receives +f, reduced mass mr; adds |F_t| |v_t| dt * share to *diss. */
-static void friction(double mu, double Fn, const double n[3], const double vrel[3], double mr, double dt,
-                     double share, double ft[3], double *diss) {
+double pf_contact_friction(double mu, double Fn, const double n[3], const double vrel[3], double m, double dt,
+                           double ft[3]) {
   ft[0] = ft[1] = ft[2] = 0;
-  if (mu == 0 || dt == 0) return;
-  double vn = vrel[0] * n[0] + vrel[1] * n[1] + vrel[2] * n[2], vt[3], s = 0;
-  for (int a = 0; a < 3; a++) vt[a] = vrel[a] - vn * n[a], s += vt[a] * vt[a];
-  s = sqrt(s);
-  if (s == 0) return;
-  double F = fmin(mu * Fn, mr * s / dt);
+  if (mu == 0 || dt == 0) return 0;
+  double vn = vrel[0] * n[0] + vrel[1] * n[1] + vrel[2] * n[2], vt[3];
+  for (int a = 0; a < 3; a++) vt[a] = vrel[a] - vn * n[a];
+  double s = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
+  if (s == 0) return 0;
+  double F = fmin(mu * Fn, m * s / dt);
   for (int a = 0; a < 3; a++) ft[a] = -F * vt[a] / s;
-  *diss += share * F * s * dt;
+  return F * s * dt;
 }
 
 /* 1 when view entities e and j are closer than r. */
@@ -85,7 +83,7 @@ static void short_range(pf_contact *c, pf_contact_pair *p, pf_int e, pf_int j, d
   double F = p->stiffness * (p->radius - r) * (c->vol[lo] * c->vol[hi]);
   for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * lo + a] - c->v[3 * hi + a];
   double mr = c->m[lo] * c->m[hi] / (c->m[lo] + c->m[hi]);
-  friction(p->friction, F, n, vrel, mr, dt, 0.5, ft, diss);
+  *diss += 0.5 * pf_contact_friction(p->friction, F, n, vrel, mr, dt, ft); /* half: each end counts it */
   const double sign = flip ? -1.0 : 1.0;
   for (int a = 0; a < 3; a++) {
     double fa = sign * (F * n[a] + ft[a]);
@@ -106,7 +104,7 @@ static int push(pf_contact *c, pf_contact_pair *p, int k, pf_int e, const pf_int
   }
   for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * e + a] - vs[a];
   double F = p->stiffness * (p->radius - g);
-  friction(p->friction, F, n, vrel, c->m[e] * ms / (c->m[e] + ms), dt, 1.0, ft, diss);
+  *diss += pf_contact_friction(p->friction, F, n, vrel, c->m[e] * ms / (c->m[e] + ms), dt, ft);
   for (int a = 0; a < 3; a++) f[a] = F * n[a] + ft[a], c->force[3 * e + a] += f[a], p->force[a] -= f[a];
   *U += 0.5 * p->stiffness * (p->radius - g) * (p->radius - g);
   for (int q = 0; q < nn; q++)
@@ -231,9 +229,7 @@ int pf_contact_pairs_evaluate(pf_contact *c, const pf_points *pts, double dt, do
   for (int k = 0; k < c->npairs; k++) memset(c->pair[k].force, 0, sizeof c->pair[k].force);
   share_list l = {NULL, 0, 0}, mine = {NULL, 0, 0};
   int ierr = particle_forces(c, pts, dt, &l, energy, dissipation);
-  int fe = 0;
-  for (int k = 0; k < c->npairs; k++) fe |= c->pair[k].kind != PF_PAIR_SHORT_RANGE;
-  if (!ierr && fe) ierr = route_shares(c, &l, &mine);
+  if (!ierr && c->has_fe) ierr = route_shares(c, &l, &mine);
   if (!ierr) sum_shares(c, &mine);
   free(l.s), free(mine.s);
   return ierr;

@@ -26,7 +26,7 @@
  * never more than the force m_i |v_t| / dt that stops the relative tangential velocity in one
  * step (so friction cannot reverse the sliding within a step). The work dissipated over the
  * step is -F_t . v_t dt = |F_t| |v_t| dt >= 0. Frictionless when mu = 0, dt = 0 or v_t = 0. */
-#include "contact/contact.h"
+#include "contact/contact_impl.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -87,12 +87,6 @@ static int lookup(const char *name, const char *const *names, int n, char *buf, 
   return -1;
 }
 
-static int positive(const pf_deck *d, const pf_node *map, const char *key, double *out) {
-  PF_CALL(pf_deck_real(d, map, key, out));
-  if (!(*out > 0)) return pf_deck_error(d, pf_node_get(map, key), key, "must be positive");
-  return 0;
-}
-
 /* A unit vector from a VEC3 key; zero is an error. */
 static int unit_vector(const pf_deck *d, const pf_node *map, const char *key, double u[3]) {
   PF_CALL(pf_deck_vec3(d, map, key, u));
@@ -116,7 +110,7 @@ static int read_shape(const pf_deck *d, const pf_node *map, pf_rigid *r) {
     PF_CALL(need(d, map, "center", "a sphere"));
     PF_CALL(need(d, map, "radius", "a sphere"));
     PF_CALL(pf_deck_vec3(d, map, "center", r->x));
-    PF_CALL(positive(d, map, "radius", &r->radius));
+    PF_CALL(pf_deck_positive(d, map, "radius", &r->radius));
   } else if (r->shape == RIGID_PLANE) {
     PF_CALL(need(d, map, "point", "a plane"));
     PF_CALL(need(d, map, "normal", "a plane"));
@@ -128,10 +122,10 @@ static int read_shape(const pf_deck *d, const pf_node *map, pf_rigid *r) {
     PF_CALL(need(d, map, "radius", "a cylinder"));
     PF_CALL(pf_deck_vec3(d, map, "center", r->x));
     PF_CALL(unit_vector(d, map, "axis", r->axis));
-    PF_CALL(positive(d, map, "radius", &r->radius));
+    PF_CALL(pf_deck_positive(d, map, "radius", &r->radius));
     if (pf_node_get(map, "length")) {
       double len;
-      PF_CALL(positive(d, map, "length", &len));
+      PF_CALL(pf_deck_positive(d, map, "length", &len));
       r->half_length = 0.5 * len;
     }
   }
@@ -154,7 +148,7 @@ static int read_law(const pf_deck *d, const pf_node *map, pf_rigid *r) {
                          "the linear law needs 'stiffness' (k in F = k d, N/m; the default "
                          "1e17 is the quadratic law's N/m^5)");
   r->stiffness = 1e17;
-  if (pf_node_get(map, "stiffness")) PF_CALL(positive(d, map, "stiffness", &r->stiffness));
+  if (pf_node_get(map, "stiffness")) PF_CALL(pf_deck_positive(d, map, "stiffness", &r->stiffness));
   r->friction = 0;
   PF_CALL(pf_deck_real(d, map, "friction", &r->friction));
   if (!(r->friction >= 0) || isinf(r->friction))
@@ -171,20 +165,9 @@ static int read_bodies(const pf_deck *d, const pf_node *map, int nbodies,
   r->nbodies = nbodies;
   PF_MALLOC(r->acts, nbodies);
   for (int k = 0; k < pf_node_count(list); k++) {
-    const char *bn = pf_node_text(pf_node_item(list, k));
-    int b = 0;
-    while (b < nbodies && strcmp(body_names[b], bn)) b++;
-    if (b < nbodies) {
-      r->acts[b] = 1;
-      continue;
-    }
-    char known[512] = "";
-    for (int j = 0; j < nbodies; j++) {
-      size_t at = strlen(known);
-      snprintf(known + at, sizeof known - at, "%s%s", j ? ", " : "", body_names[j]);
-    }
-    return pf_deck_error(d, pf_node_item(list, k), "bodies", "no body named '%s' (known: %s)", bn,
-                         known);
+    int b;
+    PF_CALL(pf_deck_body_index(d, pf_node_item(list, k), "bodies", nbodies, body_names, &b));
+    r->acts[b] = 1;
   }
   return 0;
 }
@@ -263,21 +246,6 @@ static int penetration(const pf_rigid *r, const double *y, double *depth, double
   return 1;
 }
 
-/* Friction on point i pressed with normal force F along dir (file head): adds F_t to ft[3]
- * and returns the work dissipated over dt, |F_t| |v_t| dt. */
-static double friction(const pf_rigid *r, const pf_points *p, pf_int i, double F,
-                       const double dir[3], double dt, double ft[3]) {
-  double vrel[3], vt[3];
-  for (int a = 0; a < 3; a++) vrel[a] = p->v[3 * (size_t)i + a] - r->v[a];
-  double vn = vrel[0] * dir[0] + vrel[1] * dir[1] + vrel[2] * dir[2];
-  for (int a = 0; a < 3; a++) vt[a] = vrel[a] - vn * dir[a];
-  double speed = sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
-  if (speed == 0) return 0;
-  double Ft = fmin(r->friction * F, p->m[i] * speed / dt);
-  for (int a = 0; a < 3; a++) ft[a] = -Ft * vt[a] / speed;
-  return Ft * speed * dt;
-}
-
 int pf_rigid_force(pf_rigid *r, pf_points *pts, double dt, double reaction[3], double *energy,
                    double *dissipation) {
   double R[3] = {0, 0, 0}, U = 0, W = 0, k = r->stiffness;
@@ -298,8 +266,9 @@ int pf_rigid_force(pf_rigid *r, pf_points *pts, double dt, double reaction[3], d
       R[a] -= F * dir[a];
     }
     if (!slide) continue;
-    double ft[3] = {0, 0, 0};
-    W += friction(r, pts, i, F, dir, dt, ft);
+    double ft[3], vrel[3];
+    for (int a = 0; a < 3; a++) vrel[a] = pts->v[3 * (size_t)i + a] - r->v[a];
+    W += pf_contact_friction(r->friction, F, dir, vrel, pts->m[i], dt, ft);
     for (int a = 0; a < 3; a++) {
       pts->f[3 * (size_t)i + a] += ft[a];
       R[a] -= ft[a];

@@ -38,11 +38,9 @@ int pf_wall_create(const pf_deck *d, const pf_node *map, int nbodies, const char
   const pf_node *list = pf_node_get(map, "bodies");
   w->bodies = list ? 0 : ~(uint64_t)0;
   for (int k = 0; k < pf_node_count(list) && !ierr; k++) {
-    const char *bn = pf_node_text(pf_node_item(list, k));
-    int b = 0;
-    while (b < nbodies && strcmp(body_names[b], bn)) b++;
-    if (b == nbodies) ierr = pf_deck_error(d, pf_node_item(list, k), "bodies", "no body named '%s'", bn);
-    else w->bodies |= (uint64_t)1 << b;
+    int b;
+    ierr = pf_deck_body_index(d, pf_node_item(list, k), "bodies", nbodies, body_names, &b);
+    if (!ierr) w->bodies |= (uint64_t)1 << b;
   }
   if (ierr) {
     free(w);

@@ -48,11 +48,8 @@ static int select_points(const pf_deck *d, const pf_node *map, const pf_points *
   bc->region.kind = PF_REGION_ALL;
   if (pf_node_get(map, "region")) PF_CALL(pf_region_from_deck(d, pf_node_get(map, "region"), &bc->region));
   bc->body = -1;
-  const char *bname = NULL;
-  PF_CALL(pf_deck_string(d, map, "body", &bname));
-  for (int b = 0; bname && b < nbodies; b++)
-    if (!strcmp(bname, body_names[b])) bc->body = b;
-  if (bname && bc->body < 0) return pf_deck_error(d, pf_node_get(map, "body"), "body", "no body named '%s'", bname);
+  if (pf_node_get(map, "body"))
+    PF_CALL(pf_deck_body_index(d, pf_node_get(map, "body"), "body", nbodies, body_names, &bc->body));
   PF_CALL(pf_bc_select(bc, pts));
   if (pf_sum_all(bc->n) == 0)
     return pf_deck_error(d, map, "region", "the boundary condition selects no point");

@@ -174,6 +174,12 @@ int pf_deck_int(const pf_deck *d, const pf_node *map, const char *key, long *out
 int pf_deck_bool(const pf_deck *d, const pf_node *map, const char *key, int *out);
 int pf_deck_string(const pf_deck *d, const pf_node *map, const char *key, const char **out);
 int pf_deck_vec3(const pf_deck *d, const pf_node *map, const char *key, double out[3]);
+/* An optional real that must be positive: the value given (or the default left in *out). */
+int pf_deck_positive(const pf_deck *d, const pf_node *map, const char *key, double *out);
+/* The index of the body a scalar node names (item, under key) among names[nbodies]; an unknown
+ * name is an error listing the known ones. */
+int pf_deck_body_index(const pf_deck *d, const pf_node *item, const char *key, int nbodies,
+                       const char *const *names, int *b);
 /* A hash of a node's content (keys and scalar text, not layout or comments); 0-safe for NULL. */
 uint64_t pf_node_hash(const pf_node *n);
 /* An error about a node: "deck.yaml:12:5: key 'horizon': <message>". */

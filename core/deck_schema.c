@@ -204,3 +204,22 @@ int pf_deck_vec3(const pf_deck *d, const pf_node *map, const char *key, double o
       return pf_deck_error(d, v->items[c], key, "component %d is not a real number", c);
   return 0;
 }
+
+int pf_deck_positive(const pf_deck *d, const pf_node *map, const char *key, double *out) {
+  PF_CALL(pf_deck_real(d, map, key, out));
+  if (!(*out > 0)) return pf_deck_error(d, pf_node_get(map, key), key, "must be positive (got %g)", *out);
+  return 0;
+}
+
+int pf_deck_body_index(const pf_deck *d, const pf_node *item, const char *key, int nbodies,
+                       const char *const *names, int *b) {
+  const char *name = pf_node_text(item);
+  for (*b = 0; *b < nbodies; (*b)++)
+    if (!strcmp(names[*b], name)) return 0;
+  char known[512] = "";
+  for (int j = 0; j < nbodies; j++) {
+    size_t at = strlen(known);
+    snprintf(known + at, sizeof known - at, "%s%s", j ? ", " : "", names[j]);
+  }
+  return pf_deck_error(d, item, key, "no body is named '%s' (known: %s)", name, known);
+}

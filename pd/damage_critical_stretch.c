@@ -18,9 +18,7 @@ const pf_key pf_pd_damage_keys[] = {
 
 static int positive(const pf_deck *d, const pf_node *map, const char *key, double *v) {
   if (!pf_node_get(map, key)) return pf_deck_error(d, map, key, "this damage law needs '%s'", key);
-  PF_CALL(pf_deck_real(d, map, key, v));
-  if (!(*v > 0)) return pf_deck_error(d, pf_node_get(map, key), key, "must be positive (got %g)", *v);
-  return 0;
+  return pf_deck_positive(d, map, key, v);
 }
 
 /* Read the damage law and the initial s0. */
