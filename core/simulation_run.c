@@ -132,7 +132,7 @@ static int compute_forces(pf_sim *sim, double dt) {
   if (sim->nfem) PF_CALL(pf_points_exchange(p, p->v, 3)); /* element rates of deformation */
   memset(p->f, 0, sizeof(double) * 3 * (size_t)p->n_owned);
   for (int b = 0; b < sim->nbodies; b++)
-    if (sim->body[b]) PF_CALL(pf_pd_body_force(sim->body[b], p));
+    if (sim->body[b]) PF_CALL(pf_pd_body_force(sim->body[b], p, dt));
     else if (pf_fem_body_force(sim->fem[b], p, dt, sim->t, sim->step))
       sim->guard_tripped = 1; /* an inverted element: the step's end decides, on every rank */
   PF_CALL(pf_sim_contact_forces(sim, dt));

@@ -13,10 +13,12 @@ static const pf_pd_material_ops *const material_list[] = {
 enum { NMATERIALS = sizeof material_list / sizeof material_list[0] };
 
 const pf_key pf_pd_material_keys[] = {
-    {"model", PF_KEY_STRING, 1, NULL, "", "peridynamic material: pmb | lps", NULL},
+    {"model", PF_KEY_STRING, 1, NULL, "", "peridynamic material: pmb | lps | elastic_plastic", NULL},
     {"density", PF_KEY_REAL, 1, NULL, "kg/m^3", "mass density", NULL},
     {"bulk_modulus", PF_KEY_REAL, 0, NULL, "Pa", "bulk modulus K", NULL},
-    {"shear_modulus", PF_KEY_REAL, 0, NULL, "Pa", "shear modulus G (lps)", NULL},
+    {"shear_modulus", PF_KEY_REAL, 0, NULL, "Pa", "shear modulus G (lps, elastic_plastic)", NULL},
+    {"yield_stress", PF_KEY_REAL, 0, NULL, "Pa", "elastic_plastic: initial yield stress (> 0)", NULL},
+    {"hardening_modulus", PF_KEY_REAL, 0, "0", "Pa", "elastic_plastic: linear hardening modulus (>= 0)", NULL},
     PF_KEY_END};
 
 static const pf_key crack_keys[] = {
@@ -234,7 +236,10 @@ double pf_pd_body_bulk_modulus(const pf_pd_body *b) { return b->bulk_modulus; }
 const pf_family *pf_pd_body_family(const pf_pd_body *b) { return &b->fam; }
 int64_t pf_pd_body_nbonds(const pf_pd_body *b) { return pf_pd_family_nbonds(&b->fam); }
 
-int pf_pd_body_force(pf_pd_body *b, pf_points *pts) { return b->ops->force(b, pts); }
+int pf_pd_body_force(pf_pd_body *b, pf_points *pts, double dt) {
+  b->dt = dt;
+  return b->ops->force(b, pts);
+}
 
 double pf_pd_body_energy(const pf_pd_body *b, const pf_points *pts) { return b->ops->energy(b, pts); }
 

@@ -100,8 +100,9 @@ double pf_pd_body_density(const pf_pd_body *b);
 double pf_pd_body_horizon(const pf_pd_body *b);
 double pf_pd_body_bulk_modulus(const pf_pd_body *b); /* Pa */
 const pf_family *pf_pd_body_family(const pf_pd_body *b);
-/* Add the body's internal forces (N) to pts->f; fails bonds per the damage law. */
-int pf_pd_body_force(pf_pd_body *b, pf_points *pts);
+/* Add the body's internal forces (N) to pts->f; fails bonds per the damage law. dt is the step
+ * just taken (0 for the initial forces): rate-form materials advance their stress over it. */
+int pf_pd_body_force(pf_pd_body *b, pf_points *pts, double dt);
 /* After the step: update damage-law state (e.g. Silling–Askari s0 from the step's s_min). */
 int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts);
 /* Stored elastic energy (J) of the body's owned points. */

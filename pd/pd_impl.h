@@ -21,6 +21,7 @@ struct pf_pd_body {
   int ncracks;
   pf_precrack *cracks;
   double horizon, density;
+  double dt;           /* the step just taken, set by pf_pd_body_force (rate-form materials) */
   double bulk_modulus, shear_modulus;
   pf_influence influence;
   pf_family fam;

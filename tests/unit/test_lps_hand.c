@@ -26,7 +26,7 @@ static pf_sim *make(const char *points) {
 static void forces(pf_sim *sim) {
   pf_points *p = pf_sim_points(sim);
   for (pf_int i = 0; i < 3 * p->n_owned; i++) p->y[i] = p->X[i] + p->u[i], p->f[i] = 0;
-  PF_TEST_OK(pf_pd_body_force(pf_sim_body(sim, 0), p));
+  PF_TEST_OK(pf_pd_body_force(pf_sim_body(sim, 0), p, 0.0));
 }
 
 int main(int argc, char **argv) {

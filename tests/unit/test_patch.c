@@ -44,7 +44,7 @@ static void apply(pf_sim *sim, const double A[3][3]) {
       p->y[3 * i + a] = p->X[3 * i + a] + p->u[3 * i + a];
     }
   for (pf_int i = 0; i < 3 * p->n_owned; i++) p->f[i] = 0;
-  PF_TEST_OK(pf_pd_body_force(pf_sim_body(sim, 0), p));
+  PF_TEST_OK(pf_pd_body_force(pf_sim_body(sim, 0), p, 0.0));
 }
 
 int main(int argc, char **argv) {
