@@ -1,5 +1,7 @@
-/* Bond lists in transit (DESIGN.md 6): rows of neighbour global ids with their per-bond state,
- * the form in which families move between ranks when points are (re)partitioned. */
+/* Bond lists in transit (DESIGN.md 6): rows of neighbour global ids with their per-bond state
+ * (broken flag, partial-volume fraction, and the reals a material keeps per bond, e.g. the
+ * plastic extensions of elastic_plastic), the form in which families move between ranks when
+ * points are (re)partitioned and in which checkpoints store them. */
 #include "core/core.h"
 
 #include <stdlib.h>
@@ -20,13 +22,35 @@ static int grow(pf_bond_rows *r, int64_t need) {
   if (b) r->broken = b;
   float *v = realloc(r->vfrac, sizeof(float) * (size_t)cap);
   if (v) r->vfrac = v;
-  PF_CHECK(g && b && v, PF_ERR_MEMORY, "out of memory for %" PRId64 " bonds", cap);
+  int ok = g && b && v;
+  if (r->nstate > 0) {
+    double *s = realloc(r->state, sizeof(double) * (size_t)cap * (size_t)r->nstate);
+    if (s) r->state = s;
+    ok = ok && s;
+  }
+  PF_CHECK(ok, PF_ERR_MEMORY, "out of memory for %" PRId64 " bonds", cap);
   r->cap = cap;
   return 0;
 }
 
-int pf_bond_rows_append(pf_bond_rows *r, pf_int count, const pf_gid *gid, const uint8_t *broken,
-                        const float *vfrac) {
+int pf_bond_rows_widen(pf_bond_rows *r, int nstate) {
+  if (nstate <= r->nstate) return 0;
+  double *s = calloc((size_t)(r->cap > 0 ? r->cap : 1) * (size_t)nstate, sizeof(double));
+  PF_CHECK(s, PF_ERR_MEMORY, "out of memory for the state of %" PRId64 " bonds", r->cap);
+  int64_t nb = r->offset[r->n];
+  for (int64_t k = 0; k < nb; k++)
+    for (int c = 0; c < r->nstate; c++) s[k * nstate + c] = r->state[k * r->nstate + c];
+  free(r->state);
+  r->state = s;
+  r->nstate = nstate;
+  return 0;
+}
+
+int pf_bond_rows_append_state(pf_bond_rows *r, pf_int count, const pf_gid *gid,
+                              const uint8_t *broken, const float *vfrac, int nstate,
+                              const double *state) {
+  PF_CHECK(nstate >= 0, PF_ERR_RUN, "%d reals of bond state", nstate);
+  PF_CALL(pf_bond_rows_widen(r, nstate));
   if (r->n + 1 >= r->row_cap) {
     pf_int cap = r->row_cap + r->row_cap / 2 + 1024;
     int64_t *o = realloc(r->offset, sizeof(int64_t) * ((size_t)cap + 1));
@@ -40,9 +64,16 @@ int pf_bond_rows_append(pf_bond_rows *r, pf_int count, const pf_gid *gid, const 
   for (pf_int k = 0; k < count; k++) {
     r->broken[at + k] = broken ? broken[k] : 0;
     r->vfrac[at + k] = vfrac ? vfrac[k] : 1.0f;
+    for (int c = 0; c < r->nstate; c++)
+      r->state[(at + k) * r->nstate + c] = state && c < nstate ? state[(int64_t)k * nstate + c] : 0.0;
   }
   r->offset[++r->n] = at + count;
   return 0;
+}
+
+int pf_bond_rows_append(pf_bond_rows *r, pf_int count, const pf_gid *gid, const uint8_t *broken,
+                        const float *vfrac) {
+  return pf_bond_rows_append_state(r, count, gid, broken, vfrac, 0, NULL);
 }
 
 int pf_bond_rows_free(pf_bond_rows *r) {
@@ -50,7 +81,9 @@ int pf_bond_rows_free(pf_bond_rows *r) {
   PF_FREE(r->gid);
   PF_FREE(r->broken);
   PF_FREE(r->vfrac);
+  PF_FREE(r->state);
   r->n = 0;
+  r->nstate = 0;
   r->cap = 0;
   return 0;
 }

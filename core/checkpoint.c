@@ -2,6 +2,9 @@
  *   /points/{gid,body,X,u,v,f,m,vol,cell}   one row per point, ranks' points one after another
  *   /fields/<name>                          [n][ncomp], attributes ncomp, flags
  *   /bonds/{count,gid,broken,vfrac}         row lengths per point, then the bonds in that order
+ *   /bonds/state                            [nbonds][nstate] the materials' per-bond reals,
+ *                                           attribute ncomp; only when some material keeps
+ *                                           them (absent in older files: read as zero state)
  *   /tables/<name>                          [total][ncomp] whole tables (written by rank 0)
  *   attributes of "/": the named scalars (time, step, ...), written alike by every rank.
  * The file is written as path.tmp and renamed by rank 0 once every rank has closed it, so a
@@ -128,7 +131,21 @@ static int write_bonds(const h5io *pio, const pf_points *p, const pf_bond_rows *
   PF_CALL(write_rows(&io, "/bonds/gid", H5T_NATIVE_INT64, 1, rows->gid));
   PF_CALL(write_rows(&io, "/bonds/broken", H5T_NATIVE_UINT8, 1, rows->broken));
   PF_CALL(write_rows(&io, "/bonds/vfrac", H5T_NATIVE_FLOAT, 1, rows->vfrac));
-  return 0;
+  int nstate = rows->nstate; /* ranks without such a body have none: the widest rank's count */
+  MPI_Allreduce(MPI_IN_PLACE, &nstate, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (nstate == 0) return 0;
+  double *state;
+  PF_MALLOC(state, io.count * (size_t)nstate);
+  for (hsize_t k = 0; k < io.count; k++)
+    for (int c = 0; c < rows->nstate; c++) state[k * (size_t)nstate + c] = rows->state[k * (size_t)rows->nstate + c];
+  ierr = write_rows(&io, "/bonds/state", H5T_NATIVE_DOUBLE, nstate, state);
+  free(state);
+  if (ierr) return ierr;
+  hid_t d = H5Dopen2(io.file, "/bonds/state", H5P_DEFAULT);
+  H5_TRY(&io, d >= 0, "/bonds/state");
+  ierr = int_attr(&io, d, "ncomp", &nstate, 1);
+  H5Dclose(d);
+  return ierr;
 }
 
 static int write_scalars(const h5io *io, int n, const char *const *names, const double *values) {
@@ -239,16 +256,30 @@ static int read_bonds(const h5io *pio, pf_bond_rows *rows) {
   io.count = 0;
   for (hsize_t i = 0; i < pio->count; i++) io.count += (hsize_t)count[i];
   rank_range(io.count, &io.total, &io.offset);
+  int nstate = 0; /* the per-bond state, when the file has it */
+  if (!ierr && H5Lexists(io.file, "/bonds/state", H5P_DEFAULT) > 0) {
+    hid_t d = H5Dopen2(io.file, "/bonds/state", H5P_DEFAULT);
+    int bad = d < 0 || int_attr(&io, d, "ncomp", &nstate, 0) || nstate < 1;
+    if (d >= 0) H5Dclose(d);
+    if (bad)
+      ierr = pf_error_raise(PF_ERR_LIB, __FILE__, __LINE__, __func__,
+                            "HDF5: reading /bonds/state failed (checkpoint %s)", io.path);
+  }
   pf_gid *gid = malloc(sizeof(pf_gid) * (io.count + 1));
   uint8_t *broken = malloc(io.count + 1);
   float *vfrac = malloc(sizeof(float) * (io.count + 1));
-  if (!gid || !broken || !vfrac) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+  double *state = nstate ? malloc(sizeof(double) * (io.count * (size_t)nstate + 1)) : NULL;
+  if (!ierr && (!gid || !broken || !vfrac || (nstate && !state)))
+    ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
   if (!ierr) ierr = read_rows(&io, "/bonds/gid", H5T_NATIVE_INT64, 1, gid);
   if (!ierr) ierr = read_rows(&io, "/bonds/broken", H5T_NATIVE_UINT8, 1, broken);
   if (!ierr) ierr = read_rows(&io, "/bonds/vfrac", H5T_NATIVE_FLOAT, 1, vfrac);
+  if (!ierr && nstate) ierr = read_rows(&io, "/bonds/state", H5T_NATIVE_DOUBLE, nstate, state);
+  if (!ierr) ierr = pf_bond_rows_widen(rows, nstate);
   for (hsize_t i = 0, at = 0; i < pio->count && !ierr; at += (hsize_t)count[i], i++)
-    ierr = pf_bond_rows_append(rows, count[i], gid + at, broken + at, vfrac + at);
-  free(count), free(gid), free(broken), free(vfrac);
+    ierr = pf_bond_rows_append_state(rows, count[i], gid + at, broken + at, vfrac + at, nstate,
+                                     state ? state + at * (hsize_t)nstate : NULL);
+  free(count), free(gid), free(broken), free(vfrac), free(state);
   return ierr;
 }
 

@@ -244,13 +244,22 @@ typedef struct {
   pf_gid *gid;     /* [offset[n]] */
   uint8_t *broken; /* [offset[n]] */
   float *vfrac;    /* [offset[n]] partial-volume fraction (1 when unused) */
+  int nstate;      /* reals of material state per bond (0: none; the widest body's count) */
+  double *state;   /* [offset[n] * nstate] per-bond material state, or NULL when nstate is 0 */
   int64_t cap;     /* room for bonds */
   pf_int row_cap;  /* room for rows */
 } pf_bond_rows;
 int pf_bond_rows_init(pf_bond_rows *r);
-/* Append one row (broken / vfrac may be NULL: intact, whole). */
+/* Append one row (broken / vfrac may be NULL: intact, whole). Its bonds' state is zero. */
 int pf_bond_rows_append(pf_bond_rows *r, pf_int count, const pf_gid *gid, const uint8_t *broken,
                         const float *vfrac);
+/* Append one row with nstate reals of state per bond (state [count * nstate], or NULL: zero).
+ * The rows widen to the largest nstate appended; narrower rows are padded with zeros. */
+int pf_bond_rows_append_state(pf_bond_rows *r, pf_int count, const pf_gid *gid,
+                              const uint8_t *broken, const float *vfrac, int nstate,
+                              const double *state);
+/* Widen every bond's state to nstate reals (new ones zero); a no-op when not wider. */
+int pf_bond_rows_widen(pf_bond_rows *r, int nstate);
 int pf_bond_rows_free(pf_bond_rows *r);
 
 typedef enum { PF_PARTITION_RCB, PF_PARTITION_METIS } pf_partition_method;
@@ -370,6 +379,20 @@ int pf_history_create(const char *path, int ncol, const char *const *names,
                       const char *const *units, pf_history **h);
 int pf_history_append(pf_history *h, const double *row);
 int pf_history_destroy(pf_history **h);
+
+/* ---- small tensors (core/tensor.c) ------------------------------------------------ */
+/* Voigt order of symmetric tensors: component k is (pf_voigt_i[k], pf_voigt_j[k]) of
+ * (xx, yy, zz, yz, xz, xy), tensor (not engineering) shear components. */
+extern const int pf_voigt_i[6], pf_voigt_j[6];
+/* inv = A^-1; returns det A (inv is not finite when det A = 0). */
+double pf_mat3_inverse(double A[3][3], double inv[3][3]);
+void pf_vec3_cross(const double a[3], const double b[3], double c[3]);
+/* The incremental rotation over dt of the spin W = skew L: R = (I - dt W/2)^-1 (I + dt W/2)
+ * (Hughes & Winget 1980, eq. 34). */
+void pf_mat3_hughes_winget(double L[3][3], double dt, double R[3][3]);
+void pf_sym6_to_mat(const double s[6], double S[3][3]);
+/* s <- R s R^T */
+void pf_sym6_rotate(double R[3][3], double s[6]);
 
 /* ---- wall clock ----------------------------------------------------------- */
 double pf_wtime(void);

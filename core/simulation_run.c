@@ -129,7 +129,9 @@ static void drift(pf_points *p, double dt) {
 static int compute_forces(pf_sim *sim, double dt) {
   pf_points *p = sim->pts;
   PF_CALL(pf_points_exchange_positions(p)); /* the ghosts' u and y */
-  if (sim->nfem) PF_CALL(pf_points_exchange(p, p->v, 3)); /* element rates of deformation */
+  int rates = sim->nfem > 0; /* element and correspondence rates of deformation need the ghosts' v */
+  for (int b = 0; b < sim->nbodies; b++) rates |= sim->body[b] && pf_pd_body_uses_velocity(sim->body[b]);
+  if (rates) PF_CALL(pf_points_exchange(p, p->v, 3));
   memset(p->f, 0, sizeof(double) * 3 * (size_t)p->n_owned);
   for (int b = 0; b < sim->nbodies; b++)
     if (sim->body[b]) PF_CALL(pf_pd_body_force(sim->body[b], p, dt));

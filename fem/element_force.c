@@ -64,38 +64,6 @@ static double det3(double A[3][3]) {
          A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
 }
 
-/* R = (I - h W)^-1 (I + h W), h = dt/2 (Hughes & Winget 1980, eq. 34). */
-static void hughes_winget(double L[3][3], double dt, double R[3][3]) {
-  double Am[3][3], Ap[3][3], inv[3][3];
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) {
-      double w = 0.5 * (L[i][j] - L[j][i]) * 0.5 * dt;
-      Am[i][j] = (i == j) - w;
-      Ap[i][j] = (i == j) + w;
-    }
-  pf_mat3_inverse(Am, inv);
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) R[i][j] = inv[i][0] * Ap[0][j] + inv[i][1] * Ap[1][j] + inv[i][2] * Ap[2][j];
-}
-
-static const int voigt_i[6] = {0, 1, 2, 1, 0, 0}, voigt_j[6] = {0, 1, 2, 2, 2, 1};
-
-static void sym_to_mat(const double s[6], double S[3][3]) {
-  for (int k = 0; k < 6; k++) S[voigt_i[k]][voigt_j[k]] = S[voigt_j[k]][voigt_i[k]] = s[k];
-}
-
-/* s <- R s R^T */
-static void rotate_sym(double R[3][3], double s[6]) {
-  double S[3][3], T[3][3];
-  sym_to_mat(s, S);
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) T[i][j] = S[i][0] * R[j][0] + S[i][1] * R[j][1] + S[i][2] * R[j][2];
-  for (int k = 0; k < 6; k++) {
-    int i = voigt_i[k], j = voigt_j[k];
-    s[k] = R[i][0] * T[0][j] + R[i][1] * T[1][j] + R[i][2] * T[2][j];
-  }
-}
-
 static double sym_dot(const double a[6], const double d[6]) {
   return a[0] * d[0] + a[1] * d[1] + a[2] * d[2] + 2 * (a[3] * d[3] + a[4] * d[4] + a[5] * d[5]);
 }
@@ -108,7 +76,7 @@ static void store_F(double Fm[3][3], double J, double *F) {
 }
 
 static void store_D(double L[3][3], double *D) {
-  for (int k = 0; k < 6; k++) D[k] = 0.5 * (L[voigt_i[k]][voigt_j[k]] + L[voigt_j[k]][voigt_i[k]]);
+  for (int k = 0; k < 6; k++) D[k] = 0.5 * (L[pf_voigt_i[k]][pf_voigt_j[k]] + L[pf_voigt_j[k]][pf_voigt_i[k]]);
 }
 
 static int bad_element(const pf_fem_body *b, pf_int e, double x[8][3], const char *what, double value) {
@@ -133,7 +101,7 @@ static int kinematics(pf_fem_body *b, const pf_points *p, pf_int e, double dt, d
   if (!(Vm > 0)) return bad_element(b, e, xm, "mid-step volume", Vm);
   grad_product(v, Bm, Lm);
   s->trD = Lm[0][0] + Lm[1][1] + Lm[2][2];
-  hughes_winget(Lm, dt, R);
+  pf_mat3_hughes_winget(Lm, dt, R);
   for (int a = 0; a < 4 && b->hg == PF_HG_STIFFNESS; a++)
     for (int i = 0; i < 3; i++)
       s->Q_old[3 * a + i] = R[i][0] * b->hgq[12 * e + 3 * a] + R[i][1] * b->hgq[12 * e + 3 * a + 1] +
@@ -145,7 +113,7 @@ static int kinematics(pf_fem_body *b, const pf_points *p, pf_int e, double dt, d
     store_F(Fm, V / V0, F);
     store_D(Lm, D);
     s->vmid[0] = Vm;
-    rotate_sym(R, sig);
+    pf_sym6_rotate(R, sig);
     memcpy(s->s_old[0], sig, sizeof s->s_old[0]);
     return 0;
   }
@@ -161,8 +129,8 @@ static int kinematics(pf_fem_body *b, const pf_points *p, pf_int e, double dt, d
     grad_product(x, g0, Fm);
     store_F(Fm, V / V0, &F[9 * g]); /* F-bar: det F = the element's volume ratio */
     store_D(L, &D[6 * g]);
-    hughes_winget(L, dt, R);
-    rotate_sym(R, &sig[6 * g]);
+    pf_mat3_hughes_winget(L, dt, R);
+    pf_sym6_rotate(R, &sig[6 * g]);
     memcpy(s->s_old[g], &sig[6 * g], sizeof s->s_old[g]);
   }
   return 0;
@@ -213,7 +181,7 @@ static int element_forces(pf_fem_body *b, const pf_points *p, pf_int e, double d
   double *en = &b->energy[3 * (size_t)e];
   for (int g = 0; g < b->nqp; g++) {
     double S[3][3], gr[8][3], Vg = V;
-    sym_to_mat(&sig[6 * g], S);
+    pf_sym6_to_mat(&sig[6 * g], S);
     double mean = (S[0][0] + S[1][1] + S[2][2]) / 3.0;
     for (int i = 0; i < 3; i++) S[i][i] -= q;
     if (b->bbar) {

@@ -14,8 +14,6 @@ double pf_hex8_gradients(double x[8][3], const double xi[3], double grad[8][3]);
 double pf_hex8_mean_gradient(double x[8][3], double B[8][3]);
 void pf_hex8_lumped_mass(double x[8][3], double rho, double m[8]);
 double pf_hex8_char_length(double x[8][3], double V);
-double pf_mat3_inverse(double A[3][3], double inv[3][3]);
-void pf_vec3_cross(const double a[3], const double b[3], double c[3]);
 
 /* ---- Flanagan-Belytschko hourglass control (fem/hourglass.c) ---- */
 typedef enum { PF_HG_NONE, PF_HG_VISCOUS, PF_HG_STIFFNESS } pf_hourglass_kind;

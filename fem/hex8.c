@@ -136,25 +136,3 @@ double pf_hex8_char_length(double x[8][3], double V) {
   }
   return V / amax;
 }
-
-double pf_mat3_inverse(double A[3][3], double inv[3][3]) {
-  double c00 = A[1][1] * A[2][2] - A[1][2] * A[2][1], c01 = A[1][2] * A[2][0] - A[1][0] * A[2][2],
-         c02 = A[1][0] * A[2][1] - A[1][1] * A[2][0];
-  double det = A[0][0] * c00 + A[0][1] * c01 + A[0][2] * c02, r = 1.0 / det;
-  inv[0][0] = c00 * r;
-  inv[1][0] = c01 * r;
-  inv[2][0] = c02 * r;
-  inv[0][1] = (A[0][2] * A[2][1] - A[0][1] * A[2][2]) * r;
-  inv[1][1] = (A[0][0] * A[2][2] - A[0][2] * A[2][0]) * r;
-  inv[2][1] = (A[0][1] * A[2][0] - A[0][0] * A[2][1]) * r;
-  inv[0][2] = (A[0][1] * A[1][2] - A[0][2] * A[1][1]) * r;
-  inv[1][2] = (A[0][2] * A[1][0] - A[0][0] * A[1][2]) * r;
-  inv[2][2] = (A[0][0] * A[1][1] - A[0][1] * A[1][0]) * r;
-  return det;
-}
-
-void pf_vec3_cross(const double a[3], const double b[3], double c[3]) {
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}

@@ -21,7 +21,8 @@ static const char model_names[] = ""
     ;
 
 const pf_key pf_fem_material_keys[] = {
-    {"model", PF_KEY_STRING, 1, NULL, "", "constitutive model: elastic | neo_hookean | j2 | johnson_cook", NULL},
+    {"model", PF_KEY_STRING, 1, NULL, "",
+     "constitutive model: elastic | neo_hookean | j2 | johnson_cook | modified_johnson_cook", NULL},
     {"density", PF_KEY_REAL, 1, NULL, "kg/m^3", "reference mass density rho0 (> 0)", NULL},
     {"youngs_modulus", PF_KEY_REAL, 0, NULL, "Pa",
      "Young's modulus E (give E and poissons_ratio, or bulk_modulus and shear_modulus)", NULL},
@@ -46,6 +47,12 @@ const pf_key pf_fem_material_keys[] = {
     {"eos", PF_KEY_MAP, 0, NULL, "",
      "johnson_cook: equation of state for the pressure (else hypoelastic with the bulk modulus)",
      pf_fem_eos_keys},
+    {"modified_johnson_cook", PF_KEY_MAP, 0, NULL, "",
+     "modified_johnson_cook: flow stress sigma0 (1 + eqps/eps0)^n (1 + C asinh(rate/(2 rate0))) "
+     "parameters (Tupek et al. 2013)", pf_fem_modified_johnson_cook_keys},
+    {"damage", PF_KEY_MAP, 0, NULL, "",
+     "modified_johnson_cook: Johnson-Cook damage, eps_f = (d1 + d2 exp(d3 sigma_m/sigma_e)) "
+     "(1 + d4 ln(rate/rate0)) (absent: no damage)", pf_fem_jc_damage_keys},
     PF_KEY_END};
 
 static const pf_fem_material_ops *find_model(const char *model) {

@@ -95,6 +95,9 @@ double pf_fem_radial_return(double q_trial, double G3, double dgam_max, pf_fem_f
 
 /* Keys of the `johnson_cook:` mapping (fem/material_johnson_cook.c). */
 extern const pf_key pf_fem_johnson_cook_keys[];
+/* Keys of the `modified_johnson_cook:` and `damage:` mappings (fem/material_modified_johnson_cook.c). */
+extern const pf_key pf_fem_modified_johnson_cook_keys[];
+extern const pf_key pf_fem_jc_damage_keys[];
 
 /* ---- Mie-Gruneisen equation of state (fem/eos_mie_gruneisen.c) --------------------------- */
 typedef struct {

@@ -1,6 +1,7 @@
 /* A peridynamic body: its deck keys, material lookup by name, family, and the per-step entry
  * points that dispatch to the material's ops table. */
 #include "pd/pd_impl.h"
+#include "fem/fem.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -44,6 +45,10 @@ const pf_key pf_pd_body_keys[] = {
     {"damage", PF_KEY_MAP, 0, "law: none", "", "bond failure law", pf_pd_damage_keys},
     {"precracks", PF_KEY_LIST, 0, NULL, "", "planar cracks: bonds crossing them are not created", crack_keys},
     {"initial_velocity", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m/s", "expressions in x, y, z", NULL},
+    {"hourglass", PF_KEY_MAP, 0, "type: stiffness, coefficient: 0.05", "",
+     "correspondence (material with a continuum model): zero-energy-mode control", pf_pd_hourglass_keys},
+    {"critical_damage", PF_KEY_REAL, 0, "0.99", "",
+     "correspondence with a damage model: a bond fails once either end's damage exceeds it", NULL},
     PF_KEY_END};
 
 double pf_pd_pmb_micromodulus(double K, const pf_influence *w, double delta) {
@@ -121,7 +126,8 @@ static int read_material(const pf_deck *d, const pf_node *body, const pf_node *m
     return pf_deck_error(d, pf_node_get(body, "material"), "material",
                          "no material named '%s' under materials:", mname);
   PF_CALL(pf_deck_string(d, *mat, "model", &model));
-  PF_CALL(find_material(d, *mat, model, &b->ops));
+  if (pf_fem_material_known(model)) b->ops = &pf_pd_material_correspondence; /* K, G from it */
+  else PF_CALL(find_material(d, *mat, model, &b->ops));
   PF_CALL(pf_deck_real(d, *mat, "density", &b->density));
   PF_CALL(pf_deck_real(d, *mat, "bulk_modulus", &b->bulk_modulus));
   PF_CALL(pf_deck_real(d, *mat, "shear_modulus", &b->shear_modulus));
@@ -159,6 +165,12 @@ static int body_read(const pf_deck *d, const pf_node *body, const pf_node *mater
   const pf_node *mat = NULL;
   PF_CALL(read_material(d, body, materials, b, &mat));
   PF_CALL(read_influence(d, body, b));
+  const char *corr_keys[] = {"hourglass", "critical_damage"};
+  for (int k = 0; k < 2 && b->ops != &pf_pd_material_correspondence; k++)
+    if (pf_node_get(body, corr_keys[k]))
+      return pf_deck_error(d, pf_node_get(body, corr_keys[k]), corr_keys[k],
+                           "only for correspondence bodies (a material whose model is one of %s)",
+                           pf_fem_material_names());
   PF_CALL(b->ops->create(d, mat, b));
   PF_CALL(pf_deck_bool(d, body, "partial_volumes", &b->partial));
   PF_CALL(read_cracks(d, pf_node_get(body, "precracks"), &b->ncracks, &b->cracks));
@@ -201,6 +213,7 @@ int pf_pd_body_attach(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n,
     PF_CALL(pf_points_exchange(pts, pts->m, 1));
   }
   PF_CALL(pf_pd_damage_setup(b, pts, fresh));
+  b->fresh = fresh;
   if (b->ops->setup) PF_CALL(b->ops->setup(b, pts));
   int idx;
   PF_CALL(pf_points_field_register(pts, "damage", 1, PF_FIELD_OUTPUT, &idx));
@@ -226,6 +239,7 @@ int pf_pd_family_free(pf_family *fam) {
   PF_FREE(fam->neighbor);
   PF_FREE(fam->broken);
   PF_FREE(fam->vfrac);
+  PF_FREE(fam->state);
   return 0;
 }
 
@@ -240,6 +254,8 @@ int pf_pd_body_force(pf_pd_body *b, pf_points *pts, double dt) {
   b->dt = dt;
   return b->ops->force(b, pts);
 }
+
+int pf_pd_body_uses_velocity(const pf_pd_body *b) { return b->ops == &pf_pd_material_correspondence; }
 
 double pf_pd_body_energy(const pf_pd_body *b, const pf_points *pts) { return b->ops->energy(b, pts); }
 

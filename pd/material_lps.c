@@ -5,7 +5,8 @@
  *   t_ij    = omega [ (3 K theta_i / m_i) |xi| + (15 G / m_i) (e - theta_i |xi| / 3) ]
  *   f_i     = sum_j (t_ij + t_ji) M_ij V_j,  M_ij = (y_j - y_i) / |y_j - y_i|
  * m and theta use the same quadrature (same neighbour volumes), so theta = 3 eps exactly under
- * u = eps x. Bonds fail in the dilatation pass, so both passes see the same bonds. */
+ * u = eps x. Bonds fail on the critical-stretch test in the dilatation pass, so both passes see
+ * the same bonds; on the critical-energy test (which needs both ends' t) in the force pass. */
 #include "pd/pd_impl.h"
 
 #include <stdlib.h>
@@ -81,28 +82,50 @@ static double lps_dilatation(pf_pd_body *b, const pf_points *pts, pf_int i, doub
   return 3.0 * sum / m;
 }
 
+/* Scalar force state of one end of a bond, that end having dilatation theta, a = 3 K theta / m
+ * and bc = 15 G / m: t = omega [ a |xi| + bc (e - theta |xi| / 3) ]. One function for both
+ * ends, so that t_ij is the same bits whichever end evaluates it. */
+static inline double lps_t(double a, double bc, double theta, double w, double r0, double ext) {
+  return w * (a * r0 + bc * (ext - theta * r0 / 3));
+}
+
+/* Pass 2: forces. With the critical-energy law (Foster et al. 2011) a bond in tension fails
+ * when its energy per V_i V_j, w = (1/2) (t_ij + t_ji) e, exceeds w_c: by Euler's theorem for
+ * the quadratic LPS energy, W_i = sum_j (1/2) t_ij e V_j exactly (lps_energy), so w is the
+ * bond's share of the energy of both ends. Floating-point addition commutes, so end j's
+ * t_ji + t_ij equals end i's t_ij + t_ji bitwise and both ends fail the bond in the same step.
+ * The failing evaluation gives the bond no force (the forces of the other bonds keep this
+ * evaluation's theta); theta is then recomputed without it, for the energy and the output. */
 static int lps_force(pf_pd_body *b, pf_points *pts) {
   lps *p = b->mat;
-  const double K = b->bulk_modulus, G = b->shear_modulus;
+  const double K = b->bulk_modulus, G = b->shear_modulus, wc = b->critical_energy;
+  const int energy = b->law == PF_DAMAGE_CRITICAL_ENERGY;
   const pf_family *fam = &b->fam;
+  int64_t nfailed = 0;
   for (pf_int i = b->first; i < b->first + b->n; i++) p->theta[i] = lps_dilatation(b, pts, i, p->m[i]);
   PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta for the force pass */
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     double f[3] = {0, 0, 0}, e[3], r0, r;
-    const double ai = 3 * K * p->theta[i] / p->m[i], bi = 15 * G / p->m[i];
+    const double thi = p->theta[i], ai = 3 * K * thi / p->m[i], bi = 15 * G / p->m[i];
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
       if (fam->broken[k]) continue;
       pf_int j = fam->neighbor[k];
       bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
       const double ext = r - r0, w = pf_pd_omega(&b->influence, r0);
-      const double aj = 3 * K * p->theta[j] / p->m[j], bj = 15 * G / p->m[j];
-      const double tij = w * (ai * r0 + bi * (ext - p->theta[i] * r0 / 3));
-      const double tji = w * (aj * r0 + bj * (ext - p->theta[j] * r0 / 3));
+      const double thj = p->theta[j], aj = 3 * K * thj / p->m[j], bj = 15 * G / p->m[j];
+      const double tij = lps_t(ai, bi, thi, w, r0, ext), tji = lps_t(aj, bj, thj, w, r0, ext);
+      if (energy && ext > 0 && 0.5 * (tij + tji) * ext > wc) {
+        fam->broken[k] = 1;
+        nfailed++;
+        continue;
+      }
       const double fs = (tij + tji) * pf_pd_bond_volume(fam, pts->vol, k, j) / r;
       for (int a = 0; a < 3; a++) f[a] += fs * e[a];
     }
     for (int a = 0; a < 3; a++) pts->f[3 * i + a] += pts->vol[i] * f[a];
   }
+  if (nfailed) /* (the same bits for the points that lost no bond) */
+    for (pf_int i = b->first; i < b->first + b->n; i++) p->theta[i] = lps_dilatation(b, pts, i, p->m[i]);
   return 0;
 }
 

@@ -21,12 +21,15 @@ static int pmb_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
 }
 
 /* One point's bond loop: returns the force density sum in f[3] and the smallest stretch of
- * its intact bonds; fails bonds whose stretch exceeds min(s0_i, s0_j). Inlined with the
- * influence kind and the partial-volume switch as constants, so the common case (omega = 1,
- * whole cells) is a branch-light loop. */
+ * its intact bonds; fails bonds whose stretch exceeds min(s0_i, s0_j), or with `energy` (law
+ * critical_energy, Foster et al. 2011) bonds in tension whose pair micropotential
+ *   w = (1/2) c omega s^2 |xi| > w_c   <=>   omega s^2 |xi| > 2 w_c / c = wlim.
+ * Both ends evaluate it from bitwise equal s, |xi| and omega, so they fail the bond together.
+ * Inlined with the influence kind, the partial-volume switch and the law as constants, so the
+ * common case (omega = 1, whole cells, critical stretch) is a branch-light loop. */
 static inline __attribute__((always_inline)) double
 pmb_point(const pf_pd_body *restrict b, const pf_points *restrict pts, pf_int i, double c,
-          const int weighted, const int partial, double f[3]) {
+          double wlim, const int weighted, const int partial, const int energy, double f[3]) {
   const pf_family *fam = &b->fam;
   const double *restrict X = pts->X, *restrict Y = pts->y, *restrict vol = pts->vol;
   const double *restrict s0 = b->s0;
@@ -47,12 +50,13 @@ pmb_point(const pf_pd_body *restrict b, const pf_points *restrict pts, pf_int i,
     const double r0 = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
     const double r = sqrt(e0 * e0 + e1 * e1 + e2 * e2);
     const double s = (r - r0) / r0;
-    const int fails = s > fmin(s0i, s0[j]);
+    const double om = weighted ? pf_pd_omega(&b->influence, r0) : 1.0;
+    const int fails = energy ? (s > 0) & (om * s * s * r0 > wlim) : s > fmin(s0i, s0[j]);
     const int alive = !broken[k] && !fails;
     broken[k] = (uint8_t)(broken[k] | fails);
     smin = alive ? fmin(smin, s) : smin;
     double fs = c * s * vol[j] / r;
-    if (weighted) fs *= pf_pd_omega(&b->influence, r0);
+    if (weighted) fs *= om;
     if (partial) fs *= vfrac[k];
     fs = alive ? fs : 0.0;
     f0 += fs * e0;
@@ -65,12 +69,14 @@ pmb_point(const pf_pd_body *restrict b, const pf_points *restrict pts, pf_int i,
 
 /* The loop over the body's points for one combination of the compile-time switches. */
 static inline __attribute__((always_inline)) void pmb_loop(pf_pd_body *b, pf_points *pts, double c,
-                                                           const int weighted, const int partial) {
+                                                           const int weighted, const int partial,
+                                                           const int energy) {
   double *restrict F = pts->f;
   const double *restrict vol = pts->vol;
+  const double wlim = 2.0 * b->critical_energy / c;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     double f[3];
-    b->smin[i - b->first] = pmb_point(b, pts, i, c, weighted, partial, f);
+    b->smin[i - b->first] = pmb_point(b, pts, i, c, wlim, weighted, partial, energy, f);
     F[3 * i] += vol[i] * f[0];
     F[3 * i + 1] += vol[i] * f[1];
     F[3 * i + 2] += vol[i] * f[2];
@@ -80,10 +86,15 @@ static inline __attribute__((always_inline)) void pmb_loop(pf_pd_body *b, pf_poi
 static int pmb_force(pf_pd_body *b, pf_points *pts) {
   const double c = ((const pmb *)b->mat)->c;
   const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = b->fam.vfrac != NULL;
-  if (!weighted && !partial) pmb_loop(b, pts, c, 0, 0);
-  else if (!weighted) pmb_loop(b, pts, c, 0, 1);
-  else if (!partial) pmb_loop(b, pts, c, 1, 0);
-  else pmb_loop(b, pts, c, 1, 1);
+  if (b->law == PF_DAMAGE_CRITICAL_ENERGY) {
+    if (!weighted && !partial) pmb_loop(b, pts, c, 0, 0, 1);
+    else if (!weighted) pmb_loop(b, pts, c, 0, 1, 1);
+    else if (!partial) pmb_loop(b, pts, c, 1, 0, 1);
+    else pmb_loop(b, pts, c, 1, 1, 1);
+  } else if (!weighted && !partial) pmb_loop(b, pts, c, 0, 0, 0);
+  else if (!weighted) pmb_loop(b, pts, c, 0, 1, 0);
+  else if (!partial) pmb_loop(b, pts, c, 1, 0, 0);
+  else pmb_loop(b, pts, c, 1, 1, 0);
   return 0;
 }
 

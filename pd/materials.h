@@ -2,3 +2,4 @@
  * one file pd/material_<id>.c defining pf_pd_material_<id>, and one line here. */
 PF_PD_MATERIAL(pmb)
 PF_PD_MATERIAL(lps)
+PF_PD_MATERIAL(elastic_plastic)

@@ -15,6 +15,9 @@ typedef struct {
   pf_int *neighbor; /* [nbonds] local index into the point store */
   uint8_t *broken;  /* [nbonds] 1 once the bond has failed */
   float *vfrac;     /* [nbonds] partial-volume fraction of the neighbour, or NULL */
+  int nstate;       /* reals of material state per bond: set by the material's create (0: none) */
+  double *state;    /* [nbonds * nstate] the material's per-bond state, or NULL; it travels with
+                       the rows (re-partition, checkpoint). Freed by the material's destroy. */
 } pf_family;
 
 /* Bond filters applied while building families: planar pre-cracks. */
@@ -43,10 +46,12 @@ int pf_pd_family_build(const pf_pd_cloud *src, const pf_points *pts, pf_int firs
                        double horizon, int partial_volumes, int ncracks, const pf_precrack *cracks,
                        pf_bond_rows *rows);
 /* The family of the owned points [first, first+n) from their rows (row i of rows is store
- * point i), local[] giving the store index of each bond's neighbour. */
+ * point i), local[] giving the store index of each bond's neighbour. fam->nstate is kept: the
+ * first fam->nstate reals of each bond's state are taken from the rows (zero beyond theirs). */
 int pf_pd_family_from_rows(const pf_bond_rows *rows, const pf_int *local, pf_int first, pf_int n,
                            int partial_volumes, pf_family *fam);
-/* Append the family's rows (neighbours by global id, with their state) to rows. */
+/* Append the family's rows (neighbours by global id, with their state, per-bond reals
+ * included) to rows. */
 int pf_pd_family_to_rows(const pf_family *fam, const pf_points *pts, pf_bond_rows *rows);
 int pf_pd_family_free(pf_family *fam);
 int64_t pf_pd_family_nbonds(const pf_family *fam);
@@ -103,6 +108,8 @@ const pf_family *pf_pd_body_family(const pf_pd_body *b);
 /* Add the body's internal forces (N) to pts->f; fails bonds per the damage law. dt is the step
  * just taken (0 for the initial forces): rate-form materials advance their stress over it. */
 int pf_pd_body_force(pf_pd_body *b, pf_points *pts, double dt);
+/* 1 when the body's forces depend on the neighbours' velocities (rate-form correspondence). */
+int pf_pd_body_uses_velocity(const pf_pd_body *b);
 /* After the step: update damage-law state (e.g. Silling–Askari s0 from the step's s_min). */
 int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts);
 /* Stored elastic energy (J) of the body's owned points. */

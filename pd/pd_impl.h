@@ -8,9 +8,16 @@
 
 typedef struct pf_pd_material_ops pf_pd_material_ops;
 
-/* Damage laws: how each point's critical stretch s0 evolves. A bond fails when its stretch
- * exceeds min(s0_i, s0_j) (both ends, as LAMMPS' peri pair styles). */
-typedef enum { PF_DAMAGE_NONE, PF_DAMAGE_CRITICAL_STRETCH, PF_DAMAGE_SILLING_ASKARI } pf_damage_law;
+/* Damage laws (the list: pd/damage_critical_stretch.c). Stretch laws: a bond fails when its
+ * stretch exceeds min(s0_i, s0_j) (both ends, as LAMMPS' peri pair styles), s0 constant or
+ * evolving (Silling–Askari). Critical energy (pd/damage_critical_energy.c): a bond in tension
+ * fails when its energy per V_i V_j exceeds w_c; the material's force kernel evaluates it. */
+typedef enum {
+  PF_DAMAGE_NONE,
+  PF_DAMAGE_CRITICAL_STRETCH,
+  PF_DAMAGE_SILLING_ASKARI,
+  PF_DAMAGE_CRITICAL_ENERGY
+} pf_damage_law;
 
 struct pf_pd_body {
   char name[64];
@@ -22,6 +29,8 @@ struct pf_pd_body {
   pf_precrack *cracks;
   double horizon, density;
   double dt;           /* the step just taken, set by pf_pd_body_force (rate-form materials) */
+  int fresh;           /* set by attach for the material's setup: 1 at t = 0, 0 after a re-partition
+                          or a restart (the material's restart fields came with the points) */
   double bulk_modulus, shear_modulus;
   pf_influence influence;
   pf_family fam;
@@ -31,6 +40,7 @@ struct pf_pd_body {
   pf_damage_law law;
   double s0_init;    /* initial critical stretch */
   double s00, alpha; /* Silling–Askari: s0 = s00 - alpha s_min */
+  double critical_energy; /* critical_energy: w_c = 4 G0 / (pi delta^4), J/m^6 */
   double *s0;        /* field "critical_stretch": per point, used by the force kernels */
   double *smin;      /* [n] smallest stretch of each point's intact bonds this step */
 };
@@ -52,6 +62,15 @@ struct pf_pd_material_ops {
 /* pd/damage_critical_stretch.c: read the damage law (create), fill s0 (attach). */
 int pf_pd_damage_read(const pf_deck *d, const pf_node *map, pf_pd_body *b);
 int pf_pd_damage_setup(pf_pd_body *b, pf_points *pts, int fresh);
+/* pd/damage_critical_energy.c: the critical bond energy w_c = 4 G0 / (pi delta^4) (J/m^6) and
+ * the law's deck reader (G0 from 'energy_release_rate'). */
+double pf_pd_critical_energy(double G0, double delta);
+int pf_pd_damage_critical_energy_read(const pf_deck *d, const pf_node *map, pf_pd_body *b);
+
+/* Non-ordinary correspondence (pd/material_correspondence.c): the body's material is a
+ * continuum model of the constitutive library (fem/), not a name in pd/materials.h. */
+extern const pf_pd_material_ops pf_pd_material_correspondence;
+extern const pf_key pf_pd_hourglass_keys[];
 
 #define PF_PD_MATERIAL(id) extern const pf_pd_material_ops pf_pd_material_##id;
 #include "pd/materials.h"

@@ -82,4 +82,21 @@ for np in 3 1; do
   d=$(digest_of "$(run $np "$exe" --quiet --restart ckfe.h5 fe$tag.yaml 2>&1)")
   [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "FE: restarted on $np ranks: digest '$d', uninterrupted '$ref'"; fail=1; }
 done
+# PD materials with history: the elastic-plastic tube (tests/data/expanding_tube_ep.yaml,
+# yielding from the first steps; per-bond plastic extensions in /bonds/state) and the modified
+# Johnson-Cook bar (tests/data/damage_bar.yaml; stress, history and the last step's damage
+# record as point fields): a 2-rank run with checkpoints, restarted on 3 and on 1, ends with the
+# uninterrupted 1-rank run's digest
+cp "$OLDPWD/data/expanding_tube_ep.yaml" ep$tag.yaml
+sed -E 's/final_time: 4.5e-5/steps: 360/; s/d1: 0.1,/d1: 0.0,/' "$OLDPWD/data/damage_bar.yaml" > jc$tag.yaml
+for m in ep jc; do
+  printf 'restart:\n  file: ck%s.h5\n  interval: %d\n' $m $([ $m = ep ] && echo 60 || echo 150) >> $m$tag.yaml
+  ref=$(digest_of "$(run 1 "$exe" --quiet $m$tag.yaml 2>&1)")
+  rm -f ck$m.h5
+  run 2 "$exe" --quiet $m$tag.yaml > /dev/null 2>&1 || { echo "$m: run with checkpoints failed"; fail=1; }
+  for np in 3 1; do
+    d=$(digest_of "$(run $np "$exe" --quiet --restart ck$m.h5 $m$tag.yaml 2>&1)")
+    [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "$m: restarted on $np ranks: digest '$d', uninterrupted '$ref'"; fail=1; }
+  done
+done
 exit $fail

@@ -36,6 +36,12 @@
   "  reference_temperature: 294.26\n  melt_temperature: 533.15\n"                                  \
   "eos:\n  type: mie_gruneisen\n  c0: 1933\n  s1: 3.49\n  s2: -8.2\n  s3: 9.6\n  gamma0: 0.61\n"
 
+/* 6061-T6, Tupek, Rimoli & Radovitzky (2013), Tables 3 and 4. */
+#define MJC_DECK                                                                                   \
+  "model: modified_johnson_cook\ndensity: 2700\nyoungs_modulus: 72e9\npoissons_ratio: 0.343\n"     \
+  "modified_johnson_cook: {sigma0: 250e6, B: 365e6, n: 0.04, C: 0.002, reference_strain_rate: 1}\n" \
+  "damage: {d1: 0.875, d2: 0.13, d3: -1.5, d4: 0, reference_strain_rate: 1}\n"
+
 /* Load a material from a deck whose root mapping is the material; returns the error code of
  * validation or creation (0 on success). */
 static int load(const char *text, pf_fem_material **m) {
@@ -94,6 +100,7 @@ static const conf_case cases[] = {
     {"elastic", ELASTIC_DECK, 0, 1},      {"neo_hookean", NH_DECK, 1, 0},
     {"j2", J2_DECK, 0, 1},                {"j2", J2_POWER_DECK, 0, 1},
     {"johnson_cook", JC_DECK, 0, 1},      {"johnson_cook", LEXAN_DECK, 0, 0},
+    {"modified_johnson_cook", MJC_DECK, 1, 0},
 };
 enum { NCASES = sizeof cases / sizeof cases[0] };
 

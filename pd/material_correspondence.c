@@ -1,0 +1,387 @@
+/* Non-ordinary state-based correspondence: any continuum model of the constitutive library
+ * (fem/: elastic, neo-Hookean, J2, Johnson-Cook + EOS, modified Johnson-Cook with damage) as a
+ * peridynamic material. Theory: docs/theory/materials.md §2.
+ *
+ * Kinematics (Silling, Epton, Weckner, Xu & Askari 2007, J. Elast. 88:151, sec. 15; discrete form
+ * of Tupek, Rimoli & Radovitzky 2013, CMAME 263:20, eqs. 3-4 and sec. 2.4):
+ *   K_i    = sum_j w V_j xi (x) xi                           shape tensor, xi = x_j - x_i
+ *   Fbar_i = [sum_j w V_j Y (x) xi] K_i^-1                   Y = y_j - y_i
+ *   Fdot_i = [sum_j w V_j Ydot (x) xi] K_i^-1                Ydot = v_j - v_i
+ * Stress: as in an FE element (fem/element_force.c), L = Fdot Fm^-1 on the mid-step
+ * Fm = Fbar - dt/2 Fdot, D = sym L, the previous Cauchy stress rotated by the Hughes & Winget
+ * (1980) increment of W = skew L; the continuum model then advances it (pf_fem_material_update).
+ * Force state (Silling et al. 2007, eq. 140; Tupek et al. eq. 5): T_i<xi> = w P_i K_i^-1 xi with
+ * P = J sigma Fbar^-T, so with full neighbour lists
+ *   f_i = V_i sum_j w V_j (P_i K_i^-1 + P_j K_j^-1) xi.
+ * Damage correspondence (Tupek et al. 2013, eqs. 6-7): w = w_xi(|xi|) w_D(D_i, D_j), w_D = 0 once
+ * either end's damage (the model's state "damage") exceeds D_c: the bond fails for good, so both
+ * Fbar (from the next step) and the force use the degraded w.
+ * Zero-energy-mode control (Littlewood 2012, IMECE2012-87977; seed 001 "Suppression of Low-Energy
+ * Modes"): each end predicts the neighbour at x_i + Fbar_i xi; the deviation Gamma_i = Fbar_i xi - Y
+ * projected on the bond direction M = Y/|Y| gives the pair force
+ *   f_i += -C_hg c w V_i V_j [(Gamma_i + Gamma_j) . M] / |xi| M,  c = 18 K / (4 pi int w r^3 dr),
+ * equal and opposite and along the bond (momentum and angular momentum conserved), zero under
+ * any homogeneous deformation. The viscous variant (the analogue of Flanagan & Belytschko's
+ * viscous hourglass control of hex8) penalises the deviation of the relative velocity from
+ * Fdot xi instead, with c scaled by tau = delta / c_L (the wave transit of the horizon, so that
+ * C_hg ~ 1 damps a mode of wavelength ~ delta critically): it damps zero-energy modes without
+ * resisting the slow, non-affine flow of plastic deformation. */
+#include "pd/pd_impl.h"
+#include "fem/fem.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* Ghosted per-point record, one exchange per step: P K^-1 (row-major), Fbar, Fdot, detached,
+ * damage. */
+enum { G_PK = 0, G_F = 9, G_FDOT = 18, G_DETACHED = 27, G_DAMAGE = 28, GX = 29 };
+
+typedef struct {
+  pf_fem_material *cm; /* the continuum model */
+  int nstate, idamage; /* history variables; index of the one named "damage", or -1 */
+  int viscous;         /* hourglass control on the velocity deviation instead of the position's */
+  double hg, dcrit, c; /* C_hg, D_c, micromodulus of the hourglass force */
+  double tau;          /* viscous form: delta / c_L, the time a wave takes to cross the horizon */
+  double *sigma;       /* field "stress" [6]: Cauchy stress, Pa */
+  double *state;       /* field "material_state_<nstate>" */
+  double *work;        /* field "stress_work": stress work per reference volume, J/m^3 */
+  double *hgwork;      /* field "hourglass_work": work of the hourglass forces, J */
+  double *hgforce;     /* field "hourglass_force" [3]: last step's, for the trapezoidal work */
+  double *gx;          /* field "correspondence" [GX] */
+  double **out;        /* [nstate] output fields named by the model's state names */
+  double *F, *D, *s_old, *saved, *Jm; /* scratch: [9n], [6n], [6n], [nstate n], [n] */
+  pf_int cap;
+} corr;
+
+const pf_key pf_pd_hourglass_keys[] = {
+    {"type", PF_KEY_STRING, 0, "stiffness", "", "stiffness (Littlewood) | viscous | none", NULL},
+    {"coefficient", PF_KEY_REAL, 0, "0.05", "", "C_hg >= 0", NULL},
+    PF_KEY_END};
+
+static int read_hourglass(const pf_deck *d, const pf_node *h, corr *p) {
+  const char *type = "stiffness";
+  p->hg = 0.05;
+  if (!h) return 0;
+  PF_CALL(pf_deck_string(d, h, "type", &type));
+  PF_CALL(pf_deck_real(d, h, "coefficient", &p->hg));
+  if (!(p->hg >= 0)) return pf_deck_error(d, pf_node_get(h, "coefficient"), "coefficient", "must be >= 0 (got %g)", p->hg);
+  if (!strcmp(type, "none")) p->hg = 0;
+  else if (!strcmp(type, "viscous")) p->viscous = 1;
+  else if (strcmp(type, "stiffness"))
+    return pf_deck_error(d, pf_node_get(h, "type"), "type", "unknown hourglass control '%s' (known: stiffness, viscous, none)", type);
+  return 0;
+}
+
+static int corr_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
+  const char *mname = "";
+  PF_CALL(pf_deck_string(d, b->node, "material", &mname));
+  corr *p;
+  PF_MALLOC(p, 1);
+  b->mat = p;
+  PF_CALL(pf_fem_material_create(d, mat, mname, &p->cm));
+  b->bulk_modulus = pf_fem_material_bulk_modulus(p->cm);
+  b->shear_modulus = pf_fem_material_shear_modulus(p->cm);
+  b->density = pf_fem_material_density(p->cm);
+  p->nstate = pf_fem_material_nstate(p->cm);
+  p->idamage = -1;
+  for (int k = 0; k < p->nstate; k++)
+    if (!strcmp(pf_fem_material_state_name(p->cm, k), "damage")) p->idamage = k;
+  PF_CALL(read_hourglass(d, pf_node_get(b->node, "hourglass"), p));
+  p->dcrit = 0.99;
+  PF_CALL(pf_deck_real(d, b->node, "critical_damage", &p->dcrit));
+  const pf_node *dc = pf_node_get(b->node, "critical_damage");
+  if (dc && p->idamage < 0)
+    return pf_deck_error(d, dc, "critical_damage", "the model of material '%s' has no damage variable "
+                         "(modified_johnson_cook has one)", mname);
+  if (!(p->dcrit > 0 && p->dcrit <= 1))
+    return pf_deck_error(d, dc, "critical_damage", "must satisfy 0 < D_c <= 1 (got %g)", p->dcrit);
+  p->c = pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, b->horizon);
+  p->tau = b->horizon / sqrt((b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / b->density);
+  return 0;
+}
+
+static int register_fields(pf_pd_body *b, pf_points *pts) {
+  corr *p = b->mat;
+  int idx;
+  PF_CALL(pf_points_field_register(pts, "stress", 6, PF_FIELD_OUTPUT | PF_FIELD_RESTART, &idx));
+  p->sigma = pts->fields[idx].data;
+  PF_CALL(pf_points_field_register(pts, "stress_work", 1, PF_FIELD_RESTART, &idx));
+  p->work = pts->fields[idx].data;
+  PF_CALL(pf_points_field_register(pts, "hourglass_work", 1, PF_FIELD_RESTART, &idx));
+  p->hgwork = pts->fields[idx].data;
+  PF_CALL(pf_points_field_register(pts, "hourglass_force", 3, PF_FIELD_RESTART, &idx));
+  p->hgforce = pts->fields[idx].data;
+  PF_CALL(pf_points_field_register(pts, "correspondence", GX, PF_FIELD_GHOST | PF_FIELD_RESTART, &idx));
+  p->gx = pts->fields[idx].data;
+  if (!p->nstate) return 0;
+  char name[32];
+  snprintf(name, sizeof name, "material_state_%d", p->nstate); /* bodies own disjoint ranges */
+  PF_CALL(pf_points_field_register(pts, name, p->nstate, PF_FIELD_RESTART, &idx));
+  p->state = pts->fields[idx].data;
+  if (!p->out) PF_MALLOC(p->out, p->nstate);
+  for (int k = 0; k < p->nstate; k++) { /* the model's damage D is not the bond damage phi */
+    const char *sname = pf_fem_material_state_name(p->cm, k);
+    PF_CALL(pf_points_field_register(pts, k == p->idamage ? "material_damage" : sname, 1, PF_FIELD_OUTPUT, &idx));
+    p->out[k] = pts->fields[idx].data;
+  }
+  return 0;
+}
+
+static int corr_setup(pf_pd_body *b, pf_points *pts) {
+  corr *p = b->mat;
+  PF_CALL(register_fields(b, pts));
+  if (b->n > p->cap) {
+    free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm);
+    p->F = p->D = p->s_old = p->saved = p->Jm = NULL;
+    PF_MALLOC(p->Jm, b->n);
+    PF_MALLOC(p->F, 9 * (size_t)b->n);
+    PF_MALLOC(p->D, 6 * (size_t)b->n);
+    PF_MALLOC(p->s_old, 6 * (size_t)b->n);
+    PF_MALLOC(p->saved, (size_t)p->nstate * b->n + 1);
+    p->cap = b->n;
+  }
+  if (b->fresh) { /* (the last step's record, read by fail_bonds, travels with the points) */
+    for (pf_int i = b->first; i < b->first + b->n; i++)
+      for (int k = 0; k < GX; k++) p->gx[GX * i + k] = 0.0;
+    for (pf_int i = b->first; i < b->first + b->n; i++) {
+      for (int k = 0; k < 6; k++) p->sigma[6 * i + k] = 0.0;
+      p->work[i] = p->hgwork[i] = 0.0;
+      for (int a = 0; a < 3; a++) p->hgforce[3 * i + a] = 0.0;
+    }
+    if (p->nstate) pf_fem_material_init(p->cm, b->n, &p->state[(size_t)p->nstate * b->first]);
+  }
+  return pf_points_exchange(pts, p->gx, GX);
+}
+
+static void mat_mul(double A[3][3], double B[3][3], double C[3][3]) {
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) C[i][j] = A[i][0] * B[0][j] + A[i][1] * B[1][j] + A[i][2] * B[2][j];
+}
+
+/* The shape tensor and the deformation and rate sums of point i over its intact bonds; fails
+ * bonds beyond the critical stretch. Returns the number of intact bonds. */
+static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][3], double A[3][3],
+                     double B[3][3]) {
+  const pf_family *fam = &b->fam;
+  const pf_int li = i - b->first;
+  double smin = INFINITY;
+  int nb = 0;
+  memset(K, 0, 9 * sizeof(double)), memset(A, 0, 9 * sizeof(double)), memset(B, 0, 9 * sizeof(double));
+  for (int64_t k = fam->offset[li]; k < fam->offset[li + 1]; k++) {
+    if (fam->broken[k]) continue;
+    const pf_int j = fam->neighbor[k];
+    double xi[3], Y[3], Yd[3], r02 = 0, r2 = 0;
+    for (int a = 0; a < 3; a++) {
+      xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a];
+      Y[a] = pts->y[3 * j + a] - pts->y[3 * i + a];
+      Yd[a] = pts->v[3 * j + a] - pts->v[3 * i + a];
+      r02 += xi[a] * xi[a], r2 += Y[a] * Y[a];
+    }
+    const double r0 = sqrt(r02);
+    if (b->law != PF_DAMAGE_NONE) {
+      const double s = (sqrt(r2) - r0) / r0;
+      if (s > fmin(b->s0[i], b->s0[j])) {
+        fam->broken[k] = 1;
+        continue;
+      }
+      smin = fmin(smin, s);
+    }
+    const double w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    for (int r = 0; r < 3; r++)
+      for (int s = 0; s < 3; s++) {
+        K[r][s] += w * xi[r] * xi[s];
+        A[r][s] += w * Y[r] * xi[s];
+        B[r][s] += w * Yd[r] * xi[s];
+      }
+    nb++;
+  }
+  b->smin[li] = smin;
+  return nb;
+}
+
+/* Kinematics of point i for the model: Fbar into F, D into D, the rotated previous stress; K^-1
+ * kept in the ghost record until the stress is known. Returns 0 when the point is detached: too
+ * few bonds for an invertible K, or an inverted Fbar (a point with no material left around it). */
+static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
+  corr *p = b->mat;
+  const pf_int li = i - b->first;
+  double K[3][3], A[3][3], B[3][3], Ki[3][3], Fb[3][3], Fd[3][3], Fm[3][3], Fmi[3][3], L[3][3], R[3][3];
+  double *g = &p->gx[GX * i], *F = &p->F[9 * li], *D = &p->D[6 * li];
+  const int nb = bond_sums(b, pts, i, K, A, B);
+  const double detK = pf_mat3_inverse(K, Ki), tr = (K[0][0] + K[1][1] + K[2][2]) / 3.0;
+  int ok = nb >= 3 && detK > 1e-6 * tr * tr * tr;
+  if (ok) {
+    mat_mul(A, Ki, Fb), mat_mul(B, Ki, Fd);
+    for (int r = 0; r < 3; r++)
+      for (int s = 0; s < 3; s++) Fm[r][s] = Fb[r][s] - 0.5 * b->dt * Fd[r][s];
+    double J = Fb[0][0] * (Fb[1][1] * Fb[2][2] - Fb[1][2] * Fb[2][1]) -
+               Fb[0][1] * (Fb[1][0] * Fb[2][2] - Fb[1][2] * Fb[2][0]) +
+               Fb[0][2] * (Fb[1][0] * Fb[2][1] - Fb[1][1] * Fb[2][0]);
+    ok = J > 0 && (p->Jm[li] = pf_mat3_inverse(Fm, Fmi)) > 0;
+  }
+  g[G_DETACHED] = !ok;
+  if (!ok) { /* the model sees a state at rest; its result is discarded */
+    for (int k = 0; k < 9; k++) F[k] = (k % 4 == 0), g[G_PK + k] = g[G_FDOT + k] = 0.0, g[G_F + k] = (k % 4 == 0);
+    for (int k = 0; k < 6; k++) D[k] = 0.0, p->s_old[6 * li + k] = p->sigma[6 * i + k];
+    return 0;
+  }
+  mat_mul(Fd, Fmi, L);
+  for (int k = 0; k < 6; k++) D[k] = 0.5 * (L[pf_voigt_i[k]][pf_voigt_j[k]] + L[pf_voigt_j[k]][pf_voigt_i[k]]);
+  pf_mat3_hughes_winget(L, b->dt, R);
+  pf_sym6_rotate(R, &p->sigma[6 * i]);
+  memcpy(&p->s_old[6 * li], &p->sigma[6 * i], 6 * sizeof(double));
+  for (int r = 0; r < 3; r++)
+    for (int s = 0; s < 3; s++) {
+      F[3 * r + s] = g[G_F + 3 * r + s] = Fb[r][s];
+      g[G_PK + 3 * r + s] = Ki[r][s], g[G_FDOT + 3 * r + s] = Fd[r][s];
+    }
+  return 1;
+}
+
+/* After the model: stress work (trapezoid in time, per reference volume, det Fm sigma : D),
+ * P K^-1 = J sigma Fbar^-T K^-1 into the ghost record, damage for w_D. */
+static void stress_to_force_state(pf_pd_body *b, pf_int i) {
+  corr *p = b->mat;
+  const pf_int li = i - b->first;
+  double *g = &p->gx[GX * i], S[3][3], Fb[3][3], Fi[3][3], Ki[3][3], P[3][3], T[3][3];
+  const double *s = &p->sigma[6 * i], *so = &p->s_old[6 * li], *D = &p->D[6 * li];
+  for (int r = 0; r < 3; r++)
+    for (int c = 0; c < 3; c++) Fb[r][c] = g[G_F + 3 * r + c], Ki[r][c] = g[G_PK + 3 * r + c];
+  const double J = pf_mat3_inverse(Fb, Fi);
+  double power = 0;
+  for (int k = 0; k < 6; k++) power += (k < 3 ? 1.0 : 2.0) * 0.5 * (s[k] + so[k]) * D[k];
+  p->work[i] += b->dt * p->Jm[li] * power;
+  pf_sym6_to_mat(s, S);
+  for (int r = 0; r < 3; r++) /* P = J sigma F^-T */
+    for (int c = 0; c < 3; c++) P[r][c] = J * (S[r][0] * Fi[c][0] + S[r][1] * Fi[c][1] + S[r][2] * Fi[c][2]);
+  mat_mul(P, Ki, T);
+  for (int r = 0; r < 3; r++)
+    for (int c = 0; c < 3; c++) g[G_PK + 3 * r + c] = T[r][c];
+}
+
+/* Bonds to a point detached last step, or whose either end's damage exceeded D_c last step, fail
+ * before the sums, so that Fbar and the force of this step use the same bonds (angular
+ * momentum). Both ends read the same exchanged record, so both decide alike. */
+static void fail_bonds(pf_pd_body *b) {
+  const corr *p = b->mat;
+  const pf_family *fam = &b->fam;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    const double *gi = &p->gx[GX * i];
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      const double *gj = &p->gx[GX * fam->neighbor[k]];
+      if (gi[G_DETACHED] || gj[G_DETACHED] || gi[G_DAMAGE] > p->dcrit || gj[G_DAMAGE] > p->dcrit)
+        fam->broken[k] = 1;
+    }
+  }
+}
+
+/* Pass 1 for every owned point, the model batched over the body, then the ghost exchange. */
+static int corr_pass1(pf_pd_body *b, pf_points *pts) {
+  corr *p = b->mat;
+  const int ns = p->nstate;
+  pf_int ndetached = 0;
+  fail_bonds(b);
+  for (pf_int i = b->first; i < b->first + b->n; i++) ndetached += !kinematics(b, pts, i);
+  double *state = ns ? &p->state[(size_t)ns * b->first] : NULL;
+  if (ndetached && ns) memcpy(p->saved, state, sizeof(double) * ns * b->n);
+  pf_fem_material_update(p->cm, b->n, b->dt, p->F, p->D, &p->sigma[6 * b->first], state, NULL);
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    const pf_int li = i - b->first;
+    double *g = &p->gx[GX * i];
+    if (g[G_DETACHED]) { /* keep its stress and history as they were */
+      memcpy(&p->sigma[6 * i], &p->s_old[6 * li], 6 * sizeof(double));
+      if (ns) memcpy(&state[(size_t)ns * li], &p->saved[(size_t)ns * li], sizeof(double) * ns);
+    } else {
+      stress_to_force_state(b, i);
+    }
+    g[G_DAMAGE] = p->idamage >= 0 ? state[(size_t)ns * li + p->idamage] : 0.0;
+    for (int k = 0; k < ns; k++) p->out[k][i] = state[(size_t)ns * li + k];
+  }
+  return pf_points_exchange(pts, p->gx, GX);
+}
+
+/* Pass 2: pair forces from both ends' force states and the hourglass control. A point detached
+ * in this step's pass 1 has P K^-1 = 0 and no hourglass force (its Fbar is not defined); its
+ * bonds fail at the start of the next step. */
+static int corr_force(pf_pd_body *b, pf_points *pts) {
+  corr *p = b->mat;
+  PF_CALL(corr_pass1(b, pts));
+  const pf_family *fam = &b->fam;
+  const double chg = p->hg * p->c * (p->viscous ? p->tau : 1.0);
+  const int gdev = p->viscous ? G_FDOT : G_F; /* the predicted relative position or velocity */
+  const double *dev = p->viscous ? pts->v : pts->y;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    const double *gi = &p->gx[GX * i];
+    double f[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      if (fam->broken[k]) continue;
+      const pf_int j = fam->neighbor[k];
+      const double *gj = &p->gx[GX * j];
+      double xi[3], Y[3], Z[3], r02 = 0, r2 = 0;
+      for (int a = 0; a < 3; a++) {
+        xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a];
+        Y[a] = pts->y[3 * j + a] - pts->y[3 * i + a];
+        Z[a] = dev[3 * j + a] - dev[3 * i + a];
+        r02 += xi[a] * xi[a], r2 += Y[a] * Y[a];
+      }
+      const double r0 = sqrt(r02), r = sqrt(r2);
+      const double w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+      double gam = 0;
+      for (int a = 0; a < 3; a++) {
+        double t = 0, pred = 0;
+        for (int c = 0; c < 3; c++) {
+          t += (gi[G_PK + 3 * a + c] + gj[G_PK + 3 * a + c]) * xi[c];
+          pred += (gi[gdev + 3 * a + c] + gj[gdev + 3 * a + c]) * xi[c];
+        }
+        f[a] += w * t;
+        gam += (pred - 2.0 * Z[a]) * Y[a];
+      }
+      if (chg > 0 && r > 0 && !gi[G_DETACHED] && !gj[G_DETACHED]) {
+        const double s = -chg * w * gam / (r0 * r * r);
+        for (int a = 0; a < 3; a++) fh[a] += s * Y[a];
+      }
+    }
+    const double V = pts->vol[i];
+    double *fo = &p->hgforce[3 * i], dw = 0;
+    for (int a = 0; a < 3; a++) { /* work over the step: (f_n + f_n+1)/2 . dt v_n+1/2 */
+      pts->f[3 * i + a] += V * (f[a] + fh[a]);
+      dw += 0.5 * (fo[a] + V * fh[a]) * pts->v[3 * i + a];
+      fo[a] = V * fh[a];
+    }
+    p->hgwork[i] -= b->dt * dw; /* the work done against the hourglass forces */
+  }
+  return 0;
+}
+
+/* Stress work (elastic energy plus plastic dissipation of the model) and hourglass work. */
+static double corr_energy(const pf_pd_body *b, const pf_points *pts) {
+  const corr *p = b->mat;
+  double e = 0;
+  for (pf_int i = b->first; i < b->first + b->n; i++) e += pts->vol[i] * p->work[i] + p->hgwork[i];
+  return e;
+}
+
+/* For the stable step: the PMB micromodulus of equal P-wave modulus, K_eq = (K + 4G/3) / 1.8,
+ * plus the hourglass stiffness C_hg c. */
+static double corr_micromodulus(const pf_pd_body *b) {
+  const corr *p = b->mat;
+  double keq = (b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / 1.8;
+  return pf_pd_pmb_micromodulus(keq, &b->influence, b->horizon) + (p->viscous ? 0.0 : p->hg * p->c);
+}
+
+static void corr_destroy(pf_pd_body *b) {
+  corr *p = b->mat;
+  pf_fem_material_destroy(&p->cm);
+  free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm), free(p->out);
+  PF_FREE(b->mat);
+}
+
+const pf_pd_material_ops pf_pd_material_correspondence = {
+    .name = "correspondence",
+    .create = corr_create,
+    .setup = corr_setup,
+    .force = corr_force,
+    .energy = corr_energy,
+    .micromodulus = corr_micromodulus,
+    .destroy = corr_destroy,
+};

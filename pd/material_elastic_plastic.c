@@ -1,0 +1,221 @@
+/* Ordinary state-based elastic-plastic solid with linear isotropic hardening (Mitchell 2011,
+ * "A nonlocal, ordinary, state-based plasticity model for peridynamics", SAND2011-3166; the
+ * model of Peridigm's "Elastic Plastic Hardening" material), built on the LPS of
+ * material_lps.c. Theory and calibration: docs/theory/materials.md section 1.
+ *   m_i     = sum_j w |xi|^2 V_j,  theta_i = (3 / m_i) sum_j w |xi| e V_j     (as LPS)
+ *   e^d     = e - theta_i |xi| / 3                              deviatoric extension
+ *   t^d_tr  = alpha_i w (e^d - e^dp_n),  alpha_i = 15 G / m_i   trial deviatoric force state
+ *   sigma_i = sqrt(m_i / 5) ||t^d||,  ||t||^2 = sum_j t^2 / w V_j
+ *             (equivalent stress: von Mises under a homogeneous deformation of a full family;
+ *             for w = 1 and m = 4 pi delta^5 / 5 the yield surface sigma = Y is Mitchell's
+ *             ||t^d||^2 / 2 = psi0 = 25 Y^2 / (8 pi delta^5))
+ *   yield   sigma_tr <= Y(eqps) = Y0 + H eqps, else the radial return (closed form, linear H):
+ *             d eqps = (sigma_tr - Y_n) / (3 G + H),  beta = 1 - 3 G d eqps / sigma_tr,
+ *             t^d = beta t^d_tr,  e^dp_{n+1} = e^d - beta (e^d - e^dp_n)
+ *             (flow rule d e^dp = d lambda t^d / w, d eqps = d lambda ||t^d||^2 / sigma)
+ *   t_ij    = w (3 K theta_i / m_i) |xi| + t^d_ij,   f_i = V_i sum_j (t_ij + t_ji) M_ij V_j
+ * Per-bond state: each directed bond (i, j) of i's family keeps e^dp of i's end ([0]) and a
+ * mirror of j's end, e^dp of bond (j, i) ([1]). j's owner updates its own copy with the same
+ * operands (|y_j - y_i|, |xi|, theta_j, beta_j: ghosted per-point values), so the two copies
+ * stay bitwise equal and t_ji is computed at i without a per-bond exchange. Bonds fail in the
+ * dilatation pass, as LPS. */
+#include "pd/pd_impl.h"
+
+#include <stdlib.h>
+
+enum { NSTATE = 2 }; /* per directed bond: e^dp of the owner's end, of the neighbour's end */
+
+typedef struct {
+  double Y0, H;  /* yield stress, linear hardening modulus dY/d eqps (Pa) */
+  double *m;     /* field "weighted_volume" */
+  double *theta; /* field "dilatation" */
+  double *beta;  /* field "plastic_return": t^d / t^d_tr of the step (1: elastic) */
+  double *eqps;  /* field "eqps": equivalent plastic strain */
+} ep;
+
+static int ep_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
+  const char *need[] = {"bulk_modulus", "shear_modulus", "yield_stress"};
+  for (int k = 0; k < 3; k++)
+    if (!pf_node_get(mat, need[k]))
+      return pf_deck_error(d, mat, need[k], "model 'elastic_plastic' needs '%s' (Pa)", need[k]);
+  ep *p;
+  PF_MALLOC(p, 1);
+  b->mat = p;
+  PF_CALL(pf_deck_real(d, mat, "yield_stress", &p->Y0));
+  PF_CALL(pf_deck_real(d, mat, "hardening_modulus", &p->H));
+  if (!(p->Y0 > 0))
+    return pf_deck_error(d, pf_node_get(mat, "yield_stress"), "yield_stress", "must be positive (got %g)", p->Y0);
+  if (!(p->H >= 0))
+    return pf_deck_error(d, pf_node_get(mat, "hardening_modulus"), "hardening_modulus",
+                         "must be >= 0 (got %g)", p->H);
+  b->fam.nstate = NSTATE;
+  return 0;
+}
+
+/* Fields (a re-partition or a restart brings eqps with the points and e^dp with the rows). */
+static int ep_setup(pf_pd_body *b, pf_points *pts) {
+  ep *p = b->mat;
+  int im, it, ib, ie;
+  PF_CALL(pf_points_field_register(pts, "weighted_volume", 1, PF_FIELD_GHOST | PF_FIELD_RESTART, &im));
+  PF_CALL(pf_points_field_register(pts, "dilatation", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT, &it));
+  PF_CALL(pf_points_field_register(pts, "plastic_return", 1, PF_FIELD_GHOST, &ib));
+  PF_CALL(pf_points_field_register(pts, "eqps", 1, PF_FIELD_RESTART | PF_FIELD_OUTPUT, &ie));
+  p->m = pts->fields[im].data;
+  p->theta = pts->fields[it].data;
+  p->beta = pts->fields[ib].data;
+  p->eqps = pts->fields[ie].data;
+  const pf_family *fam = &b->fam;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    double m = 0;
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      pf_int j = fam->neighbor[k];
+      double r2 = 0;
+      for (int a = 0; a < 3; a++) r2 += pow(pts->X[3 * j + a] - pts->X[3 * i + a], 2);
+      m += pf_pd_omega(&b->influence, sqrt(r2)) * r2 * pf_pd_bond_volume(fam, pts->vol, k, j);
+    }
+    PF_CHECK(m > 0, PF_ERR_INPUT,
+             "body '%s': point %" PF_GID_FMT " at (%g, %g, %g) has no neighbour within the horizon %g m",
+             b->name, pts->gid[i], pts->X[3 * i], pts->X[3 * i + 1], pts->X[3 * i + 2], b->horizon);
+    p->m[i] = m;
+  }
+  return pf_points_exchange(pts, p->m, 1); /* the ghosts' m for the force pass */
+}
+
+/* Bond geometry: reference length r0, current length r, current bond vector e[3]. The same
+ * operations from either end give bitwise the same r0 and r. */
+static inline void bond_lengths(const double *restrict X, const double *restrict Y, pf_int i,
+                                pf_int j, double *r0, double *r, double e[3]) {
+  double d2 = 0, e2 = 0;
+  for (int a = 0; a < 3; a++) {
+    double d = X[3 * j + a] - X[3 * i + a];
+    e[a] = Y[3 * j + a] - Y[3 * i + a];
+    d2 += d * d, e2 += e[a] * e[a];
+  }
+  *r0 = sqrt(d2), *r = sqrt(e2);
+}
+
+/* Pass 1 for point i: dilatation (failing bonds beyond the critical stretch, as LPS), then the
+ * trial equivalent stress sigma_tr = 3 G sqrt(5 sum_j w (e^d - e^dp_n)^2 V_j / m_i) and the
+ * return: beta and the new eqps. */
+static void ep_point(pf_pd_body *b, const pf_points *pts, pf_int i) {
+  ep *p = b->mat;
+  const pf_family *fam = &b->fam;
+  const int64_t k0 = fam->offset[i - b->first], k1 = fam->offset[i - b->first + 1];
+  double sum = 0, smin = INFINITY, e[3], r0, r;
+  for (int64_t k = k0; k < k1; k++) {
+    if (fam->broken[k]) continue;
+    pf_int j = fam->neighbor[k];
+    bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+    double s = (r - r0) / r0;
+    if (s > fmin(b->s0[i], b->s0[j])) {
+      fam->broken[k] = 1;
+      continue;
+    }
+    smin = fmin(smin, s);
+    sum += pf_pd_omega(&b->influence, r0) * r0 * (r - r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+  }
+  b->smin[i - b->first] = smin;
+  const double m = p->m[i], th = 3.0 * sum / m, G = b->shear_modulus;
+  double n2 = 0; /* sum_j w (e^d - e^dp_n)^2 V_j */
+  for (int64_t k = k0; k < k1; k++) {
+    if (fam->broken[k]) continue;
+    pf_int j = fam->neighbor[k];
+    bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+    const double tr = (r - r0) - th * r0 / 3 - fam->state[NSTATE * k];
+    n2 += pf_pd_omega(&b->influence, r0) * tr * tr * pf_pd_bond_volume(fam, pts->vol, k, j);
+  }
+  const double st = 3 * G * sqrt(5 * n2 / m), Y = p->Y0 + p->H * p->eqps[i];
+  p->theta[i] = th;
+  p->beta[i] = 1.0;
+  if (st > Y) {
+    const double deq = (st - Y) / (3 * G + p->H);
+    p->beta[i] = 1.0 - 3 * G * deq / st;
+    p->eqps[i] += deq;
+  }
+}
+
+static int ep_force(pf_pd_body *b, pf_points *pts) {
+  ep *p = b->mat;
+  const double K = b->bulk_modulus, G = b->shear_modulus;
+  const pf_family *fam = &b->fam;
+  double *edp = fam->state;
+  for (pf_int i = b->first; i < b->first + b->n; i++) ep_point(b, pts, i);
+  PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta and beta for the force pass */
+  PF_CALL(pf_points_exchange(pts, p->beta, 1));
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    double f[3] = {0, 0, 0}, e[3], r0, r;
+    const double ai = 3 * K * p->theta[i] / p->m[i], bi = 15 * G / p->m[i] * p->beta[i];
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      if (fam->broken[k]) continue;
+      pf_int j = fam->neighbor[k];
+      bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+      const double ext = r - r0, w = pf_pd_omega(&b->influence, r0);
+      const double aj = 3 * K * p->theta[j] / p->m[j], bj = 15 * G / p->m[j] * p->beta[j];
+      const double edi = ext - p->theta[i] * r0 / 3, edj = ext - p->theta[j] * r0 / 3;
+      const double tij = w * (ai * r0 + bi * (edi - edp[NSTATE * k]));
+      const double tji = w * (aj * r0 + bj * (edj - edp[NSTATE * k + 1]));
+      const double fs = (tij + tji) * pf_pd_bond_volume(fam, pts->vol, k, j) / r;
+      for (int a = 0; a < 3; a++) f[a] += fs * e[a];
+      /* e^dp_{n+1} = e^d - beta (e^d - e^dp_n) at each end; untouched when elastic (beta = 1) */
+      if (p->beta[i] != 1.0) edp[NSTATE * k] = edi - p->beta[i] * (edi - edp[NSTATE * k]);
+      if (p->beta[j] != 1.0) edp[NSTATE * k + 1] = edj - p->beta[j] * (edj - edp[NSTATE * k + 1]);
+    }
+    for (int a = 0; a < 3; a++) pts->f[3 * i + a] += pts->vol[i] * f[a];
+  }
+  return 0;
+}
+
+/* Internal energy of the owned points: stored elastic energy plus plastic work,
+ *   W_i = V_i [ (K/2) theta^2 + (alpha_i / 2) sum_j w (e^d - e^dp)^2 V_j + Y0 eqps + H eqps^2 / 2 ]
+ * (the plastic work int Y d eqps = sum_j t^d de^dp V_j: the energy a run's balance needs, as the
+ * stress work of FE and correspondence bodies). */
+static double ep_energy(const pf_pd_body *b, const pf_points *pts) {
+  const ep *p = b->mat;
+  const pf_family *fam = &b->fam;
+  double w = 0, e[3], r0, r;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    double dev = 0;
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      if (fam->broken[k]) continue;
+      pf_int j = fam->neighbor[k];
+      bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+      double ed = (r - r0) - p->theta[i] * r0 / 3 - fam->state[NSTATE * k];
+      dev += pf_pd_omega(&b->influence, r0) * ed * ed * pf_pd_bond_volume(fam, pts->vol, k, j);
+    }
+    const double eq = p->eqps[i];
+    w += pts->vol[i] * (0.5 * b->bulk_modulus * p->theta[i] * p->theta[i] + 7.5 * b->shear_modulus / p->m[i] * dev +
+                        p->Y0 * eq + 0.5 * p->H * eq * eq);
+  }
+  return w;
+}
+
+/* For the stable step: the elastic LPS estimate (plastic flow only softens), the PMB
+ * micromodulus of equal P-wave modulus, K_eq = (K + 4G/3) / 1.8. */
+static double ep_micromodulus(const pf_pd_body *b) {
+  double keq = (b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / 1.8;
+  return pf_pd_pmb_micromodulus(keq, &b->influence, b->horizon);
+}
+
+/* Critical stretch from G0: the LPS closed forms (Madenci & Oterkus 2014), elastic fracture.
+ * omega = 1/|xi|: sqrt(5 G0 / (9 K delta)); omega = 1: sqrt(8 G0 / (15 K delta)). */
+static double ep_critical_stretch(const pf_pd_body *b, double G0) {
+  double K = b->bulk_modulus, d = b->horizon;
+  if (b->influence.kind == PF_INFLUENCE_INVERSE_DISTANCE) return sqrt(5 * G0 / (9 * K * d));
+  if (b->influence.kind == PF_INFLUENCE_CONSTANT) return sqrt(8 * G0 / (15 * K * d));
+  return NAN;
+}
+
+static void ep_destroy(pf_pd_body *b) {
+  PF_FREE(b->mat);
+}
+
+const pf_pd_material_ops pf_pd_material_elastic_plastic = {
+    .name = "elastic_plastic",
+    .create = ep_create,
+    .setup = ep_setup,
+    .force = ep_force,
+    .energy = ep_energy,
+    .micromodulus = ep_micromodulus,
+    .critical_stretch = ep_critical_stretch,
+    .destroy = ep_destroy,
+};
