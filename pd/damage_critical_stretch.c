@@ -9,7 +9,8 @@
 #include <string.h>
 
 const pf_key pf_pd_damage_keys[] = {
-    {"law", PF_KEY_STRING, 1, NULL, "", "none | critical_stretch | silling_askari | critical_energy", NULL},
+    {"law", PF_KEY_STRING, 1, NULL, "", "none | critical_stretch | silling_askari | critical_energy",
+     NULL},
     {"critical_stretch", PF_KEY_REAL, 0, NULL, "", "critical_stretch: s0", NULL},
     {"energy_release_rate", PF_KEY_REAL, 0, NULL, "J/m^2",
      "critical_stretch: G0, converted to s0 by the material's closed form; critical_energy: G0, "

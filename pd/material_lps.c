@@ -125,7 +125,8 @@ static int lps_force(pf_pd_body *b, pf_points *pts) {
     for (int a = 0; a < 3; a++) pts->f[3 * i + a] += pts->vol[i] * f[a];
   }
   if (nfailed) /* (the same bits for the points that lost no bond) */
-    for (pf_int i = b->first; i < b->first + b->n; i++) p->theta[i] = lps_dilatation(b, pts, i, p->m[i]);
+    for (pf_int i = b->first; i < b->first + b->n; i++)
+      p->theta[i] = lps_dilatation(b, pts, i, p->m[i]);
   return 0;
 }
 

@@ -83,15 +83,21 @@ static inline __attribute__((always_inline)) void pmb_loop(pf_pd_body *b, pf_poi
   }
 }
 
+/* The critical-energy loops, out of line so that the stretch-law loops of pmb_force keep
+ * their code and layout. */
+static __attribute__((noinline)) void pmb_force_energy(pf_pd_body *b, pf_points *pts, double c,
+                                                       int weighted, int partial) {
+  if (!weighted && !partial) pmb_loop(b, pts, c, 0, 0, 1);
+  else if (!weighted) pmb_loop(b, pts, c, 0, 1, 1);
+  else if (!partial) pmb_loop(b, pts, c, 1, 0, 1);
+  else pmb_loop(b, pts, c, 1, 1, 1);
+}
+
 static int pmb_force(pf_pd_body *b, pf_points *pts) {
   const double c = ((const pmb *)b->mat)->c;
   const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = b->fam.vfrac != NULL;
-  if (b->law == PF_DAMAGE_CRITICAL_ENERGY) {
-    if (!weighted && !partial) pmb_loop(b, pts, c, 0, 0, 1);
-    else if (!weighted) pmb_loop(b, pts, c, 0, 1, 1);
-    else if (!partial) pmb_loop(b, pts, c, 1, 0, 1);
-    else pmb_loop(b, pts, c, 1, 1, 1);
-  } else if (!weighted && !partial) pmb_loop(b, pts, c, 0, 0, 0);
+  if (b->law == PF_DAMAGE_CRITICAL_ENERGY) pmb_force_energy(b, pts, c, weighted, partial);
+  else if (!weighted && !partial) pmb_loop(b, pts, c, 0, 0, 0);
   else if (!weighted) pmb_loop(b, pts, c, 0, 1, 0);
   else if (!partial) pmb_loop(b, pts, c, 1, 0, 0);
   else pmb_loop(b, pts, c, 1, 1, 0);
