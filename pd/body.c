@@ -276,6 +276,24 @@ int64_t pf_pd_body_damage(const pf_pd_body *b, pf_points *pts) {
   return nbroken;
 }
 
+int pf_pd_weighted_volumes(const pf_pd_body *b, pf_points *pts, double *m) {
+  const pf_family *fam = &b->fam;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    double s = 0;
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      pf_int j = fam->neighbor[k];
+      double r2 = 0;
+      for (int a = 0; a < 3; a++) r2 += pow(pts->X[3 * j + a] - pts->X[3 * i + a], 2);
+      s += pf_pd_omega(&b->influence, sqrt(r2)) * r2 * pf_pd_bond_volume(fam, pts->vol, k, j);
+    }
+    PF_CHECK(s > 0, PF_ERR_INPUT,
+             "body '%s': point %" PF_GID_FMT " at (%g, %g, %g) has no neighbour within the horizon %g m",
+             b->name, pts->gid[i], pts->X[3 * i], pts->X[3 * i + 1], pts->X[3 * i + 2], b->horizon);
+    m[i] = s;
+  }
+  return pf_points_exchange(pts, m, 1); /* the ghosts' m for the force pass */
+}
+
 double pf_pd_stable_dt_point(const pf_family *fam, const pf_points *pts, pf_int i, double rho,
                              double c, const pf_influence *w) {
   double sum = 0;

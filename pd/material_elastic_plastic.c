@@ -64,34 +64,7 @@ static int ep_setup(pf_pd_body *b, pf_points *pts) {
   p->theta = pts->fields[it].data;
   p->beta = pts->fields[ib].data;
   p->eqps = pts->fields[ie].data;
-  const pf_family *fam = &b->fam;
-  for (pf_int i = b->first; i < b->first + b->n; i++) {
-    double m = 0;
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-      pf_int j = fam->neighbor[k];
-      double r2 = 0;
-      for (int a = 0; a < 3; a++) r2 += pow(pts->X[3 * j + a] - pts->X[3 * i + a], 2);
-      m += pf_pd_omega(&b->influence, sqrt(r2)) * r2 * pf_pd_bond_volume(fam, pts->vol, k, j);
-    }
-    PF_CHECK(m > 0, PF_ERR_INPUT,
-             "body '%s': point %" PF_GID_FMT " at (%g, %g, %g) has no neighbour within the horizon %g m",
-             b->name, pts->gid[i], pts->X[3 * i], pts->X[3 * i + 1], pts->X[3 * i + 2], b->horizon);
-    p->m[i] = m;
-  }
-  return pf_points_exchange(pts, p->m, 1); /* the ghosts' m for the force pass */
-}
-
-/* Bond geometry: reference length r0, current length r, current bond vector e[3]. The same
- * operations from either end give bitwise the same r0 and r. */
-static inline void bond_lengths(const double *restrict X, const double *restrict Y, pf_int i,
-                                pf_int j, double *r0, double *r, double e[3]) {
-  double d2 = 0, e2 = 0;
-  for (int a = 0; a < 3; a++) {
-    double d = X[3 * j + a] - X[3 * i + a];
-    e[a] = Y[3 * j + a] - Y[3 * i + a];
-    d2 += d * d, e2 += e[a] * e[a];
-  }
-  *r0 = sqrt(d2), *r = sqrt(e2);
+  return pf_pd_weighted_volumes(b, pts, p->m);
 }
 
 /* Pass 1 for point i: dilatation (failing bonds beyond the critical stretch, as LPS), then the
@@ -105,7 +78,7 @@ static void ep_point(pf_pd_body *b, const pf_points *pts, pf_int i) {
   for (int64_t k = k0; k < k1; k++) {
     if (fam->broken[k]) continue;
     pf_int j = fam->neighbor[k];
-    bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+    pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
     double s = (r - r0) / r0;
     if (s > fmin(b->s0[i], b->s0[j])) {
       fam->broken[k] = 1;
@@ -120,7 +93,7 @@ static void ep_point(pf_pd_body *b, const pf_points *pts, pf_int i) {
   for (int64_t k = k0; k < k1; k++) {
     if (fam->broken[k]) continue;
     pf_int j = fam->neighbor[k];
-    bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+    pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
     const double tr = (r - r0) - th * r0 / 3 - fam->state[NSTATE * k];
     n2 += pf_pd_omega(&b->influence, r0) * tr * tr * pf_pd_bond_volume(fam, pts->vol, k, j);
   }
@@ -148,7 +121,7 @@ static int ep_force(pf_pd_body *b, pf_points *pts) {
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
       if (fam->broken[k]) continue;
       pf_int j = fam->neighbor[k];
-      bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+      pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
       const double ext = r - r0, w = pf_pd_omega(&b->influence, r0);
       const double aj = 3 * K * p->theta[j] / p->m[j], bj = 15 * G / p->m[j] * p->beta[j];
       const double edi = ext - p->theta[i] * r0 / 3, edj = ext - p->theta[j] * r0 / 3;
@@ -178,7 +151,7 @@ static double ep_energy(const pf_pd_body *b, const pf_points *pts) {
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
       if (fam->broken[k]) continue;
       pf_int j = fam->neighbor[k];
-      bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+      pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
       double ed = (r - r0) - p->theta[i] * r0 / 3 - fam->state[NSTATE * k];
       dev += pf_pd_omega(&b->influence, r0) * ed * ed * pf_pd_bond_volume(fam, pts->vol, k, j);
     }

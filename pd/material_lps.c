@@ -33,33 +33,7 @@ static int lps_setup(pf_pd_body *b, pf_points *pts) {
   PF_CALL(pf_points_field_register(pts, "dilatation", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT, &it));
   p->m = pts->fields[im].data;
   p->theta = pts->fields[it].data;
-  const pf_family *fam = &b->fam;
-  for (pf_int i = b->first; i < b->first + b->n; i++) {
-    double m = 0;
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-      pf_int j = fam->neighbor[k];
-      double r2 = 0;
-      for (int a = 0; a < 3; a++) r2 += pow(pts->X[3 * j + a] - pts->X[3 * i + a], 2);
-      m += pf_pd_omega(&b->influence, sqrt(r2)) * r2 * pf_pd_bond_volume(fam, pts->vol, k, j);
-    }
-    PF_CHECK(m > 0, PF_ERR_INPUT,
-             "body '%s': point %" PF_GID_FMT " at (%g, %g, %g) has no neighbour within the horizon %g m",
-             b->name, pts->gid[i], pts->X[3 * i], pts->X[3 * i + 1], pts->X[3 * i + 2], b->horizon);
-    p->m[i] = m;
-  }
-  return pf_points_exchange(pts, p->m, 1); /* the ghosts' m for the force pass */
-}
-
-/* Bond geometry: reference length r0, current length r, current bond vector e[3]. */
-static inline void bond_lengths(const double *restrict X, const double *restrict Y, pf_int i,
-                                pf_int j, double *r0, double *r, double e[3]) {
-  double d2 = 0, e2 = 0;
-  for (int a = 0; a < 3; a++) {
-    double d = X[3 * j + a] - X[3 * i + a];
-    e[a] = Y[3 * j + a] - Y[3 * i + a];
-    d2 += d * d, e2 += e[a] * e[a];
-  }
-  *r0 = sqrt(d2), *r = sqrt(e2);
+  return pf_pd_weighted_volumes(b, pts, p->m);
 }
 
 /* Pass 1: dilatation of point i; fails bonds beyond the critical stretch. */
@@ -69,7 +43,7 @@ static double lps_dilatation(pf_pd_body *b, const pf_points *pts, pf_int i, doub
   for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
     if (fam->broken[k]) continue;
     pf_int j = fam->neighbor[k];
-    bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+    pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
     double s = (r - r0) / r0;
     if (s > fmin(b->s0[i], b->s0[j])) {
       fam->broken[k] = 1;
@@ -110,7 +84,7 @@ static int lps_force(pf_pd_body *b, pf_points *pts) {
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
       if (fam->broken[k]) continue;
       pf_int j = fam->neighbor[k];
-      bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+      pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
       const double ext = r - r0, w = pf_pd_omega(&b->influence, r0);
       const double thj = p->theta[j], aj = 3 * K * thj / p->m[j], bj = 15 * G / p->m[j];
       const double tij = lps_t(ai, bi, thi, w, r0, ext), tji = lps_t(aj, bj, thj, w, r0, ext);
@@ -140,7 +114,7 @@ static double lps_energy(const pf_pd_body *b, const pf_points *pts) {
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
       if (fam->broken[k]) continue;
       pf_int j = fam->neighbor[k];
-      bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+      pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
       double ed = (r - r0) - p->theta[i] * r0 / 3;
       dev += pf_pd_omega(&b->influence, r0) * ed * ed * pf_pd_bond_volume(fam, pts->vol, k, j);
     }

@@ -86,6 +86,24 @@ static inline double pf_pd_omega(const pf_influence *w, double r) {
   return 1.0;
 }
 
+/* Ordinary state-based materials (LPS, elastic-plastic): the weighted volume
+ * m_i = sum_j omega |xi|^2 V_j of the owned points (Silling et al. 2007, eq. 90) into m, then the
+ * ghosts' values; an isolated point is an input error naming it (pd/body.c). */
+int pf_pd_weighted_volumes(const pf_pd_body *b, pf_points *pts, double *m);
+
+/* Bond geometry: reference length r0, current length r, current bond vector e[3]. The same
+ * operations from either end give bitwise the same r0 and r. */
+static inline void pf_pd_bond_lengths(const double *restrict X, const double *restrict Y, pf_int i,
+                                      pf_int j, double *r0, double *r, double e[3]) {
+  double d2 = 0, e2 = 0;
+  for (int a = 0; a < 3; a++) {
+    double d = X[3 * j + a] - X[3 * i + a];
+    e[a] = Y[3 * j + a] - Y[3 * i + a];
+    d2 += d * d, e2 += e[a] * e[a];
+  }
+  *r0 = sqrt(d2), *r = sqrt(e2);
+}
+
 /* Volume of bond b's neighbour j as seen from its owner: V_j times the partial-volume fraction. */
 static inline double pf_pd_bond_volume(const pf_family *fam, const double *vol, int64_t b,
                                        pf_int j) {
