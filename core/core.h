@@ -393,6 +393,8 @@ void pf_mat3_hughes_winget(double L[3][3], double dt, double R[3][3]);
 void pf_sym6_to_mat(const double s[6], double S[3][3]);
 /* s <- R s R^T */
 void pf_sym6_rotate(double R[3][3], double s[6]);
+/* The smallest eigenvalue of a symmetric A (only its upper triangle is read). */
+double pf_sym3_min_eigenvalue(double A[3][3]);
 
 /* ---- wall clock ----------------------------------------------------------- */
 double pf_wtime(void);

@@ -2,7 +2,7 @@
  *   v(t+dt/2) = v(t) + dt/2 a(t);  u(t+dt) = u(t) + dt v(t+dt/2);
  *   f(t+dt) from PD bodies, FE bodies, contact and walls;  v(t+dt) = v(t+dt/2) + dt/2 a(t+dt),
  * with prescribed motions applied to the mid-step velocity, walls to the new positions, a step
- * that follows the FE elements' stable step, and the instability guards
+ * that follows the FE elements' and correspondence points' stable step, and the instability guards
  * (core/simulation_guard.c). */
 #include "core/simulation_impl.h"
 
@@ -10,15 +10,25 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The stable step of the set-up: the PD bodies' (kept in pd_stable) and the FE elements' in
- * their reference shape. Collective. */
+/* The stable step of the PD bodies whose step changes as they deform (correspondence), now. */
+static double varying_pd_step(pf_sim *sim) {
+  double pd = INFINITY;
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->body[b] && pf_pd_body_step_varies(sim->body[b]))
+      pd = fmin(pd, pf_pd_body_stable_dt(sim->body[b], sim->pts));
+  return pd;
+}
+
+/* The stable step of the set-up: the fixed one of the other PD bodies and of the contact
+ * penalties (kept in pd_stable), the varying PD bodies' and the FE elements' in their reference
+ * shape. Collective. */
 static double stable_step(pf_sim *sim) {
   double pd = INFINITY, fe = INFINITY;
   for (int b = 0; b < sim->nbodies; b++)
-    if (sim->body[b]) pd = fmin(pd, pf_pd_body_stable_dt(sim->body[b], sim->pts));
-    else fe = fmin(fe, pf_fem_body_stable_dt(sim->fem[b]));
+    if (sim->fem[b]) fe = fmin(fe, pf_fem_body_stable_dt(sim->fem[b]));
+    else if (!pf_pd_body_step_varies(sim->body[b])) pd = fmin(pd, pf_pd_body_stable_dt(sim->body[b], sim->pts));
   sim->pd_stable = fmin(pf_min_all(pd), pf_sim_contact_stable_dt(sim)); /* with the penalties' */
-  return fmin(sim->pd_stable, pf_min_all(fe));
+  return fmin(sim->pd_stable, pf_min_all(fmin(fe, varying_pd_step(sim))));
 }
 
 int pf_sim_setup_time(pf_sim *sim) {
@@ -35,7 +45,9 @@ int pf_sim_setup_time(pf_sim *sim) {
   double stable = stable_step(sim);
   sim->safety = safety;
   sim->dt = safety * stable;
-  sim->adaptive = sim->nfem > 0 && !pf_node_get(tm, "dt"); /* FE elements change their stable step */
+  int varies = sim->nfem > 0; /* FE elements and correspondence points change their stable step */
+  for (int b = 0; b < sim->nbodies; b++) varies |= sim->body[b] && pf_pd_body_step_varies(sim->body[b]);
+  sim->adaptive = varies && !pf_node_get(tm, "dt");
   if (pf_node_get(tm, "dt")) {
     PF_CALL(pf_deck_real(d, tm, "dt", &sim->dt));
     if (!(sim->dt > 0)) return pf_deck_error(d, pf_node_get(tm, "dt"), "dt", "must be positive (got %g)", sim->dt);
@@ -58,8 +70,9 @@ int pf_sim_setup_time(pf_sim *sim) {
   return 0;
 }
 
-/* The step to take next: with FE bodies, the safety factor times the smaller of the PD step
- * and the elements' current stable step (bulk viscosity included). The run ends with the first
+/* The step to take next: with FE or correspondence bodies, the safety factor times the
+ * smallest of the fixed PD step, the correspondence points' and the elements' current stable
+ * step (bulk viscosity included). The run ends with the first
  * step that reaches final_time (as with a fixed step: the last step is not cut short, which
  * would change the step abruptly). The minimum over ranks keeps every rank on the same step.
  * Collective. */
@@ -68,7 +81,7 @@ static void next_dt(pf_sim *sim) {
   double fe = INFINITY;
   for (int b = 0; b < sim->nbodies; b++)
     if (sim->fem[b]) fe = fmin(fe, pf_fem_body_stable_dt(sim->fem[b]));
-  sim->dt = sim->safety * fmin(sim->pd_stable, pf_min_all(fe));
+  sim->dt = sim->safety * fmin(sim->pd_stable, pf_min_all(fmin(fe, varying_pd_step(sim))));
 }
 
 int pf_sim_finished(const pf_sim *sim) {

@@ -3,6 +3,8 @@
  * (xx, yy, zz, yz, xz, xy) with tensor (not engineering) shear components. */
 #include "core/core.h"
 
+#include <math.h>
+
 const int pf_voigt_i[6] = {0, 1, 2, 1, 0, 0}, pf_voigt_j[6] = {0, 1, 2, 2, 2, 1};
 
 double pf_mat3_inverse(double A[3][3], double inv[3][3]) {
@@ -54,4 +56,21 @@ void pf_sym6_rotate(double R[3][3], double s[6]) {
     int i = pf_voigt_i[k], j = pf_voigt_j[k];
     s[k] = R[i][0] * T[0][j] + R[i][1] * T[1][j] + R[i][2] * T[2][j];
   }
+}
+
+/* The smallest eigenvalue of a symmetric 3x3 matrix, by the trigonometric solution of the
+ * characteristic cubic (Smith 1961, Commun. ACM 4:168): with q = tr A / 3, B = (A - q I) / p,
+ * p = sqrt(tr (A - qI)^2 / 6), the eigenvalues are q + 2 p cos(phi + 2 pi k / 3),
+ * phi = acos(det B / 2) / 3; the smallest is k = 1. */
+double pf_sym3_min_eigenvalue(double A[3][3]) {
+  const double q = (A[0][0] + A[1][1] + A[2][2]) / 3.0;
+  const double off = A[0][1] * A[0][1] + A[0][2] * A[0][2] + A[1][2] * A[1][2];
+  const double a = A[0][0] - q, b = A[1][1] - q, c = A[2][2] - q;
+  const double p2 = (a * a + b * b + c * c + 2.0 * off) / 6.0;
+  if (!(p2 > 1e-30 * q * q)) return q; /* a multiple of I */
+  const double p = sqrt(p2);
+  const double det = (a * (b * c - A[1][2] * A[1][2]) - A[0][1] * (A[0][1] * c - A[1][2] * A[0][2]) +
+                      A[0][2] * (A[0][1] * A[1][2] - b * A[0][2])) / (p2 * p);
+  const double phi = acos(fmax(-1.0, fmin(1.0, 0.5 * det))) / 3.0;
+  return q + 2.0 * p * cos(phi + 2.0 * PF_PI / 3.0);
 }

@@ -307,7 +307,10 @@ double pf_pd_stable_dt_point(const pf_family *fam, const pf_points *pts, pf_int 
   return sum > 0 ? sqrt(2.0 * rho / sum) : INFINITY;
 }
 
+int pf_pd_body_step_varies(const pf_pd_body *b) { return b->ops->stable_dt != NULL; }
+
 double pf_pd_body_stable_dt(const pf_pd_body *b, const pf_points *pts) {
+  if (b->ops->stable_dt) return b->ops->stable_dt(b, pts);
   double c = b->ops->micromodulus ? b->ops->micromodulus(b)
                                   : pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, b->horizon);
   double dt = INFINITY;

@@ -42,14 +42,17 @@ typedef struct {
   int viscous;         /* hourglass control on the velocity deviation instead of the position's */
   double hg, dcrit, c; /* C_hg, D_c, micromodulus of the hourglass force */
   double tau;          /* viscous form: delta / c_L, the time a wave takes to cross the horizon */
+  double gamma;        /* max_k |b(k)| / (sum w V |xi| / lambda_min K) in the continuum (step) */
   double *sigma;       /* field "stress" [6]: Cauchy stress, Pa */
   double *state;       /* field "material_state_<nstate>" */
   double *work;        /* field "stress_work": stress work per reference volume, J/m^3 */
   double *hgwork;      /* field "hourglass_work": work of the hourglass forces, J */
   double *hgforce;     /* field "hourglass_force" [3]: last step's, for the trapezoidal work */
   double *gx;          /* field "correspondence" [GX] */
+  double *step;        /* field "stable_step": each point's stable step at its last evaluation */
   double **out;        /* [nstate] output fields named by the model's state names */
   double *F, *D, *s_old, *saved, *Jm; /* scratch: [9n], [6n], [6n], [nstate n], [n] */
+  double *rate, *whg2, *cw; /* scratch [n]: beta / sigma_min(Fbar), omega_hg^2, wave speed */
   pf_int cap;
 } corr;
 
@@ -70,6 +73,31 @@ static int read_hourglass(const pf_deck *d, const pf_node *h, corr *p) {
   else if (strcmp(type, "stiffness"))
     return pf_deck_error(d, pf_node_get(h, "type"), "type", "unknown hourglass control '%s' (known: stiffness, viscous, none)", type);
   return 0;
+}
+
+/* int_0^delta w r^3 j1(kappa r) dr, or int w r^3 dr when kappa = 0; Simpson's rule on 200
+ * intervals (the r = 0 end contributes nothing). */
+static double r3_moment(const pf_influence *w, double delta, double kappa) {
+  const int n = 200;
+  double sum = 0;
+  for (int q = 1; q <= n; q++) {
+    const double r = delta * q / n, x = kappa * r, wq = q == n ? 1 : (q % 2 ? 4 : 2);
+    const double j1 = x < 1e-3 ? x / 3.0 : sin(x) / (x * x) - cos(x) / x;
+    sum += wq * pf_pd_omega(w, r) * r * r * r * (kappa > 0 ? j1 : 1.0);
+  }
+  return sum * delta / (3.0 * n);
+}
+
+/* The wave factor of the stable step (docs/theory/materials.md §2.6): in the continuum,
+ * sum_j w V_j xi sin(k.xi) = 4 pi khat int w r^3 j1(|k| r) dr and K = (4 pi / 3) int w r^4 dr I, so
+ * max_k |b(k)| = gamma beta with gamma = max_kappa int w r^3 j1(kappa r) dr / int w r^3 dr, j1 the
+ * spherical Bessel function (0.416 for w = 1, 0.391 for the Gaussian of sigma = delta/2),
+ * searched over kappa delta on a 0.01 grid up to 30. */
+static double wave_factor(const pf_influence *w, double delta) {
+  const double den = r3_moment(w, delta, 0.0);
+  double best = 0;
+  for (int m = 1; m <= 3000; m++) best = fmax(best, r3_moment(w, delta, 0.01 * m / delta) / den);
+  return best;
 }
 
 static int corr_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
@@ -97,6 +125,7 @@ static int corr_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
     return pf_deck_error(d, dc, "critical_damage", "must satisfy 0 < D_c <= 1 (got %g)", p->dcrit);
   p->c = pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, b->horizon);
   p->tau = b->horizon / sqrt((b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / b->density);
+  p->gamma = wave_factor(&b->influence, b->horizon);
   return 0;
 }
 
@@ -113,6 +142,8 @@ static int register_fields(pf_pd_body *b, pf_points *pts) {
   p->hgforce = pts->fields[idx].data;
   PF_CALL(pf_points_field_register(pts, "correspondence", GX, PF_FIELD_GHOST | PF_FIELD_RESTART, &idx));
   p->gx = pts->fields[idx].data;
+  PF_CALL(pf_points_field_register(pts, "stable_step", 1, PF_FIELD_RESTART, &idx));
+  p->step = pts->fields[idx].data;
   if (!p->nstate) return 0;
   char name[32];
   snprintf(name, sizeof name, "material_state_%d", p->nstate); /* bodies own disjoint ranges */
@@ -127,13 +158,58 @@ static int register_fields(pf_pd_body *b, pf_points *pts) {
   return 0;
 }
 
+/* The stable step of a point (docs/theory/materials.md §2.6). Linearised about a homogeneous
+ * state, a plane wave u = U exp(i k.X) gives Fbar' = i U (x) b, b = K^-1 sum_j w V_j xi sin(k.xi),
+ * and the force density -(c:(U (x) b')) b' with b' = Fbar^-T b, so omega <= c |b'| <= c gamma
+ * beta / sigma_min(Fbar), where beta = sum_j w V_j |xi| / lambda_min(K) would bound |b| if every
+ * sin(k.xi) could be 1 at once, gamma (wave_factor) is the largest fraction of it a wave reaches
+ * in the continuum, and c is the model's current P-wave speed. The stiffness-form hourglass
+ * force adds at most omega_hg^2 = 4 C_hg c_hg sum_j w V_j / |xi| / rho (the PMB bound of Silling
+ * & Askari 2005, eq. 16, doubled: both ends' deviations act on a bond); eigenvalues of a sum add,
+ * so omega^2 sums. Computes rate = gamma beta / sigma_min (0 for a point without stiffness) and
+ * omega_hg^2; the step is 2 / sqrt((c rate)^2 + omega_hg^2). */
+static void step_rates(const pf_pd_body *b, double K[3][3], double Fb[3][3], const double sums[2],
+                       double *rate, double *whg2) {
+  const corr *p = b->mat;
+  double C[3][3];
+  for (int r = 0; r < 3; r++)
+    for (int c = 0; c < 3; c++) C[r][c] = Fb[0][r] * Fb[0][c] + Fb[1][r] * Fb[1][c] + Fb[2][r] * Fb[2][c];
+  const double lk = pf_sym3_min_eigenvalue(K), lc = pf_sym3_min_eigenvalue(C);
+  *rate = lk > 0 && lc > 0 ? p->gamma * sums[0] / (lk * sqrt(lc)) : 0.0;
+  *whg2 = p->viscous ? 0.0 : 4.0 * p->hg * p->c * sums[1] / b->density;
+}
+
+/* A point's stable step in the reference configuration (Fbar = I, the model's initial P-wave
+ * speed), before its first evaluation. */
+static double reference_step(const pf_pd_body *b, const pf_points *pts, pf_int i) {
+  const pf_family *fam = &b->fam;
+  double K[3][3] = {{0}}, I[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, sums[2] = {0, 0}, rate, whg2;
+  for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+    if (fam->broken[k]) continue;
+    const pf_int j = fam->neighbor[k];
+    double xi[3], r2 = 0;
+    for (int a = 0; a < 3; a++) xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a], r2 += xi[a] * xi[a];
+    const double r0 = sqrt(r2), w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    for (int r = 0; r < 3; r++)
+      for (int c = 0; c < 3; c++) K[r][c] += w * xi[r] * xi[c];
+    sums[0] += w * r0, sums[1] += w / r0;
+  }
+  step_rates(b, K, I, sums, &rate, &whg2);
+  const double c = sqrt((b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / b->density);
+  return 2.0 / sqrt(c * c * rate * rate + whg2);
+}
+
 static int corr_setup(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   PF_CALL(register_fields(b, pts));
   if (b->n > p->cap) {
     free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm);
-    p->F = p->D = p->s_old = p->saved = p->Jm = NULL;
+    free(p->rate), free(p->whg2), free(p->cw);
+    p->F = p->D = p->s_old = p->saved = p->Jm = p->rate = p->whg2 = p->cw = NULL;
     PF_MALLOC(p->Jm, b->n);
+    PF_MALLOC(p->rate, b->n);
+    PF_MALLOC(p->whg2, b->n);
+    PF_MALLOC(p->cw, b->n);
     PF_MALLOC(p->F, 9 * (size_t)b->n);
     PF_MALLOC(p->D, 6 * (size_t)b->n);
     PF_MALLOC(p->s_old, 6 * (size_t)b->n);
@@ -149,6 +225,7 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
       for (int a = 0; a < 3; a++) p->hgforce[3 * i + a] = 0.0;
     }
     if (p->nstate) pf_fem_material_init(p->cm, b->n, &p->state[(size_t)p->nstate * b->first]);
+    for (pf_int i = b->first; i < b->first + b->n; i++) p->step[i] = reference_step(b, pts, i);
   }
   return pf_points_exchange(pts, p->gx, GX);
 }
@@ -161,12 +238,13 @@ static void mat_mul(double A[3][3], double B[3][3], double C[3][3]) {
 /* The shape tensor and the deformation and rate sums of point i over its intact bonds; fails
  * bonds beyond the critical stretch. Returns the number of intact bonds. */
 static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][3], double A[3][3],
-                     double B[3][3]) {
+                     double B[3][3], double sums[2]) {
   const pf_family *fam = &b->fam;
   const pf_int li = i - b->first;
   double smin = INFINITY;
   int nb = 0;
   memset(K, 0, 9 * sizeof(double)), memset(A, 0, 9 * sizeof(double)), memset(B, 0, 9 * sizeof(double));
+  sums[0] = sums[1] = 0.0;
   for (int64_t k = fam->offset[li]; k < fam->offset[li + 1]; k++) {
     if (fam->broken[k]) continue;
     const pf_int j = fam->neighbor[k];
@@ -193,6 +271,7 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
         A[r][s] += w * Y[r] * xi[s];
         B[r][s] += w * Yd[r] * xi[s];
       }
+    sums[0] += w * r0, sums[1] += w / r0;
     nb++;
   }
   b->smin[li] = smin;
@@ -206,8 +285,8 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
   corr *p = b->mat;
   const pf_int li = i - b->first;
   double K[3][3], A[3][3], B[3][3], Ki[3][3], Fb[3][3], Fd[3][3], Fm[3][3], Fmi[3][3], L[3][3], R[3][3];
-  double *g = &p->gx[GX * i], *F = &p->F[9 * li], *D = &p->D[6 * li];
-  const int nb = bond_sums(b, pts, i, K, A, B);
+  double *g = &p->gx[GX * i], *F = &p->F[9 * li], *D = &p->D[6 * li], sums[2];
+  const int nb = bond_sums(b, pts, i, K, A, B, sums);
   const double detK = pf_mat3_inverse(K, Ki), tr = (K[0][0] + K[1][1] + K[2][2]) / 3.0;
   int ok = nb >= 3 && detK > 1e-6 * tr * tr * tr;
   if (ok) {
@@ -218,6 +297,7 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
                Fb[0][1] * (Fb[1][0] * Fb[2][2] - Fb[1][2] * Fb[2][0]) +
                Fb[0][2] * (Fb[1][0] * Fb[2][1] - Fb[1][1] * Fb[2][0]);
     ok = J > 0 && (p->Jm[li] = pf_mat3_inverse(Fm, Fmi)) > 0;
+    if (ok) step_rates(b, K, Fb, sums, &p->rate[li], &p->whg2[li]);
   }
   g[G_DETACHED] = !ok;
   if (!ok) { /* the model sees a state at rest; its result is discarded */
@@ -284,15 +364,18 @@ static int corr_pass1(pf_pd_body *b, pf_points *pts) {
   for (pf_int i = b->first; i < b->first + b->n; i++) ndetached += !kinematics(b, pts, i);
   double *state = ns ? &p->state[(size_t)ns * b->first] : NULL;
   if (ndetached && ns) memcpy(p->saved, state, sizeof(double) * ns * b->n);
-  pf_fem_material_update(p->cm, b->n, b->dt, p->F, p->D, &p->sigma[6 * b->first], state, NULL);
+  pf_fem_material_update(p->cm, b->n, b->dt, p->F, p->D, &p->sigma[6 * b->first], state, p->cw);
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     const pf_int li = i - b->first;
     double *g = &p->gx[GX * i];
     if (g[G_DETACHED]) { /* keep its stress and history as they were */
       memcpy(&p->sigma[6 * i], &p->s_old[6 * li], 6 * sizeof(double));
       if (ns) memcpy(&state[(size_t)ns * li], &p->saved[(size_t)ns * li], sizeof(double) * ns);
+      p->step[i] = INFINITY; /* it carries no stress */
     } else {
       stress_to_force_state(b, i);
+      const double wc = p->cw[li] * p->rate[li];
+      p->step[i] = 2.0 / sqrt(wc * wc + p->whg2[li]);
     }
     g[G_DAMAGE] = p->idamage >= 0 ? state[(size_t)ns * li + p->idamage] : 0.0;
     for (int k = 0; k < ns; k++) p->out[k][i] = state[(size_t)ns * li + k];
@@ -361,18 +444,20 @@ static double corr_energy(const pf_pd_body *b, const pf_points *pts) {
   return e;
 }
 
-/* For the stable step: the PMB micromodulus of equal P-wave modulus, K_eq = (K + 4G/3) / 1.8,
- * plus the hourglass stiffness C_hg c. */
-static double corr_micromodulus(const pf_pd_body *b) {
+/* The body's stable step now: the smallest of its points' (docs/theory/materials.md §2.6). */
+static double corr_stable_dt(const pf_pd_body *b, const pf_points *pts) {
+  (void)pts;
   const corr *p = b->mat;
-  double keq = (b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / 1.8;
-  return pf_pd_pmb_micromodulus(keq, &b->influence, b->horizon) + (p->viscous ? 0.0 : p->hg * p->c);
+  double dt = INFINITY;
+  for (pf_int i = b->first; i < b->first + b->n; i++) dt = fmin(dt, p->step[i]);
+  return dt;
 }
 
 static void corr_destroy(pf_pd_body *b) {
   corr *p = b->mat;
   pf_fem_material_destroy(&p->cm);
   free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm), free(p->out);
+  free(p->rate), free(p->whg2), free(p->cw);
   PF_FREE(b->mat);
 }
 
@@ -382,6 +467,6 @@ const pf_pd_material_ops pf_pd_material_correspondence = {
     .setup = corr_setup,
     .force = corr_force,
     .energy = corr_energy,
-    .micromodulus = corr_micromodulus,
+    .stable_dt = corr_stable_dt,
     .destroy = corr_destroy,
 };

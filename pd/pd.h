@@ -117,8 +117,11 @@ double pf_pd_body_energy(const pf_pd_body *b, const pf_points *pts);
 /* Point damage phi = 1 - intact bond volume / family volume into the "damage" field;
  * returns the number of broken directed bonds. */
 int64_t pf_pd_body_damage(const pf_pd_body *b, pf_points *pts);
-/* Silling–Askari critical time step of the body: min_i sqrt(2 rho / sum_j V_j c / |xi|). */
+/* Critical time step of the body: Silling–Askari's min_i sqrt(2 rho / sum_j V_j c / |xi|), or,
+ * for a body whose step changes as it deforms (correspondence), its current step. */
 double pf_pd_body_stable_dt(const pf_pd_body *b, const pf_points *pts);
+/* Does the body's stable step change as it deforms (then the time loop asks every step)? */
+int pf_pd_body_step_varies(const pf_pd_body *b);
 /* Number of directed bonds (intact or broken) of the body. */
 int64_t pf_pd_body_nbonds(const pf_pd_body *b);
 

@@ -55,6 +55,9 @@ struct pf_pd_material_ops {
   int (*force)(pf_pd_body *b, pf_points *pts);
   double (*energy)(const pf_pd_body *b, const pf_points *pts);
   double (*micromodulus)(const pf_pd_body *b); /* c for the stable step */
+  /* the body's current stable step, for a material whose step changes as it deforms (then
+   * micromodulus is unused and the time loop asks for it every step); NULL: fixed */
+  double (*stable_dt)(const pf_pd_body *b, const pf_points *pts);
   double (*critical_stretch)(const pf_pd_body *b, double G0); /* from G0, or NULL */
   void (*destroy)(pf_pd_body *b);
 };

@@ -2,12 +2,67 @@
  * c / |xi_ij|)) for K = 14.9 GPa, rho = 2200, h = 0.5 mm at an interior point, against the
  * values of REFERENCES.md (recomputed independently there): delta/h = 2, 3, 4, 5 -> 9.66e-8,
  * 1.355e-7, 1.863e-7, 2.298e-7 s. Bonds with |xi| = delta count (delta is taken 1e-9 above
- * ratio*h so that round-off in the lattice does not decide). */
+ * ratio*h so that round-off in the lattice does not decide).
+ *
+ * Correspondence (docs/theory/materials.md §2.6): at an interior point of a 13^3 lattice (w = 1,
+ * delta = 3.01 h, elastic, at rest) the field "stable_step" must be 2 lambda_min(K) / (c_L gamma
+ * sum_j V |xi|), with K and the sum enumerated here over the lattice offsets and gamma from the
+ * closed form int_0^a x^3 j1(x) dx = 3 sin a - 3 a cos a - a^2 sin a: gamma = max_a 4 (3 sin a
+ * - 3 a cos a - a^2 sin a) / a^4 (0.4161). And pf_sym3_min_eigenvalue against matrices of known
+ * spectrum. */
 #include "test_common.h"
 
+#include <math.h>
 #include <stdio.h>
 
 #include "core/simulation.h"
+
+/* Q diag(l) Q^T with Q a rotation about (1, 2, 2)/3 by 0.7 rad: its smallest eigenvalue. */
+static void check_min_eigenvalue(double l0, double l1, double l2) {
+  const double n[3] = {1.0 / 3, 2.0 / 3, 2.0 / 3}, c = cos(0.7), s = sin(0.7), l[3] = {l0, l1, l2};
+  double Q[3][3], A[3][3];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) /* Rodrigues */
+      Q[i][j] = c * (i == j) + (1 - c) * n[i] * n[j] +
+                s * (i == j ? 0 : (((j - i + 3) % 3 == 1) ? -n[3 - i - j] : n[3 - i - j]));
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) A[i][j] = Q[i][0] * l[0] * Q[j][0] + Q[i][1] * l[1] * Q[j][1] + Q[i][2] * l[2] * Q[j][2];
+  PF_TEST_CLOSE(pf_sym3_min_eigenvalue(A), fmin(l0, fmin(l1, l2)), 1e-12, 1e-12);
+}
+
+static void correspondence_step(void) {
+  const double h = 1e-3, delta = 3.01 * h, E = 200e9, nu = 0.3, rho = 7800;
+  char deck[1024];
+  snprintf(deck, sizeof deck,
+           "materials: {s: {model: elastic, density: %g, youngs_modulus: %g, poissons_ratio: %g}}\n"
+           "bodies:\n  - {name: b, material: s, horizon: %.17g, hourglass: {type: none},\n"
+           "     geometry: {shape: box, lo: [0, 0, 0], hi: [%.17g, %.17g, %.17g], spacing: %.17g}}\n"
+           "time: {steps: 0}\n", rho, E, nu, delta, 12 * h, 12 * h, 12 * h, h);
+  pf_sim *sim = pf_test_sim("stable_dt_corr", deck);
+  const pf_points *p = pf_sim_points(sim);
+  const double *step = pf_points_field_get(p, "stable_step");
+  PF_TEST_TRUE(step != NULL);
+  double lam = 0, sum = 0, gamma = 0; /* lattice sums: K = lam I by cubic symmetry */
+  for (int i = -3; i <= 3; i++)
+    for (int j = -3; j <= 3; j++)
+      for (int k = -3; k <= 3; k++) {
+        const double r = h * sqrt(i * i + j * j + k * k);
+        if (r == 0 || r > delta) continue;
+        lam += h * h * h * r * r / 3, sum += h * h * h * r;
+      }
+  for (double a = 0.001; a < 30; a += 0.001)
+    gamma = fmax(gamma, 4 * (3 * sin(a) - 3 * a * cos(a) - a * a * sin(a)) / pow(a, 4));
+  PF_TEST_CLOSE(gamma, 0.4161, 0, 1e-4);
+  const double K = E / (3 * (1 - 2 * nu)), G = E / (2 * (1 + nu)), cl = sqrt((K + 4 * G / 3) / rho);
+  int found = 0;
+  for (pf_int i = 0; step && i < p->n_owned; i++)
+    if (fabs(p->X[3 * i] - 6 * h) + fabs(p->X[3 * i + 1] - 6 * h) + fabs(p->X[3 * i + 2] - 6 * h) < 1e-9) {
+      PF_TEST_CLOSE(step[i], 2 * lam / (cl * gamma * sum), 2e-4, 0);
+      found++;
+    }
+  PF_TEST_TRUE(pf_sum_all(found) == 1);
+  pf_sim_destroy(&sim);
+}
 
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
@@ -15,6 +70,7 @@ int main(int argc, char **argv) {
   for (int r = 2; r <= 5; r++) {
     char deck[1024];
     snprintf(deck, sizeof deck,
+
              "materials: {g: {model: pmb, density: 2200, bulk_modulus: 14.9e9}}\n"
              "bodies:\n  - {name: b, material: g, horizon: %.17g,\n"
              "     geometry: {shape: box, lo: [0, 0, 0], hi: [%.17g, %.17g, %.17g], spacing: %.17g}}\n"
@@ -24,5 +80,10 @@ int main(int argc, char **argv) {
     PF_TEST_CLOSE(pf_sim_dt(sim), want[r - 2], 5e-4, 0);
     pf_sim_destroy(&sim);
   }
+  check_min_eigenvalue(3, 1, 2);
+  check_min_eigenvalue(-1, 5, 0.5);
+  check_min_eigenvalue(2, 2, 2);
+  check_min_eigenvalue(4, 1e-3, 1e-3);
+  correspondence_step();
   return pf_test_finish();
 }
