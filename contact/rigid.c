@@ -87,15 +87,6 @@ static int lookup(const char *name, const char *const *names, int n, char *buf, 
   return -1;
 }
 
-/* A unit vector from a VEC3 key; zero is an error. */
-static int unit_vector(const pf_deck *d, const pf_node *map, const char *key, double u[3]) {
-  PF_CALL(pf_deck_vec3(d, map, key, u));
-  double len = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-  if (!(len > 0)) return pf_deck_error(d, pf_node_get(map, key), key, "must not be zero");
-  for (int a = 0; a < 3; a++) u[a] /= len;
-  return 0;
-}
-
 static int read_shape(const pf_deck *d, const pf_node *map, pf_rigid *r) {
   const char *shape = "";
   char known[64];
@@ -115,13 +106,13 @@ static int read_shape(const pf_deck *d, const pf_node *map, pf_rigid *r) {
     PF_CALL(need(d, map, "point", "a plane"));
     PF_CALL(need(d, map, "normal", "a plane"));
     PF_CALL(pf_deck_vec3(d, map, "point", r->x));
-    PF_CALL(unit_vector(d, map, "normal", r->normal));
+    PF_CALL(pf_deck_unit_vec3(d, map, "normal", r->normal));
   } else {
     PF_CALL(need(d, map, "center", "a cylinder"));
     PF_CALL(need(d, map, "axis", "a cylinder"));
     PF_CALL(need(d, map, "radius", "a cylinder"));
     PF_CALL(pf_deck_vec3(d, map, "center", r->x));
-    PF_CALL(unit_vector(d, map, "axis", r->axis));
+    PF_CALL(pf_deck_unit_vec3(d, map, "axis", r->axis));
     PF_CALL(pf_deck_positive(d, map, "radius", &r->radius));
     if (pf_node_get(map, "length")) {
       double len;

@@ -31,10 +31,7 @@ int pf_wall_create(const pf_deck *d, const pf_node *map, int nbodies, const char
   int ierr = pf_deck_string(d, map, "name", &name);
   snprintf(w->name, sizeof w->name, "%s", name);
   if (!ierr) ierr = pf_deck_vec3(d, map, "point", w->p);
-  if (!ierr) ierr = pf_deck_vec3(d, map, "normal", w->n);
-  double len = sqrt(w->n[0] * w->n[0] + w->n[1] * w->n[1] + w->n[2] * w->n[2]);
-  if (!ierr && !(len > 0)) ierr = pf_deck_error(d, pf_node_get(map, "normal"), "normal", "must not be zero");
-  for (int a = 0; a < 3 && !ierr; a++) w->n[a] /= len;
+  if (!ierr) ierr = pf_deck_unit_vec3(d, map, "normal", w->n);
   const pf_node *list = pf_node_get(map, "bodies");
   w->bodies = list ? 0 : ~(uint64_t)0;
   for (int k = 0; k < pf_node_count(list) && !ierr; k++) {

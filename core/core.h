@@ -176,6 +176,8 @@ int pf_deck_string(const pf_deck *d, const pf_node *map, const char *key, const 
 int pf_deck_vec3(const pf_deck *d, const pf_node *map, const char *key, double out[3]);
 /* An optional real that must be positive: the value given (or the default left in *out). */
 int pf_deck_positive(const pf_deck *d, const pf_node *map, const char *key, double *out);
+/* A direction: the vector given, scaled to unit length; zero is an error. */
+int pf_deck_unit_vec3(const pf_deck *d, const pf_node *map, const char *key, double u[3]);
 /* The index of the body a scalar node names (item, under key) among names[nbodies]; an unknown
  * name is an error listing the known ones. */
 int pf_deck_body_index(const pf_deck *d, const pf_node *item, const char *key, int nbodies,

@@ -211,6 +211,14 @@ int pf_deck_positive(const pf_deck *d, const pf_node *map, const char *key, doub
   return 0;
 }
 
+int pf_deck_unit_vec3(const pf_deck *d, const pf_node *map, const char *key, double u[3]) {
+  PF_CALL(pf_deck_vec3(d, map, key, u));
+  const double len = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  if (!(len > 0)) return pf_deck_error(d, pf_node_get(map, key), key, "must not be zero");
+  for (int a = 0; a < 3; a++) u[a] /= len;
+  return 0;
+}
+
 int pf_deck_body_index(const pf_deck *d, const pf_node *item, const char *key, int nbodies,
                        const char *const *names, int *b) {
   const char *name = pf_node_text(item);

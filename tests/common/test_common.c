@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <unistd.h>
 
 #include "core/simulation.h"
@@ -75,6 +76,32 @@ const char *pf_test_write_mesh(const char *tag, const void *mesh) {
   snprintf(path, sizeof path, "/tmp/pf_test_%s_%d.e", tag, id);
   int ok = pf_comm_rank() != 0 || pf_fem_mesh_write_exodus(path, (const pf_fem_mesh *)mesh) == 0;
   pf_test_true(ok, "pf_fem_mesh_write_exodus", __FILE__, __LINE__);
+  MPI_Barrier(MPI_COMM_WORLD);
+  return path;
+}
+
+const char *pf_test_deck_variant(const char *deck, int n, const char *const *keys, const char *const *lines) {
+  static char path[512];
+  int id = (int)getpid(); /* rank 0's: every rank reads the file rank 0 writes */
+  MPI_Bcast(&id, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  const char *slash = strrchr(deck, '/');
+  const int dir = slash ? (int)(slash - deck + 1) : 0;
+  snprintf(path, sizeof path, "%.*s.variant_%d_%s", dir, deck, id, deck + dir);
+  if (pf_comm_rank() == 0) {
+    FILE *in = fopen(deck, "r"), *out = fopen(path, "w");
+    if (!in || !out) {
+      fprintf(stderr, "cannot copy %s to %s\n", deck, path);
+      exit(1);
+    }
+    char line[1024];
+    while (fgets(line, sizeof line, in)) {
+      int k = 0;
+      while (k < n && !strstr(line, keys[k])) k++;
+      if (k < n) fprintf(out, "%s\n", lines[k]);
+      else fputs(line, out);
+    }
+    fclose(in), fclose(out);
+  }
   MPI_Barrier(MPI_COMM_WORLD);
   return path;
 }

@@ -23,6 +23,10 @@ const char *pf_test_write_file(int slot, const char *tag, const char *text);
 /* Write an FE mesh as an Exodus file on rank 0, under a /tmp name every rank shares (rank 0's
  * process id); returns the path (static storage). Remove it with pf_test_remove_shared. */
 const char *pf_test_write_mesh(const char *tag, const void *mesh); /* mesh: a pf_fem_mesh */
+/* A copy of the deck file beside it (same folder, so relative paths still hold) in which every
+ * line containing keys[k] is replaced by lines[k]; returns its path (static storage). Rank 0
+ * writes it, every rank may read it. Remove it with pf_test_remove_shared. Collective. */
+const char *pf_test_deck_variant(const char *deck, int n, const char *const *keys, const char *const *lines);
 /* Rank 0 removes path once every rank is past this point. Collective. */
 void pf_test_remove_shared(const char *path);
 /* Build a simulation from deck text (no output files); aborts the test on failure. */

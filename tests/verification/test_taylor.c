@@ -11,32 +11,21 @@
 #include "test_common.h"
 
 #include <math.h>
-#include <string.h>
-#include <unistd.h>
+#include <stdio.h>
 
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
   const char *deck = "../inputs/taylor_impact.yaml";
-  char tmp[256] = "";
+  char line[64];
   if (argc > 1) { /* the same deck with another element size */
-    FILE *in = fopen(deck, "r");
-    snprintf(tmp, sizeof tmp, "../inputs/.taylor_%d.yaml", (int)getpid());
-    FILE *out = pf_comm_rank() == 0 ? fopen(tmp, "w") : NULL;
-    char line[512];
-    while (in && fgets(line, sizeof line, in))
-      if (out) {
-        if (strstr(line, "element_size:")) fprintf(out, "      element_size: %s\n", argv[1]);
-        else fputs(line, out);
-      }
-    if (in) fclose(in);
-    if (out) fclose(out);
-    MPI_Barrier(MPI_COMM_WORLD);
-    deck = tmp;
+    snprintf(line, sizeof line, "      element_size: %s", argv[1]);
+    const char *key = "element_size:", *lines[1] = {line};
+    deck = pf_test_deck_variant(deck, 1, &key, lines);
   }
   pf_sim_options opt = {.no_output = 1};
   pf_sim *sim = NULL;
   if (pf_sim_create(deck, &opt, &sim)) return 1;
-  if (tmp[0] && pf_comm_rank() == 0) remove(tmp);
+  if (argc > 1) pf_test_remove_shared(deck);
   pf_sim_globals g0, g;
   PF_TEST_OK(pf_sim_step(sim, 0));
   PF_TEST_OK(pf_sim_globals_get(sim, &g0));

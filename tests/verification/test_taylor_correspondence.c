@@ -21,44 +21,26 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
-#include <unistd.h>
 
 static const double L0 = 32.4e-3;
-
-/* The deck with lattice spacing h (and origin h/2 above the wall, horizon 3.01 h) in a file of
- * its own; returns its path. */
-static const char *deck_with_spacing(double h, char *tmp, size_t len) {
-  FILE *in = fopen("data/taylor_correspondence.yaml", "r");
-  int pid = (int)getpid(); /* rank 0's names the file every rank reads */
-  MPI_Bcast(&pid, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  snprintf(tmp, len, "data/.taylor_corr_%d.yaml", pid);
-  FILE *out = pf_comm_rank() == 0 ? fopen(tmp, "w") : NULL;
-  char line[512];
-  while (in && fgets(line, sizeof line, in))
-    if (out) {
-      if (strstr(line, "spacing:")) fprintf(out, "      spacing: %.17g\n", h);
-      else if (strstr(line, "origin:")) fprintf(out, "      origin: [0, 0, %.17g]\n", 0.5 * h);
-      else if (strstr(line, "horizon:")) fprintf(out, "    horizon: %.17g\n", 3.01 * h);
-      else fputs(line, out);
-    }
-  if (in) fclose(in);
-  if (out) fclose(out);
-  MPI_Barrier(MPI_COMM_WORLD);
-  return tmp;
-}
 
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
   double h = L0 / 42;
-  char tmp[256] = "";
   const char *deck = "data/taylor_correspondence.yaml";
-  if (argc > 1) h = atof(argv[1]), deck = deck_with_spacing(h, tmp, sizeof tmp);
+  if (argc > 1) { /* lattice spacing h, its origin h/2 above the wall, horizon 3.01 h */
+    h = atof(argv[1]);
+    char lines[3][96];
+    snprintf(lines[0], sizeof lines[0], "      spacing: %.17g", h);
+    snprintf(lines[1], sizeof lines[1], "      origin: [0, 0, %.17g]", 0.5 * h);
+    snprintf(lines[2], sizeof lines[2], "    horizon: %.17g", 3.01 * h);
+    const char *keys[3] = {"spacing:", "origin:", "horizon:"}, *l[3] = {lines[0], lines[1], lines[2]};
+    deck = pf_test_deck_variant(deck, 3, keys, l);
+  }
   pf_sim_options opt = {.no_output = 1};
   pf_sim *sim = NULL;
   if (pf_sim_create(deck, &opt, &sim)) return 1;
-  MPI_Barrier(MPI_COMM_WORLD); /* every rank has read it */
-  if (tmp[0] && pf_comm_rank() == 0) remove(tmp);
+  if (argc > 1) pf_test_remove_shared(deck);
   pf_sim_globals g0, g;
   PF_TEST_OK(pf_sim_step(sim, 0));
   PF_TEST_OK(pf_sim_globals_get(sim, &g0));
