@@ -134,6 +134,7 @@ typedef enum {
   PF_KEY_STRING,
   PF_KEY_VEC3,    /* [a, b, c] reals */
   PF_KEY_EXPR3,   /* [ex, ey, ez] expressions in x, y, z, t (or reals) */
+  PF_KEY_EXPR,    /* one expression in x, y, z (or a real) */
   PF_KEY_MAP,     /* a nested mapping checked by its own table */
   PF_KEY_LIST,    /* a sequence of mappings, each checked by its own table */
   PF_KEY_STRLIST, /* a sequence of strings */

@@ -71,6 +71,7 @@ static const char *type_name(pf_key_type t) {
   static const char *names[] = {"a real number", "an integer", "true or false", "a string",
                                 "a list of 3 reals [x, y, z]",
                                 "a list of 3 expressions in x, y, z, t",
+                                "a real or an expression in x, y, z",
                                 "a mapping", "a list of mappings", "a list of strings",
                                 "a mapping of names"};
   return names[t];
@@ -108,7 +109,7 @@ static int check_value(const pf_deck *d, const pf_node *map, int i, const pf_key
   char sub[256];
   int ok;
   switch (k->type) {
-  case PF_KEY_REAL: case PF_KEY_INT: case PF_KEY_BOOL: case PF_KEY_STRING:
+  case PF_KEY_REAL: case PF_KEY_INT: case PF_KEY_BOOL: case PF_KEY_STRING: case PF_KEY_EXPR:
     ok = check_scalar_type(v, k->type);
     break;
   case PF_KEY_MAP: case PF_KEY_ANYMAP: ok = v->kind == NODE_MAP; break;

@@ -33,7 +33,7 @@ void pf_sim_guard_free(pf_sim *sim) {
  * cell (the cube root of its lumped volume). */
 static double reach(const pf_sim *sim, pf_int i) {
   int b = sim->pts->body[i];
-  return sim->body[b] ? pf_pd_body_horizon(sim->body[b]) : sim->pts->cell[i];
+  return sim->body[b] ? pf_pd_body_point_horizon(sim->body[b], i) : sim->pts->cell[i];
 }
 
 void pf_sim_guard_motion(pf_sim *sim, double dt) {

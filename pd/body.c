@@ -37,7 +37,12 @@ const pf_key pf_pd_body_keys[] = {
     {"type", PF_KEY_STRING, 0, "peridynamic", "", "peridynamic", NULL},
     {"material", PF_KEY_STRING, 1, NULL, "", "a name under materials:", NULL},
     {"geometry", PF_KEY_MAP, 1, NULL, "", "where the points are", pf_geometry_keys},
-    {"horizon", PF_KEY_REAL, 1, NULL, "m", "horizon delta (bonds with |xi| <= delta)", NULL},
+    {"horizon", PF_KEY_EXPR, 1, NULL, "m",
+     "horizon delta (bonds with |xi| <= delta): a number, or an expression in x, y, z (a variable "
+     "horizon; lps and correspondence materials)", NULL},
+    {"formulation", PF_KEY_STRING, 0, "auto", "",
+     "auto (partial stress where the horizon varies within a family, standard elsewhere) | "
+     "standard | partial_stress (lps and correspondence materials)", NULL},
     {"influence", PF_KEY_STRING, 0, "constant", "", "constant | inverse_distance | gaussian", NULL},
     {"influence_length", PF_KEY_REAL, 0, "horizon/2", "m", "gaussian: sigma in exp(-r^2/sigma^2)", NULL},
     {"partial_volumes", PF_KEY_BOOL, 0, "false", "",
@@ -145,10 +150,63 @@ static int read_influence(const pf_deck *d, const pf_node *body, pf_pd_body *b) 
   if (pf_pd_influence_by_name(name, &b->influence.kind))
     return pf_deck_error(d, pf_node_get(body, "influence"), "influence",
                          "unknown influence function '%s' (known: %s)", name, pf_pd_influence_names());
-  b->influence.length = 0.5 * b->horizon;
+  b->influence.length = 0.5 * b->horizon; /* (a variable horizon refuses the gaussian) */
   PF_CALL(pf_deck_real(d, body, "influence_length", &b->influence.length));
-  if (!(b->influence.length > 0))
+  if (!(b->influence.length > 0) && (!b->hz_expr || pf_node_get(body, "influence_length")))
     return pf_deck_error(d, pf_node_get(body, "influence_length"), "influence_length", "must be positive");
+  return 0;
+}
+
+/* The horizon: a positive number, or an expression of position (its largest value over the
+ * body's points is known once they are: pf_pd_body_find_bonds). */
+static int read_horizon(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
+  const pf_node *h = pf_node_get(body, "horizon");
+  const char *text = pf_node_text(h);
+  char *end = NULL;
+  b->horizon = strtod(text, &end);
+  if (end != text && *end == '\0') {
+    if (!(b->horizon > 0)) return pf_deck_error(d, h, "horizon", "must be positive (got %g)", b->horizon);
+    return 0;
+  }
+  b->horizon = 0; /* until the points are known */
+  return pf_expr_create(text, d, h, "horizon", &b->hz_expr);
+}
+
+static int read_formulation(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
+  const char *name = "auto", *names[] = {"auto", "standard", "partial_stress"};
+  PF_CALL(pf_deck_string(d, body, "formulation", &name));
+  for (int k = 0; k < 3; k++)
+    if (!strcmp(name, names[k])) {
+      b->form = (pf_pd_formulation)k;
+      return 0;
+    }
+  return pf_deck_error(d, pf_node_get(body, "formulation"), "formulation",
+                       "unknown formulation '%s' (known: auto, standard, partial_stress)", name);
+}
+
+/* What a variable horizon and the partial-stress form need (docs/theory/coupling.md §1). */
+static int check_variable_horizon(const pf_deck *d, const pf_node *body, const pf_pd_body *b) {
+  const pf_node *h = pf_node_get(body, "horizon"), *f = pf_node_get(body, "formulation");
+  const pf_node *dmg = pf_node_get(body, "damage");
+  if ((b->hz_expr || b->form == PF_PD_PARTIAL_STRESS) && !b->ops->partial_stress)
+    return pf_deck_error(d, b->hz_expr ? h : f, b->hz_expr ? "horizon" : "formulation",
+                         "a variable horizon and the partial-stress form need lps or a correspondence "
+                         "material (body '%s' has %s)", b->name, b->ops->name);
+  if (b->form == PF_PD_PARTIAL_STRESS && b->law != PF_DAMAGE_NONE)
+    return pf_deck_error(d, dmg, "damage", "body '%s' is all partial stress (a transition region), which "
+                         "carries no damage; use formulation: auto to keep damage where the horizon is "
+                         "constant", b->name);
+  if (!b->hz_expr) return 0;
+  if (b->partial)
+    return pf_deck_error(d, pf_node_get(body, "partial_volumes"), "partial_volumes",
+                         "not with a variable horizon (each end would need its own fractions)");
+  if (b->influence.kind == PF_INFLUENCE_GAUSSIAN)
+    return pf_deck_error(d, pf_node_get(body, "influence"), "influence",
+                         "the gaussian influence scales with the horizon; with a variable horizon use "
+                         "constant or inverse_distance");
+  if (b->law == PF_DAMAGE_CRITICAL_ENERGY || (dmg && pf_node_get(dmg, "energy_release_rate")))
+    return pf_deck_error(d, dmg, "damage", "the energy-based laws depend on the horizon; with a variable "
+                         "horizon give a critical_stretch");
   return 0;
 }
 
@@ -159,9 +217,8 @@ static int body_read(const pf_deck *d, const pf_node *body, const pf_node *mater
   b->node = body;
   PF_CALL(pf_deck_string(d, body, "name", &name));
   snprintf(b->name, sizeof b->name, "%s", name);
-  PF_CALL(pf_deck_real(d, body, "horizon", &b->horizon));
-  if (!(b->horizon > 0))
-    return pf_deck_error(d, pf_node_get(body, "horizon"), "horizon", "must be positive (got %g)", b->horizon);
+  PF_CALL(read_horizon(d, body, b));
+  PF_CALL(read_formulation(d, body, b));
   const pf_node *mat = NULL;
   PF_CALL(read_material(d, body, materials, b, &mat));
   PF_CALL(read_influence(d, body, b));
@@ -175,7 +232,7 @@ static int body_read(const pf_deck *d, const pf_node *body, const pf_node *mater
   PF_CALL(pf_deck_bool(d, body, "partial_volumes", &b->partial));
   PF_CALL(read_cracks(d, pf_node_get(body, "precracks"), &b->ncracks, &b->cracks));
   PF_CALL(pf_pd_damage_read(d, pf_node_get(body, "damage"), b));
-  return 0;
+  return check_variable_horizon(d, body, b);
 }
 
 int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *materials,
@@ -192,9 +249,57 @@ int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *mate
   return 0;
 }
 
-int pf_pd_body_find_bonds(const pf_pd_body *b, const pf_pd_cloud *cloud, const pf_points *pts,
+/* delta(x) at a point; a value that is not positive and finite is an input error naming it. */
+static int horizon_at(const pf_pd_body *b, const double *x, pf_gid gid, double *h) {
+  *h = pf_expr_eval(b->hz_expr, x[0], x[1], x[2], 0.0);
+  if (*h > 0 && isfinite(*h)) return 0;
+  return pf_deck_error(b->deck, pf_node_get(b->node, "horizon"), "horizon",
+                       "body '%s': the horizon is %g at point %" PF_GID_FMT " (%g, %g, %g); it must be "
+                       "positive", b->name, *h, gid, x[0], x[1], x[2]);
+}
+
+int pf_pd_body_find_bonds(pf_pd_body *b, const pf_pd_cloud *cloud, const pf_points *pts,
                           pf_int first, pf_int n, pf_bond_rows *rows) {
-  return pf_pd_family_build(cloud, pts, first, n, b->horizon, b->partial, b->ncracks, b->cracks, rows);
+  if (!b->hz_expr)
+    return pf_pd_family_build(cloud, pts, first, n, b->horizon, NULL, b->partial, b->ncracks, b->cracks, rows);
+  double *hz;
+  PF_MALLOC(hz, cloud->n);
+  int ierr = 0;
+  b->horizon = 0;
+  for (pf_int j = 0; j < cloud->n && !ierr; j++) {
+    ierr = horizon_at(b, &cloud->X[3 * j], cloud->gid0 + j, &hz[j]);
+    b->horizon = fmax(b->horizon, hz[j]);
+  }
+  if (!ierr)
+    ierr = pf_pd_family_build(cloud, pts, first, n, b->horizon, hz, 0, b->ncracks, b->cracks, rows);
+  free(hz);
+  return ierr;
+}
+
+/* Each point's horizon (ghosts too) and its force form: with auto, partial stress where its row
+ * reaches a point of another horizon (docs/theory/coupling.md §2). */
+static int set_regions(pf_pd_body *b, pf_points *pts) {
+  int idx;
+  PF_CALL(pf_points_field_register(pts, "horizon", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT, &idx));
+  b->hz = pts->fields[idx].data;
+  PF_CALL(pf_points_field_register(pts, "region", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT, &idx));
+  b->region = pts->fields[idx].data;
+  double hmax = b->horizon;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    if (b->hz_expr) PF_CALL(horizon_at(b, &pts->X[3 * i], pts->gid[i], &b->hz[i]));
+    else b->hz[i] = b->horizon;
+    hmax = fmax(hmax, b->hz[i]);
+  }
+  b->horizon = pf_max_all(hmax); /* (after a restart the clouds were not searched) */
+  PF_CALL(pf_points_exchange(pts, b->hz, 1));
+  const pf_family *fam = &b->fam;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    int ps = b->form == PF_PD_PARTIAL_STRESS;
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1] && b->form == PF_PD_AUTO; k++)
+      ps |= b->hz[fam->neighbor[k]] != b->hz[i];
+    b->region[i] = ps;
+  }
+  return pf_points_exchange(pts, b->region, 1);
 }
 
 int pf_pd_body_attach(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n,
@@ -208,6 +313,7 @@ int pf_pd_body_attach(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n,
                          "horizon must exceed the point spacing (typically 3 spacings)", b->name, b->horizon);
   free(b->smin);
   PF_MALLOC(b->smin, n);
+  PF_CALL(set_regions(b, pts));
   if (fresh) { /* (after a re-partition the masses came with the points and their ghosts) */
     for (pf_int i = first; i < first + n; i++) pts->m[i] = b->density * pts->vol[i];
     PF_CALL(pf_points_exchange(pts, pts->m, 1));
@@ -230,6 +336,7 @@ int pf_pd_body_destroy(pf_pd_body **b) {
   pf_pd_family_free(&(*b)->fam);
   free((*b)->smin);
   free((*b)->cracks);
+  pf_expr_destroy(&(*b)->hz_expr);
   PF_FREE(*b);
   return 0;
 }
@@ -246,6 +353,7 @@ int pf_pd_family_free(pf_family *fam) {
 int64_t pf_pd_family_nbonds(const pf_family *fam) { return fam->offset ? fam->offset[fam->n] : 0; }
 double pf_pd_body_density(const pf_pd_body *b) { return b->density; }
 double pf_pd_body_horizon(const pf_pd_body *b) { return b->horizon; }
+double pf_pd_body_point_horizon(const pf_pd_body *b, pf_int i) { return b->hz[i]; }
 double pf_pd_body_bulk_modulus(const pf_pd_body *b) { return b->bulk_modulus; }
 const pf_family *pf_pd_body_family(const pf_pd_body *b) { return &b->fam; }
 int64_t pf_pd_body_nbonds(const pf_pd_body *b) { return pf_pd_family_nbonds(&b->fam); }
@@ -284,6 +392,7 @@ int pf_pd_weighted_volumes(const pf_pd_body *b, pf_points *pts, double *m) {
       pf_int j = fam->neighbor[k];
       double r2 = 0;
       for (int a = 0; a < 3; a++) r2 += pow(pts->X[3 * j + a] - pts->X[3 * i + a], 2);
+      if (!pf_pd_in_family(b, i, sqrt(r2))) continue;
       s += pf_pd_omega(&b->influence, sqrt(r2)) * r2 * pf_pd_bond_volume(fam, pts->vol, k, j);
     }
     PF_CHECK(s > 0, PF_ERR_INPUT,
@@ -294,27 +403,32 @@ int pf_pd_weighted_volumes(const pf_pd_body *b, pf_points *pts, double *m) {
   return pf_points_exchange(pts, m, 1); /* the ghosts' m for the force pass */
 }
 
-double pf_pd_stable_dt_point(const pf_family *fam, const pf_points *pts, pf_int i, double rho,
-                             double c, const pf_influence *w) {
+double pf_pd_stable_dt_point(const pf_pd_body *b, const pf_points *pts, pf_int i, double c) {
+  const pf_family *fam = &b->fam;
   double sum = 0;
   for (int64_t k = fam->offset[i - fam->first]; k < fam->offset[i - fam->first + 1]; k++) {
     pf_int j = fam->neighbor[k];
     double r2 = 0;
     for (int a = 0; a < 3; a++) r2 += pow(pts->X[3 * j + a] - pts->X[3 * i + a], 2);
     double r0 = sqrt(r2);
-    sum += pf_pd_bond_volume(fam, pts->vol, k, j) * c * pf_pd_omega(w, r0) / r0;
+    if (!pf_pd_in_family(b, i, r0)) continue;
+    sum += pf_pd_bond_volume(fam, pts->vol, k, j) * c * pf_pd_omega(&b->influence, r0) / r0;
   }
-  return sum > 0 ? sqrt(2.0 * rho / sum) : INFINITY;
+  return sum > 0 ? sqrt(2.0 * b->density / sum) : INFINITY;
 }
 
 int pf_pd_body_step_varies(const pf_pd_body *b) { return b->ops->stable_dt != NULL; }
 
 double pf_pd_body_stable_dt(const pf_pd_body *b, const pf_points *pts) {
   if (b->ops->stable_dt) return b->ops->stable_dt(b, pts);
-  double c = b->ops->micromodulus ? b->ops->micromodulus(b)
-                                  : pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, b->horizon);
-  double dt = INFINITY;
-  for (pf_int i = b->first; i < b->first + b->n; i++)
-    dt = fmin(dt, pf_pd_stable_dt_point(&b->fam, pts, i, b->density, c, &b->influence));
+  double dt = INFINITY, h = NAN, c = 0;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    if (b->hz[i] != h) { /* the micromodulus of this point's horizon */
+      h = b->hz[i];
+      c = b->ops->micromodulus ? b->ops->micromodulus(b, h)
+                               : pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, h);
+    }
+    dt = fmin(dt, pf_pd_stable_dt_point(b, pts, i, c));
+  }
   return dt;
 }

@@ -128,6 +128,7 @@ static int by_gid(const void *a, const void *b) {
 
 typedef struct {
   const pf_pd_cloud *src;
+  const double *hz; /* [src->n] each cloud point's own horizon, or NULL: constant */
   double horizon, reach;
   int partial, ncracks;
   const pf_precrack *cracks;
@@ -152,9 +153,9 @@ static pf_int find_row(const search_ctx *s, const cell_list *cl, const double *x
           double dx = xj[0] - xi[0], dy = xj[1] - xi[1], dz = xj[2] - xi[2];
           double r2 = dx * dx + dy * dy + dz * dz;
           if (j == self || r2 > s->reach * s->reach) continue;
-          double frac = 1.0;
-          if (s->partial) frac = pf_pd_partial_volume(xi, xj, s->src->cell[j], s->horizon);
-          else if (r2 > s->horizon * s->horizon) continue;
+          double frac = 1.0, h = s->hz ? fmax(s->hz[self], s->hz[j]) : s->horizon;
+          if (s->partial) frac = pf_pd_partial_volume(xi, xj, s->src->cell[j], h);
+          else if (r2 > h * h) continue;
           if (frac <= 0) continue;
           int cut = 0;
           for (int q = 0; q < s->ncracks && !cut; q++) cut = crosses(&s->cracks[q], xi, xj);
@@ -172,12 +173,12 @@ static int append_row(pf_bond_rows *rows, const candidate *row, pf_int count, pf
 }
 
 int pf_pd_family_build(const pf_pd_cloud *src, const pf_points *pts, pf_int first, pf_int n,
-                       double horizon, int partial_volumes, int ncracks, const pf_precrack *cracks,
-                       pf_bond_rows *rows) {
+                       double horizon, const double *hz, int partial_volumes, int ncracks,
+                       const pf_precrack *cracks, pf_bond_rows *rows) {
   PF_CHECK(horizon > 0, PF_ERR_INPUT, "horizon must be positive (got %g)", horizon);
   double hmax = 0;
   for (pf_int j = 0; j < src->n; j++) hmax = fmax(hmax, src->cell[j]);
-  search_ctx s = {src, horizon, horizon + (partial_volumes ? 0.8660254037844387 * hmax : 0),
+  search_ctx s = {src, hz, horizon, horizon + (partial_volumes ? 0.8660254037844387 * hmax : 0),
                   partial_volumes, ncracks, cracks};
   cell_list cl = {0};
   PF_CALL(cell_list_build(src->X, src->n, s.reach, &cl));

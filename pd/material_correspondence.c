@@ -33,15 +33,18 @@
 #include <string.h>
 
 /* Ghosted per-point record, one exchange per step: P K^-1 (row-major), Fbar, Fdot, detached,
- * damage. */
-enum { G_PK = 0, G_F = 9, G_FDOT = 18, G_DETACHED = 27, G_DAMAGE = 28, GX = 29 };
+ * damage, the hourglass micromodulus of the point's horizon, and P itself (the partial stress
+ * nu = sum_j w P K^-1 xi (x) xi V_j = P, for the partial-stress form; docs/theory/coupling.md
+ * §2). */
+enum { G_PK = 0, G_F = 9, G_FDOT = 18, G_DETACHED = 27, G_DAMAGE = 28, G_C = 29, G_NU = 30, GX = 39 };
 
 typedef struct {
   pf_fem_material *cm; /* the continuum model */
   int nstate, idamage; /* history variables; index of the one named "damage", or -1 */
   int viscous;         /* hourglass control on the velocity deviation instead of the position's */
-  double hg, dcrit, c; /* C_hg, D_c, micromodulus of the hourglass force */
-  double tau;          /* viscous form: delta / c_L, the time a wave takes to cross the horizon */
+  double hg, dcrit;    /* C_hg, D_c */
+  double cl;           /* the initial P-wave speed: the viscous form's tau = delta / c_L, the time
+                          a wave takes to cross the horizon */
   double gamma;        /* max_k |b(k)| / (sum w V |xi| / lambda_min K) in the continuum (step) */
   double *sigma;       /* field "stress" [6]: Cauchy stress, Pa */
   double *state;       /* field "material_state_<nstate>" */
@@ -52,6 +55,7 @@ typedef struct {
   double *step;        /* field "stable_step": each point's stable step at its last evaluation */
   double **out;        /* [nstate] output fields named by the model's state names */
   double *F, *D, *s_old, *saved, *Jm; /* scratch: [9n], [6n], [6n], [nstate n], [n] */
+  double *Ki;                         /* scratch [9n]: K^-1, for the partial-stress force */
   double *rate, *whg2, *cw; /* scratch [n]: beta / sigma_min(Fbar), omega_hg^2, wave speed */
   pf_int cap;
 } corr;
@@ -123,8 +127,7 @@ static int corr_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
                          "(modified_johnson_cook has one)", mname);
   if (!(p->dcrit > 0 && p->dcrit <= 1))
     return pf_deck_error(d, dc, "critical_damage", "must satisfy 0 < D_c <= 1 (got %g)", p->dcrit);
-  p->c = pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, b->horizon);
-  p->tau = b->horizon / sqrt((b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / b->density);
+  p->cl = sqrt((b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / b->density);
   p->gamma = wave_factor(&b->influence, b->horizon);
   return 0;
 }
@@ -168,20 +171,21 @@ static int register_fields(pf_pd_body *b, pf_points *pts) {
  * & Askari 2005, eq. 16, doubled: both ends' deviations act on a bond); eigenvalues of a sum add,
  * so omega^2 sums. Computes rate = gamma beta / sigma_min (0 for a point without stiffness) and
  * omega_hg^2; the step is 2 / sqrt((c rate)^2 + omega_hg^2). */
-static void step_rates(const pf_pd_body *b, double K[3][3], double Fb[3][3], const double sums[2],
-                       double *rate, double *whg2) {
+static void step_rates(const pf_pd_body *b, pf_int i, double K[3][3], double Fb[3][3],
+                       const double sums[2], double *rate, double *whg2) {
   const corr *p = b->mat;
   double C[3][3];
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) C[r][c] = Fb[0][r] * Fb[0][c] + Fb[1][r] * Fb[1][c] + Fb[2][r] * Fb[2][c];
   const double lk = pf_sym3_min_eigenvalue(K), lc = pf_sym3_min_eigenvalue(C);
   *rate = lk > 0 && lc > 0 ? p->gamma * sums[0] / (lk * sqrt(lc)) : 0.0;
-  *whg2 = p->viscous ? 0.0 : 4.0 * p->hg * p->c * sums[1] / b->density;
+  *whg2 = p->viscous ? 0.0 : 4.0 * p->hg * p->gx[GX * i + G_C] * sums[1] / b->density;
 }
 
 /* A point's stable step in the reference configuration (Fbar = I, the model's initial P-wave
  * speed), before its first evaluation. */
 static double reference_step(const pf_pd_body *b, const pf_points *pts, pf_int i) {
+  const corr *p = b->mat;
   const pf_family *fam = &b->fam;
   double K[3][3] = {{0}}, I[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, sums[2] = {0, 0}, rate, whg2;
   for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
@@ -189,14 +193,15 @@ static double reference_step(const pf_pd_body *b, const pf_points *pts, pf_int i
     const pf_int j = fam->neighbor[k];
     double xi[3], r2 = 0;
     for (int a = 0; a < 3; a++) xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a], r2 += xi[a] * xi[a];
-    const double r0 = sqrt(r2), w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    const double r0 = sqrt(r2);
+    if (!pf_pd_in_family(b, i, r0)) continue;
+    const double w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
     for (int r = 0; r < 3; r++)
       for (int c = 0; c < 3; c++) K[r][c] += w * xi[r] * xi[c];
     sums[0] += w * r0, sums[1] += w / r0;
   }
-  step_rates(b, K, I, sums, &rate, &whg2);
-  const double c = sqrt((b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / b->density);
-  return 2.0 / sqrt(c * c * rate * rate + whg2);
+  step_rates(b, i, K, I, sums, &rate, &whg2);
+  return 2.0 / sqrt(p->cl * p->cl * rate * rate + whg2);
 }
 
 static int corr_setup(pf_pd_body *b, pf_points *pts) {
@@ -204,8 +209,9 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
   PF_CALL(register_fields(b, pts));
   if (b->n > p->cap) {
     free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm);
-    free(p->rate), free(p->whg2), free(p->cw);
-    p->F = p->D = p->s_old = p->saved = p->Jm = p->rate = p->whg2 = p->cw = NULL;
+    free(p->rate), free(p->whg2), free(p->cw), free(p->Ki);
+    p->F = p->D = p->s_old = p->saved = p->Jm = p->rate = p->whg2 = p->cw = p->Ki = NULL;
+    PF_MALLOC(p->Ki, 9 * (size_t)b->n);
     PF_MALLOC(p->Jm, b->n);
     PF_MALLOC(p->rate, b->n);
     PF_MALLOC(p->whg2, b->n);
@@ -225,8 +231,14 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
       for (int a = 0; a < 3; a++) p->hgforce[3 * i + a] = 0.0;
     }
     if (p->nstate) pf_fem_material_init(p->cm, b->n, &p->state[(size_t)p->nstate * b->first]);
-    for (pf_int i = b->first; i < b->first + b->n; i++) p->step[i] = reference_step(b, pts, i);
   }
+  double h = NAN, c = 0; /* the PMB micromodulus of each point's horizon, for the hourglass force */
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    if (b->hz[i] != h) h = b->hz[i], c = pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, h);
+    p->gx[GX * i + G_C] = c;
+  }
+  if (b->fresh)
+    for (pf_int i = b->first; i < b->first + b->n; i++) p->step[i] = reference_step(b, pts, i);
   return pf_points_exchange(pts, p->gx, GX);
 }
 
@@ -256,7 +268,7 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
       r02 += xi[a] * xi[a], r2 += Y[a] * Y[a];
     }
     const double r0 = sqrt(r02);
-    if (b->law != PF_DAMAGE_NONE) {
+    if (b->law != PF_DAMAGE_NONE && pf_pd_may_fail(b, i, j)) { /* (both ends test every row bond) */
       const double s = (sqrt(r2) - r0) / r0;
       if (s > fmin(b->s0[i], b->s0[j])) {
         fam->broken[k] = 1;
@@ -264,6 +276,7 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
       }
       smin = fmin(smin, s);
     }
+    if (!pf_pd_in_family(b, i, r0)) continue;
     const double w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
     for (int r = 0; r < 3; r++)
       for (int s = 0; s < 3; s++) {
@@ -297,11 +310,14 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
                Fb[0][1] * (Fb[1][0] * Fb[2][2] - Fb[1][2] * Fb[2][0]) +
                Fb[0][2] * (Fb[1][0] * Fb[2][1] - Fb[1][1] * Fb[2][0]);
     ok = J > 0 && (p->Jm[li] = pf_mat3_inverse(Fm, Fmi)) > 0;
-    if (ok) step_rates(b, K, Fb, sums, &p->rate[li], &p->whg2[li]);
+    if (ok) step_rates(b, i, K, Fb, sums, &p->rate[li], &p->whg2[li]);
   }
   g[G_DETACHED] = !ok;
   if (!ok) { /* the model sees a state at rest; its result is discarded */
-    for (int k = 0; k < 9; k++) F[k] = (k % 4 == 0), g[G_PK + k] = g[G_FDOT + k] = 0.0, g[G_F + k] = (k % 4 == 0);
+    for (int k = 0; k < 9; k++) {
+      F[k] = g[G_F + k] = (k % 4 == 0);
+      g[G_PK + k] = g[G_FDOT + k] = g[G_NU + k] = p->Ki[9 * li + k] = 0.0;
+    }
     for (int k = 0; k < 6; k++) D[k] = 0.0, p->s_old[6 * li + k] = p->sigma[6 * i + k];
     return 0;
   }
@@ -313,7 +329,7 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
   for (int r = 0; r < 3; r++)
     for (int s = 0; s < 3; s++) {
       F[3 * r + s] = g[G_F + 3 * r + s] = Fb[r][s];
-      g[G_PK + 3 * r + s] = Ki[r][s], g[G_FDOT + 3 * r + s] = Fd[r][s];
+      g[G_PK + 3 * r + s] = p->Ki[9 * li + 3 * r + s] = Ki[r][s], g[G_FDOT + 3 * r + s] = Fd[r][s];
     }
   return 1;
 }
@@ -336,7 +352,7 @@ static void stress_to_force_state(pf_pd_body *b, pf_int i) {
     for (int c = 0; c < 3; c++) P[r][c] = J * (S[r][0] * Fi[c][0] + S[r][1] * Fi[c][1] + S[r][2] * Fi[c][2]);
   mat_mul(P, Ki, T);
   for (int r = 0; r < 3; r++)
-    for (int c = 0; c < 3; c++) g[G_PK + 3 * r + c] = T[r][c];
+    for (int c = 0; c < 3; c++) g[G_PK + 3 * r + c] = T[r][c], g[G_NU + 3 * r + c] = P[r][c];
 }
 
 /* Bonds to a point detached last step, or whose either end's damage exceeded D_c last step, fail
@@ -349,8 +365,8 @@ static void fail_bonds(pf_pd_body *b) {
     const double *gi = &p->gx[GX * i];
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
       const double *gj = &p->gx[GX * fam->neighbor[k]];
-      if (gi[G_DETACHED] || gj[G_DETACHED] || gi[G_DAMAGE] > p->dcrit || gj[G_DAMAGE] > p->dcrit)
-        fam->broken[k] = 1;
+      const int damaged = (gi[G_DAMAGE] > p->dcrit || gj[G_DAMAGE] > p->dcrit) && pf_pd_may_fail(b, i, fam->neighbor[k]);
+      if (gi[G_DETACHED] || gj[G_DETACHED] || damaged) fam->broken[k] = 1;
     }
   }
 }
@@ -385,16 +401,21 @@ static int corr_pass1(pf_pd_body *b, pf_points *pts) {
 
 /* Pass 2: pair forces from both ends' force states and the hourglass control. A point detached
  * in this step's pass 1 has P K^-1 = 0 and no hourglass force (its Fbar is not defined); its
- * bonds fail at the start of the next step. */
+ * bonds fail at the start of the next step. With a variable horizon each end contributes only to
+ * the bonds of its own family (T_i<xi> for j within delta_i, T_j<-xi> for i within delta_j):
+ * f_i = V_i sum_j w V_j ([j in H_i] P_i K_i^-1 + [i in H_j] P_j K_j^-1) xi. A point of the
+ * partial-stress form takes V_i div nu instead (pd/partial_stress.c); the hourglass pair
+ * forces, zero under any affine motion, are the same in both forms. */
 static int corr_force(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   PF_CALL(corr_pass1(b, pts));
   const pf_family *fam = &b->fam;
-  const double chg = p->hg * p->c * (p->viscous ? p->tau : 1.0);
   const int gdev = p->viscous ? G_FDOT : G_F; /* the predicted relative position or velocity */
   const double *dev = p->viscous ? pts->v : pts->y;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     const double *gi = &p->gx[GX * i];
+    const int standard = b->region[i] == 0;
+    const double ki = p->hg * gi[G_C] * (p->viscous ? b->hz[i] / p->cl : 1.0);
     double f[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
       if (fam->broken[k]) continue;
@@ -407,20 +428,21 @@ static int corr_force(pf_pd_body *b, pf_points *pts) {
         Z[a] = dev[3 * j + a] - dev[3 * i + a];
         r02 += xi[a] * xi[a], r2 += Y[a] * Y[a];
       }
-      const double r0 = sqrt(r02), r = sqrt(r2);
+      const double r0 = sqrt(r02), r = sqrt(r2), hi = pf_pd_in_family(b, i, r0), hj = pf_pd_in_family(b, j, r0);
       const double w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+      const double kj = p->hg * gj[G_C] * (p->viscous ? b->hz[j] / p->cl : 1.0);
       double gam = 0;
       for (int a = 0; a < 3; a++) {
-        double t = 0, pred = 0;
+        double t = 0, pi = 0, pj = 0;
         for (int c = 0; c < 3; c++) {
-          t += (gi[G_PK + 3 * a + c] + gj[G_PK + 3 * a + c]) * xi[c];
-          pred += (gi[gdev + 3 * a + c] + gj[gdev + 3 * a + c]) * xi[c];
+          t += (hi * gi[G_PK + 3 * a + c] + hj * gj[G_PK + 3 * a + c]) * xi[c];
+          pi += gi[gdev + 3 * a + c] * xi[c], pj += gj[gdev + 3 * a + c] * xi[c];
         }
-        f[a] += w * t;
-        gam += (pred - 2.0 * Z[a]) * Y[a];
+        f[a] += standard ? w * t : 0.0;
+        gam += (hi * ki * (pi - Z[a]) + hj * kj * (pj - Z[a])) * Y[a];
       }
-      if (chg > 0 && r > 0 && !gi[G_DETACHED] && !gj[G_DETACHED]) {
-        const double s = -chg * w * gam / (r0 * r * r);
+      if (gam != 0 && r > 0 && !gi[G_DETACHED] && !gj[G_DETACHED]) {
+        const double s = -w * gam / (r0 * r * r);
         for (int a = 0; a < 3; a++) fh[a] += s * Y[a];
       }
     }
@@ -432,6 +454,7 @@ static int corr_force(pf_pd_body *b, pf_points *pts) {
       fo[a] = V * fh[a];
     }
     p->hgwork[i] -= b->dt * dw; /* the work done against the hourglass forces */
+    if (!standard) pf_pd_partial_stress_force(b, pts, i, &p->gx[G_NU], GX, &p->Ki[9 * (i - b->first)]);
   }
   return 0;
 }
@@ -457,7 +480,7 @@ static void corr_destroy(pf_pd_body *b) {
   corr *p = b->mat;
   pf_fem_material_destroy(&p->cm);
   free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm), free(p->out);
-  free(p->rate), free(p->whg2), free(p->cw);
+  free(p->rate), free(p->whg2), free(p->cw), free(p->Ki);
   PF_FREE(b->mat);
 }
 
@@ -469,4 +492,5 @@ const pf_pd_material_ops pf_pd_material_correspondence = {
     .energy = corr_energy,
     .stable_dt = corr_stable_dt,
     .destroy = corr_destroy,
+    .partial_stress = 1,
 };

@@ -164,9 +164,9 @@ static double ep_energy(const pf_pd_body *b, const pf_points *pts) {
 
 /* For the stable step: the elastic LPS estimate (plastic flow only softens), the PMB
  * micromodulus of equal P-wave modulus, K_eq = (K + 4G/3) / 1.8. */
-static double ep_micromodulus(const pf_pd_body *b) {
+static double ep_micromodulus(const pf_pd_body *b, double delta) {
   double keq = (b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / 1.8;
-  return pf_pd_pmb_micromodulus(keq, &b->influence, b->horizon);
+  return pf_pd_pmb_micromodulus(keq, &b->influence, delta);
 }
 
 /* Critical stretch from G0: the LPS closed forms (Madenci & Oterkus 2014), elastic fracture.

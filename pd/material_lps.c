@@ -6,7 +6,10 @@
  *   f_i     = sum_j (t_ij + t_ji) M_ij V_j,  M_ij = (y_j - y_i) / |y_j - y_i|
  * m and theta use the same quadrature (same neighbour volumes), so theta = 3 eps exactly under
  * u = eps x. Bonds fail on the critical-stretch test in the dilatation pass, so both passes see
- * the same bonds; on the critical-energy test (which needs both ends' t) in the force pass. */
+ * the same bonds; on the critical-energy test (which needs both ends' t) in the force pass.
+ * With a variable horizon the sums of point i run over its own family (j within delta_i) and
+ * f_i = sum_j ([j in H_i] t_ij + [i in H_j] t_ji) M_ij V_j; a point of the partial-stress form
+ * takes f_i = V_i div nu, nu_i = sum_j t_ij M_ij (x) xi V_j (pd/partial_stress.c). */
 #include "pd/pd_impl.h"
 
 #include <stdlib.h>
@@ -14,6 +17,8 @@
 typedef struct {
   double *m;     /* field "weighted_volume" */
   double *theta; /* field "dilatation" */
+  double *nu;    /* field "partial_stress" [9], when some point has the partial-stress form */
+  double *Ki;    /* [9n] K^-1 of those points (their bonds never fail) */
 } lps;
 
 static int lps_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
@@ -33,6 +38,18 @@ static int lps_setup(pf_pd_body *b, pf_points *pts) {
   PF_CALL(pf_points_field_register(pts, "dilatation", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT, &it));
   p->m = pts->fields[im].data;
   p->theta = pts->fields[it].data;
+  double nps = 0;
+  for (pf_int i = b->first; i < b->first + b->n; i++) nps += b->region[i];
+  free(p->Ki);
+  p->Ki = NULL, p->nu = NULL;
+  if (pf_sum_all(nps) > 0) { /* (collective: every rank exchanges the field) */
+    int in;
+    PF_CALL(pf_points_field_register(pts, "partial_stress", 9, PF_FIELD_GHOST, &in));
+    p->nu = pts->fields[in].data;
+    PF_MALLOC(p->Ki, 9 * (size_t)b->n + 1);
+    for (pf_int i = b->first; i < b->first + b->n; i++)
+      if (b->region[i] != 0) pf_pd_shape_tensor_inverse(b, pts, i, &p->Ki[9 * (i - b->first)]);
+  }
   return pf_pd_weighted_volumes(b, pts, p->m);
 }
 
@@ -45,10 +62,11 @@ static double lps_dilatation(pf_pd_body *b, const pf_points *pts, pf_int i, doub
     pf_int j = fam->neighbor[k];
     pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
     double s = (r - r0) / r0;
-    if (s > fmin(b->s0[i], b->s0[j])) {
+    if (s > fmin(b->s0[i], b->s0[j]) && pf_pd_may_fail(b, i, j)) {
       fam->broken[k] = 1;
       continue;
     }
+    if (!pf_pd_in_family(b, i, r0)) continue;
     smin = fmin(smin, s);
     sum += pf_pd_omega(&b->influence, r0) * r0 * (r - r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
   }
@@ -70,6 +88,29 @@ static inline double lps_t(double a, double bc, double theta, double w, double r
  * t_ji + t_ij equals end i's t_ij + t_ji bitwise and both ends fail the bond in the same step.
  * The failing evaluation gives the bond no force (the forces of the other bonds keep this
  * evaluation's theta); theta is then recomputed without it, for the energy and the output. */
+/* The partial stress of every owned point, nu_i = sum_j t_ij M (x) xi V_j over its own family,
+ * then the ghosts'. */
+static int lps_partial_stress(pf_pd_body *b, pf_points *pts) {
+  lps *p = b->mat;
+  const pf_family *fam = &b->fam;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    double *nu = &p->nu[9 * i], e[3], r0, r;
+    const double thi = p->theta[i], ai = 3 * b->bulk_modulus * thi / p->m[i], bi = 15 * b->shear_modulus / p->m[i];
+    for (int k = 0; k < 9; k++) nu[k] = 0.0;
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      if (fam->broken[k]) continue;
+      pf_int j = fam->neighbor[k];
+      pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+      if (!pf_pd_in_family(b, i, r0) || r == 0) continue;
+      const double t = lps_t(ai, bi, thi, pf_pd_omega(&b->influence, r0), r0, r - r0);
+      const double s = t * pf_pd_bond_volume(fam, pts->vol, k, j) / r;
+      for (int a = 0; a < 3; a++)
+        for (int c = 0; c < 3; c++) nu[3 * a + c] += s * e[a] * (pts->X[3 * j + c] - pts->X[3 * i + c]);
+    }
+  }
+  return pf_points_exchange(pts, p->nu, 9);
+}
+
 static int lps_force(pf_pd_body *b, pf_points *pts) {
   lps *p = b->mat;
   const double K = b->bulk_modulus, G = b->shear_modulus, wc = b->critical_energy;
@@ -78,7 +119,12 @@ static int lps_force(pf_pd_body *b, pf_points *pts) {
   int64_t nfailed = 0;
   for (pf_int i = b->first; i < b->first + b->n; i++) p->theta[i] = lps_dilatation(b, pts, i, p->m[i]);
   PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta for the force pass */
+  if (p->nu) PF_CALL(lps_partial_stress(b, pts));
   for (pf_int i = b->first; i < b->first + b->n; i++) {
+    if (b->region[i] != 0) {
+      pf_pd_partial_stress_force(b, pts, i, p->nu, 9, &p->Ki[9 * (i - b->first)]);
+      continue;
+    }
     double f[3] = {0, 0, 0}, e[3], r0, r;
     const double thi = p->theta[i], ai = 3 * K * thi / p->m[i], bi = 15 * G / p->m[i];
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
@@ -87,7 +133,8 @@ static int lps_force(pf_pd_body *b, pf_points *pts) {
       pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
       const double ext = r - r0, w = pf_pd_omega(&b->influence, r0);
       const double thj = p->theta[j], aj = 3 * K * thj / p->m[j], bj = 15 * G / p->m[j];
-      const double tij = lps_t(ai, bi, thi, w, r0, ext), tji = lps_t(aj, bj, thj, w, r0, ext);
+      const double tij = pf_pd_in_family(b, i, r0) ? lps_t(ai, bi, thi, w, r0, ext) : 0.0;
+      const double tji = pf_pd_in_family(b, j, r0) ? lps_t(aj, bj, thj, w, r0, ext) : 0.0;
       if (energy && ext > 0 && 0.5 * (tij + tji) * ext > wc) {
         fam->broken[k] = 1;
         nfailed++;
@@ -115,6 +162,7 @@ static double lps_energy(const pf_pd_body *b, const pf_points *pts) {
       if (fam->broken[k]) continue;
       pf_int j = fam->neighbor[k];
       pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+      if (!pf_pd_in_family(b, i, r0)) continue;
       double ed = (r - r0) - p->theta[i] * r0 / 3;
       dev += pf_pd_omega(&b->influence, r0) * ed * ed * pf_pd_bond_volume(fam, pts->vol, k, j);
     }
@@ -125,9 +173,9 @@ static double lps_energy(const pf_pd_body *b, const pf_points *pts) {
 }
 
 /* For the stable step: the PMB micromodulus of equal P-wave modulus, K_eq = (K + 4G/3) / 1.8. */
-static double lps_micromodulus(const pf_pd_body *b) {
+static double lps_micromodulus(const pf_pd_body *b, double delta) {
   double keq = (b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / 1.8;
-  return pf_pd_pmb_micromodulus(keq, &b->influence, b->horizon);
+  return pf_pd_pmb_micromodulus(keq, &b->influence, delta);
 }
 
 /* Critical stretch from G0 (Madenci & Oterkus 2014 / CabanaPD's LPS):
@@ -139,7 +187,10 @@ static double lps_critical_stretch(const pf_pd_body *b, double G0) {
   return NAN;
 }
 
-static void lps_destroy(pf_pd_body *b) { PF_FREE(b->mat); }
+static void lps_destroy(pf_pd_body *b) {
+  free(((lps *)b->mat)->Ki);
+  PF_FREE(b->mat);
+}
 
 const pf_pd_material_ops pf_pd_material_lps = {
     .name = "lps",
@@ -150,4 +201,5 @@ const pf_pd_material_ops pf_pd_material_lps = {
     .micromodulus = lps_micromodulus,
     .critical_stretch = lps_critical_stretch,
     .destroy = lps_destroy,
+    .partial_stress = 1,
 };

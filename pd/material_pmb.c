@@ -129,7 +129,10 @@ static double pmb_energy(const pf_pd_body *b, const pf_points *pts) {
   return w;
 }
 
-static double pmb_micromodulus(const pf_pd_body *b) { return ((const pmb *)b->mat)->c; }
+static double pmb_micromodulus(const pf_pd_body *b, double delta) {
+  (void)delta; /* (PMB has a constant horizon) */
+  return ((const pmb *)b->mat)->c;
+}
 
 static double pmb_critical_stretch(const pf_pd_body *b, double G0) {
   return pf_pd_pmb_critical_stretch(G0, b->bulk_modulus, b->horizon);

@@ -39,12 +39,15 @@ typedef struct {
 
 /* Append to rows the bonds of points [first, first+n) of pts (which are points of the cloud)
  * to every cloud point within `horizon` (|xi| <= horizon), each row ascending in global id.
+ * With hz (each cloud point's own horizon; then `horizon` is their largest), the rows hold
+ * every pair with |xi| <= max(hz_i, hz_j): j in i's family, or i in j's (a one-sided bond),
+ * so that the rows stay symmetric; the kernels tell the two apart (pf_pd_in_family).
  * With partial_volumes, neighbours whose cell only partly lies in the horizon sphere are kept
  * with the fraction of the cell inside (16^3 sub-cell midpoint rule, as Peridigm). Bonds
  * crossing a pre-crack are left out. O(n) cell-list search. */
 int pf_pd_family_build(const pf_pd_cloud *src, const pf_points *pts, pf_int first, pf_int n,
-                       double horizon, int partial_volumes, int ncracks, const pf_precrack *cracks,
-                       pf_bond_rows *rows);
+                       double horizon, const double *hz, int partial_volumes, int ncracks,
+                       const pf_precrack *cracks, pf_bond_rows *rows);
 /* The family of the owned points [first, first+n) from their rows (row i of rows is store
  * point i), local[] giving the store index of each bond's neighbour. fam->nstate is kept: the
  * first fam->nstate reals of each bond's state are taken from the rows (zero beyond theirs). */
@@ -89,8 +92,9 @@ const char *pf_pd_material_names(void);
 int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *materials,
                       pf_pd_body **b);
 /* Append to rows the bonds of store points [first, first+n), points of this body, found in
- * the body's whole cloud. */
-int pf_pd_body_find_bonds(const pf_pd_body *b, const pf_pd_cloud *cloud, const pf_points *pts,
+ * the body's whole cloud (with a variable horizon, each point's own horizon: rows hold the
+ * pairs either end's family has). */
+int pf_pd_body_find_bonds(pf_pd_body *b, const pf_pd_cloud *cloud, const pf_points *pts,
                           pf_int first, pf_int n, pf_bond_rows *rows);
 /* Give the body its owned points [first, first+n) and their family (rows of those points, with
  * local[] the store index of each neighbour). When fresh: masses, initial critical stretch,
@@ -102,7 +106,8 @@ int pf_pd_body_attach(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n,
 int pf_pd_body_bond_rows(const pf_pd_body *b, const pf_points *pts, pf_bond_rows *rows);
 int pf_pd_body_destroy(pf_pd_body **b);
 double pf_pd_body_density(const pf_pd_body *b);
-double pf_pd_body_horizon(const pf_pd_body *b);
+double pf_pd_body_horizon(const pf_pd_body *b); /* the constant one, or the largest */
+double pf_pd_body_point_horizon(const pf_pd_body *b, pf_int i); /* store point i's own */
 double pf_pd_body_bulk_modulus(const pf_pd_body *b); /* Pa */
 const pf_family *pf_pd_body_family(const pf_pd_body *b);
 /* Add the body's internal forces (N) to pts->f; fails bonds per the damage law. dt is the step
@@ -125,9 +130,8 @@ int pf_pd_body_step_varies(const pf_pd_body *b);
 /* Number of directed bonds (intact or broken) of the body. */
 int64_t pf_pd_body_nbonds(const pf_pd_body *b);
 
-/* Stable step of one point: sqrt(2 rho / sum_j V_j c omega / |xi|) (Silling & Askari 2005,
- * eq. 15 with the Peridigm form). */
-double pf_pd_stable_dt_point(const pf_family *fam, const pf_points *pts, pf_int i, double rho,
-                             double c, const pf_influence *w);
+/* Stable step of store point i of body b: sqrt(2 rho / sum_j V_j c omega / |xi|) over its own
+ * family (Silling & Askari 2005, eq. 15 with the Peridigm form). */
+double pf_pd_stable_dt_point(const pf_pd_body *b, const pf_points *pts, pf_int i, double c);
 
 #endif

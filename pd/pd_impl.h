@@ -8,6 +8,13 @@
 
 typedef struct pf_pd_material_ops pf_pd_material_ops;
 
+/* How a point's internal force is formed (docs/theory/coupling.md §2). Standard: from the force
+ * states of both ends of each bond. Partial stress (Silling & Seleson 2013; seed 001 "Partial
+ * stress formulation"): the nonlocal divergence of nu = sum_j T<xi> (x) xi V_j. Auto: partial
+ * stress at the points whose bond rows reach a point of another horizon (the transition),
+ * standard elsewhere. */
+typedef enum { PF_PD_AUTO, PF_PD_STANDARD, PF_PD_PARTIAL_STRESS } pf_pd_formulation;
+
 /* Damage laws (the list: pd/damage_critical_stretch.c). Stretch laws: a bond fails when its
  * stretch exceeds min(s0_i, s0_j) (both ends, as LAMMPS' peri pair styles), s0 constant or
  * evolving (Silling–Askari). Critical energy (pd/damage_critical_energy.c): a bond in tension
@@ -27,7 +34,11 @@ struct pf_pd_body {
   int partial;         /* partial-volume fractions */
   int ncracks;
   pf_precrack *cracks;
-  double horizon, density;
+  double horizon, density; /* horizon: the constant one, or the largest of a variable one */
+  pf_expr *hz_expr;        /* a variable horizon delta(x, y, z), or NULL */
+  pf_pd_formulation form;
+  double *hz;              /* field "horizon" [store]: each point's own horizon, ghosts too */
+  double *region;          /* field "region" [store]: 0 standard force, 1 partial stress */
   double dt;           /* the step just taken, set by pf_pd_body_force (rate-form materials) */
   int fresh;           /* set by attach for the material's setup: 1 at t = 0, 0 after a re-partition
                           or a restart (the material's restart fields came with the points) */
@@ -54,12 +65,13 @@ struct pf_pd_material_ops {
   int (*setup)(pf_pd_body *b, pf_points *pts);
   int (*force)(pf_pd_body *b, pf_points *pts);
   double (*energy)(const pf_pd_body *b, const pf_points *pts);
-  double (*micromodulus)(const pf_pd_body *b); /* c for the stable step */
+  double (*micromodulus)(const pf_pd_body *b, double delta); /* c for the stable step */
   /* the body's current stable step, for a material whose step changes as it deforms (then
    * micromodulus is unused and the time loop asks for it every step); NULL: fixed */
   double (*stable_dt)(const pf_pd_body *b, const pf_points *pts);
   double (*critical_stretch)(const pf_pd_body *b, double G0); /* from G0, or NULL */
   void (*destroy)(pf_pd_body *b);
+  int partial_stress; /* 1: takes a variable horizon and the partial-stress form */
 };
 
 /* pd/damage_critical_stretch.c: read the damage law (create), fill s0 (attach). */
@@ -79,6 +91,20 @@ extern const pf_key pf_pd_hourglass_keys[];
 #include "pd/materials.h"
 #undef PF_PD_MATERIAL
 
+/* Is the bond i -> j (reference length r0) in i's own family? Always, for a constant horizon;
+ * with a variable one the rows also hold the bonds only j's family has (one-sided). Every kernel
+ * computes r0 as sqrt of the same sum of squares, so all decide alike. */
+static inline int pf_pd_in_family(const pf_pd_body *b, pf_int i, double r0) {
+  return !b->hz_expr || r0 <= b->hz[i];
+}
+
+/* May the damage law fail the bond i - j? Only between points of the standard force: the
+ * partial-stress transition carries no damage (seed 001: "not a good candidate for modeling
+ * material failure"). */
+static inline int pf_pd_may_fail(const pf_pd_body *b, pf_int i, pf_int j) {
+  return b->region[i] == 0 && b->region[j] == 0;
+}
+
 /* omega(r), inlined in the bond loops. */
 static inline double pf_pd_omega(const pf_influence *w, double r) {
   switch (w->kind) {
@@ -93,6 +119,15 @@ static inline double pf_pd_omega(const pf_influence *w, double r) {
  * m_i = sum_j omega |xi|^2 V_j of the owned points (Silling et al. 2007, eq. 90) into m, then the
  * ghosts' values; an isolated point is an input error naming it (pd/body.c). */
 int pf_pd_weighted_volumes(const pf_pd_body *b, pf_points *pts, double *m);
+
+/* Partial stress (pd/partial_stress.c, docs/theory/coupling.md §2). The inverse shape tensor
+ * of store point i over its own intact family into Ki (row-major); 0 (and Ki = 0) when its
+ * bonds do not span space. */
+double pf_pd_shape_tensor_inverse(const pf_pd_body *b, const pf_points *pts, pf_int i, double Ki[9]);
+/* f_i += V_i div nu: the nonlocal divergence of the partial stress nu (row-major 3x3 at
+ * nu[stride * j], for i and every neighbour, ghosts included) over i's own family. */
+void pf_pd_partial_stress_force(const pf_pd_body *b, pf_points *pts, pf_int i, const double *nu,
+                                int stride, const double Ki[9]);
 
 /* Bond geometry: reference length r0, current length r, current bond vector e[3]. The same
  * operations from either end give bitwise the same r0 and r. */
