@@ -78,20 +78,24 @@ static int body_kind(const pf_deck *d, const pf_node *body, int b, int *fem) {
   return pf_deck_validate(d, body, *fem ? pf_fem_body_keys : pf_pd_body_keys, where);
 }
 
-static int set_initial_velocity(pf_sim *sim, int b, const pf_node *body) {
-  if (!pf_node_get(body, "initial_velocity")) return 0;
+/* initial_velocity or initial_displacement (key) of body b's owned points into v, or into u
+ * (and y = X + u). */
+static int set_initial_field(pf_sim *sim, int b, const pf_node *body, const char *key) {
+  if (!pf_node_get(body, key)) return 0;
   pf_expr *e[3];
-  PF_CALL(pf_expr3_create(sim->deck, body, "initial_velocity", e));
+  PF_CALL(pf_expr3_create(sim->deck, body, key, e));
   pf_points *p = sim->pts;
+  const int disp = !strcmp(key, "initial_displacement");
+  double *out = disp ? p->u : p->v;
   for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++)
     for (int c = 0; c < 3; c++) { /* owned points only: an error here may be one rank's */
       const double *x = &p->X[3 * i];
-      p->v[3 * i + c] = pf_expr_eval(e[c], x[0], x[1], x[2], 0.0);
-      if (isfinite(p->v[3 * i + c])) continue;
+      out[3 * i + c] = pf_expr_eval(e[c], x[0], x[1], x[2], 0.0);
+      if (disp) p->y[3 * i + c] = x[c] + out[3 * i + c];
+      if (isfinite(out[3 * i + c])) continue;
       pf_expr3_destroy(e);
-      return pf_deck_error(sim->deck, pf_node_item(pf_node_get(body, "initial_velocity"), c),
-                           "initial_velocity", "component %d is %g at the point (%g, %g, %g)", c,
-                           p->v[3 * i + c], x[0], x[1], x[2]);
+      return pf_deck_error(sim->deck, pf_node_item(pf_node_get(body, key), c), key,
+                           "component %d is %g at the point (%g, %g, %g)", c, out[3 * i + c], x[0], x[1], x[2]);
     }
   pf_expr3_destroy(e);
   return 0;
@@ -130,7 +134,10 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
   if (!ierr) ierr = pf_sim_distribute(sim, pc);
   for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
   if (ierr) return ierr;
-  for (int b = 0; b < sim->nbodies; b++) PF_CALL(set_initial_velocity(sim, b, pf_node_item(bodies, b)));
+  for (int b = 0; b < sim->nbodies; b++) {
+    PF_CALL(set_initial_field(sim, b, pf_node_item(bodies, b), "initial_velocity"));
+    PF_CALL(set_initial_field(sim, b, pf_node_item(bodies, b), "initial_displacement"));
+  }
   return 0;
 }
 

@@ -31,6 +31,7 @@ const pf_key pf_fem_body_keys[] = {
     {"hourglass", PF_KEY_MAP, 0, NULL, "", "hourglass control of reduced elements", hourglass_keys},
     {"bulk_viscosity", PF_KEY_MAP, 0, NULL, "", "artificial bulk viscosity", bulk_viscosity_keys},
     {"initial_velocity", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m/s", "expressions in x, y, z", NULL},
+    {"initial_displacement", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m", "expressions in x, y, z; the stress follows it in hyperelastic and PD models (rate-form models start unstressed)", NULL},
     PF_KEY_END};
 
 static int read_options(const pf_deck *d, const pf_node *body, pf_fem_body *b) {

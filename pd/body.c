@@ -41,7 +41,7 @@ const pf_key pf_pd_body_keys[] = {
      "horizon delta (bonds with |xi| <= delta): a number, or an expression in x, y, z (a variable "
      "horizon; lps and correspondence materials)", NULL},
     {"formulation", PF_KEY_STRING, 0, "auto", "",
-     "auto (partial stress where the horizon varies within a family, standard elsewhere) | "
+     "auto (partial stress at interior points whose family reaches another horizon, standard elsewhere) | "
      "standard | partial_stress (lps and correspondence materials)", NULL},
     {"influence", PF_KEY_STRING, 0, "constant", "", "constant | inverse_distance | gaussian", NULL},
     {"influence_length", PF_KEY_REAL, 0, "horizon/2", "m", "gaussian: sigma in exp(-r^2/sigma^2)", NULL},
@@ -50,6 +50,7 @@ const pf_key pf_pd_body_keys[] = {
     {"damage", PF_KEY_MAP, 0, "law: none", "", "bond failure law", pf_pd_damage_keys},
     {"precracks", PF_KEY_LIST, 0, NULL, "", "planar cracks: bonds crossing them are not created", crack_keys},
     {"initial_velocity", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m/s", "expressions in x, y, z", NULL},
+    {"initial_displacement", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m", "expressions in x, y, z; the stress follows it in hyperelastic and PD models (rate-form models start unstressed)", NULL},
     {"hourglass", PF_KEY_MAP, 0, "type: stiffness, coefficient: 0.05", "",
      "correspondence (material with a continuum model): zero-energy-mode control", pf_pd_hourglass_keys},
     {"critical_damage", PF_KEY_REAL, 0, "0.99", "",
@@ -276,8 +277,28 @@ int pf_pd_body_find_bonds(pf_pd_body *b, const pf_pd_cloud *cloud, const pf_poin
   return ierr;
 }
 
+/* Is point i's own family complete (no free surface within its horizon)? Its first moment
+ * sum_j V_j xi vanishes on a symmetric family; a surface point's is a sizeable fraction of
+ * sum_j V_j |xi|. */
+static int family_complete(const pf_pd_body *b, const pf_points *pts, pf_int i) {
+  const pf_family *fam = &b->fam;
+  double m1[3] = {0, 0, 0}, m0 = 0;
+  for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+    const pf_int j = fam->neighbor[k];
+    double xi[3], r02 = 0;
+    for (int a = 0; a < 3; a++) xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a], r02 += xi[a] * xi[a];
+    const double r0 = sqrt(r02), v = pf_pd_bond_volume(fam, pts->vol, k, j);
+    if (!pf_pd_in_family(b, i, r0)) continue;
+    for (int a = 0; a < 3; a++) m1[a] += v * xi[a];
+    m0 += v * r0;
+  }
+  return sqrt(m1[0] * m1[0] + m1[1] * m1[1] + m1[2] * m1[2]) <= 0.01 * m0;
+}
+
 /* Each point's horizon (ghosts too) and its force form: with auto, partial stress where its row
- * reaches a point of another horizon (docs/theory/coupling.md §2). */
+ * reaches a point of another horizon and its own family is complete; standard at free surfaces,
+ * where the strong form has no traction-free condition and is unstable (docs/theory/coupling.md
+ * §2.4). */
 static int set_regions(pf_pd_body *b, pf_points *pts) {
   int idx;
   PF_CALL(pf_points_field_register(pts, "horizon", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT, &idx));
@@ -297,7 +318,7 @@ static int set_regions(pf_pd_body *b, pf_points *pts) {
     int ps = b->form == PF_PD_PARTIAL_STRESS;
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1] && b->form == PF_PD_AUTO; k++)
       ps |= b->hz[fam->neighbor[k]] != b->hz[i];
-    b->region[i] = ps;
+    b->region[i] = ps && (b->form == PF_PD_PARTIAL_STRESS || family_complete(b, pts, i));
   }
   return pf_points_exchange(pts, b->region, 1);
 }

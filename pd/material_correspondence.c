@@ -128,7 +128,6 @@ static int corr_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
   if (!(p->dcrit > 0 && p->dcrit <= 1))
     return pf_deck_error(d, dc, "critical_damage", "must satisfy 0 < D_c <= 1 (got %g)", p->dcrit);
   p->cl = sqrt((b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / b->density);
-  p->gamma = wave_factor(&b->influence, b->horizon);
   return 0;
 }
 
@@ -232,6 +231,7 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
     }
     if (p->nstate) pf_fem_material_init(p->cm, b->n, &p->state[(size_t)p->nstate * b->first]);
   }
+  p->gamma = wave_factor(&b->influence, b->horizon); /* (the largest horizon, once known) */
   double h = NAN, c = 0; /* the PMB micromodulus of each point's horizon, for the hourglass force */
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     if (b->hz[i] != h) h = b->hz[i], c = pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, h);

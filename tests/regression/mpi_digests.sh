@@ -56,8 +56,14 @@ sed -E 's/final_time: 80.0e-6, safety_factor: 0.8/steps: 60/; s/interval: 100, h
 sed -E 's/final_time: 4.5e-5/steps: 400/; s/d1: 0.1,/d1: 0.0,/; s/interval: 100/interval: 50/' "$OLDPWD/data/damage_bar.yaml" > damage_bar.yaml
 printf 'parallel:\n  rebalance_threshold: 1.0\n' | tee -a taylor_corr.yaml >> damage_bar.yaml
 
+# a variable horizon (tests/data/variable_horizon_block.yaml): one-sided bonds and the partial-stress
+# form, correspondence and LPS (whose partial stress is a ghosted field)
+cp "$OLDPWD/data/variable_horizon_block.yaml" horizon_corr.yaml
+sed -E 's/\{model: neo_hookean, density: 7800, youngs_modulus: 200.0e9, poissons_ratio: 0.0\}/{model: lps, density: 7800, bulk_modulus: 66.7e9, shear_modulus: 100.0e9}/; /hourglass:/d' \
+  horizon_corr.yaml > horizon_lps.yaml
+
 rebalanced="cylinder_rebalance mixed_rebalance cylinder_contact tube_ep" # (the other two split evenly on 2 ranks)
-for deck in disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block cylinder_contact tube_ep taylor_corr damage_bar; do
+for deck in disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block cylinder_contact tube_ep taylor_corr damage_bar horizon_corr horizon_lps; do
   ref=""
   for np in 1 2 3; do
     mkdir -p "np$np"
