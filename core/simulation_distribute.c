@@ -80,8 +80,11 @@ int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh) {
   if (!ierr) ierr = pf_points_add_ghosts(sim->pts, rows, owner_of, local);
   for (int b = 0; b < sim->nbodies && !ierr; b++) {
     pf_int first = sim->body_start[b], n = sim->body_start[b + 1] - first;
+    pf_pd_body *coupled = sim->fem[b] ? pf_fem_body_pd(sim->fem[b]) : NULL; /* PD on FE nodes */
     ierr = sim->fem[b] ? pf_fem_body_attach(sim->fem[b], b, sim->pts, first, n, sim->gid0[b])
                        : pf_pd_body_attach(sim->body[b], sim->pts, first, n, rows, local, fresh);
+    if (!ierr && coupled) ierr = pf_pd_body_attach(coupled, sim->pts, first, n, rows, local, fresh);
+    if (!ierr && coupled) ierr = pf_fem_body_coupling_ready(sim->fem[b], sim->pts);
   }
   free(owner_of), free(local);
   if (!ierr) ierr = pf_sim_contact_attach(sim);
@@ -114,8 +117,9 @@ int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc) {
 static double local_work(const pf_sim *sim) {
   double w = sim->pts->n_owned;
   for (int b = 0; b < sim->nbodies; b++) {
-    if (!sim->body[b]) continue;
-    const pf_family *fam = pf_pd_body_family(sim->body[b]);
+    const pf_pd_body *pd = sim->body[b] ? sim->body[b] : pf_fem_body_pd(sim->fem[b]);
+    if (!pd) continue;
+    const pf_family *fam = pf_pd_body_family(pd);
     for (int64_t k = 0; k < pf_pd_family_nbonds(fam); k++) w += !fam->broken[k];
   }
   return w;

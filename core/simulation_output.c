@@ -187,6 +187,7 @@ static void summary(const pf_sim *sim, const globals *g, double wall) {
   double nb = 0;
   for (int b = 0; b < sim->nbodies; b++)
     if (sim->body[b]) nb += (double)pf_pd_body_nbonds(sim->body[b]);
+    else if (pf_fem_body_pd(sim->fem[b])) nb += (double)pf_pd_body_nbonds(pf_fem_body_pd(sim->fem[b]));
   nb = pf_sum_all(nb);
   const double *v = g->values + 2;
   double scale = fmax(fabs(g->e0), fmax(fabs(v[G_WEXT]), v[G_KE] + v[G_EL] + v[G_CONTACT] + fabs(v[G_FEINT])));

@@ -175,6 +175,7 @@ static int one_step(pf_sim *sim) {
   PF_CALL(pf_sim_guard_check(sim)); /* collective: every rank stops, back at the last good state */
   for (int b = 0; b < sim->nbodies; b++)
     if (sim->body[b]) PF_CALL(pf_pd_body_post_step(sim->body[b], p));
+    else if (pf_fem_body_pd(sim->fem[b])) PF_CALL(pf_pd_body_post_step(pf_fem_body_pd(sim->fem[b]), p));
   return 0;
 }
 
@@ -207,6 +208,9 @@ int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g) {
       double e[3];
       pf_fem_body_energies(sim->fem[b], e);
       for (int c = 0; c < 3; c++) fe[c] += e[c];
+      pf_pd_body *cp = pf_fem_body_pd(sim->fem[b]); /* a coupled PD operator: its blended share */
+      if (cp) el += pf_pd_body_energy(cp, sim->pts), nb += (double)pf_pd_body_nbonds(cp);
+      if (cp) nbroken += (double)pf_pd_body_damage(cp, sim->pts);
       continue;
     }
     el += pf_pd_body_energy(sim->body[b], sim->pts);

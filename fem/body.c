@@ -31,6 +31,9 @@ const pf_key pf_fem_body_keys[] = {
     {"hourglass", PF_KEY_MAP, 0, NULL, "", "hourglass control of reduced elements", hourglass_keys},
     {"bulk_viscosity", PF_KEY_MAP, 0, NULL, "", "artificial bulk viscosity", bulk_viscosity_keys},
     {"initial_velocity", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m/s", "expressions in x, y, z", NULL},
+    {"peridynamic", PF_KEY_MAP, 0, NULL, "",
+     "couple a peridynamic operator on the nodes by force blending (docs/theory/coupling.md §3)",
+     pf_pd_coupled_keys},
     {"initial_displacement", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m", "expressions in x, y, z; the stress follows it in hyperelastic and PD models (rate-form models start unstressed)", NULL},
     PF_KEY_END};
 
@@ -126,6 +129,7 @@ int pf_fem_body_create(const pf_deck *d, const pf_node *body, const pf_node *mat
   if (!ierr) ierr = pf_fem_mesh_read(d, pf_node_get(body, "mesh"), &b->mesh);
   if (!ierr) ierr = nodal_volumes(b);
   if (!ierr) ierr = mesh_node_elements(&b->mesh, &b->mesh_node_off, &b->mesh_node_item);
+  if (!ierr) ierr = pf_fem_body_coupling_read(b, body, materials);
   if (ierr) {
     pf_fem_body_destroy(&b);
     return ierr;
@@ -141,6 +145,9 @@ int pf_fem_body_destroy(pf_fem_body **pb) {
   pf_fem_material_destroy(&b->mat);
   free(b->node_volume), free(b->mesh_node_off), free(b->mesh_node_item), free(b->eid), free(b->conn), free(b->own), free(b->sigma), free(b->state);
   free(b->hgq), free(b->ref), free(b->fe), free(b->energy), free(b->node_off), free(b->node_item), free(b->buf);
+  pf_pd_body_destroy(&b->pd);
+  pf_expr_destroy(&b->beta_expr);
+  free(b->fsave);
   PF_FREE(*pb);
   return 0;
 }
@@ -163,8 +170,8 @@ static int cmp_gid(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-int pf_fem_body_node_rows(const pf_fem_body *b, const pf_points *pts, pf_int first, pf_int n, pf_gid gid0,
-                          pf_bond_rows *rows) {
+static int element_rows(const pf_fem_body *b, const pf_points *pts, pf_int first, pf_int n, pf_gid gid0,
+                        pf_bond_rows *rows) {
   const pf_fem_mesh *m = &b->mesh;
   const int64_t *off = b->mesh_node_off;
   const pf_int *item = b->mesh_node_item;
@@ -188,3 +195,28 @@ int pf_fem_body_node_rows(const pf_fem_body *b, const pf_points *pts, pf_int fir
   }
   return ierr;
 }
+
+/* A coupled body's rows: each node's PD family (searched at set-up; afterwards its current
+ * bonds, broken flags included) merged with its element neighbours. */
+int pf_fem_body_node_rows(const pf_fem_body *b, const pf_points *pts, pf_int first, pf_int n, pf_gid gid0,
+                          pf_bond_rows *rows) {
+  if (!b->pd) return element_rows(b, pts, first, n, gid0, rows);
+  pf_bond_rows pd, el;
+  PF_CALL(pf_bond_rows_init(&pd));
+  PF_CALL(pf_bond_rows_init(&el));
+  int ierr = element_rows(b, pts, first, n, gid0, &el);
+  if (!ierr && pf_pd_body_family(b->pd)->offset) ierr = pf_pd_body_bond_rows(b->pd, pts, &pd);
+  else if (!ierr) {
+    double *cell = malloc(sizeof(double) * ((size_t)b->mesh.nnodes + 1));
+    if (!cell) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+    for (pf_int k = 0; !ierr && k < b->mesh.nnodes; k++) cell[k] = cbrt(b->node_volume[k]);
+    pf_pd_cloud cloud = {b->mesh.X, cell, b->mesh.nnodes, gid0};
+    if (!ierr) ierr = pf_pd_body_find_bonds(b->pd, &cloud, pts, first, n, &pd);
+    free(cell);
+  }
+  if (!ierr) ierr = pf_fem_body_coupled_rows(b, &pd, &el, rows);
+  pf_bond_rows_free(&pd), pf_bond_rows_free(&el);
+  return ierr;
+}
+
+pf_pd_body *pf_fem_body_pd(const pf_fem_body *b) { return b->pd; }

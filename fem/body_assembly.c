@@ -27,6 +27,7 @@ static int local_elements(pf_fem_body *b, const pf_points *pts, pf_int first, pf
       pf_int i = loc[m->conn[8 * (size_t)e + I]];
       if (i >= first && i < first + n) mark[e] = 1;
     }
+  for (pf_int e = 0; e < m->nelem; e++) mark[e] = mark[e] && !pf_fem_body_element_is_pd(b, e);
   b->nel = 0;
   for (pf_int e = 0; e < m->nelem; e++) b->nel += mark[e];
   free(b->eid), free(b->conn), free(b->own);
@@ -142,11 +143,13 @@ int pf_fem_body_attach(pf_fem_body *b, int body, pf_points *pts, pf_int first, p
   PF_MALLOC(b->buf, pf_fem_chunk_doubles(b->nqp, b->nstate));
   pf_fem_material_init(b->mat, (pf_int)nq, b->state);
   b->stable_dt = reference_stable_dt(b, pts);
-  return register_fields(b, pts);
+  PF_CALL(pf_fem_body_coupling_attach(b, pts));
+  return b->pd ? 0 : register_fields(b, pts); /* (a coupled body's stress is its PD points') */
 }
 
 int pf_fem_body_force(pf_fem_body *b, pf_points *pts, double dt, double t, long step) {
   b->t = t, b->step = step;
+  if (b->pd) return pf_fem_body_coupled_force(b, pts, dt);
   PF_CALL(pf_fem_elements_evaluate(b, pts, dt));
   for (pf_int i = 0; i < b->n; i++) {
     double f[3] = {0, 0, 0};
@@ -163,15 +166,22 @@ double pf_fem_body_stable_dt(const pf_fem_body *b) { return b->stable_dt; }
 
 void pf_fem_body_energies(const pf_fem_body *b, double e[3]) {
   e[0] = e[1] = e[2] = 0;
-  for (pf_int k = 0; k < b->nel; k++)
-    if (b->own[k])
-      for (int c = 0; c < 3; c++) e[c] += b->energy[3 * (size_t)k + c];
+  for (pf_int k = 0; k < b->nel; k++) {
+    if (!b->own[k]) continue;
+    double w = 1; /* coupled: the element's share, 1 - its nodes' mean blending weight */
+    for (int I = 0; I < 8 && b->pd; I++) w -= b->beta[b->conn[8 * (size_t)k + I]] / 8.0;
+    for (int c = 0; c < 3; c++) e[c] += w * b->energy[3 * (size_t)k + c];
+  }
 }
 
 const pf_fem_mesh *pf_fem_body_mesh(const pf_fem_body *b) { return &b->mesh; }
 const pf_fem_material *pf_fem_body_material(const pf_fem_body *b) { return b->mat; }
 
 int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts) {
+  if (b->pd) { /* the nodes' stress and history are the PD points'; their bond damage */
+    pf_pd_body_damage(b->pd, pts);
+    return 0;
+  }
   double *stress = pf_points_field_get(pts, "stress");
   PF_CHECK(stress, PF_ERR_RUN, "body '%s': no stress field", b->name);
   double *st[16], *vq = NULL;

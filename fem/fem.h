@@ -125,5 +125,10 @@ void pf_fem_body_set_stable_dt(pf_fem_body *b, double dt);
 /* Fill the nodal output fields "stress" (6) and the material's state names with the
  * volume-weighted average over each owned node's elements. */
 int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts);
+/* The peridynamic operator coupled to the body's nodes (a `peridynamic:` map), or NULL
+ * (fem/body_coupling.c). Its attach follows the body's, with the same rows; then
+ * pf_fem_body_coupling_ready takes its stable step into the body's. */
+struct pf_pd_body *pf_fem_body_pd(const pf_fem_body *b);
+int pf_fem_body_coupling_ready(pf_fem_body *b, pf_points *pts);
 
 #endif

@@ -3,6 +3,7 @@
 #define PF_FEM_IMPL_H
 
 #include "fem/fem.h"
+#include "pd/pd.h"
 
 /* ---- hexahedron geometry (fem/hex8.c) ---- */
 extern const double pf_hex8_node_sign[8][3];
@@ -55,6 +56,11 @@ struct pf_fem_body {
   int64_t *node_off; /* [n + 1] CSR: elements of each owned node */
   pf_int *node_item; /* element * 8 + corner, ascending element */
   double *buf;       /* chunk scratch */
+  /* coupling to peridynamics (docs/theory/coupling.md §3) */
+  pf_pd_body *pd;    /* the PD operator over the same nodes, or NULL */
+  pf_expr *beta_expr; /* blending weight beta(x) */
+  double *beta;      /* field "blending_weight" [store] */
+  double *fsave;     /* [3n] scratch of the blended force */
   double stable_dt;  /* from the last force evaluation */
   double t;          /* time and step of the evaluation, for error messages */
   long step;
@@ -63,6 +69,17 @@ struct pf_fem_body {
 /* fem/element_force.c: element forces of the body's local elements into b->fe, energies and
  * the stable step; returns 0 or an error naming a negative-Jacobian element. */
 int pf_fem_elements_evaluate(pf_fem_body *b, const pf_points *pts, double dt);
+
+/* fem/body_coupling.c: the `peridynamic:` map (the PD operator and beta), beta at a point, the
+ * elements left to PD, the merged rows (PD family and element neighbours), the blending field
+ * and masses at attach, and the blended force. */
+int pf_fem_body_coupling_read(pf_fem_body *b, const pf_node *body, const pf_node *materials);
+double pf_fem_body_beta(const pf_fem_body *b, const double x[3]);
+int pf_fem_body_element_is_pd(const pf_fem_body *b, pf_int e);
+int pf_fem_body_coupled_rows(const pf_fem_body *b, const pf_bond_rows *pd, const pf_bond_rows *elem,
+                             pf_bond_rows *rows);
+int pf_fem_body_coupling_attach(pf_fem_body *b, pf_points *pts);
+int pf_fem_body_coupled_force(pf_fem_body *b, pf_points *pts, double dt);
 size_t pf_fem_chunk_doubles(int nqp, int nstate);
 
 #endif

@@ -127,6 +127,7 @@ static int read_material(const pf_deck *d, const pf_node *body, const pf_node *m
                          pf_pd_body *b, const pf_node **mat) {
   const char *mname = NULL, *model = NULL;
   PF_CALL(pf_deck_string(d, body, "material", &mname));
+  snprintf(b->material, sizeof b->material, "%s", mname);
   *mat = pf_node_get(materials, mname);
   if (!*mat)
     return pf_deck_error(d, pf_node_get(body, "material"), "material",
@@ -170,6 +171,7 @@ static int read_horizon(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
     return 0;
   }
   b->horizon = 0; /* until the points are known */
+  b->one_sided = 1;
   return pf_expr_create(text, d, h, "horizon", &b->hz_expr);
 }
 
@@ -211,17 +213,19 @@ static int check_variable_horizon(const pf_deck *d, const pf_node *body, const p
   return 0;
 }
 
-static int body_read(const pf_deck *d, const pf_node *body, const pf_node *materials,
+/* owner: the body mapping with the name and the material; body: the mapping of the PD keys (the
+ * same node, or an FE body's `peridynamic:` map). */
+static int body_read(const pf_deck *d, const pf_node *owner, const pf_node *body, const pf_node *materials,
                      pf_pd_body *b) {
   const char *name = "";
   b->deck = d;
   b->node = body;
-  PF_CALL(pf_deck_string(d, body, "name", &name));
+  PF_CALL(pf_deck_string(d, owner, "name", &name));
   snprintf(b->name, sizeof b->name, "%s", name);
   PF_CALL(read_horizon(d, body, b));
   PF_CALL(read_formulation(d, body, b));
   const pf_node *mat = NULL;
-  PF_CALL(read_material(d, body, materials, b, &mat));
+  PF_CALL(read_material(d, owner, materials, b, &mat));
   PF_CALL(read_influence(d, body, b));
   const char *corr_keys[] = {"hourglass", "critical_damage"};
   for (int k = 0; k < 2 && b->ops != &pf_pd_material_correspondence; k++)
@@ -241,7 +245,7 @@ int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *mate
   *out = NULL;
   pf_pd_body *b;
   PF_MALLOC(b, 1);
-  int ierr = body_read(d, body, materials, b);
+  int ierr = body_read(d, body, body, materials, b);
   if (ierr) {
     pf_pd_body_destroy(&b);
     return ierr;
@@ -258,6 +262,36 @@ static int horizon_at(const pf_pd_body *b, const double *x, pf_gid gid, double *
                        "body '%s': the horizon is %g at point %" PF_GID_FMT " (%g, %g, %g); it must be "
                        "positive", b->name, *h, gid, x[0], x[1], x[2]);
 }
+
+const pf_key pf_pd_coupled_keys[] = {
+    {"horizon", PF_KEY_EXPR, 1, NULL, "m", "horizon at the nodes: a number or an expression in x, y, z", NULL},
+    {"blending", PF_KEY_EXPR, 1, NULL, "",
+     "blending weight beta(x, y, z) in [0, 1]: 1 peridynamics only, 0 elements only", NULL},
+    {"formulation", PF_KEY_STRING, 0, "auto", "", "auto | standard | partial_stress", NULL},
+    {"influence", PF_KEY_STRING, 0, "constant", "", "constant | inverse_distance", NULL},
+    {"hourglass", PF_KEY_MAP, 0, "type: stiffness, coefficient: 0.05", "", "zero-energy-mode control",
+     pf_pd_hourglass_keys},
+    {"critical_damage", PF_KEY_REAL, 0, "0.99", "", "a bond fails once either end's damage exceeds it", NULL},
+    {"damage", PF_KEY_MAP, 0, "law: none", "", "bond failure law (acts where beta = 1 only)", pf_pd_damage_keys},
+    {"precracks", PF_KEY_LIST, 0, NULL, "", "planar cracks", crack_keys},
+    PF_KEY_END};
+
+int pf_pd_body_create_coupled(const pf_deck *d, const pf_node *owner, const pf_node *map,
+                              const pf_node *materials, pf_pd_body **out) {
+  *out = NULL;
+  pf_pd_body *b;
+  PF_MALLOC(b, 1);
+  int ierr = body_read(d, owner, map, materials, b);
+  b->one_sided = 1; /* the rows also hold the element neighbours of each node */
+  if (ierr) {
+    pf_pd_body_destroy(&b);
+    return ierr;
+  }
+  *out = b;
+  return 0;
+}
+
+void pf_pd_body_set_blending(pf_pd_body *b, const double *beta) { b->blend = beta; }
 
 int pf_pd_body_find_bonds(pf_pd_body *b, const pf_pd_cloud *cloud, const pf_points *pts,
                           pf_int first, pf_int n, pf_bond_rows *rows) {
@@ -318,7 +352,8 @@ static int set_regions(pf_pd_body *b, pf_points *pts) {
     int ps = b->form == PF_PD_PARTIAL_STRESS;
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1] && b->form == PF_PD_AUTO; k++)
       ps |= b->hz[fam->neighbor[k]] != b->hz[i];
-    b->region[i] = ps && (b->form == PF_PD_PARTIAL_STRESS || family_complete(b, pts, i));
+    b->region[i] = (ps && (b->form == PF_PD_PARTIAL_STRESS || family_complete(b, pts, i))) +
+                   2 * (b->blend && b->blend[i] < 1);
   }
   return pf_points_exchange(pts, b->region, 1);
 }
@@ -395,6 +430,11 @@ int64_t pf_pd_body_damage(const pf_pd_body *b, pf_points *pts) {
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     double all = 0, intact = 0;
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      if (b->one_sided) { /* own-family bonds only */
+        double r2 = 0;
+        for (int a = 0; a < 3; a++) r2 += pow(pts->X[3 * fam->neighbor[k] + a] - pts->X[3 * i + a], 2);
+        if (!pf_pd_in_family(b, i, sqrt(r2))) continue;
+      }
       double v = pf_pd_bond_volume(fam, pts->vol, k, fam->neighbor[k]);
       all += v;
       intact += fam->broken[k] ? 0 : v;

@@ -105,8 +105,7 @@ static double wave_factor(const pf_influence *w, double delta) {
 }
 
 static int corr_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
-  const char *mname = "";
-  PF_CALL(pf_deck_string(d, b->node, "material", &mname));
+  const char *mname = b->material;
   corr *p;
   PF_MALLOC(p, 1);
   b->mat = p;
@@ -414,7 +413,7 @@ static int corr_force(pf_pd_body *b, pf_points *pts) {
   const double *dev = p->viscous ? pts->v : pts->y;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     const double *gi = &p->gx[GX * i];
-    const int standard = b->region[i] == 0;
+    const int standard = !pf_pd_partial_stress_at(b, i);
     const double ki = p->hg * gi[G_C] * (p->viscous ? b->hz[i] / p->cl : 1.0);
     double f[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
@@ -463,7 +462,8 @@ static int corr_force(pf_pd_body *b, pf_points *pts) {
 static double corr_energy(const pf_pd_body *b, const pf_points *pts) {
   const corr *p = b->mat;
   double e = 0;
-  for (pf_int i = b->first; i < b->first + b->n; i++) e += pts->vol[i] * p->work[i] + p->hgwork[i];
+  for (pf_int i = b->first; i < b->first + b->n; i++) /* (coupled to FE: its blended share) */
+    e += (b->blend ? b->blend[i] : 1.0) * (pts->vol[i] * p->work[i] + p->hgwork[i]);
   return e;
 }
 

@@ -39,7 +39,7 @@ static int lps_setup(pf_pd_body *b, pf_points *pts) {
   p->m = pts->fields[im].data;
   p->theta = pts->fields[it].data;
   double nps = 0;
-  for (pf_int i = b->first; i < b->first + b->n; i++) nps += b->region[i];
+  for (pf_int i = b->first; i < b->first + b->n; i++) nps += pf_pd_partial_stress_at(b, i);
   free(p->Ki);
   p->Ki = NULL, p->nu = NULL;
   if (pf_sum_all(nps) > 0) { /* (collective: every rank exchanges the field) */
@@ -48,7 +48,7 @@ static int lps_setup(pf_pd_body *b, pf_points *pts) {
     p->nu = pts->fields[in].data;
     PF_MALLOC(p->Ki, 9 * (size_t)b->n + 1);
     for (pf_int i = b->first; i < b->first + b->n; i++)
-      if (b->region[i] != 0) pf_pd_shape_tensor_inverse(b, pts, i, &p->Ki[9 * (i - b->first)]);
+      if (pf_pd_partial_stress_at(b, i)) pf_pd_shape_tensor_inverse(b, pts, i, &p->Ki[9 * (i - b->first)]);
   }
   return pf_pd_weighted_volumes(b, pts, p->m);
 }
@@ -121,7 +121,7 @@ static int lps_force(pf_pd_body *b, pf_points *pts) {
   PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta for the force pass */
   if (p->nu) PF_CALL(lps_partial_stress(b, pts));
   for (pf_int i = b->first; i < b->first + b->n; i++) {
-    if (b->region[i] != 0) {
+    if (pf_pd_partial_stress_at(b, i)) {
       pf_pd_partial_stress_force(b, pts, i, p->nu, 9, &p->Ki[9 * (i - b->first)]);
       continue;
     }

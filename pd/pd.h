@@ -91,6 +91,15 @@ int pf_pd_material_known(const char *model);
 const char *pf_pd_material_names(void);
 int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *materials,
                       pf_pd_body **b);
+/* A peridynamic operator over the nodes of a finite-element body (docs/theory/coupling.md §3):
+ * its keys from map (pf_pd_coupled_keys, an FE body's `peridynamic:`), its name and material from
+ * the FE body's mapping owner: a correspondence body of the FE body's continuum model. */
+extern const pf_key pf_pd_coupled_keys[];
+int pf_pd_body_create_coupled(const pf_deck *d, const pf_node *owner, const pf_node *map,
+                              const pf_node *materials, pf_pd_body **b);
+/* Each store point's blending weight (FE-coupled bodies), read at attach: points with beta < 1
+ * are overlap points (no damage). */
+void pf_pd_body_set_blending(pf_pd_body *b, const double *beta);
 /* Append to rows the bonds of store points [first, first+n), points of this body, found in
  * the body's whole cloud (with a variable horizon, each point's own horizon: rows hold the
  * pairs either end's family has). */

@@ -28,6 +28,7 @@ typedef enum {
 
 struct pf_pd_body {
   char name[64];
+  char material[64];   /* its name under materials: */
   const pf_deck *deck; /* for error messages naming the deck position */
   const pf_node *node; /* this body's mapping in the deck */
   pf_int first, n;     /* owned points [first, first + n) of the store */
@@ -38,7 +39,11 @@ struct pf_pd_body {
   pf_expr *hz_expr;        /* a variable horizon delta(x, y, z), or NULL */
   pf_pd_formulation form;
   double *hz;              /* field "horizon" [store]: each point's own horizon, ghosts too */
-  double *region;          /* field "region" [store]: 0 standard force, 1 partial stress */
+  double *region;          /* field "region" [store]: bit 0 (1) the partial-stress force, bit 1
+                              (2) an overlap point (blending weight < 1); 0: the PD region */
+  const double *blend;     /* coupled to FE elements: each store point's blending weight, or NULL */
+  int one_sided;           /* rows may hold bonds outside a point's own family (variable
+                              horizon, or the element neighbours of a coupled body's nodes) */
   double dt;           /* the step just taken, set by pf_pd_body_force (rate-form materials) */
   int fresh;           /* set by attach for the material's setup: 1 at t = 0, 0 after a re-partition
                           or a restart (the material's restart fields came with the points) */
@@ -95,8 +100,11 @@ extern const pf_key pf_pd_hourglass_keys[];
  * with a variable one the rows also hold the bonds only j's family has (one-sided). Every kernel
  * computes r0 as sqrt of the same sum of squares, so all decide alike. */
 static inline int pf_pd_in_family(const pf_pd_body *b, pf_int i, double r0) {
-  return !b->hz_expr || r0 <= b->hz[i];
+  return !b->one_sided || r0 <= b->hz[i];
 }
+
+/* Does store point i take the partial-stress force? */
+static inline int pf_pd_partial_stress_at(const pf_pd_body *b, pf_int i) { return (int)b->region[i] & 1; }
 
 /* May the damage law fail the bond i - j? Only between points of the standard force: the
  * partial-stress transition carries no damage (seed 001: "not a good candidate for modeling
