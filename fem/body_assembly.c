@@ -147,16 +147,21 @@ int pf_fem_body_attach(pf_fem_body *b, int body, pf_points *pts, pf_int first, p
   return b->pd ? 0 : register_fields(b, pts); /* (a coupled body's stress is its PD points') */
 }
 
+void pf_fem_node_force(const pf_fem_body *b, pf_int i, double f[3]) {
+  f[0] = f[1] = f[2] = 0;
+  for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
+    const double *fe = &b->fe[3 * (size_t)b->node_item[q]];
+    f[0] += fe[0], f[1] += fe[1], f[2] += fe[2];
+  }
+}
+
 int pf_fem_body_force(pf_fem_body *b, pf_points *pts, double dt, double t, long step) {
   b->t = t, b->step = step;
   if (b->pd) return pf_fem_body_coupled_force(b, pts, dt);
   PF_CALL(pf_fem_elements_evaluate(b, pts, dt));
   for (pf_int i = 0; i < b->n; i++) {
-    double f[3] = {0, 0, 0};
-    for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
-      const double *fe = &b->fe[3 * (size_t)b->node_item[q]];
-      f[0] += fe[0], f[1] += fe[1], f[2] += fe[2];
-    }
+    double f[3];
+    pf_fem_node_force(b, i, f);
     for (int a = 0; a < 3; a++) pts->f[3 * (size_t)(b->first + i) + a] += f[a];
   }
   return 0;

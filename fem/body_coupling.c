@@ -100,11 +100,8 @@ int pf_fem_body_coupled_force(pf_fem_body *b, pf_points *pts, double dt) {
   for (size_t k = 0; k < n3; k++) keep[k] += b->beta[b->first + k / 3] * f[k], f[k] = 0.0;
   PF_CALL(pf_fem_elements_evaluate(b, pts, dt));
   for (pf_int i = 0; i < b->n; i++) {
-    double fe[3] = {0, 0, 0};
-    for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
-      const double *x = &b->fe[3 * (size_t)b->node_item[q]];
-      fe[0] += x[0], fe[1] += x[1], fe[2] += x[2];
-    }
+    double fe[3];
+    pf_fem_node_force(b, i, fe);
     const double w = 1.0 - b->beta[b->first + i];
     for (int a = 0; a < 3; a++) f[3 * (size_t)i + a] = keep[3 * (size_t)i + a] + w * fe[a];
   }

@@ -80,6 +80,9 @@ int pf_fem_body_coupled_rows(const pf_fem_body *b, const pf_bond_rows *pd, const
                              pf_bond_rows *rows);
 int pf_fem_body_coupling_attach(pf_fem_body *b, pf_points *pts);
 int pf_fem_body_coupled_force(pf_fem_body *b, pf_points *pts, double dt);
+/* fem/body_assembly.c: the assembled element force of owned node i (local index), its
+ * elements summed in ascending global element order. */
+void pf_fem_node_force(const pf_fem_body *b, pf_int i, double f[3]);
 size_t pf_fem_chunk_doubles(int nqp, int nstate);
 
 #endif

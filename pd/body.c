@@ -240,18 +240,24 @@ static int body_read(const pf_deck *d, const pf_node *owner, const pf_node *body
   return check_variable_horizon(d, body, b);
 }
 
-int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *materials,
-                      pf_pd_body **out) {
+static int create(const pf_deck *d, const pf_node *owner, const pf_node *map, const pf_node *materials,
+                  int coupled, pf_pd_body **out) {
   *out = NULL;
   pf_pd_body *b;
   PF_MALLOC(b, 1);
-  int ierr = body_read(d, body, body, materials, b);
+  b->one_sided = coupled; /* a coupled body's rows also hold each node's element neighbours */
+  int ierr = body_read(d, owner, map, materials, b);
   if (ierr) {
     pf_pd_body_destroy(&b);
     return ierr;
   }
   *out = b;
   return 0;
+}
+
+int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *materials,
+                      pf_pd_body **out) {
+  return create(d, body, body, materials, 0, out);
 }
 
 /* delta(x) at a point; a value that is not positive and finite is an input error naming it. */
@@ -278,17 +284,7 @@ const pf_key pf_pd_coupled_keys[] = {
 
 int pf_pd_body_create_coupled(const pf_deck *d, const pf_node *owner, const pf_node *map,
                               const pf_node *materials, pf_pd_body **out) {
-  *out = NULL;
-  pf_pd_body *b;
-  PF_MALLOC(b, 1);
-  int ierr = body_read(d, owner, map, materials, b);
-  b->one_sided = 1; /* the rows also hold the element neighbours of each node */
-  if (ierr) {
-    pf_pd_body_destroy(&b);
-    return ierr;
-  }
-  *out = b;
-  return 0;
+  return create(d, owner, map, materials, 1, out);
 }
 
 void pf_pd_body_set_blending(pf_pd_body *b, const double *beta) { b->blend = beta; }
@@ -355,6 +351,17 @@ static int set_regions(pf_pd_body *b, pf_points *pts) {
     b->region[i] = (ps && (b->form == PF_PD_PARTIAL_STRESS || family_complete(b, pts, i))) +
                    2 * (b->blend && b->blend[i] < 1);
   }
+  free(b->idle);
+  b->idle = NULL;
+  if (b->blend) {
+    PF_MALLOC(b->idle, b->n + 1);
+    for (pf_int i = b->first; i < b->first + b->n; i++) {
+      int idle = b->blend[i] == 0;
+      for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1] && idle; k++)
+        idle = b->blend[fam->neighbor[k]] == 0;
+      b->idle[i - b->first] = (uint8_t)idle;
+    }
+  }
   return pf_points_exchange(pts, b->region, 1);
 }
 
@@ -391,6 +398,7 @@ int pf_pd_body_destroy(pf_pd_body **b) {
   if ((*b)->ops && (*b)->ops->destroy && (*b)->mat) (*b)->ops->destroy(*b);
   pf_pd_family_free(&(*b)->fam);
   free((*b)->smin);
+  free((*b)->idle);
   free((*b)->cracks);
   pf_expr_destroy(&(*b)->hz_expr);
   PF_FREE(*b);

@@ -187,13 +187,8 @@ static double reference_step(const pf_pd_body *b, const pf_points *pts, pf_int i
   const pf_family *fam = &b->fam;
   double K[3][3] = {{0}}, I[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, sums[2] = {0, 0}, rate, whg2;
   for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-    if (fam->broken[k]) continue;
-    const pf_int j = fam->neighbor[k];
-    double xi[3], r2 = 0;
-    for (int a = 0; a < 3; a++) xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a], r2 += xi[a] * xi[a];
-    const double r0 = sqrt(r2);
-    if (!pf_pd_in_family(b, i, r0)) continue;
-    const double w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    double xi[3], r0, w;
+    if (!pf_pd_own_bond(b, pts, i, k, xi, &r0, &w)) continue;
     for (int r = 0; r < 3; r++)
       for (int c = 0; c < 3; c++) K[r][c] += w * xi[r] * xi[c];
     sums[0] += w * r0, sums[1] += w / r0;
@@ -290,6 +285,21 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
   return nb;
 }
 
+/* Point i at rest for the model (F = I, D = 0, no force state): detached (then its bonds fail
+ * next step) or idle (coupled, beta = 0 around it: its stress stays zero, no step limit). */
+static void at_rest(pf_pd_body *b, pf_int i, int detached) {
+  corr *p = b->mat;
+  const pf_int li = i - b->first;
+  double *g = &p->gx[GX * i];
+  for (int k = 0; k < 9; k++) {
+    p->F[9 * li + k] = g[G_F + k] = (k % 4 == 0);
+    g[G_PK + k] = g[G_FDOT + k] = g[G_NU + k] = p->Ki[9 * li + k] = 0.0;
+  }
+  for (int k = 0; k < 6; k++) p->D[6 * li + k] = 0.0, p->s_old[6 * li + k] = p->sigma[6 * i + k];
+  g[G_DETACHED] = detached;
+  p->rate[li] = p->whg2[li] = 0.0, p->Jm[li] = 1.0;
+}
+
 /* Kinematics of point i for the model: Fbar into F, D into D, the rotated previous stress; K^-1
  * kept in the ghost record until the stress is known. Returns 0 when the point is detached: too
  * few bonds for an invertible K, or an inverted Fbar (a point with no material left around it). */
@@ -311,15 +321,11 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
     ok = J > 0 && (p->Jm[li] = pf_mat3_inverse(Fm, Fmi)) > 0;
     if (ok) step_rates(b, i, K, Fb, sums, &p->rate[li], &p->whg2[li]);
   }
-  g[G_DETACHED] = !ok;
   if (!ok) { /* the model sees a state at rest; its result is discarded */
-    for (int k = 0; k < 9; k++) {
-      F[k] = g[G_F + k] = (k % 4 == 0);
-      g[G_PK + k] = g[G_FDOT + k] = g[G_NU + k] = p->Ki[9 * li + k] = 0.0;
-    }
-    for (int k = 0; k < 6; k++) D[k] = 0.0, p->s_old[6 * li + k] = p->sigma[6 * i + k];
+    at_rest(b, i, 1);
     return 0;
   }
+  g[G_DETACHED] = 0;
   mat_mul(Fd, Fmi, L);
   for (int k = 0; k < 6; k++) D[k] = 0.5 * (L[pf_voigt_i[k]][pf_voigt_j[k]] + L[pf_voigt_j[k]][pf_voigt_i[k]]);
   pf_mat3_hughes_winget(L, b->dt, R);
@@ -376,7 +382,9 @@ static int corr_pass1(pf_pd_body *b, pf_points *pts) {
   const int ns = p->nstate;
   pf_int ndetached = 0;
   fail_bonds(b);
-  for (pf_int i = b->first; i < b->first + b->n; i++) ndetached += !kinematics(b, pts, i);
+  for (pf_int i = b->first; i < b->first + b->n; i++)
+    if (b->idle && b->idle[i - b->first]) at_rest(b, i, 0);
+    else ndetached += !kinematics(b, pts, i);
   double *state = ns ? &p->state[(size_t)ns * b->first] : NULL;
   if (ndetached && ns) memcpy(p->saved, state, sizeof(double) * ns * b->n);
   pf_fem_material_update(p->cm, b->n, b->dt, p->F, p->D, &p->sigma[6 * b->first], state, p->cw);
@@ -412,6 +420,7 @@ static int corr_force(pf_pd_body *b, pf_points *pts) {
   const int gdev = p->viscous ? G_FDOT : G_F; /* the predicted relative position or velocity */
   const double *dev = p->viscous ? pts->v : pts->y;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
+    if (b->blend && b->blend[i] == 0) continue; /* coupled: no PD force wanted here */
     const double *gi = &p->gx[GX * i];
     const int standard = !pf_pd_partial_stress_at(b, i);
     const double ki = p->hg * gi[G_C] * (p->viscous ? b->hz[i] / p->cl : 1.0);

@@ -16,13 +16,8 @@ double pf_pd_shape_tensor_inverse(const pf_pd_body *b, const pf_points *pts, pf_
   const pf_family *fam = &b->fam;
   double K[3][3] = {{0}}, inv[3][3];
   for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-    if (fam->broken[k]) continue;
-    const pf_int j = fam->neighbor[k];
-    double xi[3], r02 = 0;
-    for (int a = 0; a < 3; a++) xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a], r02 += xi[a] * xi[a];
-    const double r0 = sqrt(r02);
-    if (!pf_pd_in_family(b, i, r0)) continue;
-    const double w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    double xi[3], r0, w;
+    if (!pf_pd_own_bond(b, pts, i, k, xi, &r0, &w)) continue;
     for (int r = 0; r < 3; r++)
       for (int c = 0; c < 3; c++) K[r][c] += w * xi[r] * xi[c];
   }
@@ -41,14 +36,9 @@ void pf_pd_partial_stress_force(const pf_pd_body *b, pf_points *pts, pf_int i, c
   const double *ni = &nu[(size_t)stride * i];
   double L[3] = {0, 0, 0}; /* sum_j w V_j (nu_j - nu_i) K_i^-1 xi */
   for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-    if (fam->broken[k]) continue;
-    const pf_int j = fam->neighbor[k];
-    double xi[3], r02 = 0;
-    for (int a = 0; a < 3; a++) xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a], r02 += xi[a] * xi[a];
-    const double r0 = sqrt(r02);
-    if (!pf_pd_in_family(b, i, r0)) continue;
-    const double w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
-    const double *nj = &nu[(size_t)stride * j];
+    double xi[3], r0, w;
+    if (!pf_pd_own_bond(b, pts, i, k, xi, &r0, &w)) continue;
+    const double *nj = &nu[(size_t)stride * fam->neighbor[k]];
     double kx[3];
     for (int q = 0; q < 3; q++) kx[q] = Ki[3 * q] * xi[0] + Ki[3 * q + 1] * xi[1] + Ki[3 * q + 2] * xi[2];
     for (int a = 0; a < 3; a++)

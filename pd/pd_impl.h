@@ -42,6 +42,8 @@ struct pf_pd_body {
   double *region;          /* field "region" [store]: bit 0 (1) the partial-stress force, bit 1
                               (2) an overlap point (blending weight < 1); 0: the PD region */
   const double *blend;     /* coupled to FE elements: each store point's blending weight, or NULL */
+  uint8_t *idle;           /* [n] coupled: 1 where beta = 0 at the point and its whole row (no PD
+                              force is wanted there, nor its state by a neighbour), or NULL */
   int one_sided;           /* rows may hold bonds outside a point's own family (variable
                               horizon, or the element neighbours of a coupled body's nodes) */
   double dt;           /* the step just taken, set by pf_pd_body_force (rate-form materials) */
@@ -154,6 +156,21 @@ static inline void pf_pd_bond_lengths(const double *restrict X, const double *re
 static inline double pf_pd_bond_volume(const pf_family *fam, const double *vol, int64_t b,
                                        pf_int j) {
   return fam->vfrac ? vol[j] * fam->vfrac[b] : vol[j];
+}
+
+/* Reference geometry of bond k (point i -> its neighbour j) if it is intact and in i's own
+ * family: xi into xi[3], its length into *r0, its weight omega(|xi|) V_j into *w; else 0. */
+static inline int pf_pd_own_bond(const pf_pd_body *b, const pf_points *pts, pf_int i, int64_t k,
+                                 double xi[3], double *r0, double *w) {
+  const pf_family *fam = &b->fam;
+  if (fam->broken[k]) return 0;
+  const pf_int j = fam->neighbor[k];
+  double r02 = 0;
+  for (int a = 0; a < 3; a++) xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a], r02 += xi[a] * xi[a];
+  *r0 = sqrt(r02);
+  if (!pf_pd_in_family(b, i, *r0)) return 0;
+  *w = pf_pd_omega(&b->influence, *r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+  return 1;
 }
 
 #endif

@@ -31,9 +31,9 @@
 
 #include "core/simulation.h"
 
-enum { NX = 60, NY = 19 };
+enum { NX = 46, NY = 17 };
 static const double h = 1e-3, E = 200e9, RHO = 7800, EPS = 1e-6, DT = 1e-7;
-static const char *VARYING = "3.01e-3 - 2e-3 * min(max((x - 0.02) / 0.02, 0), 1)";
+static const char *VARYING = "3.01e-3 - 2e-3 * min(max((x - 0.014) / 0.016, 0), 1)";
 
 static pf_sim *make(const char *model, const char *horizon, const char *form) {
   char deck[2048];
