@@ -56,6 +56,7 @@ typedef struct {
   double **out;        /* [nstate] output fields named by the model's state names */
   double *F, *D, *s_old, *saved, *Jm; /* scratch: [9n], [6n], [6n], [nstate n], [n] */
   double *Ki;                         /* scratch [9n]: K^-1, for the partial-stress force */
+  double *ghost;                      /* [3n] corrected form: d_i of the ghost force nu_i d_i */
   double *rate, *whg2, *cw; /* scratch [n]: beta / sigma_min(Fbar), omega_hg^2, wave speed */
   pf_int cap;
 } corr;
@@ -197,6 +198,40 @@ static double reference_step(const pf_pd_body *b, const pf_points *pts, pf_int i
   return 2.0 / sqrt(p->cl * p->cl * rate * rate + whg2);
 }
 
+/* The corrected form (docs/theory/coupling.md §2.5): under a uniform stress nu the standard force
+ * of point i is V_i nu c_i, c_i = sum_j w V_j ([j in H_i] K_i^-1 + [i in H_j] K_j^-1) xi, zero on a
+ * complete family of constant horizon; where the horizon varies the force keeps the part of it
+ * a constant horizon would give, c_i^ref = 2 sum_{j in H_i} w V_j K_i^-1 xi (the surface traction
+ * of the weak form), and the ghost force V_i nu_i d_i, d_i = c_i - c_i^ref, is taken off. d is
+ * geometry: computed here, with the neighbours' K^-1 through a ghosted field. */
+static int ghost_vectors(pf_pd_body *b, pf_points *pts) {
+  corr *p = b->mat;
+  int any = 0, idx;
+  for (pf_int i = b->first; i < b->first + b->n; i++) any |= pf_pd_corrected_at(b, i);
+  if (!pf_sum_all(any)) return 0; /* (collective: the exchange below) */
+  PF_CALL(pf_points_field_register(pts, "shape_tensor_inverse", 9, PF_FIELD_GHOST, &idx));
+  double *kinv = pts->fields[idx].data;
+  for (pf_int i = b->first; i < b->first + b->n; i++) pf_pd_shape_tensor_inverse(b, pts, i, &kinv[9 * i]);
+  PF_CALL(pf_points_exchange(pts, kinv, 9));
+  free(p->ghost);
+  PF_MALLOC(p->ghost, 3 * (size_t)b->n + 1);
+  const pf_family *fam = &b->fam;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    double *d = &p->ghost[3 * (i - b->first)];
+    d[0] = d[1] = d[2] = 0.0;
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1] && pf_pd_corrected_at(b, i); k++) {
+      const pf_int j = fam->neighbor[k];
+      double xi[3], r02 = 0;
+      for (int a = 0; a < 3; a++) xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a], r02 += xi[a] * xi[a];
+      const double r0 = sqrt(r02), hi = pf_pd_in_family(b, i, r0), hj = pf_pd_in_family(b, j, r0);
+      const double w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+      for (int a = 0; a < 3; a++)
+        for (int c = 0; c < 3; c++) d[a] += w * (hj * kinv[9 * j + 3 * a + c] - hi * kinv[9 * i + 3 * a + c]) * xi[c];
+    }
+  }
+  return 0;
+}
+
 static int corr_setup(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   PF_CALL(register_fields(b, pts));
@@ -233,6 +268,7 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
   }
   if (b->fresh)
     for (pf_int i = b->first; i < b->first + b->n; i++) p->step[i] = reference_step(b, pts, i);
+  PF_CALL(ghost_vectors(b, pts));
   return pf_points_exchange(pts, p->gx, GX);
 }
 
@@ -454,6 +490,11 @@ static int corr_force(pf_pd_body *b, pf_points *pts) {
         for (int a = 0; a < 3; a++) fh[a] += s * Y[a];
       }
     }
+    if (pf_pd_corrected_at(b, i)) { /* less the ghost force of its own uniform stress */
+      const double *d = &p->ghost[3 * (i - b->first)];
+      for (int a = 0; a < 3; a++)
+        for (int c = 0; c < 3; c++) f[a] -= gi[G_NU + 3 * a + c] * d[c];
+    }
     const double V = pts->vol[i];
     double *fo = &p->hgforce[3 * i], dw = 0;
     for (int a = 0; a < 3; a++) { /* work over the step: (f_n + f_n+1)/2 . dt v_n+1/2 */
@@ -489,7 +530,7 @@ static void corr_destroy(pf_pd_body *b) {
   corr *p = b->mat;
   pf_fem_material_destroy(&p->cm);
   free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm), free(p->out);
-  free(p->rate), free(p->whg2), free(p->cw), free(p->Ki);
+  free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->ghost);
   PF_FREE(b->mat);
 }
 

@@ -11,9 +11,10 @@ typedef struct pf_pd_material_ops pf_pd_material_ops;
 /* How a point's internal force is formed (docs/theory/coupling.md §2). Standard: from the force
  * states of both ends of each bond. Partial stress (Silling & Seleson 2013; seed 001 "Partial
  * stress formulation"): the nonlocal divergence of nu = sum_j T<xi> (x) xi V_j. Auto: partial
- * stress at the points whose bond rows reach a point of another horizon (the transition),
- * standard elsewhere. */
-typedef enum { PF_PD_AUTO, PF_PD_STANDARD, PF_PD_PARTIAL_STRESS } pf_pd_formulation;
+ * stress at the interior points whose bond rows reach a point of another horizon (the
+ * transition), standard elsewhere. Corrected: the standard force, less at the transition points
+ * the ghost force it would give under their own uniform stress (§2.5). */
+typedef enum { PF_PD_AUTO, PF_PD_STANDARD, PF_PD_PARTIAL_STRESS, PF_PD_CORRECTED } pf_pd_formulation;
 
 /* Damage laws (the list: pd/damage_critical_stretch.c). Stretch laws: a bond fails when its
  * stretch exceeds min(s0_i, s0_j) (both ends, as LAMMPS' peri pair styles), s0 constant or
@@ -40,7 +41,8 @@ struct pf_pd_body {
   pf_pd_formulation form;
   double *hz;              /* field "horizon" [store]: each point's own horizon, ghosts too */
   double *region;          /* field "region" [store]: bit 0 (1) the partial-stress force, bit 1
-                              (2) an overlap point (blending weight < 1); 0: the PD region */
+                              (2) an overlap point (blending weight < 1), bit 2 (4) the
+                              ghost-corrected standard force; 0: the PD region */
   const double *blend;     /* coupled to FE elements: each store point's blending weight, or NULL */
   uint8_t *idle;           /* [n] coupled: 1 where beta = 0 at the point and its whole row (no PD
                               force is wanted there, nor its state by a neighbour), or NULL */
@@ -105,8 +107,9 @@ static inline int pf_pd_in_family(const pf_pd_body *b, pf_int i, double r0) {
   return !b->one_sided || r0 <= b->hz[i];
 }
 
-/* Does store point i take the partial-stress force? */
+/* Does store point i take the partial-stress force? The ghost-corrected one? */
 static inline int pf_pd_partial_stress_at(const pf_pd_body *b, pf_int i) { return (int)b->region[i] & 1; }
+static inline int pf_pd_corrected_at(const pf_pd_body *b, pf_int i) { return (int)b->region[i] & 4; }
 
 /* May the damage law fail the bond i - j? Only between points of the standard force: the
  * partial-stress transition carries no damage (seed 001: "not a good candidate for modeling

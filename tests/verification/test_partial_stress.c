@@ -13,7 +13,9 @@
  * 1 % at every interior point for both horizons, the standard form with the varying horizon must
  * miss it by more. formulation: auto (partial stress at the interior points whose family reaches
  * another horizon, standard elsewhere) must pass both, the standard points next to partial-stress
- * ones included. Interior: at least 2 delta_max from every face (a point's neighbours' families
+ * ones included. formulation: corrected (the standard force less its uniform-stress ghost force)
+ * must pass the linear test; under the quadratic field it is not exact, and must only beat the
+ * standard form by a factor of 4 (its error is printed). Interior: at least 2 delta_max from every face (a point's neighbours' families
  * are complete there).
  *
  * The displacement is imposed as the integrator would move the body: one step of dt with
@@ -114,10 +116,12 @@ static void linear_cases(const char *name, const field *u) {
   const double st_c = run("elastic", "3.01e-3", "standard", u, zero);
   const double st_v = run("elastic", VARYING, "standard", u, zero);
   const double au_v = run("elastic", VARYING, "auto", u, zero);
+  const double co_v = run("elastic", VARYING, "corrected", u, zero);
   if (pf_comm_rank() == 0) printf("%s linear: max|a| / (E eps / rho dx): partial stress %.2e (constant delta) %.2e (varying); "
-         "standard %.2e (constant) %.2e (varying); auto %.2e (varying)\n", name, ps_c / scale, ps_v / scale,
-         st_c / scale, st_v / scale, au_v / scale);
+         "standard %.2e (constant) %.2e (varying); auto %.2e, corrected %.2e (varying)\n", name, ps_c / scale,
+         ps_v / scale, st_c / scale, st_v / scale, au_v / scale, co_v / scale);
   PF_TEST_TRUE(au_v < 1e-9 * scale);
+  PF_TEST_TRUE(co_v < 1e-9 * scale);
   PF_TEST_TRUE(ps_c < 1e-9 * scale);
   PF_TEST_TRUE(ps_v < 1e-9 * scale);
   PF_TEST_TRUE(st_c < 1e-9 * scale);
@@ -133,10 +137,12 @@ static void quadratic_cases(const char *name, const field *u) {
   const double st_c = run("elastic", "3.01e-3", "standard", u, want) / amag;
   const double st_v = run("elastic", VARYING, "standard", u, want) / amag;
   const double au_v = run("elastic", VARYING, "auto", u, want) / amag;
+  const double co_v = run("elastic", VARYING, "corrected", u, want) / amag;
   if (pf_comm_rank() == 0) printf("%s quadratic: max|a - a_exact| / |a_exact| (|a_exact| = %.4g m/s^2): partial stress %.2e "
-         "(constant delta) %.2e (varying); standard %.2e (constant) %.2e (varying); auto %.2e (varying)\n",
-         name, amag, ps_c, ps_v, st_c, st_v, au_v);
+         "(constant delta) %.2e (varying); standard %.2e (constant) %.2e (varying); auto %.2e, corrected %.2e "
+         "(varying)\n", name, amag, ps_c, ps_v, st_c, st_v, au_v, co_v);
   PF_TEST_TRUE(au_v < 0.01);
+  PF_TEST_TRUE(co_v < 0.25 * st_v); /* the corrected form is not exact here (coupling.md §2.5) */
   PF_TEST_TRUE(ps_c < 0.01);
   PF_TEST_TRUE(ps_v < 0.01);
   PF_TEST_TRUE(st_c < 0.01);
