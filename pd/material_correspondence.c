@@ -56,7 +56,7 @@ typedef struct {
   double **out;        /* [nstate] output fields named by the model's state names */
   double *F, *D, *s_old, *saved, *Jm; /* scratch: [9n], [6n], [6n], [nstate n], [n] */
   double *Ki;                         /* scratch [9n]: K^-1, for the partial-stress force */
-  double *ghost;                      /* [3n] corrected form: d_i of the ghost force nu_i d_i */
+  double *ghost;                      /* field "ghost_correction" [3]: the corrected form's d_i */
   double *rate, *whg2, *cw; /* scratch [n]: beta / sigma_min(Fbar), omega_hg^2, wave speed */
   pf_int cap;
 } corr;
@@ -203,21 +203,24 @@ static double reference_step(const pf_pd_body *b, const pf_points *pts, pf_int i
  * complete family of constant horizon; where the horizon varies the force keeps the part of it
  * a constant horizon would give, c_i^ref = 2 sum_{j in H_i} w V_j K_i^-1 xi (the surface traction
  * of the weak form), and the ghost force V_i nu_i d_i, d_i = c_i - c_i^ref, is taken off. d is
- * geometry: computed here, with the neighbours' K^-1 through a ghosted field. */
+ * the reference geometry's: computed at t = 0, with the neighbours' K^-1 through a ghosted
+ * field, and kept as a point field that migrates and is checkpointed (a neighbour's later broken
+ * bonds must not change it on a re-partition or a restart). */
 static int ghost_vectors(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   int any = 0, idx;
   for (pf_int i = b->first; i < b->first + b->n; i++) any |= pf_pd_corrected_at(b, i);
   if (!pf_sum_all(any)) return 0; /* (collective: the exchange below) */
+  PF_CALL(pf_points_field_register(pts, "ghost_correction", 3, PF_FIELD_RESTART, &idx));
+  p->ghost = pts->fields[idx].data;
+  if (!b->fresh) return 0;
   PF_CALL(pf_points_field_register(pts, "shape_tensor_inverse", 9, PF_FIELD_GHOST, &idx));
   double *kinv = pts->fields[idx].data;
   for (pf_int i = b->first; i < b->first + b->n; i++) pf_pd_shape_tensor_inverse(b, pts, i, &kinv[9 * i]);
   PF_CALL(pf_points_exchange(pts, kinv, 9));
-  free(p->ghost);
-  PF_MALLOC(p->ghost, 3 * (size_t)b->n + 1);
   const pf_family *fam = &b->fam;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
-    double *d = &p->ghost[3 * (i - b->first)];
+    double *d = &p->ghost[3 * i];
     d[0] = d[1] = d[2] = 0.0;
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1] && pf_pd_corrected_at(b, i); k++) {
       const pf_int j = fam->neighbor[k];
@@ -491,7 +494,7 @@ static int corr_force(pf_pd_body *b, pf_points *pts) {
       }
     }
     if (pf_pd_corrected_at(b, i)) { /* less the ghost force of its own uniform stress */
-      const double *d = &p->ghost[3 * (i - b->first)];
+      const double *d = &p->ghost[3 * i];
       for (int a = 0; a < 3; a++)
         for (int c = 0; c < 3; c++) f[a] -= gi[G_NU + 3 * a + c] * d[c];
     }
@@ -530,7 +533,7 @@ static void corr_destroy(pf_pd_body *b) {
   corr *p = b->mat;
   pf_fem_material_destroy(&p->cm);
   free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm), free(p->out);
-  free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->ghost);
+  free(p->rate), free(p->whg2), free(p->cw), free(p->Ki);
   PF_FREE(b->mat);
 }
 

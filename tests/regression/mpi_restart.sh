@@ -91,8 +91,11 @@ cp "$OLDPWD/data/expanding_tube_ep.yaml" ep$tag.yaml
 sed -E 's/final_time: 4.5e-5/steps: 360/; s/d1: 0.1,/d1: 0.0,/' "$OLDPWD/data/damage_bar.yaml" > jc$tag.yaml
 # and the coupled PD/FE bar (tests/data/coupled_bar.yaml: PD bonds with damage on FE nodes, J2
 # elements, blending), checkpointed at step 50 of 60
+# (cc: the same in the corrected form, whose ghost-correction vectors, set at t = 0 from the
+# neighbours' shape tensors, must survive the restart unchanged after bonds broke nearby)
 cp "$OLDPWD/data/coupled_bar.yaml" cb$tag.yaml
-for m in ep jc cb; do
+sed -E 's/^(\s*)damage: \{law/\1formulation: corrected\n\1damage: {law/' cb$tag.yaml > cc$tag.yaml
+for m in ep jc cb cc; do
   printf 'restart:\n  file: ck%s.h5\n  interval: %d\n' $m $([ $m = ep ] && echo 60 || ([ $m = jc ] && echo 150 || echo 25)) >> $m$tag.yaml
   ref=$(digest_of "$(run 1 "$exe" --quiet $m$tag.yaml 2>&1)")
   rm -f ck$m.h5
