@@ -144,38 +144,13 @@ static int ep_force(pf_pd_body *b, pf_points *pts) {
  * stress work of FE and correspondence bodies). */
 static double ep_energy(const pf_pd_body *b, const pf_points *pts) {
   const ep *p = b->mat;
-  const pf_family *fam = &b->fam;
-  double w = 0, e[3], r0, r;
+  double w = 0;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
-    double dev = 0;
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-      if (fam->broken[k]) continue;
-      pf_int j = fam->neighbor[k];
-      pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
-      double ed = (r - r0) - p->theta[i] * r0 / 3 - fam->state[NSTATE * k];
-      dev += pf_pd_omega(&b->influence, r0) * ed * ed * pf_pd_bond_volume(fam, pts->vol, k, j);
-    }
     const double eq = p->eqps[i];
-    w += pts->vol[i] * (0.5 * b->bulk_modulus * p->theta[i] * p->theta[i] + 7.5 * b->shear_modulus / p->m[i] * dev +
+    w += pts->vol[i] * (pf_pd_lps_energy_density(b, pts, i, p->theta[i], p->m[i], b->fam.state, NSTATE) +
                         p->Y0 * eq + 0.5 * p->H * eq * eq);
   }
   return w;
-}
-
-/* For the stable step: the elastic LPS estimate (plastic flow only softens), the PMB
- * micromodulus of equal P-wave modulus, K_eq = (K + 4G/3) / 1.8. */
-static double ep_micromodulus(const pf_pd_body *b, double delta) {
-  double keq = (b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / 1.8;
-  return pf_pd_pmb_micromodulus(keq, &b->influence, delta);
-}
-
-/* Critical stretch from G0: the LPS closed forms (Madenci & Oterkus 2014), elastic fracture.
- * omega = 1/|xi|: sqrt(5 G0 / (9 K delta)); omega = 1: sqrt(8 G0 / (15 K delta)). */
-static double ep_critical_stretch(const pf_pd_body *b, double G0) {
-  double K = b->bulk_modulus, d = b->horizon;
-  if (b->influence.kind == PF_INFLUENCE_INVERSE_DISTANCE) return sqrt(5 * G0 / (9 * K * d));
-  if (b->influence.kind == PF_INFLUENCE_CONSTANT) return sqrt(8 * G0 / (15 * K * d));
-  return NAN;
 }
 
 static void ep_destroy(pf_pd_body *b) {
@@ -188,7 +163,7 @@ const pf_pd_material_ops pf_pd_material_elastic_plastic = {
     .setup = ep_setup,
     .force = ep_force,
     .energy = ep_energy,
-    .micromodulus = ep_micromodulus,
-    .critical_stretch = ep_critical_stretch,
+    .micromodulus = pf_pd_lps_micromodulus,     /* elastic LPS: plastic flow only softens */
+    .critical_stretch = pf_pd_lps_critical_stretch, /* LPS closed forms: elastic fracture */
     .destroy = ep_destroy,
 };

@@ -151,36 +151,40 @@ static int lps_force(pf_pd_body *b, pf_points *pts) {
   return 0;
 }
 
-/* W_i = (K/2) theta^2 + (15 G / (2 m)) sum_j omega (e^d)^2 V_j (Silling et al. 2007, eq. 92). */
+/* W_i = (K/2) theta^2 + (15 G / (2 m)) sum_j omega (e^d - e^dp)^2 V_j (Silling et al. 2007, eq.
+ * 92; e^dp = ep[stride k], a plastic extension, or 0 when ep is NULL), per reference volume. */
+double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_int i, double theta, double m,
+                                const double *ep, int stride) {
+  const pf_family *fam = &b->fam;
+  double dev = 0, e[3], r0, r;
+  for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+    if (fam->broken[k]) continue;
+    pf_int j = fam->neighbor[k];
+    pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+    if (!pf_pd_in_family(b, i, r0)) continue;
+    double ed = (r - r0) - theta * r0 / 3 - (ep ? ep[stride * k] : 0.0);
+    dev += pf_pd_omega(&b->influence, r0) * ed * ed * pf_pd_bond_volume(fam, pts->vol, k, j);
+  }
+  return 0.5 * b->bulk_modulus * theta * theta + 7.5 * b->shear_modulus / m * dev;
+}
+
 static double lps_energy(const pf_pd_body *b, const pf_points *pts) {
   const lps *p = b->mat;
-  const pf_family *fam = &b->fam;
-  double w = 0, e[3], r0, r;
-  for (pf_int i = b->first; i < b->first + b->n; i++) {
-    double dev = 0;
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-      if (fam->broken[k]) continue;
-      pf_int j = fam->neighbor[k];
-      pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
-      if (!pf_pd_in_family(b, i, r0)) continue;
-      double ed = (r - r0) - p->theta[i] * r0 / 3;
-      dev += pf_pd_omega(&b->influence, r0) * ed * ed * pf_pd_bond_volume(fam, pts->vol, k, j);
-    }
-    w += pts->vol[i] * (0.5 * b->bulk_modulus * p->theta[i] * p->theta[i] +
-                        7.5 * b->shear_modulus / p->m[i] * dev);
-  }
+  double w = 0;
+  for (pf_int i = b->first; i < b->first + b->n; i++)
+    w += pts->vol[i] * pf_pd_lps_energy_density(b, pts, i, p->theta[i], p->m[i], NULL, 0);
   return w;
 }
 
 /* For the stable step: the PMB micromodulus of equal P-wave modulus, K_eq = (K + 4G/3) / 1.8. */
-static double lps_micromodulus(const pf_pd_body *b, double delta) {
+double pf_pd_lps_micromodulus(const pf_pd_body *b, double delta) {
   double keq = (b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / 1.8;
   return pf_pd_pmb_micromodulus(keq, &b->influence, delta);
 }
 
 /* Critical stretch from G0 (Madenci & Oterkus 2014 / CabanaPD's LPS):
  * omega = 1/|xi|: sqrt(5 G0 / (9 K delta)); omega = 1: sqrt(8 G0 / (15 K delta)). */
-static double lps_critical_stretch(const pf_pd_body *b, double G0) {
+double pf_pd_lps_critical_stretch(const pf_pd_body *b, double G0) {
   double K = b->bulk_modulus, d = b->horizon;
   if (b->influence.kind == PF_INFLUENCE_INVERSE_DISTANCE) return sqrt(5 * G0 / (9 * K * d));
   if (b->influence.kind == PF_INFLUENCE_CONSTANT) return sqrt(8 * G0 / (15 * K * d));
@@ -198,8 +202,8 @@ const pf_pd_material_ops pf_pd_material_lps = {
     .setup = lps_setup,
     .force = lps_force,
     .energy = lps_energy,
-    .micromodulus = lps_micromodulus,
-    .critical_stretch = lps_critical_stretch,
+    .micromodulus = pf_pd_lps_micromodulus,
+    .critical_stretch = pf_pd_lps_critical_stretch,
     .destroy = lps_destroy,
     .partial_stress = 1,
 };

@@ -128,6 +128,15 @@ static inline double pf_pd_omega(const pf_influence *w, double r) {
   return 1.0;
 }
 
+/* LPS's stable-step micromodulus (the PMB one of equal P-wave modulus) and its critical stretch
+ * from G0 (Madenci & Oterkus 2014), shared by elastic_plastic (pd/material_lps.c). */
+double pf_pd_lps_micromodulus(const pf_pd_body *b, double delta);
+double pf_pd_lps_critical_stretch(const pf_pd_body *b, double G0);
+/* The LPS strain energy per reference volume of store point i (Silling et al. 2007, eq. 92),
+ * with the deviatoric extensions less ep[stride k] when ep is given (elastic_plastic). */
+double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_int i, double theta, double m,
+                                const double *ep, int stride);
+
 /* Ordinary state-based materials (LPS, elastic-plastic): the weighted volume
  * m_i = sum_j omega |xi|^2 V_j of the owned points (Silling et al. 2007, eq. 90) into m, then the
  * ghosts' values; an isolated point is an input error naming it (pd/body.c). */
