@@ -110,3 +110,24 @@ void pf_test_remove_shared(const char *path) {
   MPI_Barrier(MPI_COMM_WORLD);
   if (pf_comm_rank() == 0) remove(path);
 }
+
+long pf_test_run_to_end(pf_sim *sim, pf_sim_globals *g0, pf_sim_globals *g) {
+  long steps = 0;
+  PF_TEST_OK(pf_sim_step(sim, 0));
+  if (g0) PF_TEST_OK(pf_sim_globals_get(sim, g0));
+  for (; !pf_sim_finished(sim); steps++) PF_TEST_OK(pf_sim_step(sim, 1));
+  if (g) PF_TEST_OK(pf_sim_globals_get(sim, g));
+  return steps;
+}
+
+const char *pf_test_pamgen_box(int nx, int ny, int nz, const double lo[3], const double hi[3]) {
+  static char text[512];
+  snprintf(text, sizeof text,
+           "    mesh:\n      pamgen: |\n        mesh\n          rectilinear\n"
+           "            nx = %d\n            ny = %d\n            nz = %d\n"
+           "            bx = 1\n            by = 1\n            bz = 1\n"
+           "            gmin = %.17g %.17g %.17g\n            gmax = %.17g %.17g %.17g\n"
+           "          end\n        end\n",
+           nx, ny, nz, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+  return text;
+}

@@ -2,6 +2,7 @@
 #ifndef PF_TEST_COMMON_H
 #define PF_TEST_COMMON_H
 #include "core/core.h"
+#include "core/simulation.h"
 
 extern int pf_test_failures;
 /* Start MPI and silence logging. */
@@ -30,8 +31,14 @@ const char *pf_test_deck_variant(const char *deck, int n, const char *const *key
 /* Rank 0 removes path once every rank is past this point. Collective. */
 void pf_test_remove_shared(const char *path);
 /* Build a simulation from deck text (no output files); aborts the test on failure. */
-struct pf_sim;
 struct pf_sim *pf_test_sim(const char *tag, const char *deck_text);
+/* The `mesh:` entry of an FE body (at the indentation of a block-style body's keys): a Pamgen
+ * rectilinear box of nx x ny x nz elements from lo to hi (static storage, valid until the next
+ * call). */
+const char *pf_test_pamgen_box(int nx, int ny, int nz, const double lo[3], const double hi[3]);
+/* Take the initial step of sim and run it to its end, each step checked; the globals before
+ * (g0) and after (g) when not NULL. Returns the steps taken. Collective. */
+long pf_test_run_to_end(pf_sim *sim, pf_sim_globals *g0, pf_sim_globals *g);
 /* With PF_TEST_DIGESTS set, rank 0 prints "state digest (tag): <hex>" (tests/regression/mpi_verify.sh
  * compares them over rank counts). Collective. */
 void pf_test_print_digest(const char *tag, struct pf_sim *sim);

@@ -58,13 +58,11 @@ static pf_sim *make(int hydro) {
            "bodies:\n"
            "  - {name: pd, material: steel, horizon: 3.01e-3,\n"
            "     geometry: {shape: box, lo: [0, 0, 0], hi: [0.01, 0.01, 0.02], spacing: 1.0e-3, origin: [0.5e-3, 0.5e-3, 0.5e-3]}}\n"
-           "  - name: fe\n    type: finite_element\n    material: steel\n    mesh:\n      pamgen: |\n"
-           "        mesh\n          rectilinear\n            nx = 5\n            ny = 5\n            nz = 10\n"
-           "            bx = 1\n            by = 1\n            bz = 1\n"
-           "            gmin = 0.02 0.0 0.0\n            gmax = 0.03 0.01 0.02\n          end\n        end\n"
+           "  - name: fe\n    type: finite_element\n    material: steel\n%s"
            "boundary_conditions:\n%s"
            "time: {final_time: 2.0e-4}\n",
-           E, NU, SY, H, bcs);
+           E, NU, SY, H, pf_test_pamgen_box(5, 5, 10, (const double[3]){0.02, 0, 0}, (const double[3]){0.03, 0.01, 0.02}),
+           bcs);
   return pf_test_sim(hydro ? "compression_hydro" : "compression_uniaxial", deck);
 }
 

@@ -40,17 +40,9 @@ static pf_sim *make(const char *form) {
            "      blending: \"1 - min(max((x - 0.024) / 0.010, 0), 1)\"\n"
            "      formulation: %s\n"
            "      hourglass: {type: none}\n"
-           "    mesh:\n"
-           "      pamgen: |\n"
-           "        mesh\n"
-           "          rectilinear\n"
-           "            nx = %d\n            ny = %d\n            nz = %d\n"
-           "            bx = 1\n            by = 1\n            bz = 1\n"
-           "            gmin = 0 0 0\n            gmax = %.17g %.17g %.17g\n"
-           "          end\n"
-           "        end\n"
+           "%s"
            "time: {steps: 0, dt: 1e-9}\n",
-           form, NX, NY, NY, NX * h, NY * h, NY * h);
+           form, pf_test_pamgen_box(NX, NY, NY, (const double[3]){0, 0, 0}, (const double[3]){NX * h, NY * h, NY * h}));
   return pf_test_sim("coupling_patch", deck);
 }
 

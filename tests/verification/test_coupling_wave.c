@@ -49,17 +49,9 @@ static double left_behind(const char *tag, const char *horizon, const char *beta
            "    initial_displacement: [\"1e-6 * exp(-((x - 0.05) / 0.008)^2)\", \"0\", \"0\"]\n"
            "    initial_velocity: [\"5063.6965 * 2e-6 * (x - 0.05) / 0.008^2 * exp(-((x - 0.05) / 0.008)^2)\", \"0\", \"0\"]\n"
            "    peridynamic: {horizon: %s, blending: %s, formulation: %s, hourglass: {type: none}}\n"
-           "    mesh:\n"
-           "      pamgen: |\n"
-           "        mesh\n"
-           "          rectilinear\n"
-           "            nx = 240\n            ny = 8\n            nz = 8\n"
-           "            bx = 1\n            by = 1\n            bz = 1\n"
-           "            gmin = 0 0 0\n            gmax = 0.240 0.008 0.008\n"
-           "          end\n"
-           "        end\n"
+           "%s"
            "time: {final_time: 24.0e-6, safety_factor: 0.8}\n",
-           horizon, beta, form);
+           horizon, beta, form, pf_test_pamgen_box(240, 8, 8, (const double[3]){0, 0, 0}, (const double[3]){0.240, 0.008, 0.008}));
   pf_sim *sim = pf_test_sim(tag, deck);
   PF_TEST_OK(pf_sim_step(sim, 0));
   const double e0 = kinetic(sim, INFINITY);

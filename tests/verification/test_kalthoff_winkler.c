@@ -74,10 +74,8 @@ int main(int argc, char **argv) {
   pf_sim_options opt = {.no_output = 1};
   pf_sim *sim = NULL;
   if (pf_sim_create("data/kalthoff_winkler.yaml", &opt, &sim)) return 1;
-  PF_TEST_OK(pf_sim_step(sim, 0));
-  while (!pf_sim_finished(sim)) PF_TEST_OK(pf_sim_step(sim, 1));
   pf_sim_globals g; /* (also brings the bond damage field up to date) */
-  PF_TEST_OK(pf_sim_globals_get(sim, &g));
+  pf_test_run_to_end(sim, NULL, &g);
   const pf_points *p = pf_sim_points(sim);
   const double *phi = pf_points_field_get(p, "damage");
   PF_TEST_TRUE(phi != NULL);

@@ -27,10 +27,7 @@ int main(int argc, char **argv) {
   if (pf_sim_create(deck, &opt, &sim)) return 1;
   if (argc > 1) pf_test_remove_shared(deck);
   pf_sim_globals g0, g;
-  PF_TEST_OK(pf_sim_step(sim, 0));
-  PF_TEST_OK(pf_sim_globals_get(sim, &g0));
-  while (!pf_sim_finished(sim)) PF_TEST_OK(pf_sim_step(sim, 1));
-  PF_TEST_OK(pf_sim_globals_get(sim, &g));
+  pf_test_run_to_end(sim, &g0, &g);
   const pf_points *p = pf_sim_points(sim);
   double zmin = INFINITY, zmax = -INFINITY, rface = 0;
   for (pf_int i = 0; i < p->n_owned; i++) {

@@ -42,11 +42,7 @@ int main(int argc, char **argv) {
   if (pf_sim_create(deck, &opt, &sim)) return 1;
   if (argc > 1) pf_test_remove_shared(deck);
   pf_sim_globals g0, g;
-  PF_TEST_OK(pf_sim_step(sim, 0));
-  PF_TEST_OK(pf_sim_globals_get(sim, &g0));
-  long steps = 0;
-  for (; !pf_sim_finished(sim); steps++) PF_TEST_OK(pf_sim_step(sim, 1));
-  PF_TEST_OK(pf_sim_globals_get(sim, &g));
+  const long steps = pf_test_run_to_end(sim, &g0, &g);
   const pf_points *p = pf_sim_points(sim);
   const double *eqps = pf_points_field_get(p, "eqps");
   double top0 = -INFINITY, top = -INFINITY, rface = 0, emax = 0;
