@@ -131,3 +131,41 @@ const char *pf_test_pamgen_box(int nx, int ny, int nz, const double lo[3], const
            nx, ny, nz, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
   return text;
 }
+
+int pf_test_material_load(const char *text, const char *name, int validate, pf_fem_material **m) {
+  *m = NULL;
+  const char *path = pf_test_write_file(0, "fem_mat", text);
+  pf_deck *d = NULL;
+  int ierr = pf_deck_load(path, &d);
+  if (!ierr && validate) ierr = pf_deck_validate(d, pf_deck_root(d), pf_fem_material_keys, "materials.test");
+  if (!ierr) ierr = pf_fem_material_create(d, pf_deck_root(d), name, m);
+  pf_deck_destroy(&d);
+  remove(path);
+  return ierr;
+}
+
+pf_fem_material *pf_test_material_must_load(const char *text, const char *name) {
+  pf_fem_material *m = NULL;
+  if (pf_test_material_load(text, name, 1, &m)) {
+    fprintf(stderr, "cannot load material deck:\n%s\n", text);
+    pf_test_failures++;
+  }
+  return m;
+}
+
+void pf_test_point_init(const pf_fem_material *m, pf_test_point *p) {
+  memset(p, 0, sizeof *p);
+  p->F[0] = p->F[4] = p->F[8] = 1.0;
+  pf_fem_material_init(m, 1, p->st);
+}
+
+void pf_test_point_step(const pf_fem_material *m, double dt, pf_test_point *p) {
+  pf_fem_material_update(m, 1, dt, p->F, p->D, p->sig, p->st, &p->c);
+}
+
+void pf_test_rotation(const double a[3], double t, double R[9]) {
+  const double c = cos(t), s = sin(t);
+  const double W[9] = {0, -a[2], a[1], a[2], 0, -a[0], -a[1], a[0], 0};
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) R[3 * i + j] = (i == j ? c : 0.0) + s * W[3 * i + j] + (1 - c) * a[i] * a[j];
+}

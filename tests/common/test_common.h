@@ -3,6 +3,7 @@
 #define PF_TEST_COMMON_H
 #include "core/core.h"
 #include "core/simulation.h"
+#include "fem/fem.h"
 
 extern int pf_test_failures;
 /* Start MPI and silence logging. */
@@ -32,6 +33,23 @@ const char *pf_test_deck_variant(const char *deck, int n, const char *const *key
 void pf_test_remove_shared(const char *path);
 /* Build a simulation from deck text (no output files); aborts the test on failure. */
 struct pf_sim *pf_test_sim(const char *tag, const char *deck_text);
+/* One material point of the constitutive library, for the unit tests of fem/ models. */
+typedef struct {
+  double F[9], D[6], sig[6], st[8], c; /* deformation gradient, rate, stress, history, wave speed */
+} pf_test_point;
+/* Load a material from deck text whose root mapping is the material (checked against the
+ * material keys when validate), named name; returns the error code (0 on success). */
+int pf_test_material_load(const char *text, const char *name, int validate, pf_fem_material **m);
+/* The same, validated; a failure is a test failure (the deck is printed) and gives NULL. */
+pf_fem_material *pf_test_material_must_load(const char *text, const char *name);
+/* F = I, the rest zero, the model's initial history. */
+void pf_test_point_init(const pf_fem_material *m, pf_test_point *p);
+/* Advance the point over dt with its F and D. */
+void pf_test_point_step(const pf_fem_material *m, double dt, pf_test_point *p);
+/* Rotation by angle t about the unit axis a (Rodrigues): R = cos t I + sin t [a]x +
+ * (1 - cos t) a a^T, row-major. */
+void pf_test_rotation(const double a[3], double t, double R[9]);
+
 /* The `mesh:` entry of an FE body (at the indentation of a block-style body's keys): a Pamgen
  * rectilinear box of nx x ny x nz elements from lo to hi (static storage, valid until the next
  * call). */

@@ -52,51 +52,13 @@ static double bisect(double (*g)(double, const double *), const double *par, dou
 }
 
 static int load(const char *text, int validate, pf_fem_material **m) {
-  *m = NULL;
-  const char *path = pf_test_write_file(0, "fem_mjc", text);
-  pf_deck *d = NULL;
-  int ierr = pf_deck_load(path, &d);
-  if (!ierr && validate) ierr = pf_deck_validate(d, pf_deck_root(d), pf_fem_material_keys, "materials.test");
-  if (!ierr) ierr = pf_fem_material_create(d, pf_deck_root(d), "al6061", m);
-  pf_deck_destroy(&d);
-  remove(path);
-  return ierr;
+  return pf_test_material_load(text, "al6061", validate, m);
 }
+static pf_fem_material *must_load(const char *text) { return pf_test_material_must_load(text, "al6061"); }
 
-static pf_fem_material *must_load(const char *text) {
-  pf_fem_material *m = NULL;
-  if (load(text, 1, &m)) {
-    fprintf(stderr, "cannot load material deck:\n%s\n", text);
-    pf_test_failures++;
-  }
-  return m;
-}
-
-typedef struct {
-  double F[9], D[6], sig[6], st[8], c;
-} pt;
-
-static void pt_init(const pf_fem_material *m, pt *p) {
-  memset(p, 0, sizeof *p);
-  p->F[0] = p->F[4] = p->F[8] = 1.0;
-  pf_fem_material_init(m, 1, p->st);
-}
-
-static void step(const pf_fem_material *m, double dt, pt *p) {
-  pf_fem_material_update(m, 1, dt, p->F, p->D, p->sig, p->st, &p->c);
-}
-
-static void set_diag(pt *p, double a, double b, double c) {
+static void set_diag(pf_test_point *p, double a, double b, double c) {
   memset(p->F, 0, sizeof p->F);
   p->F[0] = a, p->F[4] = b, p->F[8] = c;
-}
-
-/* Rodrigues: R = cos t I + sin t [a]x + (1 - cos t) a a^T, row-major. */
-static void rotation(const double a[3], double t, double R[9]) {
-  const double c = cos(t), s = sin(t);
-  const double W[9] = {0, -a[2], a[1], a[2], 0, -a[0], -a[1], a[0], 0};
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) R[3 * i + j] = (i == j ? c : 0.0) + s * W[3 * i + j] + (1 - c) * a[i] * a[j];
 }
 
 static const int vi[6] = {0, 1, 2, 1, 0, 0}, vj[6] = {0, 1, 2, 2, 2, 1};
@@ -125,27 +87,27 @@ static void basics(void) {
 
   /* F = I: zero stress exactly, history unchanged; wave speed sqrt((lambda + 2G)/rho0). The
    * incoming stress is ignored (hyperelastic). */
-  pt p, p0;
-  pt_init(m, &p);
+  pf_test_point p, p0;
+  pf_test_point_init(m, &p);
   p.sig[0] = 1e8, p.sig[5] = -3e7;
   p0 = p;
-  step(m, 1e-6, &p);
+  pf_test_point_step(m, 1e-6, &p);
   for (int k = 0; k < 6; k++) PF_TEST_CLOSE(p.sig[k], 0.0, 0, 0);
   for (int k = 0; k < 8; k++) PF_TEST_CLOSE(p.st[k], p0.st[k], 0, 0);
   PF_TEST_CLOSE(p.c, sqrt((LAME + 2 * GMOD) / RHO0), 1e-14, 0);
   /* F = R: b_e = R R^T = I, zero stress to round-off (1e-14 K). */
   const double ax[3] = {1.0 / 3, 2.0 / 3, 2.0 / 3};
-  pt_init(m, &p);
-  rotation(ax, 0.7, p.F);
-  step(m, 1e-6, &p);
+  pf_test_point_init(m, &p);
+  pf_test_rotation(ax, 0.7, p.F);
+  pf_test_point_step(m, 1e-6, &p);
   for (int k = 0; k < 6; k++) PF_TEST_CLOSE(p.sig[k], 0.0, 0, 1e-14 * KMOD);
   PF_TEST_CLOSE(p.st[0], 0.0, 0, 0);
 
   /* Batching: three points (one plastic) in one call give bitwise what three calls give. */
-  pt q[3];
+  pf_test_point q[3];
   double F3[27], D3[18], s3[18], st3[24], c3[3];
   for (int i = 0; i < 3; i++) {
-    pt_init(m, &q[i]);
+    pf_test_point_init(m, &q[i]);
     q[i].F[0] = 1 + 1e-2 * (i + 1), q[i].F[1] = 3e-3 * i, q[i].F[4] = 1 - 4e-3 * i;
     q[i].st[0] = 0.1 * i;
     memcpy(F3 + 9 * i, q[i].F, sizeof q[i].F);
@@ -155,7 +117,7 @@ static void basics(void) {
   }
   pf_fem_material_update(m, 3, 1e-5, F3, D3, s3, st3, c3);
   for (int i = 0; i < 3; i++) {
-    step(m, 1e-5, &q[i]);
+    pf_test_point_step(m, 1e-5, &q[i]);
     for (int k = 0; k < 6; k++) PF_TEST_TRUE(s3[6 * i + k] == q[i].sig[k]);
     for (int k = 0; k < 8; k++) PF_TEST_TRUE(st3[8 * i + k] == q[i].st[k]);
     PF_TEST_TRUE(c3[i] == q[i].c);
@@ -180,11 +142,11 @@ static void shear_step(const pf_fem_material *m, double C, double eqps0, double 
   const double hi = (2 * sqrt(3) * GMOD * a - flow_stress(eqps0, 0, C)) / (3 * GMOD);
   PF_TEST_TRUE(hi > 0);
   const double dgam = bisect(shear_residual, par, 0, hi);
-  pt p;
-  pt_init(m, &p);
+  pf_test_point p;
+  pf_test_point_init(m, &p);
   p.st[0] = eqps0;
   set_diag(&p, exp(a), exp(-a), 1.0);
-  step(m, dt, &p);
+  pf_test_point_step(m, dt, &p);
   const double txx = 2 * GMOD * a - sqrt(3) * GMOD * dgam;
   PF_TEST_CLOSE(p.st[0] - eqps0, dgam, 1e-9, 0);
   PF_TEST_CLOSE(p.sig[0], txx, 1e-11, 0);
@@ -223,10 +185,10 @@ static void flow(void) {
   {
     const double H0 = SIG0 * NH / pow(SIG0 / BH, 1 / NH);
     const double a = SIG0 / (2 * sqrt(3) * GMOD) * (1 + 2.5e-6);
-    pt p;
-    pt_init(m, &p);
+    pf_test_point p;
+    pf_test_point_init(m, &p);
     set_diag(&p, exp(a), exp(-a), 1.0);
-    step(m, 1e-6, &p);
+    pf_test_point_step(m, 1e-6, &p);
     const double dgam = p.st[0], slope = (sqrt(3) * p.sig[0] - SIG0) / dgam;
     PF_TEST_TRUE(dgam > 0 && dgam < 1e-8);
     PF_TEST_CLOSE(slope, H0, 1e-4, 0);
@@ -239,20 +201,20 @@ static void flow(void) {
   m = must_load(TUPEK_DECK);
   if (!m) return;
   {
-    pt p;
-    pt_init(m, &p);
+    pf_test_point p;
+    pf_test_point_init(m, &p);
     p.st[0] = 0.1;
     set_diag(&p, exp(0.01), exp(-0.01), 1.0);
-    step(m, 1e6, &p);
+    pf_test_point_step(m, 1e6, &p);
     PF_TEST_TRUE(p.st[0] > 0.1 && isfinite(p.sig[0]));
     PF_TEST_CLOSE(sqrt(3) * p.sig[0], flow_stress(p.st[0], 0.0, 0.0), 1e-10, 0);
   }
   /* dt = 0 (initial forces): elastic even above yield, history untouched. */
   {
-    pt p;
-    pt_init(m, &p);
+    pf_test_point p;
+    pf_test_point_init(m, &p);
     set_diag(&p, exp(0.02), exp(-0.02), 1.0);
-    step(m, 0.0, &p);
+    pf_test_point_step(m, 0.0, &p);
     PF_TEST_CLOSE(p.sig[0], 2 * GMOD * 0.02, 1e-12, 0);
     PF_TEST_TRUE(p.st[0] == 0 && p.st[1] == 0 && p.st[2] == 1 && p.st[5] == 0);
   }
@@ -270,10 +232,10 @@ static void failure(void) {
   const double xs[7] = {-0.03, -0.015, -0.005, 0.0, 0.003, 0.006, 0.009};
   double prev_t = -INFINITY, prev_ef = INFINITY;
   for (int k = 0; k < 7; k++) {
-    pt p;
-    pt_init(m, &p);
+    pf_test_point p;
+    pf_test_point_init(m, &p);
     set_diag(&p, exp(0.02), exp(xs[k]), exp(xs[k]));
-    step(m, 1e-3, &p);
+    pf_test_point_step(m, 1e-3, &p);
     const double triax = (p.sig[0] + 2 * p.sig[1]) / 3 / fabs(p.sig[0] - p.sig[1]);
     PF_TEST_TRUE(p.st[0] > 0 && p.st[1] > 0);
     const double ef = p.st[0] / p.st[1];
@@ -296,10 +258,10 @@ static void failure(void) {
   if (!m) return;
   const double dts[2] = {1e-6, 1e3};
   for (int k = 0; k < 2; k++) {
-    pt p;
-    pt_init(m, &p);
+    pf_test_point p;
+    pf_test_point_init(m, &p);
     set_diag(&p, exp(0.01), exp(-0.01), 1.0);
-    step(m, dts[k], &p);
+    pf_test_point_step(m, dts[k], &p);
     const double r = p.st[0] / dts[k];
     PF_TEST_TRUE(k == 0 ? r > 100 : r < 1);
     const double fr = r > 1 ? 1 + 0.1 * log(r) : 1.0;
@@ -309,10 +271,10 @@ static void failure(void) {
   /* Without a damage mapping the damage stays zero. */
   m = must_load(RI_DECK);
   if (m) {
-    pt p;
-    pt_init(m, &p);
+    pf_test_point p;
+    pf_test_point_init(m, &p);
     set_diag(&p, exp(0.05), exp(-0.05), 1.0);
-    step(m, 1e-5, &p);
+    pf_test_point_step(m, 1e-5, &p);
     PF_TEST_TRUE(p.st[0] > 0 && p.st[1] == 0);
     pf_fem_material_destroy(&m);
   }
@@ -322,7 +284,7 @@ static void failure(void) {
 static void elasticity(void) {
   pf_fem_material *m = must_load(TUPEK_DECK);
   if (!m) return;
-  pt p;
+  pf_test_point p;
   /* Uniaxial stress in Hencky elasticity: F = diag(l, l^-nu, l^-nu) gives log strains
    * (e, -nu e, -nu e), e = ln l, tau_xx = lambda (1 - 2nu) e + 2 G e = E e and
    * tau_yy = lambda (1 - 2nu) e - 2 G nu e = 0; sigma = tau / J, J = l^(1 - 2 nu). Small strain:
@@ -330,9 +292,9 @@ static void elasticity(void) {
   const double ls[3] = {1 + 1e-6, 1.003, 1 / 1.003};
   for (int k = 0; k < 3; k++) {
     const double l = ls[k], lt = pow(l, -NU), J = l * lt * lt;
-    pt_init(m, &p);
+    pf_test_point_init(m, &p);
     set_diag(&p, l, lt, lt);
-    step(m, 1e-6, &p);
+    pf_test_point_step(m, 1e-6, &p);
     PF_TEST_CLOSE(p.sig[0], E * log(l) / J, 1e-10, 0);
     if (k == 0) PF_TEST_CLOSE(p.sig[0], E * 1e-6, 1e-6, 0);
     for (int c = 1; c < 6; c++) PF_TEST_CLOSE(p.sig[c], 0.0, 0, 1e-9 * fabs(p.sig[0]));
@@ -345,9 +307,9 @@ static void elasticity(void) {
   const double as[4] = {0.8, 0.9, 1.1, 1.25};
   for (int k = 0; k < 4; k++) {
     const double a = as[k], J = a * a * a;
-    pt_init(m, &p);
+    pf_test_point_init(m, &p);
     set_diag(&p, a, a, a);
-    step(m, 1e-6, &p);
+    pf_test_point_step(m, 1e-6, &p);
     for (int c = 0; c < 3; c++) PF_TEST_CLOSE(p.sig[c], KMOD * log(J) / J, 1e-13, 0);
     for (int c = 3; c < 6; c++) PF_TEST_CLOSE(p.sig[c], 0.0, 0, 0);
     PF_TEST_TRUE(p.st[0] == 0);
@@ -356,9 +318,9 @@ static void elasticity(void) {
   /* Simple shear F = I + g e_x (x) e_y, elastic (g = 2e-3): to first order sigma_xy = G g;
    * the log strain of the principal stretches is exact, so check isochoric J = 1 gives zero
    * mean stress: tr sigma = 3 K ln J = 0 to round-off. */
-  pt_init(m, &p);
+  pf_test_point_init(m, &p);
   p.F[1] = 2e-3;
-  step(m, 1e-6, &p);
+  pf_test_point_step(m, 1e-6, &p);
   PF_TEST_CLOSE(p.sig[5], GMOD * 2e-3, 1e-6, 0);
   PF_TEST_CLOSE(p.sig[0] + p.sig[1] + p.sig[2], 0.0, 0, 1e-10 * GMOD * 2e-3);
   PF_TEST_TRUE(p.st[0] == 0);
@@ -373,9 +335,9 @@ static void elasticity(void) {
 static void objectivity(void) {
   pf_fem_material *m = must_load(TUPEK_DECK);
   if (!m) return;
-  pt a, b;
-  pt_init(m, &a);
-  pt_init(m, &b);
+  pf_test_point a, b;
+  pf_test_point_init(m, &a);
+  pf_test_point_init(m, &b);
   const double ax[3] = {0.6, 0.0, 0.8}, dt = 1e-5;
   const int N = 60;
   for (int k = 1; k <= N; k++) {
@@ -383,12 +345,12 @@ static void objectivity(void) {
     set_diag(&a, 1 + 0.1 * g, 1.0, 1 - 0.05 * g);
     a.F[1] = g, a.F[2] = 0.2 * g;
     double R[9];
-    rotation(ax, 0.37 * k, R);
+    pf_test_rotation(ax, 0.37 * k, R);
     for (int i = 0; i < 3; i++)
       for (int j = 0; j < 3; j++)
         b.F[3 * i + j] = R[3 * i] * a.F[j] + R[3 * i + 1] * a.F[3 + j] + R[3 * i + 2] * a.F[6 + j];
-    step(m, dt, &a);
-    step(m, dt, &b);
+    pf_test_point_step(m, dt, &a);
+    pf_test_point_step(m, dt, &b);
     const double scale = sqrt(a.sig[0] * a.sig[0] + a.sig[1] * a.sig[1] + a.sig[2] * a.sig[2] +
                               2 * (a.sig[3] * a.sig[3] + a.sig[4] * a.sig[4] + a.sig[5] * a.sig[5]));
     double S[3][3], T[3][3];
@@ -426,17 +388,17 @@ static void objectivity(void) {
 /* ---- 5 and 6. uniaxial stress ------------------------------------------------------------- */
 /* One step to F = diag(l, lt, lt) with ln lt found by the secant method so that
  * sigma_yy = sigma_zz = 0 to tol. The step always starts from the same history. */
-static void uniaxial_step(const pf_fem_material *m, double dt, double l, double *llt, pt *p,
+static void uniaxial_step(const pf_fem_material *m, double dt, double l, double *llt, pf_test_point *p,
                           double tol) {
-  const pt start = *p;
-  pt a = start, b = start;
+  const pf_test_point start = *p;
+  pf_test_point a = start, b = start;
   double xa = *llt, xb = *llt - 1e-4;
   set_diag(&a, l, exp(xa), exp(xa));
-  step(m, dt, &a);
+  pf_test_point_step(m, dt, &a);
   for (int it = 0; it < 80; it++) {
     b = start;
     set_diag(&b, l, exp(xb), exp(xb));
-    step(m, dt, &b);
+    pf_test_point_step(m, dt, &b);
     if (fabs(b.sig[1]) <= tol) {
       *p = b, *llt = xb;
       return;
@@ -462,8 +424,8 @@ static double uni_residual(double e, const double *par) {
 static void uniaxial(void) {
   pf_fem_material *m = must_load(RI_DECK);
   if (!m) return;
-  pt p;
-  pt_init(m, &p);
+  pf_test_point p;
+  pf_test_point_init(m, &p);
   double llt = 0;
   int nplastic = 0;
   const double dt = 1e-4;
@@ -492,7 +454,7 @@ static void uniaxial(void) {
   if (!m) return;
   const double dts[2] = {1e-6, 1e-2};
   for (int k = 0; k < 2; k++) {
-    pt_init(m, &p);
+    pf_test_point_init(m, &p);
     llt = -0.01;
     uniaxial_step(m, dts[k], exp(0.02), &llt, &p, 1e-12 * SIG0);
     const double par[3] = {0.02, dts[k], 0.002};
@@ -510,8 +472,8 @@ static void damage(void) {
   pf_fem_material *m = must_load(TUPEK_DECK);
   if (!m) return;
   const double ef = D1 + D2 * exp(-0.5);
-  pt p;
-  pt_init(m, &p);
+  pf_test_point p;
+  pf_test_point_init(m, &p);
   double llt = 0;
   int ndamaged = 0, nfull = 0;
   double D_prev = 0;
