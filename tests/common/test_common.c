@@ -153,6 +153,20 @@ pf_fem_material *pf_test_material_must_load(const char *text, const char *name) 
   return m;
 }
 
+void pf_test_material_bad(const char *text, const char *name, int validate, const char *must_mention) {
+  pf_fem_material *m = NULL;
+  pf_error_clear();
+  const int ierr = pf_test_material_load(text, name, validate, &m);
+  if (ierr != PF_ERR_INPUT || m) {
+    fprintf(stderr, "bad deck accepted (ierr %d, validate %d):\n%s\n", ierr, validate, text);
+    pf_test_failures++;
+  } else if (must_mention && !strstr(pf_error_message(), must_mention)) {
+    fprintf(stderr, "error message '%s' does not mention '%s'\n", pf_error_message(), must_mention);
+    pf_test_failures++;
+  }
+  pf_fem_material_destroy(&m);
+}
+
 void pf_test_point_init(const pf_fem_material *m, pf_test_point *p) {
   memset(p, 0, sizeof *p);
   p->F[0] = p->F[4] = p->F[8] = 1.0;

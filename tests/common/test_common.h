@@ -42,6 +42,9 @@ typedef struct {
 int pf_test_material_load(const char *text, const char *name, int validate, pf_fem_material **m);
 /* The same, validated; a failure is a test failure (the deck is printed) and gives NULL. */
 pf_fem_material *pf_test_material_must_load(const char *text, const char *name);
+/* A bad material deck must be refused with an input error whose message mentions
+ * must_mention (when given); otherwise a test failure. */
+void pf_test_material_bad(const char *text, const char *name, int validate, const char *must_mention);
 /* F = I, the rest zero, the model's initial history. */
 void pf_test_point_init(const pf_fem_material *m, pf_test_point *p);
 /* Advance the point over dt with its F and D. */
