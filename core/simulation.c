@@ -25,6 +25,9 @@ static const pf_key output_keys[] = {
     {"layout", PF_KEY_STRING, 0, "joined", "",
      "on several ranks: joined (one Exodus file, written by rank 0) | spread (one file per rank, "
      "<file>.<ranks>.<rank>, which ParaView opens as one data set)", NULL},
+    {"fragments", PF_KEY_BOOL, 0, "false", "",
+     "label the fragments (connected components of intact bonds) at every Exodus step: field "
+     "'fragment' and <file>.fragments.csv", NULL},
     PF_KEY_END};
 
 const pf_key pf_deck_keys[] = {

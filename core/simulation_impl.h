@@ -61,6 +61,9 @@ struct pf_sim {
   /* output */
   long output_interval, history_interval;
   char exodus_path[4096], history_path[4096];
+  int fragments;                /* output.fragments: label the fragments at every Exodus step */
+  char fragments_path[4128];    /* <Exodus file less .e>.fragments.csv */
+  long fragments_rows;          /* rows written to it so far */
   pf_exodus *exo;
   pf_points *joined; /* rank 0: every point in global-id order, for the joined Exodus file */
   pf_history *hist;
@@ -96,6 +99,10 @@ void pf_sim_catch_signals(void);
 /* The largest signal number received by any rank (0: none). Collective. */
 int pf_sim_signalled(void);
 int pf_sim_setup_output(pf_sim *sim);
+/* core/simulation_fragments.c: the "fragment" field (registered by _setup when the deck asks)
+ * and <file>.fragments.csv at an Exodus step; final: also the summary lines. Collective. */
+int pf_sim_fragments_setup(pf_sim *sim);
+int pf_sim_fragments(pf_sim *sim, int final);
 /* Instability guards: keep the state at the start of each step; flag a point moving more than
  * time.max_motion of its horizon (PD) or cell (FE node) in one step; at the step's end check
  * forces and velocities for NaN/Inf and, on every rank together, go back to the last good

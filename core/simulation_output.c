@@ -25,7 +25,7 @@ typedef struct {
 
 static int globals_init(const pf_sim *sim, globals *g) {
   int npairs = pf_contact_npairs(sim->contact);
-  g->n = G_FIXED + 3 * sim->nrigid + 3 * sim->nwalls + 3 * npairs;
+  g->n = G_FIXED + 3 * sim->nrigid + 3 * sim->nwalls + 3 * npairs + 6 * sim->nbodies;
   PF_MALLOC(g->names, g->n + 2);
   PF_MALLOC(g->units, g->n + 2);
   PF_MALLOC(g->values, g->n + 2);
@@ -56,8 +56,31 @@ static int globals_init(const pf_sim *sim, globals *g) {
       g->names[j] = strdup(buf);
       g->units[j] = "N";
     }
+  for (int b = 0; b < sim->nbodies; b++)
+    for (int q = 0; q < 6; q++) {
+      char buf[160];
+      int j = 2 + G_FIXED + 3 * (sim->nrigid + sim->nwalls + npairs) + 6 * b + q;
+      snprintf(buf, sizeof buf, "%s_%s_%c", sim->body_name[b], q < 3 ? "position" : "velocity", 'x' + q % 3);
+      g->names[j] = strdup(buf);
+      g->units[j] = q < 3 ? "m" : "m/s";
+    }
   for (int k = 0; k < g->n + 2; k++) PF_CHECK(g->names[k], PF_ERR_MEMORY, "out of memory");
   return 0;
+}
+
+/* Each body's centre of mass (current positions) and mass-averaged velocity into v[6 b ..]:
+ * a projectile's path and its residual velocity. Collective. */
+static void body_motion(const pf_sim *sim, double *v) {
+  const pf_points *p = sim->pts;
+  for (int b = 0; b < sim->nbodies; b++) {
+    double s[7] = {0, 0, 0, 0, 0, 0, 0};
+    for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++) {
+      for (int a = 0; a < 3; a++) s[a] += p->m[i] * p->y[3 * i + a], s[3 + a] += p->m[i] * p->v[3 * i + a];
+      s[6] += p->m[i];
+    }
+    const double mass = pf_sum_all(s[6]);
+    for (int q = 0; q < 6; q++) v[6 * b + q] = mass > 0 ? pf_sum_all(s[q]) / mass : 0.0;
+  }
 }
 
 static void globals_free(globals *g) {
@@ -90,6 +113,7 @@ static int globals_eval(pf_sim *sim, globals *g, int first) {
     for (int a = 0; a < 3; a++) v[G_FIXED + 3 * sim->nrigid + 3 * k + a] = sim->wall_reaction[k][a];
   for (int k = 0; k < pf_contact_npairs(sim->contact); k++)
     pf_contact_pair_force(sim->contact, k, &v[G_FIXED + 3 * (sim->nrigid + sim->nwalls + k)]);
+  body_motion(sim, &v[G_FIXED + 3 * (sim->nrigid + sim->nwalls + pf_contact_npairs(sim->contact))]);
   return 0;
 }
 
@@ -141,6 +165,9 @@ static int open_exodus(pf_sim *sim, globals *g) {
 
 static int open_output(pf_sim *sim, globals *g) {
   if (sim->opt.no_output) return 0;
+  size_t stem = strlen(sim->exodus_path);
+  if (stem > 2 && !strcmp(sim->exodus_path + stem - 2, ".e")) stem -= 2;
+  snprintf(sim->fragments_path, sizeof sim->fragments_path, "%.*s.fragments.csv", (int)stem, sim->exodus_path);
   PF_CALL(open_exodus(sim, g));
   PF_CALL(pf_history_create(sim->history_path, g->n + 2, (const char *const *)g->names, g->units, &sim->hist));
   return 0;
@@ -154,7 +181,8 @@ static int write_exodus(pf_sim *sim, const double *values) {
   return sim->joined ? pf_exodus_write(sim->exo, sim->t, sim->joined, values) : 0;
 }
 
-static int write_output(pf_sim *sim, globals *g, int exodus, int history) {
+static int write_output(pf_sim *sim, globals *g, int exodus, int history, int last) {
+  if (exodus) PF_CALL(pf_sim_fragments(sim, last));
   if (sim->opt.no_output) return 0;
   if (exodus) PF_CALL(write_exodus(sim, g->values + 2));
   if (history) PF_CALL(pf_history_append(sim->hist, g->values));
@@ -243,7 +271,7 @@ static int run_loop(pf_sim *sim, globals *g, double wall0) {
       double t0 = pf_wtime();
       if (exo) PF_CALL(pf_sim_rebalance(sim));
       PF_CALL(globals_eval(sim, g, 0));
-      PF_CALL(write_output(sim, g, exo, his));
+      PF_CALL(write_output(sim, g, exo, his, last));
       loop0 += pf_wtime() - t0; /* output is not part of the step rate */
     }
     if (sim->step % every == 0 && !last) progress(sim, wall0);
@@ -259,7 +287,7 @@ int pf_sim_run(pf_sim *sim) {
   if (!ierr) ierr = pf_sim_step(sim, 0); /* forces at t = 0 */
   if (!ierr) ierr = globals_eval(sim, &g, 1);
   if (!ierr) ierr = open_output(sim, &g);
-  if (!ierr) ierr = write_output(sim, &g, 1, 1);
+  if (!ierr) ierr = write_output(sim, &g, 1, 1, 0);
   if (!ierr) ierr = run_loop(sim, &g, wall0);
   if (!ierr) summary(sim, &g, pf_wtime() - wall0);
   globals_free(&g);

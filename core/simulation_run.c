@@ -111,6 +111,8 @@ int pf_sim_setup_output(pf_sim *sim) {
   PF_CALL(pf_deck_string(d, out, "history_file", &hfile));
   PF_CALL(pf_deck_int(d, out, "interval", &sim->output_interval));
   PF_CALL(pf_deck_int(d, out, "history_interval", &sim->history_interval));
+  PF_CALL(pf_deck_bool(d, out, "fragments", &sim->fragments));
+  PF_CALL(pf_sim_fragments_setup(sim));
   if (sim->output_interval < 0)
     return pf_deck_error(d, pf_node_get(out, "interval"), "interval", "must not be negative");
   if (sim->history_interval < 1)
