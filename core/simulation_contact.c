@@ -13,13 +13,17 @@ static double body_spacing(const pf_sim *sim, int b) {
   return pf_max_all(h);
 }
 
-/* What contact needs of each body. Collective (spacings). */
+/* What contact needs of each body. Collective (spacings). An FE body with coupled
+ * peridynamics (a `peridynamic:` map) is a particle body to contact: its nodes are the
+ * particles that fracture, so an FE projectile meets them node-to-particle (surface to
+ * particle) and its fragments meet each other by short-range forces, as a PD body's do. */
 static void contact_bodies(const pf_sim *sim, pf_contact_body *cb) {
   for (int b = 0; b < sim->nbodies; b++) {
     pf_contact_body *c = &cb[b];
     memset(c, 0, sizeof *c);
     c->name = sim->body_name[b];
-    c->is_fe = sim->fem[b] != NULL;
+    const pf_pd_body *coupled = sim->fem[b] ? pf_fem_body_pd(sim->fem[b]) : NULL;
+    c->is_fe = sim->fem[b] != NULL && !coupled;
     c->gid0 = sim->gid0[b];
     c->first = sim->body_start[b];
     c->n = sim->body_start[b + 1] - sim->body_start[b];
@@ -29,6 +33,12 @@ static void contact_bodies(const pf_sim *sim, pf_contact_body *cb) {
       c->bulk_modulus = pf_fem_material_bulk_modulus(m);
       c->density = pf_fem_material_density(m);
       c->mesh = pf_fem_body_mesh(sim->fem[b]);
+    } else if (coupled) {
+      const pf_fem_material *m = pf_fem_body_material(sim->fem[b]);
+      c->bulk_modulus = pf_fem_material_bulk_modulus(m);
+      c->density = pf_fem_material_density(m);
+      c->horizon = pf_pd_body_horizon(coupled);
+      c->fam = pf_pd_body_family(coupled);
     } else {
       c->bulk_modulus = pf_pd_body_bulk_modulus(sim->body[b]);
       c->density = pf_pd_body_density(sim->body[b]);
