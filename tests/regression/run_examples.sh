@@ -21,7 +21,7 @@ for deck in ../inputs/*.yaml; do
   exo=$(ls "$scratch"/*.e 2>/dev/null | grep -F "$(grep -E '^\s*file:' "$short" | sed -E 's/.*file:\s*//' | head -1)" | head -1)
   [ -n "$exo" ] || exo="$scratch/$name.e"
   ncdump -h "$exo" > "$scratch/$name.cdl" 2>&1 || { echo "$name: ncdump cannot read $exo"; fail=1; continue; }
-  if grep -q "type: peridynamic\|horizon:" "$short"; then
+  if grep -q "geometry:" "$short"; then  # a PD body (an FE body with `peridynamic:` is HEX8 only)
     grep -q 'SPHERE' "$scratch/$name.cdl" || { echo "$name: no SPHERE block in $exo"; fail=1; }
   fi
   if grep -q "type: finite_element" "$short"; then
