@@ -1,17 +1,19 @@
 /* perifem DECK.yaml — the command line. Exit status: 0 success, 1 run failure, 2 bad input. */
 #include "core/simulation.h"
 
+#include <errno.h>
 #include <exodusII.h>
 #include <hdf5.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <yaml.h>
 
 static void usage(FILE *fp) {
   fprintf(fp,
           "usage: perifem [options] DECK.yaml\n"
           "  --check            load and validate the deck and build the model; run nothing\n"
-          "  --output-dir DIR   write output files into DIR\n"
+          "  --output-dir DIR   write output files into DIR (created when missing)\n"
           "  --restart FILE     continue from the checkpoint FILE (any number of ranks)\n"
           "  --quiet            print only errors, the summary's digest line excepted\n"
           "  --version          print the version and the libraries it was built with\n"
@@ -68,6 +70,27 @@ static int parse_args(int argc, char **argv, cli *c) {
   return -1;
 }
 
+/* mkdir -p dir on rank 0 (the output folder of --output-dir); 0 or an errno, on every rank. */
+static int make_dir(const char *dir) {
+  int err = 0;
+  if (pf_comm_rank() == 0) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s", dir);
+    for (char *p = path + 1; !err; p++) {
+      if (*p && *p != '/') continue;
+      const char keep = *p;
+      *p = '\0';
+      if (mkdir(path, 0777) && errno != EEXIST) err = errno;
+      *p = keep;
+      if (!keep) break;
+    }
+    struct stat st;
+    if (!err && (stat(dir, &st) || !S_ISDIR(st.st_mode))) err = ENOTDIR;
+  }
+  MPI_Bcast(&err, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return err;
+}
+
 static int run(const cli *c) {
   pf_sim_options opt = {.output_dir = c->output_dir, .restart_from = c->restart};
   pf_sim *sim = NULL;
@@ -78,6 +101,13 @@ static int run(const cli *c) {
            pf_sim_points(sim)->n_global, pf_sim_nsteps(sim), pf_sim_dt(sim));
     pf_sim_destroy(&sim);
     return 0;
+  }
+  const int err = c->output_dir ? make_dir(c->output_dir) : 0;
+  if (err) {
+    if (pf_comm_rank() == 0)
+      fprintf(stderr, "perifem error: --output-dir %s: cannot create the folder: %s\n", c->output_dir, strerror(err));
+    pf_sim_destroy(&sim);
+    return 2;
   }
   ierr = pf_sim_run(sim);
   pf_sim_destroy(&sim);

@@ -142,6 +142,7 @@ cli_case "(no deck given)" 2 err -
 cli_case "no_such_deck.yaml" 2 err "cannot open deck" --output-dir @DIR@ "$decks/no_such_deck.yaml"
 cli_case "(a directory as the deck)" 2 err "$decks" --output-dir @DIR@ "$decks"
 cli_case "--output-dir with no value" 2 err "!unknown option" "$decks/02_unknown_top_key.yaml" --output-dir
+cli_case "--output-dir under a file" 2 err "cannot create the folder" --output-dir "$valid_deck/out" "$valid_deck"
 
 [ "$failures" -eq 0 ] || exit 1
 exit 0
