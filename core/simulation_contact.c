@@ -28,17 +28,12 @@ static void contact_bodies(const pf_sim *sim, pf_contact_body *cb) {
     c->first = sim->body_start[b];
     c->n = sim->body_start[b + 1] - sim->body_start[b];
     c->spacing = body_spacing(sim, b);
-    if (c->is_fe) {
+    if (sim->fem[b]) {
       const pf_fem_material *m = pf_fem_body_material(sim->fem[b]);
       c->bulk_modulus = pf_fem_material_bulk_modulus(m);
       c->density = pf_fem_material_density(m);
-      c->mesh = pf_fem_body_mesh(sim->fem[b]);
-    } else if (coupled) {
-      const pf_fem_material *m = pf_fem_body_material(sim->fem[b]);
-      c->bulk_modulus = pf_fem_material_bulk_modulus(m);
-      c->density = pf_fem_material_density(m);
-      c->horizon = pf_pd_body_horizon(coupled);
-      c->fam = pf_pd_body_family(coupled);
+      if (coupled) c->horizon = pf_pd_body_horizon(coupled), c->fam = pf_pd_body_family(coupled);
+      else c->mesh = pf_fem_body_mesh(sim->fem[b]);
     } else {
       c->bulk_modulus = pf_pd_body_bulk_modulus(sim->body[b]);
       c->density = pf_pd_body_density(sim->body[b]);

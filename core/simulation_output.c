@@ -72,15 +72,15 @@ static int globals_init(const pf_sim *sim, globals *g) {
  * a projectile's path and its residual velocity. Collective. */
 static void body_motion(const pf_sim *sim, double *v) {
   const pf_points *p = sim->pts;
-  for (int b = 0; b < sim->nbodies; b++) {
-    double s[7] = {0, 0, 0, 0, 0, 0, 0};
+  double s[7 * PF_MAX_BODIES] = {0}; /* per body: m y (3), m v (3), m; one reduction for all */
+  for (int b = 0; b < sim->nbodies; b++)
     for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++) {
-      for (int a = 0; a < 3; a++) s[a] += p->m[i] * p->y[3 * i + a], s[3 + a] += p->m[i] * p->v[3 * i + a];
-      s[6] += p->m[i];
+      for (int a = 0; a < 3; a++) s[7 * b + a] += p->m[i] * p->y[3 * i + a], s[7 * b + 3 + a] += p->m[i] * p->v[3 * i + a];
+      s[7 * b + 6] += p->m[i];
     }
-    const double mass = pf_sum_all(s[6]);
-    for (int q = 0; q < 6; q++) v[6 * b + q] = mass > 0 ? pf_sum_all(s[q]) / mass : 0.0;
-  }
+  MPI_Allreduce(MPI_IN_PLACE, s, 7 * sim->nbodies, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  for (int b = 0; b < sim->nbodies; b++)
+    for (int q = 0; q < 6; q++) v[6 * b + q] = s[7 * b + 6] > 0 ? s[7 * b + q] / s[7 * b + 6] : 0.0;
 }
 
 static void globals_free(globals *g) {
