@@ -65,6 +65,10 @@ void pf_error_set_quiet(int quiet);
 /* ---- logging: rank 0 only ------------------------------------------------ */
 void pf_log_set_quiet(int quiet);
 void pf_log(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Rank 0's standard output is a terminal (and not --quiet): pf_log_status rewrites one line
+ * in place there (no newline; the next pf_log or error ends it) and prints nothing elsewhere. */
+int pf_log_terminal(void);
+void pf_log_status(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 /* ---- the point store (DESIGN.md 2) --------------------------------------- */
 enum pf_field_flags {

@@ -6,11 +6,19 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static char first_message[2048];
 static int have_error = 0;
 static int error_quiet = 0;
 static int log_quiet = 0;
+static int status_open = 0; /* a status line is on the terminal without its newline */
+
+/* End an open status line before other output. */
+static void close_status(void) {
+  if (status_open) fputc('\n', stdout), fflush(stdout);
+  status_open = 0;
+}
 
 int pf_error_raise(int code, const char *file, int line, const char *func, const char *fmt, ...) {
   if (have_error) return code; /* keep the first, innermost message */
@@ -26,6 +34,7 @@ int pf_error_raise(int code, const char *file, int line, const char *func, const
   else
     snprintf(first_message, sizeof first_message, "error: %s", msg);
   if (!error_quiet) {
+    close_status();
     fprintf(stderr, "perifem %s\n", first_message);
     if (getenv("PERIFEM_DEBUG")) fprintf(stderr, "  raised at %s:%d in %s()\n", file, line, func);
     fflush(stderr);
@@ -46,9 +55,24 @@ void pf_log_set_quiet(int quiet) { log_quiet = quiet; }
 
 void pf_log(const char *fmt, ...) {
   if (log_quiet || pf_comm_rank() != 0) return;
+  close_status();
   va_list ap;
   va_start(ap, fmt);
   vfprintf(stdout, fmt, ap);
   va_end(ap);
   fflush(stdout);
+}
+
+int pf_log_terminal(void) { return !log_quiet && pf_comm_rank() == 0 && isatty(fileno(stdout)); }
+
+void pf_log_status(const char *fmt, ...) {
+  if (!pf_log_terminal()) return;
+  va_list ap;
+  va_start(ap, fmt);
+  fputc('\r', stdout);
+  vfprintf(stdout, fmt, ap);
+  va_end(ap);
+  fputs("\033[K", stdout); /* clear what a longer previous line left */
+  fflush(stdout);
+  status_open = 1;
 }

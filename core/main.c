@@ -17,6 +17,7 @@ static void usage(FILE *fp) {
           "  --restart FILE     continue from the checkpoint FILE (any number of ranks)\n"
           "  --quiet            print only errors, the summary's digest line excepted\n"
           "  --version          print the version and the libraries it was built with\n"
+          "  --deck-keys        print every deck key with its type, default and units (Markdown)\n"
           "  --help             this text\n"
           "exit status: 0 success, 1 run failure, 2 bad input\n");
 }
@@ -44,6 +45,7 @@ static int parse_args(int argc, char **argv, cli *c) {
     const char *a = argv[i];
     if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage(stdout), 0;
     if (!strcmp(a, "--version")) return version(), 0;
+    if (!strcmp(a, "--deck-keys")) return pf_deck_reference(stdout);
     if (!strcmp(a, "--check")) c->check = 1;
     else if (!strcmp(a, "--quiet")) c->quiet = 1;
     else if (!strcmp(a, "--output-dir") || !strcmp(a, "--restart")) {

@@ -34,11 +34,10 @@ const pf_key pf_deck_keys[] = {
     {"title", PF_KEY_STRING, 0, "", "", "a title for the output", NULL},
     {"units", PF_KEY_STRING, 0, "SI", "", "unit system; only SI is accepted", NULL},
     {"materials", PF_KEY_ANYMAP, 1, NULL, "",
-     "named materials: peridynamic models (keys of pf_pd_material_keys) or finite-element / "
-     "continuum models (pf_fem_material_keys), checked by model", NULL},
+     "named materials, each checked by its model: a peridynamic model (pmb, lps, elastic_plastic) "
+     "or a continuum model (FE bodies, and PD bodies as correspondence)", NULL},
     {"bodies", PF_KEY_LIST, 1, NULL, "",
-     "the bodies: type peridynamic (pf_pd_body_keys) or finite_element (pf_fem_body_keys), "
-     "checked by type", NULL},
+     "the bodies (1 to 64), each checked by its type: peridynamic or finite_element", NULL},
     {"indenters", PF_KEY_LIST, 0, NULL, "", "rigid surfaces with prescribed motion (the same as contact.rigid_surfaces)", pf_rigid_keys},
     {"contact", PF_KEY_MAP, 0, NULL, "", "contact between bodies and rigid surfaces", pf_contact_keys},
     {"walls", PF_KEY_LIST, 0, NULL, "", "rigid frictionless planes", pf_wall_keys},

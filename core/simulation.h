@@ -37,6 +37,7 @@ typedef struct {
    * the kinetic energy rigid walls removed, J */
   double fe_internal, hourglass, bulk_viscosity, wall_loss;
   double contact_dissipation; /* friction work of contacts and rigid surfaces, J */
+  double damage_dissipation;  /* energy released by failed bonds (PMB, LPS, elastic_plastic), J */
 } pf_sim_globals;
 int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g);
 /* 1 when the run has reached its final time (or step count). */
@@ -47,5 +48,7 @@ uint64_t pf_sim_digest(pf_sim *sim);
 
 /* The top-level deck keys (for validation and docs). */
 extern const pf_key pf_deck_keys[];
+/* Every key table the loader checks, as Markdown (perifem --deck-keys; docs/deck_keys.md). */
+int pf_deck_reference(FILE *out);
 
 #endif

@@ -50,6 +50,7 @@ struct pf_sim {
   /* energy bookkeeping */
   double contact_energy, external_work, wall_loss;
   double contact_dissipation; /* friction work of this rank's contacts (summed in the globals) */
+  double damage_dissipation;  /* energy released by this rank's failed bonds (summed likewise) */
   double bc_work; /* work of the prescribed motions on this rank's points (summed in the globals) */
   double e0;   /* total energy at the start of the run (kept across restarts) */
   int have_e0;

@@ -7,13 +7,14 @@
 #include <string.h>
 
 enum { G_KE, G_EL, G_CONTACT, G_WEXT, G_EERR, G_PX, G_PY, G_PZ, G_DAMAGE,
-       G_FEINT, G_HG, G_BV, G_WALL, G_CDISS, G_FIXED };
+       G_FEINT, G_HG, G_BV, G_WALL, G_CDISS, G_DDISS, G_FIXED };
 static const char *const fixed_names[G_FIXED] = {
     "kinetic_energy", "elastic_energy", "contact_energy", "external_work", "energy_error",
     "momentum_x",     "momentum_y",     "momentum_z",     "damage_fraction",
-    "fe_internal_energy", "hourglass_energy", "bulk_viscosity_work", "wall_dissipation", "contact_dissipation"};
+    "fe_internal_energy", "hourglass_energy", "bulk_viscosity_work", "wall_dissipation", "contact_dissipation",
+    "damage_dissipation"};
 static const char *const fixed_units[G_FIXED] = {"J", "J", "J", "J", "J", "kg m/s", "kg m/s", "kg m/s", "",
-                                                 "J", "J", "J", "J", "J"};
+                                                 "J", "J", "J", "J", "J", "J"};
 
 typedef struct {
   int n;
@@ -25,7 +26,8 @@ typedef struct {
 
 static int globals_init(const pf_sim *sim, globals *g) {
   int npairs = pf_contact_npairs(sim->contact);
-  g->n = G_FIXED + 3 * sim->nrigid + 3 * sim->nwalls + 3 * npairs + 6 * sim->nbodies;
+  const int body0 = G_FIXED + 3 * (sim->nrigid + sim->nwalls + npairs);
+  g->n = body0 + 6 * sim->nbodies;
   PF_MALLOC(g->names, g->n + 2);
   PF_MALLOC(g->units, g->n + 2);
   PF_MALLOC(g->values, g->n + 2);
@@ -59,7 +61,7 @@ static int globals_init(const pf_sim *sim, globals *g) {
   for (int b = 0; b < sim->nbodies; b++)
     for (int q = 0; q < 6; q++) {
       char buf[160];
-      int j = 2 + G_FIXED + 3 * (sim->nrigid + sim->nwalls + npairs) + 6 * b + q;
+      int j = 2 + body0 + 6 * b + q;
       snprintf(buf, sizeof buf, "%s_%s_%c", sim->body_name[b], q < 3 ? "position" : "velocity", 'x' + q % 3);
       g->names[j] = strdup(buf);
       g->units[j] = q < 3 ? "m" : "m/s";
@@ -95,7 +97,7 @@ static int globals_eval(pf_sim *sim, globals *g, int first) {
   pf_sim_globals s;
   PF_CALL(pf_sim_globals_get(sim, &s));
   double total = s.kinetic_centred + s.elastic + s.contact - s.external_work + s.fe_internal + s.hourglass +
-                 s.bulk_viscosity + s.wall_loss + s.contact_dissipation;
+                 s.bulk_viscosity + s.wall_loss + s.contact_dissipation + s.damage_dissipation;
   if (first && !sim->have_e0) sim->e0 = total, sim->have_e0 = 1;
   g->e0 = sim->e0;
   double *v = g->values + 2;
@@ -106,14 +108,15 @@ static int globals_eval(pf_sim *sim, globals *g, int first) {
   for (int a = 0; a < 3; a++) v[G_PX + a] = s.momentum[a];
   v[G_DAMAGE] = s.damage_fraction;
   v[G_FEINT] = s.fe_internal, v[G_HG] = s.hourglass, v[G_BV] = s.bulk_viscosity, v[G_WALL] = s.wall_loss;
-  v[G_CDISS] = s.contact_dissipation;
+  v[G_CDISS] = s.contact_dissipation, v[G_DDISS] = s.damage_dissipation;
   for (int k = 0; k < sim->nrigid; k++)
     for (int a = 0; a < 3; a++) v[G_FIXED + 3 * k + a] = sim->reaction[k][a];
   for (int k = 0; k < sim->nwalls; k++)
     for (int a = 0; a < 3; a++) v[G_FIXED + 3 * sim->nrigid + 3 * k + a] = sim->wall_reaction[k][a];
   for (int k = 0; k < pf_contact_npairs(sim->contact); k++)
     pf_contact_pair_force(sim->contact, k, &v[G_FIXED + 3 * (sim->nrigid + sim->nwalls + k)]);
-  body_motion(sim, &v[G_FIXED + 3 * (sim->nrigid + sim->nwalls + pf_contact_npairs(sim->contact))]);
+  const int body0 = G_FIXED + 3 * (sim->nrigid + sim->nwalls + pf_contact_npairs(sim->contact));
+  body_motion(sim, &v[body0]);
   return 0;
 }
 
@@ -199,16 +202,30 @@ static int write_last_good(pf_sim *sim, globals *g, int ierr) {
   return ierr;
 }
 
-static void progress(const pf_sim *sim, double wall0) {
+/* The energy balance error relative to the largest energy in play. */
+static double relative_error(const globals *g) {
+  const double *v = g->values + 2;
+  double scale = fmax(fabs(g->e0), fmax(fabs(v[G_WEXT]), v[G_KE] + v[G_EL] + v[G_CONTACT] + fabs(v[G_FEINT])));
+  return scale > 0 ? fabs(v[G_EERR]) / scale : 0.0;
+}
+
+/* Progress (rank 0): the step (of the total when the step is fixed), simulated time of the final
+ * time, steps per second of wall time, the time left at that rate, and the energy balance error
+ * and damage fraction of the last history row (no collective: ranks need not agree on when). */
+static void progress(const pf_sim *sim, const globals *g, double wall0, int status) {
   double el = pf_wtime() - wall0, rate = sim->step / fmax(el, 1e-9);
-  if (sim->adaptive && isfinite(sim->final_time)) { /* the step count is not known ahead */
-    double frac = sim->t / sim->final_time;
-    pf_log("step %ld  t = %.4e s (%.0f %%)  dt = %.3e s  %.1f steps/s  about %.0f s left\n", sim->step, sim->t,
-           100 * frac, sim->dt, rate, el * (1 - frac) / fmax(frac, 1e-9));
-    return;
-  }
-  pf_log("step %ld/%ld  t = %.4e s  %.1f steps/s  about %.0f s left\n", sim->step, sim->nsteps,
-         sim->t, rate, (sim->nsteps - sim->step) / fmax(rate, 1e-9));
+  const int by_time = sim->adaptive && isfinite(sim->final_time); /* the step count is not known */
+  double frac = by_time ? sim->t / sim->final_time : (double)sim->step / fmax((double)sim->nsteps, 1.0);
+  double tend = isfinite(sim->final_time) ? sim->final_time : sim->t / fmax(frac, 1e-300);
+  char line[256];
+  int n = by_time ? snprintf(line, sizeof line, "step %ld", sim->step)
+                  : snprintf(line, sizeof line, "step %ld/%ld", sim->step, sim->nsteps);
+  snprintf(line + n, sizeof line - n,
+           "  t = %.4e / %.4e s (%.0f %%)  %.1f steps/s  about %.0f s left  energy error %.2e  damage %.4g",
+           sim->t, tend, 100 * frac, rate, el * (1 - frac) / fmax(frac, 1e-9), relative_error(g),
+           g->values[2 + G_DAMAGE]);
+  if (status) pf_log_status("%s", line);
+  else pf_log("%s\n", line);
 }
 
 static void summary(const pf_sim *sim, const globals *g, double wall) {
@@ -218,7 +235,6 @@ static void summary(const pf_sim *sim, const globals *g, double wall) {
     else if (pf_fem_body_pd(sim->fem[b])) nb += (double)pf_pd_body_nbonds(pf_fem_body_pd(sim->fem[b]));
   nb = pf_sum_all(nb);
   const double *v = g->values + 2;
-  double scale = fmax(fabs(g->e0), fmax(fabs(v[G_WEXT]), v[G_KE] + v[G_EL] + v[G_CONTACT] + fabs(v[G_FEINT])));
   pf_log("perifem: %ld steps of %.4e s to t = %.4e s in %.2f s (time loop %.2f s)\n", sim->step,
          sim->dt, sim->t, wall, sim->wall_loop);
   pf_log("  points %" PF_GID_FMT ", directed bonds %.0f, bond evaluations per second %.4g\n",
@@ -238,8 +254,8 @@ static void summary(const pf_sim *sim, const globals *g, double wall) {
     pf_log("  contact: %ld search rebuilds, %.3g s (%.1f %% of the time loop), dissipation %.3g J\n", rebuilds, sec,
            sim->wall_loop > 0 ? 100 * sec / sim->wall_loop : 0.0, v[G_CDISS]);
   }
-  pf_log("  final damage fraction %.6g, energy balance error %.3g (relative %.3g)\n", v[G_DAMAGE],
-         v[G_EERR], scale > 0 ? fabs(v[G_EERR]) / scale : 0.0);
+  pf_log("  final damage fraction %.6g, energy balance error %.3g J (relative %.3g; damage dissipated %.3g J)\n",
+         v[G_DAMAGE], v[G_EERR], relative_error(g), v[G_DDISS]);
   if (!sim->opt.no_output)
     pf_log("  output: %s%s, %s\n", sim->exodus_path, spread(sim) ? ".<ranks>.<rank>" : "", sim->history_path);
 }
@@ -258,7 +274,8 @@ static int checkpoints(pf_sim *sim, int *stop) {
 
 static int run_loop(pf_sim *sim, globals *g, double wall0) {
   long every = sim->nsteps / 20 > 0 ? sim->nsteps / 20 : 1; /* adaptive steps: a first estimate */
-  double loop0 = pf_wtime();
+  const int status = pf_log_terminal();
+  double loop0 = pf_wtime(), shown = loop0;
   while (!pf_sim_finished(sim) && !sim->stopped) {
     int ierr = pf_sim_step(sim, 1);
     if (ierr && sim->last_good) return write_last_good(sim, g, ierr);
@@ -274,7 +291,9 @@ static int run_loop(pf_sim *sim, globals *g, double wall0) {
       PF_CALL(write_output(sim, g, exo, his, last));
       loop0 += pf_wtime() - t0; /* output is not part of the step rate */
     }
-    if (sim->step % every == 0 && !last) progress(sim, wall0);
+    if (last) continue;
+    if (status && pf_wtime() - shown > 0.25) progress(sim, g, wall0, 1), shown = pf_wtime();
+    else if (!status && sim->step % every == 0) progress(sim, g, wall0, 0);
   }
   sim->wall_loop = pf_wtime() - loop0;
   return 0;

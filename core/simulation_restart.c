@@ -21,7 +21,7 @@ const pf_key pf_restart_keys[] = {
  * may change on restart). */
 static const char *const physics_parts[] = {"units", "materials", "bodies", "indenters", "contact", "boundary_conditions",
                                             "walls", "time.dt", "time.safety_factor"};
-enum { NPARTS = sizeof physics_parts / sizeof physics_parts[0], NFIXED = 9 };
+enum { NPARTS = sizeof physics_parts / sizeof physics_parts[0], NFIXED = 10 };
 
 static uint64_t part_hash(const pf_deck *d, const char *part) {
   const pf_node *root = pf_deck_root(d);
@@ -33,14 +33,15 @@ static uint64_t part_hash(const pf_deck *d, const char *part) {
 }
 
 /* Scalar names and values: time, step, dt, contact_energy, external_work, initial_energy,
- * wall_loss, bc_work and contact_dissipation (sums over the ranks), the deck-part hashes (two 32-bit halves each), per rigid surface its position and
+ * wall_loss, bc_work, contact_dissipation and damage_dissipation (sums over the ranks), the deck-part hashes (two 32-bit halves each), per rigid surface its position and
  * reaction, and per body the FE stable step of the last force evaluation (0 for PD bodies). */
 static int scalars_make(const pf_sim *sim, pf_sim_scalars *s) {
   s->n = NFIXED + 2 * NPARTS + 6 * sim->nrigid + sim->nbodies;
   PF_MALLOC(s->name, s->n);
   PF_MALLOC(s->names, s->n);
   PF_MALLOC(s->value, s->n);
-  const char *fixed[NFIXED] = {"time", "step", "dt", "contact_energy", "external_work", "initial_energy", "wall_loss", "bc_work", "contact_dissipation"};
+  const char *fixed[NFIXED] = {"time", "step", "dt", "contact_energy", "external_work", "initial_energy", "wall_loss", "bc_work", "contact_dissipation",
+                               "damage_dissipation"};
   int k = 0;
   for (; k < NFIXED; k++) snprintf(s->name[k], 96, "%s", fixed[k]);
   for (int p = 0; p < NPARTS; p++, k += 2) {
@@ -69,7 +70,7 @@ static void scalars_fill(const pf_sim *sim, pf_sim_scalars *s) {
   v[0] = sim->t, v[1] = (double)sim->step, v[2] = sim->dt;
   v[3] = sim->contact_energy, v[4] = sim->external_work, v[5] = sim->e0;
   v[6] = pf_sum_all(sim->wall_loss), v[7] = pf_sum_all(sim->bc_work); /* collective */
-  v[8] = pf_sum_all(sim->contact_dissipation);
+  v[8] = pf_sum_all(sim->contact_dissipation), v[9] = pf_sum_all(sim->damage_dissipation);
   for (int p = 0; p < NPARTS; p++) {
     uint64_t h = part_hash(sim->deck, physics_parts[p]);
     v[NFIXED + 2 * p] = (double)(h >> 32), v[NFIXED + 2 * p + 1] = (double)(h & 0xffffffffu);
@@ -176,7 +177,7 @@ int pf_sim_restore_state(pf_sim *sim) {
   sim->e0 = v[5], sim->have_e0 = 1;
   int root = pf_comm_rank() == 0; /* per-rank sums: rank 0 carries the total */
   sim->wall_loss = root ? v[6] : 0, sim->bc_work = root ? v[7] : 0;
-  sim->contact_dissipation = root ? v[8] : 0;
+  sim->contact_dissipation = root ? v[8] : 0, sim->damage_dissipation = root ? v[9] : 0;
   for (int q = 0, at = NFIXED + 2 * NPARTS; q < sim->nrigid; q++) {
     pf_rigid_set_position(sim->rigid[q], &v[at + 6 * q]);
     for (int a = 0; a < 3; a++) sim->reaction[q][a] = v[at + 6 * q + 3 + a];

@@ -152,6 +152,10 @@ static int compute_forces(pf_sim *sim, double dt) {
     if (sim->body[b]) PF_CALL(pf_pd_body_force(sim->body[b], p, dt));
     else if (pf_fem_body_force(sim->fem[b], p, dt, sim->t, sim->step))
       sim->guard_tripped = 1; /* an inverted element: the step's end decides, on every rank */
+  for (int b = 0; b < sim->nbodies; b++) {
+    pf_pd_body *pd = sim->body[b] ? sim->body[b] : pf_fem_body_pd(sim->fem[b]);
+    if (pd) sim->damage_dissipation += pf_pd_body_take_damage_work(pd);
+  }
   PF_CALL(pf_sim_contact_forces(sim, dt));
   for (int k = 0; k < sim->nwalls; k++) pf_wall_enforce_force(sim->walls[k], p, sim->wall_reaction[k]);
   return 0;
@@ -229,6 +233,7 @@ int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g) {
   g->wall_loss = pf_sum_all(sim->wall_loss);
   g->contact = sim->contact_energy;
   g->contact_dissipation = pf_sum_all(sim->contact_dissipation);
+  g->damage_dissipation = pf_sum_all(sim->damage_dissipation);
   g->external_work = sim->external_work + pf_sum_all(sim->bc_work);
   for (int a = 0; a < 3; a++) g->momentum[a] = pf_sum_all(mom[a]);
   nb = pf_sum_all(nb);

@@ -435,6 +435,12 @@ int pf_pd_body_uses_velocity(const pf_pd_body *b) { return b->ops == &pf_pd_mate
 
 double pf_pd_body_energy(const pf_pd_body *b, const pf_points *pts) { return b->ops->energy(b, pts); }
 
+double pf_pd_body_take_damage_work(pf_pd_body *b) {
+  double w = b->damage_work;
+  b->damage_work = 0;
+  return w;
+}
+
 int64_t pf_pd_body_damage(const pf_pd_body *b, pf_points *pts) {
   double *phi = pf_points_field_get(pts, "damage");
   const pf_family *fam = &b->fam;

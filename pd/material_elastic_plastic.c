@@ -75,13 +75,15 @@ static void ep_point(pf_pd_body *b, const pf_points *pts, pf_int i) {
   const pf_family *fam = &b->fam;
   const int64_t k0 = fam->offset[i - b->first], k1 = fam->offset[i - b->first + 1];
   double sum = 0, smin = INFINITY, e[3], r0, r;
+  int fresh = 0;
   for (int64_t k = k0; k < k1; k++) {
     if (fam->broken[k]) continue;
     pf_int j = fam->neighbor[k];
     pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
     double s = (r - r0) / r0;
     if (s > fmin(b->s0[i], b->s0[j])) {
-      fam->broken[k] = 1;
+      fam->broken[k] = PF_BOND_FRESH;
+      fresh++;
       continue;
     }
     smin = fmin(smin, s);
@@ -89,6 +91,7 @@ static void ep_point(pf_pd_body *b, const pf_points *pts, pf_int i) {
   }
   b->smin[i - b->first] = smin;
   const double m = p->m[i], th = 3.0 * sum / m, G = b->shear_modulus;
+  if (fresh) b->damage_work += pf_pd_lps_release(b, pts, i, m, fam->state, NSTATE); /* (plastic work stays) */
   double n2 = 0; /* sum_j w (e^d - e^dp_n)^2 V_j */
   for (int64_t k = k0; k < k1; k++) {
     if (fam->broken[k]) continue;

@@ -53,17 +53,20 @@ static int lps_setup(pf_pd_body *b, pf_points *pts) {
   return pf_pd_weighted_volumes(b, pts, p->m);
 }
 
-/* Pass 1: dilatation of point i; fails bonds beyond the critical stretch. */
+/* Pass 1: dilatation of point i; fails bonds beyond the critical stretch, booking the energy
+ * they release. */
 static double lps_dilatation(pf_pd_body *b, const pf_points *pts, pf_int i, double m) {
   const pf_family *fam = &b->fam;
   double sum = 0, smin = INFINITY, e[3], r0, r;
+  int fresh = 0;
   for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
     if (fam->broken[k]) continue;
     pf_int j = fam->neighbor[k];
     pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
     double s = (r - r0) / r0;
     if (s > fmin(b->s0[i], b->s0[j]) && pf_pd_may_fail(b, i, j)) {
-      fam->broken[k] = 1;
+      fam->broken[k] = PF_BOND_FRESH;
+      fresh++;
       continue;
     }
     if (!pf_pd_in_family(b, i, r0)) continue;
@@ -71,6 +74,7 @@ static double lps_dilatation(pf_pd_body *b, const pf_points *pts, pf_int i, doub
     sum += pf_pd_omega(&b->influence, r0) * r0 * (r - r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
   }
   b->smin[i - b->first] = smin;
+  if (fresh) b->damage_work += pf_pd_lps_release(b, pts, i, m, NULL, 0);
   return 3.0 * sum / m;
 }
 
@@ -136,7 +140,7 @@ static int lps_force(pf_pd_body *b, pf_points *pts) {
       const double tij = pf_pd_in_family(b, i, r0) ? lps_t(ai, bi, thi, w, r0, ext) : 0.0;
       const double tji = pf_pd_in_family(b, j, r0) ? lps_t(aj, bj, thj, w, r0, ext) : 0.0;
       if (energy && ext > 0 && 0.5 * (tij + tji) * ext > wc) {
-        fam->broken[k] = 1;
+        fam->broken[k] = PF_BOND_FRESH;
         nfailed++;
         continue;
       }
@@ -146,19 +150,37 @@ static int lps_force(pf_pd_body *b, pf_points *pts) {
     for (int a = 0; a < 3; a++) pts->f[3 * i + a] += pts->vol[i] * f[a];
   }
   if (nfailed) /* (the same bits for the points that lost no bond) */
-    for (pf_int i = b->first; i < b->first + b->n; i++)
+    for (pf_int i = b->first; i < b->first + b->n; i++) {
+      b->damage_work += pf_pd_lps_release(b, pts, i, p->m[i], NULL, 0);
       p->theta[i] = lps_dilatation(b, pts, i, p->m[i]);
+    }
   return 0;
 }
 
+/* The bond sum of the dilatation of point i, sum_j omega |xi| e V_j, over the bonds whose
+ * broken flag has no bit of skip. */
+static double dilatation_sum(const pf_pd_body *b, const pf_points *pts, pf_int i, int skip) {
+  const pf_family *fam = &b->fam;
+  double sum = 0, e[3], r0, r;
+  for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+    if (fam->broken[k] & skip) continue;
+    pf_int j = fam->neighbor[k];
+    pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+    if (pf_pd_in_family(b, i, r0))
+      sum += pf_pd_omega(&b->influence, r0) * r0 * (r - r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+  }
+  return sum;
+}
+
 /* W_i = (K/2) theta^2 + (15 G / (2 m)) sum_j omega (e^d - e^dp)^2 V_j (Silling et al. 2007, eq.
- * 92; e^dp = ep[stride k], a plastic extension, or 0 when ep is NULL), per reference volume. */
-double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_int i, double theta, double m,
-                                const double *ep, int stride) {
+ * 92; e^dp = ep[stride k], a plastic extension, or 0 when ep is NULL), per reference volume, over
+ * the bonds whose broken flag has no bit of skip. */
+static double energy_density(const pf_pd_body *b, const pf_points *pts, pf_int i, double theta, double m,
+                             const double *ep, int stride, int skip) {
   const pf_family *fam = &b->fam;
   double dev = 0, e[3], r0, r;
   for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-    if (fam->broken[k]) continue;
+    if (fam->broken[k] & skip) continue;
     pf_int j = fam->neighbor[k];
     pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
     if (!pf_pd_in_family(b, i, r0)) continue;
@@ -166,6 +188,28 @@ double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_in
     dev += pf_pd_omega(&b->influence, r0) * ed * ed * pf_pd_bond_volume(fam, pts->vol, k, j);
   }
   return 0.5 * b->bulk_modulus * theta * theta + 7.5 * b->shear_modulus / m * dev;
+}
+
+double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_int i, double theta, double m,
+                                const double *ep, int stride) {
+  return energy_density(b, pts, i, theta, m, ep, stride, PF_BOND_BROKEN | PF_BOND_FRESH);
+}
+
+double pf_pd_lps_release(const pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
+                         int stride) {
+  const pf_family *fam = &b->fam;
+  const int64_t k0 = fam->offset[i - b->first], k1 = fam->offset[i - b->first + 1];
+  int64_t k = k0;
+  while (k < k1 && fam->broken[k] != PF_BOND_FRESH) k++;
+  if (k == k1) return 0.0;
+  const int all = PF_BOND_BROKEN | PF_BOND_FRESH;
+  const double th_with = 3.0 * dilatation_sum(b, pts, i, PF_BOND_BROKEN) / m;
+  const double th_without = 3.0 * dilatation_sum(b, pts, i, all) / m;
+  const double w = energy_density(b, pts, i, th_with, m, ep, stride, PF_BOND_BROKEN) -
+                   energy_density(b, pts, i, th_without, m, ep, stride, all);
+  for (; k < k1; k++)
+    if (fam->broken[k] == PF_BOND_FRESH) fam->broken[k] = PF_BOND_BROKEN;
+  return pts->vol[i] * w;
 }
 
 static double lps_energy(const pf_pd_body *b, const pf_points *pts) {

@@ -20,6 +20,32 @@ static int pmb_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
   return 0;
 }
 
+/* The micropotential share of the directed bond k of point i, per V_i:
+ * (1/4) c omega s^2 |xi| V_j (Silling & Askari 2005, eq. 6, half of the pair's to each end). */
+static double pmb_bond_energy(const pf_pd_body *b, const pf_points *pts, pf_int i, int64_t k, double c) {
+  const pf_family *fam = &b->fam;
+  pf_int j = fam->neighbor[k];
+  double r0 = 0, r = 0;
+  for (int a = 0; a < 3; a++) {
+    double d = pts->X[3 * j + a] - pts->X[3 * i + a], e = pts->y[3 * j + a] - pts->y[3 * i + a];
+    r0 += d * d, r += e * e;
+  }
+  r0 = sqrt(r0), r = sqrt(r);
+  double s = (r - r0) / r0;
+  return 0.25 * c * pf_pd_omega(&b->influence, r0) * s * s * r0 * pf_pd_bond_volume(fam, pts->vol, k, j);
+}
+
+/* The energy (J) point i's bonds that failed in this pass held, at this pass's positions; marks
+ * them broken. Out of line: a bond fails once. */
+static __attribute__((noinline)) double pmb_release(const pf_pd_body *b, const pf_points *pts, pf_int i,
+                                                    double c) {
+  const pf_family *fam = &b->fam;
+  double w = 0;
+  for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++)
+    if (fam->broken[k] == PF_BOND_FRESH) w += pmb_bond_energy(b, pts, i, k, c), fam->broken[k] = PF_BOND_BROKEN;
+  return w * pts->vol[i];
+}
+
 /* One point's bond loop: returns the force density sum in f[3] and the smallest stretch of
  * its intact bonds; fails bonds whose stretch exceeds min(s0_i, s0_j), or with `energy` (law
  * critical_energy, Foster et al. 2011) bonds in tension whose pair micropotential
@@ -29,7 +55,7 @@ static int pmb_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
  * common case (omega = 1, whole cells, critical stretch) is a branch-light loop. */
 static inline __attribute__((always_inline)) double
 pmb_point(const pf_pd_body *restrict b, const pf_points *restrict pts, pf_int i, double c,
-          double wlim, const int weighted, const int partial, const int energy, double f[3]) {
+          double wlim, const int weighted, const int partial, const int energy, double f[3], int *nfresh) {
   const pf_family *fam = &b->fam;
   const double *restrict X = pts->X, *restrict Y = pts->y, *restrict vol = pts->vol;
   const double *restrict s0 = b->s0;
@@ -39,10 +65,11 @@ pmb_point(const pf_pd_body *restrict b, const pf_points *restrict pts, pf_int i,
   const double xi0 = X[3 * i], xi1 = X[3 * i + 1], xi2 = X[3 * i + 2];
   const double yi0 = Y[3 * i], yi1 = Y[3 * i + 1], yi2 = Y[3 * i + 2], s0i = s0[i];
   double f0 = 0, f1 = 0, f2 = 0, smin = INFINITY;
+  int fresh = 0;
   const int64_t end = fam->offset[i - fam->first + 1];
   const int64_t begin = fam->offset[i - fam->first];
   /* Branch-free so that the compiler vectorizes it (gathers of the neighbours' data). */
-#pragma omp simd reduction(+ : f0, f1, f2) reduction(min : smin)
+#pragma omp simd reduction(+ : f0, f1, f2, fresh) reduction(min : smin)
   for (int64_t k = begin; k < end; k++) {
     const pf_int j = nb[k];
     const double d0 = X[3 * j] - xi0, d1 = X[3 * j + 1] - xi1, d2 = X[3 * j + 2] - xi2;
@@ -52,8 +79,9 @@ pmb_point(const pf_pd_body *restrict b, const pf_points *restrict pts, pf_int i,
     const double s = (r - r0) / r0;
     const double om = weighted ? pf_pd_omega(&b->influence, r0) : 1.0;
     const int fails = energy ? (s > 0) & (om * s * s * r0 > wlim) : s > fmin(s0i, s0[j]);
-    const int alive = !broken[k] && !fails;
-    broken[k] = (uint8_t)(broken[k] | fails);
+    const int alive = !broken[k] && !fails, now = fails & !broken[k];
+    fresh += now;
+    broken[k] = (uint8_t)(broken[k] | (now * PF_BOND_FRESH));
     smin = alive ? fmin(smin, s) : smin;
     double fs = c * s * vol[j] / r;
     if (weighted) fs *= om;
@@ -64,6 +92,7 @@ pmb_point(const pf_pd_body *restrict b, const pf_points *restrict pts, pf_int i,
     f2 += fs * e2;
   }
   f[0] = f0, f[1] = f1, f[2] = f2;
+  *nfresh = fresh;
   return smin;
 }
 
@@ -76,7 +105,9 @@ static inline __attribute__((always_inline)) void pmb_loop(pf_pd_body *b, pf_poi
   const double wlim = 2.0 * b->critical_energy / c;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     double f[3];
-    b->smin[i - b->first] = pmb_point(b, pts, i, c, wlim, weighted, partial, energy, f);
+    int fresh;
+    b->smin[i - b->first] = pmb_point(b, pts, i, c, wlim, weighted, partial, energy, f, &fresh);
+    if (fresh) b->damage_work += pmb_release(b, pts, i, c);
     F[3 * i] += vol[i] * f[0];
     F[3 * i + 1] += vol[i] * f[1];
     F[3 * i + 2] += vol[i] * f[2];
@@ -104,26 +135,15 @@ static int pmb_force(pf_pd_body *b, pf_points *pts) {
   return 0;
 }
 
-/* Stored energy: W = sum_i V_i sum_j (1/4) c omega s^2 |xi| V_j (Silling & Askari 2005, eq. 6,
- * half of each bond's micropotential to each end). */
+/* Stored energy: W = sum_i V_i sum_j (1/4) c omega s^2 |xi| V_j (Silling & Askari 2005, eq. 6). */
 static double pmb_energy(const pf_pd_body *b, const pf_points *pts) {
   const pf_family *fam = &b->fam;
   const double c = ((const pmb *)b->mat)->c;
   double w = 0;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     double wi = 0;
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-      if (fam->broken[k]) continue;
-      pf_int j = fam->neighbor[k];
-      double r0 = 0, r = 0;
-      for (int a = 0; a < 3; a++) {
-        double d = pts->X[3 * j + a] - pts->X[3 * i + a], e = pts->y[3 * j + a] - pts->y[3 * i + a];
-        r0 += d * d, r += e * e;
-      }
-      r0 = sqrt(r0), r = sqrt(r);
-      double s = (r - r0) / r0;
-      wi += 0.25 * c * pf_pd_omega(&b->influence, r0) * s * s * r0 * pf_pd_bond_volume(fam, pts->vol, k, j);
-    }
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++)
+      if (!fam->broken[k]) wi += pmb_bond_energy(b, pts, i, k, c);
     w += wi * pts->vol[i];
   }
   return w;

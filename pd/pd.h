@@ -128,6 +128,10 @@ int pf_pd_body_uses_velocity(const pf_pd_body *b);
 int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts);
 /* Stored elastic energy (J) of the body's owned points. */
 double pf_pd_body_energy(const pf_pd_body *b, const pf_points *pts);
+/* The energy (J) the body's owned points lost with the bonds that failed since the last call
+ * (the damage dissipation of the energy balance; correspondence bodies, whose energy is the
+ * stress work, release none), and restart the count. */
+double pf_pd_body_take_damage_work(pf_pd_body *b);
 /* Point damage phi = 1 - intact bond volume / family volume into the "damage" field;
  * returns the number of broken directed bonds. */
 int64_t pf_pd_body_damage(const pf_pd_body *b, pf_points *pts);

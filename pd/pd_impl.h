@@ -63,7 +63,14 @@ struct pf_pd_body {
   double critical_energy; /* critical_energy: w_c = 4 G0 / (pi delta^4), J/m^6 */
   double *s0;        /* field "critical_stretch": per point, used by the force kernels */
   double *smin;      /* [n] smallest stretch of each point's intact bonds this step */
+  double damage_work; /* energy released by the bonds this rank's points lost since it was last
+                         taken (pf_pd_body_take_damage_work), J */
 };
+
+/* A bond a force kernel fails is first marked PF_BOND_FRESH, so that the kernel can book the
+ * energy it released (the point's stored energy with the bond less without it, at the same
+ * positions) before marking it PF_BOND_BROKEN, all within one force pass. */
+enum { PF_BOND_BROKEN = 1, PF_BOND_FRESH = 2 };
 
 /* A material: one file, one line in pd/materials.h (STYLE.md 2). Required: create, force,
  * energy. Optional: setup (NULL: nothing to precompute), micromodulus (NULL: the bulk-modulus
@@ -136,6 +143,11 @@ double pf_pd_lps_critical_stretch(const pf_pd_body *b, double G0);
  * with the deviatoric extensions less ep[stride k] when ep is given (elastic_plastic). */
 double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_int i, double theta, double m,
                                 const double *ep, int stride);
+/* The energy (J) released by the PF_BOND_FRESH bonds of point i, V_i (W_i - W_i'), W_i' the LPS
+ * energy (with ep, as above) without them and with the dilatation they no longer carry; marks
+ * them PF_BOND_BROKEN. */
+double pf_pd_lps_release(const pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
+                         int stride);
 
 /* Ordinary state-based materials (LPS, elastic-plastic): the weighted volume
  * m_i = sum_j omega |xi|^2 V_j of the owned points (Silling et al. 2007, eq. 90) into m, then the

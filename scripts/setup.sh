@@ -12,7 +12,7 @@ PACKAGES=(build-essential cmake pkg-config
   libtrilinos-zoltan-dev libmetis-dev
   libexodusii-dev libnetcdf-mpi-dev libhdf5-openmpi-dev
   libgmsh-dev libtrilinos-pamgen-dev libyaml-dev libmuparser-dev calculix-ccx
-  python3 python3-numpy python3-h5py python3-netcdf4 netcdf-bin)
+  python3 python3-numpy python3-h5py python3-netcdf4 python3-matplotlib netcdf-bin)
 
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -40,7 +40,8 @@ case "$mode" in
   --example)
     mkdir -p run
     cd run && ../build/perifem ../inputs/disk_impact_elastic.yaml
-    echo "open run/disk_impact_elastic.e in ParaView (File > Open; colour by 'damage')"
+    /usr/bin/python3 ../scripts/plot_history.py disk_impact_elastic.h5 --out plots
+    echo "open run/disk_impact_elastic.e in ParaView (File > Open; colour by 'damage'); plots in run/plots/"
     ;;
   --test)
     ctest --test-dir build --output-on-failure -LE slow -j"$(nproc)"
