@@ -28,6 +28,8 @@ static const pf_key output_keys[] = {
     {"fragments", PF_KEY_BOOL, 0, "false", "",
      "label the fragments (connected components of intact bonds) at every Exodus step: field "
      "'fragment' and <file>.fragments.csv", NULL},
+    {"probes", PF_KEY_LIST, 0, NULL, "", "mass-averaged quantities over regions, as history columns",
+     pf_sim_probe_keys},
     PF_KEY_END};
 
 const pf_key pf_deck_keys[] = {
@@ -219,6 +221,7 @@ int pf_sim_destroy(pf_sim **s) {
   free(sim->rigid);
   free(sim->reaction);
   free(sim->bcs);
+  free(sim->probes);
   pf_points_destroy(&sim->pts);
   pf_points_destroy(&sim->joined);
   pf_sim_restart_free(sim);

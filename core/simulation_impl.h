@@ -16,6 +16,14 @@ typedef struct {
   double *value;
 } pf_sim_scalars;
 
+enum { PF_PROBE_MAX_QUANTITIES = 8 };
+typedef struct {
+  char name[64];
+  int body;         /* -1: every body */
+  pf_region region; /* on reference positions */
+  int nq, q[PF_PROBE_MAX_QUANTITIES];
+} pf_probe;
+
 struct pf_sim {
   pf_deck *deck;
   pf_sim_options opt;
@@ -65,6 +73,8 @@ struct pf_sim {
   int fragments;                /* output.fragments: label the fragments at every Exodus step */
   char fragments_path[4128];    /* <Exodus file less .e>.fragments.csv */
   long fragments_rows;          /* rows written to it so far */
+  pf_probe *probes;             /* output.probes: history columns of region averages */
+  int nprobes;
   pf_exodus *exo;
   pf_points *joined; /* rank 0: every point in global-id order, for the joined Exodus file */
   pf_history *hist;
@@ -104,6 +114,14 @@ int pf_sim_setup_output(pf_sim *sim);
  * and <file>.fragments.csv at an Exodus step; final: also the summary lines. Collective. */
 int pf_sim_fragments_setup(pf_sim *sim);
 int pf_sim_fragments(pf_sim *sim, int final);
+/* core/simulation_probes.c: output.probes, mass-averaged quantities over regions. The columns'
+ * count and names; _eval fills values[count] (collective; a probe whose region holds no point
+ * is an input error). */
+extern const pf_key pf_sim_probe_keys[];
+int pf_sim_setup_probes(pf_sim *sim);
+int pf_sim_probe_columns(const pf_sim *sim);
+void pf_sim_probe_column(const pf_sim *sim, int column, char *name, size_t len, const char **units);
+int pf_sim_probes_eval(const pf_sim *sim, double *values);
 /* Instability guards: keep the state at the start of each step; flag a point moving more than
  * time.max_motion of its horizon (PD) or cell (FE node) in one step; at the step's end check
  * forces and velocities for NaN/Inf and, on every rank together, go back to the last good

@@ -26,8 +26,8 @@ typedef struct {
 
 static int globals_init(const pf_sim *sim, globals *g) {
   int npairs = pf_contact_npairs(sim->contact);
-  const int body0 = G_FIXED + 3 * (sim->nrigid + sim->nwalls + npairs);
-  g->n = body0 + 6 * sim->nbodies;
+  const int body0 = G_FIXED + 3 * (sim->nrigid + sim->nwalls + npairs), probe0 = body0 + 6 * sim->nbodies;
+  g->n = probe0 + pf_sim_probe_columns(sim);
   PF_MALLOC(g->names, g->n + 2);
   PF_MALLOC(g->units, g->n + 2);
   PF_MALLOC(g->values, g->n + 2);
@@ -66,6 +66,11 @@ static int globals_init(const pf_sim *sim, globals *g) {
       g->names[j] = strdup(buf);
       g->units[j] = q < 3 ? "m" : "m/s";
     }
+  for (int k = 0; k < g->n - probe0; k++) {
+    char buf[160];
+    pf_sim_probe_column(sim, k, buf, sizeof buf, &g->units[2 + probe0 + k]);
+    g->names[2 + probe0 + k] = strdup(buf);
+  }
   for (int k = 0; k < g->n + 2; k++) PF_CHECK(g->names[k], PF_ERR_MEMORY, "out of memory");
   return 0;
 }
@@ -117,7 +122,7 @@ static int globals_eval(pf_sim *sim, globals *g, int first) {
     pf_contact_pair_force(sim->contact, k, &v[G_FIXED + 3 * (sim->nrigid + sim->nwalls + k)]);
   const int body0 = G_FIXED + 3 * (sim->nrigid + sim->nwalls + pf_contact_npairs(sim->contact));
   body_motion(sim, &v[body0]);
-  return 0;
+  return pf_sim_probes_eval(sim, &v[body0 + 6 * sim->nbodies]);
 }
 
 static int spread(const pf_sim *sim) { return sim->spread_output && pf_comm_size() > 1; }

@@ -113,6 +113,7 @@ int pf_sim_setup_output(pf_sim *sim) {
   PF_CALL(pf_deck_int(d, out, "history_interval", &sim->history_interval));
   PF_CALL(pf_deck_bool(d, out, "fragments", &sim->fragments));
   PF_CALL(pf_sim_fragments_setup(sim));
+  PF_CALL(pf_sim_setup_probes(sim));
   if (sim->output_interval < 0)
     return pf_deck_error(d, pf_node_get(out, "interval"), "interval", "must not be negative");
   if (sim->history_interval < 1)
