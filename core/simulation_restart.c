@@ -131,12 +131,24 @@ static int check_deck(const pf_sim *sim, const pf_sim_scalars *saved, const pf_s
   return 0;
 }
 
+/* The first global id of each body (gid0[b], and gid0[nbodies] the total): the bodies' ids are
+ * consecutive in deck order, as pf_sim_distribute numbered them, so each is the running sum of
+ * the bodies' point counts in the checkpoint. Collective. */
+static void body_gids(pf_sim *sim) {
+  double count[PF_MAX_BODIES] = {0};
+  for (pf_int i = 0; i < sim->pts->n_owned; i++) count[sim->pts->body[i]] += 1;
+  MPI_Allreduce(MPI_IN_PLACE, count, sim->nbodies, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  sim->gid0[0] = 0;
+  for (int b = 0; b < sim->nbodies; b++) sim->gid0[b + 1] = sim->gid0[b] + (pf_gid)count[b];
+}
+
 int pf_sim_restore_points(pf_sim *sim) {
   pf_bond_rows rows;
   PF_CALL(pf_bond_rows_init(&rows));
   PF_CALL(scalars_make(sim, &sim->restart_scalars));
   pf_sim_scalars *s = &sim->restart_scalars;
   int ierr = pf_checkpoint_read(sim->opt.restart_from, &sim->pts, &rows, s->n, s->names, s->value);
+  if (!ierr) body_gids(sim);
   if (!ierr) ierr = pf_sim_settle(sim, &rows, 0);
   pf_bond_rows_free(&rows);
   for (int b = 0; b < sim->nbodies && !ierr; b++) { /* the elements' state, whole on every rank */
