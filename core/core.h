@@ -68,6 +68,9 @@ void pf_log(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Rank 0's standard output is a terminal (and not --quiet): pf_log_status rewrites one line
  * in place there (no newline; the next pf_log or error ends it) and prints nothing elsewhere. */
 int pf_log_terminal(void);
+/* -1 (default): a status line when standard output is a terminal; 0: plain lines; 1: a status
+ * line (--progress auto|plain|line). */
+void pf_log_set_status(int mode);
 void pf_log_status(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 /* ---- the point store (DESIGN.md 2) --------------------------------------- */

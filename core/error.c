@@ -13,6 +13,7 @@ static int have_error = 0;
 static int error_quiet = 0;
 static int log_quiet = 0;
 static int status_open = 0; /* a status line is on the terminal without its newline */
+static int status_mode = -1; /* -1: when standard output is a terminal; 0: never; 1: always */
 
 /* End an open status line before other output. */
 static void close_status(void) {
@@ -63,7 +64,11 @@ void pf_log(const char *fmt, ...) {
   fflush(stdout);
 }
 
-int pf_log_terminal(void) { return !log_quiet && pf_comm_rank() == 0 && isatty(fileno(stdout)); }
+void pf_log_set_status(int mode) { status_mode = mode; }
+
+int pf_log_terminal(void) {
+  return !log_quiet && pf_comm_rank() == 0 && (status_mode < 0 ? isatty(fileno(stdout)) : status_mode);
+}
 
 void pf_log_status(const char *fmt, ...) {
   if (!pf_log_terminal()) return;

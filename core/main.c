@@ -16,6 +16,9 @@ static void usage(FILE *fp) {
           "  --output-dir DIR   write output files into DIR (created when missing)\n"
           "  --restart FILE     continue from the checkpoint FILE (any number of ranks)\n"
           "  --quiet            print only errors, the summary's digest line excepted\n"
+          "  --progress MODE    auto (one line rewritten in place on a terminal, else plain lines),\n"
+          "                     plain or line; under mpirun the ranks see a pseudo-terminal even\n"
+          "                     when mpirun's output goes to a file: use plain there\n"
           "  --version          print the version and the libraries it was built with\n"
           "  --deck-keys        print every deck key with its type, default and units (Markdown)\n"
           "  --help             this text\n"
@@ -48,7 +51,14 @@ static int parse_args(int argc, char **argv, cli *c) {
     if (!strcmp(a, "--deck-keys")) return pf_deck_reference(stdout);
     if (!strcmp(a, "--check")) c->check = 1;
     else if (!strcmp(a, "--quiet")) c->quiet = 1;
-    else if (!strcmp(a, "--output-dir") || !strcmp(a, "--restart")) {
+    else if (!strcmp(a, "--progress")) {
+      const char *m = i + 1 < argc ? argv[++i] : "";
+      if (strcmp(m, "auto") && strcmp(m, "plain") && strcmp(m, "line")) {
+        fprintf(stderr, "perifem error: --progress needs auto, plain or line (got '%s')\n", m);
+        return PF_ERR_INPUT;
+      }
+      pf_log_set_status(!strcmp(m, "auto") ? -1 : !strcmp(m, "line"));
+    } else if (!strcmp(a, "--output-dir") || !strcmp(a, "--restart")) {
       if (i + 1 >= argc) {
         fprintf(stderr, "perifem error: %s needs a %s\n", a, a[2] == 'o' ? "directory" : "checkpoint file");
         return PF_ERR_INPUT;

@@ -214,13 +214,20 @@ static double relative_error(const globals *g) {
   return scale > 0 ? fabs(v[G_EERR]) / scale : 0.0;
 }
 
+/* How far the run is, 0..1: by time when the step follows the deformation (the step count is
+ * not known ahead), else by steps. */
+static double run_fraction(const pf_sim *sim) {
+  if (sim->adaptive && isfinite(sim->final_time)) return sim->t / sim->final_time;
+  return (double)sim->step / fmax((double)sim->nsteps, 1.0);
+}
+
 /* Progress (rank 0): the step (of the total when the step is fixed), simulated time of the final
  * time, steps per second of wall time, the time left at that rate, and the energy balance error
  * and damage fraction of the last history row (no collective: ranks need not agree on when). */
 static void progress(const pf_sim *sim, const globals *g, double wall0, int status) {
   double el = pf_wtime() - wall0, rate = sim->step / fmax(el, 1e-9);
-  const int by_time = sim->adaptive && isfinite(sim->final_time); /* the step count is not known */
-  double frac = by_time ? sim->t / sim->final_time : (double)sim->step / fmax((double)sim->nsteps, 1.0);
+  const int by_time = sim->adaptive && isfinite(sim->final_time);
+  const double frac = run_fraction(sim);
   double tend = isfinite(sim->final_time) ? sim->final_time : sim->t / fmax(frac, 1e-300);
   char line[256];
   int n = by_time ? snprintf(line, sizeof line, "step %ld", sim->step)
@@ -278,8 +285,8 @@ static int checkpoints(pf_sim *sim, int *stop) {
 }
 
 static int run_loop(pf_sim *sim, globals *g, double wall0) {
-  long every = sim->nsteps / 20 > 0 ? sim->nsteps / 20 : 1; /* adaptive steps: a first estimate */
   const int status = pf_log_terminal();
+  int twentieths = 0; /* plain lines: one at each twentieth of the run */
   double loop0 = pf_wtime(), shown = loop0;
   while (!pf_sim_finished(sim) && !sim->stopped) {
     int ierr = pf_sim_step(sim, 1);
@@ -298,7 +305,10 @@ static int run_loop(pf_sim *sim, globals *g, double wall0) {
     }
     if (last) continue;
     if (status && pf_wtime() - shown > 0.25) progress(sim, g, wall0, 1), shown = pf_wtime();
-    else if (!status && sim->step % every == 0) progress(sim, g, wall0, 0);
+    else if (!status && (int)(20 * run_fraction(sim)) > twentieths) {
+      twentieths = (int)(20 * run_fraction(sim));
+      progress(sim, g, wall0, 0);
+    }
   }
   sim->wall_loop = pf_wtime() - loop0;
   return 0;

@@ -1,14 +1,14 @@
 """Render a field of a perifem Exodus II file to PNG with ParaView, off-screen.
 
     pvbatch scripts/render_fields.py RUN.e OUT.png [--field damage] [--time T | --step K]
-            [--view iso|top|front|side] [--clip-y Y] [--range LO HI] [--size W H] [--zoom Z]
+            [--view iso|top|front|back|side] [--clip-y Y] [--range LO,HI] [--size W H] [--zoom Z]
 
 PD bodies (SPHERE blocks) are drawn as points, FE bodies (HEX8 blocks) as surfaces, on their
 deformed positions (the reader applies the displacements), coloured by the field (a point
 field such as damage, velocity_z, eqps, fragment; a vector field by its magnitude).
 --time picks the last output at or before T seconds (default: the last output), --step the
 K-th output (0 first; negative counts from the end). --clip-y Y keeps what lies at y <= Y
-(whole cells), to look inside. Needs pvbatch (Debian paraview, python3-paraview); run it
+(whole cells), to look inside: --view back then faces the cut. Needs pvbatch (Debian paraview, python3-paraview); run it
 with a clean environment when a user Python is set up: env -i PATH=/usr/bin:/bin pvbatch ...
 """
 import argparse
@@ -21,6 +21,7 @@ VIEWS = {  # camera direction (from the focal point towards the camera) and view
     "iso": ((1.0, -1.6, 1.2), (0, 0, 1)),
     "top": ((0, 0, 1), (0, 1, 0)),
     "front": ((0, -1, 0), (0, 0, 1)),
+    "back": ((0, 1, 0), (0, 0, 1)),  # onto the cut face of --clip-y
     "side": ((1, 0, 0), (0, 0, 1)),
 }
 
@@ -34,7 +35,7 @@ def main():
     ap.add_argument("--step", type=int)
     ap.add_argument("--view", choices=sorted(VIEWS), default="iso")
     ap.add_argument("--clip-y", type=float)
-    ap.add_argument("--range", type=float, nargs=2)
+    ap.add_argument("--range", help="LO,HI: the colour scale (default: the data's range)")
     ap.add_argument("--size", type=int, nargs=2, default=(1200, 800))
     ap.add_argument("--zoom", type=float, default=1.0, help="magnify the framed view by this")
     ap.add_argument("--title", default=None)
@@ -87,7 +88,8 @@ def main():
     lut = GetColorTransferFunction(array)
     lut.ApplyPreset("Cool to Warm", True)
     if a.range:
-        lut.RescaleTransferFunction(a.range[0], a.range[1])
+        lo, hi = (float(x) for x in a.range.split(","))
+        lut.RescaleTransferFunction(lo, hi)
     else:
         disp.RescaleTransferFunctionToDataRange(False, True)
     bar = GetScalarBar(lut, view)

@@ -3,7 +3,8 @@
 #  - the progress report: plain lines when the output is not a terminal, and on a terminal (a
 #    pseudo-terminal from script(1)) one line rewritten in place (carriage return, erase to the
 #    end of line) that ends before the summary; both give the step, the time, steps per second,
-#    the time left, the energy error and the damage fraction;
+#    the time left, the energy error and the damage fraction; --progress plain forces plain lines
+#    on a terminal and --progress line the rewritten line into a file;
 #  - scripts/plot_history.py turns the run's history into PNG files (energies, energy error,
 #    damage, each body's velocity, forces), and refuses a file that is not a history (exit 2).
 # The run: tests/data/sphere_on_block.yaml (FE sphere on a PD block: contact, damage), 300 steps.
@@ -20,6 +21,8 @@ for want in "step 15/300" "steps/s" "s left" "energy error" "damage"; do
 done
 [ "$(grep -c '^step ' "$scratch/plain.log")" -ge 10 ] || bad "fewer than 10 progress lines"
 ! grep -q $'\r' "$scratch/plain.log" || bad "carriage returns in output that is not a terminal"
+"$exe" --progress line --output-dir "$scratch/plain" "$scratch/run.yaml" > "$scratch/line.log" 2>&1
+grep -q $'\e\[K' "$scratch/line.log" || bad "--progress line into a file: no rewritten line"
 # on a terminal (the run lasts a few seconds: several rewrites at 4 a second)
 if command -v script > /dev/null; then
   script -qec "$exe --output-dir $scratch/tty $scratch/run.yaml" /dev/null > "$scratch/tty.log" 2>&1 \
@@ -28,6 +31,10 @@ if command -v script > /dev/null; then
   grep -q $'\e\[K' "$scratch/tty.log" || bad "the status line is not erased to its end"
   grep -q '^perifem: 300 steps' <(tr '\r' '\n' < "$scratch/tty.log") || bad "the summary does not start a line"
   ! grep -q '^step 15/300' "$scratch/tty.log" || bad "plain progress lines on a terminal"
+  # --progress plain on a terminal (as under mpirun, whose ranks see a pseudo-terminal)
+  script -qec "$exe --progress plain --output-dir $scratch/tty $scratch/run.yaml" /dev/null > "$scratch/plain_tty.log" 2>&1
+  ! grep -q $'\e\[K' "$scratch/plain_tty.log" || bad "--progress plain rewrote a line"
+  grep -q '^step 15/300' <(tr -d '\r' < "$scratch/plain_tty.log") || bad "--progress plain: no plain lines"
 else
   echo "(script(1) not found: the terminal check is skipped)"
 fi

@@ -14,7 +14,18 @@ done
 rm -rf "$scratch" && mkdir -p "$scratch"
 cp data/mixed_pd_fe.yaml "$scratch/mixed.yaml"
 "$exe" --quiet --output-dir "$scratch" "$scratch/mixed.yaml" > /dev/null || { echo "FAIL: the run"; exit 1; }
-pv() { env -i PATH=/usr/bin:/bin HOME="$scratch" xvfb-run -a pvbatch ../scripts/render_fields.py "$@"; }
+# xvfb-run -a can lose the race for a display number to another X server starting at the same
+# moment ("bad X server connection"): try again, up to three times
+pv() {
+  local try out st
+  for try in 1 2 3; do
+    out=$(env -i PATH=/usr/bin:/bin HOME="$scratch" xvfb-run -a pvbatch ../scripts/render_fields.py "$@" 2>&1)
+    st=$?
+    grep -q "bad X server connection" <<< "$out" || break
+  done
+  echo "$out"
+  return $st
+}
 bad() { echo "FAIL: $*"; fail=1; }
 pv "$scratch/mixed.e" "$scratch/damage.png" --field damage --size 640 480 > "$scratch/log" 2>&1 || bad "damage: $(tail -3 "$scratch/log")"
 pv "$scratch/mixed.e" "$scratch/vz.png" --field velocity_z --view front --step 0 --size 640 480 >> "$scratch/log" 2>&1 || bad "velocity_z"
