@@ -221,16 +221,17 @@ static double run_fraction(const pf_sim *sim) {
   return (double)sim->step / fmax((double)sim->nsteps, 1.0);
 }
 
-/* Progress (rank 0): the step (of the total when the step is fixed), simulated time of the final
- * time, steps per second of wall time, the time left at that rate, and the energy balance error
- * and damage fraction of the last history row (no collective: ranks need not agree on when). */
+/* Progress (rank 0): the step (of the total when the step is fixed, else with the step size),
+ * simulated time of the final time, steps per second of wall time, the time left at that rate,
+ * and the energy balance error and damage fraction of the last history row (no collective:
+ * ranks need not agree on when). */
 static void progress(const pf_sim *sim, const globals *g, double wall0, int status) {
   double el = pf_wtime() - wall0, rate = sim->step / fmax(el, 1e-9);
   const int by_time = sim->adaptive && isfinite(sim->final_time);
   const double frac = run_fraction(sim);
   double tend = isfinite(sim->final_time) ? sim->final_time : sim->t / fmax(frac, 1e-300);
   char line[256];
-  int n = by_time ? snprintf(line, sizeof line, "step %ld", sim->step)
+  int n = by_time ? snprintf(line, sizeof line, "step %ld  dt = %.3e s", sim->step, sim->dt)
                   : snprintf(line, sizeof line, "step %ld/%ld", sim->step, sim->nsteps);
   snprintf(line + n, sizeof line - n,
            "  t = %.4e / %.4e s (%.0f %%)  %.1f steps/s  about %.0f s left  energy error %.2e  damage %.4g",
