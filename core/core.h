@@ -62,6 +62,9 @@ void pf_error_set_quiet(int quiet);
     (ptr) = NULL;                                                                                  \
   } while (0)
 
+/* The versions of gmsh, METIS, Zoltan, netCDF and muparser built against, as one line. */
+void pf_library_versions(char *out, size_t len);
+
 /* ---- logging: rank 0 only ------------------------------------------------ */
 void pf_log_set_quiet(int quiet);
 void pf_log(const char *fmt, ...) __attribute__((format(printf, 1, 2)));

@@ -33,8 +33,10 @@ static void version(void) {
   MPI_Get_library_version(mpi, &len);
   char *nl = strchr(mpi, ',');
   if (nl) *nl = '\0';
-  printf("perifem %s\n  libyaml %s, Exodus II %.2f, HDF5 %u.%u.%u, %s\n", PERIFEM_VERSION,
-         yaml_get_version_string(), (double)EX_API_VERS, maj, min, rel, mpi);
+  char more[256];
+  pf_library_versions(more, sizeof more);
+  printf("perifem %s\n  libyaml %s, Exodus II %.2f, HDF5 %u.%u.%u, %s\n  %s\n", PERIFEM_VERSION,
+         yaml_get_version_string(), (double)EX_API_VERS, maj, min, rel, mpi, more);
 }
 
 typedef struct {
@@ -109,8 +111,9 @@ static int run(const cli *c) {
   int ierr = pf_sim_create(c->deck, &opt, &sim);
   if (ierr) return ierr == PF_ERR_INPUT ? 2 : 1;
   if (c->check) {
-    pf_log("%s: deck is valid (%" PF_GID_FMT " points, %ld steps of %.4e s)\n", c->deck,
-           pf_sim_points(sim)->n_global, pf_sim_nsteps(sim), pf_sim_dt(sim));
+    pf_log("%s: deck is valid (%" PF_GID_FMT " points, %s%ld steps of %.4e s%s)\n", c->deck,
+           pf_sim_points(sim)->n_global, pf_sim_adaptive(sim) ? "about " : "", pf_sim_nsteps(sim), pf_sim_dt(sim),
+           pf_sim_adaptive(sim) ? " at the start; the step follows the deformation" : "");
     pf_sim_destroy(&sim);
     return 0;
   }

@@ -237,3 +237,4 @@ pf_pd_body *pf_sim_body(pf_sim *sim, int b) { return sim->body[b]; }
 pf_fem_body *pf_sim_fem_body(pf_sim *sim, int b) { return sim->fem[b]; }
 double pf_sim_dt(const pf_sim *sim) { return sim->dt; }
 long pf_sim_nsteps(const pf_sim *sim) { return sim->nsteps; }
+int pf_sim_adaptive(const pf_sim *sim) { return sim->adaptive; }

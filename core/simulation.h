@@ -26,6 +26,9 @@ pf_pd_body *pf_sim_body(pf_sim *sim, int b);     /* NULL for an FE body */
 struct pf_fem_body *pf_sim_fem_body(pf_sim *sim, int b); /* NULL for a PD body */
 double pf_sim_dt(const pf_sim *sim);
 long pf_sim_nsteps(const pf_sim *sim);
+/* 1 when the step follows the deformation (FE or correspondence bodies, no time.dt): then dt and
+ * nsteps are those of the set-up, estimates of the run's. */
+int pf_sim_adaptive(const pf_sim *sim);
 /* Global quantities of the current state. */
 typedef struct {
   double time, kinetic, elastic, contact, external_work, momentum[3];

@@ -138,6 +138,7 @@ cli_case() {
 cli_case "--check $(basename "$valid_deck")" 0 err - --check --output-dir @DIR@ "$valid_deck"
 cli_case "--help" 0 out usage --help
 cli_case "--version" 0 out "libyaml" --version
+cli_case "--version (the private libraries)" 0 out "METIS" --version
 cli_case "--progress sometimes" 2 err "--progress needs auto, plain or line" --progress sometimes "$valid_deck"
 cli_case "--deck-keys" 0 out "## 1. \`(top level)\`" --deck-keys
 cli_case "--nonsense" 2 err --nonsense --nonsense
