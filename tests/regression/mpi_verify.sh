@@ -6,7 +6,10 @@
 # (20-30 s each), whose materials run on 1, 2 and 3 ranks there (taylor_corr, damage_bar); and
 # test_kalthoff_winkler (label slow, minutes), a PMB deck like those of mpi_digests; and
 # test_coupling_wave (label slow), whose coupled deck runs there as coupled_bar; and
-# test_partial_stress (a dozen bars), whose forms run there as horizon_corr and horizon_lps.
+# test_partial_stress (a dozen bars), whose forms run there as horizon_corr and horizon_lps; and
+# test_hertz (80 s on one rank, the longest), whose parts - an FE sphere on a PMB block through
+# FE <-> PD contact - run on 1, 2 and 3 ranks there as sphere_on_block (kept under the default
+# run's 10 minutes on 2 cores).
 # usage: mpi_verify.sh PERIFEM SCRATCH TESTS_BINARY_DIR   (from the tests/ folder)
 set -u
 bindir=$3 fail=0
@@ -14,7 +17,7 @@ source common/mpi_env.sh
 export PF_TEST_DIGESTS=1
 for src in verification/test_*.c; do
   name=$(basename "$src" .c)
-  case $name in test_taylor | test_taylor_correspondence | test_kalthoff_winkler | test_coupling_wave | test_partial_stress | test_damage_correspondence | test_correspondence_compression) continue ;; esac
+  case $name in test_taylor | test_taylor_correspondence | test_kalthoff_winkler | test_coupling_wave | test_partial_stress | test_damage_correspondence | test_correspondence_compression | test_hertz) continue ;; esac
   ref=""
   for np in 1 2 3; do
     out=$(run $np "$bindir/$name" 2>&1) || { echo "$name on $np ranks failed: $out"; fail=1; continue; }
