@@ -15,7 +15,8 @@ sphere_velocity_z, sphere_position_z). Outcomes, from the sphere's path alone:
                         moving down; its residual velocity is then -v_z, else 0.
 It prints one line per velocity and the fit, writes OUT/sweep.csv, and with --plot the figures
 of the docs page (OUT/panel_residual.png, OUT/panel_velocity.png). Re-running reuses finished
-runs (delete OUT/v<velocity> to redo one)."""
+runs (delete OUT/v<velocity> to redo one). A run that fails (the instability guard) is left out
+of the table and the fit, and the script then exits with status 1 after the others."""
 import argparse
 import csv
 import os
@@ -46,15 +47,18 @@ def variant(deck, v, folder):
 
 
 def run(path, ranks, perifem):
+    """Run the variant in its folder (unless done before); True when the run finished."""
     folder = os.path.dirname(path)
     if os.path.exists(os.path.join(folder, "done")):
-        return
+        return True
     cmd = [perifem, "--quiet", "panel.yaml"]
     if ranks > 1:
         cmd = ["mpirun", "--oversubscribe", "-np", str(ranks)] + cmd
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    subprocess.run(cmd, cwd=folder, check=True, env=env)
+    if subprocess.run(cmd, cwd=folder, env=env).returncode != 0:
+        return False
     open(os.path.join(folder, "done"), "w").close()
+    return True
 
 
 def outcome(folder):
@@ -129,10 +133,14 @@ def main():
     ap.add_argument("--plot", action="store_true")
     args = ap.parse_args()
     perifem = os.path.abspath(args.perifem)
-    rows, series = [], []
+    rows, series, failed = [], [], []
     for v in args.velocities:
         folder = os.path.join(args.out, "v%g" % v)
-        run(variant(args.deck, v, folder), args.ranks, perifem)
+        if not run(variant(args.deck, v, folder), args.ranks, perifem):
+            print("impact %5.0f m/s: the run failed (its message above; the last good state in %s): left out"
+                  % (v, folder), flush=True)
+            failed.append(v)
+            continue
         t, vz, zc, top, through, vr = outcome(folder)
         rows.append((v, top, through, vr))
         series.append((v, (t, vz)))
@@ -150,6 +158,8 @@ def main():
         print("Recht-Ipson fit: needs at least one stopped and one perforating shot")
     if args.plot and fit is not None:
         plot(args.out, rows, fit, model, series)
+    if failed:
+        sys.exit("panel_sweep: the runs at %s m/s failed" % ", ".join("%g" % v for v in failed))
 
 
 if __name__ == "__main__":

@@ -2,20 +2,23 @@
 
     pvbatch scripts/render_fields.py RUN.e OUT.png [--field damage] [--time T | --step K]
             [--view iso|top|front|back|side] [--clip-y Y] [--range LO,HI] [--size W H] [--zoom Z]
+            [--keep FIELD,LO,HI]
 
 PD bodies (SPHERE blocks) are drawn as points, FE bodies (HEX8 blocks) as surfaces, on their
 deformed positions (the reader applies the displacements), coloured by the field (a point
 field such as damage, velocity_z, eqps, fragment; a vector field by its magnitude).
 --time picks the last output at or before T seconds (default: the last output), --step the
 K-th output (0 first; negative counts from the end). --clip-y Y keeps what lies at y <= Y
-(whole cells), to look inside: --view back then faces the cut. Needs pvbatch (Debian paraview, python3-paraview); run it
+(whole cells), to look inside: --view back then faces the cut. --keep FIELD,LO,HI draws only
+the cells whose points all lie in the range (damage,0,0.99: without the points that have lost
+every bond, which stretch the FE cells they belong to across the picture). Needs pvbatch (Debian paraview, python3-paraview); run it
 with a clean environment when a user Python is set up: env -i PATH=/usr/bin:/bin pvbatch ...
 """
 import argparse
 import sys
 
 from paraview.simple import (Clip, ColorBy, ExodusIIReader, GetColorTransferFunction,
-                             GetScalarBar, SaveScreenshot, CreateView, Show, Text)
+                             GetScalarBar, SaveScreenshot, CreateView, Show, Text, Threshold)
 
 VIEWS = {  # camera direction (from the focal point towards the camera) and view-up
     "iso": ((1.0, -1.6, 1.2), (0, 0, 1)),
@@ -35,6 +38,8 @@ def main():
     ap.add_argument("--step", type=int)
     ap.add_argument("--view", choices=sorted(VIEWS), default="iso")
     ap.add_argument("--clip-y", type=float)
+    ap.add_argument("--keep", help="FIELD,LO,HI: draw only cells whose points all have LO <= FIELD <= HI "
+                    "(e.g. damage,0,0.99 hides the points that have lost every bond)")
     ap.add_argument("--range", help="LO,HI: the colour scale (default: the data's range)")
     ap.add_argument("--size", type=int, nargs=2, default=(1200, 800))
     ap.add_argument("--zoom", type=float, default=1.0, help="magnify the framed view by this")
@@ -65,8 +70,15 @@ def main():
         sys.exit(2)
 
     source = reader
+    if a.keep:
+        name, lo, hi = a.keep.split(",")
+        if name not in fields:
+            print("render_fields: %s has no point field '%s' for --keep" % (a.exodus, name), file=sys.stderr)
+            sys.exit(2)
+        source = Threshold(Input=source, Scalars=["POINTS", name], LowerThreshold=float(lo),
+                           UpperThreshold=float(hi), AllScalars=1)
     if a.clip_y is not None:
-        source = Clip(Input=reader, ClipType="Plane", Crinkleclip=1)
+        source = Clip(Input=source, ClipType="Plane", Crinkleclip=1)
         source.ClipType.Origin = [0.0, a.clip_y, 0.0]
         source.ClipType.Normal = [0.0, 1.0, 0.0]
         source.Invert = 1

@@ -3,7 +3,8 @@
 # xvfb-run; Debian paraview, python3-paraview, xvfb, xauth, which scripts/setup.sh does not
 # install, hence label slow): a mixed run (a PD plate and an FE bar, tests/data/mixed_pd_fe.yaml)
 # is drawn coloured by damage and by velocity_z, and clipped; each PNG has the size asked for and
-# is not one flat colour (the bodies were drawn); a field the file lacks is refused (exit 2).
+# is not one flat colour (the bodies were drawn), also with --keep damage,0,0.99; a field the
+# file lacks is refused (exit 2).
 # usage: slow_render_fields.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
@@ -30,7 +31,8 @@ bad() { echo "FAIL: $*"; fail=1; }
 pv "$scratch/mixed.e" "$scratch/damage.png" --field damage --size 640 480 > "$scratch/log" 2>&1 || bad "damage: $(tail -3 "$scratch/log")"
 pv "$scratch/mixed.e" "$scratch/vz.png" --field velocity_z --view front --step 0 --size 640 480 >> "$scratch/log" 2>&1 || bad "velocity_z"
 pv "$scratch/mixed.e" "$scratch/clip.png" --field damage --clip-y 0 --view side --size 640 480 >> "$scratch/log" 2>&1 || bad "clip"
-for p in damage vz clip; do
+pv "$scratch/mixed.e" "$scratch/keep.png" --field velocity --keep damage,0,0.99 --size 640 480 >> "$scratch/log" 2>&1 || bad "keep"
+for p in damage vz clip keep; do
   "$PY" - "$scratch/$p.png" <<'PYEOF' || bad "$p.png"
 import sys
 import matplotlib.image as mpimg
