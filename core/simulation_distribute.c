@@ -91,10 +91,15 @@ int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh) {
   return ierr;
 }
 
+void pf_sim_number_bodies(pf_sim *sim, const pf_gid *count) {
+  sim->gid0[0] = 0;
+  for (int b = 0; b < sim->nbodies; b++) sim->gid0[b + 1] = sim->gid0[b] + count[b];
+}
+
 int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc) {
-  pf_gid *gid0 = sim->gid0;
-  gid0[0] = 0;
-  for (int b = 0; b < sim->nbodies; b++) gid0[b + 1] = gid0[b] + pc[b].n;
+  pf_gid count[PF_MAX_BODIES], *gid0 = sim->gid0;
+  for (int b = 0; b < sim->nbodies; b++) count[b] = pc[b].n;
+  pf_sim_number_bodies(sim, count);
   PF_CALL(make_slice(sim, pc, gid0, &sim->pts));
   pf_bond_rows rows;
   PF_CALL(pf_bond_rows_init(&rows));

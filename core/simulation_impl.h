@@ -93,6 +93,8 @@ int pf_sim_setup_parallel(pf_sim *sim);
 /* Partition the bodies' points (clouds generated on every rank), keep this rank's points with
  * their families and ghosts, and attach them to the bodies. Collective. */
 int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc);
+/* The bodies' global ids, consecutive in deck order: gid0[b + 1] = gid0[b] + count[b]. */
+void pf_sim_number_bodies(pf_sim *sim, const pf_gid *count);
 /* Re-partition when the work imbalance exceeds the deck's threshold (at output steps). */
 int pf_sim_rebalance(pf_sim *sim);
 int pf_sim_setup_time(pf_sim *sim);

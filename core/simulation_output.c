@@ -22,11 +22,13 @@ typedef struct {
   const char **units;
   double *values;
   double e0; /* initial total energy */
+  int body0, probe0; /* the columns (after time and step) where the bodies' and the probes' start */
 } globals;
 
 static int globals_init(const pf_sim *sim, globals *g) {
   int npairs = pf_contact_npairs(sim->contact);
-  const int body0 = G_FIXED + 3 * (sim->nrigid + sim->nwalls + npairs), probe0 = body0 + 6 * sim->nbodies;
+  const int body0 = g->body0 = G_FIXED + 3 * (sim->nrigid + sim->nwalls + npairs);
+  const int probe0 = g->probe0 = body0 + 6 * sim->nbodies;
   g->n = probe0 + pf_sim_probe_columns(sim);
   PF_MALLOC(g->names, g->n + 2);
   PF_MALLOC(g->units, g->n + 2);
@@ -120,9 +122,8 @@ static int globals_eval(pf_sim *sim, globals *g, int first) {
     for (int a = 0; a < 3; a++) v[G_FIXED + 3 * sim->nrigid + 3 * k + a] = sim->wall_reaction[k][a];
   for (int k = 0; k < pf_contact_npairs(sim->contact); k++)
     pf_contact_pair_force(sim->contact, k, &v[G_FIXED + 3 * (sim->nrigid + sim->nwalls + k)]);
-  const int body0 = G_FIXED + 3 * (sim->nrigid + sim->nwalls + pf_contact_npairs(sim->contact));
-  body_motion(sim, &v[body0]);
-  return pf_sim_probes_eval(sim, &v[body0 + 6 * sim->nbodies]);
+  body_motion(sim, &v[g->body0]);
+  return pf_sim_probes_eval(sim, &v[g->probe0]);
 }
 
 static int spread(const pf_sim *sim) { return sim->spread_output && pf_comm_size() > 1; }
@@ -306,10 +307,8 @@ static int run_loop(pf_sim *sim, globals *g, double wall0) {
     }
     if (last) continue;
     if (status && pf_wtime() - shown > 0.25) progress(sim, g, wall0, 1), shown = pf_wtime();
-    else if (!status && (int)(20 * run_fraction(sim)) > twentieths) {
-      twentieths = (int)(20 * run_fraction(sim));
-      progress(sim, g, wall0, 0);
-    }
+    else if (!status && (int)(20 * run_fraction(sim)) > twentieths)
+      twentieths = (int)(20 * run_fraction(sim)), progress(sim, g, wall0, 0);
   }
   sim->wall_loop = pf_wtime() - loop0;
   return 0;

@@ -131,15 +131,15 @@ static int check_deck(const pf_sim *sim, const pf_sim_scalars *saved, const pf_s
   return 0;
 }
 
-/* The first global id of each body (gid0[b], and gid0[nbodies] the total): the bodies' ids are
- * consecutive in deck order, as pf_sim_distribute numbered them, so each is the running sum of
- * the bodies' point counts in the checkpoint. Collective. */
+/* The bodies' global ids as pf_sim_distribute numbered them, from the checkpoint's point counts
+ * of each body. Collective. */
 static void body_gids(pf_sim *sim) {
-  double count[PF_MAX_BODIES] = {0};
-  for (pf_int i = 0; i < sim->pts->n_owned; i++) count[sim->pts->body[i]] += 1;
-  MPI_Allreduce(MPI_IN_PLACE, count, sim->nbodies, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-  sim->gid0[0] = 0;
-  for (int b = 0; b < sim->nbodies; b++) sim->gid0[b + 1] = sim->gid0[b] + (pf_gid)count[b];
+  double n[PF_MAX_BODIES] = {0};
+  pf_gid count[PF_MAX_BODIES];
+  for (pf_int i = 0; i < sim->pts->n_owned; i++) n[sim->pts->body[i]] += 1;
+  MPI_Allreduce(MPI_IN_PLACE, n, sim->nbodies, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  for (int b = 0; b < sim->nbodies; b++) count[b] = (pf_gid)n[b];
+  pf_sim_number_bodies(sim, count);
 }
 
 int pf_sim_restore_points(pf_sim *sim) {
