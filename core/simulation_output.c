@@ -243,16 +243,20 @@ static void progress(const pf_sim *sim, const globals *g, double wall0, int stat
 }
 
 static void summary(const pf_sim *sim, const globals *g, double wall) {
-  double nb = 0;
-  for (int b = 0; b < sim->nbodies; b++)
-    if (sim->body[b]) nb += (double)pf_pd_body_nbonds(sim->body[b]);
-    else if (pf_fem_body_pd(sim->fem[b])) nb += (double)pf_pd_body_nbonds(pf_fem_body_pd(sim->fem[b]));
-  nb = pf_sum_all(nb);
+  double nb = 0, bytes = 0;
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_pd_body *pd = sim->body[b] ? sim->body[b] : pf_fem_body_pd(sim->fem[b]);
+    if (!pd) continue;
+    nb += (double)pf_pd_body_nbonds(pd);
+    bytes += (double)pf_pd_body_nbonds(pd) * pf_pd_body_bytes_per_bond(pd);
+  }
+  nb = pf_sum_all(nb), bytes = pf_sum_all(bytes);
   const double *v = g->values + 2;
   pf_log("perifem: %ld steps of %.4e s to t = %.4e s in %.2f s (time loop %.2f s)\n", sim->step,
          sim->dt, sim->t, wall, sim->wall_loop);
-  pf_log("  points %" PF_GID_FMT ", directed bonds %.0f, bond evaluations per second %.4g\n",
-         sim->pts->n_global, nb, sim->wall_loop > 0 ? nb * sim->step / sim->wall_loop : 0.0);
+  pf_log("  points %" PF_GID_FMT ", directed bonds %.0f (%.3g bytes each), bond evaluations per second %.4g\n",
+         sim->pts->n_global, nb, nb > 0 ? bytes / nb : 0.0,
+         sim->wall_loop > 0 ? nb * sim->step / sim->wall_loop : 0.0);
   double nel = 0;
   for (int b = 0; b < sim->nbodies; b++)
     if (sim->fem[b]) nel += pf_fem_body_mesh(sim->fem[b])->nelem;

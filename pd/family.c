@@ -212,9 +212,10 @@ int pf_pd_family_from_rows(const pf_bond_rows *rows, const pf_int *local, pf_int
   fam->n = n;
   int64_t o0 = rows->offset[first], nb = rows->offset[first + n] - o0;
   PF_MALLOC(fam->offset, n + 1);
-  PF_MALLOC(fam->neighbor, nb);
-  PF_MALLOC(fam->broken, nb);
-  if (partial_volumes) PF_MALLOC(fam->vfrac, nb);
+  /* PF_FAMILY_SLACK zeroed entries past the end: the batched bond loops read a whole batch */
+  PF_MALLOC(fam->neighbor, nb + PF_FAMILY_SLACK);
+  PF_MALLOC(fam->broken, nb + PF_FAMILY_SLACK);
+  if (partial_volumes) PF_MALLOC(fam->vfrac, nb + PF_FAMILY_SLACK);
   if (ns > 0) PF_MALLOC(fam->state, nb * ns);
   for (pf_int i = 0; i <= n; i++) fam->offset[i] = rows->offset[first + i] - o0;
   for (int64_t k = 0; k < nb; k++) {

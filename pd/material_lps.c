@@ -10,6 +10,7 @@
  * With a variable horizon the sums of point i run over its own family (j within delta_i) and
  * f_i = sum_j ([j in H_i] t_ij + [i in H_j] t_ji) M_ij V_j; a point of the partial-stress form
  * takes f_i = V_i div nu, nu_i = sum_j t_ij M_ij (x) xi V_j (pd/partial_stress.c). */
+#include "pd/bond_batch.h"
 #include "pd/pd_impl.h"
 
 #include <stdlib.h>
@@ -19,6 +20,12 @@ typedef struct {
   double *theta; /* field "dilatation" */
   double *nu;    /* field "partial_stress" [9], when some point has the partial-stress form */
   double *Ki;    /* [9n] K^-1 of those points (their bonds never fail) */
+  /* the batched loops (lps_batched_force), for a body of one horizon whose points all take the
+   * standard force (no transition, no overlap with elements) */
+  int batched;
+  pf_batch_records rec; /* pass 1: s0 in REC_AUX; pass 2: Q = (3K - 5G) theta */
+  double *rm;           /* [store] 1 / m, pass 2 */
+  size_t rm_cap;
 } lps;
 
 static int lps_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
@@ -50,6 +57,9 @@ static int lps_setup(pf_pd_body *b, pf_points *pts) {
     for (pf_int i = b->first; i < b->first + b->n; i++)
       if (pf_pd_partial_stress_at(b, i)) pf_pd_shape_tensor_inverse(b, pts, i, &p->Ki[9 * (i - b->first)]);
   }
+  double special = 0; /* points of the transition, the overlap or the corrected force */
+  for (pf_int i = b->first; i < b->first + b->n; i++) special += b->region[i] != 0;
+  p->batched = !b->one_sided && pf_sum_all(special) == 0; /* (the same on every rank) */
   return pf_pd_weighted_volumes(b, pts, p->m);
 }
 
@@ -115,12 +125,34 @@ static int lps_partial_stress(pf_pd_body *b, pf_points *pts) {
   return pf_points_exchange(pts, p->nu, 9);
 }
 
+/* The batched passes (pd/lps_batched.c): records with s0, then with Q = (3K - 5G) theta. */
+static int lps_force_batched(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
+  lps *p = b->mat;
+  const size_t n = (size_t)pts->n_total;
+  PF_CALL(pf_batch_records_fill(&p->rec, pts, b->s0));
+  pf_pd_lps_batched_dilatation(b, pts, p->rec.rec, p->m, p->theta);
+  PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta for the force pass */
+  if (n > p->rm_cap) {
+    free(p->rm);
+    p->rm_cap = n + n / 8 + 16;
+    PF_MALLOC(p->rm, p->rm_cap);
+  }
+  const double q = 3 * b->bulk_modulus - 5 * b->shear_modulus;
+  for (size_t j = 0; j < n; j++) p->rec.rec[PF_REC * j + REC_AUX] = q * p->theta[j], p->rm[j] = 1.0 / p->m[j];
+  *nfailed = pf_pd_lps_batched_force(b, pts, p->rec.rec, p->rm);
+  return 0;
+}
+
 static int lps_force(pf_pd_body *b, pf_points *pts) {
   lps *p = b->mat;
   const double K = b->bulk_modulus, G = b->shear_modulus, wc = b->critical_energy;
   const int energy = b->law == PF_DAMAGE_CRITICAL_ENERGY;
   const pf_family *fam = &b->fam;
   int64_t nfailed = 0;
+  if (p->batched) {
+    PF_CALL(lps_force_batched(b, pts, &nfailed));
+    goto failed;
+  }
   for (pf_int i = b->first; i < b->first + b->n; i++) p->theta[i] = lps_dilatation(b, pts, i, p->m[i]);
   PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta for the force pass */
   if (p->nu) PF_CALL(lps_partial_stress(b, pts));
@@ -149,6 +181,7 @@ static int lps_force(pf_pd_body *b, pf_points *pts) {
     }
     for (int a = 0; a < 3; a++) pts->f[3 * i + a] += pts->vol[i] * f[a];
   }
+failed:
   if (nfailed) /* (the same bits for the points that lost no bond) */
     for (pf_int i = b->first; i < b->first + b->n; i++) {
       b->damage_work += pf_pd_lps_release(b, pts, i, p->m[i], NULL, 0);
@@ -237,6 +270,8 @@ double pf_pd_lps_critical_stretch(const pf_pd_body *b, double G0) {
 
 static void lps_destroy(pf_pd_body *b) {
   free(((lps *)b->mat)->Ki);
+  free(((lps *)b->mat)->rm);
+  pf_batch_records_free(&((lps *)b->mat)->rec);
   PF_FREE(b->mat);
 }
 

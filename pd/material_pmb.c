@@ -2,12 +2,17 @@
  * 2005). Pairwise force density f = c omega(|xi|) s e_eta, s = (|eta + xi| - |xi|) / |xi|,
  * with c = 18 K / (4 pi int omega r^3 dr) = 18 K / (pi delta^4) for omega = 1
  * (Silling & Askari 2005, eq. 7; docs/theory/pd.md). */
+#include "pd/bond_batch.h"
 #include "pd/pd_impl.h"
 
 #include <stdlib.h>
 
+/* The critical stretch goes in the records' spare slot (pd/bond_batch.h). */
+enum { REC_S0 = REC_AUX };
+
 typedef struct {
-  double c; /* micromodulus, N/m^6 (times omega) */
+  double c;             /* micromodulus, N/m^6 (times omega) */
+  pf_batch_records rec; /* refilled at each force pass */
 } pmb;
 
 static int pmb_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
@@ -47,51 +52,76 @@ static __attribute__((noinline)) double pmb_release(const pf_pd_body *b, const p
 }
 
 /* One point's bond loop: returns the force density sum in f[3] and the smallest stretch of
- * its intact bonds; fails bonds whose stretch exceeds min(s0_i, s0_j), or with `energy` (law
- * critical_energy, Foster et al. 2011) bonds in tension whose pair micropotential
+ * its intact bonds. The force density is c omega s V_j e / r with s = (r - r0) / r0 (Silling &
+ * Askari 2005, eq. 7), formed from the inverse lengths 1 / r0 and 1 / r (pf_batch_rsqrt):
+ * r0 = |xi|^2 (1 / r0), s = (r - r0) (1 / r0), so a bond at rest has s = 0 exactly. Fails
+ * bonds whose stretch exceeds min(s0_i, s0_j), or with `energy` (law critical_energy, Foster et
+ * al. 2011) bonds in tension whose pair micropotential
  *   w = (1/2) c omega s^2 |xi| > w_c   <=>   omega s^2 |xi| > 2 w_c / c = wlim.
  * Both ends evaluate it from bitwise equal s, |xi| and omega, so they fail the bond together.
- * Inlined with the influence kind, the partial-volume switch and the law as constants, so the
- * common case (omega = 1, whole cells, critical stretch) is a branch-light loop. */
+ * Inlined with the influence kind, the partial-volume switch and the law as constants.
+ * The bonds go in batches of PF_BATCH: the neighbours' records are transposed into rows of
+ * the batch (pd/bond_batch.h), then branch-free passes over the batch, in vector registers,
+ * add into per-lane sums, which are summed at the end. The empty lanes of a row's last batch
+ * read the rows' slack (pd/pd.h) and are dead. The order of the sums depends only on the
+ * bond order, so results do not depend on the partition. */
 static inline __attribute__((always_inline)) double
-pmb_point(const pf_pd_body *restrict b, const pf_points *restrict pts, pf_int i, double c,
-          double wlim, const int weighted, const int partial, const int energy, double f[3], int *nfresh) {
+pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, double c, double wlim,
+          const int weighted, const int partial, const int energy, double f[3], int *nfresh) {
+  enum { L = PF_BATCH };
   const pf_family *fam = &b->fam;
-  const double *restrict X = pts->X, *restrict Y = pts->y, *restrict vol = pts->vol;
-  const double *restrict s0 = b->s0;
   const float *restrict vfrac = fam->vfrac;
   uint8_t *restrict broken = fam->broken;
   const pf_int *restrict nb = fam->neighbor;
-  const double xi0 = X[3 * i], xi1 = X[3 * i + 1], xi2 = X[3 * i + 2];
-  const double yi0 = Y[3 * i], yi1 = Y[3 * i + 1], yi2 = Y[3 * i + 2], s0i = s0[i];
-  double f0 = 0, f1 = 0, f2 = 0, smin = INFINITY;
+  const double *ri = rec + (size_t)PF_REC * (size_t)i;
+  const double xi0 = ri[REC_X], xi1 = ri[REC_X + 1], xi2 = ri[REC_X + 2];
+  const double yi0 = ri[REC_Y], yi1 = ri[REC_Y + 1], yi2 = ri[REC_Y + 2], s0i = ri[REC_S0];
+  double f0[L] = {0}, f1[L] = {0}, f2[L] = {0}, sm[L];
   int fresh = 0;
+  for (int l = 0; l < L; l++) sm[l] = INFINITY;
   const int64_t end = fam->offset[i - fam->first + 1];
-  const int64_t begin = fam->offset[i - fam->first];
-  /* Branch-free so that the compiler vectorizes it (gathers of the neighbours' data). */
-#pragma omp simd reduction(+ : f0, f1, f2, fresh) reduction(min : smin)
-  for (int64_t k = begin; k < end; k++) {
-    const pf_int j = nb[k];
-    const double d0 = X[3 * j] - xi0, d1 = X[3 * j + 1] - xi1, d2 = X[3 * j + 2] - xi2;
-    const double e0 = Y[3 * j] - yi0, e1 = Y[3 * j + 1] - yi1, e2 = Y[3 * j + 2] - yi2;
-    const double r0 = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-    const double r = sqrt(e0 * e0 + e1 * e1 + e2 * e2);
-    const double s = (r - r0) / r0;
-    const double om = weighted ? pf_pd_omega(&b->influence, r0) : 1.0;
-    const int fails = energy ? (s > 0) & (om * s * s * r0 > wlim) : s > fmin(s0i, s0[j]);
-    const int alive = !broken[k] && !fails, now = fails & !broken[k];
-    fresh += now;
-    broken[k] = (uint8_t)(broken[k] | (now * PF_BOND_FRESH));
-    smin = alive ? fmin(smin, s) : smin;
-    double fs = c * s * vol[j] / r;
-    if (weighted) fs *= om;
-    if (partial) fs *= vfrac[k];
-    fs = alive ? fs : 0.0;
-    f0 += fs * e0;
-    f1 += fs * e1;
-    f2 += fs * e2;
+  for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
+    const int n = end - k0 < L ? (int)(end - k0) : L;
+    int32_t idx[L];
+    double a[PF_REC][L], live[L], fails[L];
+    for (int l = 0; l < L; l++) idx[l] = nb[k0 + l];
+    pf_batch_live(broken + k0, n, live);
+    pf_batch_gather(rec, idx, a);
+    double d2[L], e2[L], ir0[L], ir[L];
+#pragma omp simd
+    for (int l = 0; l < L; l++) {
+      const double d0 = a[REC_X][l] - xi0, d1 = a[REC_X + 1][l] - xi1, dz = a[REC_X + 2][l] - xi2;
+      const double e0 = a[REC_Y][l] - yi0, e1 = a[REC_Y + 1][l] - yi1, ez = a[REC_Y + 2][l] - yi2;
+      ir0[l] = d2[l] = d0 * d0 + d1 * d1 + dz * dz;
+      ir[l] = e2[l] = e0 * e0 + e1 * e1 + ez * ez;
+    }
+    pf_batch_rsqrt(ir0);
+    pf_batch_rsqrt(ir);
+#pragma omp simd
+    for (int l = 0; l < L; l++) {
+      const double e0 = a[REC_Y][l] - yi0, e1 = a[REC_Y + 1][l] - yi1, ez = a[REC_Y + 2][l] - yi2;
+      const double r0 = d2[l] * ir0[l], r = e2[l] * ir[l], s = (r - r0) * ir0[l];
+      const double om = weighted ? pf_pd_omega(&b->influence, r0) : 1.0;
+      const double slim = s0i < a[REC_S0][l] ? s0i : a[REC_S0][l];
+      const int fail = energy ? (s > 0) & (om * s * s * r0 > wlim) : s > slim;
+      fails[l] = live[l] > 0 && fail ? 1.0 : 0.0;
+      const double alive = fail ? 0.0 : live[l];
+      sm[l] = alive > 0 && s < sm[l] ? s : sm[l];
+      const double vj = partial ? a[REC_V][l] * vfrac[k0 + l] : a[REC_V][l];
+      const double fs = alive > 0 ? c * s * ir[l] * vj * om : 0.0;
+      f0[l] += fs * e0;
+      f1[l] += fs * e1;
+      f2[l] += fs * ez;
+    }
+    for (int l = 0; l < n; l++)
+      if (fails[l] > 0) broken[k0 + l] = PF_BOND_FRESH, fresh++;
   }
-  f[0] = f0, f[1] = f1, f[2] = f2;
+  double smin = INFINITY;
+  f[0] = f[1] = f[2] = 0;
+  for (int l = 0; l < L; l++) {
+    f[0] += f0[l], f[1] += f1[l], f[2] += f2[l];
+    smin = sm[l] < smin ? sm[l] : smin;
+  }
   *nfresh = fresh;
   return smin;
 }
@@ -102,11 +132,12 @@ static inline __attribute__((always_inline)) void pmb_loop(pf_pd_body *b, pf_poi
                                                            const int energy) {
   double *restrict F = pts->f;
   const double *restrict vol = pts->vol;
+  const double *rec = ((const pmb *)b->mat)->rec.rec;
   const double wlim = 2.0 * b->critical_energy / c;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     double f[3];
     int fresh;
-    b->smin[i - b->first] = pmb_point(b, pts, i, c, wlim, weighted, partial, energy, f, &fresh);
+    b->smin[i - b->first] = pmb_point(b, rec, i, c, wlim, weighted, partial, energy, f, &fresh);
     if (fresh) b->damage_work += pmb_release(b, pts, i, c);
     F[3 * i] += vol[i] * f[0];
     F[3 * i + 1] += vol[i] * f[1];
@@ -126,6 +157,7 @@ static __attribute__((noinline)) void pmb_force_energy(pf_pd_body *b, pf_points 
 
 static int pmb_force(pf_pd_body *b, pf_points *pts) {
   const double c = ((const pmb *)b->mat)->c;
+  PF_CALL(pf_batch_records_fill(&((pmb *)b->mat)->rec, pts, b->s0));
   const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = b->fam.vfrac != NULL;
   if (b->law == PF_DAMAGE_CRITICAL_ENERGY) pmb_force_energy(b, pts, c, weighted, partial);
   else if (!weighted && !partial) pmb_loop(b, pts, c, 0, 0, 0);
@@ -158,7 +190,10 @@ static double pmb_critical_stretch(const pf_pd_body *b, double G0) {
   return pf_pd_pmb_critical_stretch(G0, b->bulk_modulus, b->horizon);
 }
 
-static void pmb_destroy(pf_pd_body *b) { PF_FREE(b->mat); }
+static void pmb_destroy(pf_pd_body *b) {
+  if (b->mat) pf_batch_records_free(&((pmb *)b->mat)->rec);
+  PF_FREE(b->mat);
+}
 
 const pf_pd_material_ops pf_pd_material_pmb = {
     .name = "pmb",

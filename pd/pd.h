@@ -8,7 +8,10 @@
 typedef struct pf_pd_body pf_pd_body;
 
 /* CSR family of the points [first, first + n) of the point store. Full lists (each bond seen
- * from both ends), each row sorted by the neighbour's global id. */
+ * from both ends), each row sorted by the neighbour's global id. neighbor, broken and vfrac
+ * have PF_FAMILY_SLACK zero entries past the last bond, so that a batched bond loop may read a
+ * whole batch at a row's end. */
+enum { PF_FAMILY_SLACK = 8 };
 typedef struct {
   pf_int first, n;
   int64_t *offset;  /* [n + 1] */
@@ -142,6 +145,9 @@ double pf_pd_body_stable_dt(const pf_pd_body *b, const pf_points *pts);
 int pf_pd_body_step_varies(const pf_pd_body *b);
 /* Number of directed bonds (intact or broken) of the body. */
 int64_t pf_pd_body_nbonds(const pf_pd_body *b);
+/* Bytes the body keeps per directed bond: neighbour index, broken flag, partial-volume
+ * fraction (when on) and the material's bond state. */
+double pf_pd_body_bytes_per_bond(const pf_pd_body *b);
 
 /* Stable step of store point i of body b: sqrt(2 rho / sum_j V_j c omega / |xi|) over its own
  * family (Silling & Askari 2005, eq. 15 with the Peridigm form). */

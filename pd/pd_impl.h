@@ -149,6 +149,15 @@ double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_in
 double pf_pd_lps_release(const pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
                          int stride);
 
+/* The batched LPS loops (pd/lps_batched.c), for a body of one horizon whose points all take
+ * the standard force. Pass 1: theta of every owned point from records with s0 in REC_AUX
+ * (pd/bond_batch.h), failing bonds on the critical stretch and booking the energy they held.
+ * Pass 2: the forces, from records with Q = (3K - 5G) theta in REC_AUX and rm = 1 / m (store
+ * points); fails bonds on the critical energy when that is the law and returns their number. */
+void pf_pd_lps_batched_dilatation(pf_pd_body *b, const pf_points *pts, const double *rec, const double *m,
+                                  double *theta);
+int64_t pf_pd_lps_batched_force(pf_pd_body *b, pf_points *pts, const double *rec, const double *rm);
+
 /* Ordinary state-based materials (LPS, elastic-plastic): the weighted volume
  * m_i = sum_j omega |xi|^2 V_j of the owned points (Silling et al. 2007, eq. 90) into m, then the
  * ghosts' values; an isolated point is an input error naming it (pd/body.c). */

@@ -1,7 +1,11 @@
 /* elastic_plastic (docs/theory/materials.md section 1) on small lattices.
- * 1. Below yield it is LPS: the same deck with model lps gives the same forces and energy (the
- *    kernels share the force expression, so bitwise), for omega = 1, 1/|xi| with partial
- *    volumes, and Gaussian, under a displacement with a random part.
+ * 1. Below yield it is LPS: the same deck with model lps gives the same forces and energy, for
+ *    omega = 1, 1/|xi| with partial volumes, and Gaussian, under a displacement with a random
+ *    part. Not bitwise: lps takes the batched loops (pd/lps_batched.c: t = omega (Q |xi| +
+ *    15 G e) / m, |y| from an inverse square root) and elastic_plastic the general ones, so the
+ *    extensions e = |y| - |xi| differ by the round-off of |y| and |xi|, a few 1e-16 of |xi|,
+ *    which at the strains here (up to 3e-4) is up to 1e-12 of e: 3e-12 of the largest force
+ *    and of the energy (measured: 5e-13).
  * 2. Energy balance of the material: a 4^3 block (omega = 1 and 1/|xi|) is driven along
  *    u = lambda U (U affine, shear plus dilatation) past yield in 4000 steps and back until the
  *    conjugate force P = -sum f . U is zero. The work done on it, int P dlambda (trapezoid rule:
@@ -76,11 +80,11 @@ static void below_yield_is_lps(void) {
       }
     }
     PF_TEST_TRUE(fbig > 0);
-    PF_TEST_TRUE(diff <= 1e-14 * fbig);
-    if (!(diff <= 1e-14 * fbig) || getenv("PF_TEST_VERBOSE"))
+    PF_TEST_TRUE(diff <= 3e-12 * fbig);
+    if (!(diff <= 3e-12 * fbig) || getenv("PF_TEST_VERBOSE"))
       fprintf(stderr, "case %d: max |f_ep - f_lps| = %g of %g N\n", c, diff, fbig);
     double e1 = pf_pd_body_energy(pf_sim_body(s1, 0), p1), e2 = pf_pd_body_energy(pf_sim_body(s2, 0), p2);
-    PF_TEST_CLOSE(e1, e2, 1e-14, 0);
+    PF_TEST_CLOSE(e1, e2, 3e-12, 0);
     const double *eqps = pf_points_field_get(p1, "eqps");
     for (pf_int i = 0; i < p1->n_owned; i++) PF_TEST_TRUE(eqps[i] == 0);
     pf_sim_destroy(&s1);

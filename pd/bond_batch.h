@@ -1,0 +1,114 @@
+/* Private to pd/: the neighbours' data of a batch of PF_BATCH bonds, for vector bond loops.
+ *
+ * A kernel keeps, for every store point, one 64-byte record of eight doubles (for PMB:
+ * X, V, y, s0). A batch of bonds reads its PF_BATCH neighbours' records and transposes them,
+ * so that field f of the batch's neighbour l lands in out[f][l]: eight whole-line loads and
+ * 24 two-source permutes with AVX-512, where the compiler's per-field gathers are
+ * load-port-bound (bench/README.md, "Where the time goes"). Without AVX-512 it is a plain
+ * copy. Either way the values are bitwise the records'. */
+#ifndef PF_BOND_BATCH_H
+#define PF_BOND_BATCH_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "pd/pd_impl.h"
+
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
+
+enum { PF_BATCH = 8, PF_REC = 8 }; /* bonds per batch; doubles per record */
+
+/* The standard record of a store point: reference position, volume, current position and one
+ * more value (REC_AUX: the critical stretch, or what a material puts there). */
+enum { REC_X = 0, REC_V = 3, REC_Y = 4, REC_AUX = 7 };
+
+/* A material's records, 64-byte aligned so that each record is one cache line. */
+typedef struct {
+  double *rec; /* [PF_REC * cap] */
+  size_t cap;
+} pf_batch_records;
+
+/* Fill the standard records of every store point (owned and ghosts), with aux[j] (or 0 when
+ * aux is NULL) in REC_AUX, growing the array as needed (pd/bond_batch.c). */
+int pf_batch_records_fill(pf_batch_records *r, const pf_points *pts, const double *aux);
+void pf_batch_records_free(pf_batch_records *r);
+
+/* out[f][l] = rec[PF_REC * idx[l] + f] for f, l < 8. */
+static inline void pf_batch_gather(const double *restrict rec, const int32_t idx[PF_BATCH],
+                                   double out[PF_REC][PF_BATCH]) {
+#if defined(__AVX512F__)
+  __m512d r[8], t[8], u[8];
+  for (int l = 0; l < 8; l++) r[l] = _mm512_load_pd(rec + (size_t)PF_REC * (size_t)idx[l]);
+  /* stage 1: pairs of rows, element-wise interleave: t[2p] = (fields 0 2 4 6 of rows 2p, 2p+1) */
+  for (int p = 0; p < 4; p++) {
+    t[2 * p] = _mm512_unpacklo_pd(r[2 * p], r[2 * p + 1]);
+    t[2 * p + 1] = _mm512_unpackhi_pd(r[2 * p], r[2 * p + 1]);
+  }
+  /* stage 2: two-element blocks; u[q] (rows 0-3) and u[4 + q] (rows 4-7) take fields q and
+   * q + 4 for q = 0, 1, 2, 3 */
+  const __m512i lo2 = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0);
+  const __m512i hi2 = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
+  for (int h = 0; h < 2; h++)
+    for (int p = 0; p < 2; p++) {
+      u[4 * h + p] = _mm512_permutex2var_pd(t[4 * h + p], lo2, t[4 * h + 2 + p]);
+      u[4 * h + 2 + p] = _mm512_permutex2var_pd(t[4 * h + p], hi2, t[4 * h + 2 + p]);
+    }
+  /* stage 3: u[q] (rows 0-3) and u[4 + q] (rows 4-7) hold fields q and q + 4 */
+  const __m512i lo4 = _mm512_set_epi64(11, 10, 9, 8, 3, 2, 1, 0);
+  const __m512i hi4 = _mm512_set_epi64(15, 14, 13, 12, 7, 6, 5, 4);
+  for (int q = 0; q < 4; q++) {
+    _mm512_storeu_pd(out[q], _mm512_permutex2var_pd(u[q], lo4, u[4 + q]));
+    _mm512_storeu_pd(out[q + 4], _mm512_permutex2var_pd(u[q], hi4, u[4 + q]));
+  }
+#else
+  for (int l = 0; l < PF_BATCH; l++)
+    for (int f = 0; f < PF_REC; f++) out[f][l] = rec[(size_t)PF_REC * (size_t)idx[l] + f];
+#endif
+}
+
+/* x[l] = 1 / sqrt(x[l]) for the PF_BATCH lanes, to about one unit in the last place: with
+ * AVX-512 the 14-bit estimate refined by two Newton steps y <- y (3/2 - x y^2 / 2) (14, 28,
+ * 56 bits), half the time of a square root alone; else 1 / sqrt. The same inputs give the
+ * same bits, so the two ends of a bond still agree. */
+static inline void pf_batch_rsqrt(double x[PF_BATCH]) {
+#if defined(__AVX512F__)
+  const __m512d v = _mm512_loadu_pd(x), h = _mm512_mul_pd(v, _mm512_set1_pd(0.5));
+  __m512d y = _mm512_rsqrt14_pd(v);
+  for (int it = 0; it < 2; it++)
+    y = _mm512_mul_pd(y, _mm512_fnmadd_pd(h, _mm512_mul_pd(y, y), _mm512_set1_pd(1.5)));
+  _mm512_storeu_pd(x, y);
+#else
+  for (int l = 0; l < PF_BATCH; l++) x[l] = 1.0 / sqrt(x[l]);
+#endif
+}
+
+/* live[l] = 1 where l < n and broken[l] == 0, else 0 (broken: the batch's PF_BATCH flags;
+ * the rows' slack makes the whole batch readable). One vector store, so that the bond loop's
+ * vector load of live[] is forwarded from it (eight scalar stores are not). */
+static inline void pf_batch_live(const uint8_t *broken, int n, double live[PF_BATCH]) {
+#if defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512VL__)
+  const __mmask8 intact = (__mmask8)(_mm_cmpeq_epi8_mask(_mm_loadl_epi64((const __m128i *)broken),
+                                                         _mm_setzero_si128()) &
+                                     ((1u << n) - 1u));
+  _mm512_storeu_pd(live, _mm512_maskz_mov_pd(intact, _mm512_set1_pd(1.0)));
+#else
+  for (int l = 0; l < PF_BATCH; l++) live[l] = l < n && !broken[l] ? 1.0 : 0.0;
+#endif
+}
+
+/* out[l] = v[idx[l]]: eight scalar loads into one register and one vector store (see
+ * pf_batch_live). */
+static inline void pf_batch_gather1(const double *restrict v, const int32_t idx[PF_BATCH],
+                                    double out[PF_BATCH]) {
+#if defined(__AVX512F__)
+  _mm512_storeu_pd(out, _mm512_set_pd(v[idx[7]], v[idx[6]], v[idx[5]], v[idx[4]], v[idx[3]], v[idx[2]],
+                                      v[idx[1]], v[idx[0]]));
+#else
+  for (int l = 0; l < PF_BATCH; l++) out[l] = v[idx[l]];
+#endif
+}
+
+#endif

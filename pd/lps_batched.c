@@ -1,0 +1,168 @@
+/* The batched bond loops of the linear peridynamic solid (pd/material_lps.c has the model and
+ * its general loops), for a body of one horizon whose points all take the standard force:
+ * the neighbours' records are transposed into batches (pd/bond_batch.h) and each batch is one
+ * branch-free vector pass, as in pd/material_pmb.c.
+ *   pass 1: theta_i = (3 / m_i) sum_j omega |xi| e V_j            (Silling et al. 2007, eq. 90)
+ *   pass 2: f_i = sum_j (t_ij + t_ji) V_j (y_j - y_i) / |y_j - y_i|                   (eq. 94)
+ * with t_ij = omega [ (3 K theta_i / m_i) |xi| + (15 G / m_i) (e - theta_i |xi| / 3) ]
+ *           = omega (Q_i |xi| + 15 G e) / m_i,   Q_i = (3 K - 5 G) theta_i,
+ * one expression whichever end evaluates it, so that both ends get the same bits. */
+#include "pd/bond_batch.h"
+#include "pd/pd_impl.h"
+
+/* The bond lengths of one batch of point i: r0 = |xi|, r = |y_j - y_i|, their inverses and the
+ * current bond vectors e[3][l]. */
+typedef struct {
+  double r0[PF_BATCH], r[PF_BATCH], ir0[PF_BATCH], ir[PF_BATCH], e[3][PF_BATCH];
+} batch_lengths;
+
+static inline __attribute__((always_inline)) void lengths(const double *restrict ri,
+                                                          double a[PF_REC][PF_BATCH],
+                                                          batch_lengths *restrict g) {
+  double d2[PF_BATCH], e2[PF_BATCH];
+#pragma omp simd
+  for (int l = 0; l < PF_BATCH; l++) {
+    const double d0 = a[REC_X][l] - ri[REC_X], d1 = a[REC_X + 1][l] - ri[REC_X + 1],
+                 dz = a[REC_X + 2][l] - ri[REC_X + 2];
+    for (int c = 0; c < 3; c++) g->e[c][l] = a[REC_Y + c][l] - ri[REC_Y + c];
+    g->ir0[l] = d2[l] = d0 * d0 + d1 * d1 + dz * dz;
+    g->ir[l] = e2[l] = g->e[0][l] * g->e[0][l] + g->e[1][l] * g->e[1][l] + g->e[2][l] * g->e[2][l];
+  }
+  pf_batch_rsqrt(g->ir0);
+  pf_batch_rsqrt(g->ir);
+#pragma omp simd
+  for (int l = 0; l < PF_BATCH; l++) g->r0[l] = d2[l] * g->ir0[l], g->r[l] = e2[l] * g->ir[l];
+}
+
+/* Pass 1 at point i: the sum of omega |xi| e V_j over its intact bonds, failing those whose
+ * stretch exceeds min(s0_i, s0_j) (REC_AUX holds s0); the smallest stretch into *smin, the
+ * number failed into *fresh. */
+static inline __attribute__((always_inline)) double
+dilatation_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, const int weighted,
+                 const int partial, double *smin, int *fresh) {
+  enum { L = PF_BATCH };
+  const pf_family *fam = &b->fam;
+  uint8_t *restrict broken = fam->broken;
+  const double *ri = rec + (size_t)PF_REC * (size_t)i;
+  double sum[L] = {0}, sm[L];
+  for (int l = 0; l < L; l++) sm[l] = INFINITY;
+  *fresh = 0;
+  const int64_t end = fam->offset[i - fam->first + 1];
+  for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
+    const int n = end - k0 < L ? (int)(end - k0) : L;
+    int32_t idx[L];
+    double a[PF_REC][L], live[L], fails[L];
+    batch_lengths g;
+    for (int l = 0; l < L; l++) idx[l] = fam->neighbor[k0 + l];
+    pf_batch_live(broken + k0, n, live);
+    pf_batch_gather(rec, idx, a);
+    lengths(ri, a, &g);
+#pragma omp simd
+    for (int l = 0; l < L; l++) {
+      const double s = (g.r[l] - g.r0[l]) * g.ir0[l];
+      const double slim = ri[REC_AUX] < a[REC_AUX][l] ? ri[REC_AUX] : a[REC_AUX][l];
+      const int fail = s > slim;
+      fails[l] = live[l] > 0 && fail ? 1.0 : 0.0;
+      const double alive = fail ? 0.0 : live[l];
+      sm[l] = alive > 0 && s < sm[l] ? s : sm[l];
+      const double om = weighted ? pf_pd_omega(&b->influence, g.r0[l]) : 1.0;
+      const double vj = partial ? a[REC_V][l] * fam->vfrac[k0 + l] : a[REC_V][l];
+      sum[l] += alive > 0 ? om * g.r0[l] * (g.r[l] - g.r0[l]) * vj : 0.0;
+    }
+    for (int l = 0; l < n; l++)
+      if (fails[l] > 0) broken[k0 + l] = PF_BOND_FRESH, ++*fresh;
+  }
+  double total = 0;
+  *smin = INFINITY;
+  for (int l = 0; l < L; l++) total += sum[l], *smin = sm[l] < *smin ? sm[l] : *smin;
+  return total;
+}
+
+/* Pass 2 at point i: the force density sum into f[3]; with `energy` (critical_energy, Foster et
+ * al. 2011) a bond in tension whose energy per V_i V_j, (t_ij + t_ji) e / 2, exceeds wc fails
+ * and gives no force. REC_AUX holds Q, rm[j] = 1 / m_j. Returns the number failed. */
+static inline __attribute__((always_inline)) int
+force_point(const pf_pd_body *restrict b, const double *restrict rec, const double *restrict rm, pf_int i,
+            double g15, double wc, const int weighted, const int partial, const int energy, double f[3]) {
+  enum { L = PF_BATCH };
+  const pf_family *fam = &b->fam;
+  uint8_t *restrict broken = fam->broken;
+  const double *ri = rec + (size_t)PF_REC * (size_t)i;
+  const double qi = ri[REC_AUX], rmi = rm[i];
+  double f0[L] = {0}, f1[L] = {0}, f2[L] = {0};
+  int failed = 0;
+  const int64_t end = fam->offset[i - fam->first + 1];
+  for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
+    const int n = end - k0 < L ? (int)(end - k0) : L;
+    int32_t idx[L];
+    double a[PF_REC][L], live[L], fails[L], rmj[L];
+    batch_lengths g;
+    for (int l = 0; l < L; l++) idx[l] = fam->neighbor[k0 + l];
+    pf_batch_live(broken + k0, n, live);
+    pf_batch_gather(rec, idx, a);
+    pf_batch_gather1(rm, idx, rmj);
+    lengths(ri, a, &g);
+#pragma omp simd
+    for (int l = 0; l < L; l++) {
+      const double ext = g.r[l] - g.r0[l];
+      const double om = weighted ? pf_pd_omega(&b->influence, g.r0[l]) : 1.0;
+      const double tij = om * (qi * g.r0[l] + g15 * ext) * rmi;
+      const double tji = om * (a[REC_AUX][l] * g.r0[l] + g15 * ext) * rmj[l];
+      const int fail = energy ? (ext > 0) & (0.5 * (tij + tji) * ext > wc) : 0;
+      fails[l] = live[l] > 0 && fail ? 1.0 : 0.0;
+      const double vj = partial ? a[REC_V][l] * fam->vfrac[k0 + l] : a[REC_V][l];
+      const double fs = live[l] > 0 && !fail ? (tij + tji) * vj * g.ir[l] : 0.0;
+      f0[l] += fs * g.e[0][l];
+      f1[l] += fs * g.e[1][l];
+      f2[l] += fs * g.e[2][l];
+    }
+    if (energy)
+      for (int l = 0; l < n; l++)
+        if (fails[l] > 0) broken[k0 + l] = PF_BOND_FRESH, failed++;
+  }
+  f[0] = f[1] = f[2] = 0;
+  for (int l = 0; l < L; l++) f[0] += f0[l], f[1] += f1[l], f[2] += f2[l];
+  return failed;
+}
+
+static inline __attribute__((always_inline)) void
+dilatations(pf_pd_body *b, const pf_points *pts, const double *rec, const double *m, double *theta,
+            const int weighted, const int partial) {
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    int fresh;
+    const double sum = dilatation_point(b, rec, i, weighted, partial, &b->smin[i - b->first], &fresh);
+    if (fresh) b->damage_work += pf_pd_lps_release(b, pts, i, m[i], NULL, 0);
+    theta[i] = 3.0 * sum / m[i];
+  }
+}
+
+void pf_pd_lps_batched_dilatation(pf_pd_body *b, const pf_points *pts, const double *rec, const double *m,
+                                  double *theta) {
+  const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = b->fam.vfrac != NULL;
+  if (!weighted && !partial) dilatations(b, pts, rec, m, theta, 0, 0);
+  else if (!weighted) dilatations(b, pts, rec, m, theta, 0, 1);
+  else if (!partial) dilatations(b, pts, rec, m, theta, 1, 0);
+  else dilatations(b, pts, rec, m, theta, 1, 1);
+}
+
+static inline __attribute__((always_inline)) int64_t forces(pf_pd_body *b, pf_points *pts, const double *rec,
+                                                            const double *rm, const int weighted,
+                                                            const int partial, const int energy) {
+  const double g15 = 15.0 * b->shear_modulus, wc = b->critical_energy;
+  int64_t failed = 0;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    double f[3];
+    failed += force_point(b, rec, rm, i, g15, wc, weighted, partial, energy, f);
+    for (int a = 0; a < 3; a++) pts->f[3 * i + a] += pts->vol[i] * f[a];
+  }
+  return failed;
+}
+
+int64_t pf_pd_lps_batched_force(pf_pd_body *b, pf_points *pts, const double *rec, const double *rm) {
+  const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = b->fam.vfrac != NULL;
+  if (b->law == PF_DAMAGE_CRITICAL_ENERGY) return forces(b, pts, rec, rm, weighted, partial, 1);
+  if (!weighted && !partial) return forces(b, pts, rec, rm, 0, 0, 0);
+  if (!weighted) return forces(b, pts, rec, rm, 0, 1, 0);
+  if (!partial) return forces(b, pts, rec, rm, 1, 0, 0);
+  return forces(b, pts, rec, rm, 1, 1, 0);
+}
