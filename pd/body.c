@@ -380,6 +380,8 @@ int pf_pd_body_attach(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n,
                          "horizon must exceed the point spacing (typically 3 spacings)", b->name, b->horizon);
   free(b->smin);
   PF_MALLOC(b->smin, n);
+  free(b->lost);
+  PF_MALLOC(b->lost, n);
   PF_CALL(set_regions(b, pts));
   if (fresh) { /* (after a re-partition the masses came with the points and their ghosts) */
     for (pf_int i = first; i < first + n; i++) pts->m[i] = b->density * pts->vol[i];
@@ -402,6 +404,7 @@ int pf_pd_body_destroy(pf_pd_body **b) {
   if ((*b)->ops && (*b)->ops->destroy && (*b)->mat) (*b)->ops->destroy(*b);
   pf_pd_family_free(&(*b)->fam);
   free((*b)->smin);
+  free((*b)->lost);
   free((*b)->idle);
   free((*b)->cracks);
   pf_expr_destroy(&(*b)->hz_expr);

@@ -18,6 +18,9 @@
 #if defined(__AVX512F__)
 #include <immintrin.h>
 #endif
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 enum { PF_BATCH = 8, PF_REC = 8 }; /* bonds per batch; doubles per record */
 
@@ -108,6 +111,17 @@ static inline void pf_batch_gather1(const double *restrict v, const int32_t idx[
                                       v[idx[1]], v[idx[0]]));
 #else
   for (int l = 0; l < PF_BATCH; l++) out[l] = v[idx[l]];
+#endif
+}
+
+/* This thread's contiguous share [*lo, *hi) of the n points from first, inside an OpenMP
+ * parallel region (without OpenMP: all of them). */
+static inline void pf_thread_range(pf_int first, pf_int n, pf_int *lo, pf_int *hi) {
+#if defined(_OPENMP)
+  const pf_int t = omp_get_thread_num(), nt = omp_get_num_threads();
+  *lo = first + (pf_int)((int64_t)n * t / nt), *hi = first + (pf_int)((int64_t)n * (t + 1) / nt);
+#else
+  *lo = first, *hi = first + n;
 #endif
 }
 

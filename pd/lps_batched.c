@@ -125,32 +125,49 @@ force_point(const pf_pd_body *restrict b, const double *restrict rec, const doub
   return failed;
 }
 
-static inline __attribute__((always_inline)) void
-dilatations(pf_pd_body *b, const pf_points *pts, const double *rec, const double *m, double *theta,
-            const int weighted, const int partial) {
-  for (pf_int i = b->first; i < b->first + b->n; i++) {
+/* Pass 1 over the points [lo, hi); returns 1 when some point lost bonds (its lost flag set). */
+static inline __attribute__((always_inline)) int dilatations(pf_pd_body *b, const double *rec, const double *m,
+                                                             double *theta, pf_int lo, pf_int hi,
+                                                             const int weighted, const int partial) {
+  int any = 0;
+  for (pf_int i = lo; i < hi; i++) {
     int fresh;
     const double sum = dilatation_point(b, rec, i, weighted, partial, &b->smin[i - b->first], &fresh);
-    if (fresh) b->damage_work += pf_pd_lps_release(b, pts, i, m[i], NULL, 0);
+    b->lost[i - b->first] = fresh > 0;
+    any |= fresh > 0;
     theta[i] = 3.0 * sum / m[i];
   }
+  return any;
 }
 
+/* Owner computes: a point writes only its own theta, force, smin and row, so the threads (each a
+ * contiguous range of points) share nothing; the released energy is booked after, in point
+ * order, so the bits do not depend on the thread count. */
 void pf_pd_lps_batched_dilatation(pf_pd_body *b, const pf_points *pts, const double *rec, const double *m,
                                   double *theta) {
   const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = b->fam.vfrac != NULL;
-  if (!weighted && !partial) dilatations(b, pts, rec, m, theta, 0, 0);
-  else if (!weighted) dilatations(b, pts, rec, m, theta, 0, 1);
-  else if (!partial) dilatations(b, pts, rec, m, theta, 1, 0);
-  else dilatations(b, pts, rec, m, theta, 1, 1);
+  int any = 0;
+#pragma omp parallel reduction(| : any)
+  {
+    pf_int lo, hi;
+    pf_thread_range(b->first, b->n, &lo, &hi);
+    if (!weighted && !partial) any = dilatations(b, rec, m, theta, lo, hi, 0, 0);
+    else if (!weighted) any = dilatations(b, rec, m, theta, lo, hi, 0, 1);
+    else if (!partial) any = dilatations(b, rec, m, theta, lo, hi, 1, 0);
+    else any = dilatations(b, rec, m, theta, lo, hi, 1, 1);
+  }
+  for (pf_int i = b->first; any && i < b->first + b->n; i++)
+    if (b->lost[i - b->first]) b->damage_work += pf_pd_lps_release(b, pts, i, m[i], NULL, 0);
 }
 
+/* Pass 2 over the points [lo, hi); returns the number of bonds failed. */
 static inline __attribute__((always_inline)) int64_t forces(pf_pd_body *b, pf_points *pts, const double *rec,
-                                                            const double *rm, const int weighted,
-                                                            const int partial, const int energy) {
+                                                            const double *rm, pf_int lo, pf_int hi,
+                                                            const int weighted, const int partial,
+                                                            const int energy) {
   const double g15 = 15.0 * b->shear_modulus, wc = b->critical_energy;
   int64_t failed = 0;
-  for (pf_int i = b->first; i < b->first + b->n; i++) {
+  for (pf_int i = lo; i < hi; i++) {
     double f[3];
     failed += force_point(b, rec, rm, i, g15, wc, weighted, partial, energy, f);
     for (int a = 0; a < 3; a++) pts->f[3 * i + a] += pts->vol[i] * f[a];
@@ -160,9 +177,17 @@ static inline __attribute__((always_inline)) int64_t forces(pf_pd_body *b, pf_po
 
 int64_t pf_pd_lps_batched_force(pf_pd_body *b, pf_points *pts, const double *rec, const double *rm) {
   const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = b->fam.vfrac != NULL;
-  if (b->law == PF_DAMAGE_CRITICAL_ENERGY) return forces(b, pts, rec, rm, weighted, partial, 1);
-  if (!weighted && !partial) return forces(b, pts, rec, rm, 0, 0, 0);
-  if (!weighted) return forces(b, pts, rec, rm, 0, 1, 0);
-  if (!partial) return forces(b, pts, rec, rm, 1, 0, 0);
-  return forces(b, pts, rec, rm, 1, 1, 0);
+  const int energy = b->law == PF_DAMAGE_CRITICAL_ENERGY;
+  int64_t failed = 0;
+#pragma omp parallel reduction(+ : failed)
+  {
+    pf_int lo, hi;
+    pf_thread_range(b->first, b->n, &lo, &hi);
+    if (energy) failed = forces(b, pts, rec, rm, lo, hi, weighted, partial, 1);
+    else if (!weighted && !partial) failed = forces(b, pts, rec, rm, lo, hi, 0, 0, 0);
+    else if (!weighted) failed = forces(b, pts, rec, rm, lo, hi, 0, 1, 0);
+    else if (!partial) failed = forces(b, pts, rec, rm, lo, hi, 1, 0, 0);
+    else failed = forces(b, pts, rec, rm, lo, hi, 1, 1, 0);
+  }
+  return failed;
 }

@@ -126,44 +126,59 @@ pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, do
   return smin;
 }
 
-/* The loop over the body's points for one combination of the compile-time switches. */
-static inline __attribute__((always_inline)) void pmb_loop(pf_pd_body *b, pf_points *pts, double c,
-                                                           const int weighted, const int partial,
-                                                           const int energy) {
+/* The points [lo, hi) of the body for one combination of the compile-time switches; returns 1
+ * when some point lost bonds (its lost flag is set). */
+static inline __attribute__((always_inline)) int pmb_loop(pf_pd_body *b, pf_points *pts, double c, pf_int lo,
+                                                          pf_int hi, const int weighted, const int partial,
+                                                          const int energy) {
   double *restrict F = pts->f;
   const double *restrict vol = pts->vol;
   const double *rec = ((const pmb *)b->mat)->rec.rec;
   const double wlim = 2.0 * b->critical_energy / c;
-  for (pf_int i = b->first; i < b->first + b->n; i++) {
+  int any = 0;
+  for (pf_int i = lo; i < hi; i++) {
     double f[3];
     int fresh;
     b->smin[i - b->first] = pmb_point(b, rec, i, c, wlim, weighted, partial, energy, f, &fresh);
-    if (fresh) b->damage_work += pmb_release(b, pts, i, c);
+    b->lost[i - b->first] = fresh > 0;
+    any |= fresh > 0;
     F[3 * i] += vol[i] * f[0];
     F[3 * i + 1] += vol[i] * f[1];
     F[3 * i + 2] += vol[i] * f[2];
   }
+  return any;
 }
 
 /* The critical-energy loops, out of line so that the stretch-law loops of pmb_force keep
  * their code and layout. */
-static __attribute__((noinline)) void pmb_force_energy(pf_pd_body *b, pf_points *pts, double c,
-                                                       int weighted, int partial) {
-  if (!weighted && !partial) pmb_loop(b, pts, c, 0, 0, 1);
-  else if (!weighted) pmb_loop(b, pts, c, 0, 1, 1);
-  else if (!partial) pmb_loop(b, pts, c, 1, 0, 1);
-  else pmb_loop(b, pts, c, 1, 1, 1);
+static __attribute__((noinline)) int pmb_force_energy(pf_pd_body *b, pf_points *pts, double c, pf_int lo,
+                                                      pf_int hi, int weighted, int partial) {
+  if (!weighted && !partial) return pmb_loop(b, pts, c, lo, hi, 0, 0, 1);
+  if (!weighted) return pmb_loop(b, pts, c, lo, hi, 0, 1, 1);
+  if (!partial) return pmb_loop(b, pts, c, lo, hi, 1, 0, 1);
+  return pmb_loop(b, pts, c, lo, hi, 1, 1, 1);
 }
 
+/* Owner computes: a point writes only its own force, smin and row, so the threads (each a
+ * contiguous range of points) share nothing; the released energy is booked after, in point
+ * order, so the bits do not depend on the thread count. */
 static int pmb_force(pf_pd_body *b, pf_points *pts) {
   const double c = ((const pmb *)b->mat)->c;
   PF_CALL(pf_batch_records_fill(&((pmb *)b->mat)->rec, pts, b->s0));
   const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = b->fam.vfrac != NULL;
-  if (b->law == PF_DAMAGE_CRITICAL_ENERGY) pmb_force_energy(b, pts, c, weighted, partial);
-  else if (!weighted && !partial) pmb_loop(b, pts, c, 0, 0, 0);
-  else if (!weighted) pmb_loop(b, pts, c, 0, 1, 0);
-  else if (!partial) pmb_loop(b, pts, c, 1, 0, 0);
-  else pmb_loop(b, pts, c, 1, 1, 0);
+  int any = 0;
+#pragma omp parallel reduction(| : any)
+  {
+    pf_int lo, hi;
+    pf_thread_range(b->first, b->n, &lo, &hi);
+    if (b->law == PF_DAMAGE_CRITICAL_ENERGY) any = pmb_force_energy(b, pts, c, lo, hi, weighted, partial);
+    else if (!weighted && !partial) any = pmb_loop(b, pts, c, lo, hi, 0, 0, 0);
+    else if (!weighted) any = pmb_loop(b, pts, c, lo, hi, 0, 1, 0);
+    else if (!partial) any = pmb_loop(b, pts, c, lo, hi, 1, 0, 0);
+    else any = pmb_loop(b, pts, c, lo, hi, 1, 1, 0);
+  }
+  for (pf_int i = b->first; any && i < b->first + b->n; i++)
+    if (b->lost[i - b->first]) b->damage_work += pmb_release(b, pts, i, c);
   return 0;
 }
 

@@ -63,6 +63,8 @@ struct pf_pd_body {
   double critical_energy; /* critical_energy: w_c = 4 G0 / (pi delta^4), J/m^6 */
   double *s0;        /* field "critical_stretch": per point, used by the force kernels */
   double *smin;      /* [n] smallest stretch of each point's intact bonds this step */
+  uint8_t *lost;     /* [n] scratch of the threaded bond loops: 1 where the point's row has
+                        PF_BOND_FRESH bonds, whose energy a serial pass then books */
   double damage_work; /* energy released by the bonds this rank's points lost since it was last
                          taken (pf_pd_body_take_damage_work), J */
 };
