@@ -114,6 +114,13 @@ indenters:
     velocity: ["0", "{v}", "0"]
     stiffness: {k}
 
+# Short-range forces between the target's points (radius 0.9 h, points joined by an intact
+# bond excluded), the counterpart of the contact force LAMMPS's peri pair styles compute in
+# their force loop.
+contact:
+  pairs:
+    - bodies: [target, target]
+
 time:
   steps: {steps}
   dt: {dt}
@@ -130,8 +137,8 @@ units           si
 boundary        s s s
 atom_style      peri
 atom_modify     map array
-# Skin kept small: perifem has no contact loop yet, LAMMPS' peri pair styles compute a
-# short-range contact force over the whole neighbour list (horizon + skin) in the same call.
+# Skin kept small: LAMMPS' peri pair styles compute their short-range contact force over the
+# whole neighbour list (horizon + skin) in the same call; a larger skin only adds pairs.
 neighbor        {skin} bin
 # PERI takes its lattice constant (contact distance) from the lattice command.
 lattice         sc {h}

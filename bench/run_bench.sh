@@ -78,7 +78,7 @@ grab() {
   echo "$v"
 }
 
-declare -A pf_loop pf_bonds pf_rate lmp_loop lmp_bonds lmp_neigh lmp_builds lmp_danger lmp_update
+declare -A pf_loop pf_bonds pf_bytes pf_contact pf_rate lmp_loop lmp_bonds lmp_neigh lmp_builds lmp_danger lmp_update
 for np in $ranks; do
 for m in pmb lps; do
   k=$m,$np
@@ -88,7 +88,9 @@ for m in pmb lps; do
     || { tail -30 "$work/perifem_$m$np.log" >&2; die "perifem failed on $m.yaml on $np ranks (log above)"; }
   grep -E '^perifem:|points|damage' "$work/perifem_$m$np.log" >&2 || true
   pf_loop[$k]=$(grab 's/.*(time loop \([0-9.eE+-]*\) s).*/\1/p' "$work/perifem_$m$np.log" "time loop")
-  pf_bonds[$k]=$(grab 's/.*directed bonds \([0-9]*\),.*/\1/p' "$work/perifem_$m$np.log" "directed bonds")
+  pf_bonds[$k]=$(grab 's/.*directed bonds \([0-9]*\) .*/\1/p' "$work/perifem_$m$np.log" "directed bonds")
+  pf_bytes[$k]=$(grab 's/.*directed bonds [0-9]* (\([0-9.eE+-]*\) bytes each).*/\1/p' "$work/perifem_$m$np.log" "bytes each")
+  pf_contact[$k]=$(grab 's/.*contact: .* search rebuilds, \([0-9.eE+-]*\) s (\([0-9.]*\) %.*/\1 s, \2 %/p' "$work/perifem_$m$np.log" "contact: N search rebuilds")
   pf_rate[$k]=$(grab 's/.*bond evaluations per second \([0-9.eE+-]*\).*/\1/p' "$work/perifem_$m$np.log" "bond evaluations per second")
 
   echo "== LAMMPS $m ($np rank(s))" >&2
@@ -103,6 +105,13 @@ for m in pmb lps; do
   lmp_update[$k]=$(grab 's/^ *update every \(.*\)$/\1/p' "$work/lmp_$m$np.out" "update every")
 done
 done
+
+# --- memory bandwidth: the STREAM-like triad of bench/stream.c, one core --------------------------
+triad=unknown
+if command -v cc >/dev/null 2>&1 && cc -O3 -march=native -o "$work/stream" "$here/stream.c" 2>"$work/stream.log"; then
+  echo "== memory bandwidth (bench/stream.c)" >&2
+  triad=$("$work/stream" | sed -n 's/^triad GB\/s //p')
+fi
 
 # --- table -----------------------------------------------------------------------------------
 cpu=$(sed -n 's/^model name[[:space:]]*:[[:space:]]*//p' /proc/cpuinfo 2>/dev/null | head -1)
@@ -160,13 +169,16 @@ table=$work/table.txt
   done
   r1=${ranks%% *}
   echo "perifem's own summary rate on $r1 rank(s): PMB ${pf_rate[pmb,$r1]}, LPS ${pf_rate[lps,$r1]} bond evaluations/s"
+  echo "perifem's bond memory: PMB ${pf_bytes[pmb,$r1]}, LPS ${pf_bytes[lps,$r1]} bytes per directed bond (plus a 64-byte"
+  echo "  record per point, 0.6 bytes per bond here); one core's memory bandwidth (bench/stream.c triad): $triad GB/s"
   echo "times: perifem 'time loop' seconds; LAMMPS 'Loop time of X on N procs for $steps steps'."
   echo "rates: directed bonds x steps / time (LAMMPS's bond count is the same number)."
-  echo "caveat: LAMMPS peri/* pair styles also compute a short-range contact force over their"
-  echo "  neighbour list (horizon + skin, ${lmp_neigh[pmb,$r1]} / ${lmp_neigh[lps,$r1]} full neighbours per atom for PMB / LPS)"
-  echo "  in the same force call; perifem has no contact loop yet, so LAMMPS's neighbour skin is kept"
-  echo "  at its minimum ($skin m): neighbour list builds PMB ${lmp_builds[pmb,$r1]}, LPS ${lmp_builds[lps,$r1]}"
-  echo "  (dangerous ${lmp_danger[pmb,$r1]}, ${lmp_danger[lps,$r1]}). LAMMPS's default list updates otherwise (update every ${lmp_update[pmb,$r1]})."
+  echo "contact on both sides: LAMMPS's peri/* pair styles compute a short-range contact force over"
+  echo "  their neighbour list (horizon + skin, ${lmp_neigh[pmb,$r1]} / ${lmp_neigh[lps,$r1]} full neighbours per atom for PMB / LPS)"
+  echo "  in the force call, neighbour skin $skin m: list builds PMB ${lmp_builds[pmb,$r1]}, LPS ${lmp_builds[lps,$r1]}"
+  echo "  (dangerous ${lmp_danger[pmb,$r1]}, ${lmp_danger[lps,$r1]}; update every ${lmp_update[pmb,$r1]});"
+  echo "  perifem's decks have the target's self-contact pair (radius 0.9 h, bonded points excluded),"
+  echo "  its share of perifem's time loop on $r1 rank(s): PMB ${pf_contact[pmb,$r1]}, LPS ${pf_contact[lps,$r1]}."
 } >"$table"
 
 cat "$table"
