@@ -39,10 +39,10 @@ typedef struct {
 int pf_batch_records_fill(pf_batch_records *r, const pf_points *pts, const double *aux);
 void pf_batch_records_free(pf_batch_records *r);
 
-/* out[f][l] = rec[PF_REC * idx[l] + f] for f, l < 8. */
-static inline void pf_batch_gather(const double *restrict rec, const int32_t idx[PF_BATCH],
-                                   double out[PF_REC][PF_BATCH]) {
 #if defined(__AVX512F__)
+/* v[f] lane l = rec[PF_REC * idx[l] + f] for f, l < 8, in registers. */
+static inline __attribute__((always_inline)) void pf_batch_gather_v(const double *restrict rec,
+                                                                    const int32_t *idx, __m512d v[PF_REC]) {
   __m512d r[8], t[8], u[8];
   for (int l = 0; l < 8; l++) r[l] = _mm512_load_pd(rec + (size_t)PF_REC * (size_t)idx[l]);
   /* stage 1: pairs of rows, element-wise interleave: t[2p] = (fields 0 2 4 6 of rows 2p, 2p+1) */
@@ -63,9 +63,28 @@ static inline void pf_batch_gather(const double *restrict rec, const int32_t idx
   const __m512i lo4 = _mm512_set_epi64(11, 10, 9, 8, 3, 2, 1, 0);
   const __m512i hi4 = _mm512_set_epi64(15, 14, 13, 12, 7, 6, 5, 4);
   for (int q = 0; q < 4; q++) {
-    _mm512_storeu_pd(out[q], _mm512_permutex2var_pd(u[q], lo4, u[4 + q]));
-    _mm512_storeu_pd(out[q + 4], _mm512_permutex2var_pd(u[q], hi4, u[4 + q]));
+    v[q] = _mm512_permutex2var_pd(u[q], lo4, u[4 + q]);
+    v[q + 4] = _mm512_permutex2var_pd(u[q], hi4, u[4 + q]);
   }
+}
+
+/* 1 / sqrt(x) lane-wise: the 14-bit estimate and two Newton steps (see pf_batch_rsqrt). */
+static inline __attribute__((always_inline)) __m512d pf_batch_rsqrt_v(__m512d x) {
+  const __m512d h = _mm512_mul_pd(x, _mm512_set1_pd(0.5));
+  __m512d y = _mm512_rsqrt14_pd(x);
+  for (int it = 0; it < 2; it++)
+    y = _mm512_mul_pd(y, _mm512_fnmadd_pd(h, _mm512_mul_pd(y, y), _mm512_set1_pd(1.5)));
+  return y;
+}
+#endif
+
+/* out[f][l] = rec[PF_REC * idx[l] + f] for f, l < 8. */
+static inline void pf_batch_gather(const double *restrict rec, const int32_t idx[PF_BATCH],
+                                   double out[PF_REC][PF_BATCH]) {
+#if defined(__AVX512F__)
+  __m512d v[PF_REC];
+  pf_batch_gather_v(rec, idx, v);
+  for (int f = 0; f < PF_REC; f++) _mm512_storeu_pd(out[f], v[f]);
 #else
   for (int l = 0; l < PF_BATCH; l++)
     for (int f = 0; f < PF_REC; f++) out[f][l] = rec[(size_t)PF_REC * (size_t)idx[l] + f];
@@ -78,11 +97,7 @@ static inline void pf_batch_gather(const double *restrict rec, const int32_t idx
  * same bits, so the two ends of a bond still agree. */
 static inline void pf_batch_rsqrt(double x[PF_BATCH]) {
 #if defined(__AVX512F__)
-  const __m512d v = _mm512_loadu_pd(x), h = _mm512_mul_pd(v, _mm512_set1_pd(0.5));
-  __m512d y = _mm512_rsqrt14_pd(v);
-  for (int it = 0; it < 2; it++)
-    y = _mm512_mul_pd(y, _mm512_fnmadd_pd(h, _mm512_mul_pd(y, y), _mm512_set1_pd(1.5)));
-  _mm512_storeu_pd(x, y);
+  _mm512_storeu_pd(x, pf_batch_rsqrt_v(_mm512_loadu_pd(x)));
 #else
   for (int l = 0; l < PF_BATCH; l++) x[l] = 1.0 / sqrt(x[l]);
 #endif
