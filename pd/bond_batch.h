@@ -76,6 +76,46 @@ static inline __attribute__((always_inline)) __m512d pf_batch_rsqrt_v(__m512d x)
     y = _mm512_mul_pd(y, _mm512_fnmadd_pd(h, _mm512_mul_pd(y, y), _mm512_set1_pd(1.5)));
   return y;
 }
+
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+#define PF_BATCH_AVX512 1
+/* The live lanes of a batch: l < n and broken[l] == 0. */
+static inline __attribute__((always_inline)) __mmask8 pf_batch_live_m(const uint8_t *broken, int n) {
+  return (__mmask8)(_mm_cmpeq_epi8_mask(_mm_loadl_epi64((const __m128i *)broken), _mm_setzero_si128()) &
+                    ((1u << n) - 1u));
+}
+
+/* A batch's bond geometry in registers: r0 = |xi|, r = |y_j - y_i|, their inverses, e = y_j - y_i.
+ * The operations and their order are those of the portable loops (products and sums apart),
+ * so both give the same bits. */
+typedef struct {
+  __m512d r0, r, ir0, ir, e[3];
+} pf_batch_geom;
+
+static inline __attribute__((always_inline)) void pf_batch_geom_v(const __m512d a[PF_REC], const double *ri,
+                                                                  pf_batch_geom *g) {
+  __m512d d[3];
+  for (int c = 0; c < 3; c++) {
+    d[c] = _mm512_sub_pd(a[REC_X + c], _mm512_set1_pd(ri[REC_X + c]));
+    g->e[c] = _mm512_sub_pd(a[REC_Y + c], _mm512_set1_pd(ri[REC_Y + c]));
+  }
+  const __m512d d2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(d[0], d[0]), _mm512_mul_pd(d[1], d[1])),
+                                   _mm512_mul_pd(d[2], d[2]));
+  const __m512d e2 = _mm512_add_pd(
+      _mm512_add_pd(_mm512_mul_pd(g->e[0], g->e[0]), _mm512_mul_pd(g->e[1], g->e[1])),
+      _mm512_mul_pd(g->e[2], g->e[2]));
+  g->ir0 = pf_batch_rsqrt_v(d2), g->ir = pf_batch_rsqrt_v(e2);
+  g->r0 = _mm512_mul_pd(d2, g->ir0), g->r = _mm512_mul_pd(e2, g->ir);
+}
+
+/* The sum of the lanes in lane order (as the portable loops sum their per-lane arrays). */
+static inline double pf_batch_sum_v(__m512d v) {
+  double x[PF_BATCH], s = 0;
+  _mm512_storeu_pd(x, v);
+  for (int l = 0; l < PF_BATCH; l++) s += x[l];
+  return s;
+}
+#endif
 #endif
 
 /* out[f][l] = rec[PF_REC * idx[l] + f] for f, l < 8. */

@@ -125,6 +125,78 @@ force_point(const pf_pd_body *restrict b, const double *restrict rec, const doub
   return failed;
 }
 
+#if defined(PF_BATCH_AVX512)
+/* dilatation_point for omega = 1 in AVX-512 registers: the same operations in the same order,
+ * so the same bits. */
+static inline __attribute__((always_inline)) double dilatation_point_avx512(const pf_pd_body *restrict b,
+                                                                            const double *restrict rec,
+                                                                            pf_int i, const int partial,
+                                                                            double *smin, int *fresh) {
+  const pf_family *fam = &b->fam;
+  uint8_t *restrict broken = fam->broken;
+  const double *ri = rec + (size_t)PF_REC * (size_t)i;
+  const __m512d s0i = _mm512_set1_pd(ri[REC_AUX]);
+  __m512d SUM = _mm512_setzero_pd(), SM = _mm512_set1_pd(INFINITY);
+  *fresh = 0;
+  const int64_t end = fam->offset[i - fam->first + 1];
+  for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += PF_BATCH) {
+    const int n = end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH;
+    __m512d a[PF_REC];
+    pf_batch_geom g;
+    pf_batch_gather_v(rec, fam->neighbor + k0, a);
+    const __mmask8 live = pf_batch_live_m(broken + k0, n);
+    pf_batch_geom_v(a, ri, &g);
+    const __m512d ext = _mm512_sub_pd(g.r, g.r0), st = _mm512_mul_pd(ext, g.ir0);
+    const __mmask8 fail = _mm512_cmp_pd_mask(st, _mm512_min_pd(s0i, a[REC_AUX]), _CMP_GT_OQ);
+    const __mmask8 alive = (__mmask8)(live & ~fail);
+    SM = _mm512_mask_mov_pd(SM, (__mmask8)(alive & _mm512_cmp_pd_mask(st, SM, _CMP_LT_OQ)), st);
+    __m512d vj = a[REC_V];
+    if (partial) vj = _mm512_mul_pd(vj, _mm512_cvtps_pd(_mm256_loadu_ps(fam->vfrac + k0)));
+    SUM = _mm512_add_pd(SUM, _mm512_maskz_mov_pd(alive, _mm512_mul_pd(_mm512_mul_pd(g.r0, ext), vj)));
+    const unsigned failed = (unsigned)(live & fail);
+    if (failed)
+      for (int l = 0; l < n; l++)
+        if (failed >> l & 1u) broken[k0 + l] = PF_BOND_FRESH, ++*fresh;
+  }
+  double sm[PF_BATCH];
+  _mm512_storeu_pd(sm, SM);
+  *smin = INFINITY;
+  for (int l = 0; l < PF_BATCH; l++) *smin = sm[l] < *smin ? sm[l] : *smin;
+  return pf_batch_sum_v(SUM);
+}
+
+/* force_point for omega = 1 and a stretch law in AVX-512 registers (the same bits). */
+static inline __attribute__((always_inline)) void force_point_avx512(const pf_pd_body *restrict b,
+                                                                     const double *restrict rec,
+                                                                     const double *restrict rm, pf_int i,
+                                                                     double g15, const int partial, double f[3]) {
+  const pf_family *fam = &b->fam;
+  const double *ri = rec + (size_t)PF_REC * (size_t)i;
+  const __m512d qi = _mm512_set1_pd(ri[REC_AUX]), rmi = _mm512_set1_pd(rm[i]), G = _mm512_set1_pd(g15);
+  __m512d F[3] = {_mm512_setzero_pd(), _mm512_setzero_pd(), _mm512_setzero_pd()};
+  const int64_t end = fam->offset[i - fam->first + 1];
+  for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += PF_BATCH) {
+    const int n = end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH;
+    const int32_t *idx = fam->neighbor + k0;
+    __m512d a[PF_REC];
+    pf_batch_geom g;
+    pf_batch_gather_v(rec, idx, a);
+    const __m512d rmj = _mm512_set_pd(rm[idx[7]], rm[idx[6]], rm[idx[5]], rm[idx[4]], rm[idx[3]], rm[idx[2]],
+                                      rm[idx[1]], rm[idx[0]]);
+    const __mmask8 live = pf_batch_live_m(fam->broken + k0, n);
+    pf_batch_geom_v(a, ri, &g);
+    const __m512d ext = _mm512_sub_pd(g.r, g.r0), gext = _mm512_mul_pd(G, ext);
+    const __m512d tij = _mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(qi, g.r0), gext), rmi);
+    const __m512d tji = _mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(a[REC_AUX], g.r0), gext), rmj);
+    __m512d vj = a[REC_V];
+    if (partial) vj = _mm512_mul_pd(vj, _mm512_cvtps_pd(_mm256_loadu_ps(fam->vfrac + k0)));
+    const __m512d fs = _mm512_maskz_mov_pd(live, _mm512_mul_pd(_mm512_mul_pd(_mm512_add_pd(tij, tji), vj), g.ir));
+    for (int q = 0; q < 3; q++) F[q] = _mm512_add_pd(F[q], _mm512_mul_pd(fs, g.e[q]));
+  }
+  for (int q = 0; q < 3; q++) f[q] = pf_batch_sum_v(F[q]);
+}
+#endif
+
 /* Pass 1 over the points [lo, hi); returns 1 when some point lost bonds (its lost flag set). */
 static inline __attribute__((always_inline)) int dilatations(pf_pd_body *b, const double *rec, const double *m,
                                                              double *theta, pf_int lo, pf_int hi,
@@ -132,7 +204,12 @@ static inline __attribute__((always_inline)) int dilatations(pf_pd_body *b, cons
   int any = 0;
   for (pf_int i = lo; i < hi; i++) {
     int fresh;
+#if defined(PF_BATCH_AVX512)
+    const double sum = !weighted ? dilatation_point_avx512(b, rec, i, partial, &b->smin[i - b->first], &fresh)
+                                 : dilatation_point(b, rec, i, weighted, partial, &b->smin[i - b->first], &fresh);
+#else
     const double sum = dilatation_point(b, rec, i, weighted, partial, &b->smin[i - b->first], &fresh);
+#endif
     b->lost[i - b->first] = fresh > 0;
     any |= fresh > 0;
     theta[i] = 3.0 * sum / m[i];
@@ -169,7 +246,11 @@ static inline __attribute__((always_inline)) int64_t forces(pf_pd_body *b, pf_po
   int64_t failed = 0;
   for (pf_int i = lo; i < hi; i++) {
     double f[3];
-    failed += force_point(b, rec, rm, i, g15, wc, weighted, partial, energy, f);
+#if defined(PF_BATCH_AVX512)
+    if (!weighted && !energy) force_point_avx512(b, rec, rm, i, g15, partial, f);
+    else
+#endif
+      failed += force_point(b, rec, rm, i, g15, wc, weighted, partial, energy, f);
     for (int a = 0; a < 3; a++) pts->f[3 * i + a] += pts->vol[i] * f[a];
   }
   return failed;

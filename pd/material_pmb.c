@@ -126,7 +126,7 @@ pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, do
   return smin;
 }
 
-#if defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512VL__)
+#if defined(PF_BATCH_AVX512)
 /* pmb_point for omega = 1 and a stretch law, in AVX-512 registers: the same operations in the
  * same order as pmb_point's vector passes (products and sums apart, no fused multiply-add),
  * so it gives the same bits; the lanes are summed in the same order. */
@@ -137,52 +137,36 @@ static inline __attribute__((always_inline)) double pmb_point_avx512(const pf_pd
   const pf_family *fam = &b->fam;
   uint8_t *restrict broken = fam->broken;
   const double *ri = rec + (size_t)PF_REC * (size_t)i;
-  __m512d xi[3], yi[3];
-  for (int a = 0; a < 3; a++) xi[a] = _mm512_set1_pd(ri[REC_X + a]), yi[a] = _mm512_set1_pd(ri[REC_Y + a]);
   const __m512d s0i = _mm512_set1_pd(ri[REC_S0]), cc = _mm512_set1_pd(c);
-  __m512d F0 = _mm512_setzero_pd(), F1 = F0, F2 = F0, SM = _mm512_set1_pd(INFINITY);
+  __m512d F[3] = {_mm512_setzero_pd(), _mm512_setzero_pd(), _mm512_setzero_pd()};
+  __m512d SM = _mm512_set1_pd(INFINITY);
   int fresh = 0;
   const int64_t end = fam->offset[i - fam->first + 1];
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += PF_BATCH) {
     const int n = end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH;
     __m512d a[PF_REC];
+    pf_batch_geom g;
     pf_batch_gather_v(rec, fam->neighbor + k0, a);
-    const __mmask8 live = (__mmask8)(_mm_cmpeq_epi8_mask(_mm_loadl_epi64((const __m128i *)(broken + k0)),
-                                                         _mm_setzero_si128()) &
-                                     ((1u << n) - 1u));
-    const __m512d d0 = _mm512_sub_pd(a[REC_X], xi[0]), d1 = _mm512_sub_pd(a[REC_X + 1], xi[1]),
-                  dz = _mm512_sub_pd(a[REC_X + 2], xi[2]);
-    const __m512d e0 = _mm512_sub_pd(a[REC_Y], yi[0]), e1 = _mm512_sub_pd(a[REC_Y + 1], yi[1]),
-                  ez = _mm512_sub_pd(a[REC_Y + 2], yi[2]);
-    const __m512d d2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(d0, d0), _mm512_mul_pd(d1, d1)),
-                                     _mm512_mul_pd(dz, dz));
-    const __m512d e2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(e0, e0), _mm512_mul_pd(e1, e1)),
-                                     _mm512_mul_pd(ez, ez));
-    const __m512d ir0 = pf_batch_rsqrt_v(d2), ir = pf_batch_rsqrt_v(e2);
-    const __m512d r0 = _mm512_mul_pd(d2, ir0), r = _mm512_mul_pd(e2, ir);
-    const __m512d st = _mm512_mul_pd(_mm512_sub_pd(r, r0), ir0);
+    const __mmask8 live = pf_batch_live_m(broken + k0, n);
+    pf_batch_geom_v(a, ri, &g);
+    const __m512d st = _mm512_mul_pd(_mm512_sub_pd(g.r, g.r0), g.ir0);
     const __m512d slim = _mm512_min_pd(s0i, a[REC_S0]); /* s0i < s0j ? s0i : s0j */
     const __mmask8 fail = _mm512_cmp_pd_mask(st, slim, _CMP_GT_OQ);
     const __mmask8 alive = (__mmask8)(live & ~fail);
     SM = _mm512_mask_mov_pd(SM, (__mmask8)(alive & _mm512_cmp_pd_mask(st, SM, _CMP_LT_OQ)), st);
     __m512d vj = a[REC_V];
     if (partial) vj = _mm512_mul_pd(vj, _mm512_cvtps_pd(_mm256_loadu_ps(fam->vfrac + k0)));
-    const __m512d fs = _mm512_maskz_mov_pd(alive, _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(cc, st), ir), vj));
-    F0 = _mm512_add_pd(F0, _mm512_mul_pd(fs, e0));
-    F1 = _mm512_add_pd(F1, _mm512_mul_pd(fs, e1));
-    F2 = _mm512_add_pd(F2, _mm512_mul_pd(fs, ez));
+    const __m512d fs = _mm512_maskz_mov_pd(alive, _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(cc, st), g.ir), vj));
+    for (int q = 0; q < 3; q++) F[q] = _mm512_add_pd(F[q], _mm512_mul_pd(fs, g.e[q]));
     const unsigned failed = (unsigned)(live & fail);
     if (failed)
       for (int l = 0; l < n; l++)
         if (failed >> l & 1u) broken[k0 + l] = PF_BOND_FRESH, fresh++;
   }
-  double f0[PF_BATCH], f1[PF_BATCH], f2[PF_BATCH], sm[PF_BATCH], smin = INFINITY;
-  _mm512_storeu_pd(f0, F0), _mm512_storeu_pd(f1, F1), _mm512_storeu_pd(f2, F2), _mm512_storeu_pd(sm, SM);
-  f[0] = f[1] = f[2] = 0;
-  for (int l = 0; l < PF_BATCH; l++) {
-    f[0] += f0[l], f[1] += f1[l], f[2] += f2[l];
-    smin = sm[l] < smin ? sm[l] : smin;
-  }
+  double sm[PF_BATCH], smin = INFINITY;
+  _mm512_storeu_pd(sm, SM);
+  for (int l = 0; l < PF_BATCH; l++) smin = sm[l] < smin ? sm[l] : smin;
+  for (int q = 0; q < 3; q++) f[q] = pf_batch_sum_v(F[q]);
   *nfresh = fresh;
   return smin;
 }
@@ -201,7 +185,7 @@ static inline __attribute__((always_inline)) int pmb_loop(pf_pd_body *b, pf_poin
   for (pf_int i = lo; i < hi; i++) {
     double f[3];
     int fresh;
-#if defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512VL__)
+#if defined(PF_BATCH_AVX512)
     if (!weighted && !energy) b->smin[i - b->first] = pmb_point_avx512(b, rec, i, c, partial, f, &fresh);
     else
 #endif
