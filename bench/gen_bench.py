@@ -116,8 +116,9 @@ indenters:
 
 # Short-range forces between the target's points (radius 0.9 h, points joined by an intact
 # bond excluded), the counterpart of the contact force LAMMPS's peri pair styles compute in
-# their force loop.
+# their force loop; the search skin is the LAMMPS run's neighbour skin.
 contact:
+  skin: {skin}
   pairs:
     - bodies: [target, target]
 
@@ -184,7 +185,7 @@ def write_inputs(workdir, skin, steps):
     }
     for name, cs in cases.items():
         with open(f"{workdir}/{name}.yaml", "w") as f:
-            f.write(DECK.format(name=name, **common, **cs))
+            f.write(DECK.format(name=name, skin=skin, **common, **cs))
         with open(f"{workdir}/in.{name}", "w") as f:
             f.write(LMP.format(name=name, skin=skin, h=H, **common, **cs))
         print(f"{name}: pair_coeff {cs['pair_coeff']}")

@@ -232,17 +232,48 @@ static int pmb_force(pf_pd_body *b, pf_points *pts) {
   return 0;
 }
 
+/* Point i's share of the stored energy per V_i, sum_j (1/4) c omega s^2 |xi| V_j over its
+ * intact bonds, in batches as pmb_point. */
+static double pmb_point_energy(const pf_pd_body *b, const double *rec, pf_int i, double c) {
+  enum { L = PF_BATCH };
+  const pf_family *fam = &b->fam;
+  const double *ri = rec + (size_t)PF_REC * (size_t)i;
+  double w[L] = {0}, total = 0;
+  const int64_t end = fam->offset[i - fam->first + 1];
+  for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
+    const int n = end - k0 < L ? (int)(end - k0) : L;
+    double a[PF_REC][L], live[L], d2[L], e2[L], ir0[L], ir[L];
+    pf_batch_live(fam->broken + k0, n, live);
+    pf_batch_gather(rec, fam->neighbor + k0, a);
+#pragma omp simd
+    for (int l = 0; l < L; l++) {
+      double dd = 0, ee = 0;
+      for (int q = 0; q < 3; q++) {
+        const double d = a[REC_X + q][l] - ri[REC_X + q], e = a[REC_Y + q][l] - ri[REC_Y + q];
+        dd += d * d, ee += e * e;
+      }
+      ir0[l] = d2[l] = dd, ir[l] = e2[l] = ee;
+    }
+    pf_batch_rsqrt(ir0);
+    pf_batch_rsqrt(ir);
+#pragma omp simd
+    for (int l = 0; l < L; l++) {
+      const double r0 = d2[l] * ir0[l], s = (e2[l] * ir[l] - r0) * ir0[l];
+      const double vj = fam->vfrac ? a[REC_V][l] * fam->vfrac[k0 + l] : a[REC_V][l];
+      const double wl = 0.25 * c * pf_pd_omega(&b->influence, r0) * s * s * r0 * vj;
+      w[l] += live[l] > 0 ? wl : 0.0;
+    }
+  }
+  for (int l = 0; l < L; l++) total += w[l];
+  return total;
+}
+
 /* Stored energy: W = sum_i V_i sum_j (1/4) c omega s^2 |xi| V_j (Silling & Askari 2005, eq. 6). */
 static double pmb_energy(const pf_pd_body *b, const pf_points *pts) {
-  const pf_family *fam = &b->fam;
-  const double c = ((const pmb *)b->mat)->c;
+  pmb *p = b->mat;
+  if (pf_batch_records_fill(&p->rec, pts, b->s0)) return NAN; /* (out of memory: shows in the balance) */
   double w = 0;
-  for (pf_int i = b->first; i < b->first + b->n; i++) {
-    double wi = 0;
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++)
-      if (!fam->broken[k]) wi += pmb_bond_energy(b, pts, i, k, c);
-    w += wi * pts->vol[i];
-  }
+  for (pf_int i = b->first; i < b->first + b->n; i++) w += pts->vol[i] * pmb_point_energy(b, p->rec.rec, i, p->c);
   return w;
 }
 
