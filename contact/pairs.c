@@ -50,13 +50,6 @@ double pf_contact_friction(double mu, double Fn, const double n[3], const double
   return F * s * dt;
 }
 
-/* 1 when view entities e and j are closer than r. */
-static int within(const pf_contact *c, pf_int e, pf_int j, double r) {
-  const double *a = &c->y[3 * e], *b = &c->y[3 * j];
-  double d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
-  return d0 * d0 + d1 * d1 + d2 * d2 < r * r;
-}
-
 /* 1 when owned particle i (store index) has an intact bond to global id g. */
 static int bonded(const pf_family *fam, const pf_points *pts, pf_int i, pf_gid g) {
   int64_t lo = fam->offset[i - fam->first], hi = fam->offset[i - fam->first + 1] - 1;
@@ -157,13 +150,19 @@ static int particle_forces(pf_contact *c, const pf_points *pts, double dt, share
       int64_t t = q;
       while (t < c->cand_off[e + 1] && c->cand[t].pair == k) t++;
       if (p->kind == PF_PAIR_SURFACE) PF_CALL(surface(c, k, e, q, t, dt, l, U, diss));
-      for (int64_t s = q; s < t && p->kind != PF_PAIR_SURFACE; s++) {
-        pf_int j = c->cand[s].j;
-        if (p->kind == PF_PAIR_NODES) PF_CALL(node(c, k, e, j, dt, l, U, diss));
-        else if (within(c, e, j, p->radius) &&
-                 (p->all_points || c->vbody[j] != c->vbody[e] ||
-                  !bonded(c->body[c->vbody[e]].fam, pts, c->local[e], c->gid[j])))
-          short_range(c, p, e, j, dt, U, diss);
+      if (p->kind == PF_PAIR_NODES)
+        for (int64_t s = q; s < t; s++) PF_CALL(node(c, k, e, c->cand[s].j, dt, l, U, diss));
+      if (p->kind == PF_PAIR_SHORT_RANGE) { /* most candidates are out of reach: test that first */
+        const double ye[3] = {c->y[3 * e], c->y[3 * e + 1], c->y[3 * e + 2]}, r2 = p->radius * p->radius;
+        for (int64_t s = q; s < t; s++) {
+          const pf_int j = c->cand[s].j;
+          const double *yj = &c->y[3 * j];
+          const double d0 = ye[0] - yj[0], d1 = ye[1] - yj[1], d2 = ye[2] - yj[2];
+          if (d0 * d0 + d1 * d1 + d2 * d2 >= r2) continue;
+          if (p->all_points || c->vbody[j] != c->vbody[e] ||
+              !bonded(c->body[c->vbody[e]].fam, pts, c->local[e], c->gid[j]))
+            short_range(c, p, e, j, dt, U, diss);
+        }
       }
       q = t;
     }
