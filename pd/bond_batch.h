@@ -86,8 +86,8 @@ static inline __attribute__((always_inline)) __mmask8 pf_batch_live_m(const uint
 }
 
 /* A batch's bond geometry in registers: r0 = |xi|, r = |y_j - y_i|, their inverses, e = y_j - y_i.
- * The operations and their order are those of the portable loops (products and sums apart),
- * so both give the same bits. */
+ * The squared lengths are summed with fused multiply-adds (so the last bits differ from the
+ * portable loops'); the two ends of a bond square negated differences, so they still agree. */
 typedef struct {
   __m512d r0, r, ir0, ir, e[3];
 } pf_batch_geom;
@@ -99,16 +99,14 @@ static inline __attribute__((always_inline)) void pf_batch_geom_v(const __m512d 
     d[c] = _mm512_sub_pd(a[REC_X + c], _mm512_set1_pd(ri[REC_X + c]));
     g->e[c] = _mm512_sub_pd(a[REC_Y + c], _mm512_set1_pd(ri[REC_Y + c]));
   }
-  const __m512d d2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(d[0], d[0]), _mm512_mul_pd(d[1], d[1])),
-                                   _mm512_mul_pd(d[2], d[2]));
-  const __m512d e2 = _mm512_add_pd(
-      _mm512_add_pd(_mm512_mul_pd(g->e[0], g->e[0]), _mm512_mul_pd(g->e[1], g->e[1])),
-      _mm512_mul_pd(g->e[2], g->e[2]));
+  const __m512d d2 = _mm512_fmadd_pd(d[0], d[0], _mm512_fmadd_pd(d[1], d[1], _mm512_mul_pd(d[2], d[2])));
+  const __m512d e2 =
+      _mm512_fmadd_pd(g->e[0], g->e[0], _mm512_fmadd_pd(g->e[1], g->e[1], _mm512_mul_pd(g->e[2], g->e[2])));
   g->ir0 = pf_batch_rsqrt_v(d2), g->ir = pf_batch_rsqrt_v(e2);
   g->r0 = _mm512_mul_pd(d2, g->ir0), g->r = _mm512_mul_pd(e2, g->ir);
 }
 
-/* The sum of the lanes in lane order (as the portable loops sum their per-lane arrays). */
+/* The sum of the lanes in lane order. */
 static inline double pf_batch_sum_v(__m512d v) {
   double x[PF_BATCH], s = 0;
   _mm512_storeu_pd(x, v);

@@ -126,8 +126,8 @@ force_point(const pf_pd_body *restrict b, const double *restrict rec, const doub
 }
 
 #if defined(PF_BATCH_AVX512)
-/* dilatation_point for omega = 1 in AVX-512 registers: the same operations in the same order,
- * so the same bits. */
+/* dilatation_point for omega = 1 in AVX-512 registers (pf_batch_geom_v: the squared lengths
+ * with fused multiply-adds, so the last bits differ from dilatation_point's). */
 static inline __attribute__((always_inline)) double dilatation_point_avx512(const pf_pd_body *restrict b,
                                                                             const double *restrict rec,
                                                                             pf_int i, const int partial,
@@ -165,7 +165,7 @@ static inline __attribute__((always_inline)) double dilatation_point_avx512(cons
   return pf_batch_sum_v(SUM);
 }
 
-/* force_point for omega = 1 and a stretch law in AVX-512 registers (the same bits). */
+/* force_point for omega = 1 and a stretch law in AVX-512 registers. */
 static inline __attribute__((always_inline)) void force_point_avx512(const pf_pd_body *restrict b,
                                                                      const double *restrict rec,
                                                                      const double *restrict rm, pf_int i,

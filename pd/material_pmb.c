@@ -127,9 +127,9 @@ pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, do
 }
 
 #if defined(PF_BATCH_AVX512)
-/* pmb_point for omega = 1 and a stretch law, in AVX-512 registers: the same operations in the
- * same order as pmb_point's vector passes (products and sums apart, no fused multiply-add),
- * so it gives the same bits; the lanes are summed in the same order. */
+/* pmb_point for omega = 1 and a stretch law, in AVX-512 registers: pmb_point's operations, but
+ * the squared lengths and the force sums with fused multiply-adds, so the last bits differ
+ * from pmb_point's; the lanes are summed in the same order. */
 static inline __attribute__((always_inline)) double pmb_point_avx512(const pf_pd_body *restrict b,
                                                                      const double *restrict rec, pf_int i,
                                                                      double c, const int partial, double f[3],
@@ -157,7 +157,7 @@ static inline __attribute__((always_inline)) double pmb_point_avx512(const pf_pd
     __m512d vj = a[REC_V];
     if (partial) vj = _mm512_mul_pd(vj, _mm512_cvtps_pd(_mm256_loadu_ps(fam->vfrac + k0)));
     const __m512d fs = _mm512_maskz_mov_pd(alive, _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(cc, st), g.ir), vj));
-    for (int q = 0; q < 3; q++) F[q] = _mm512_add_pd(F[q], _mm512_mul_pd(fs, g.e[q]));
+    for (int q = 0; q < 3; q++) F[q] = _mm512_fmadd_pd(fs, g.e[q], F[q]);
     const unsigned failed = (unsigned)(live & fail);
     if (failed)
       for (int l = 0; l < n; l++)
