@@ -106,6 +106,34 @@ static inline __attribute__((always_inline)) void pf_batch_geom_v(const __m512d 
   g->r0 = _mm512_mul_pd(d2, g->ir0), g->r = _mm512_mul_pd(e2, g->ir);
 }
 
+/* The stretch test of a batch (Silling & Askari 2005): s = (r - r0) / r0; a live bond fails
+ * when s > min(s0_i, s0_j) (s0 in REC_AUX); *smin keeps, lane by lane, the smallest stretch of
+ * the bonds that stay; vj is V_j, times the partial-volume fraction when vfrac is given (the
+ * batch's eight). */
+typedef struct {
+  __m512d s, vj;
+  __mmask8 fail, alive; /* fail: live bonds that fail now; alive: live bonds that stay */
+} pf_batch_stretch;
+
+static inline __attribute__((always_inline)) void pf_batch_stretch_v(const pf_batch_geom *g, const __m512d a[PF_REC],
+                                                                     __m512d s0i, __mmask8 live,
+                                                                     const float *vfrac, __m512d *smin,
+                                                                     pf_batch_stretch *t) {
+  t->s = _mm512_mul_pd(_mm512_sub_pd(g->r, g->r0), g->ir0);
+  const __mmask8 over = _mm512_cmp_pd_mask(t->s, _mm512_min_pd(s0i, a[REC_AUX]), _CMP_GT_OQ);
+  t->fail = (__mmask8)(live & over), t->alive = (__mmask8)(live & ~over);
+  *smin = _mm512_mask_mov_pd(*smin, (__mmask8)(t->alive & _mm512_cmp_pd_mask(t->s, *smin, _CMP_LT_OQ)), t->s);
+  t->vj = vfrac ? _mm512_mul_pd(a[REC_V], _mm512_cvtps_pd(_mm256_loadu_ps(vfrac))) : a[REC_V];
+}
+
+/* Mark the bonds of mask fail (lanes of the batch at broken) PF_BOND_FRESH; returns their number. */
+static inline int pf_batch_mark_fresh(uint8_t *broken, __mmask8 fail) {
+  int n = 0;
+  for (int l = 0; fail && l < PF_BATCH; l++)
+    if ((unsigned)fail >> l & 1u) broken[l] = PF_BOND_FRESH, n++;
+  return n;
+}
+
 /* The sum of the lanes in lane order. */
 static inline double pf_batch_sum_v(__m512d v) {
   double x[PF_BATCH], s = 0;

@@ -140,23 +140,16 @@ static inline __attribute__((always_inline)) double dilatation_point_avx512(cons
   *fresh = 0;
   const int64_t end = fam->offset[i - fam->first + 1];
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += PF_BATCH) {
-    const int n = end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH;
     __m512d a[PF_REC];
     pf_batch_geom g;
+    pf_batch_stretch t;
     pf_batch_gather_v(rec, fam->neighbor + k0, a);
-    const __mmask8 live = pf_batch_live_m(broken + k0, n);
     pf_batch_geom_v(a, ri, &g);
-    const __m512d ext = _mm512_sub_pd(g.r, g.r0), st = _mm512_mul_pd(ext, g.ir0);
-    const __mmask8 fail = _mm512_cmp_pd_mask(st, _mm512_min_pd(s0i, a[REC_AUX]), _CMP_GT_OQ);
-    const __mmask8 alive = (__mmask8)(live & ~fail);
-    SM = _mm512_mask_mov_pd(SM, (__mmask8)(alive & _mm512_cmp_pd_mask(st, SM, _CMP_LT_OQ)), st);
-    __m512d vj = a[REC_V];
-    if (partial) vj = _mm512_mul_pd(vj, _mm512_cvtps_pd(_mm256_loadu_ps(fam->vfrac + k0)));
-    SUM = _mm512_add_pd(SUM, _mm512_maskz_mov_pd(alive, _mm512_mul_pd(_mm512_mul_pd(g.r0, ext), vj)));
-    const unsigned failed = (unsigned)(live & fail);
-    if (failed)
-      for (int l = 0; l < n; l++)
-        if (failed >> l & 1u) broken[k0 + l] = PF_BOND_FRESH, ++*fresh;
+    pf_batch_stretch_v(&g, a, s0i, pf_batch_live_m(broken + k0, end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH),
+                       partial ? fam->vfrac + k0 : NULL, &SM, &t);
+    const __m512d ext = _mm512_sub_pd(g.r, g.r0);
+    SUM = _mm512_add_pd(SUM, _mm512_maskz_mov_pd(t.alive, _mm512_mul_pd(_mm512_mul_pd(g.r0, ext), t.vj)));
+    *fresh += pf_batch_mark_fresh(broken + k0, t.fail);
   }
   double sm[PF_BATCH];
   _mm512_storeu_pd(sm, SM);

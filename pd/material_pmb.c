@@ -143,25 +143,16 @@ static inline __attribute__((always_inline)) double pmb_point_avx512(const pf_pd
   int fresh = 0;
   const int64_t end = fam->offset[i - fam->first + 1];
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += PF_BATCH) {
-    const int n = end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH;
     __m512d a[PF_REC];
     pf_batch_geom g;
+    pf_batch_stretch t;
     pf_batch_gather_v(rec, fam->neighbor + k0, a);
-    const __mmask8 live = pf_batch_live_m(broken + k0, n);
     pf_batch_geom_v(a, ri, &g);
-    const __m512d st = _mm512_mul_pd(_mm512_sub_pd(g.r, g.r0), g.ir0);
-    const __m512d slim = _mm512_min_pd(s0i, a[REC_S0]); /* s0i < s0j ? s0i : s0j */
-    const __mmask8 fail = _mm512_cmp_pd_mask(st, slim, _CMP_GT_OQ);
-    const __mmask8 alive = (__mmask8)(live & ~fail);
-    SM = _mm512_mask_mov_pd(SM, (__mmask8)(alive & _mm512_cmp_pd_mask(st, SM, _CMP_LT_OQ)), st);
-    __m512d vj = a[REC_V];
-    if (partial) vj = _mm512_mul_pd(vj, _mm512_cvtps_pd(_mm256_loadu_ps(fam->vfrac + k0)));
-    const __m512d fs = _mm512_maskz_mov_pd(alive, _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(cc, st), g.ir), vj));
+    pf_batch_stretch_v(&g, a, s0i, pf_batch_live_m(broken + k0, end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH),
+                       partial ? fam->vfrac + k0 : NULL, &SM, &t);
+    const __m512d fs = _mm512_maskz_mov_pd(t.alive, _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(cc, t.s), g.ir), t.vj));
     for (int q = 0; q < 3; q++) F[q] = _mm512_fmadd_pd(fs, g.e[q], F[q]);
-    const unsigned failed = (unsigned)(live & fail);
-    if (failed)
-      for (int l = 0; l < n; l++)
-        if (failed >> l & 1u) broken[k0 + l] = PF_BOND_FRESH, fresh++;
+    fresh += pf_batch_mark_fresh(broken + k0, t.fail);
   }
   double sm[PF_BATCH], smin = INFINITY;
   _mm512_storeu_pd(sm, SM);

@@ -32,6 +32,17 @@ static pf_sim *lattice(const char *model) {
   return sim;
 }
 
+/* Bond i -> j: reference length r0, current length r, current vector e. */
+static void bond(const pf_points *p, pf_int i, pf_int j, double *r0, double *r, double e[3]) {
+  double d2 = 0, e2 = 0;
+  for (int a = 0; a < 3; a++) {
+    const double d = p->X[3 * j + a] - p->X[3 * i + a];
+    e[a] = p->y[3 * j + a] - p->y[3 * i + a];
+    d2 += d * d, e2 += e[a] * e[a];
+  }
+  *r0 = sqrt(d2), *r = sqrt(e2);
+}
+
 /* The reference: PMB f_i = sum_j c s V_j V_i e / r with s = (r - r0) / r0 and the stretch
  * test, one bond at a time. */
 static double reference_pmb(const pf_family *fam, const pf_points *p, double c, double s0, double *f) {
@@ -41,13 +52,9 @@ static double reference_pmb(const pf_family *fam, const pf_points *p, double c, 
     for (int64_t k = fam->offset[i]; k < fam->offset[i + 1]; k++) {
       if (fam->broken[k]) continue;
       const pf_int j = fam->neighbor[k];
-      double d2 = 0, e2 = 0, e[3];
-      for (int a = 0; a < 3; a++) {
-        const double d = p->X[3 * j + a] - p->X[3 * i + a];
-        e[a] = p->y[3 * j + a] - p->y[3 * i + a];
-        d2 += d * d, e2 += e[a] * e[a];
-      }
-      const double r0 = sqrt(d2), r = sqrt(e2), s = (r - r0) / r0;
+      double r0, r, e[3];
+      bond(p, i, j, &r0, &r, e);
+      const double s = (r - r0) / r0;
       if (s > s0) continue;
       smin = s < smin ? s : smin;
       for (int a = 0; a < 3; a++) fi[a] += c * s * p->vol[j] * e[a] / r;
@@ -66,13 +73,9 @@ static void reference_lps(const pf_family *fam, const pf_points *p, const double
       for (int64_t k = fam->offset[i]; k < fam->offset[i + 1]; k++) {
         if (fam->broken[k]) continue;
         const pf_int j = fam->neighbor[k];
-        double d2 = 0, e2 = 0, e[3];
-        for (int a = 0; a < 3; a++) {
-          const double d = p->X[3 * j + a] - p->X[3 * i + a];
-          e[a] = p->y[3 * j + a] - p->y[3 * i + a];
-          d2 += d * d, e2 += e[a] * e[a];
-        }
-        const double r0 = sqrt(d2), r = sqrt(e2), ext = r - r0;
+        double r0, r, e[3];
+        bond(p, i, j, &r0, &r, e);
+        const double ext = r - r0;
         if (pass == 0) {
           sum += r0 * ext * p->vol[j];
           continue;
