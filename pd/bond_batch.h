@@ -206,4 +206,29 @@ static inline void pf_thread_range(pf_int first, pf_int n, pf_int *lo, pf_int *h
 #endif
 }
 
+/* The bond geometry of one batch of point i (record ri) from its neighbours' transposed records
+ * a, in the portable form: r0 = |xi|, r = |y_j - y_i|, their inverses and the current bond
+ * vectors e[3][l]. */
+typedef struct {
+  double r0[PF_BATCH], r[PF_BATCH], ir0[PF_BATCH], ir[PF_BATCH], e[3][PF_BATCH];
+} pf_batch_lengths;
+
+static inline __attribute__((always_inline)) void pf_batch_lengths_of(const double *restrict ri,
+                                                                      double a[PF_REC][PF_BATCH],
+                                                                      pf_batch_lengths *restrict g) {
+  double d2[PF_BATCH], e2[PF_BATCH];
+#pragma omp simd
+  for (int l = 0; l < PF_BATCH; l++) {
+    const double d0 = a[REC_X][l] - ri[REC_X], d1 = a[REC_X + 1][l] - ri[REC_X + 1],
+                 dz = a[REC_X + 2][l] - ri[REC_X + 2];
+    for (int c = 0; c < 3; c++) g->e[c][l] = a[REC_Y + c][l] - ri[REC_Y + c];
+    g->ir0[l] = d2[l] = d0 * d0 + d1 * d1 + dz * dz;
+    g->ir[l] = e2[l] = g->e[0][l] * g->e[0][l] + g->e[1][l] * g->e[1][l] + g->e[2][l] * g->e[2][l];
+  }
+  pf_batch_rsqrt(g->ir0);
+  pf_batch_rsqrt(g->ir);
+#pragma omp simd
+  for (int l = 0; l < PF_BATCH; l++) g->r0[l] = d2[l] * g->ir0[l], g->r[l] = e2[l] * g->ir[l];
+}
+
 #endif

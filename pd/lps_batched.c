@@ -10,30 +10,6 @@
 #include "pd/bond_batch.h"
 #include "pd/pd_impl.h"
 
-/* The bond lengths of one batch of point i: r0 = |xi|, r = |y_j - y_i|, their inverses and the
- * current bond vectors e[3][l]. */
-typedef struct {
-  double r0[PF_BATCH], r[PF_BATCH], ir0[PF_BATCH], ir[PF_BATCH], e[3][PF_BATCH];
-} batch_lengths;
-
-static inline __attribute__((always_inline)) void lengths(const double *restrict ri,
-                                                          double a[PF_REC][PF_BATCH],
-                                                          batch_lengths *restrict g) {
-  double d2[PF_BATCH], e2[PF_BATCH];
-#pragma omp simd
-  for (int l = 0; l < PF_BATCH; l++) {
-    const double d0 = a[REC_X][l] - ri[REC_X], d1 = a[REC_X + 1][l] - ri[REC_X + 1],
-                 dz = a[REC_X + 2][l] - ri[REC_X + 2];
-    for (int c = 0; c < 3; c++) g->e[c][l] = a[REC_Y + c][l] - ri[REC_Y + c];
-    g->ir0[l] = d2[l] = d0 * d0 + d1 * d1 + dz * dz;
-    g->ir[l] = e2[l] = g->e[0][l] * g->e[0][l] + g->e[1][l] * g->e[1][l] + g->e[2][l] * g->e[2][l];
-  }
-  pf_batch_rsqrt(g->ir0);
-  pf_batch_rsqrt(g->ir);
-#pragma omp simd
-  for (int l = 0; l < PF_BATCH; l++) g->r0[l] = d2[l] * g->ir0[l], g->r[l] = e2[l] * g->ir[l];
-}
-
 /* Pass 1 at point i: the sum of omega |xi| e V_j over its intact bonds, failing those whose
  * stretch exceeds min(s0_i, s0_j) (REC_AUX holds s0); the smallest stretch into *smin, the
  * number failed into *fresh. */
@@ -52,11 +28,11 @@ dilatation_point(const pf_pd_body *restrict b, const double *restrict rec, pf_in
     const int n = end - k0 < L ? (int)(end - k0) : L;
     int32_t idx[L];
     double a[PF_REC][L], live[L], fails[L];
-    batch_lengths g;
+    pf_batch_lengths g;
     for (int l = 0; l < L; l++) idx[l] = fam->neighbor[k0 + l];
     pf_batch_live(broken + k0, n, live);
     pf_batch_gather(rec, idx, a);
-    lengths(ri, a, &g);
+    pf_batch_lengths_of(ri, a, &g);
 #pragma omp simd
     for (int l = 0; l < L; l++) {
       const double s = (g.r[l] - g.r0[l]) * g.ir0[l];
@@ -96,12 +72,12 @@ force_point(const pf_pd_body *restrict b, const double *restrict rec, const doub
     const int n = end - k0 < L ? (int)(end - k0) : L;
     int32_t idx[L];
     double a[PF_REC][L], live[L], fails[L], rmj[L];
-    batch_lengths g;
+    pf_batch_lengths g;
     for (int l = 0; l < L; l++) idx[l] = fam->neighbor[k0 + l];
     pf_batch_live(broken + k0, n, live);
     pf_batch_gather(rec, idx, a);
     pf_batch_gather1(rm, idx, rmj);
-    lengths(ri, a, &g);
+    pf_batch_lengths_of(ri, a, &g);
 #pragma omp simd
     for (int l = 0; l < L; l++) {
       const double ext = g.r[l] - g.r0[l];

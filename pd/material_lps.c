@@ -20,7 +20,7 @@ typedef struct {
   double *theta; /* field "dilatation" */
   double *nu;    /* field "partial_stress" [9], when some point has the partial-stress form */
   double *Ki;    /* [9n] K^-1 of those points (their bonds never fail) */
-  /* the batched loops (lps_batched_force), for a body of one horizon whose points all take the
+  /* the batched loops (lps_force_batched), for a body of one horizon whose points all take the
    * standard force (no transition, no overlap with elements) */
   int batched;
   pf_batch_records rec; /* pass 1: s0 in REC_AUX; pass 2: Q = (3K - 5G) theta */
@@ -143,16 +143,12 @@ static int lps_force_batched(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
   return 0;
 }
 
-static int lps_force(pf_pd_body *b, pf_points *pts) {
+/* The general passes (any horizon, partial stress, overlap): dilatations, then forces. */
+static int lps_force_general(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
   lps *p = b->mat;
   const double K = b->bulk_modulus, G = b->shear_modulus, wc = b->critical_energy;
   const int energy = b->law == PF_DAMAGE_CRITICAL_ENERGY;
   const pf_family *fam = &b->fam;
-  int64_t nfailed = 0;
-  if (p->batched) {
-    PF_CALL(lps_force_batched(b, pts, &nfailed));
-    goto failed;
-  }
   for (pf_int i = b->first; i < b->first + b->n; i++) p->theta[i] = lps_dilatation(b, pts, i, p->m[i]);
   PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta for the force pass */
   if (p->nu) PF_CALL(lps_partial_stress(b, pts));
@@ -173,7 +169,7 @@ static int lps_force(pf_pd_body *b, pf_points *pts) {
       const double tji = pf_pd_in_family(b, j, r0) ? lps_t(aj, bj, thj, w, r0, ext) : 0.0;
       if (energy && ext > 0 && 0.5 * (tij + tji) * ext > wc) {
         fam->broken[k] = PF_BOND_FRESH;
-        nfailed++;
+        ++*nfailed;
         continue;
       }
       const double fs = (tij + tji) * pf_pd_bond_volume(fam, pts->vol, k, j) / r;
@@ -181,7 +177,13 @@ static int lps_force(pf_pd_body *b, pf_points *pts) {
     }
     for (int a = 0; a < 3; a++) pts->f[3 * i + a] += pts->vol[i] * f[a];
   }
-failed:
+  return 0;
+}
+
+static int lps_force(pf_pd_body *b, pf_points *pts) {
+  lps *p = b->mat;
+  int64_t nfailed = 0;
+  PF_CALL(p->batched ? lps_force_batched(b, pts, &nfailed) : lps_force_general(b, pts, &nfailed));
   if (nfailed) /* (the same bits for the points that lost no bond) */
     for (pf_int i = b->first; i < b->first + b->n; i++) {
       b->damage_work += pf_pd_lps_release(b, pts, i, p->m[i], NULL, 0);

@@ -74,33 +74,21 @@ pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, do
   uint8_t *restrict broken = fam->broken;
   const pf_int *restrict nb = fam->neighbor;
   const double *ri = rec + (size_t)PF_REC * (size_t)i;
-  const double xi0 = ri[REC_X], xi1 = ri[REC_X + 1], xi2 = ri[REC_X + 2];
-  const double yi0 = ri[REC_Y], yi1 = ri[REC_Y + 1], yi2 = ri[REC_Y + 2], s0i = ri[REC_S0];
+  const double s0i = ri[REC_S0];
   double f0[L] = {0}, f1[L] = {0}, f2[L] = {0}, sm[L];
   int fresh = 0;
   for (int l = 0; l < L; l++) sm[l] = INFINITY;
   const int64_t end = fam->offset[i - fam->first + 1];
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
     const int n = end - k0 < L ? (int)(end - k0) : L;
-    int32_t idx[L];
     double a[PF_REC][L], live[L], fails[L];
-    for (int l = 0; l < L; l++) idx[l] = nb[k0 + l];
+    pf_batch_lengths g;
     pf_batch_live(broken + k0, n, live);
-    pf_batch_gather(rec, idx, a);
-    double d2[L], e2[L], ir0[L], ir[L];
+    pf_batch_gather(rec, nb + k0, a);
+    pf_batch_lengths_of(ri, a, &g);
 #pragma omp simd
     for (int l = 0; l < L; l++) {
-      const double d0 = a[REC_X][l] - xi0, d1 = a[REC_X + 1][l] - xi1, dz = a[REC_X + 2][l] - xi2;
-      const double e0 = a[REC_Y][l] - yi0, e1 = a[REC_Y + 1][l] - yi1, ez = a[REC_Y + 2][l] - yi2;
-      ir0[l] = d2[l] = d0 * d0 + d1 * d1 + dz * dz;
-      ir[l] = e2[l] = e0 * e0 + e1 * e1 + ez * ez;
-    }
-    pf_batch_rsqrt(ir0);
-    pf_batch_rsqrt(ir);
-#pragma omp simd
-    for (int l = 0; l < L; l++) {
-      const double e0 = a[REC_Y][l] - yi0, e1 = a[REC_Y + 1][l] - yi1, ez = a[REC_Y + 2][l] - yi2;
-      const double r0 = d2[l] * ir0[l], r = e2[l] * ir[l], s = (r - r0) * ir0[l];
+      const double r0 = g.r0[l], s = (g.r[l] - r0) * g.ir0[l];
       const double om = weighted ? pf_pd_omega(&b->influence, r0) : 1.0;
       const double slim = s0i < a[REC_S0][l] ? s0i : a[REC_S0][l];
       const int fail = energy ? (s > 0) & (om * s * s * r0 > wlim) : s > slim;
@@ -108,10 +96,10 @@ pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, do
       const double alive = fail ? 0.0 : live[l];
       sm[l] = alive > 0 && s < sm[l] ? s : sm[l];
       const double vj = partial ? a[REC_V][l] * vfrac[k0 + l] : a[REC_V][l];
-      const double fs = alive > 0 ? c * s * ir[l] * vj * om : 0.0;
-      f0[l] += fs * e0;
-      f1[l] += fs * e1;
-      f2[l] += fs * ez;
+      const double fs = alive > 0 ? c * s * g.ir[l] * vj * om : 0.0;
+      f0[l] += fs * g.e[0][l];
+      f1[l] += fs * g.e[1][l];
+      f2[l] += fs * g.e[2][l];
     }
     for (int l = 0; l < n; l++)
       if (fails[l] > 0) broken[k0 + l] = PF_BOND_FRESH, fresh++;
@@ -250,23 +238,14 @@ static double pmb_point_energy(const pf_pd_body *b, const double *rec, pf_int i,
 #endif
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
     const int n = end - k0 < L ? (int)(end - k0) : L;
-    double a[PF_REC][L], live[L], d2[L], e2[L], ir0[L], ir[L];
+    double a[PF_REC][L], live[L];
+    pf_batch_lengths g;
     pf_batch_live(fam->broken + k0, n, live);
     pf_batch_gather(rec, fam->neighbor + k0, a);
+    pf_batch_lengths_of(ri, a, &g);
 #pragma omp simd
     for (int l = 0; l < L; l++) {
-      double dd = 0, ee = 0;
-      for (int q = 0; q < 3; q++) {
-        const double d = a[REC_X + q][l] - ri[REC_X + q], e = a[REC_Y + q][l] - ri[REC_Y + q];
-        dd += d * d, ee += e * e;
-      }
-      ir0[l] = d2[l] = dd, ir[l] = e2[l] = ee;
-    }
-    pf_batch_rsqrt(ir0);
-    pf_batch_rsqrt(ir);
-#pragma omp simd
-    for (int l = 0; l < L; l++) {
-      const double r0 = d2[l] * ir0[l], s = (e2[l] * ir[l] - r0) * ir0[l];
+      const double r0 = g.r0[l], s = (g.r[l] - r0) * g.ir0[l];
       const double vj = fam->vfrac ? a[REC_V][l] * fam->vfrac[k0 + l] : a[REC_V][l];
       const double wl = 0.25 * c * pf_pd_omega(&b->influence, r0) * s * s * r0 * vj;
       w[l] += live[l] > 0 ? wl : 0.0;
