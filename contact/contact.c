@@ -209,13 +209,17 @@ int pf_contact_attach(pf_contact *c, const pf_contact_body *bodies) {
 }
 
 /* The contact force of every owned point into the output field "contact_force". */
-static int store_force_field(pf_contact *c, pf_points *pts) {
+/* Add the contact forces to the points' and keep them in the output field "contact_force" (the
+ * points that are no entity of any pair are never written, so they stay zero). */
+static int add_forces(pf_contact *c, pf_points *pts) {
   int idx;
   PF_CALL(pf_points_field_register(pts, "contact_force", 3, PF_FIELD_OUTPUT, &idx));
   double *fc = pts->fields[idx].data;
-  memset(fc, 0, sizeof(double) * 3 * (size_t)pts->n_owned);
   for (pf_int e = 0; e < c->nown; e++)
-    for (int a = 0; a < 3; a++) fc[3 * c->local[e] + a] = c->force[3 * e + a];
+    for (int a = 0; a < 3; a++) {
+      fc[3 * c->local[e] + a] = c->force[3 * e + a];
+      pts->f[3 * c->local[e] + a] += c->force[3 * e + a];
+    }
   return 0;
 }
 
@@ -240,9 +244,7 @@ int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *energy, d
   PF_CALL(pf_contact_search(c, pts));
   double U = 0;
   PF_CALL(pf_contact_pairs_evaluate(c, pts, dt, &U, dissipation));
-  for (pf_int e = 0; e < c->nown; e++)
-    for (int a = 0; a < 3; a++) pts->f[3 * c->local[e] + a] += c->force[3 * e + a];
-  PF_CALL(store_force_field(c, pts));
+  PF_CALL(add_forces(c, pts));
   PF_CALL(sum_over_ranks(c, &U));
   *energy = U;
   c->seconds += pf_wtime() - t0;

@@ -397,7 +397,10 @@ static int build_candidates(pf_contact *c) {
 
 static double largest_move(const pf_contact *c) {
   double m2 = 0;
-  for (pf_int e = 0; e < c->nown; e++) m2 = fmax(m2, dist2(&c->y[3 * e], &c->y_build[3 * e]));
+  for (pf_int e = 0; e < c->nown; e++) {
+    const double d2 = dist2(&c->y[3 * e], &c->y_build[3 * e]);
+    m2 = d2 > m2 ? d2 : m2; /* (NaN positions are the guard's to report) */
+  }
   return pf_max_all(sqrt(m2));
 }
 
