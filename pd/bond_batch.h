@@ -126,6 +126,19 @@ static inline __attribute__((always_inline)) void pf_batch_stretch_v(const pf_ba
   t->vj = vfrac ? _mm512_mul_pd(a[REC_V], _mm512_cvtps_pd(_mm256_loadu_ps(vfrac))) : a[REC_V];
 }
 
+/* Load the batch of bonds from k0 of point i (record ri; its row ends at end): the neighbours'
+ * records into a, the geometry into g, the stretch test into t (pf_batch_stretch_v). */
+static inline __attribute__((always_inline)) void pf_batch_load_v(const pf_family *fam, const double *rec,
+                                                                  const double *ri, int64_t k0, int64_t end,
+                                                                  __m512d s0i, int partial, __m512d a[PF_REC],
+                                                                  pf_batch_geom *g, __m512d *smin,
+                                                                  pf_batch_stretch *t) {
+  pf_batch_gather_v(rec, fam->neighbor + k0, a);
+  pf_batch_geom_v(a, ri, g);
+  const int n = end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH;
+  pf_batch_stretch_v(g, a, s0i, pf_batch_live_m(fam->broken + k0, n), partial ? fam->vfrac + k0 : NULL, smin, t);
+}
+
 /* Mark the bonds of mask fail (lanes of the batch at broken) PF_BOND_FRESH; returns their number. */
 static inline int pf_batch_mark_fresh(uint8_t *broken, __mmask8 fail) {
   int n = 0;

@@ -119,10 +119,7 @@ static inline __attribute__((always_inline)) double dilatation_point_avx512(cons
     __m512d a[PF_REC];
     pf_batch_geom g;
     pf_batch_stretch t;
-    pf_batch_gather_v(rec, fam->neighbor + k0, a);
-    pf_batch_geom_v(a, ri, &g);
-    pf_batch_stretch_v(&g, a, s0i, pf_batch_live_m(broken + k0, end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH),
-                       partial ? fam->vfrac + k0 : NULL, &SM, &t);
+    pf_batch_load_v(fam, rec, ri, k0, end, s0i, partial, a, &g, &SM, &t);
     const __m512d ext = _mm512_sub_pd(g.r, g.r0);
     SUM = _mm512_add_pd(SUM, _mm512_maskz_mov_pd(t.alive, _mm512_mul_pd(_mm512_mul_pd(g.r0, ext), t.vj)));
     *fresh += pf_batch_mark_fresh(broken + k0, t.fail);

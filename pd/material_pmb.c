@@ -134,10 +134,7 @@ static inline __attribute__((always_inline)) double pmb_point_avx512(const pf_pd
     __m512d a[PF_REC];
     pf_batch_geom g;
     pf_batch_stretch t;
-    pf_batch_gather_v(rec, fam->neighbor + k0, a);
-    pf_batch_geom_v(a, ri, &g);
-    pf_batch_stretch_v(&g, a, s0i, pf_batch_live_m(broken + k0, end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH),
-                       partial ? fam->vfrac + k0 : NULL, &SM, &t);
+    pf_batch_load_v(fam, rec, ri, k0, end, s0i, partial, a, &g, &SM, &t);
     const __m512d fs = _mm512_maskz_mov_pd(t.alive, _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(cc, t.s), g.ir), t.vj));
     for (int q = 0; q < 3; q++) F[q] = _mm512_fmadd_pd(fs, g.e[q], F[q]);
     fresh += pf_batch_mark_fresh(broken + k0, t.fail);
