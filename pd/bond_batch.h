@@ -4,8 +4,8 @@
  * X, V, y, s0). A batch of bonds reads its PF_BATCH neighbours' records and transposes them,
  * so that field f of the batch's neighbour l lands in out[f][l]: eight whole-line loads and
  * 24 two-source permutes with AVX-512, where the compiler's per-field gathers are
- * load-port-bound (bench/README.md, "Where the time goes"). Without AVX-512 it is a plain
- * copy. Either way the values are bitwise the records'. */
+ * load-port-bound (bench/README.md, "Where the time goes"); four 4 x 4 transposes with AVX2; a
+ * plain copy otherwise. Either way the values are bitwise the records'. */
 #ifndef PF_BOND_BATCH_H
 #define PF_BOND_BATCH_H
 
@@ -15,7 +15,7 @@
 
 #include "pd/pd_impl.h"
 
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) || defined(__AVX2__)
 #include <immintrin.h>
 #endif
 #if defined(_OPENMP)
@@ -164,6 +164,19 @@ static inline void pf_batch_gather(const double *restrict rec, const int32_t idx
   __m512d v[PF_REC];
   pf_batch_gather_v(rec, idx, v);
   for (int f = 0; f < PF_REC; f++) _mm512_storeu_pd(out[f], v[f]);
+#elif defined(__AVX2__)
+  /* four 4 x 4 transposes: rows l0..l0+3, fields h..h+3 (two unpacks and two lane swaps) */
+  for (int l0 = 0; l0 < PF_BATCH; l0 += 4)
+    for (int h = 0; h < PF_REC; h += 4) {
+      __m256d r[4];
+      for (int q = 0; q < 4; q++) r[q] = _mm256_loadu_pd(rec + (size_t)PF_REC * (size_t)idx[l0 + q] + h);
+      const __m256d t0 = _mm256_unpacklo_pd(r[0], r[1]), t1 = _mm256_unpackhi_pd(r[0], r[1]);
+      const __m256d t2 = _mm256_unpacklo_pd(r[2], r[3]), t3 = _mm256_unpackhi_pd(r[2], r[3]);
+      _mm256_storeu_pd(&out[h][l0], _mm256_permute2f128_pd(t0, t2, 0x20));
+      _mm256_storeu_pd(&out[h + 1][l0], _mm256_permute2f128_pd(t1, t3, 0x20));
+      _mm256_storeu_pd(&out[h + 2][l0], _mm256_permute2f128_pd(t0, t2, 0x31));
+      _mm256_storeu_pd(&out[h + 3][l0], _mm256_permute2f128_pd(t1, t3, 0x31));
+    }
 #else
   for (int l = 0; l < PF_BATCH; l++)
     for (int f = 0; f < PF_REC; f++) out[f][l] = rec[(size_t)PF_REC * (size_t)idx[l] + f];
@@ -191,6 +204,15 @@ static inline void pf_batch_live(const uint8_t *broken, int n, double live[PF_BA
                                                          _mm_setzero_si128()) &
                                      ((1u << n) - 1u));
   _mm512_storeu_pd(live, _mm512_maskz_mov_pd(intact, _mm512_set1_pd(1.0)));
+#elif defined(__AVX2__)
+  const __m128i z = _mm_cmpeq_epi8(_mm_loadl_epi64((const __m128i *)broken), _mm_setzero_si128());
+  const __m128i nn = _mm_set1_epi32(n);
+  const __m128i in0 = _mm_cmpgt_epi32(nn, _mm_setr_epi32(0, 1, 2, 3)), in1 = _mm_cmpgt_epi32(nn, _mm_setr_epi32(4, 5, 6, 7));
+  /* -1 for a live lane, 0 else, as doubles, negated */
+  const __m256d m0 = _mm256_cvtepi32_pd(_mm_and_si128(_mm_cvtepi8_epi32(z), in0));
+  const __m256d m1 = _mm256_cvtepi32_pd(_mm_and_si128(_mm_cvtepi8_epi32(_mm_srli_si128(z, 4)), in1));
+  _mm256_storeu_pd(live, _mm256_sub_pd(_mm256_setzero_pd(), m0));
+  _mm256_storeu_pd(live + 4, _mm256_sub_pd(_mm256_setzero_pd(), m1));
 #else
   for (int l = 0; l < PF_BATCH; l++) live[l] = l < n && !broken[l] ? 1.0 : 0.0;
 #endif
@@ -203,6 +225,9 @@ static inline void pf_batch_gather1(const double *restrict v, const int32_t idx[
 #if defined(__AVX512F__)
   _mm512_storeu_pd(out, _mm512_set_pd(v[idx[7]], v[idx[6]], v[idx[5]], v[idx[4]], v[idx[3]], v[idx[2]],
                                       v[idx[1]], v[idx[0]]));
+#elif defined(__AVX2__)
+  _mm256_storeu_pd(out, _mm256_set_pd(v[idx[3]], v[idx[2]], v[idx[1]], v[idx[0]]));
+  _mm256_storeu_pd(out + 4, _mm256_set_pd(v[idx[7]], v[idx[6]], v[idx[5]], v[idx[4]]));
 #else
   for (int l = 0; l < PF_BATCH; l++) out[l] = v[idx[l]];
 #endif
