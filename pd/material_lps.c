@@ -24,8 +24,8 @@ typedef struct {
    * standard force (no transition, no overlap with elements) */
   int batched;
   pf_batch_records rec; /* pass 1: s0 in REC_AUX; pass 2: Q = (3K - 5G) theta */
-  double *rm;           /* [store] 1 / m, pass 2 */
-  size_t rm_cap;
+  double *rm;           /* [store points] 1 / m for pass 2, set with m */
+  pf_int rm_n;
 } lps;
 
 static int lps_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
@@ -60,7 +60,12 @@ static int lps_setup(pf_pd_body *b, pf_points *pts) {
   double special = 0; /* points of the transition, the overlap or the corrected force */
   for (pf_int i = b->first; i < b->first + b->n; i++) special += b->region[i] != 0;
   p->batched = !b->one_sided && pf_sum_all(special) == 0; /* (the same on every rank) */
-  return pf_pd_weighted_volumes(b, pts, p->m);
+  PF_CALL(pf_pd_weighted_volumes(b, pts, p->m));
+  free(p->rm); /* (m is fixed, ghosts included, until the next set-up) */
+  p->rm_n = pts->n_total;
+  PF_MALLOC(p->rm, p->rm_n);
+  for (pf_int j = 0; j < p->rm_n; j++) p->rm[j] = 1.0 / p->m[j];
+  return 0;
 }
 
 /* Pass 1: dilatation of point i; fails bonds beyond the critical stretch, booking the energy
@@ -132,13 +137,9 @@ static int lps_force_batched(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
   PF_CALL(pf_batch_records_fill(&p->rec, pts, b->s0));
   pf_pd_lps_batched_dilatation(b, pts, p->rec.rec, p->m, p->theta);
   PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta for the force pass */
-  if (n > p->rm_cap) {
-    free(p->rm);
-    p->rm_cap = n + n / 8 + 16;
-    PF_MALLOC(p->rm, p->rm_cap);
-  }
+  PF_CHECK(p->rm_n == pts->n_total, PF_ERR_RUN, "LPS body '%s': the store changed since the set-up", b->name);
   const double q = 3 * b->bulk_modulus - 5 * b->shear_modulus;
-  for (size_t j = 0; j < n; j++) p->rec.rec[PF_REC * j + REC_AUX] = q * p->theta[j], p->rm[j] = 1.0 / p->m[j];
+  for (size_t j = 0; j < n; j++) p->rec.rec[PF_REC * j + REC_AUX] = q * p->theta[j];
   *nfailed = pf_pd_lps_batched_force(b, pts, p->rec.rec, p->rm);
   return 0;
 }

@@ -216,23 +216,6 @@ static double pmb_point_energy(const pf_pd_body *b, const double *rec, pf_int i,
   const double *ri = rec + (size_t)PF_REC * (size_t)i;
   double w[L] = {0}, total = 0;
   const int64_t end = fam->offset[i - fam->first + 1];
-#if defined(PF_BATCH_AVX512)
-  if (b->influence.kind == PF_INFLUENCE_CONSTANT && !fam->vfrac) { /* the common case in registers */
-    __m512d W = _mm512_setzero_pd();
-    const __m512d q = _mm512_set1_pd(0.25 * c);
-    for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
-      __m512d a[PF_REC];
-      pf_batch_geom g;
-      pf_batch_gather_v(rec, fam->neighbor + k0, a);
-      pf_batch_geom_v(a, ri, &g);
-      const __m512d s = _mm512_mul_pd(_mm512_sub_pd(g.r, g.r0), g.ir0);
-      const __mmask8 live = pf_batch_live_m(fam->broken + k0, end - k0 < L ? (int)(end - k0) : L);
-      W = _mm512_add_pd(W, _mm512_maskz_mov_pd(live, _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(q, s), s),
-                                                                    _mm512_mul_pd(g.r0, a[REC_V]))));
-    }
-    return pf_batch_sum_v(W);
-  }
-#endif
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
     const int n = end - k0 < L ? (int)(end - k0) : L;
     double a[PF_REC][L], live[L];
