@@ -208,13 +208,13 @@ int pf_contact_attach(pf_contact *c, const pf_contact_body *bodies) {
   return 0;
 }
 
-/* The contact force of every owned point into the output field "contact_force". */
 /* Add the contact forces to the points' and keep them in the output field "contact_force" (the
  * points that are no entity of any pair are never written, so they stay zero). */
 static int add_forces(pf_contact *c, pf_points *pts) {
   int idx;
   PF_CALL(pf_points_field_register(pts, "contact_force", 3, PF_FIELD_OUTPUT, &idx));
   double *fc = pts->fields[idx].data;
+#pragma omp parallel for schedule(static)
   for (pf_int e = 0; e < c->nown; e++)
     for (int a = 0; a < 3; a++) {
       fc[3 * c->local[e] + a] = c->force[3 * e + a];

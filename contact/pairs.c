@@ -15,6 +15,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 /* A share of an interaction's force for an FE node (7 doubles on the wire). */
 typedef struct {
@@ -26,15 +29,20 @@ typedef struct {
   int64_t n, cap;
 } share_list;
 
-static int share_push(share_list *l, int body, pf_gid node, int pair, pf_gid key, const double f[3], double w) {
+static int share_append(share_list *l, const node_share *x) {
   if (l->n == l->cap) {
     int64_t cap = 2 * l->cap + 256;
     node_share *q = realloc(l->s, sizeof *q * (size_t)cap);
     PF_CHECK(q, PF_ERR_MEMORY, "out of memory for contact node forces");
     l->s = q, l->cap = cap;
   }
-  l->s[l->n++] = (node_share){body, (double)node, pair, (double)key, {-w * f[0], -w * f[1], -w * f[2]}};
+  l->s[l->n++] = *x;
   return 0;
+}
+
+static int share_push(share_list *l, int body, pf_gid node, int pair, pf_gid key, const double f[3], double w) {
+  const node_share x = {body, (double)node, pair, (double)key, {-w * f[0], -w * f[1], -w * f[2]}};
+  return share_append(l, &x);
 }
 
 double pf_contact_friction(double mu, double Fn, const double n[3], const double vrel[3], double m, double dt,
@@ -63,9 +71,14 @@ static int bonded(const pf_family *fam, const pf_points *pts, pf_int i, pf_gid g
   return 0;
 }
 
-/* Short range between owned particle e and view entity j: the force on e. The pair is
+/* A chunk's sums: sums[SUM_ENERGY], sums[SUM_DISSIPATION], and pair k's force at
+ * sums[SUM_FORCE + 3 k]. */
+enum { SUM_ENERGY, SUM_DISSIPATION, SUM_FORCE };
+
+/* Short range between owned particle e and view entity j of pair k: the force on e. The pair is
  * evaluated ordered by global id (lo, hi), f on lo = C (r_c - r) V_lo V_hi (y_lo - y_hi) / r. */
-static void short_range(pf_contact *c, pf_contact_pair *p, pf_int e, pf_int j, double dt, double *U, double *diss) {
+static void short_range(pf_contact *c, int k, pf_int e, pf_int j, double dt, double *sums) {
+  const pf_contact_pair *p = &c->pair[k];
   int flip = c->gid[e] > c->gid[j];
   pf_int lo = flip ? j : e, hi = flip ? e : j;
   double d[3], r = 0;
@@ -76,20 +89,21 @@ static void short_range(pf_contact *c, pf_contact_pair *p, pf_int e, pf_int j, d
   double F = p->stiffness * (p->radius - r) * (c->vol[lo] * c->vol[hi]);
   for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * lo + a] - c->v[3 * hi + a];
   double mr = c->m[lo] * c->m[hi] / (c->m[lo] + c->m[hi]);
-  *diss += 0.5 * pf_contact_friction(p->friction, F, n, vrel, mr, dt, ft); /* half: each end counts it */
+  sums[SUM_DISSIPATION] += 0.5 * pf_contact_friction(p->friction, F, n, vrel, mr, dt, ft); /* half: each end counts it */
   const double sign = flip ? -1.0 : 1.0;
   for (int a = 0; a < 3; a++) {
     double fa = sign * (F * n[a] + ft[a]);
     c->force[3 * e + a] += fa;
-    if (c->vbody[e] == p->a && p->a != p->b) p->force[a] += fa;
+    if (c->vbody[e] == p->a && p->a != p->b) sums[SUM_FORCE + 3 * k + a] += fa;
   }
-  *U += 0.5 * 0.5 * p->stiffness * (c->vol[lo] * c->vol[hi]) * (p->radius - r) * (p->radius - r);
+  sums[SUM_ENERGY] += 0.5 * 0.5 * p->stiffness * (c->vol[lo] * c->vol[hi]) * (p->radius - r) * (p->radius - r);
 }
 
 /* Push particle e by f = k (r_c - g) n + friction against a surface point of weights w on the
  * nodes nv[4] (n outward of the FE body, towards the particle); the nodes' shares go to l. */
-static int push(pf_contact *c, pf_contact_pair *p, int k, pf_int e, const pf_int *nv, int nn, const double *w,
-                double g, const double n[3], double dt, share_list *l, double *U, double *diss) {
+static int push(pf_contact *c, int k, pf_int e, const pf_int *nv, int nn, const double *w, double g,
+                const double n[3], double dt, share_list *l, double *sums) {
+  const pf_contact_pair *p = &c->pair[k];
   double vs[3] = {0, 0, 0}, ms = 0, vrel[3], ft[3], f[3];
   for (int q = 0; q < nn; q++) {
     ms += w[q] * c->m[nv[q]];
@@ -97,18 +111,20 @@ static int push(pf_contact *c, pf_contact_pair *p, int k, pf_int e, const pf_int
   }
   for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * e + a] - vs[a];
   double F = p->stiffness * (p->radius - g);
-  *diss += pf_contact_friction(p->friction, F, n, vrel, c->m[e] * ms / (c->m[e] + ms), dt, ft);
-  for (int a = 0; a < 3; a++) f[a] = F * n[a] + ft[a], c->force[3 * e + a] += f[a], p->force[a] -= f[a];
-  *U += 0.5 * p->stiffness * (p->radius - g) * (p->radius - g);
+  sums[SUM_DISSIPATION] += pf_contact_friction(p->friction, F, n, vrel, c->m[e] * ms / (c->m[e] + ms), dt, ft);
+  for (int a = 0; a < 3; a++) {
+    f[a] = F * n[a] + ft[a];
+    c->force[3 * e + a] += f[a], sums[SUM_FORCE + 3 * k + a] -= f[a];
+  }
+  sums[SUM_ENERGY] += 0.5 * p->stiffness * (p->radius - g) * (p->radius - g);
   for (int q = 0; q < nn; q++)
     if (w[q] != 0) PF_CALL(share_push(l, p->a, c->gid[nv[q]], k, c->gid[e], f, w[q]));
   return 0;
 }
 
 /* Particle e against the closest face among its candidates [s, t) of pair k. */
-static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double dt, share_list *l, double *U,
-                   double *diss) {
-  pf_contact_pair *p = &c->pair[k];
+static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double dt, share_list *l, double *sums) {
+  const pf_contact_pair *p = &c->pair[k];
   const pf_int *view = c->node_view[p->a];
   double best = INFINITY, bg = 0, bn[3] = {0, 0, 0}, bw[4] = {0, 0, 0, 0};
   pf_int bv[4] = {0, 0, 0, 0};
@@ -128,30 +144,34 @@ static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double 
     }
   }
   if (best == INFINITY || bg >= p->radius) return 0;
-  return push(c, p, k, e, bv, 4, bw, bg, bn, dt, l, U, diss);
+  return push(c, k, e, bv, 4, bw, bg, bn, dt, l, sums);
 }
 
 /* Node-to-particle: particle e against surface node j. */
-static int node(pf_contact *c, int k, pf_int e, pf_int j, double dt, share_list *l, double *U, double *diss) {
-  pf_contact_pair *p = &c->pair[k];
+static int node(pf_contact *c, int k, pf_int e, pf_int j, double dt, share_list *l, double *sums) {
+  const pf_contact_pair *p = &c->pair[k];
   double d[3], r = 0;
   for (int a = 0; a < 3; a++) d[a] = c->y[3 * e + a] - c->y[3 * j + a], r += d[a] * d[a];
   r = sqrt(r);
   if (r >= p->radius || r == 0) return 0;
   double n[3] = {d[0] / r, d[1] / r, d[2] / r}, w = 1;
-  return push(c, p, k, e, &j, 1, &w, r, n, dt, l, U, diss);
+  return push(c, k, e, &j, 1, &w, r, n, dt, l, sums);
 }
 
-static int particle_forces(pf_contact *c, const pf_points *pts, double dt, share_list *l, double *U, double *diss) {
-  for (pf_int e = 0; e < c->nown; e++) {
+/* The interactions of the owned particles [e0, e1): their forces (cleared first), the nodes'
+ * shares into l, the energy, dissipation and pairs' forces into sums. */
+static int particle_range(pf_contact *c, const pf_points *pts, pf_int e0, pf_int e1, double dt, share_list *l,
+                          double *sums) {
+  memset(&c->force[3 * e0], 0, sizeof(double) * 3 * (size_t)(e1 - e0));
+  for (pf_int e = e0; e < e1; e++) {
     for (int64_t q = c->cand_off[e]; q < c->cand_off[e + 1];) {
       int k = c->cand[q].pair;
       pf_contact_pair *p = &c->pair[k];
       int64_t t = q;
       while (t < c->cand_off[e + 1] && c->cand[t].pair == k) t++;
-      if (p->kind == PF_PAIR_SURFACE) PF_CALL(surface(c, k, e, q, t, dt, l, U, diss));
+      if (p->kind == PF_PAIR_SURFACE) PF_CALL(surface(c, k, e, q, t, dt, l, sums));
       if (p->kind == PF_PAIR_NODES)
-        for (int64_t s = q; s < t; s++) PF_CALL(node(c, k, e, c->cand[s].j, dt, l, U, diss));
+        for (int64_t s = q; s < t; s++) PF_CALL(node(c, k, e, c->cand[s].j, dt, l, sums));
       if (p->kind == PF_PAIR_SHORT_RANGE) { /* most candidates are out of reach: test that first */
         const double ye[3] = {c->y[3 * e], c->y[3 * e + 1], c->y[3 * e + 2]}, r2 = p->radius * p->radius;
         for (int64_t s = q; s < t; s++) {
@@ -161,13 +181,53 @@ static int particle_forces(pf_contact *c, const pf_points *pts, double dt, share
           if (d0 * d0 + d1 * d1 + d2 * d2 >= r2) continue;
           if (p->all_points || c->vbody[j] != c->vbody[e] ||
               !bonded(c->body[c->vbody[e]].fam, pts, c->local[e], c->gid[j]))
-            short_range(c, p, e, j, dt, U, diss);
+            short_range(c, k, e, j, dt, sums);
         }
       }
       q = t;
     }
   }
   return 0;
+}
+
+/* Owner computes: a particle's interactions write only its own force, so OpenMP threads take
+ * fixed chunks of particles, each with its own share list (the shares are sorted before they
+ * are summed) and its own sums, added in chunk order: the bits do not depend on the thread
+ * count. Sets the pairs' forces; adds to *U and *diss. */
+static int particle_forces(pf_contact *c, const pf_points *pts, double dt, share_list *l, double *U, double *diss) {
+  enum { CHUNK = 2048 };
+  const int ns = SUM_FORCE + 3 * c->npairs;
+  const int64_t nchunk = (c->nown + CHUNK - 1) / CHUNK;
+  int nthreads = 1, ierr = 0;
+#if defined(_OPENMP)
+  nthreads = omp_get_max_threads();
+#endif
+  double *sums = calloc((size_t)(nchunk * ns + 1), sizeof *sums);
+  share_list *tl = calloc((size_t)nthreads, sizeof *tl);
+  if (!sums || !tl) free(sums), free(tl);
+  PF_CHECK(sums && tl, PF_ERR_MEMORY, "out of memory for the contact sums of %lld chunks", (long long)nchunk);
+#pragma omp parallel for schedule(dynamic, 1) reduction(max : ierr)
+  for (int64_t q = 0; q < nchunk; q++) {
+    int t = 0;
+#if defined(_OPENMP)
+    t = omp_get_thread_num();
+#endif
+    const pf_int e0 = (pf_int)(q * CHUNK), e1 = (pf_int)(q + 1 < nchunk ? (q + 1) * CHUNK : c->nown);
+    const int err = particle_range(c, pts, e0, e1, dt, &tl[t], &sums[q * ns]);
+    ierr = err > ierr ? err : ierr; /* (the reduction's private copy starts at INT_MIN) */
+  }
+  for (int k = 0; k < c->npairs; k++) memset(c->pair[k].force, 0, sizeof c->pair[k].force);
+  for (int64_t q = 0; !ierr && q < nchunk; q++) {
+    const double *s = &sums[q * ns];
+    *U += s[SUM_ENERGY], *diss += s[SUM_DISSIPATION];
+    for (int k = 0; k < c->npairs; k++)
+      for (int a = 0; a < 3; a++) c->pair[k].force[a] += s[SUM_FORCE + 3 * k + a];
+  }
+  for (int t = 0; !ierr && t < nthreads; t++) /* one list: each thread's in turn */
+    for (int64_t q = 0; q < tl[t].n && !ierr; q++) ierr = share_append(l, &tl[t].s[q]);
+  for (int t = 0; t < nthreads; t++) free(tl[t].s);
+  free(tl), free(sums);
+  return ierr;
 }
 
 /* Send the shares of nodes other ranks own to them; keep ours. Collective. */
@@ -224,8 +284,6 @@ static void sum_shares(pf_contact *c, share_list *mine) {
 }
 
 int pf_contact_pairs_evaluate(pf_contact *c, const pf_points *pts, double dt, double *energy, double *dissipation) {
-  memset(c->force, 0, sizeof(double) * 3 * (size_t)c->nown);
-  for (int k = 0; k < c->npairs; k++) memset(c->pair[k].force, 0, sizeof c->pair[k].force);
   share_list l = {NULL, 0, 0}, mine = {NULL, 0, 0};
   int ierr = particle_forces(c, pts, dt, &l, energy, dissipation);
   if (!ierr && c->has_fe) ierr = route_shares(c, &l, &mine);

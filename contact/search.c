@@ -159,6 +159,7 @@ static int exchange_motion(pf_contact *c) {
 }
 
 int pf_contact_exchange(pf_contact *c, const pf_points *pts) {
+#pragma omp parallel for schedule(static)
   for (pf_int e = 0; e < c->nown; e++)
     for (int a = 0; a < 3; a++) {
       c->y[3 * e + a] = pts->y[3 * c->local[e] + a];
@@ -397,6 +398,7 @@ static int build_candidates(pf_contact *c) {
 
 static double largest_move(const pf_contact *c) {
   double m2 = 0;
+#pragma omp parallel for schedule(static) reduction(max : m2)
   for (pf_int e = 0; e < c->nown; e++) {
     const double d2 = dist2(&c->y[3 * e], &c->y_build[3 * e]);
     m2 = d2 > m2 ? d2 : m2; /* (NaN positions are the guard's to report) */

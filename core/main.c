@@ -6,6 +6,9 @@
 #include <hdf5.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 #include <sys/stat.h>
 #include <yaml.h>
 
@@ -37,6 +40,11 @@ static void version(void) {
   pf_library_versions(more, sizeof more);
   printf("perifem %s\n  libyaml %s, Exodus II %.2f, HDF5 %u.%u.%u, %s\n  %s\n", PERIFEM_VERSION,
          yaml_get_version_string(), (double)EX_API_VERS, maj, min, rel, mpi, more);
+#if defined(_OPENMP)
+  printf("  OpenMP %d: %d threads per rank (OMP_NUM_THREADS)\n", _OPENMP, omp_get_max_threads());
+#else
+  printf("  no OpenMP threads (cmake -DPERIFEM_OPENMP=ON builds them)\n");
+#endif
 }
 
 typedef struct {

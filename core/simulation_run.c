@@ -127,6 +127,7 @@ int pf_sim_setup_output(pf_sim *sim) {
 }
 
 static void half_kick(pf_points *p, double dt) {
+#pragma omp parallel for schedule(static)
   for (pf_int i = 0; i < p->n_owned; i++) {
     const double s = 0.5 * dt / p->m[i];
     for (int a = 0; a < 3; a++) p->v[3 * i + a] += s * p->f[3 * i + a];
@@ -134,6 +135,7 @@ static void half_kick(pf_points *p, double dt) {
 }
 
 static void drift(pf_points *p, double dt) {
+#pragma omp parallel for schedule(static)
   for (pf_int i = 0; i < 3 * p->n_owned; i++) {
     p->u[i] += dt * p->v[i];
     p->y[i] = p->X[i] + p->u[i];

@@ -11,6 +11,7 @@ int pf_batch_records_fill(pf_batch_records *r, const pf_points *pts, const doubl
     r->rec = aligned_alloc(64, r->cap * PF_REC * sizeof(double));
     PF_CHECK(r->rec, PF_ERR_MEMORY, "out of memory for the bond-loop records of %zu points", n);
   }
+#pragma omp parallel for schedule(static)
   for (size_t j = 0; j < n; j++) {
     double *q = r->rec + PF_REC * j;
     for (int a = 0; a < 3; a++) q[REC_X + a] = pts->X[3 * j + a], q[REC_Y + a] = pts->y[3 * j + a];

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# OpenMP threads give the bits of one thread (issue 9: "results still bitwise identical to 1
+# thread"): decks exercising every threaded loop -- the PMB and LPS bond loops with bonds
+# breaking, the PD short-range contact, FE <-> PD contact with its node shares, the integrator --
+# run without threads (perifem) and with 1, 2 and 3 threads (perifem_omp, built beside it
+# unless PERIFEM_OPENMP_CHECK=OFF; or perifem itself when built with PERIFEM_OPENMP=ON), and 2
+# MPI ranks of 2 threads each: every run must end with the same state digest.
+# usage: openmp_threads.sh PERIFEM SCRATCH   (from the tests/ folder); exit 77 (skipped) when
+# no threaded build exists.
+set -u
+exe=$1 scratch=$2 fail=0
+source common/mpi_env.sh
+omp=$(dirname "$exe")/perifem_omp
+if [ ! -x "$omp" ]; then
+  "$exe" --version | grep -q "^  OpenMP" || { echo "no threaded build (perifem_omp or PERIFEM_OPENMP=ON): skipped"; exit 77; }
+  omp=$exe
+fi
+rm -rf "$scratch" && mkdir -p "$scratch"
+cd "$scratch"
+
+# the reduced fragmenting cylinder (PMB, critical stretch), its LPS variant, and PD self-contact
+# between every pair of neighbours (active from the first step); the FE sphere on a PMB block
+# (FE <-> PD surface contact with friction, and the block's self-contact)
+sed -E 's/height: 0.100/height: 0.024/; s/^(\s*)final_time:.*/\1steps: 40/; s/interval: 250/interval: 10/' \
+  "$OLDPWD/../inputs/fragmenting_cylinder.yaml" > cylinder.yaml
+sed -E 's/model: pmb/model: lps/' cylinder.yaml > cylinder_lps.yaml
+cp cylinder.yaml cylinder_contact.yaml
+printf 'contact:\n  pairs:\n    - {bodies: [cylinder, cylinder], radius: 0.0012, all_points: true, friction: 0.1}\n' >> cylinder_contact.yaml
+sed -E 's#\.\./\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/data/sphere_on_block.yaml" > sphere_on_block.yaml
+
+for deck in cylinder cylinder_lps cylinder_contact sphere_on_block; do
+  out=$(OMP_NUM_THREADS=1 "$exe" --output-dir plain "$deck.yaml" 2>&1) || { echo "$deck: exit $?: $out"; fail=1; continue; }
+  ref=$(digest_of "$out")
+  [ -n "$ref" ] || { echo "$deck: no digest"; fail=1; continue; }
+  for t in 1 2 3; do
+    out=$(OMP_NUM_THREADS=$t "$omp" --output-dir "t$t" "$deck.yaml" 2>&1) || { echo "$deck, $t threads: exit $?: $out"; fail=1; continue; }
+    d=$(digest_of "$out")
+    [ "$d" = "$ref" ] || { echo "$deck: digest on $t threads '$d' differs from '$ref' without threads"; fail=1; }
+  done
+  out=$(OMP_NUM_THREADS=2 run 2 -x OMP_NUM_THREADS "$omp" --output-dir hybrid "$deck.yaml" 2>&1) ||
+    { echo "$deck, 2 ranks x 2 threads: exit $?: $out"; fail=1; continue; }
+  d=$(digest_of "$out")
+  [ "$d" = "$ref" ] || { echo "$deck: digest on 2 ranks x 2 threads '$d' differs from '$ref'"; fail=1; }
+  echo "$deck: $ref"
+done
+exit $fail
