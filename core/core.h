@@ -408,6 +408,9 @@ void pf_sym6_to_mat(const double s[6], double S[3][3]);
 void pf_sym6_rotate(double R[3][3], double s[6]);
 /* The smallest eigenvalue of a symmetric A (only its upper triangle is read). */
 double pf_sym3_min_eigenvalue(double A[3][3]);
+/* The smallest lambda of A v = lambda B v, min_n (n.A n)/(n.B n), for symmetric A and positive
+ * definite B (0 when B is not). */
+double pf_sym3_min_relative_eigenvalue(double A[3][3], double B[3][3]);
 
 /* ---- wall clock ----------------------------------------------------------- */
 double pf_wtime(void);

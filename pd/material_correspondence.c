@@ -282,25 +282,31 @@ static void mat_mul(double A[3][3], double B[3][3], double C[3][3]) {
 
 /* The shape tensor and the deformation and rate sums of point i over its intact bonds; fails
  * bonds beyond the critical stretch. Returns the number of intact bonds. */
-static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][3], double A[3][3],
-                     double B[3][3], double sums[2]) {
+static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][3], double K0[3][3],
+                     double A[3][3], double B[3][3], double sums[2]) {
   const pf_family *fam = &b->fam;
   const pf_int li = i - b->first;
   double smin = INFINITY;
   int nb = 0;
   memset(K, 0, 9 * sizeof(double)), memset(A, 0, 9 * sizeof(double)), memset(B, 0, 9 * sizeof(double));
+  memset(K0, 0, 9 * sizeof(double));
   sums[0] = sums[1] = 0.0;
   for (int64_t k = fam->offset[li]; k < fam->offset[li + 1]; k++) {
-    if (fam->broken[k]) continue;
     const pf_int j = fam->neighbor[k];
     double xi[3], Y[3], Yd[3], r02 = 0, r2 = 0;
+    for (int a = 0; a < 3; a++) xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a], r02 += xi[a] * xi[a];
+    const double r0 = sqrt(r02);
+    if (pf_pd_in_family(b, i, r0)) { /* the intact family's shape tensor */
+      const double w0 = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+      for (int r = 0; r < 3; r++)
+        for (int s = 0; s < 3; s++) K0[r][s] += w0 * xi[r] * xi[s];
+    }
+    if (fam->broken[k]) continue;
     for (int a = 0; a < 3; a++) {
-      xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a];
       Y[a] = pts->y[3 * j + a] - pts->y[3 * i + a];
       Yd[a] = pts->v[3 * j + a] - pts->v[3 * i + a];
-      r02 += xi[a] * xi[a], r2 += Y[a] * Y[a];
+      r2 += Y[a] * Y[a];
     }
-    const double r0 = sqrt(r02);
     if (b->law != PF_DAMAGE_NONE && pf_pd_may_fail(b, i, j)) { /* (both ends test every row bond) */
       const double s = (sqrt(r2) - r0) / r0;
       if (s > fmin(b->s0[i], b->s0[j])) {
@@ -324,6 +330,14 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
   return nb;
 }
 
+/* A point whose intact bonds keep less than this fraction of its whole family's span in some
+ * direction, min_n (n.K n)/(n.K0 n), is detached (docs/theory/materials.md §2, "the span test"):
+ * 1 for an intact family, 1/2 on either side of a crack through the point, 0 when the bonds left
+ * lie in a plane. Below it, Fbar = A K^-1 divides by a small second moment and turns any
+ * non-affine motion of the few bonds left into wild stresses (the 740 m/s panel threw points out
+ * at 38 km/s). */
+static const double PF_CORR_MIN_SPAN = 0.1;
+
 /* Point i at rest for the model (F = I, D = 0, no force state): detached (then its bonds fail
  * next step) or idle (coupled, beta = 0 around it: its stress stays zero, no step limit). */
 static void at_rest(pf_pd_body *b, pf_int i, int detached) {
@@ -345,11 +359,11 @@ static void at_rest(pf_pd_body *b, pf_int i, int detached) {
 static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
   corr *p = b->mat;
   const pf_int li = i - b->first;
-  double K[3][3], A[3][3], B[3][3], Ki[3][3], Fb[3][3], Fd[3][3], Fm[3][3], Fmi[3][3], L[3][3], R[3][3];
+  double K[3][3], K0[3][3], A[3][3], B[3][3], Ki[3][3], Fb[3][3], Fd[3][3], Fm[3][3], Fmi[3][3], L[3][3], R[3][3];
   double *g = &p->gx[GX * i], *F = &p->F[9 * li], *D = &p->D[6 * li], sums[2];
-  const int nb = bond_sums(b, pts, i, K, A, B, sums);
+  const int nb = bond_sums(b, pts, i, K, K0, A, B, sums);
   const double detK = pf_mat3_inverse(K, Ki), tr = (K[0][0] + K[1][1] + K[2][2]) / 3.0;
-  int ok = nb >= 3 && detK > 1e-6 * tr * tr * tr;
+  int ok = nb >= 3 && detK > 1e-6 * tr * tr * tr && pf_sym3_min_relative_eigenvalue(K, K0) >= PF_CORR_MIN_SPAN;
   if (ok) {
     mat_mul(A, Ki, Fb), mat_mul(B, Ki, Fd);
     for (int r = 0; r < 3; r++)

@@ -9,7 +9,8 @@
  * sum_j V |xi|), with K and the sum enumerated here over the lattice offsets and gamma from the
  * closed form int_0^a x^3 j1(x) dx = 3 sin a - 3 a cos a - a^2 sin a: gamma = max_a 4 (3 sin a
  * - 3 a cos a - a^2 sin a) / a^4 (0.4161). And pf_sym3_min_eigenvalue against matrices of known
- * spectrum. */
+ * spectrum, pf_sym3_min_relative_eigenvalue (the correspondence span test) against pencils of
+ * known spectrum and lattice families cut by a plane. */
 #include "test_common.h"
 
 #include <math.h>
@@ -28,6 +29,47 @@ static void check_min_eigenvalue(double l0, double l1, double l2) {
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) A[i][j] = Q[i][0] * l[0] * Q[j][0] + Q[i][1] * l[1] * Q[j][1] + Q[i][2] * l[2] * Q[j][2];
   PF_TEST_CLOSE(pf_sym3_min_eigenvalue(A), fmin(l0, fmin(l1, l2)), 1e-12, 1e-12);
+}
+
+/* pf_sym3_min_relative_eigenvalue: with B = S S^T and A = S diag(m) S^T for an invertible S,
+ * A v = lambda B v reduces to diag(m) w = lambda w (w = S^T v), so the answer is min(m); and on
+ * a lattice family (delta = 3.01 h) the bonds on one side of a plane through the point, those in
+ * the plane included (a crack through it), keep exactly half of the family's second moment
+ * normal to the plane, more along it: 1/2; the bonds in the plane alone: 0. */
+static void check_relative_eigenvalue(void) {
+  const double m[4][3] = {{1, 1, 1}, {0.5, 0.5, 0.5}, {1, 0.05, 0.7}, {1, 1, 0}};
+  const double d[3] = {1, 2, 0.5}, c = cos(0.4), s = sin(0.4);
+  const double P[3][3] = {{c, -s, 0}, {s, c, 0}, {0, 0, 1}}, R[3][3] = {{1, 0, 0}, {0, c, -s}, {0, s, c}};
+  double S[3][3];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) S[i][j] = P[i][0] * d[0] * R[0][j] + P[i][1] * d[1] * R[1][j] + P[i][2] * d[2] * R[2][j];
+  for (int t = 0; t < 4; t++) {
+    double A[3][3], B[3][3];
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) {
+        A[i][j] = B[i][j] = 0;
+        for (int k = 0; k < 3; k++) A[i][j] += S[i][k] * m[t][k] * S[j][k], B[i][j] += S[i][k] * S[j][k];
+      }
+    PF_TEST_CLOSE(pf_sym3_min_relative_eigenvalue(A, B), fmin(m[t][0], fmin(m[t][1], m[t][2])), 1e-12, 1e-12);
+  }
+  double K0[3][3] = {{0}}, Kh[3][3] = {{0}}, Kp[3][3] = {{0}};
+  for (int i = -3; i <= 3; i++)
+    for (int j = -3; j <= 3; j++)
+      for (int k = -3; k <= 3; k++) {
+        const double x[3] = {i, j, k};
+        if (i * i + j * j + k * k == 0 || i * i + j * j + k * k > 3.01 * 3.01) continue;
+        for (int a = 0; a < 3; a++)
+          for (int b = 0; b < 3; b++) {
+            K0[a][b] += x[a] * x[b];
+            if (k >= 0) Kh[a][b] += x[a] * x[b];
+            if (k == 0) Kp[a][b] += x[a] * x[b];
+          }
+      }
+  PF_TEST_CLOSE(pf_sym3_min_relative_eigenvalue(K0, K0), 1.0, 1e-12, 0);
+  PF_TEST_CLOSE(pf_sym3_min_relative_eigenvalue(Kh, K0), 0.5, 1e-12, 0);
+  PF_TEST_CLOSE(pf_sym3_min_relative_eigenvalue(Kp, K0), 0.0, 0, 1e-12);
+  double Z[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 0}}; /* B not positive definite */
+  PF_TEST_CLOSE(pf_sym3_min_relative_eigenvalue(K0, Z), 0.0, 0, 0);
 }
 
 static void correspondence_step(void) {
@@ -84,6 +126,7 @@ int main(int argc, char **argv) {
   check_min_eigenvalue(-1, 5, 0.5);
   check_min_eigenvalue(2, 2, 2);
   check_min_eigenvalue(4, 1e-3, 1e-3);
+  check_relative_eigenvalue();
   correspondence_step();
   return pf_test_finish();
 }
