@@ -4,6 +4,11 @@ Recht-Ipson fit v_r = a (v_i^p - v_bl^p)^(1/p).
 
   /usr/bin/python3 scripts/panel_sweep.py [--deck inputs/panel_impact.yaml] [--ranks 2]
       [--perifem build/perifem] [--out panel_sweep] [--velocities 370 530 740 900] [--plot]
+      [--face-thickness 3e-3] [--bottom=-21e-3] [--label "coarse sandwich"]
+
+The defaults describe the sandwich (meshes/panel_sandwich.geo); for the monolithic plate
+(inputs/panel_plate.yaml, meshes/panel_plate.geo) give --face-thickness 8.5e-3 --bottom=-8.5e-3
+(its top face is the whole plate).
 
 For each impact velocity it writes a copy of the deck with the sphere's initial velocity set
 (the deck's line `initial_velocity: ["0", "0", "-530"]`) and its mesh paths made absolute into
@@ -27,7 +32,7 @@ import sys
 import numpy as np
 
 R = 0.5 * 13.97e-3          # sphere radius (0.55 in), m
-TF, Z_BOTTOM = 3e-3, -21e-3  # face-sheet thickness; the panel's bottom surface (panel_sandwich.geo)
+TF, Z_BOTTOM = 3e-3, -21e-3  # defaults: face-sheet thickness, the bottom surface (panel_sandwich.geo)
 VELOCITY_LINE = re.compile(r'initial_velocity: \["0", "0", "-[0-9.]+"\]')
 
 
@@ -61,13 +66,13 @@ def run(path, ranks, perifem):
     return True
 
 
-def outcome(folder):
+def outcome(folder, tf=TF, z_bottom=Z_BOTTOM):
     """Time, sphere z velocity and centre; top-face and panel perforation; residual velocity."""
     import h5py
     with h5py.File(os.path.join(folder, "panel.h5"), "r") as h:
         t, vz, zc = h["time"][:], h["sphere_velocity_z"][:], h["sphere_position_z"][:]
-    top = bool(np.any(zc + R < -TF))
-    through = bool(zc[-1] + R < Z_BOTTOM and vz[-1] < 0)
+    top = bool(np.any(zc + R < -tf))
+    through = bool(zc[-1] + R < z_bottom and vz[-1] < 0)
     return t, vz, zc, top, through, (-vz[-1] if through else 0.0)
 
 
@@ -93,7 +98,7 @@ def recht_ipson(vi, vr):
     return best.x, model
 
 
-def plot(out, rows, fit, model, series):
+def plot(out, rows, fit, model, series, label):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -103,7 +108,7 @@ def plot(out, rows, fit, model, series):
     v = np.linspace(0, 1.05 * vi.max(), 300)
     a, p, vbl = fit
     ax.plot(v, model(fit, v), "b-", label="Recht-Ipson: a = %.2f, p = %.2f, $v_{bl}$ = %.0f m/s" % (a, p, vbl))
-    ax.plot(vi, vr, "ko", label="perifem (coarse sandwich)")
+    ax.plot(vi, vr, "ko", label="perifem (%s)" % label)
     ax.plot(v, v, ":", color="0.6", label="$v_r = v_i$")
     ax.set_xlabel("impact velocity (m/s)")
     ax.set_ylabel("residual velocity (m/s)")
@@ -131,6 +136,9 @@ def main():
     ap.add_argument("--out", default="panel_sweep")
     ap.add_argument("--velocities", type=float, nargs="+", default=[370, 530, 740, 900])
     ap.add_argument("--plot", action="store_true")
+    ap.add_argument("--face-thickness", type=float, default=TF, help="top face thickness, m")
+    ap.add_argument("--bottom", type=float, default=Z_BOTTOM, help="z of the panel's bottom surface, m")
+    ap.add_argument("--label", default="coarse sandwich", help="the points' legend in the plot")
     args = ap.parse_args()
     perifem = os.path.abspath(args.perifem)
     rows, series, failed = [], [], []
@@ -141,7 +149,7 @@ def main():
                   % (v, folder), flush=True)
             failed.append(v)
             continue
-        t, vz, zc, top, through, vr = outcome(folder)
+        t, vz, zc, top, through, vr = outcome(folder, args.face_thickness, args.bottom)
         rows.append((v, top, through, vr))
         series.append((v, (t, vz)))
         print("impact %5.0f m/s: top face %-13s panel %-13s residual %6.1f m/s" %
@@ -157,7 +165,7 @@ def main():
     else:
         print("Recht-Ipson fit: needs at least one stopped and one perforating shot")
     if args.plot and fit is not None:
-        plot(args.out, rows, fit, model, series)
+        plot(args.out, rows, fit, model, series, args.label)
     if failed:
         sys.exit("panel_sweep: the runs at %s m/s failed" % ", ".join("%g" % v for v in failed))
 

@@ -4,6 +4,7 @@
  *  - meshes/bar.geo: element count = nx ny nz with n = max(1, ceil(L/h - 1e-6)) (the .geo's
  *    formula), volume 10 x 1 x 1 mm^3, side and node sets on the right planes; scale/translate
  *    (element_size taken after scale);
+ *  - meshes/panel_plate.geo: element count and volume exact, top and bottom side sets;
  *  - meshes/taylor_bar.geo: all hexahedra, volume = inscribed regular 4n-gon x L (boundary nodes
  *    evenly spaced on the circle) < pi R^2 L, lateral faces on r = R;
  *  - meshes/sphere.geo: pi-free bounds: every node in the ball of radius R, so V <= 4/3 pi R^3
@@ -195,6 +196,27 @@ static void test_bar(void) {
   PF_TEST_CLOSE(lo[0], 1.0, 0, 1e-15);
   PF_TEST_CLOSE(lo[1], -2.0, 0, 1e-15);
   PF_TEST_CLOSE(lo[2], 3.0, 0, 1e-15);
+  pf_fem_mesh_free(&m);
+}
+
+/* meshes/panel_plate.geo (the monolithic plate of inputs/panel_plate.yaml): 60 x 80 x 8.5 mm at
+ * h = 2 mm -> 30 x 40 x 5 elements, the volume exactly W L t (the sandwich's mass per area:
+ * 2 tf + 4 th hc / W = 6 + 2.5 = 8.5 mm), top on z = 0 and bottom on z = -t. */
+static void test_panel_plate(void) {
+  const double W = 60e-3, L = 80e-3, t = 8.5e-3, h = 2e-3;
+  const long nx = divisions(W, h), ny = divisions(L, h), nz = divisions(t, h);
+  char path[4096], extra[256];
+  snprintf(path, sizeof path, "%s/../meshes/panel_plate.geo", tests_dir);
+  snprintf(extra, sizeof extra, "  element_size: %.17g\n", h);
+  pf_fem_mesh m;
+  PF_TEST_OK(read_file(path, extra, &m));
+  PF_TEST_TRUE(nx == 30 && ny == 40 && nz == 5 && m.nelem == nx * ny * nz);
+  PF_TEST_CLOSE(mesh_volume(&m), W * L * t, 1e-12, 0);
+  PF_TEST_CLOSE(2 * 3e-3 + 4 * 2.5e-3 * 15e-3 / W, t, 1e-12, 0);
+  PF_TEST_TRUE(all_corners_positive(&m));
+  PF_TEST_TRUE(m.nblocks == 1 && !strcmp(m.block_name[0], "panel"));
+  PF_TEST_TRUE(sides_on_plane(&m, "top", 2, 0.0, (pf_int)(nx * ny)));
+  PF_TEST_TRUE(sides_on_plane(&m, "bottom", 2, -t, (pf_int)(nx * ny)));
   pf_fem_mesh_free(&m);
 }
 
@@ -563,6 +585,7 @@ int main(int argc, char **argv) {
   if (!getcwd(tests_dir, sizeof tests_dir)) tests_dir[0] = '.', tests_dir[1] = '\0';
   test_hex_volume();
   test_bar();
+  test_panel_plate();
   test_taylor_bar();
   test_sphere();
   test_subdivision();
