@@ -5,6 +5,7 @@ Recht-Ipson fit v_r = a (v_i^p - v_bl^p)^(1/p).
   /usr/bin/python3 scripts/panel_sweep.py [--deck inputs/panel_impact.yaml] [--ranks 2]
       [--perifem build/perifem] [--out panel_sweep] [--velocities 370 530 740 900] [--plot]
       [--face-thickness 3e-3] [--bottom=-21e-3] [--label "coarse sandwich"]
+  /usr/bin/python3 scripts/panel_sweep.py --report RUN.h5     (the outcome of one finished run)
 
 The defaults describe the sandwich (meshes/panel_sandwich.geo); for the monolithic plate
 (inputs/panel_plate.yaml, meshes/panel_plate.geo) give --face-thickness 8.5e-3 --bottom=-8.5e-3
@@ -66,10 +67,11 @@ def run(path, ranks, perifem):
     return True
 
 
-def outcome(folder, tf=TF, z_bottom=Z_BOTTOM):
-    """Time, sphere z velocity and centre; top-face and panel perforation; residual velocity."""
+def outcome(folder, tf=TF, z_bottom=Z_BOTTOM, history=None):
+    """Time, sphere z velocity and centre; top-face and panel perforation; residual velocity
+    (of the run in folder, or of the history file given)."""
     import h5py
-    with h5py.File(os.path.join(folder, "panel.h5"), "r") as h:
+    with h5py.File(history or os.path.join(folder, "panel.h5"), "r") as h:
         t, vz, zc = h["time"][:], h["sphere_velocity_z"][:], h["sphere_position_z"][:]
     top = bool(np.any(zc + R < -tf))
     through = bool(zc[-1] + R < z_bottom and vz[-1] < 0)
@@ -139,7 +141,13 @@ def main():
     ap.add_argument("--face-thickness", type=float, default=TF, help="top face thickness, m")
     ap.add_argument("--bottom", type=float, default=Z_BOTTOM, help="z of the panel's bottom surface, m")
     ap.add_argument("--label", default="coarse sandwich", help="the points' legend in the plot")
+    ap.add_argument("--report", metavar="RUN.h5", help="only print the outcome of a finished run's history")
     args = ap.parse_args()
+    if args.report:
+        t, vz, zc, top, through, vr = outcome(None, args.face_thickness, args.bottom, args.report)
+        print("at %.1f us: top face %s, panel %s; residual velocity %.1f m/s" %
+              (t[-1] * 1e6, "perforated" if top else "holds", "perforated" if through else "stops the sphere", vr))
+        return
     perifem = os.path.abspath(args.perifem)
     rows, series, failed = [], [], []
     for v in args.velocities:

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # perifem set-up on Debian 12: install what the build and the tests need (only what is
 # missing), configure and build, then run the main example (--example) or the tests (--test).
-#   bash scripts/setup.sh --example   # install, build, run inputs/disk_impact_elastic.yaml
+#   bash scripts/setup.sh --example   # install, build, run inputs/panel_impact.yaml on every core
 #   bash scripts/setup.sh --test      # install, build (warnings as errors), run ctest
 #   bash scripts/setup.sh             # install and build only
 set -euo pipefail
@@ -39,9 +39,10 @@ test -x build/perifem || { echo "setup: build failed" >&2; exit 1; }
 case "$mode" in
   --example)
     mkdir -p run
-    cd run && ../build/perifem ../inputs/disk_impact_elastic.yaml
-    /usr/bin/python3 ../scripts/plot_history.py disk_impact_elastic.h5 --out plots
-    echo "open run/disk_impact_elastic.e in ParaView (File > Open; colour by 'damage'); plots in run/plots/"
+    cd run && mpirun -np "$(nproc)" ../build/perifem --progress plain ../inputs/panel_impact.yaml
+    /usr/bin/python3 ../scripts/panel_sweep.py --report panel_impact.h5
+    /usr/bin/python3 ../scripts/plot_history.py panel_impact.h5 --out plots
+    echo "open run/panel_impact.e in ParaView (File > Open; colour by 'eqps' or 'damage'); plots in run/plots/"
     ;;
   --test)
     ctest --test-dir build --output-on-failure -LE slow -j"$(nproc)"
