@@ -154,6 +154,14 @@ static inline double pf_batch_sum_v(__m512d v) {
   for (int l = 0; l < PF_BATCH; l++) s += x[l];
   return s;
 }
+
+/* The smallest lane of v (the ?: keeps it branch-free; lanes that are NaN are passed over). */
+static inline double pf_batch_min_v(__m512d v) {
+  double x[PF_BATCH], m = INFINITY;
+  _mm512_storeu_pd(x, v);
+  for (int l = 0; l < PF_BATCH; l++) m = x[l] < m ? x[l] : m;
+  return m;
+}
 #endif
 #endif
 

@@ -124,10 +124,7 @@ static inline __attribute__((always_inline)) double dilatation_point_avx512(cons
     SUM = _mm512_add_pd(SUM, _mm512_maskz_mov_pd(t.alive, _mm512_mul_pd(_mm512_mul_pd(g.r0, ext), t.vj)));
     *fresh += pf_batch_mark_fresh(broken + k0, t.fail);
   }
-  double sm[PF_BATCH];
-  _mm512_storeu_pd(sm, SM);
-  *smin = INFINITY;
-  for (int l = 0; l < PF_BATCH; l++) *smin = sm[l] < *smin ? sm[l] : *smin;
+  *smin = pf_batch_min_v(SM);
   return pf_batch_sum_v(SUM);
 }
 

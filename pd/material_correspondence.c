@@ -56,6 +56,8 @@ typedef struct {
   double **out;        /* [nstate] output fields named by the model's state names */
   double *F, *D, *s_old, *saved, *Jm; /* scratch: [9n], [6n], [6n], [nstate n], [n] */
   double *Ki;                         /* scratch [9n]: K^-1, for the partial-stress force */
+  double *K0;                         /* [9n] the whole family's shape tensor (broken bonds too) */
+  int *nfam;                          /* [n] the number of bonds in the point's own family */
   double *ghost;                      /* field "ghost_correction" [3]: the corrected form's d_i */
   double *rate, *whg2, *cw; /* scratch [n]: beta / sigma_min(Fbar), omega_hg^2, wave speed */
   pf_int cap;
@@ -235,14 +237,41 @@ static int ghost_vectors(pf_pd_body *b, pf_points *pts) {
   return 0;
 }
 
+/* Each owned point's whole own family (its broken bonds too, so the same after a re-partition or
+ * a restart): the number of its bonds and their shape tensor K0, for the span test. */
+static void whole_families(pf_pd_body *b, const pf_points *pts) {
+  corr *p = b->mat;
+  const pf_family *fam = &b->fam;
+  for (pf_int li = 0; li < b->n; li++) {
+    const pf_int i = b->first + li;
+    double *K0 = &p->K0[9 * li];
+    memset(K0, 0, 9 * sizeof(double));
+    p->nfam[li] = 0;
+    for (int64_t k = fam->offset[li]; k < fam->offset[li + 1]; k++) {
+      const pf_int j = fam->neighbor[k];
+      double xi[3], r02 = 0;
+      for (int a = 0; a < 3; a++) xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a], r02 += xi[a] * xi[a];
+      const double r0 = sqrt(r02);
+      if (!pf_pd_in_family(b, i, r0)) continue;
+      const double w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+      for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) K0[3 * r + c] += w * xi[r] * xi[c];
+      p->nfam[li]++;
+    }
+  }
+}
+
 static int corr_setup(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   PF_CALL(register_fields(b, pts));
   if (b->n > p->cap) {
     free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm);
-    free(p->rate), free(p->whg2), free(p->cw), free(p->Ki);
-    p->F = p->D = p->s_old = p->saved = p->Jm = p->rate = p->whg2 = p->cw = p->Ki = NULL;
+    free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam);
+    p->F = p->D = p->s_old = p->saved = p->Jm = p->rate = p->whg2 = p->cw = p->Ki = p->K0 = NULL;
+    p->nfam = NULL;
     PF_MALLOC(p->Ki, 9 * (size_t)b->n);
+    PF_MALLOC(p->K0, 9 * (size_t)b->n);
+    PF_MALLOC(p->nfam, b->n);
     PF_MALLOC(p->Jm, b->n);
     PF_MALLOC(p->rate, b->n);
     PF_MALLOC(p->whg2, b->n);
@@ -269,6 +298,7 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
     if (b->hz[i] != h) h = b->hz[i], c = pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, h);
     p->gx[GX * i + G_C] = c;
   }
+  whole_families(b, pts);
   if (b->fresh)
     for (pf_int i = b->first; i < b->first + b->n; i++) p->step[i] = reference_step(b, pts, i);
   PF_CALL(ghost_vectors(b, pts));
@@ -282,31 +312,25 @@ static void mat_mul(double A[3][3], double B[3][3], double C[3][3]) {
 
 /* The shape tensor and the deformation and rate sums of point i over its intact bonds; fails
  * bonds beyond the critical stretch. Returns the number of intact bonds. */
-static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][3], double K0[3][3],
-                     double A[3][3], double B[3][3], double sums[2]) {
+static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][3], double A[3][3],
+                     double B[3][3], double sums[2]) {
   const pf_family *fam = &b->fam;
   const pf_int li = i - b->first;
   double smin = INFINITY;
   int nb = 0;
   memset(K, 0, 9 * sizeof(double)), memset(A, 0, 9 * sizeof(double)), memset(B, 0, 9 * sizeof(double));
-  memset(K0, 0, 9 * sizeof(double));
   sums[0] = sums[1] = 0.0;
   for (int64_t k = fam->offset[li]; k < fam->offset[li + 1]; k++) {
+    if (fam->broken[k]) continue;
     const pf_int j = fam->neighbor[k];
     double xi[3], Y[3], Yd[3], r02 = 0, r2 = 0;
-    for (int a = 0; a < 3; a++) xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a], r02 += xi[a] * xi[a];
-    const double r0 = sqrt(r02);
-    if (pf_pd_in_family(b, i, r0)) { /* the intact family's shape tensor */
-      const double w0 = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
-      for (int r = 0; r < 3; r++)
-        for (int s = 0; s < 3; s++) K0[r][s] += w0 * xi[r] * xi[s];
-    }
-    if (fam->broken[k]) continue;
     for (int a = 0; a < 3; a++) {
+      xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a];
       Y[a] = pts->y[3 * j + a] - pts->y[3 * i + a];
       Yd[a] = pts->v[3 * j + a] - pts->v[3 * i + a];
-      r2 += Y[a] * Y[a];
+      r02 += xi[a] * xi[a], r2 += Y[a] * Y[a];
     }
+    const double r0 = sqrt(r02);
     if (b->law != PF_DAMAGE_NONE && pf_pd_may_fail(b, i, j)) { /* (both ends test every row bond) */
       const double s = (sqrt(r2) - r0) / r0;
       if (s > fmin(b->s0[i], b->s0[j])) {
@@ -338,6 +362,13 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
  * at 38 km/s). */
 static const double PF_CORR_MIN_SPAN = 0.1;
 
+/* Do the intact bonds' K of owned point li keep the span (a point that lost no bond does)? */
+static int spans(const corr *p, pf_int li, double K[3][3]) {
+  double K0[3][3];
+  memcpy(K0, &p->K0[9 * li], sizeof K0);
+  return pf_sym3_min_relative_eigenvalue(K, K0) >= PF_CORR_MIN_SPAN;
+}
+
 /* Point i at rest for the model (F = I, D = 0, no force state): detached (then its bonds fail
  * next step) or idle (coupled, beta = 0 around it: its stress stays zero, no step limit). */
 static void at_rest(pf_pd_body *b, pf_int i, int detached) {
@@ -359,11 +390,11 @@ static void at_rest(pf_pd_body *b, pf_int i, int detached) {
 static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
   corr *p = b->mat;
   const pf_int li = i - b->first;
-  double K[3][3], K0[3][3], A[3][3], B[3][3], Ki[3][3], Fb[3][3], Fd[3][3], Fm[3][3], Fmi[3][3], L[3][3], R[3][3];
+  double K[3][3], A[3][3], B[3][3], Ki[3][3], Fb[3][3], Fd[3][3], Fm[3][3], Fmi[3][3], L[3][3], R[3][3];
   double *g = &p->gx[GX * i], *F = &p->F[9 * li], *D = &p->D[6 * li], sums[2];
-  const int nb = bond_sums(b, pts, i, K, K0, A, B, sums);
+  const int nb = bond_sums(b, pts, i, K, A, B, sums);
   const double detK = pf_mat3_inverse(K, Ki), tr = (K[0][0] + K[1][1] + K[2][2]) / 3.0;
-  int ok = nb >= 3 && detK > 1e-6 * tr * tr * tr && pf_sym3_min_relative_eigenvalue(K, K0) >= PF_CORR_MIN_SPAN;
+  int ok = nb >= 3 && detK > 1e-6 * tr * tr * tr && (nb == p->nfam[li] || spans(p, li, K));
   if (ok) {
     mat_mul(A, Ki, Fb), mat_mul(B, Ki, Fd);
     for (int r = 0; r < 3; r++)
@@ -547,7 +578,7 @@ static void corr_destroy(pf_pd_body *b) {
   corr *p = b->mat;
   pf_fem_material_destroy(&p->cm);
   free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm), free(p->out);
-  free(p->rate), free(p->whg2), free(p->cw), free(p->Ki);
+  free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam);
   PF_FREE(b->mat);
 }
 

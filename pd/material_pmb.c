@@ -139,9 +139,7 @@ static inline __attribute__((always_inline)) double pmb_point_avx512(const pf_pd
     for (int q = 0; q < 3; q++) F[q] = _mm512_fmadd_pd(fs, g.e[q], F[q]);
     fresh += pf_batch_mark_fresh(broken + k0, t.fail);
   }
-  double sm[PF_BATCH], smin = INFINITY;
-  _mm512_storeu_pd(sm, SM);
-  for (int l = 0; l < PF_BATCH; l++) smin = sm[l] < smin ? sm[l] : smin;
+  const double smin = pf_batch_min_v(SM);
   for (int q = 0; q < 3; q++) f[q] = pf_batch_sum_v(F[q]);
   *nfresh = fresh;
   return smin;
