@@ -23,13 +23,15 @@ sed -E 's/interval: 50/interval: 120/; s/interval: 40/interval: 0/' $tag.yaml > 
 ref=$(digest_of "$(run 1 "$exe" --quiet $tag.yaml 2>&1)")
 [ -n "$ref" ] || { echo "no reference digest"; exit 1; }
 
+# (The waits for the first checkpoint allow 2 minutes: under a loaded ctest -j the start of the
+# ranks can take tens of seconds, and a signal sent before it would test nothing.)
 # kill every rank of this test's run once ck.h5 exists (after the first checkpoint)
 kill_after_checkpoint() {
   local np=$1
   rm -f ck.h5 ck.h5.tmp
   run $np "$exe" --quiet $tag.yaml > /dev/null 2>&1 &
   local pid=$!
-  for _ in $(seq 1 600); do [ -f ck.h5 ] && break; sleep 0.05; done
+  for _ in $(seq 1 2400); do [ -f ck.h5 ] && break; sleep 0.05; done
   pkill -9 -f "perifem --quiet $tag.yaml"
   wait $pid 2>/dev/null
   [ -f ck.h5 ] || { echo "run on $np ranks: no checkpoint appeared"; fail=1; }
@@ -47,7 +49,7 @@ done
 # as the first checkpoint (step 40 of 240) exists, so that the run is surely still going.
 rm -f ck.h5
 out=$(run 2 "$exe" $tag.yaml 2>&1 & pid=$!
-      for _ in $(seq 1 600); do [ -f ck.h5 ] && break; sleep 0.01; done
+      for _ in $(seq 1 12000); do [ -f ck.h5 ] && break; sleep 0.01; done
       pkill -TERM -f "^$exe $tag.yaml"; wait $pid; echo "exit $?")
 echo "$out" | grep -q "stopped at step .* continue with --restart" || { echo "SIGTERM: no stop message: $out"; fail=1; }
 echo "$out" | grep -q "^exit 0" || { echo "SIGTERM: exit status not 0: $out"; fail=1; }
@@ -61,7 +63,7 @@ for k in 1 2 3 4; do
   rm -f ck.h5 ck.h5.tmp
   run 2 "$exe" --quiet ${tag}_every.yaml > /dev/null 2>&1 &
   pid=$!
-  for _ in $(seq 1 600); do [ -f ck.h5 ] && break; sleep 0.02; done
+  for _ in $(seq 1 6000); do [ -f ck.h5 ] && break; sleep 0.02; done
   sleep "0.$((RANDOM % 9 + 1))"
   pkill -9 -f "perifem --quiet ${tag}_every.yaml"
   wait $pid 2>/dev/null
