@@ -27,8 +27,9 @@ const pf_key pf_contact_pair_keys[] = {
     {"name", PF_KEY_STRING, 0, NULL, "", "name in the history (default <a>_<b>)", NULL},
     {"method", PF_KEY_STRING, 0, "surface", "", "FE <-> PD: surface (closest point of the FE surface) | nodes (node-to-particle only)", NULL},
     {"surface", PF_KEY_STRING, 0, NULL, "", "FE <-> PD: side set of the FE mesh in contact (default: the whole boundary)", NULL},
-    {"radius", PF_KEY_REAL, 0, NULL, "m", "contact radius (default: short range 0.9 x the larger spacing; FE <-> PD half the PD spacing)", NULL},
-    {"stiffness", PF_KEY_REAL, 0, NULL, "N/m | N/m^7", "FE <-> PD: k (default K h of the PD body); short range: C (default 18 k_s / (pi delta^5))", NULL},
+    {"surfaces", PF_KEY_STRLIST, 0, NULL, "", "FE <-> FE: a side set of each body, in the order of bodies (default: the whole boundaries)", NULL},
+    {"radius", PF_KEY_REAL, 0, NULL, "m", "contact radius (default: short range 0.9 x the larger spacing; FE <-> PD half the PD spacing; FE <-> FE 0)", NULL},
+    {"stiffness", PF_KEY_REAL, 0, NULL, "N/m | N/m^7", "FE <-> PD: k (default K h of the PD body); FE <-> FE: k (default 10 K h of the softer body); short range: C (default 18 k_s / (pi delta^5))", NULL},
     {"spring_constant", PF_KEY_REAL, 0, NULL, "Pa", "short range: k_s (default: the larger bulk modulus)", NULL},
     {"horizon", PF_KEY_REAL, 0, NULL, "m", "short range: delta (default: the larger horizon)", NULL},
     {"friction", PF_KEY_REAL, 0, "0", "", "Coulomb friction coefficient", NULL},
@@ -36,7 +37,7 @@ const pf_key pf_contact_pair_keys[] = {
     PF_KEY_END};
 
 const pf_key pf_contact_keys[] = {
-    {"skin", PF_KEY_REAL, 0, NULL, "m", "search skin: the search is rebuilt when a point has moved half of it (default: the largest contact radius)", NULL},
+    {"skin", PF_KEY_REAL, 0, NULL, "m", "search skin: the search is rebuilt when a point has moved half of it (default: the largest contact radius, and half the finer nodal spacing of an FE <-> FE pair)", NULL},
     {"pairs", PF_KEY_LIST, 0, NULL, "", "bodies in contact", pf_contact_pair_keys},
     {"rigid_surfaces", PF_KEY_LIST, 0, NULL, "", "rigid spheres, planes, cylinders", pf_rigid_keys},
     PF_KEY_END};
@@ -51,10 +52,10 @@ static int pair_bodies(const pf_deck *d, const pf_node *map, int nbodies, const 
   int a, b;
   PF_CALL(pf_deck_body_index(d, pf_node_item(list, 0), "bodies", nbodies, names, &a));
   PF_CALL(pf_deck_body_index(d, pf_node_item(list, 1), "bodies", nbodies, names, &b));
-  if (bodies[a].is_fe && bodies[b].is_fe)
-    return pf_deck_error(d, list, "bodies", "contact between two finite-element bodies ('%s', '%s') is not supported",
-                         bodies[a].name, bodies[b].name);
-  if (bodies[b].is_fe) { int t = a; a = b; b = t; }
+  if (bodies[a].is_fe && a == b)
+    return pf_deck_error(d, list, "bodies", "self-contact of the finite-element body '%s' is not supported",
+                         bodies[a].name);
+  if (bodies[b].is_fe && !bodies[a].is_fe) { int t = a; a = b; b = t; }
   p->a = a, p->b = b;
   snprintf(p->name, sizeof p->name, "%s_%s", bodies[a].name, bodies[b].name);
   const char *name = NULL;
@@ -63,26 +64,56 @@ static int pair_bodies(const pf_deck *d, const pf_node *map, int nbodies, const 
   return 0;
 }
 
+/* The faces of FE body `fe` (index b) in contact: the side set named by the scalar `node` under
+ * `key`, or the whole boundary when node is NULL. */
+static int read_side(const pf_deck *d, const pf_node *node, const char *key, const pf_contact_body *fe, int b,
+                     pf_contact_side *side) {
+  int sideset = -1;
+  if (node) {
+    const char *name = pf_node_text(node);
+    for (int s = 0; s < fe->mesh->nsidesets; s++)
+      if (!strcmp(fe->mesh->sideset[s].name, name)) sideset = s;
+    if (sideset < 0) return pf_deck_error(d, node, key, "the mesh of body '%s' has no side set '%s'", fe->name, name);
+  }
+  side->body = b;
+  return pf_contact_surface_faces(fe->mesh, sideset, &side->face, &side->nface);
+}
+
+/* The faces of each mesh node of a side (CSR), for the nodal normals of FE <-> FE pairs. */
+static int side_node_faces(const pf_contact_body *fe, pf_contact_side *sd) {
+  pf_int nn = fe->mesh->nnodes;
+  PF_MALLOC(sd->node_off, nn + 1);
+  PF_MALLOC(sd->node_face, 4 * sd->nface);
+  for (pf_int f = 0; f < sd->nface; f++)
+    for (int q = 0; q < 4; q++) sd->node_off[sd->face[f].node[q] + 1]++;
+  for (pf_int i = 0; i < nn; i++) sd->node_off[i + 1] += sd->node_off[i];
+  for (pf_int f = 0; f < sd->nface; f++)
+    for (int q = 0; q < 4; q++) sd->node_face[sd->node_off[sd->face[f].node[q]]++] = f;
+  for (pf_int i = nn; i > 0; i--) sd->node_off[i] = sd->node_off[i - 1];
+  sd->node_off[0] = 0;
+  return 0;
+}
+
+static int refuse_short_range_keys(const pf_deck *d, const pf_node *map) {
+  for (const char *const *k = (const char *const[]){"spring_constant", "horizon", "all_points", NULL}; *k; k++)
+    if (pf_node_get(map, *k))
+      return pf_deck_error(d, pf_node_get(map, *k), *k, "'%s' is a key of short-range (PD <-> PD) pairs", *k);
+  return 0;
+}
+
 static int fe_pair(const pf_deck *d, const pf_node *map, const pf_contact_body *fe, const pf_contact_body *pd,
                    pf_contact_pair *p) {
-  const char *method = "surface", *surface = NULL;
+  const char *method = "surface";
   PF_CALL(pf_deck_string(d, map, "method", &method));
   if (!strcmp(method, "surface")) p->kind = PF_PAIR_SURFACE;
   else if (!strcmp(method, "nodes")) p->kind = PF_PAIR_NODES;
   else return pf_deck_error(d, pf_node_get(map, "method"), "method", "unknown method '%s' (known: surface, nodes)", method);
-  for (const char *const *k = (const char *const[]){"spring_constant", "horizon", "all_points", NULL}; *k; k++)
-    if (pf_node_get(map, *k))
-      return pf_deck_error(d, pf_node_get(map, *k), *k, "'%s' is a key of short-range (PD <-> PD) pairs", *k);
-  int sideset = -1;
-  PF_CALL(pf_deck_string(d, map, "surface", &surface));
-  if (surface) {
-    for (int s = 0; s < fe->mesh->nsidesets; s++)
-      if (!strcmp(fe->mesh->sideset[s].name, surface)) sideset = s;
-    if (sideset < 0)
-      return pf_deck_error(d, pf_node_get(map, "surface"), "surface", "the mesh of body '%s' has no side set '%s'",
-                           fe->name, surface);
-  }
-  PF_CALL(pf_contact_surface_faces(fe->mesh, sideset, &p->face, &p->nface));
+  PF_CALL(refuse_short_range_keys(d, map));
+  if (pf_node_get(map, "surfaces"))
+    return pf_deck_error(d, pf_node_get(map, "surfaces"), "surfaces",
+                         "'surfaces' is a key of FE <-> FE pairs (an FE <-> PD pair takes 'surface')");
+  p->nside = 1;
+  PF_CALL(read_side(d, pf_node_get(map, "surface"), "surface", fe, p->a, &p->side[0]));
   p->radius = 0.5 * pd->spacing;
   p->stiffness = pd->bulk_modulus * pd->spacing;
   PF_CALL(pf_deck_positive(d, map, "radius", &p->radius));
@@ -90,12 +121,46 @@ static int fe_pair(const pf_deck *d, const pf_node *map, const pf_contact_body *
   return 0;
 }
 
+/* Two FE bodies (docs/theory/contact.md sec. 2.4): each body's surface nodes against the other's
+ * faces, f = k (r_c - g) with r_c = 0 by default (the surfaces meet) and k = 10 K h of the softer
+ * side (K the bulk modulus, h the nodal spacing). `surface:` names a side set of each body, in
+ * the order of `bodies:`. */
+static int fe_fe_pair(const pf_deck *d, const pf_node *map, const pf_contact_body *a, const pf_contact_body *b,
+                      pf_contact_pair *p) {
+  const char *method = "surface";
+  PF_CALL(pf_deck_string(d, map, "method", &method));
+  if (strcmp(method, "surface"))
+    return pf_deck_error(d, pf_node_get(map, "method"), "method",
+                         "two finite-element bodies meet surface to surface only (got '%s')", method);
+  PF_CALL(refuse_short_range_keys(d, map));
+  if (pf_node_get(map, "surface"))
+    return pf_deck_error(d, pf_node_get(map, "surface"), "surface",
+                         "an FE <-> FE pair names a side set of each body under 'surfaces', in the order of 'bodies'");
+  const pf_node *key = pf_node_get(map, "surfaces");
+  if (key && pf_node_count(key) != 2)
+    return pf_deck_error(d, key, "surfaces", "names two side sets, one of each body, in the order of 'bodies' (got %d)",
+                         pf_node_count(key));
+  p->kind = PF_PAIR_SURFACES;
+  p->nside = 2;
+  PF_CALL(read_side(d, key ? pf_node_item(key, 0) : NULL, "surfaces", a, p->a, &p->side[0]));
+  PF_CALL(read_side(d, key ? pf_node_item(key, 1) : NULL, "surfaces", b, p->b, &p->side[1]));
+  PF_CALL(side_node_faces(a, &p->side[0]));
+  PF_CALL(side_node_faces(b, &p->side[1]));
+  p->radius = 0;
+  p->stiffness = 10 * fmin(a->bulk_modulus * a->spacing, b->bulk_modulus * b->spacing);
+  PF_CALL(pf_deck_real(d, map, "radius", &p->radius));
+  if (!(p->radius >= 0))
+    return pf_deck_error(d, pf_node_get(map, "radius"), "radius", "must not be negative (got %g)", p->radius);
+  PF_CALL(pf_deck_positive(d, map, "stiffness", &p->stiffness));
+  return 0;
+}
+
 static int short_range_pair(const pf_deck *d, const pf_node *map, const pf_contact_body *a, const pf_contact_body *b,
                             pf_contact_pair *p) {
   p->kind = PF_PAIR_SHORT_RANGE;
-  for (const char *const *k = (const char *const[]){"method", "surface", NULL}; *k; k++)
+  for (const char *const *k = (const char *const[]){"method", "surface", "surfaces", NULL}; *k; k++)
     if (pf_node_get(map, *k))
-      return pf_deck_error(d, pf_node_get(map, *k), *k, "'%s' is a key of FE <-> PD pairs", *k);
+      return pf_deck_error(d, pf_node_get(map, *k), *k, "'%s' is a key of pairs with an FE body", *k);
   double ks = fmax(a->bulk_modulus, b->bulk_modulus), delta = fmax(a->horizon, b->horizon);
   PF_CALL(pf_deck_positive(d, map, "spring_constant", &ks));
   PF_CALL(pf_deck_positive(d, map, "horizon", &delta));
@@ -111,7 +176,8 @@ static int read_pair(const pf_deck *d, const pf_node *map, int nbodies, const pf
                      pf_contact_pair *p) {
   PF_CALL(pair_bodies(d, map, nbodies, bodies, p));
   const pf_contact_body *a = &bodies[p->a], *b = &bodies[p->b];
-  if (a->is_fe) PF_CALL(fe_pair(d, map, a, b, p));
+  if (a->is_fe && b->is_fe) PF_CALL(fe_fe_pair(d, map, a, b, p));
+  else if (a->is_fe) PF_CALL(fe_pair(d, map, a, b, p));
   else PF_CALL(short_range_pair(d, map, a, b, p));
   PF_CALL(pf_deck_real(d, map, "friction", &p->friction));
   if (!(p->friction >= 0))
@@ -127,14 +193,16 @@ static int mark_surfaces(pf_contact *c) {
   for (int k = 0; k < c->npairs; k++) {
     const pf_contact_pair *p = &c->pair[k];
     c->body_used[p->a] = c->body_used[p->b] = 1;
-    if (p->kind == PF_PAIR_SHORT_RANGE) continue;
-    pf_int nn = c->body[p->a].mesh->nnodes;
-    if (!c->surface_node[p->a]) {
-      PF_MALLOC(c->surface_node[p->a], nn);
-      PF_MALLOC(c->node_view[p->a], nn);
+    for (int s = 0; s < p->nside; s++) {
+      const pf_contact_side *sd = &p->side[s];
+      pf_int nn = c->body[sd->body].mesh->nnodes;
+      if (!c->surface_node[sd->body]) {
+        PF_MALLOC(c->surface_node[sd->body], nn);
+        PF_MALLOC(c->node_view[sd->body], nn);
+      }
+      for (pf_int f = 0; f < sd->nface; f++)
+        for (int q = 0; q < 4; q++) c->surface_node[sd->body][sd->face[f].node[q]] = 1;
     }
-    for (pf_int f = 0; f < p->nface; f++)
-      for (int q = 0; q < 4; q++) c->surface_node[p->a][p->face[f].node[q]] = 1;
   }
   return 0;
 }
@@ -146,6 +214,8 @@ static int contact_setup(const pf_deck *d, const pf_node *map, pf_contact *c) {
   for (int k = 0; k < c->npairs; k++) {
     PF_CALL(read_pair(d, pf_node_item(pairs, k), c->nbodies, c->body, &c->pair[k]));
     rmax = fmax(rmax, c->pair[k].radius);
+    if (c->pair[k].kind == PF_PAIR_SURFACES) /* r_c may be 0: half the finer spacing */
+      rmax = fmax(rmax, 0.5 * fmin(c->body[c->pair[k].a].spacing, c->body[c->pair[k].b].spacing));
     c->has_fe |= c->pair[k].kind != PF_PAIR_SHORT_RANGE;
   }
   c->skin = rmax;
@@ -184,7 +254,9 @@ int pf_contact_create(const pf_deck *d, const pf_node *map, int nbodies, const p
 int pf_contact_destroy(pf_contact **cp) {
   pf_contact *c = *cp;
   if (!c) return 0;
-  for (int k = 0; c->pair && k < c->npairs; k++) free(c->pair[k].face);
+  for (int k = 0; c->pair && k < c->npairs; k++)
+    for (int s = 0; s < 2; s++)
+      free(c->pair[k].side[s].face), free(c->pair[k].side[s].node_off), free(c->pair[k].side[s].node_face);
   for (int b = 0; b < c->nbodies; b++) {
     if (c->surface_node) free(c->surface_node[b]);
     if (c->node_view) free(c->node_view[b]);
@@ -258,10 +330,18 @@ static double min_mass(const pf_contact_body *b, const pf_points *pts) {
   return m;
 }
 
+/* omega^2 of a point of mass m and spacing h pressed with stiffness k on a face of spacing l
+ * whose node of mass m_f carries up to (sqrt 2 l / h)^2 such points. */
+static double node_on_face_w2(double k, double m, double h, double mf, double l) {
+  double d = sqrt(2.0) * l, many = fmax(1.0, (d / h) * (d / h));
+  return k / m + k * many / mf;
+}
+
 /* 2 / omega for each pair: short range, a particle inside the spheres of radius r_c + h/2 of
  * partners filling it, omega^2 = C (4/3) pi (r_c + h/2)^3 / rho_min; FE <-> PD, a particle on one
  * face and a node carrying up to (face diagonal / h)^2 particles, omega^2 = k / m_p +
- * k max(1, (l / h)^2) / m_n (docs/theory/contact.md). */
+ * k max(1, (l / h)^2) / m_n; FE <-> FE, twice the larger of the two ways round
+ * (docs/theory/contact.md). */
 double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts) {
   double dt = INFINITY;
   for (int k = 0; k < c->npairs; k++) {
@@ -272,9 +352,10 @@ double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts) {
       double h = fmax(a->spacing, b->spacing), rho = fmin(a->density, b->density);
       w2 = p->stiffness * 4.0 / 3.0 * PF_PI * pow(p->radius + 0.5 * h, 3) / rho;
     } else {
-      double mp = pf_min_all(min_mass(b, pts)), mn = pf_min_all(min_mass(a, pts));
-      double l = a->spacing * sqrt(2.0), many = fmax(1.0, (l / b->spacing) * (l / b->spacing));
-      w2 = p->stiffness / mp + p->stiffness * many / mn;
+      double mb = pf_min_all(min_mass(b, pts)), ma = pf_min_all(min_mass(a, pts));
+      w2 = node_on_face_w2(p->stiffness, mb, b->spacing, ma, a->spacing);
+      if (p->kind == PF_PAIR_SURFACES) /* both passes: each node is pushed as a node and as a face's */
+        w2 = 2 * fmax(w2, node_on_face_w2(p->stiffness, ma, a->spacing, mb, b->spacing));
     }
     dt = fmin(dt, 2.0 / sqrt(w2));
   }

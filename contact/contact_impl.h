@@ -4,7 +4,19 @@
 
 #include "contact/contact.h"
 
-typedef enum { PF_PAIR_SHORT_RANGE, PF_PAIR_SURFACE, PF_PAIR_NODES } pf_pair_kind;
+/* SURFACE: PD particles against an FE surface; NODES: PD particles against FE surface nodes;
+ * SURFACES: two FE bodies, each one's surface nodes against the other's surface (two-pass). */
+typedef enum { PF_PAIR_SHORT_RANGE, PF_PAIR_SURFACE, PF_PAIR_NODES, PF_PAIR_SURFACES } pf_pair_kind;
+
+/* The surface of an FE body in a pair: its faces (mesh node indices). */
+typedef struct {
+  int body;
+  pf_contact_face *face;
+  pf_int nface;
+  double size;       /* largest node-to-node distance of a face at the last build, m */
+  pf_int *node_off;  /* SURFACES: [nnodes + 1] CSR of the faces of each mesh node */
+  pf_int *node_face;
+} pf_contact_side;
 
 /* One entry of `contact: pairs:`. */
 typedef struct {
@@ -15,11 +27,16 @@ typedef struct {
   double radius;     /* contact radius r_c, m */
   double stiffness;  /* short range: C in f = C (r_c - r) V_i V_j (N/m^7); FE: k in f = k (r_c - g) (N/m) */
   double friction;   /* Coulomb coefficient */
-  pf_contact_face *face; /* SURFACE / NODES: the FE surface (mesh node indices) */
-  pf_int nface;
-  double face_size;  /* largest face diagonal at the last build, m */
+  int nside;         /* SURFACE / NODES: 1 (body a's surface); SURFACES: 2 (a's, then b's) */
+  pf_contact_side side[2];
   double force[3];   /* total force on body a at the last evaluation (all ranks), N */
 } pf_contact_pair;
+
+/* The side of pair p whose faces the entities of body `body` meet: the other body's
+ * (SURFACES), else the FE body's. */
+static inline const pf_contact_side *pf_contact_facing(const pf_contact_pair *p, int body) {
+  return p->nside == 2 && body == p->a ? &p->side[1] : &p->side[0];
+}
 
 /* A uniform grid of bins over a set of points (counting sort, O(n + bins)). */
 typedef struct {

@@ -99,9 +99,10 @@ static void short_range(pf_contact *c, int k, pf_int e, pf_int j, double dt, dou
   sums[SUM_ENERGY] += 0.5 * 0.5 * p->stiffness * (c->vol[lo] * c->vol[hi]) * (p->radius - r) * (p->radius - r);
 }
 
-/* Push particle e by f = k (r_c - g) n + friction against a surface point of weights w on the
- * nodes nv[4] (n outward of the FE body, towards the particle); the nodes' shares go to l. */
-static int push(pf_contact *c, int k, pf_int e, const pf_int *nv, int nn, const double *w, double g,
+/* Push entity e by f = k (r_c - g) n + friction against a surface point of body `body` with
+ * weights w on the nodes nv[4] (n outward of that body, towards e); the nodes' shares go to l.
+ * The pair's force is the force on its body a: e's when e belongs to a, else the nodes'. */
+static int push(pf_contact *c, int k, int body, pf_int e, const pf_int *nv, int nn, const double *w, double g,
                 const double n[3], double dt, share_list *l, double *sums) {
   const pf_contact_pair *p = &c->pair[k];
   double vs[3] = {0, 0, 0}, ms = 0, vrel[3], ft[3], f[3];
@@ -112,31 +113,68 @@ static int push(pf_contact *c, int k, pf_int e, const pf_int *nv, int nn, const 
   for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * e + a] - vs[a];
   double F = p->stiffness * (p->radius - g);
   sums[SUM_DISSIPATION] += pf_contact_friction(p->friction, F, n, vrel, c->m[e] * ms / (c->m[e] + ms), dt, ft);
+  const double on_a = body == p->a ? -1.0 : 1.0;
   for (int a = 0; a < 3; a++) {
     f[a] = F * n[a] + ft[a];
-    c->force[3 * e + a] += f[a], sums[SUM_FORCE + 3 * k + a] -= f[a];
+    c->force[3 * e + a] += f[a], sums[SUM_FORCE + 3 * k + a] += on_a * f[a];
   }
   sums[SUM_ENERGY] += 0.5 * p->stiffness * (p->radius - g) * (p->radius - g);
   for (int q = 0; q < nn; q++)
-    if (w[q] != 0) PF_CALL(share_push(l, p->a, c->gid[nv[q]], k, c->gid[e], f, w[q]));
+    if (w[q] != 0) PF_CALL(share_push(l, body, c->gid[nv[q]], k, c->gid[e], f, w[q]));
   return 0;
 }
 
-/* Particle e against the closest face among its candidates [s, t) of pair k. */
+/* The normal of a quadrilateral, (x2 - x0) x (x3 - x1) (twice its area for a flat face). */
+static void face_normal(const double x[4][3], double n[3]) {
+  const double a[3] = {x[2][0] - x[0][0], x[2][1] - x[0][1], x[2][2] - x[0][2]};
+  const double b[3] = {x[3][0] - x[1][0], x[3][1] - x[1][1], x[3][2] - x[1][2]};
+  n[0] = a[1] * b[2] - a[2] * b[1], n[1] = a[2] * b[0] - a[0] * b[2], n[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* The view positions of face nd's nodes on body `body`; 0 when one is not in the view. */
+static int face_nodes(const pf_contact *c, const pf_int *view, const pf_int nd[4], double x[4][3], pf_int nv[4]) {
+  for (int v = 0; v < 4; v++) {
+    nv[v] = view[nd[v]];
+    if (nv[v] < 0) return 0;
+    memcpy(x[v], &c->y[3 * nv[v]], sizeof x[v]);
+  }
+  return 1;
+}
+
+/* The outward normal of FE node e on its own side of a pair of FE bodies: the sum of its
+ * faces' normals (area-weighted). */
+static void node_normal(const pf_contact *c, const pf_contact_side *own, pf_int e, double n[3]) {
+  const pf_int node = (pf_int)(c->gid[e] - c->body[own->body].gid0), *view = c->node_view[own->body];
+  n[0] = n[1] = n[2] = 0;
+  for (pf_int q = own->node_off[node]; q < own->node_off[node + 1]; q++) {
+    double x[4][3], nf[3];
+    pf_int nv[4];
+    if (!face_nodes(c, view, own->face[own->node_face[q]].node, x, nv)) continue;
+    face_normal((const double(*)[3])x, nf);
+    for (int a = 0; a < 3; a++) n[a] += nf[a];
+  }
+}
+
+/* Entity e (a particle, or an FE node of a pair of FE bodies) against the closest face among its
+ * candidates [s, t) of pair k, on the side its body faces. An FE node meets only the faces that
+ * face it, whose normal opposes its own: at an edge of the other body the side faces lie in the
+ * plane of the node's approach and would hide the face it hits (docs/theory/contact.md sec. 2.4). */
 static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double dt, share_list *l, double *sums) {
   const pf_contact_pair *p = &c->pair[k];
-  const pf_int *view = c->node_view[p->a];
-  double best = INFINITY, bg = 0, bn[3] = {0, 0, 0}, bw[4] = {0, 0, 0, 0};
+  const pf_contact_side *sd = pf_contact_facing(p, c->vbody[e]);
+  const pf_int *view = c->node_view[sd->body];
+  double best = INFINITY, bg = 0, bn[3] = {0, 0, 0}, bw[4] = {0, 0, 0, 0}, ne[3] = {0, 0, 0};
   pf_int bv[4] = {0, 0, 0, 0};
+  if (p->kind == PF_PAIR_SURFACES) node_normal(c, sd == &p->side[0] ? &p->side[1] : &p->side[0], e, ne);
   for (int64_t q = s; q < t; q++) {
-    const pf_int *nd = p->face[c->cand[q].j].node;
-    double x[4][3], cp[3], w[4], n[3];
+    double x[4][3], cp[3], w[4], n[3], nf[3];
     pf_int nv[4];
-    for (int v = 0; v < 4; v++) {
-      nv[v] = view[nd[v]];
-      if (nv[v] < 0) return PF_ERR_RUN; /* cannot happen: candidates have every node in the view */
-      memcpy(x[v], &c->y[3 * nv[v]], sizeof x[v]);
-    }
+    if (!face_nodes(c, view, sd->face[c->cand[q].j].node, x, nv))
+      return PF_ERR_RUN; /* cannot happen: candidates have every node in the view */
+    face_normal((const double(*)[3])x, nf);
+    if (nf[0] * ne[0] + nf[1] * ne[1] + nf[2] * ne[2] > 0 ||
+        (p->kind == PF_PAIR_SURFACES && nf[0] * ne[0] + nf[1] * ne[1] + nf[2] * ne[2] == 0))
+      continue;
     double g = pf_contact_face_closest((const double(*)[3])x, &c->y[3 * e], cp, w, n);
     if (fabs(g) < best) {
       best = fabs(g), bg = g;
@@ -144,7 +182,7 @@ static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double 
     }
   }
   if (best == INFINITY || bg >= p->radius) return 0;
-  return push(c, k, e, bv, 4, bw, bg, bn, dt, l, sums);
+  return push(c, k, sd->body, e, bv, 4, bw, bg, bn, dt, l, sums);
 }
 
 /* Node-to-particle: particle e against surface node j. */
@@ -155,7 +193,7 @@ static int node(pf_contact *c, int k, pf_int e, pf_int j, double dt, share_list 
   r = sqrt(r);
   if (r >= p->radius || r == 0) return 0;
   double n[3] = {d[0] / r, d[1] / r, d[2] / r}, w = 1;
-  return push(c, k, e, &j, 1, &w, r, n, dt, l, sums);
+  return push(c, k, p->a, e, &j, 1, &w, r, n, dt, l, sums);
 }
 
 /* The interactions of the owned particles [e0, e1): their forces (cleared first), the nodes'
@@ -169,7 +207,7 @@ static int particle_range(pf_contact *c, const pf_points *pts, pf_int e0, pf_int
       pf_contact_pair *p = &c->pair[k];
       int64_t t = q;
       while (t < c->cand_off[e + 1] && c->cand[t].pair == k) t++;
-      if (p->kind == PF_PAIR_SURFACE) PF_CALL(surface(c, k, e, q, t, dt, l, sums));
+      if (p->kind == PF_PAIR_SURFACE || p->kind == PF_PAIR_SURFACES) PF_CALL(surface(c, k, e, q, t, dt, l, sums));
       if (p->kind == PF_PAIR_NODES)
         for (int64_t s = q; s < t; s++) PF_CALL(node(c, k, e, c->cand[s].j, dt, l, sums));
       if (p->kind == PF_PAIR_SHORT_RANGE) { /* most candidates are out of reach: test that first */

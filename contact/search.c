@@ -169,34 +169,41 @@ int pf_contact_exchange(pf_contact *c, const pf_points *pts) {
   return exchange_motion(c);
 }
 
-/* The largest node-to-node distance of the faces of FE pairs that have a node this rank owns (the face's
- * other nodes are then in the store: FE bodies ghost the nodes of the elements of owned nodes).
- * Collective. */
-static int face_sizes(pf_contact *c, const pf_points *pts) {
-  for (int k = 0; k < c->npairs; k++) {
-    pf_contact_pair *p = &c->pair[k];
-    if (p->kind == PF_PAIR_SHORT_RANGE) continue;
-    const pf_contact_body *fe = &c->body[p->a];
-    pf_int *at;
-    PF_MALLOC(at, fe->mesh->nnodes);
-    for (pf_int q = 0; q < fe->mesh->nnodes; q++) at[q] = -1;
-    for (pf_int i = 0; i < pts->n_total; i++)
-      if (pts->body[i] == p->a) at[pts->gid[i] - fe->gid0] = i;
-    double size = 0;
-    for (pf_int f = 0; f < p->nface; f++) {
-      const pf_int *nd = p->face[f].node;
-      int owned = 0, have = 1;
-      for (int q = 0; q < 4; q++) {
-        owned |= at[nd[q]] >= 0 && at[nd[q]] < pts->n_owned;
-        have &= at[nd[q]] >= 0;
-      }
-      if (!owned || !have) continue;
-      for (int q = 0; q < 4; q++)
-        for (int r = q + 1; r < 4; r++) size = fmax(size, dist2(&pts->y[3 * at[nd[q]]], &pts->y[3 * at[nd[r]]]));
+/* The largest node-to-node distance of the faces of side sd that have a node this rank owns
+ * (the face's other nodes are then in the store: FE bodies ghost the nodes of the elements of
+ * owned nodes). Collective. */
+static int side_size(const pf_contact *c, const pf_points *pts, pf_contact_side *sd) {
+  const pf_contact_body *fe = &c->body[sd->body];
+  pf_int *at;
+  PF_MALLOC(at, fe->mesh->nnodes);
+  for (pf_int q = 0; q < fe->mesh->nnodes; q++) at[q] = -1;
+  for (pf_int i = 0; i < pts->n_total; i++)
+    if (pts->body[i] == sd->body) at[pts->gid[i] - fe->gid0] = i;
+  double size = 0;
+  for (pf_int f = 0; f < sd->nface; f++) {
+    const pf_int *nd = sd->face[f].node;
+    int owned = 0, have = 1;
+    for (int q = 0; q < 4; q++) {
+      owned |= at[nd[q]] >= 0 && at[nd[q]] < pts->n_owned;
+      have &= at[nd[q]] >= 0;
     }
-    free(at);
-    p->face_size = pf_max_all(sqrt(size));
+    if (!owned || !have) continue;
+    for (int q = 0; q < 4; q++)
+      for (int r = q + 1; r < 4; r++) size = fmax(size, dist2(&pts->y[3 * at[nd[q]]], &pts->y[3 * at[nd[r]]]));
   }
+  free(at);
+  sd->size = pf_max_all(sqrt(size));
+  return 0;
+}
+
+/* Each pair's largest face size (the larger of its sides'). Collective. */
+static double face_size(const pf_contact_pair *p) {
+  return p->nside == 2 ? fmax(p->side[0].size, p->side[1].size) : p->nside ? p->side[0].size : 0;
+}
+
+static int face_sizes(pf_contact *c, const pf_points *pts) {
+  for (int k = 0; k < c->npairs; k++)
+    for (int s = 0; s < c->pair[k].nside; s++) PF_CALL(side_size(c, pts, &c->pair[k].side[s]));
   return 0;
 }
 
@@ -303,24 +310,24 @@ static int point_candidates(pf_contact *c, const pf_grid *g, pf_int e, int k, in
   return 0;
 }
 
-/* The faces of pair k whose nodes are all in the view: centres (for the face grid) and boxes. */
+/* The faces of a pair's side whose nodes are all in the view: centres (for the face grid) and
+ * boxes. */
 typedef struct {
   pf_int n;
-  pf_int *face;   /* [n] face index of the pair */
+  pf_int *face;   /* [n] face index of the side */
   double *centre; /* [3n] */
   double *box;    /* [6n] */
   pf_grid grid;
 } face_set;
 
-static int face_set_build(const pf_contact *c, int k, face_set *s) {
-  const pf_contact_pair *p = &c->pair[k];
-  const pf_int *nv = c->node_view[p->a];
+static int face_set_build(const pf_contact *c, const pf_contact_pair *p, const pf_contact_side *sd, face_set *s) {
+  const pf_int *nv = c->node_view[sd->body];
   memset(s, 0, sizeof *s);
-  PF_MALLOC(s->face, p->nface);
-  PF_MALLOC(s->centre, 3 * p->nface);
-  PF_MALLOC(s->box, 6 * p->nface);
-  for (pf_int f = 0; f < p->nface; f++) {
-    const pf_int *nd = p->face[f].node;
+  PF_MALLOC(s->face, sd->nface);
+  PF_MALLOC(s->centre, 3 * sd->nface);
+  PF_MALLOC(s->box, 6 * sd->nface);
+  for (pf_int f = 0; f < sd->nface; f++) {
+    const pf_int *nd = sd->face[f].node;
     if (nv[nd[0]] < 0 || nv[nd[1]] < 0 || nv[nd[2]] < 0 || nv[nd[3]] < 0) continue;
     double *ce = &s->centre[3 * s->n], *bx = &s->box[6 * s->n];
     for (int a = 0; a < 3; a++) ce[a] = 0, bx[a] = INFINITY, bx[3 + a] = -INFINITY;
@@ -334,7 +341,7 @@ static int face_set_build(const pf_contact *c, int k, face_set *s) {
   }
   /* a box grown by r_c + skin that contains p has its centre within r_c + skin + 2 l of p (l the
    * largest node distance: the box's half diagonal is at most sqrt(3)/2 l... and 2 l covers it) */
-  return pf_contact_grid_build(&s->grid, s->n, s->centre, p->radius + c->skin + 2 * p->face_size);
+  return pf_contact_grid_build(&s->grid, s->n, s->centre, p->radius + c->skin + 2 * sd->size);
 }
 
 static void face_set_free(face_set *s) {
@@ -342,11 +349,13 @@ static void face_set_free(face_set *s) {
   pf_contact_grid_free(&s->grid);
 }
 
-/* Faces of pair k whose box, grown by r_c + skin, contains owned particle e. */
-static int face_candidates(pf_contact *c, const face_set *s, pf_int e, int k, int64_t *n) {
+/* Faces of side sd of pair k whose box, grown by r_c + skin, contains owned entity e. On a pair
+ * of two FE bodies a node does not meet the faces it belongs to (the bodies differ). */
+static int face_candidates(pf_contact *c, const face_set *s, const pf_contact_side *sd, pf_int e, int k,
+                           int64_t *n) {
   const double reach = c->pair[k].radius + c->skin, *y = &c->y[3 * e];
   int lo[3], hi[3];
-  pf_contact_grid_range(&s->grid, y, reach + 2 * c->pair[k].face_size, lo, hi);
+  pf_contact_grid_range(&s->grid, y, reach + 2 * sd->size, lo, hi);
   for (int z = lo[2]; z <= hi[2]; z++)
     for (int yy = lo[1]; yy <= hi[1]; yy++)
       for (int x = lo[0]; x <= hi[0]; x++) {
@@ -362,35 +371,45 @@ static int face_candidates(pf_contact *c, const face_set *s, pf_int e, int k, in
   return 0;
 }
 
+/* The candidates of owned entity e: a PD particle's in every pair of its body, an FE node's in
+ * the pairs of two FE bodies (the particle's owner computes each FE <-> PD interaction). */
+static int entity_candidates(pf_contact *c, const pf_grid *g, face_set (*fs)[2], pf_int e, int64_t *n) {
+  const int b = c->vbody[e], fe = c->body[b].is_fe;
+  for (int k = 0; k < c->npairs; k++) {
+    const pf_contact_pair *p = &c->pair[k];
+    if ((p->a != b && p->b != b) || (fe && p->kind != PF_PAIR_SURFACES)) continue;
+    if (p->kind == PF_PAIR_SURFACE || p->kind == PF_PAIR_SURFACES) {
+      const pf_contact_side *sd = pf_contact_facing(p, b);
+      PF_CALL(face_candidates(c, &fs[k][sd - p->side], sd, e, k, n));
+    } else PF_CALL(point_candidates(c, g, e, k, p->a == b ? p->b : p->a, n));
+  }
+  return 0;
+}
+
 static int build_candidates(pf_contact *c) {
   double cell = 0;
   for (int k = 0; k < c->npairs; k++) cell = fmax(cell, c->pair[k].radius + c->skin);
   pf_grid g;
   PF_CALL(pf_contact_grid_build(&g, c->nview, c->y, cell));
-  face_set *fs;
+  face_set(*fs)[2];
   PF_MALLOC(fs, c->npairs);
   int ierr = 0;
   for (int k = 0; k < c->npairs && !ierr; k++)
-    if (c->pair[k].kind == PF_PAIR_SURFACE) ierr = face_set_build(c, k, &fs[k]);
+    if (c->pair[k].kind == PF_PAIR_SURFACE || c->pair[k].kind == PF_PAIR_SURFACES)
+      for (int s = 0; s < c->pair[k].nside && !ierr; s++) ierr = face_set_build(c, &c->pair[k], &c->pair[k].side[s], &fs[k][s]);
   free(c->cand_off);
   c->cand_off = malloc(sizeof *c->cand_off * (size_t)(c->nown + 1));
   if (!c->cand_off) ierr = PF_ERR_MEMORY;
   int64_t n = 0;
   for (pf_int e = 0; e < c->nown && !ierr; e++) {
     c->cand_off[e] = n;
-    int b = c->vbody[e];
-    if (c->body[b].is_fe) continue; /* the particle's owner computes each FE <-> PD interaction */
-    for (int k = 0; k < c->npairs && !ierr; k++) {
-      const pf_contact_pair *p = &c->pair[k];
-      if (p->a != b && p->b != b) continue;
-      if (p->kind == PF_PAIR_SURFACE) ierr = face_candidates(c, &fs[k], e, k, &n);
-      else ierr = point_candidates(c, &g, e, k, p->a == b ? p->b : p->a, &n);
-    }
+    ierr = entity_candidates(c, &g, fs, e, &n);
     if (!ierr) qsort(&c->cand[c->cand_off[e]], (size_t)(n - c->cand_off[e]), sizeof *c->cand, cand_cmp);
   }
   if (c->cand_off) c->cand_off[c->nown] = n;
   for (int k = 0; k < c->npairs; k++)
-    if (c->pair[k].kind == PF_PAIR_SURFACE) face_set_free(&fs[k]);
+    if (c->pair[k].kind == PF_PAIR_SURFACE || c->pair[k].kind == PF_PAIR_SURFACES)
+      for (int s = 0; s < c->pair[k].nside; s++) face_set_free(&fs[k][s]);
   free(fs);
   pf_contact_grid_free(&g);
   return ierr;
@@ -414,7 +433,7 @@ int pf_contact_search(pf_contact *c, const pf_points *pts) {
    * the nodes of a face whose grown box holds a particle within r_c + skin + 2 l of it; and the
    * face may grow by the skin before the next build */
   for (int k = 0; k < c->npairs; k++)
-    c->margin = fmax(c->margin, c->pair[k].radius + 2 * c->skin + 2 * c->pair[k].face_size);
+    c->margin = fmax(c->margin, c->pair[k].radius + 2 * c->skin + 2 * face_size(&c->pair[k]));
   c->nview = c->nown;
   PF_CALL(send_lists(c));
   PF_CALL(send_ghosts(c));
