@@ -141,6 +141,17 @@ static int face_nodes(const pf_contact *c, const pf_int *view, const pf_int nd[4
   return 1;
 }
 
+/* 1 when point y lies over the face of normal nf (face_normal) whose closest point to y is cp:
+ * the offset y - cp along the face is below a tenth of the face's size (a node past the face's
+ * edge is beside the face, not over it, however far it is behind the face's plane). */
+static int projects_inside(const double nf[3], const double cp[3], const double y[3]) {
+  const double a2 = nf[0] * nf[0] + nf[1] * nf[1] + nf[2] * nf[2]; /* (2 area)^2 */
+  double d[3] = {y[0] - cp[0], y[1] - cp[1], y[2] - cp[2]};
+  const double dn = (d[0] * nf[0] + d[1] * nf[1] + d[2] * nf[2]) / a2;
+  for (int a = 0; a < 3; a++) d[a] -= dn * nf[a];
+  return d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= 0.01 * 0.5 * sqrt(a2);
+}
+
 /* The outward normal of FE node e on its own side of a pair of FE bodies: the sum of its
  * faces' normals (area-weighted). */
 static void node_normal(const pf_contact *c, const pf_contact_side *own, pf_int e, double n[3]) {
@@ -157,8 +168,10 @@ static void node_normal(const pf_contact *c, const pf_contact_side *own, pf_int 
 
 /* Entity e (a particle, or an FE node of a pair of FE bodies) against the closest face among its
  * candidates [s, t) of pair k, on the side its body faces. An FE node meets only the faces that
- * face it, whose normal opposes its own: at an edge of the other body the side faces lie in the
- * plane of the node's approach and would hide the face it hits (docs/theory/contact.md sec. 2.4). */
+ * face it, whose normal opposes its own (at an edge of the other body the side faces lie in the
+ * plane of the node's approach and would hide the face it hits). A face counts an entity behind
+ * its plane as inside only when the entity lies over it: one beside a convex edge is behind the
+ * plane of the face but outside the body (docs/theory/contact.md sec. 2, 2.4). */
 static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double dt, share_list *l, double *sums) {
   const pf_contact_pair *p = &c->pair[k];
   const pf_contact_side *sd = pf_contact_facing(p, c->vbody[e]);
@@ -172,10 +185,10 @@ static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double 
     if (!face_nodes(c, view, sd->face[c->cand[q].j].node, x, nv))
       return PF_ERR_RUN; /* cannot happen: candidates have every node in the view */
     face_normal((const double(*)[3])x, nf);
-    if (nf[0] * ne[0] + nf[1] * ne[1] + nf[2] * ne[2] > 0 ||
-        (p->kind == PF_PAIR_SURFACES && nf[0] * ne[0] + nf[1] * ne[1] + nf[2] * ne[2] == 0))
-      continue;
+    const double facing = nf[0] * ne[0] + nf[1] * ne[1] + nf[2] * ne[2];
+    if (facing > 0 || (p->kind == PF_PAIR_SURFACES && facing == 0)) continue;
     double g = pf_contact_face_closest((const double(*)[3])x, &c->y[3 * e], cp, w, n);
+    if (g < 0 && !projects_inside(nf, cp, &c->y[3 * e])) continue;
     if (fabs(g) < best) {
       best = fabs(g), bg = g;
       memcpy(bn, n, sizeof bn), memcpy(bw, w, sizeof bw), memcpy(bv, nv, sizeof bv);
