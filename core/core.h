@@ -237,6 +237,9 @@ int pf_point_cloud_from_deck(const pf_deck *d, const pf_node *geometry, pf_point
 int pf_point_cloud_free(pf_point_cloud *pc);
 /* Simple cubic lattice origin + h*(i,j,k) inside region (boundary inclusive to 1e-9 h). */
 int pf_lattice_fill(const pf_region *r, double h, const double origin[3], pf_point_cloud *pc);
+/* The polar lattice of a cylinder or tube (core/lattice_polar.c): layers, rings and sectors
+ * of edge about h tiling the shape, a point at each cell's centre with the cell's volume. */
+int pf_polar_fill(const pf_region *r, double h, pf_point_cloud *pc);
 int pf_point_file_read(const char *path, pf_point_cloud *pc);
 /* Permutation that orders points along a Morton (Z-order) curve. */
 int pf_morton_order(pf_int n, const double *X, pf_int *perm);

@@ -20,6 +20,8 @@ const pf_key pf_geometry_keys[] = {
     {"height", PF_KEY_REAL, 0, NULL, "m", "cylinder height along the axis", NULL},
     {"spacing", PF_KEY_REAL, 0, NULL, "m", "lattice spacing h (each point stands for an h^3 cell)",
      NULL},
+    {"lattice", PF_KEY_STRING, 0, "cubic", "",
+     "cubic (origin + h (i, j, k) inside the shape) | polar (cylinder: rings of cells tiling it, core/lattice_polar.c)", NULL},
     {"origin", PF_KEY_VEC3, 0, "[0, 0, 0]", "m",
      "a lattice point; points are origin + h (i, j, k) inside the shape, boundary included", NULL},
     {"perturbation", PF_KEY_REAL, 0, "0", "",
@@ -253,6 +255,19 @@ int pf_point_cloud_from_deck(const pf_deck *d, const pf_node *g, pf_point_cloud 
   if (!(amp >= 0 && amp < 0.5))
     return pf_deck_error(d, pf_node_get(g, "perturbation"), "perturbation",
                          "must be in [0, 0.5) of the spacing (got %g)", amp);
+  const char *lattice = "cubic";
+  PF_CALL(pf_deck_string(d, g, "lattice", &lattice));
+  if (strcmp(lattice, "cubic") && strcmp(lattice, "polar"))
+    return pf_deck_error(d, pf_node_get(g, "lattice"), "lattice", "unknown lattice '%s' (known: cubic, polar)", lattice);
+  if (!strcmp(lattice, "polar")) {
+    if (r.kind != PF_REGION_CYLINDER)
+      return pf_deck_error(d, pf_node_get(g, "lattice"), "lattice", "a polar lattice needs shape: cylinder");
+    if (pf_node_get(g, "origin"))
+      return pf_deck_error(d, pf_node_get(g, "origin"), "origin", "a polar lattice has no origin (its rings start at the inner radius)");
+    PF_CALL(pf_polar_fill(&r, h, pc));
+    if (amp > 0) perturb(pc, amp * h, (uint64_t)seed);
+    return 0;
+  }
   long i0[3], i1[3];
   double cells = lattice_range(&r, h, origin, i0, i1);
   if (!(cells < PF_LATTICE_MAX_CELLS))
