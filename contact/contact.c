@@ -75,8 +75,8 @@ static int read_side(const pf_deck *d, const pf_node *node, const char *key, con
       if (!strcmp(fe->mesh->sideset[s].name, name)) sideset = s;
     if (sideset < 0) return pf_deck_error(d, node, key, "the mesh of body '%s' has no side set '%s'", fe->name, name);
   }
-  side->body = b;
-  return pf_contact_surface_faces(fe->mesh, sideset, &side->face, &side->nface);
+  side->body = b, side->sideset = sideset;
+  return pf_contact_surface_faces(fe->mesh, sideset, NULL, &side->face, &side->nface);
 }
 
 /* The faces of each mesh node of a side (CSR), for the nodal normals of FE <-> FE pairs. */
@@ -187,9 +187,14 @@ static int read_pair(const pf_deck *d, const pf_node *map, int nbodies, const pf
 
 /* Mark the mesh nodes of each FE body that lie on some pair's surface. */
 static int mark_surfaces(pf_contact *c) {
-  PF_MALLOC(c->surface_node, c->nbodies);
-  PF_MALLOC(c->node_view, c->nbodies);
-  PF_MALLOC(c->body_used, c->nbodies);
+  if (!c->surface_node) {
+    PF_MALLOC(c->surface_node, c->nbodies);
+    PF_MALLOC(c->node_view, c->nbodies);
+    PF_MALLOC(c->body_used, c->nbodies);
+    PF_MALLOC(c->eroded_seen, c->nbodies);
+  }
+  for (int b = 0; b < c->nbodies; b++)
+    if (c->surface_node[b]) memset(c->surface_node[b], 0, (size_t)c->body[b].mesh->nnodes);
   for (int k = 0; k < c->npairs; k++) {
     const pf_contact_pair *p = &c->pair[k];
     c->body_used[p->a] = c->body_used[p->b] = 1;
@@ -204,6 +209,36 @@ static int mark_surfaces(pf_contact *c) {
         for (int q = 0; q < 4; q++) c->surface_node[sd->body][sd->face[f].node[q]] = 1;
     }
   }
+  return 0;
+}
+
+/* When elements of an FE body were deleted since the surfaces were built (fem/erosion.c), the
+ * pairs' sides on that body become the faces of its live elements (newly exposed faces
+ * included), the surface nodes are marked anew and the search is rebuilt. Every rank holds the
+ * same deleted elements, so every rank sees the same surfaces. */
+static int follow_erosion(pf_contact *c) {
+  int changed = 0;
+  for (int b = 0; b < c->nbodies; b++) {
+    long n = 0;
+    const uint8_t *dead = c->body[b].fem ? pf_fem_body_eroded(c->body[b].fem, &n) : NULL;
+    if (!dead || n == c->eroded_seen[b]) continue;
+    c->eroded_seen[b] = n, changed = 1;
+    for (int k = 0; k < c->npairs; k++)
+      for (int s = 0; s < c->pair[k].nside; s++) {
+        pf_contact_side *sd = &c->pair[k].side[s];
+        if (sd->body != b) continue;
+        PF_FREE(sd->face);
+        PF_CALL(pf_contact_surface_faces(c->body[b].mesh, sd->sideset, dead, &sd->face, &sd->nface));
+        if (sd->node_off) {
+          PF_FREE(sd->node_off);
+          PF_FREE(sd->node_face);
+          PF_CALL(side_node_faces(&c->body[b], sd));
+        }
+      }
+  }
+  if (!changed) return 0;
+  PF_CALL(mark_surfaces(c));
+  c->built = 0;
   return 0;
 }
 
@@ -261,7 +296,7 @@ int pf_contact_destroy(pf_contact **cp) {
     if (c->surface_node) free(c->surface_node[b]);
     if (c->node_view) free(c->node_view[b]);
   }
-  free(c->surface_node), free(c->node_view), free(c->body_used);
+  free(c->surface_node), free(c->node_view), free(c->body_used), free(c->eroded_seen);
   free(c->pair), free(c->body);
   free(c->local), free(c->gid), free(c->vbody), free(c->rank);
   free(c->y), free(c->v), free(c->vol), free(c->m), free(c->y_build);
@@ -311,6 +346,7 @@ static int sum_over_ranks(pf_contact *c, double *energy) {
 
 int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *energy, double *dissipation) {
   double t0 = pf_wtime();
+  PF_CALL(follow_erosion(c));
   if (!c->built) PF_CALL(pf_contact_collect_owned(c, pts));
   PF_CALL(pf_contact_exchange(c, pts));
   PF_CALL(pf_contact_search(c, pts));

@@ -74,6 +74,7 @@ typedef struct {
   pf_gid gid0;         /* global id of the body's first point (FE: of mesh node 0) */
   pf_int first, n;     /* the body's owned points [first, first + n) of the store */
   const pf_fem_mesh *mesh; /* FE: the whole mesh (every rank) */
+  const pf_fem_body *fem;  /* FE: the body (its deleted elements change the surface), or NULL */
   const pf_family *fam;    /* PD: the family of the owned points (for bonded-pair exclusion) */
 } pf_contact_body;
 
@@ -112,8 +113,10 @@ typedef struct {
   int face;
 } pf_contact_face;
 /* The boundary faces of a mesh (faces of exactly one element), or the sides of side set
- * `sideset` (index into m->sideset; -1: the whole boundary). Sorted by (elem, face). */
-int pf_contact_surface_faces(const pf_fem_mesh *m, int sideset, pf_contact_face **faces,
+ * `sideset` (index into m->sideset; -1: the whole boundary), leaving out the elements flagged in
+ * dead[nelem] (deleted by erosion; NULL: none), whose neighbours' faces then become boundary.
+ * Sorted by (elem, face). */
+int pf_contact_surface_faces(const pf_fem_mesh *m, int sideset, const uint8_t *dead, pf_contact_face **faces,
                              pf_int *nfaces);
 /* The point of quadrilateral face x[4] closest to p, the face taken as the four triangles
  * (x_a, x_a+1, centre), exact for a flat face. Returns the signed distance (positive on the

@@ -11,6 +11,7 @@ typedef enum { PF_PAIR_SHORT_RANGE, PF_PAIR_SURFACE, PF_PAIR_NODES, PF_PAIR_SURF
 /* The surface of an FE body in a pair: its faces (mesh node indices). */
 typedef struct {
   int body;
+  int sideset;       /* the side set of the body's mesh, or -1: its whole boundary */
   pf_contact_face *face;
   pf_int nface;
   double size;       /* largest node-to-node distance of a face at the last build, m */
@@ -60,6 +61,7 @@ struct pf_contact {
   pf_contact_body *body;  /* [nbodies] */
   uint8_t *body_used;     /* [nbodies] the body takes part in some pair */
   uint8_t **surface_node; /* [nbodies] FE bodies: [nnodes] 1 when on a pair's surface */
+  long *eroded_seen;      /* [nbodies] FE bodies: deleted elements when the surfaces were built */
   double skin;
   double margin;          /* ghost margin of the last build, m */
   int has_fe;             /* some pair is FE <-> PD: node shares travel between ranks */

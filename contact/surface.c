@@ -66,14 +66,14 @@ static void make_face(const pf_fem_mesh *m, pf_int e, int f, pf_contact_face *ou
   out->face = f;
 }
 
-/* Mark the element faces (6 e + f) that no other element has. */
-static int mark_boundary(const pf_fem_mesh *m, unsigned char *boundary) {
-  size_t nf = 6 * (size_t)m->nelem;
+/* Mark the element faces (6 e + f) of live elements that no other live element has. */
+static int mark_boundary(const pf_fem_mesh *m, const uint8_t *dead, unsigned char *boundary) {
+  size_t nf = 0;
   face_key *k;
-  PF_MALLOC(k, nf);
+  PF_MALLOC(k, 6 * (size_t)m->nelem);
   for (pf_int e = 0; e < m->nelem; e++)
-    for (int f = 0; f < 6; f++) {
-      face_key *q = &k[6 * (size_t)e + f];
+    for (int f = 0; f < 6 && !(dead && dead[e]); f++) {
+      face_key *q = &k[nf++];
       for (int i = 0; i < 4; i++) q->key[i] = m->conn[8 * (size_t)e + pf_hex8_face[f][i]];
       sort4(q->key);
       q->id = 6 * (pf_gid)e + f;
@@ -89,7 +89,7 @@ static int mark_boundary(const pf_fem_mesh *m, unsigned char *boundary) {
   return 0;
 }
 
-int pf_contact_surface_faces(const pf_fem_mesh *m, int sideset, pf_contact_face **faces,
+int pf_contact_surface_faces(const pf_fem_mesh *m, int sideset, const uint8_t *dead, pf_contact_face **faces,
                              pf_int *nfaces) {
   *faces = NULL;
   *nfaces = 0;
@@ -104,16 +104,18 @@ int pf_contact_surface_faces(const pf_fem_mesh *m, int sideset, pf_contact_face 
                " face %d (the mesh has %" PF_INT_FMT " elements, faces 0..5)",
                k, s->name, s->item[k], (int)s->face[k], m->nelem);
     PF_MALLOC(out, s->n);
-    for (pf_int k = 0; k < s->n; k++) make_face(m, s->item[k], s->face[k], &out[k]);
-    qsort(out, (size_t)s->n, sizeof *out, by_elem_face);
+    pf_int n = 0;
+    for (pf_int k = 0; k < s->n; k++)
+      if (!(dead && dead[s->item[k]])) make_face(m, s->item[k], s->face[k], &out[n++]);
+    qsort(out, (size_t)n, sizeof *out, by_elem_face);
     *faces = out;
-    *nfaces = s->n;
+    *nfaces = n;
     return 0;
   }
   size_t nf = 6 * (size_t)m->nelem, n = 0;
   unsigned char *boundary;
   PF_MALLOC(boundary, nf);
-  int ierr = mark_boundary(m, boundary);
+  int ierr = mark_boundary(m, dead, boundary);
   if (ierr) {
     free(boundary);
     return ierr;

@@ -33,7 +33,7 @@ static void contact_bodies(const pf_sim *sim, pf_contact_body *cb) {
       c->bulk_modulus = pf_fem_material_bulk_modulus(m);
       c->density = pf_fem_material_density(m);
       if (coupled) c->horizon = pf_pd_body_horizon(coupled), c->fam = pf_pd_body_family(coupled);
-      else c->mesh = pf_fem_body_mesh(sim->fem[b]);
+      else c->mesh = pf_fem_body_mesh(sim->fem[b]), c->fem = sim->fem[b];
     } else {
       c->bulk_modulus = pf_pd_body_bulk_modulus(sim->body[b]);
       c->density = pf_pd_body_density(sim->body[b]);

@@ -264,6 +264,12 @@ static void summary(const pf_sim *sim, const globals *g, double wall) {
     pf_log("  elements %.0f, element cycles per second %.4g, hourglass energy %.3g J (%.3g times the internal)\n",
            nel, sim->wall_loop > 0 ? nel * sim->step / sim->wall_loop : 0.0, v[G_HG],
            v[G_FEINT] != 0 ? v[G_HG] / v[G_FEINT] : 0.0);
+  for (int b = 0; b < sim->nbodies; b++) {
+    long n = 0;
+    if (sim->fem[b] && pf_fem_body_eroded(sim->fem[b], &n))
+      pf_log("  body '%s': %ld of %" PF_INT_FMT " elements deleted by erosion\n", sim->body_name[b], n,
+             pf_fem_body_mesh(sim->fem[b])->nelem);
+  }
   if (sim->contact) {
     long rebuilds;
     double sec;

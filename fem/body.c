@@ -34,6 +34,7 @@ const pf_key pf_fem_body_keys[] = {
     {"peridynamic", PF_KEY_MAP, 0, NULL, "",
      "couple a peridynamic operator on the nodes by force blending (docs/theory/coupling.md §3)",
      pf_pd_coupled_keys},
+    {"erosion", PF_KEY_MAP, 0, NULL, "", "delete elements that pass these limits (fem/erosion.c)", pf_fem_erosion_keys},
     {"initial_displacement", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m", "expressions in x, y, z; the stress follows it in hyperelastic and PD models (rate-form models start unstressed)", NULL},
     PF_KEY_END};
 
@@ -127,6 +128,7 @@ int pf_fem_body_create(const pf_deck *d, const pf_node *body, const pf_node *mat
   if (!ierr) ierr = read_options(d, body, b);
   if (!ierr) ierr = read_material(d, body, materials, b);
   if (!ierr) ierr = pf_fem_mesh_read(d, pf_node_get(body, "mesh"), &b->mesh);
+  if (!ierr) ierr = pf_fem_erosion_read(b, d, body);
   if (!ierr) ierr = nodal_volumes(b);
   if (!ierr) ierr = mesh_node_elements(&b->mesh, &b->mesh_node_off, &b->mesh_node_item);
   if (!ierr) ierr = pf_fem_body_coupling_read(b, body, materials);
@@ -147,7 +149,7 @@ int pf_fem_body_destroy(pf_fem_body **pb) {
   free(b->hgq), free(b->ref), free(b->fe), free(b->energy), free(b->node_off), free(b->node_item), free(b->buf);
   pf_pd_body_destroy(&b->pd);
   pf_expr_destroy(&b->beta_expr);
-  free(b->fsave);
+  free(b->fsave), free(b->mesh_eroded), free(b->due);
   PF_FREE(*pb);
   return 0;
 }

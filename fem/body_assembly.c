@@ -141,6 +141,9 @@ int pf_fem_body_attach(pf_fem_body *b, int body, pf_points *pts, pf_int first, p
   PF_MALLOC(b->fe, 24 * (size_t)b->nel);
   PF_MALLOC(b->energy, 3 * (size_t)b->nel);
   PF_MALLOC(b->buf, pf_fem_chunk_doubles(b->nqp, b->nstate));
+  free(b->due);
+  b->due = NULL, b->n_due = 0;
+  if (b->erosion) PF_MALLOC(b->due, b->nel);
   pf_fem_material_init(b->mat, (pf_int)nq, b->state);
   b->stable_dt = reference_stable_dt(b, pts);
   PF_CALL(pf_fem_body_coupling_attach(b, pts));
@@ -158,7 +161,9 @@ void pf_fem_node_force(const pf_fem_body *b, pf_int i, double f[3]) {
 int pf_fem_body_force(pf_fem_body *b, pf_points *pts, double dt, double t, long step) {
   b->t = t, b->step = step;
   if (b->pd) return pf_fem_body_coupled_force(b, pts, dt);
-  PF_CALL(pf_fem_elements_evaluate(b, pts, dt));
+  int ierr = pf_fem_elements_evaluate(b, pts, dt);
+  PF_CALL(pf_fem_erosion_sync(b)); /* (collective: also after a failed evaluation) */
+  if (ierr) return ierr;
   for (pf_int i = 0; i < b->n; i++) {
     double f[3];
     pf_fem_node_force(b, i, f);
@@ -203,7 +208,7 @@ int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts) {
     double w = 0, s[6] = {0}, h[16] = {0};
     for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
       pf_int e = b->node_item[q] / 8;
-      for (int g = 0; g < nq; g++) {
+      for (int g = 0; g < nq && !pf_fem_element_eroded(b, e); g++) {
         for (int c = 0; c < 6; c++) s[c] += vq[e] * b->sigma[6 * ((size_t)nq * e + g) + c];
         for (int k = 0; k < b->nstate && k < 16; k++) h[k] += vq[e] * b->state[(size_t)b->nstate * (nq * (size_t)e + g) + k];
         w += vq[e];

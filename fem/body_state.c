@@ -1,11 +1,11 @@
 /* The state of an FE body's elements as rows of a global table (one row per mesh element):
- * stress and material history at each quadrature point, the stiffness-form hourglass forces and
- * the element energies. Checkpoints write it, a restart or a re-partition gives it back. */
+ * stress and material history at each quadrature point, the stiffness-form hourglass forces,
+ * the element energies and whether the element is deleted (fem/erosion.c). Checkpoints write it, a restart or a re-partition gives it back. */
 #include "fem/fem_impl.h"
 
 #include <string.h>
 
-int pf_fem_body_state_ncomp(const pf_fem_body *b) { return b->nqp * (6 + b->nstate) + 12 + 3; }
+int pf_fem_body_state_ncomp(const pf_fem_body *b) { return b->nqp * (6 + b->nstate) + 12 + 3 + 1; }
 
 static void pack(const pf_fem_body *b, pf_int e, double *row) {
   const size_t nq = (size_t)b->nqp;
@@ -15,6 +15,7 @@ static void pack(const pf_fem_body *b, pf_int e, double *row) {
   row += (size_t)b->nstate * nq;
   memcpy(row, &b->hgq[12 * (size_t)e], sizeof(double) * 12);
   memcpy(row + 12, &b->energy[3 * (size_t)e], sizeof(double) * 3);
+  row[15] = pf_fem_element_eroded(b, e);
 }
 
 static void unpack(pf_fem_body *b, pf_int e, const double *row) {
@@ -41,6 +42,12 @@ pf_int pf_fem_body_state_get(const pf_fem_body *b, pf_gid *ids, double *data) {
 void pf_fem_body_state_set(pf_fem_body *b, const double *full) {
   const int nc = pf_fem_body_state_ncomp(b);
   for (pf_int e = 0; e < b->nel; e++) unpack(b, e, &full[(size_t)nc * b->eid[e]]);
+  if (!b->erosion) return;
+  b->n_eroded = 0;
+  for (pf_int e = 0; e < b->mesh.nelem; e++) {
+    b->mesh_eroded[e] = full[(size_t)nc * e + nc - 1] != 0;
+    b->n_eroded += b->mesh_eroded[e];
+  }
 }
 
 pf_int pf_fem_body_nlocal(const pf_fem_body *b) { return b->nel; }

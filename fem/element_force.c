@@ -90,6 +90,14 @@ static int bad_element(const pf_fem_body *b, pf_int e, double x[8][3], const cha
            b->eid[e] + 1, b->name, c[0], c[1], c[2], b->t, b->step, what, value);
 }
 
+/* A deleted element (fem/erosion.c) gives the material F = I and D = 0 at each point. */
+static void at_rest(int nq, double *F, double *D) {
+  for (int g = 0; g < nq; g++) {
+    for (int k = 0; k < 9; k++) F[9 * g + k] = k % 4 == 0;
+    memset(&D[6 * g], 0, sizeof(double) * 6);
+  }
+}
+
 /* Pass 1: kinematics at mid-step, rotate stress and hourglass forces, F and D for the material. */
 static int kinematics(pf_fem_body *b, const pf_points *p, pf_int e, double dt, double *F, double *D, scratch *s) {
   double X[8][3], x[8][3], xm[8][3], v[8][3], Bm[8][3], L[3][3], Lm[3][3], R[3][3];
@@ -221,10 +229,19 @@ int pf_fem_elements_evaluate(pf_fem_body *b, const pf_points *pts, double dt) {
   for (pf_int e0 = 0; e0 < b->nel; e0 += PF_FEM_CHUNK) {
     pf_int ne = b->nel - e0 < PF_FEM_CHUNK ? b->nel - e0 : PF_FEM_CHUNK;
     for (pf_int k = 0; k < ne; k++)
-      PF_CALL(kinematics(b, pts, e0 + k, dt, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
+      if (pf_fem_element_eroded(b, e0 + k)) at_rest(nq, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k]);
+      else PF_CALL(kinematics(b, pts, e0 + k, dt, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
     pf_fem_material_update(b->mat, ne * nq, dt, F, D, &b->sigma[6 * (size_t)nq * e0],
                            &b->state[(size_t)b->nstate * nq * e0], c);
-    for (pf_int k = 0; k < ne; k++) PF_CALL(element_forces(b, pts, e0 + k, dt, &c[(size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
+    for (pf_int k = 0; k < ne; k++) {
+      const pf_int e = e0 + k;
+      if (pf_fem_element_eroded(b, e)) {
+        memset(&b->fe[24 * (size_t)e], 0, sizeof(double) * 24);
+        continue;
+      }
+      PF_CALL(element_forces(b, pts, e, dt, &c[(size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
+      if (b->erosion && pf_fem_erosion_due(b, e, s[k].V / s[k].V0)) b->due[b->n_due++] = b->eid[e];
+    }
   }
   return 0;
 }

@@ -108,6 +108,9 @@ double pf_fem_body_stable_dt(const pf_fem_body *b);
 /* Energies of the elements this rank owns: [0] stress work (internal energy), [1] hourglass,
  * [2] bulk-viscosity work, J. */
 void pf_fem_body_energies(const pf_fem_body *b, double e[3]);
+/* The mesh-wide flags of deleted elements (`erosion:`; the same on every rank) and their count;
+ * NULL when the body has no erosion (fem/erosion.c). */
+const uint8_t *pf_fem_body_eroded(const pf_fem_body *b, long *count);
 /* Element count of the mesh; the mesh (for output connectivity). */
 const pf_fem_mesh *pf_fem_body_mesh(const pf_fem_body *b);
 const pf_fem_material *pf_fem_body_material(const pf_fem_body *b);

@@ -61,10 +61,28 @@ struct pf_fem_body {
   pf_expr *beta_expr; /* blending weight beta(x) */
   double *beta;      /* field "blending_weight" [store] */
   double *fsave;     /* [3n] scratch of the blended force */
+  /* erosion (fem/erosion.c) */
+  int erosion;          /* some limit is set */
+  double erode_eqps, erode_jmin, erode_jmax;
+  int eqps_slot;        /* material state index of "eqps", or -1 */
+  uint8_t *mesh_eroded; /* [mesh.nelem] deleted elements, the same on every rank */
+  long n_eroded;
+  pf_gid *due;          /* [nel] elements found due at the last evaluation, mesh indices */
+  pf_int n_due;
   double stable_dt;  /* from the last force evaluation */
   double t;          /* time and step of the evaluation, for error messages */
   long step;
 };
+
+/* fem/erosion.c: the `erosion:` map; whether element e (local) has reached a limit at volume
+ * ratio J; every rank's due elements merged into mesh_eroded (collective). */
+extern const pf_key pf_fem_erosion_keys[];
+int pf_fem_erosion_read(pf_fem_body *b, const pf_deck *d, const pf_node *body);
+int pf_fem_erosion_due(const pf_fem_body *b, pf_int e, double J);
+int pf_fem_erosion_sync(pf_fem_body *b);
+static inline int pf_fem_element_eroded(const pf_fem_body *b, pf_int e) {
+  return b->erosion && b->mesh_eroded[b->eid[e]];
+}
 
 /* fem/element_force.c: element forces of the body's local elements into b->fe, energies and
  * the stable step; returns 0 or an error naming a negative-Jacobian element. */

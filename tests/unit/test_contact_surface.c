@@ -114,7 +114,7 @@ static void check_boundary(int nx, int ny, int nz) {
   check_face_table(&m);
   pf_contact_face *faces = NULL;
   pf_int nf = -1;
-  PF_TEST_OK(pf_contact_surface_faces(&m, -1, &faces, &nf));
+  PF_TEST_OK(pf_contact_surface_faces(&m, -1, NULL, &faces, &nf));
   PF_TEST_TRUE(nf == 2 * (nx * ny + ny * nz + nz * nx));
   double cb[3] = {0, 0, 0};
   for (pf_int k = 0; k < m.nnodes; k++)
@@ -146,6 +146,43 @@ static void check_boundary(int nx, int ny, int nz) {
   block_free(&m);
 }
 
+/* Deleted elements (erosion) leave the surface and expose their live neighbours' faces: in a
+ * 3 x 3 x 3 block (54 boundary faces) deleting the centre element exposes its 6 neighbours'
+ * inner faces (60), deleting a corner too trades its 3 outer faces for its 3 neighbours' (60
+ * again); no face belongs to a deleted element, and each exposed face's outward normal points
+ * into the hole. */
+static void check_eroded(void) {
+  pf_fem_mesh m;
+  block_mesh(3, 3, 3, &m);
+  uint8_t dead[27] = {0};
+  pf_contact_face *faces = NULL;
+  pf_int nf = -1;
+  dead[13] = 1;
+  PF_TEST_OK(pf_contact_surface_faces(&m, -1, dead, &faces, &nf));
+  PF_TEST_TRUE(nf == 60);
+  double c13[3] = {0, 0, 0};
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) c13[i] += m.X[3 * (size_t)m.conn[8 * 13 + I] + i] / 8;
+  int inner = 0;
+  for (pf_int k = 0; k < nf; k++) {
+    PF_TEST_TRUE(faces[k].elem != 13);
+    double nrm[3], cf[3], d = 0;
+    face_normal(&m, faces[k].node, nrm, cf);
+    for (int i = 0; i < 3; i++) d += (cf[i] - c13[i]) * (cf[i] - c13[i]);
+    if (d > 0.7 * 0.7) continue; /* a face of the deleted cube (its centre ~0.5 away, the others > 1) */
+    inner++;
+    PF_TEST_TRUE(nrm[0] * (c13[0] - cf[0]) + nrm[1] * (c13[1] - cf[1]) + nrm[2] * (c13[2] - cf[2]) > 0);
+  }
+  PF_TEST_TRUE(inner == 6);
+  free(faces);
+  dead[0] = 1;
+  PF_TEST_OK(pf_contact_surface_faces(&m, -1, dead, &faces, &nf));
+  PF_TEST_TRUE(nf == 60);
+  for (pf_int k = 0; k < nf; k++) PF_TEST_TRUE(faces[k].elem != 13 && faces[k].elem != 0);
+  free(faces);
+  block_free(&m);
+}
+
 /* Side sets: 4 sides given out of order come back sorted by (element, face) with the nodes of
  * the face table; an empty side set gives 0 faces; a missing side set is an error. */
 static void check_sideset(void) {
@@ -163,7 +200,7 @@ static void check_sideset(void) {
   snprintf(m.sideset[1].name, sizeof m.sideset[1].name, "empty");
   pf_contact_face *faces = NULL;
   pf_int nf = -1;
-  PF_TEST_OK(pf_contact_surface_faces(&m, 0, &faces, &nf));
+  PF_TEST_OK(pf_contact_surface_faces(&m, 0, NULL, &faces, &nf));
   PF_TEST_TRUE(nf == 4);
   for (pf_int k = 0; k < nf && k < 4; k++) {
     PF_TEST_TRUE(faces[k].elem == 2 * k + 1 && faces[k].face == 1);
@@ -174,12 +211,12 @@ static void check_sideset(void) {
     PF_TEST_TRUE(nrm[0] > 0.9 * sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]));
   }
   free(faces);
-  PF_TEST_OK(pf_contact_surface_faces(&m, 1, &faces, &nf));
+  PF_TEST_OK(pf_contact_surface_faces(&m, 1, NULL, &faces, &nf));
   PF_TEST_TRUE(nf == 0 && faces != NULL);
   free(faces);
   pf_error_set_quiet(1);
-  PF_TEST_TRUE(pf_contact_surface_faces(&m, 2, &faces, &nf) != 0 && faces == NULL && nf == 0);
-  PF_TEST_TRUE(pf_contact_surface_faces(&m, -2, &faces, &nf) != 0);
+  PF_TEST_TRUE(pf_contact_surface_faces(&m, 2, NULL, &faces, &nf) != 0 && faces == NULL && nf == 0);
+  PF_TEST_TRUE(pf_contact_surface_faces(&m, -2, NULL, &faces, &nf) != 0);
   pf_error_clear();
   pf_error_set_quiet(0);
   block_free(&m);
@@ -352,6 +389,7 @@ int main(int argc, char **argv) {
   check_boundary(2, 2, 2);
   check_boundary(3, 1, 1);
   check_boundary(5, 4, 3);
+  check_eroded();
   check_sideset();
   check_closest_hand();
   check_closest_brute();
