@@ -215,7 +215,7 @@ static int mark_surfaces(pf_contact *c) {
 /* When elements of an FE body were deleted since the surfaces were built (fem/erosion.c), the
  * pairs' sides on that body become the faces of its live elements (newly exposed faces
  * included), the surface nodes are marked anew and the search is rebuilt. Every rank holds the
- * same deleted elements, so every rank sees the same surfaces. */
+ * same deleted elements, so every rank sees the same surfaces (docs/theory/contact.md sec. 2.5). */
 static int follow_erosion(pf_contact *c) {
   int changed = 0;
   for (int b = 0; b < c->nbodies; b++) {

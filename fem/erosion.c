@@ -1,7 +1,7 @@
 /* Element erosion (`erosion:` of an FE body): an element whose equivalent plastic strain or volume
  * ratio J = V / V0 passes the deck's limits is deleted, as explicit codes do for material that
  * has failed or flows through a gap (LS-DYNA *MAT_ADD_EROSION: MXEPS, and the volumetric
- * limits; Belytschko, Liu & Moran 2000, sec. 6.6 on element deletion; docs/theory/fem.md sec. 9).
+ * limits; Belytschko, Liu & Moran 2000, sec. 6.6 on element deletion; docs/theory/fem.md sec. 9a).
  * Deleted, it gives no force and no stable-step limit; its nodes keep their lumped masses (so
  * momentum is conserved), and a node whose elements are all deleted moves freely. The stress
  * work it took stays in the internal energy (the energy balance keeps it). Decisions are made

@@ -10,7 +10,8 @@
 #     (interval) is accepted (every restart here uses a deck with other output settings).
 #  5. Finite elements (the Taylor bar, cut to 200 steps: J2 history, viscous hourglass,
 #     adaptive step, rigid wall): a run with a checkpoint at step 160 on 2 ranks, restarted on
-#     3 and on 1, ends with the uninterrupted 1-rank run's digest.
+#     3 and on 1, ends with the uninterrupted 1-rank run's digest; the same with element
+#     erosion (elements deleted before and after the checkpoint).
 # usage: mpi_restart.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
@@ -86,6 +87,17 @@ run 2 "$exe" --quiet fe$tag.yaml > /dev/null 2>&1 || { echo "FE run with checkpo
 for np in 3 1; do
   d=$(digest_of "$(run $np "$exe" --quiet --restart ckfe.h5 fe$tag.yaml 2>&1)")
   [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "FE: restarted on $np ranks: digest '$d', uninterrupted '$ref'"; fail=1; }
+done
+# the same with element erosion at an eqps of 0.3 (259 elements deleted by step 80, 315 by the
+# checkpoint at step 160, 420 by step 200): the deleted elements travel with the checkpoint
+sed -E 's/^(\s*)element: reduced/\1element: reduced\n\1erosion: {plastic_strain: 0.3}/; s/ckfe.h5/ckfer.h5/' fe$tag.yaml > fer$tag.yaml
+grep -q "erosion:" fer$tag.yaml || { echo "FE erosion: the deck was not made"; fail=1; }
+ref=$(digest_of "$(run 1 "$exe" --quiet fer$tag.yaml 2>&1)")
+rm -f ckfer.h5
+run 2 "$exe" --quiet fer$tag.yaml > /dev/null 2>&1 || { echo "FE erosion run with checkpoints failed"; fail=1; }
+for np in 3 1; do
+  d=$(digest_of "$(run $np "$exe" --quiet --restart ckfer.h5 fer$tag.yaml 2>&1)")
+  [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "FE erosion: restarted on $np ranks: digest '$d', uninterrupted '$ref'"; fail=1; }
 done
 # PD materials with history: the elastic-plastic tube (tests/data/expanding_tube_ep.yaml,
 # yielding from the first steps; per-bond plastic extensions in /bonds/state) and the modified

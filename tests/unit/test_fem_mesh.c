@@ -253,6 +253,36 @@ static void test_taylor_bar(void) {
   pf_fem_mesh_free(&m);
 }
 
+/* meshes/expanding_tube_lexan.geo at h = 1.25 mm (the shipped deck's): two blocks, projectile
+ * then plug, of (n^2 + 4 n m) nz elements each, conforming (one mesh: the nodes of the plane
+ * z = L are shared, so there are (2 nz + 1) layers of nodes, not 2 (nz + 1)), the volume of the
+ * inscribed 4n-gon times 2L, each block below or above z = L. */
+static void test_expanding_tube_lexan(void) {
+  const double R = 6.35e-3, L = 25.4e-3, a = 0.5 * R, h = 1.25e-3;
+  long n = divisions(PF_PI * R / 2, h), mr = divisions(R - a, h), nz = divisions(L, h);
+  char path[4096], extra[256];
+  snprintf(path, sizeof path, "%s/../meshes/expanding_tube_lexan.geo", tests_dir);
+  snprintf(extra, sizeof extra, "  element_size: %.17g\n", h);
+  pf_fem_mesh m;
+  PF_TEST_OK(read_file(path, extra, &m));
+  const long per = (n * n + 4 * n * mr) * nz, section_nodes = (n + 1) * (n + 1) + 4 * n * mr;
+  PF_TEST_TRUE(m.nelem == 2 * per);
+  PF_TEST_TRUE(m.nnodes == section_nodes * (2 * nz + 1));
+  PF_TEST_TRUE(all_corners_positive(&m));
+  PF_TEST_TRUE(m.nblocks == 2 && !strcmp(m.block_name[0], "projectile") && !strcmp(m.block_name[1], "plug"));
+  long N = 4 * n, wrong = 0;
+  PF_TEST_CLOSE(mesh_volume(&m), 0.5 * N * R * R * sin(2 * PF_PI / N) * 2 * L, 1e-12, 0);
+  for (pf_int e = 0; e < m.nelem; e++)
+    for (int I = 0; I < 8; I++) {
+      double z = m.X[3 * (size_t)m.conn[8 * (size_t)e + I] + 2];
+      wrong += m.block[e] == 0 ? z > L * (1 + 1e-12) : z < L * (1 - 1e-12);
+    }
+  PF_TEST_TRUE(wrong == 0);
+  PF_TEST_TRUE(sides_on_plane(&m, "rear_face", 2, 0.0, (pf_int)(n * n + 4 * n * mr)));
+  PF_TEST_TRUE(sides_on_plane(&m, "far_face", 2, 2 * L, (pf_int)(n * n + 4 * n * mr)));
+  pf_fem_mesh_free(&m);
+}
+
 static void test_sphere(void) {
   const double R = 5e-3, a = 0.35 * R, h = R / 5;
   long n = divisions(R * acos(1.0 / 3), h), mr = divisions(R - a, h);
@@ -587,6 +617,7 @@ int main(int argc, char **argv) {
   test_bar();
   test_panel_plate();
   test_taylor_bar();
+  test_expanding_tube_lexan();
   test_sphere();
   test_subdivision();
   test_msh();
