@@ -12,6 +12,8 @@ for deck in ../inputs/*.yaml; do
   # keep the deck, replace the run length by 5 steps
   # and point the decks' relative mesh paths at the source tree's meshes/
   sed -E 's/^(\s*)final_time:.*/\1steps: 5/; s#\.\./meshes/#'"$PWD"'/../meshes/#' "$deck" > "$short"
+  grep -qE '^\s*steps: 5$' "$short" ||
+    { echo "$name: no 'final_time:' line of its own to cut the run at 5 steps (block style: time:, then final_time: on a line)"; fail=1; continue; }
   for run in 1 2; do
     out=$(cd "$scratch" && "$exe" "$name.yaml" 2>&1) || { echo "$name: exit $?: $out"; fail=1; continue; }
     digest[$run]=$(echo "$out" | sed -n 's/^state digest: //p')
