@@ -142,7 +142,7 @@ static int face_nodes(const pf_contact *c, const pf_int *view, const pf_int nd[4
 }
 
 /* 1 when point y lies over the face of normal nf (face_normal) whose closest point to y is cp:
- * the offset y - cp along the face is below a tenth of the face's size (a node past the face's
+ * the offset y - cp along the face is below a tenth of the face's size (a point past the face's
  * edge is beside the face, not over it, however far it is behind the face's plane). */
 static int projects_inside(const double nf[3], const double cp[3], const double y[3]) {
   const double a2 = nf[0] * nf[0] + nf[1] * nf[1] + nf[2] * nf[2]; /* (2 area)^2 */
