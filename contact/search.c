@@ -396,7 +396,8 @@ static int build_candidates(pf_contact *c) {
   int ierr = 0;
   for (int k = 0; k < c->npairs && !ierr; k++)
     if (c->pair[k].kind == PF_PAIR_SURFACE || c->pair[k].kind == PF_PAIR_SURFACES)
-      for (int s = 0; s < c->pair[k].nside && !ierr; s++) ierr = face_set_build(c, &c->pair[k], &c->pair[k].side[s], &fs[k][s]);
+      for (int s = 0; s < c->pair[k].nside && !ierr; s++)
+        ierr = face_set_build(c, &c->pair[k], &c->pair[k].side[s], &fs[k][s]);
   free(c->cand_off);
   c->cand_off = malloc(sizeof *c->cand_off * (size_t)(c->nown + 1));
   if (!c->cand_off) ierr = PF_ERR_MEMORY;

@@ -1,6 +1,7 @@
 /* The state of an FE body's elements as rows of a global table (one row per mesh element):
  * stress and material history at each quadrature point, the stiffness-form hourglass forces,
- * the element energies and whether the element is deleted (fem/erosion.c). Checkpoints write it, a restart or a re-partition gives it back. */
+ * the element energies and whether the element is deleted (fem/erosion.c). Checkpoints write
+ * it, a restart or a re-partition gives it back. */
 #include "fem/fem_impl.h"
 
 #include <string.h>
