@@ -81,24 +81,24 @@ echo "$out" | grep -q "'materials' differs from the deck the checkpoint" || { ec
 # finite elements
 sed -E 's/^(\s*)final_time:.*/\1steps: 200/; s#\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/../inputs/taylor_impact.yaml" > fe$tag.yaml
 printf 'restart:\n  file: ckfe.h5\n  interval: 80\n' >> fe$tag.yaml
-ref=$(digest_of "$(run 1 "$exe" --quiet fe$tag.yaml 2>&1)")
-rm -f ckfe.h5
-run 2 "$exe" --quiet fe$tag.yaml > /dev/null 2>&1 || { echo "FE run with checkpoints failed"; fail=1; }
-for np in 3 1; do
-  d=$(digest_of "$(run $np "$exe" --quiet --restart ckfe.h5 fe$tag.yaml 2>&1)")
-  [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "FE: restarted on $np ranks: digest '$d', uninterrupted '$ref'"; fail=1; }
-done
+# check_restart DECK CHECKPOINT LABEL: the uninterrupted 1-rank digest, then a 2-rank run with
+# checkpoints restarted on 3 and on 1 ranks must end with it
+check_restart() {
+  local ref d
+  ref=$(digest_of "$(run 1 "$exe" --quiet $1 2>&1)")
+  rm -f $2
+  run 2 "$exe" --quiet $1 > /dev/null 2>&1 || { echo "$3: run with checkpoints failed"; fail=1; }
+  for np in 3 1; do
+    d=$(digest_of "$(run $np "$exe" --quiet --restart $2 $1 2>&1)")
+    [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "$3: restarted on $np ranks: digest '$d', uninterrupted '$ref'"; fail=1; }
+  done
+}
+check_restart fe$tag.yaml ckfe.h5 FE
 # the same with element erosion at an eqps of 0.3 (259 elements deleted by step 80, 315 by the
 # checkpoint at step 160, 420 by step 200): the deleted elements travel with the checkpoint
 sed -E 's/^(\s*)element: reduced/\1element: reduced\n\1erosion: {plastic_strain: 0.3}/; s/ckfe.h5/ckfer.h5/' fe$tag.yaml > fer$tag.yaml
 grep -q "erosion:" fer$tag.yaml || { echo "FE erosion: the deck was not made"; fail=1; }
-ref=$(digest_of "$(run 1 "$exe" --quiet fer$tag.yaml 2>&1)")
-rm -f ckfer.h5
-run 2 "$exe" --quiet fer$tag.yaml > /dev/null 2>&1 || { echo "FE erosion run with checkpoints failed"; fail=1; }
-for np in 3 1; do
-  d=$(digest_of "$(run $np "$exe" --quiet --restart ckfer.h5 fer$tag.yaml 2>&1)")
-  [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "FE erosion: restarted on $np ranks: digest '$d', uninterrupted '$ref'"; fail=1; }
-done
+check_restart fer$tag.yaml ckfer.h5 "FE erosion"
 # PD materials with history: the elastic-plastic tube (tests/data/expanding_tube_ep.yaml,
 # yielding from the first steps; per-bond plastic extensions in /bonds/state) and the modified
 # Johnson-Cook bar (tests/data/damage_bar.yaml; stress, history and the last step's damage
@@ -118,12 +118,6 @@ sed -E 's/^(\s*)damage: \{law/\1formulation: corrected\n\1damage: {law/' cb$tag.
 sed -E 's#\.\./\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/data/sphere_on_block.yaml" > sb$tag.yaml
 for m in ep jc cb cc sb; do
   printf 'restart:\n  file: ck%s.h5\n  interval: %d\n' $m $(case $m in ep) echo 60 ;; jc) echo 150 ;; sb) echo 100 ;; *) echo 25 ;; esac) >> $m$tag.yaml
-  ref=$(digest_of "$(run 1 "$exe" --quiet $m$tag.yaml 2>&1)")
-  rm -f ck$m.h5
-  run 2 "$exe" --quiet $m$tag.yaml > /dev/null 2>&1 || { echo "$m: run with checkpoints failed"; fail=1; }
-  for np in 3 1; do
-    d=$(digest_of "$(run $np "$exe" --quiet --restart ck$m.h5 $m$tag.yaml 2>&1)")
-    [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "$m: restarted on $np ranks: digest '$d', uninterrupted '$ref'"; fail=1; }
-  done
+  check_restart $m$tag.yaml ck$m.h5 $m
 done
 exit $fail
