@@ -58,6 +58,14 @@ static int read_file(const char *path, const char *extra, pf_fem_mesh *m) {
   return read_deck(text, m);
 }
 
+/* A shipped geometry meshes/<file> meshed at element size h. */
+static int read_shipped(const char *file, double h, pf_fem_mesh *m) {
+  char path[4096], extra[256];
+  snprintf(path, sizeof path, "%s/../meshes/%s", tests_dir, file);
+  snprintf(extra, sizeof extra, "  element_size: %.17g\n", h);
+  return read_file(path, extra, m);
+}
+
 static void element_nodes(const pf_fem_mesh *m, pf_int e, double x[8][3]) {
   for (int a = 0; a < 8; a++)
     for (int i = 0; i < 3; i++) x[a][i] = m->X[3 * (size_t)m->conn[8 * (size_t)e + a] + i];
@@ -168,11 +176,8 @@ static void test_hex_volume(void) {
 static void test_bar(void) {
   const double Lx = 10e-3, Ly = 1e-3, Lz = 1e-3, h = 0.3e-3;
   long nx = divisions(Lx, h), ny = divisions(Ly, h), nz = divisions(Lz, h);
-  char path[4096], extra[256];
-  snprintf(path, sizeof path, "%s/../meshes/bar.geo", tests_dir);
-  snprintf(extra, sizeof extra, "  element_size: %.17g\n", h);
   pf_fem_mesh m;
-  PF_TEST_OK(read_file(path, extra, &m));
+  PF_TEST_OK(read_shipped("bar.geo", h, &m));
   PF_TEST_TRUE(m.nelem == nx * ny * nz);
   PF_TEST_TRUE(m.nnodes == (nx + 1) * (ny + 1) * (nz + 1));
   PF_TEST_CLOSE(mesh_volume(&m), Lx * Ly * Lz, 1e-12, 0);
@@ -187,6 +192,8 @@ static void test_bar(void) {
   pf_fem_mesh_free(&m);
   /* scale and translate: the bar twice as large, moved; element_size is after scale, so the
    * file is meshed at 1e-3 / 2 */
+  char path[4096];
+  snprintf(path, sizeof path, "%s/../meshes/bar.geo", tests_dir);
   PF_TEST_OK(read_file(path, "  element_size: 1e-3\n  scale: 2\n  translate: [1, -2, 3]\n", &m));
   double lo[3] = {INFINITY, INFINITY, INFINITY};
   for (pf_int i = 0; i < m.nnodes; i++)
@@ -205,11 +212,8 @@ static void test_bar(void) {
 static void test_panel_plate(void) {
   const double W = 60e-3, L = 80e-3, t = 8.5e-3, h = 2e-3;
   const long nx = divisions(W, h), ny = divisions(L, h), nz = divisions(t, h);
-  char path[4096], extra[256];
-  snprintf(path, sizeof path, "%s/../meshes/panel_plate.geo", tests_dir);
-  snprintf(extra, sizeof extra, "  element_size: %.17g\n", h);
   pf_fem_mesh m;
-  PF_TEST_OK(read_file(path, extra, &m));
+  PF_TEST_OK(read_shipped("panel_plate.geo", h, &m));
   PF_TEST_TRUE(nx == 30 && ny == 40 && nz == 5 && m.nelem == nx * ny * nz);
   PF_TEST_CLOSE(mesh_volume(&m), W * L * t, 1e-12, 0);
   PF_TEST_CLOSE(2 * 3e-3 + 4 * 2.5e-3 * 15e-3 / W, t, 1e-12, 0);
@@ -223,11 +227,8 @@ static void test_panel_plate(void) {
 static void test_taylor_bar(void) {
   const double R = 3.2e-3, L = 32.4e-3, a = 0.5 * R, h = 0.8e-3;
   long n = divisions(PF_PI * R / 2, h), mr = divisions(R - a, h), nz = divisions(L, h);
-  char path[4096], extra[256];
-  snprintf(path, sizeof path, "%s/../meshes/taylor_bar.geo", tests_dir);
-  snprintf(extra, sizeof extra, "  element_size: %.17g\n", h);
   pf_fem_mesh m;
-  PF_TEST_OK(read_file(path, extra, &m));
+  PF_TEST_OK(read_shipped("taylor_bar.geo", h, &m));
   PF_TEST_TRUE(m.nelem == (n * n + 4 * n * mr) * nz);
   PF_TEST_TRUE(all_corners_positive(&m));
   long N = 4 * n; /* boundary edges of the cross-section */
@@ -260,11 +261,8 @@ static void test_taylor_bar(void) {
 static void test_expanding_tube_lexan(void) {
   const double R = 6.35e-3, L = 25.4e-3, a = 0.5 * R, h = 1.25e-3;
   long n = divisions(PF_PI * R / 2, h), mr = divisions(R - a, h), nz = divisions(L, h);
-  char path[4096], extra[256];
-  snprintf(path, sizeof path, "%s/../meshes/expanding_tube_lexan.geo", tests_dir);
-  snprintf(extra, sizeof extra, "  element_size: %.17g\n", h);
   pf_fem_mesh m;
-  PF_TEST_OK(read_file(path, extra, &m));
+  PF_TEST_OK(read_shipped("expanding_tube_lexan.geo", h, &m));
   const long per = (n * n + 4 * n * mr) * nz, section_nodes = (n + 1) * (n + 1) + 4 * n * mr;
   PF_TEST_TRUE(m.nelem == 2 * per);
   PF_TEST_TRUE(m.nnodes == section_nodes * (2 * nz + 1));
@@ -286,11 +284,8 @@ static void test_expanding_tube_lexan(void) {
 static void test_sphere(void) {
   const double R = 5e-3, a = 0.35 * R, h = R / 5;
   long n = divisions(R * acos(1.0 / 3), h), mr = divisions(R - a, h);
-  char path[4096], extra[256];
-  snprintf(path, sizeof path, "%s/../meshes/sphere.geo", tests_dir);
-  snprintf(extra, sizeof extra, "  element_size: %.17g\n", h);
   pf_fem_mesh m;
-  PF_TEST_OK(read_file(path, extra, &m));
+  PF_TEST_OK(read_shipped("sphere.geo", h, &m));
   PF_TEST_TRUE(m.nelem == n * n * n + 6 * n * n * mr);
   PF_TEST_TRUE(all_corners_positive(&m));
   double rmax = 0;
