@@ -1,6 +1,7 @@
 /* Two bond-loop designs perifem does not use, timed against its PMB force pass (issue 9,
- * bench/README.md "What 10x would take"). All three on one 30^3 lattice (horizon 3 spacings,
- * 113 bonds a point inside, random displacements of 1e-6 m), interleaved, best of 9:
+ * bench/README.md "What 10x would take"). All three on test_bond_loop_speed's 30^3 lattice
+ * (pf_test_bond_lattice: horizon 3 spacings, 113 bonds a point inside, random displacements of
+ * up to 0.5e-6 m), interleaved, best of 9:
  *  - production: pf_pd_body_force, every directed bond evaluated at its owner (owner computes),
  *    double precision, AVX-512 batches of 8 (pd/material_pmb.c);
  *  - half: each pair once (j > i), its force added to i and subtracted from j (Newton's third
@@ -10,11 +11,12 @@
  *    double, the rest in single precision with the stretch written as
  *    s = (2 xi.eta + eta.eta) / (|xi| (|xi + eta| + |xi|)), which has no cancellation (exactly 0
  *    at rest), and the force sums in double.
- * Each prints its rate in directed bond evaluations per second, its ratio to production and its
- * largest force difference from production. Usage: bench_bond_variants (one rank). */
+ * Each prints its rate in directed bond evaluations per second, its ratio to production and
+ * its largest force difference from production. Usage: bench_bond_variants (one rank). */
 #include "core/simulation.h"
 #include "pd/bond_batch.h"
 #include "pd/pd.h"
+#include "test_common.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -22,34 +24,7 @@
 #include <string.h>
 
 #if defined(PF_BATCH_AVX512)
-static const double BULK = 1.0e9, HORIZON = 3.0001e-3;
-
-static pf_sim *lattice(void) {
-  const char *path = "/tmp/perifem_bench_bond_variants.yaml";
-  FILE *fp = fopen(path, "w");
-  if (!fp) return NULL;
-  fprintf(fp,
-          "materials: {m: {model: pmb, density: 1000, bulk_modulus: %g}}\n"
-          "bodies:\n  - {name: b, material: m, horizon: %.17g,\n"
-          "     geometry: {shape: box, lo: [0, 0, 0], hi: [29e-3, 29e-3, 29e-3], spacing: 1e-3},\n"
-          "     damage: {law: critical_stretch, critical_stretch: 0.5}}\n"
-          "time: {steps: 0, dt: 1e-9}\n",
-          BULK, HORIZON);
-  fclose(fp);
-  pf_sim_options opt = {.no_output = 1};
-  pf_sim *sim = NULL;
-  const int err = pf_sim_create(path, &opt, &sim);
-  remove(path);
-  if (err) return NULL;
-  pf_points *p = pf_sim_points(sim);
-  unsigned seed = 5;
-  for (pf_int k = 0; k < 3 * p->n_owned; k++) {
-    seed = seed * 1103515245u + 12345u;
-    p->u[k] = 1e-6 * ((double)((seed >> 8) & 0xffff) / 65536.0 - 0.5);
-    p->y[k] = p->X[k] + p->u[k];
-  }
-  return sim;
-}
+static const double BULK = 1.0e9, HORIZON = 3.0001e-3; /* those of pf_test_bond_lattice */
 
 /* The pairs (i, j > i) of the family, row by row, with 8 slack entries. */
 typedef struct {
@@ -174,9 +149,8 @@ static double max_diff(const double *a, int stride, const double *b, pf_int n) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  pf_sim *sim = lattice();
-  if (!sim) return 1;
+  pf_test_init(&argc, &argv);
+  pf_sim *sim = pf_test_bond_lattice("pmb");
   pf_points *p = pf_sim_points(sim);
   pf_pd_body *b = pf_sim_body(sim, 0);
   const pf_family *fam = pf_pd_body_family(b);
@@ -213,8 +187,7 @@ int main(int argc, char **argv) {
   pf_batch_records_free(&rec);
   free(s0), free(Fh), free(Fm), free(h.off), free(h.nb);
   pf_sim_destroy(&sim);
-  MPI_Finalize();
-  return 0;
+  return pf_test_finish();
 }
 #else
 int main(void) {

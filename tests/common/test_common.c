@@ -64,6 +64,26 @@ struct pf_sim *pf_test_sim(const char *tag, const char *deck_text) {
   return sim;
 }
 
+struct pf_sim *pf_test_bond_lattice(const char *model) {
+  char deck[1024];
+  snprintf(deck, sizeof deck,
+           "materials: {m: {model: %s, density: 1000, bulk_modulus: 1.0e9, shear_modulus: 0.6e9}}\n"
+           "bodies:\n  - {name: b, material: m, horizon: 3.0001e-3,\n"
+           "     geometry: {shape: box, lo: [0, 0, 0], hi: [29e-3, 29e-3, 29e-3], spacing: 1e-3},\n"
+           "     damage: {law: critical_stretch, critical_stretch: 0.5}}\n"
+           "time: {steps: 0, dt: 1e-9}\n",
+           model);
+  pf_sim *sim = pf_test_sim("bond_loop_speed", deck);
+  pf_points *p = pf_sim_points(sim);
+  unsigned seed = 5;
+  for (pf_int k = 0; k < 3 * p->n_owned; k++) {
+    seed = seed * 1103515245u + 12345u;
+    p->u[k] = 1e-6 * ((double)((seed >> 8) & 0xffff) / 65536.0 - 0.5);
+    p->y[k] = p->X[k] + p->u[k];
+  }
+  return sim;
+}
+
 void pf_test_print_digest(const char *tag, struct pf_sim *sim) {
   uint64_t h = pf_sim_digest(sim);
   if (getenv("PF_TEST_DIGESTS") && pf_comm_rank() == 0) printf("state digest (%s): %016" PRIx64 "\n", tag, h);

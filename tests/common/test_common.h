@@ -33,6 +33,11 @@ const char *pf_test_deck_variant(const char *deck, int n, const char *const *key
 void pf_test_remove_shared(const char *path);
 /* Build a simulation from deck text (no output files); aborts the test on failure. */
 struct pf_sim *pf_test_sim(const char *tag, const char *deck_text);
+/* The bond-loop benchmark lattice: a 30^3 box of 1 mm spacing, horizon 3 spacings (113 bonds a
+ * point inside), K = 1 GPa, G = 0.6 GPa, critical stretch 0.5, of the given PD model, with
+ * reproducible random displacements of up to 0.5e-6 m (test_bond_loop_speed,
+ * bench/bond_variants.c). */
+struct pf_sim *pf_test_bond_lattice(const char *model);
 /* One material point of the constitutive library, for the unit tests of fem/ models. */
 typedef struct {
   double F[9], D[6], sig[6], st[8], c; /* deformation gradient, rate, stress, history, wave speed */

@@ -12,26 +12,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-static pf_sim *lattice(const char *model) {
-  char deck[1024];
-  snprintf(deck, sizeof deck,
-           "materials: {m: {model: %s, density: 1000, bulk_modulus: 1.0e9, shear_modulus: 0.6e9}}\n"
-           "bodies:\n  - {name: b, material: m, horizon: 3.0001e-3,\n"
-           "     geometry: {shape: box, lo: [0, 0, 0], hi: [29e-3, 29e-3, 29e-3], spacing: 1e-3},\n"
-           "     damage: {law: critical_stretch, critical_stretch: 0.5}}\n"
-           "time: {steps: 0, dt: 1e-9}\n",
-           model);
-  pf_sim *sim = pf_test_sim("bond_loop_speed", deck);
-  pf_points *p = pf_sim_points(sim);
-  unsigned seed = 5;
-  for (pf_int k = 0; k < 3 * p->n_owned; k++) {
-    seed = seed * 1103515245u + 12345u;
-    p->u[k] = 1e-6 * ((double)((seed >> 8) & 0xffff) / 65536.0 - 0.5);
-    p->y[k] = p->X[k] + p->u[k];
-  }
-  return sim;
-}
-
 /* Bond i -> j: reference length r0, current length r, current vector e. */
 static void bond(const pf_points *p, pf_int i, pf_int j, double *r0, double *r, double e[3]) {
   double d2 = 0, e2 = 0;
@@ -92,7 +72,7 @@ static void reference_lps(const pf_family *fam, const pf_points *p, const double
 
 /* Best seconds of `repeats` runs of each, interleaved; ratio reference / batched. */
 static double race(const char *model, double floor) {
-  pf_sim *sim = lattice(model);
+  pf_sim *sim = pf_test_bond_lattice(model);
   pf_points *p = pf_sim_points(sim);
   pf_pd_body *b = pf_sim_body(sim, 0);
   const pf_family *fam = pf_pd_body_family(b);
