@@ -196,11 +196,14 @@ static int side_size(const pf_contact *c, const pf_points *pts, pf_contact_side 
   return 0;
 }
 
-/* Each pair's largest face size (the larger of its sides'). Collective. */
+/* A pair's largest face size: the largest of its sides' (0 for a short-range pair). */
 static double face_size(const pf_contact_pair *p) {
-  return p->nside == 2 ? fmax(p->side[0].size, p->side[1].size) : p->nside ? p->side[0].size : 0;
+  double size = 0;
+  for (int s = 0; s < p->nside; s++) size = fmax(size, p->side[s].size);
+  return size;
 }
 
+/* The face size of every pair's sides. Collective. */
 static int face_sizes(pf_contact *c, const pf_points *pts) {
   for (int k = 0; k < c->npairs; k++)
     for (int s = 0; s < c->pair[k].nside; s++) PF_CALL(side_size(c, pts, &c->pair[k].side[s]));
