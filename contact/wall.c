@@ -3,7 +3,12 @@
  * LS-DYNA Theory Manual ch. 26): a point found behind the plane after the drift is put back on
  * it and loses its inward normal velocity (a perfectly plastic impact of that node; the kinetic
  * energy removed, m (v.n)^2 / 2, is booked as the wall's dissipation), and a point on the plane
- * does not take the inward normal part of its force (that part is the wall's reaction). */
+ * does not take the inward normal part of its force (that part is the wall's reaction).
+ * With `separation: false` the wall is bilateral (Abaqus *SURFACE BEHAVIOR, NO SEPARATION): a
+ * point on the plane takes neither normal part of its force, so once it has hit the wall it slides
+ * on it for good. That is the roller u.n = 0 with which the Taylor-bar benchmark's frictionless
+ * wall is usually modelled (Abaqus Benchmarks Manual 1.3.10, "Impact of a copper rod": zero axial
+ * displacement on the impact end); docs/theory/fem.md sec. 9. */
 #include "contact/contact.h"
 
 #include <math.h>
@@ -14,6 +19,7 @@ struct pf_wall {
   char name[64];
   double p[3], n[3]; /* a point of the plane and the unit normal pointing to the free side */
   uint64_t bodies;   /* bit b: the wall acts on body b */
+  int separation;    /* 0: a point on the plane stays on it (bilateral) */
 };
 
 const pf_key pf_wall_keys[] = {
@@ -21,6 +27,9 @@ const pf_key pf_wall_keys[] = {
     {"point", PF_KEY_VEC3, 1, NULL, "m", "a point of the plane", NULL},
     {"normal", PF_KEY_VEC3, 1, NULL, "", "normal pointing to the side where the bodies are", NULL},
     {"bodies", PF_KEY_STRLIST, 0, "all", "", "the bodies the wall stops", NULL},
+    {"separation", PF_KEY_BOOL, 0, "true", "",
+     "false: a point that reaches the plane stays on it and slides (no separation; the roller of the Taylor-bar benchmark)",
+     NULL},
     PF_KEY_END};
 
 int pf_wall_create(const pf_deck *d, const pf_node *map, int nbodies, const char *const *body_names, pf_wall **out) {
@@ -32,6 +41,8 @@ int pf_wall_create(const pf_deck *d, const pf_node *map, int nbodies, const char
   snprintf(w->name, sizeof w->name, "%s", name);
   if (!ierr) ierr = pf_deck_vec3(d, map, "point", w->p);
   if (!ierr) ierr = pf_deck_unit_vec3(d, map, "normal", w->n);
+  w->separation = 1;
+  if (!ierr) ierr = pf_deck_bool(d, map, "separation", &w->separation);
   const pf_node *list = pf_node_get(map, "bodies");
   w->bodies = list ? 0 : ~(uint64_t)0;
   for (int k = 0; k < pf_node_count(list) && !ierr; k++) {
@@ -83,7 +94,7 @@ void pf_wall_enforce_force(const pf_wall *w, pf_points *p, double reaction[3]) {
     const double *y = &p->y[3 * (size_t)i];
     if (!acts_on(w, p, i) || gap(w, y) > 1e-9 * p->cell[i]) continue;
     double *f = &p->f[3 * (size_t)i], fn = f[0] * w->n[0] + f[1] * w->n[1] + f[2] * w->n[2];
-    if (fn >= 0) continue;
+    if (fn >= 0 && w->separation) continue;
     for (int a = 0; a < 3; a++) {
       f[a] -= fn * w->n[a];
       reaction[a] += fn * w->n[a]; /* the force the points press on the wall with */

@@ -1,5 +1,6 @@
 /* Taylor impact (inputs/taylor_impact.yaml): a copper bar, L0 = 32.4 mm, R0 = 3.2 mm, at 227 m/s
- * onto a rigid frictionless wall, J2 with linear hardening, to 80 us. References: final length
+ * onto a rigid frictionless wall that keeps the impact face on it (separation: false, the
+ * references' roller), J2 with linear hardening, to 80 us. References: final length
  * 21.42-21.66 mm and impact-face radius 7.0-7.25 mm (Simo 1992; Zienkiewicz et al. 1998;
  * Foulk et al. 2021 report 7.11-7.23 mm). The final length is the largest minus the smallest
  * z of the nodes; the face radius is the largest distance from the axis of the nodes that
@@ -8,7 +9,7 @@
  * (the face's nodes on the outer circle, r = 3.2 mm) is not round on the O-grid mesh; its mean
  * and smallest radius are printed beside the largest (docs/verification.md, the convergence
  * table).
- * usage: test_taylor [element_size]   (default: the deck's 0.8 mm; ctest's slow variant 0.4 mm) */
+ * usage: test_taylor [element_size]   (default: the deck's 0.6 mm; ctest's slow variant 0.4 mm) */
 #include "core/simulation.h"
 #include "fem/fem.h"
 #include "test_common.h"
