@@ -154,13 +154,10 @@ const char *pf_test_pamgen_box(int nx, int ny, int nz, const double lo[3], const
 
 int pf_test_material_load(const char *text, const char *name, int validate, pf_fem_material **m) {
   *m = NULL;
-  const char *path = pf_test_write_file(0, "fem_mat", text);
   pf_deck *d = NULL;
-  int ierr = pf_deck_load(path, &d);
-  if (!ierr && validate) ierr = pf_deck_validate(d, pf_deck_root(d), pf_fem_material_keys, "materials.test");
+  int ierr = pf_test_deck_text("fem_mat", text, validate ? pf_fem_material_keys : NULL, "materials.test", &d);
   if (!ierr) ierr = pf_fem_material_create(d, pf_deck_root(d), name, m);
   pf_deck_destroy(&d);
-  remove(path);
   return ierr;
 }
 
@@ -173,17 +170,31 @@ pf_fem_material *pf_test_material_must_load(const char *text, const char *name) 
   return m;
 }
 
-void pf_test_material_bad(const char *text, const char *name, int validate, const char *must_mention) {
-  pf_fem_material *m = NULL;
-  pf_error_clear();
-  const int ierr = pf_test_material_load(text, name, validate, &m);
-  if (ierr != PF_ERR_INPUT || m) {
-    fprintf(stderr, "bad deck accepted (ierr %d, validate %d):\n%s\n", ierr, validate, text);
+int pf_test_deck_text(const char *tag, const char *text, const pf_key *keys, const char *where, pf_deck **d) {
+  *d = NULL;
+  const char *path = pf_test_write_file(0, tag, text);
+  int ierr = pf_deck_load(path, d);
+  if (!ierr && keys) ierr = pf_deck_validate(*d, pf_deck_root(*d), keys, where);
+  remove(path);
+  if (ierr) pf_deck_destroy(d);
+  return ierr;
+}
+
+void pf_test_refused(int ierr, int made, const char *text, const char *must_mention) {
+  if (ierr != PF_ERR_INPUT || made) {
+    fprintf(stderr, "bad deck accepted (ierr %d):\n%s\n", ierr, text);
     pf_test_failures++;
   } else if (must_mention && !strstr(pf_error_message(), must_mention)) {
     fprintf(stderr, "error message '%s' does not mention '%s'\n", pf_error_message(), must_mention);
     pf_test_failures++;
   }
+}
+
+void pf_test_material_bad(const char *text, const char *name, int validate, const char *must_mention) {
+  pf_fem_material *m = NULL;
+  pf_error_clear();
+  const int ierr = pf_test_material_load(text, name, validate, &m);
+  pf_test_refused(ierr, m != NULL, text, must_mention);
   pf_fem_material_destroy(&m);
 }
 

@@ -38,6 +38,14 @@ struct pf_sim *pf_test_sim(const char *tag, const char *deck_text);
  * reproducible random displacements of up to 0.5e-6 m (test_bond_loop_speed,
  * bench/bond_variants.c). */
 struct pf_sim *pf_test_bond_lattice(const char *model);
+/* Deck text written to a scratch file and loaded, its root validated against keys (`where` names
+ * the section in messages) when keys is not NULL. *d is the deck (pf_deck_destroy it), NULL on
+ * an error; returns the first error. */
+int pf_test_deck_text(const char *tag, const char *text, const pf_key *keys, const char *where, pf_deck **d);
+/* The outcome of a deck that must be refused: ierr must be PF_ERR_INPUT, nothing made, and the
+ * error message must mention must_mention (when not NULL); a failure is counted and the deck
+ * printed otherwise. */
+void pf_test_refused(int ierr, int made, const char *text, const char *must_mention);
 /* One material point of the constitutive library, for the unit tests of fem/ models. */
 typedef struct {
   double F[9], D[6], sig[6], st[8], c; /* deformation gradient, rate, stress, history, wave speed */
