@@ -396,19 +396,8 @@ int pf_history_create(const char *path, int ncol, const char *const *names,
 int pf_history_append(pf_history *h, const double *row);
 int pf_history_destroy(pf_history **h);
 
-/* ---- small tensors (core/tensor.c) ------------------------------------------------ */
-/* Voigt order of symmetric tensors: component k is (pf_voigt_i[k], pf_voigt_j[k]) of
- * (xx, yy, zz, yz, xz, xy), tensor (not engineering) shear components. */
-extern const int pf_voigt_i[6], pf_voigt_j[6];
-/* inv = A^-1; returns det A (inv is not finite when det A = 0). */
-double pf_mat3_inverse(double A[3][3], double inv[3][3]);
-void pf_vec3_cross(const double a[3], const double b[3], double c[3]);
-/* The incremental rotation over dt of the spin W = skew L: R = (I - dt W/2)^-1 (I + dt W/2)
- * (Hughes & Winget 1980, eq. 34). */
-void pf_mat3_hughes_winget(double L[3][3], double dt, double R[3][3]);
-void pf_sym6_to_mat(const double s[6], double S[3][3]);
-/* s <- R s R^T */
-void pf_sym6_rotate(double R[3][3], double s[6]);
+/* ---- small tensors (core/tensor.h inline, core/tensor.c) ------------------------- */
+#include "core/tensor.h"
 /* The smallest eigenvalue of a symmetric A (only its upper triangle is read). */
 double pf_sym3_min_eigenvalue(double A[3][3]);
 /* The smallest lambda of A v = lambda B v, min_n (n.A n)/(n.B n), for symmetric A and positive
