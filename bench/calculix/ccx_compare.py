@@ -145,6 +145,24 @@ def read_exodus_mesh(path):
     return X, np.concatenate(conn)
 
 
+def mesh_cards(w, X, conn):
+    """*NODE (NSET=NALL; id = Exodus index + 1) and *ELEMENT (C3D8R, ELSET=EALL; Exodus HEX8
+    order is C3D8 order) cards of a mesh, one line at a time through w."""
+    w("*NODE, NSET=NALL")
+    for i in range(len(X)):
+        w(f"{i + 1}, {X[i, 0]:.13g}, {X[i, 1]:.13g}, {X[i, 2]:.13g}")
+    w("*ELEMENT, TYPE=C3D8R, ELSET=EALL")
+    for e in range(len(conn)):
+        w(f"{e + 1}, " + ", ".join(str(int(k)) for k in conn[e]))
+
+
+def nset_card(w, name, ids):
+    """A *NSET card of node ids, eight to a line."""
+    w(f"*NSET, NSET={name}")
+    for k in range(0, len(ids), 8):
+        w(", ".join(str(int(i)) for i in ids[k:k + 8]))
+
+
 def probe_nodes(X, tol=1e-9):
     ids = []
     for name, p in PROBES:
@@ -168,15 +186,8 @@ def cmd_inp(a):
     w("** Elastic steel bar driven at x = 0 by a prescribed displacement (see README.md).")
     w("*HEADING")
     w("perifem vs CalculiX: elastic bar, C3D8R, explicit")
-    w("*NODE, NSET=NALL")
-    for i in range(n):
-        w(f"{i + 1}, {X[i, 0]:.13g}, {X[i, 1]:.13g}, {X[i, 2]:.13g}")
-    w("*ELEMENT, TYPE=C3D8R, ELSET=EALL")
-    for e in range(ne):
-        w(f"{e + 1}, " + ", ".join(str(int(k)) for k in conn[e]))
-    w("*NSET, NSET=DRIVEN")
-    for k in range(0, len(driven), 8):
-        w(", ".join(str(i + 1) for i in driven[k:k + 8]))
+    mesh_cards(w, X, conn)
+    nset_card(w, "DRIVEN", driven + 1)
     w("*NSET, NSET=PROBES")
     w(", ".join(str(i + 1) for i in probes))
     w("*MATERIAL, NAME=STEEL")

@@ -19,31 +19,20 @@
       by more than T (relative, default 0.01) or a run did not reach 80 us.
 """
 import argparse
+import os
 import sys
 
 import netCDF4
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from ccx_compare import mesh_cards, nset_card, read_exodus_mesh  # noqa: E402
+
 V0, T_END = 227.0, 80e-6
 
 
-def mesh(path):
-    d = netCDF4.Dataset(path)
-    x = np.stack([d["coordx"][:], d["coordy"][:], d["coordz"][:]], 1)
-    blocks = [k for k in d.variables if k.startswith("connect")]
-    if len(blocks) != 1:
-        sys.exit(f"{path}: expected one element block, found {len(blocks)}")
-    return x, np.asarray(d[blocks[0]][:], dtype=int)
-
-
-def write_set(w, name, ids):
-    w(f"*NSET, NSET={name}")
-    for k in range(0, len(ids), 8):
-        w(", ".join(str(i) for i in ids[k:k + 8]))
-
-
 def write_inp(a):
-    x, conn = mesh(a.exodus)
+    x, conn = read_exodus_mesh(a.exodus)
     steps = T_END / a.dt
     if abs(steps - round(steps)) > 1e-6 or round(steps) % a.frequency:
         sys.exit(f"80 us / dt = {steps:g} increments: not a multiple of --frequency {a.frequency}")
@@ -54,14 +43,9 @@ def write_inp(a):
         w(f"** Taylor bar on the mesh of {a.exodus} (bench/calculix/ccx_taylor.py)")
         w("*HEADING")
         w("Taylor bar, copper J2, 227 m/s, roller on z = 0")
-        w("*NODE, NSET=NALL")
-        for i, p in enumerate(x):
-            w(f"{i + 1}, {p[0]:.12e}, {p[1]:.12e}, {p[2]:.12e}")  # ccx reads at most 20 characters a field
-        w("*ELEMENT, TYPE=C3D8R, ELSET=EALL")
-        for e, c in enumerate(conn):
-            w(f"{e + 1}, " + ", ".join(str(int(n)) for n in c))  # Exodus HEX8 order = C3D8 order
-        write_set(w, "FACE", face)
-        write_set(w, "MOVING", moving)
+        mesh_cards(w, x, conn)
+        nset_card(w, "FACE", face)
+        nset_card(w, "MOVING", moving)
         w("*MATERIAL, NAME=COPPER")
         w("*ELASTIC")
         w("117.e9, 0.35")
@@ -110,7 +94,7 @@ def measures(x, u):
 
 
 def compare(a):
-    x, _ = mesh(a.exodus)
+    x, _ = read_exodus_mesh(a.exodus)
     t_ccx, disp = last_displacements(a.frd)
     d = netCDF4.Dataset(a.exodus)
     names = [str(n).strip() for n in netCDF4.chartostring(d["name_nod_var"][:])]
