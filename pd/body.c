@@ -43,7 +43,9 @@ const pf_key pf_pd_body_keys[] = {
     {"formulation", PF_KEY_STRING, 0, "auto", "",
      "auto (partial stress at interior points whose family reaches another horizon, standard elsewhere) | "
      "standard | partial_stress (lps and correspondence materials) | corrected (the standard force less "
-     "its uniform-stress ghost force where the horizon varies; correspondence)", NULL},
+     "its uniform-stress ghost force where the horizon varies; correspondence) | consistent (the "
+     "standard energy form with ghost-force-free gradient weights where the horizon varies; "
+     "correspondence)", NULL},
     {"influence", PF_KEY_STRING, 0, "constant", "", "constant | inverse_distance | gaussian", NULL},
     {"influence_length", PF_KEY_REAL, 0, "horizon/2", "m", "gaussian: sigma in exp(-r^2/sigma^2)", NULL},
     {"partial_volumes", PF_KEY_BOOL, 0, "false", "",
@@ -177,24 +179,24 @@ static int read_horizon(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
 }
 
 static int read_formulation(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
-  const char *name = "auto", *names[] = {"auto", "standard", "partial_stress", "corrected"};
+  const char *name = "auto", *names[] = {"auto", "standard", "partial_stress", "corrected", "consistent"};
   PF_CALL(pf_deck_string(d, body, "formulation", &name));
-  for (int k = 0; k < 4; k++)
+  for (int k = 0; k < 5; k++)
     if (!strcmp(name, names[k])) {
       b->form = (pf_pd_formulation)k;
       return 0;
     }
   return pf_deck_error(d, pf_node_get(body, "formulation"), "formulation",
-                       "unknown formulation '%s' (known: auto, standard, partial_stress, corrected)", name);
+                       "unknown formulation '%s' (known: auto, standard, partial_stress, corrected, consistent)", name);
 }
 
 /* What a variable horizon and the partial-stress form need (docs/theory/coupling.md §1). */
 static int check_variable_horizon(const pf_deck *d, const pf_node *body, const pf_pd_body *b) {
   const pf_node *h = pf_node_get(body, "horizon"), *f = pf_node_get(body, "formulation");
   const pf_node *dmg = pf_node_get(body, "damage");
-  if (b->form == PF_PD_CORRECTED && b->ops != &pf_pd_material_correspondence)
-    return pf_deck_error(d, f, "formulation", "the corrected form needs a correspondence material (body '%s' "
-                         "has %s)", b->name, b->ops->name);
+  if ((b->form == PF_PD_CORRECTED || b->form == PF_PD_CONSISTENT) && b->ops != &pf_pd_material_correspondence)
+    return pf_deck_error(d, f, "formulation", "the %s form needs a correspondence material (body '%s' has %s)",
+                         b->form == PF_PD_CORRECTED ? "corrected" : "consistent", b->name, b->ops->name);
   if ((b->hz_expr || b->form == PF_PD_PARTIAL_STRESS) && !b->ops->partial_stress)
     return pf_deck_error(d, b->hz_expr ? h : f, b->hz_expr ? "horizon" : "formulation",
                          "a variable horizon and the partial-stress form need lps or a correspondence "
@@ -277,7 +279,7 @@ const pf_key pf_pd_coupled_keys[] = {
     {"horizon", PF_KEY_EXPR, 1, NULL, "m", "horizon at the nodes: a number or an expression in x, y, z", NULL},
     {"blending", PF_KEY_EXPR, 1, NULL, "",
      "blending weight beta(x, y, z) in [0, 1]: 1 peridynamics only, 0 elements only", NULL},
-    {"formulation", PF_KEY_STRING, 0, "auto", "", "auto | standard | partial_stress | corrected", NULL},
+    {"formulation", PF_KEY_STRING, 0, "auto", "", "auto | standard | partial_stress | corrected | consistent", NULL},
     {"influence", PF_KEY_STRING, 0, "constant", "", "constant | inverse_distance", NULL},
     {"hourglass", PF_KEY_MAP, 0, "type: stiffness, coefficient: 0.05", "", "zero-energy-mode control",
      pf_pd_hourglass_keys},
@@ -313,8 +315,8 @@ int pf_pd_body_find_bonds(pf_pd_body *b, const pf_pd_cloud *cloud, const pf_poin
 
 /* Is point i's own family complete (no free surface within its horizon)? Its first moment
  * sum_j V_j xi vanishes on a symmetric family; a surface point's is a sizeable fraction of
- * sum_j V_j |xi|. */
-static int family_complete(const pf_pd_body *b, const pf_points *pts, pf_int i) {
+ * sum_j V_j |xi|. (Declared in pd/pd_impl.h.) */
+int pf_pd_family_complete(const pf_pd_body *b, const pf_points *pts, pf_int i, double S[3]) {
   const pf_family *fam = &b->fam;
   double m1[3] = {0, 0, 0}, m0 = 0;
   for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
@@ -326,6 +328,7 @@ static int family_complete(const pf_pd_body *b, const pf_points *pts, pf_int i) 
     for (int a = 0; a < 3; a++) m1[a] += v * xi[a];
     m0 += v * r0;
   }
+  if (S) S[0] = m1[0], S[1] = m1[1], S[2] = m1[2];
   return sqrt(m1[0] * m1[0] + m1[1] * m1[1] + m1[2] * m1[2]) <= 0.01 * m0;
 }
 
@@ -352,8 +355,9 @@ static int set_regions(pf_pd_body *b, pf_points *pts) {
     int varies = 0, ps = b->form == PF_PD_PARTIAL_STRESS;
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++)
       varies |= b->hz[fam->neighbor[k]] != b->hz[i];
-    ps |= b->form == PF_PD_AUTO && varies && family_complete(b, pts, i);
-    b->region[i] = ps + 2 * (b->blend && b->blend[i] < 1) + 4 * (b->form == PF_PD_CORRECTED && varies);
+    ps |= b->form == PF_PD_AUTO && varies && pf_pd_family_complete(b, pts, i, NULL);
+    b->region[i] = ps + 2 * (b->blend && b->blend[i] < 1) + 4 * (b->form == PF_PD_CORRECTED && varies) +
+                   8 * (b->form == PF_PD_CONSISTENT && varies);
   }
   free(b->idle);
   b->idle = NULL;

@@ -59,6 +59,7 @@ typedef struct {
   double *K0;                         /* [9n] the whole family's shape tensor (broken bonds too) */
   int *nfam;                          /* [n] the number of bonds in the point's own family */
   double *ghost;                      /* field "ghost_correction" [3]: the corrected form's d_i */
+  double *lm;                         /* field "consistent_weights": the consistent form's multipliers */
   double *rate, *whg2, *cw; /* scratch [n]: beta / sigma_min(Fbar), omega_hg^2, wave speed */
   pf_int cap;
 } corr;
@@ -200,41 +201,73 @@ static double reference_step(const pf_pd_body *b, const pf_points *pts, pf_int i
   return 2.0 / sqrt(p->cl * p->cl * rate * rate + whg2);
 }
 
-/* The corrected form (docs/theory/coupling.md §2.5): under a uniform stress nu the standard force
- * of point i is V_i nu c_i, c_i = sum_j w V_j ([j in H_i] K_i^-1 + [i in H_j] K_j^-1) xi, zero on a
- * complete family of constant horizon; where the horizon varies the force keeps the part of it
- * a constant horizon would give, c_i^ref = 2 sum_{j in H_i} w V_j K_i^-1 xi (the surface traction
- * of the weak form), and the ghost force V_i nu_i d_i, d_i = c_i - c_i^ref, is taken off. d is
- * the reference geometry's: computed at t = 0, with the neighbours' K^-1 through a ghosted
- * field, and kept as a point field that migrates and is checkpointed (a neighbour's later broken
- * bonds must not change it on a re-partition or a restart). */
-static int ghost_vectors(pf_pd_body *b, pf_points *pts) {
-  corr *p = b->mat;
-  int any = 0, idx;
-  for (pf_int i = b->first; i < b->first + b->n; i++) any |= pf_pd_corrected_at(b, i);
-  if (!pf_sum_all(any)) return 0; /* (collective: the exchange below) */
-  PF_CALL(pf_points_field_register(pts, "ghost_correction", 3, PF_FIELD_RESTART, &idx));
-  p->ghost = pts->fields[idx].data;
-  if (!b->fresh) return 0;
+/* The uniform-stress ghost vector of the standard form (docs/theory/coupling.md §2.5): under a
+ * uniform stress nu the standard force of point i is V_i nu c_i, c_i = sum_j w V_j ([j in H_i]
+ * K_i^-1 + [i in H_j] K_j^-1) xi, zero on a complete family of constant horizon; where the horizon
+ * varies, the part of it a constant horizon would give is c_i^ref = 2 sum_{j in H_i} w V_j K_i^-1 xi
+ * (the surface traction of the weak form), and the ghost force is V_i nu_i d_i, d_i = c_i - c_i^ref.
+ * Into d[3 (i - first)] for the owned points whose region has a bit of mask (0 elsewhere), with the
+ * neighbours' K^-1 through a ghosted field. Collective. */
+static int ghost_vector(pf_pd_body *b, pf_points *pts, int mask, double *d) {
+  int idx;
   PF_CALL(pf_points_field_register(pts, "shape_tensor_inverse", 9, PF_FIELD_GHOST, &idx));
   double *kinv = pts->fields[idx].data;
   for (pf_int i = b->first; i < b->first + b->n; i++) pf_pd_shape_tensor_inverse(b, pts, i, &kinv[9 * i]);
   PF_CALL(pf_points_exchange(pts, kinv, 9));
   const pf_family *fam = &b->fam;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
-    double *d = &p->ghost[3 * i];
-    d[0] = d[1] = d[2] = 0.0;
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1] && pf_pd_corrected_at(b, i); k++) {
+    double *di = &d[3 * (i - b->first)];
+    di[0] = di[1] = di[2] = 0.0;
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1] && ((int)b->region[i] & mask); k++) {
       const pf_int j = fam->neighbor[k];
       double xi[3], r02 = 0;
       for (int a = 0; a < 3; a++) xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a], r02 += xi[a] * xi[a];
       const double r0 = sqrt(r02), hi = pf_pd_in_family(b, i, r0), hj = pf_pd_in_family(b, j, r0);
       const double w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
       for (int a = 0; a < 3; a++)
-        for (int c = 0; c < 3; c++) d[a] += w * (hj * kinv[9 * j + 3 * a + c] - hi * kinv[9 * i + 3 * a + c]) * xi[c];
+        for (int c = 0; c < 3; c++) di[a] += w * (hj * kinv[9 * j + 3 * a + c] - hi * kinv[9 * i + 3 * a + c]) * xi[c];
     }
   }
   return 0;
+}
+
+/* Does any point of the body, on any rank, have region bit mask? (collective) */
+static int any_region(const pf_pd_body *b, int mask) {
+  int any = 0;
+  for (pf_int i = b->first; i < b->first + b->n; i++) any |= ((int)b->region[i] & mask) != 0;
+  return pf_sum_all(any) > 0;
+}
+
+/* The corrected form (§2.5) takes V_i nu_i d_i off the standard force of its points. d is the
+ * reference geometry's: computed at t = 0 and kept as a point field that migrates and is
+ * checkpointed (a neighbour's later broken bonds must not change it on a re-partition or a
+ * restart). */
+static int ghost_vectors(pf_pd_body *b, pf_points *pts) {
+  corr *p = b->mat;
+  int idx;
+  if (!any_region(b, 4)) return 0;
+  PF_CALL(pf_points_field_register(pts, "ghost_correction", 3, PF_FIELD_RESTART, &idx));
+  p->ghost = pts->fields[idx].data;
+  return b->fresh ? ghost_vector(b, pts, 4, &p->ghost[3 * b->first]) : 0;
+}
+
+/* The consistent form (§2.6): the multipliers of its weight corrections, solved for at t = 0
+ * (pd/consistent.c) and kept as a ghosted point field that migrates and is checkpointed. */
+static int consistent_weights(pf_pd_body *b, pf_points *pts) {
+  corr *p = b->mat;
+  int idx;
+  if (!any_region(b, 8)) return 0;
+  PF_CALL(pf_points_field_register(pts, "consistent_weights", PF_CONSISTENT_NLM, PF_FIELD_GHOST | PF_FIELD_RESTART, &idx));
+  p->lm = pts->fields[idx].data;
+  if (b->fresh) {
+    double *d;
+    PF_MALLOC(d, 3 * (size_t)b->n + 1);
+    int ierr = ghost_vector(b, pts, 8, d);
+    if (!ierr) ierr = pf_pd_consistent_solve(b, pts, d, p->lm);
+    free(d);
+    PF_CALL(ierr);
+  }
+  return pf_points_exchange(pts, p->lm, PF_CONSISTENT_NLM);
 }
 
 /* Each owned point's whole own family (its broken bonds too, so the same after a re-partition or
@@ -302,6 +335,7 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
   if (b->fresh)
     for (pf_int i = b->first; i < b->first + b->n; i++) p->step[i] = reference_step(b, pts, i);
   PF_CALL(ghost_vectors(b, pts));
+  PF_CALL(consistent_weights(b, pts));
   return pf_points_exchange(pts, p->gx, GX);
 }
 
@@ -311,14 +345,19 @@ static void mat_mul(double A[3][3], double B[3][3], double C[3][3]) {
 }
 
 /* The shape tensor and the deformation and rate sums of point i over its intact bonds; fails
- * bonds beyond the critical stretch. Returns the number of intact bonds. */
+ * bonds beyond the critical stretch. At a point of the consistent form, also the corrections'
+ * sums H = sum_k Y (x) h_ik and Hd = sum_k Ydot (x) h_ik over its whole row (pd/consistent.c).
+ * Returns the number of intact bonds. */
 static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][3], double A[3][3],
-                     double B[3][3], double sums[2]) {
+                     double B[3][3], double H[3][3], double Hd[3][3], double sums[2]) {
+  const corr *p = b->mat;
   const pf_family *fam = &b->fam;
   const pf_int li = i - b->first;
+  const int consistent = pf_pd_consistent_at(b, i);
   double smin = INFINITY;
   int nb = 0;
   memset(K, 0, 9 * sizeof(double)), memset(A, 0, 9 * sizeof(double)), memset(B, 0, 9 * sizeof(double));
+  memset(H, 0, 9 * sizeof(double)), memset(Hd, 0, 9 * sizeof(double));
   sums[0] = sums[1] = 0.0;
   for (int64_t k = fam->offset[li]; k < fam->offset[li + 1]; k++) {
     if (fam->broken[k]) continue;
@@ -339,8 +378,14 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
       }
       smin = fmin(smin, s);
     }
-    if (!pf_pd_in_family(b, i, r0)) continue;
     const double w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    if (consistent) {
+      double h[3];
+      pf_pd_consistent_h(&p->lm[PF_CONSISTENT_NLM * i], &p->lm[PF_CONSISTENT_NLM * j], w, pts->vol[i], xi, h);
+      for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) H[r][c] += Y[r] * h[c], Hd[r][c] += Yd[r] * h[c];
+    }
+    if (!pf_pd_in_family(b, i, r0)) continue;
     for (int r = 0; r < 3; r++)
       for (int s = 0; s < 3; s++) {
         K[r][s] += w * xi[r] * xi[s];
@@ -390,15 +435,18 @@ static void at_rest(pf_pd_body *b, pf_int i, int detached) {
 static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
   corr *p = b->mat;
   const pf_int li = i - b->first;
-  double K[3][3], A[3][3], B[3][3], Ki[3][3], Fb[3][3], Fd[3][3], Fm[3][3], Fmi[3][3], L[3][3], R[3][3];
-  double *g = &p->gx[GX * i], *F = &p->F[9 * li], *D = &p->D[6 * li], sums[2];
-  const int nb = bond_sums(b, pts, i, K, A, B, sums);
+  double K[3][3], A[3][3], B[3][3], H[3][3], Hd[3][3], Ki[3][3], Fb[3][3], Fd[3][3], Fm[3][3], Fmi[3][3];
+  double L[3][3], R[3][3], *g = &p->gx[GX * i], *F = &p->F[9 * li], *D = &p->D[6 * li], sums[2];
+  const int nb = bond_sums(b, pts, i, K, A, B, H, Hd, sums);
   const double detK = pf_mat3_inverse(K, Ki), tr = (K[0][0] + K[1][1] + K[2][2]) / 3.0;
   int ok = nb >= 3 && detK > 1e-6 * tr * tr * tr && (nb == p->nfam[li] || spans(p, li, K));
   if (ok) {
     mat_mul(A, Ki, Fb), mat_mul(B, Ki, Fd);
     for (int r = 0; r < 3; r++)
-      for (int s = 0; s < 3; s++) Fm[r][s] = Fb[r][s] - 0.5 * b->dt * Fd[r][s];
+      for (int s = 0; s < 3; s++) {
+        Fb[r][s] += H[r][s], Fd[r][s] += Hd[r][s]; /* (zero but at the consistent form's points) */
+        Fm[r][s] = Fb[r][s] - 0.5 * b->dt * Fd[r][s];
+      }
     double J = Fb[0][0] * (Fb[1][1] * Fb[2][2] - Fb[1][2] * Fb[2][1]) -
                Fb[0][1] * (Fb[1][0] * Fb[2][2] - Fb[1][2] * Fb[2][0]) +
                Fb[0][2] * (Fb[1][0] * Fb[2][1] - Fb[1][1] * Fb[2][0]);
@@ -490,6 +538,27 @@ static int corr_pass1(pf_pd_body *b, pf_points *pts) {
   return pf_points_exchange(pts, p->gx, GX);
 }
 
+/* The consistent form's part of the pair force on i (before the factor V_i): P_i h_ij - (V_j / V_i)
+ * P_j h_ji, for the ends that are its points (docs/theory/coupling.md §2.6). */
+static void consistent_pair(const pf_pd_body *b, const pf_points *pts, pf_int i, pf_int j, double r0,
+                            const double xi[3], double f[3]) {
+  const corr *p = b->mat;
+  const int zi = pf_pd_consistent_at(b, i), zj = pf_pd_consistent_at(b, j);
+  if (!zi && !zj) return;
+  const double om = pf_pd_omega(&b->influence, r0), *li = &p->lm[PF_CONSISTENT_NLM * i], *lj = &p->lm[PF_CONSISTENT_NLM * j];
+  const double *Pi = &p->gx[GX * i + G_NU], *Pj = &p->gx[GX * j + G_NU], Vi = pts->vol[i], Vj = pts->vol[j];
+  double h[3];
+  if (zi) {
+    pf_pd_consistent_h(li, lj, om * Vj, Vi, xi, h);
+    for (int a = 0; a < 3; a++) f[a] += Pi[3 * a] * h[0] + Pi[3 * a + 1] * h[1] + Pi[3 * a + 2] * h[2];
+  }
+  if (zj) {
+    const double xr[3] = {-xi[0], -xi[1], -xi[2]}, s = Vj / Vi;
+    pf_pd_consistent_h(lj, li, om * Vi, Vj, xr, h);
+    for (int a = 0; a < 3; a++) f[a] -= s * (Pj[3 * a] * h[0] + Pj[3 * a + 1] * h[1] + Pj[3 * a + 2] * h[2]);
+  }
+}
+
 /* Pass 2: pair forces from both ends' force states and the hourglass control. A point detached
  * in this step's pass 1 has P K^-1 = 0 and no hourglass force (its Fbar is not defined); its
  * bonds fail at the start of the next step. With a variable horizon each end contributes only to
@@ -533,6 +602,7 @@ static int corr_force(pf_pd_body *b, pf_points *pts) {
         f[a] += standard ? w * t : 0.0;
         gam += (hi * ki * (pi - Z[a]) + hj * kj * (pj - Z[a])) * Y[a];
       }
+      if (p->lm) consistent_pair(b, pts, i, j, r0, xi, f);
       if (gam != 0 && r > 0 && !gi[G_DETACHED] && !gj[G_DETACHED]) {
         const double s = -w * gam / (r0 * r * r);
         for (int a = 0; a < 3; a++) fh[a] += s * Y[a];

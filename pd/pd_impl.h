@@ -13,8 +13,10 @@ typedef struct pf_pd_material_ops pf_pd_material_ops;
  * stress formulation"): the nonlocal divergence of nu = sum_j T<xi> (x) xi V_j. Auto: partial
  * stress at the interior points whose bond rows reach a point of another horizon (the
  * transition), standard elsewhere. Corrected: the standard force, less at the transition points
- * the ghost force it would give under their own uniform stress (§2.5). */
-typedef enum { PF_PD_AUTO, PF_PD_STANDARD, PF_PD_PARTIAL_STRESS, PF_PD_CORRECTED } pf_pd_formulation;
+ * the ghost force it would give under their own uniform stress (§2.5). Consistent: the standard
+ * (energy) form with the transition points' gradient weights corrected so that a uniform stress
+ * gives no ghost force (§2.6). */
+typedef enum { PF_PD_AUTO, PF_PD_STANDARD, PF_PD_PARTIAL_STRESS, PF_PD_CORRECTED, PF_PD_CONSISTENT } pf_pd_formulation;
 
 /* Damage laws (the list: pd/damage_critical_stretch.c). Stretch laws: a bond fails when its
  * stretch exceeds min(s0_i, s0_j) (both ends, as LAMMPS' peri pair styles), s0 constant or
@@ -42,7 +44,8 @@ struct pf_pd_body {
   double *hz;              /* field "horizon" [store]: each point's own horizon, ghosts too */
   double *region;          /* field "region" [store]: bit 0 (1) the partial-stress force, bit 1
                               (2) an overlap point (blending weight < 1), bit 2 (4) the
-                              ghost-corrected standard force; 0: the PD region */
+                              ghost-corrected standard force, bit 3 (8) the consistent
+                              weights; 0: the PD region */
   const double *blend;     /* coupled to FE elements: each store point's blending weight, or NULL */
   uint8_t *idle;           /* [n] coupled: 1 where beta = 0 at the point and its whole row (no PD
                               force is wanted there, nor its state by a neighbour), or NULL */
@@ -119,6 +122,7 @@ static inline int pf_pd_in_family(const pf_pd_body *b, pf_int i, double r0) {
 /* Does store point i take the partial-stress force? The ghost-corrected one? */
 static inline int pf_pd_partial_stress_at(const pf_pd_body *b, pf_int i) { return (int)b->region[i] & 1; }
 static inline int pf_pd_corrected_at(const pf_pd_body *b, pf_int i) { return (int)b->region[i] & 4; }
+static inline int pf_pd_consistent_at(const pf_pd_body *b, pf_int i) { return (int)b->region[i] & 8; }
 
 /* May the damage law fail the bond i - j? Only between points of the standard force: the
  * partial-stress transition carries no damage (seed 001: "not a good candidate for modeling
@@ -173,6 +177,27 @@ double pf_pd_shape_tensor_inverse(const pf_pd_body *b, const pf_points *pts, pf_
  * nu[stride * j], for i and every neighbour, ghosts included) over i's own family. */
 void pf_pd_partial_stress_force(const pf_pd_body *b, pf_points *pts, pf_int i, const double *nu,
                                 int stride, const double Ki[9]);
+
+/* Is store point i's own family complete (no free surface within its horizon: its first moment
+ * |sum_j V_j xi| is at most 1 % of sum_j V_j |xi|)? S gets the first moment (pd/body.c). */
+int pf_pd_family_complete(const pf_pd_body *b, const pf_points *pts, pf_int i, double S[3]);
+
+/* The consistent form (pd/consistent.c; docs/theory/coupling.md §2.6). A transition point i (region
+ * bit 8) forms Fbar_i = sum_k (y_k - y_i) (x) g_ik over its whole row, with
+ *   g_ik = w V_k K_i^-1 xi [k in H_i] + h_ik,   h_ik = w V_k (Lambda_i xi + V_i (mu_k - mu_i)),
+ * w = omega(|xi|), and the force is the energy's: f_i += V_i P_i g_ij - V_j P_j g_ji. The multipliers
+ * (PF_CONSISTENT_NLM reals per point: Lambda row-major, then mu) are a ghosted point field,
+ * solved for once at t = 0 so that sum_k xi (x) h_ik = 0 at every transition point (Fbar stays
+ * exact for a linear motion) and a uniform stress gives the force of a constant horizon
+ * (pf_pd_consistent_solve; collective). d: each owned point's uniform-stress ghost vector
+ * (the corrected form's d_i, §2.5). */
+enum { PF_CONSISTENT_NLM = 12 };
+int pf_pd_consistent_solve(const pf_pd_body *b, const pf_points *pts, const double *d, double *lm);
+static inline void pf_pd_consistent_h(const double *restrict lmi, const double *restrict lmk, double w,
+                                      double Vi, const double xi[3], double h[3]) {
+  for (int a = 0; a < 3; a++)
+    h[a] = w * (lmi[3 * a] * xi[0] + lmi[3 * a + 1] * xi[1] + lmi[3 * a + 2] * xi[2] + Vi * (lmk[9 + a] - lmi[9 + a]));
+}
 
 /* Bond geometry: reference length r0, current length r, current bond vector e[3]. The same
  * operations from either end give bitwise the same r0 and r. */

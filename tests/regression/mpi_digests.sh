@@ -62,15 +62,20 @@ printf 'parallel:\n  rebalance_threshold: 1.0\n' | tee -a taylor_corr.yaml >> da
 cp "$OLDPWD/data/variable_horizon_block.yaml" horizon_corr.yaml
 sed -E 's/\{model: neo_hookean, density: 7800, youngs_modulus: 200.0e9, poissons_ratio: 0.0\}/{model: lps, density: 7800, bulk_modulus: 66.7e9, shear_modulus: 100.0e9}/; /hourglass:/d' \
   horizon_corr.yaml > horizon_lps.yaml
+# the consistent form (its multipliers, solved on every rank from the gathered transition, are a
+# ghosted point field that migrates), re-partitioned at output steps
+sed -E 's/formulation: auto/formulation: consistent/' horizon_corr.yaml > horizon_consistent.yaml
+printf 'parallel:\n  rebalance_threshold: 1.0\n' >> horizon_consistent.yaml
 
 # the PD -> transition -> overlap -> FE chain on one mesh (tests/data/coupled_bar.yaml), also
 # re-partitioned at output steps (the PD bonds, broken ones included, travel with the node rows)
 cp "$OLDPWD/data/coupled_bar.yaml" coupled_bar.yaml
 cp coupled_bar.yaml coupled_rebalance.yaml
 printf 'parallel:\n  rebalance_threshold: 1.0\n' >> coupled_rebalance.yaml
+sed -E 's/^(\s*)blending:/\1formulation: consistent\n\1blending:/' coupled_bar.yaml > coupled_consistent.yaml
 
-rebalanced="cylinder_rebalance mixed_rebalance cylinder_contact tube_ep coupled_rebalance" # (the other two split evenly on 2 ranks)
-for deck in disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar wave_variable_horizon cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block cylinder_contact tube_ep taylor_corr damage_bar horizon_corr horizon_lps coupled_bar coupled_rebalance; do
+rebalanced="cylinder_rebalance mixed_rebalance cylinder_contact tube_ep coupled_rebalance horizon_consistent" # (the other two split evenly on 2 ranks)
+for deck in disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar wave_variable_horizon cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block cylinder_contact tube_ep taylor_corr damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance coupled_consistent; do
   ref=""
   for np in 1 2 3; do
     mkdir -p "np$np"

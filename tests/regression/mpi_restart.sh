@@ -112,11 +112,14 @@ sed -E 's/final_time: 4.5e-5/steps: 360/; s/d1: 0.1,/d1: 0.0,/' "$OLDPWD/data/da
 # neighbours' shape tensors, must survive the restart unchanged after bonds broke nearby)
 cp "$OLDPWD/data/coupled_bar.yaml" cb$tag.yaml
 sed -E 's/^(\s*)damage: \{law/\1formulation: corrected\n\1damage: {law/' cb$tag.yaml > cc$tag.yaml
+# (cn: the consistent form, whose multipliers, solved at t = 0 from the gathered transition, come
+# back from the checkpoint instead of being solved again)
+sed -E 's/^(\s*)damage: \{law/\1formulation: consistent\n\1damage: {law/' cb$tag.yaml > cn$tag.yaml
 # and contact with an FE body that is not the first body (tests/data/sphere_on_block.yaml: PD
 # block, then the FE ball, FE <-> PD and PD self-contact pairs; its node ids start after the
 # block's, which the restart must number the same way), checkpointed at step 100 of 150
 sed -E 's#\.\./\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/data/sphere_on_block.yaml" > sb$tag.yaml
-for m in ep jc cb cc sb; do
+for m in ep jc cb cc cn sb; do
   printf 'restart:\n  file: ck%s.h5\n  interval: %d\n' $m $(case $m in ep) echo 60 ;; jc) echo 150 ;; sb) echo 100 ;; *) echo 25 ;; esac) >> $m$tag.yaml
   check_restart $m$tag.yaml ck$m.h5 $m
 done

@@ -10,8 +10,10 @@
  * must give the constant rho a_a = E sum_b (Q_abb + Q_bab) / 2 (sigma = E eps at nu = 0, derived
  * here) within 2 % at every interior node, on both sides of every interface. To show that the
  * test discriminates, the same chain with the standard PD form (ghost forces in the taper) must
- * miss both; the corrected form (the standard one less its uniform-stress ghost force) must pass
- * the linear test (its quadratic error is printed: docs/theory/coupling.md §2.5). The displacement is imposed as one step of dt from rest (v = u / dt), as in
+ * miss both; the corrected form (the standard one less its uniform-stress ghost force) and the
+ * consistent form (the energy form with ghost-free gradient weights) must pass the linear test;
+ * their quadratic errors are printed (docs/theory/coupling.md §2.5, §2.6), the consistent form's
+ * must be below half the standard form's. The displacement is imposed as one step of dt from rest (v = u / dt), as in
  * tests/verification/test_partial_stress.c, on owned and ghost nodes: any number of ranks. */
 #include "test_common.h"
 
@@ -117,7 +119,11 @@ int main(int argc, char **argv) {
   if (pf_comm_rank() == 0) printf("quadratic, standard: %.2e\n", quad_std);
   const double lin_corr = run("corrected", &lin, zero, reg) / scale, quad_corr = run("corrected", &quad, want, reg) / amag;
   if (pf_comm_rank() == 0) printf("corrected: linear %.2e, quadratic %.2e\n", lin_corr, quad_corr);
+  const double lin_cons = run("consistent", &lin, zero, reg) / scale, quad_cons = run("consistent", &quad, want, reg) / amag;
+  if (pf_comm_rank() == 0) printf("consistent: linear %.2e, quadratic %.2e\n", lin_cons, quad_cons);
   PF_TEST_TRUE(lin_corr < 1e-9);
+  PF_TEST_TRUE(lin_cons < 1e-9);
+  PF_TEST_TRUE(quad_cons < 0.5 * quad_std);
   PF_TEST_TRUE(lin_auto < 1e-9);
   PF_TEST_TRUE(quad_auto < 0.02);
   PF_TEST_TRUE(lin_std > 1e-3);
