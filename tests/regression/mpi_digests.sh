@@ -16,6 +16,7 @@ declare -A reduce=(
   [fragmenting_cylinder]='s/height: 0.100/height: 0.024/; s/^(\s*)final_time:.*/\1steps: 40/; s/interval: 250/interval: 10/'
   [wave_in_bar]='s/^(\s*)final_time:.*/\1steps: 60/'
   [wave_variable_horizon]='s/^(\s*)final_time:.*/\1steps: 20/'
+  [wave_pd_to_fe]='s/^(\s*)final_time:.*/\1steps: 20/'
   [taylor_impact]='s/^(\s*)final_time:.*/\1steps: 120/; s#\.\./meshes/#'"$OLDPWD"'/../meshes/#'
 )
 for name in "${!reduce[@]}"; do sed -E "${reduce[$name]}" "$OLDPWD/../inputs/$name.yaml" > "$name.yaml"; done
@@ -75,7 +76,7 @@ printf 'parallel:\n  rebalance_threshold: 1.0\n' >> coupled_rebalance.yaml
 sed -E 's/^(\s*)blending:/\1formulation: consistent\n\1blending:/' coupled_bar.yaml > coupled_consistent.yaml
 
 rebalanced="cylinder_rebalance mixed_rebalance cylinder_contact tube_ep coupled_rebalance horizon_consistent" # (the other two split evenly on 2 ranks)
-for deck in disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar wave_variable_horizon cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block cylinder_contact tube_ep taylor_corr damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance coupled_consistent; do
+for deck in disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar wave_variable_horizon wave_pd_to_fe cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block cylinder_contact tube_ep taylor_corr damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance coupled_consistent; do
   ref=""
   for np in 1 2 3; do
     mkdir -p "np$np"
