@@ -206,9 +206,21 @@ int pf_expr_create(const char *text, const pf_deck *d, const pf_node *n, const c
                    pf_expr **e);
 int pf_expr_destroy(pf_expr **e);
 double pf_expr_eval(pf_expr *e, double x, double y, double z, double t);
+/* The same with extra variables besides x, y, z, t (names[k], at most PF_EXPR_MAXVARS), whose
+ * values pf_expr_eval_vars takes in that order. */
+enum { PF_EXPR_MAXVARS = 4 };
+int pf_expr_create_vars(const char *text, const pf_deck *d, const pf_node *n, const char *key,
+                        const char *const *names, int nnames, pf_expr **e);
+double pf_expr_eval_vars(pf_expr *e, double x, double y, double z, double t, const double *vars);
 /* Three expressions from a PF_KEY_EXPR3 node. */
 int pf_expr3_create(const pf_deck *d, const pf_node *map, const char *key, pf_expr *e[3]);
 void pf_expr3_destroy(pf_expr *e[3]);
+
+/* ---- the distance to the nearest of a fixed set of points (core/nearest.c) ---- */
+typedef struct pf_nearest pf_nearest;
+int pf_nearest_create(const double *X, pf_int n, pf_nearest **q); /* X [3n], copied */
+double pf_nearest_distance(const pf_nearest *q, const double x[3]);
+void pf_nearest_destroy(pf_nearest **q);
 
 /* ---- regions (point sets by geometry) ---------------------------------------- */
 typedef enum { PF_REGION_ALL, PF_REGION_BOX, PF_REGION_CYLINDER, PF_REGION_SPHERE } pf_region_kind;

@@ -7,12 +7,20 @@
 
 struct pf_expr {
   muParserHandle_t parser;
-  double x, y, z, t; /* the variables the parser reads */
+  double x, y, z, t;            /* the variables the parser reads */
+  double var[PF_EXPR_MAXVARS]; /* and the extra ones */
+  int nvars;
 };
 
 int pf_expr_create(const char *text, const pf_deck *d, const pf_node *n, const char *key,
                    pf_expr **out) {
+  return pf_expr_create_vars(text, d, n, key, NULL, 0, out);
+}
+
+int pf_expr_create_vars(const char *text, const pf_deck *d, const pf_node *n, const char *key,
+                        const char *const *names, int nnames, pf_expr **out) {
   *out = NULL;
+  PF_CHECK(nnames >= 0 && nnames <= PF_EXPR_MAXVARS, PF_ERR_RUN, "%d expression variables", nnames);
   pf_expr *e;
   PF_MALLOC(e, 1);
   e->parser = mupCreate(muBASETYPE_FLOAT);
@@ -24,6 +32,8 @@ int pf_expr_create(const char *text, const pf_deck *d, const pf_node *n, const c
   mupDefineVar(e->parser, "y", &e->y);
   mupDefineVar(e->parser, "z", &e->z);
   mupDefineVar(e->parser, "t", &e->t);
+  for (int k = 0; k < nnames; k++) mupDefineVar(e->parser, names[k], &e->var[k]);
+  e->nvars = nnames;
   mupSetExpr(e->parser, text);
   (void)mupEval(e->parser); /* compiles; syntax and unknown names show up here */
   if (mupError(e->parser)) {
@@ -41,6 +51,11 @@ int pf_expr_destroy(pf_expr **e) {
   mupRelease((*e)->parser);
   PF_FREE(*e);
   return 0;
+}
+
+double pf_expr_eval_vars(pf_expr *e, double x, double y, double z, double t, const double *vars) {
+  for (int k = 0; k < e->nvars; k++) e->var[k] = vars[k];
+  return pf_expr_eval(e, x, y, z, t);
 }
 
 double pf_expr_eval(pf_expr *e, double x, double y, double z, double t) {

@@ -20,13 +20,22 @@ int pf_fem_body_coupling_read(pf_fem_body *b, const pf_node *body, const pf_node
   const pf_node *bn = pf_node_get(map, "blending");
   PF_CALL(pf_expr_create(pf_node_text(bn), b->deck, bn, "blending", &b->beta_expr));
   int pd_region = 0;
+  pf_int nfe = 0;
+  double *fe;
+  PF_MALLOC(fe, 3 * (size_t)b->mesh.nnodes + 1);
   for (pf_int k = 0; k < b->mesh.nnodes; k++) { /* every rank checks the whole mesh alike */
     const double *x = &b->mesh.X[3 * (size_t)k], w = pf_expr_eval(b->beta_expr, x[0], x[1], x[2], 0.0);
-    if (!(w >= 0 && w <= 1))
+    if (!(w >= 0 && w <= 1)) {
+      free(fe);
       return pf_deck_error(b->deck, bn, "blending", "body '%s': beta is %g at node %" PF_INT_FMT
                            " (%g, %g, %g); it must lie in [0, 1]", b->name, w, k + 1, x[0], x[1], x[2]);
+    }
     pd_region |= w == 1;
+    if (w < 1) memcpy(&fe[3 * (size_t)nfe++], x, 3 * sizeof(double));
   }
+  int ierr = pf_pd_body_set_fe_region(b->pd, fe, nfe); /* (the horizon's d_fe) */
+  free(fe);
+  PF_CALL(ierr);
   const pf_node *dmg = pf_node_get(map, "damage");
   const char *law = "none";
   PF_CALL(pf_deck_string(b->deck, dmg, "law", &law));

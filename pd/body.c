@@ -175,7 +175,13 @@ static int read_horizon(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
   }
   b->horizon = 0; /* until the points are known */
   b->one_sided = 1;
-  return pf_expr_create(text, d, h, "horizon", &b->hz_expr);
+  if (!b->coupled && strstr(text, "d_fe"))
+    return pf_deck_error(d, h, "horizon", "d_fe (the distance to the elements) is known only in the "
+                         "peridynamic: map of a finite_element body; here give the horizon in x, y, z");
+  if (!b->coupled) return pf_expr_create(text, d, h, "horizon", &b->hz_expr);
+  const char *vars[] = {"d_fe"}; /* the distance to the nearest node where the elements act */
+  b->uses_dfe = strstr(text, "d_fe") != NULL;
+  return pf_expr_create_vars(text, d, h, "horizon", vars, 1, &b->hz_expr);
 }
 
 static int read_formulation(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
@@ -251,7 +257,7 @@ static int create(const pf_deck *d, const pf_node *owner, const pf_node *map, co
   *out = NULL;
   pf_pd_body *b;
   PF_MALLOC(b, 1);
-  b->one_sided = coupled; /* a coupled body's rows also hold each node's element neighbours */
+  b->one_sided = b->coupled = coupled; /* a coupled body's rows also hold each node's element neighbours */
   int ierr = body_read(d, owner, map, materials, b);
   if (ierr) {
     pf_pd_body_destroy(&b);
@@ -266,9 +272,12 @@ int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *mate
   return create(d, body, body, materials, 0, out);
 }
 
-/* delta(x) at a point; a value that is not positive and finite is an input error naming it. */
+/* delta(x) at a point (coupled: with d_fe, its distance to the nearest node where the elements
+ * act, infinite when there is none); a value that is not positive and finite is an input error
+ * naming it. */
 static int horizon_at(const pf_pd_body *b, const double *x, pf_gid gid, double *h) {
-  *h = pf_expr_eval(b->hz_expr, x[0], x[1], x[2], 0.0);
+  const double d_fe = b->uses_dfe && b->fe_region ? pf_nearest_distance(b->fe_region, x) : INFINITY;
+  *h = pf_expr_eval_vars(b->hz_expr, x[0], x[1], x[2], 0.0, &d_fe);
   if (*h > 0 && isfinite(*h)) return 0;
   return pf_deck_error(b->deck, pf_node_get(b->node, "horizon"), "horizon",
                        "body '%s': the horizon is %g at point %" PF_GID_FMT " (%g, %g, %g); it must be "
@@ -276,7 +285,9 @@ static int horizon_at(const pf_pd_body *b, const double *x, pf_gid gid, double *
 }
 
 const pf_key pf_pd_coupled_keys[] = {
-    {"horizon", PF_KEY_EXPR, 1, NULL, "m", "horizon at the nodes: a number or an expression in x, y, z", NULL},
+    {"horizon", PF_KEY_EXPR, 1, NULL, "m",
+     "horizon at the nodes: a number or an expression in x, y, z and d_fe (the distance to the nearest node "
+     "where the elements act, blending < 1)", NULL},
     {"blending", PF_KEY_EXPR, 1, NULL, "",
      "blending weight beta(x, y, z) in [0, 1]: 1 peridynamics only, 0 elements only", NULL},
     {"formulation", PF_KEY_STRING, 0, "auto", "", "auto | standard | partial_stress | corrected | consistent", NULL},
@@ -294,6 +305,11 @@ int pf_pd_body_create_coupled(const pf_deck *d, const pf_node *owner, const pf_n
 }
 
 void pf_pd_body_set_blending(pf_pd_body *b, const double *beta) { b->blend = beta; }
+
+int pf_pd_body_set_fe_region(pf_pd_body *b, const double *X, pf_int n) {
+  pf_nearest_destroy(&b->fe_region);
+  return n > 0 && b->uses_dfe ? pf_nearest_create(X, n, &b->fe_region) : 0;
+}
 
 int pf_pd_body_find_bonds(pf_pd_body *b, const pf_pd_cloud *cloud, const pf_points *pts,
                           pf_int first, pf_int n, pf_bond_rows *rows) {
@@ -407,6 +423,7 @@ int pf_pd_body_destroy(pf_pd_body **b) {
   if (!*b) return 0;
   if ((*b)->ops && (*b)->ops->destroy && (*b)->mat) (*b)->ops->destroy(*b);
   pf_pd_family_free(&(*b)->fam);
+  pf_nearest_destroy(&(*b)->fe_region);
   free((*b)->smin);
   free((*b)->lost);
   free((*b)->idle);

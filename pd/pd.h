@@ -103,6 +103,9 @@ int pf_pd_body_create_coupled(const pf_deck *d, const pf_node *owner, const pf_n
 /* Each store point's blending weight (FE-coupled bodies), read at attach: points with beta < 1
  * are overlap points (no damage). */
 void pf_pd_body_set_blending(pf_pd_body *b, const double *beta);
+/* Coupled: the positions of the n nodes where the elements act (blending < 1), copied; the
+ * horizon expression's d_fe is the distance to the nearest of them. */
+int pf_pd_body_set_fe_region(pf_pd_body *b, const double *X, pf_int n);
 /* Append to rows the bonds of store points [first, first+n), points of this body, found in
  * the body's whole cloud (with a variable horizon, each point's own horizon: rows hold the
  * pairs either end's family has). */
