@@ -539,13 +539,13 @@ static int corr_pass1(pf_pd_body *b, pf_points *pts) {
 }
 
 /* The consistent form's part of the pair force on i (before the factor V_i): P_i h_ij - (V_j / V_i)
- * P_j h_ji, for the ends that are its points (docs/theory/coupling.md §2.6). */
-static void consistent_pair(const pf_pd_body *b, const pf_points *pts, pf_int i, pf_int j, double r0,
+ * P_j h_ji, for the ends that are its points (docs/theory/coupling.md §2.6); om = omega(|xi|). */
+static void consistent_pair(const pf_pd_body *b, const pf_points *pts, pf_int i, pf_int j, double om,
                             const double xi[3], double f[3]) {
   const corr *p = b->mat;
   const int zi = pf_pd_consistent_at(b, i), zj = pf_pd_consistent_at(b, j);
   if (!zi && !zj) return;
-  const double om = pf_pd_omega(&b->influence, r0), *li = &p->lm[PF_CONSISTENT_NLM * i], *lj = &p->lm[PF_CONSISTENT_NLM * j];
+  const double *li = &p->lm[PF_CONSISTENT_NLM * i], *lj = &p->lm[PF_CONSISTENT_NLM * j];
   const double *Pi = &p->gx[GX * i + G_NU], *Pj = &p->gx[GX * j + G_NU], Vi = pts->vol[i], Vj = pts->vol[j];
   double h[3];
   if (zi) {
@@ -590,7 +590,7 @@ static int corr_force(pf_pd_body *b, pf_points *pts) {
         r02 += xi[a] * xi[a], r2 += Y[a] * Y[a];
       }
       const double r0 = sqrt(r02), r = sqrt(r2), hi = pf_pd_in_family(b, i, r0), hj = pf_pd_in_family(b, j, r0);
-      const double w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+      const double om = pf_pd_omega(&b->influence, r0), w = om * pf_pd_bond_volume(fam, pts->vol, k, j);
       const double kj = p->hg * gj[G_C] * (p->viscous ? b->hz[j] / p->cl : 1.0);
       double gam = 0;
       for (int a = 0; a < 3; a++) {
@@ -602,7 +602,7 @@ static int corr_force(pf_pd_body *b, pf_points *pts) {
         f[a] += standard ? w * t : 0.0;
         gam += (hi * ki * (pi - Z[a]) + hj * kj * (pj - Z[a])) * Y[a];
       }
-      if (p->lm) consistent_pair(b, pts, i, j, r0, xi, f);
+      if (p->lm) consistent_pair(b, pts, i, j, om, xi, f);
       if (gam != 0 && r > 0 && !gi[G_DETACHED] && !gj[G_DETACHED]) {
         const double s = -w * gam / (r0 * r * r);
         for (int a = 0; a < 3; a++) fh[a] += s * Y[a];

@@ -152,6 +152,19 @@ const char *pf_test_pamgen_box(int nx, int ny, int nz, const double lo[3], const
   return text;
 }
 
+pf_points *pf_test_points(pf_int n, const double (*y)[3], double vol, double m) {
+  pf_points *p = NULL;
+  if (pf_points_create(n, &p)) {
+    fprintf(stderr, "pf_points_create failed\n");
+    exit(1);
+  }
+  for (pf_int i = 0; i < n; i++) {
+    for (int a = 0; a < 3; a++) p->X[3 * i + a] = p->y[3 * i + a] = y[i][a];
+    p->vol[i] = vol, p->cell[i] = cbrt(vol), p->m[i] = m;
+  }
+  return p;
+}
+
 int pf_test_material_load(const char *text, const char *name, int validate, pf_fem_material **m) {
   *m = NULL;
   pf_deck *d = NULL;

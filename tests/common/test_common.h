@@ -46,6 +46,9 @@ int pf_test_deck_text(const char *tag, const char *text, const pf_key *keys, con
  * error message must mention must_mention (when not NULL); a failure is counted and the deck
  * printed otherwise. */
 void pf_test_refused(int ierr, int made, const char *text, const char *must_mention);
+/* n points at y (also their reference X), each of volume vol (cell size cbrt(vol)) and mass m,
+ * body 0, at rest, no force; exits on failure. For unit tests of contact/ on hand-placed points. */
+pf_points *pf_test_points(pf_int n, const double (*y)[3], double vol, double m);
 /* One material point of the constitutive library, for the unit tests of fem/ models. */
 typedef struct {
   double F[9], D[6], sig[6], st[8], c; /* deformation gradient, rate, stress, history, wave speed */

@@ -39,21 +39,6 @@ static pf_rigid *must_load(const char *text) {
   return r;
 }
 
-/* n points at y (also X), volume vol, mass m, body 0, at rest, no force. */
-static pf_points *make_points(pf_int n, const double (*y)[3], double vol, double m) {
-  pf_points *p = NULL;
-  if (pf_points_create(n, &p)) {
-    fprintf(stderr, "pf_points_create failed\n");
-    exit(1);
-  }
-  for (pf_int i = 0; i < n; i++) {
-    for (int a = 0; a < 3; a++) p->X[3 * i + a] = p->y[3 * i + a] = y[i][a];
-    p->vol[i] = vol;
-    p->m[i] = m;
-  }
-  return p;
-}
-
 /* The force on point i is want[3] (relative tolerance on the largest component). */
 static void check_force(const pf_points *p, pf_int i, const double want[3], double tol) {
   double scale = fabs(want[0]) + fabs(want[1]) + fabs(want[2]);
@@ -79,7 +64,7 @@ static void sphere_quadratic(void) {
   if (!r) return;
   const double s3 = 0.005 / sqrt(3.0);
   const double y[4][3] = {{0.008, 0, 0}, {s3, s3, s3}, {0, 0, -0.0099}, {0.012, 0, 0}};
-  pf_points *p = make_points(4, y, 1e-12, 1e-6);
+  pf_points *p = pf_test_points(4, y, 1e-12, 1e-6);
   p->body[1] = 1;
   double R[3], U = 0, W = 0;
   PF_TEST_OK(pf_rigid_force(r, p, 1e-6, R, &U, &W));
@@ -110,7 +95,7 @@ static void plane_linear(void) {
   if (!r) return;
   const double y[3][3] = {{1.05, 2 - 0.6e-3, 3 - 0.8e-3}, {1.05, 2 - 0.6e-3, 3 - 0.8e-3},
                           {1, 2 + 0.6e-3, 3 + 0.8e-3}};
-  pf_points *p = make_points(3, y, 1e-9, 2e-3);
+  pf_points *p = pf_test_points(3, y, 1e-9, 2e-3);
   p->body[0] = 1;
   p->body[1] = 0;
   p->body[2] = 1;
@@ -139,7 +124,7 @@ static void cylinder_infinite(void) {
                           "stiffness: 1e15\n");
   if (!r) return;
   const double y[2][3] = {{0.004, 0.003, 100.0}, {0.02, 0, 0}};
-  pf_points *p = make_points(2, y, 1e-12, 1e-6);
+  pf_points *p = pf_test_points(2, y, 1e-12, 1e-6);
   double R[3], U = 0, W = 0;
   PF_TEST_OK(pf_rigid_force(r, p, 0, R, &U, &W));
   check_force(p, 0, (double[3]){0.02, 0.015, 0}, 1e-13);
@@ -165,7 +150,7 @@ static void cylinder_finite(void) {
   double y[4][3];
   for (int i = 0; i < 4; i++)
     for (int a = 0; a < 3; a++) y[i][a] = 1 + s[i] * (a < 2 ? h : 0) + rho[i] * e[i][a];
-  pf_points *p = make_points(4, (const double(*)[3])y, 1e-9, 1e-6);
+  pf_points *p = pf_test_points(4, (const double(*)[3])y, 1e-9, 1e-6);
   double R[3], U = 0, W = 0;
   PF_TEST_OK(pf_rigid_force(r, p, 0, R, &U, &W));
   check_force(p, 0, (double[3]){0, 0, 1e4}, 1e-12);
@@ -197,7 +182,7 @@ static double friction_case(const char *deck, double dt, int advance, double ft[
   pf_rigid *r = must_load(deck);
   if (!r) return 0;
   const double y[1][3] = {{0, 0, -0.01}};
-  pf_points *p = make_points(1, y, 1e-9, 1e-3);
+  pf_points *p = pf_test_points(1, y, 1e-9, 1e-3);
   p->v[0] = 3, p->v[1] = 4, p->v[2] = -5;
   double R[3] = {0, 0, 0}, U = 0, work = 0;
   if (advance) pf_rigid_advance(r, 0, dt, R, &work);

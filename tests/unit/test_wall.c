@@ -38,20 +38,6 @@ static pf_wall *must_load(const char *text) {
   return w;
 }
 
-/* Points at y (also X), mass m, cell 1e-3 m, body 0, at rest, no force. */
-static pf_points *make_points(pf_int n, const double (*y)[3], double m) {
-  pf_points *p = NULL;
-  if (pf_points_create(n, &p)) {
-    fprintf(stderr, "pf_points_create failed\n");
-    exit(1);
-  }
-  for (pf_int i = 0; i < n; i++) {
-    for (int a = 0; a < 3; a++) p->X[3 * i + a] = p->y[3 * i + a] = y[i][a];
-    p->m[i] = m, p->cell[i] = 1e-3, p->vol[i] = 1e-9;
-  }
-  return p;
-}
-
 #define PLANE_Z "name: w\npoint: [0, 0, 0.5]\nnormal: [0, 0, 2]\n"
 
 /* The plane z = 0.5 with the given separation. */
@@ -66,7 +52,7 @@ static pf_wall *plane_wall(int separation) {
 static void position(void) {
   pf_wall *w = must_load(PLANE_Z);
   const double y[3][3] = {{0.1, 0.2, 0.499}, {0, 0, 0.499}, {0, 0, 0.6}};
-  pf_points *p = make_points(3, y, 2.0);
+  pf_points *p = pf_test_points(3, y, 1e-9, 2.0);
   const double v0[3][3] = {{3, -4, -5}, {1, 0, 2}, {0, 0, -7}};
   memcpy(p->v, v0, sizeof v0);
   double loss = 0.25;
@@ -87,7 +73,7 @@ static void position(void) {
 static void force(int separation) {
   pf_wall *w = plane_wall(separation);
   const double y[3][3] = {{0, 0, 0.5}, {1, 0, 0.5}, {0, 1, 0.501}};
-  pf_points *p = make_points(3, y, 1.0);
+  pf_points *p = pf_test_points(3, y, 1e-9, 1.0);
   const double f0[3][3] = {{1, 2, -3}, {-1, 5, 7}, {0, 0, -11}};
   memcpy(p->f, f0, sizeof f0);
   double reaction[3];
@@ -108,7 +94,7 @@ static void force(int separation) {
 static void slide_or_leave(int separation) {
   pf_wall *w = plane_wall(separation);
   const double y[1][3] = {{0, 0, 0.5}};
-  pf_points *p = make_points(1, y, 1.0);
+  pf_points *p = pf_test_points(1, y, 1e-9, 1.0);
   const double dt = 1e-3;
   const int n = 10;
   double loss = 0, reaction[3];
@@ -131,7 +117,7 @@ static void slide_or_leave(int separation) {
 static void bodies(void) {
   pf_wall *w = must_load(PLANE_Z "bodies: [b]\n");
   const double y[2][3] = {{0, 0, 0.49}, {0, 0, 0.49}};
-  pf_points *p = make_points(2, y, 1.0);
+  pf_points *p = pf_test_points(2, y, 1e-9, 1.0);
   p->body[1] = 1;
   double loss = 0;
   pf_wall_enforce_position(w, p, &loss);
