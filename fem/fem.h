@@ -78,6 +78,13 @@ void pf_fem_material_update(const pf_fem_material *m, pf_int n, double dt,
                             const double *restrict F, const double *restrict D,
                             double *restrict sigma, double *restrict state, double *restrict c);
 
+/* The deformation-gradient estimate of n points changed from F_from [9n] to F_to [9n] without
+ * the material moving (a correspondence point that lost bonds): the model re-expresses its
+ * history so that its elastic state, and so its stress, stays what it was (docs/theory/
+ * materials.md §2.7). A model whose stress follows F only through D needs nothing. */
+void pf_fem_material_rereference(const pf_fem_material *m, pf_int n, const double *F_from,
+                                 const double *F_to, double *state);
+
 /* ---- FE bodies (fem/body.c): a hexahedral mesh whose nodes are points of the store ---------- */
 typedef struct pf_fem_body pf_fem_body;
 extern const pf_key pf_fem_body_keys[];

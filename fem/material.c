@@ -184,6 +184,11 @@ void pf_fem_material_init(const pf_fem_material *m, pf_int n, double *state) {
     for (int64_t k = 0; k < (int64_t)n * m->ops->nstate; k++) state[k] = 0.0;
 }
 
+void pf_fem_material_rereference(const pf_fem_material *m, pf_int n, const double *F_from,
+                                 const double *F_to, double *state) {
+  if (m->ops->rereference) m->ops->rereference(m, n, F_from, F_to, state);
+}
+
 void pf_fem_material_update(const pf_fem_material *m, pf_int n, double dt,
                             const double *restrict F, const double *restrict D,
                             double *restrict sigma, double *restrict state, double *restrict c) {

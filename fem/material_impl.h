@@ -46,6 +46,12 @@ struct pf_fem_material_ops {
   void (*wave_speed)(const pf_fem_material *m, pf_int n, const double *restrict F,
                      const double *restrict sigma, const double *restrict state,
                      double *restrict c);
+  /* Optional (NULL: the model's stress depends on F only through D, nothing to do): the
+   * deformation-gradient estimate of n points changed from F_from to F_to while the material
+   * did not move (a correspondence point that lost bonds, pd/material_correspondence.c); keep
+   * the elastic state that the next update computes the stress from. */
+  void (*rereference)(const pf_fem_material *m, pf_int n, const double *restrict F_from,
+                      const double *restrict F_to, double *restrict state);
   void (*destroy)(pf_fem_material *m);
 };
 

@@ -208,6 +208,16 @@ static double mjc_failure_strain(const mjc *p, double triax, double rate) {
 
 static const int vi[6] = {0, 1, 2, 1, 0, 0}, vj[6] = {0, 1, 2, 2, 2, 1};
 
+/* Fi = F^-1 = adj(F) / det F, F row-major [9]. */
+static void inverse3(const double *restrict f, double Fi[3][3]) {
+  const double J = pf_fem_det3(f);
+  Fi[0][0] = (f[4] * f[8] - f[5] * f[7]) / J, Fi[0][1] = (f[2] * f[7] - f[1] * f[8]) / J;
+  Fi[0][2] = (f[1] * f[5] - f[2] * f[4]) / J, Fi[1][0] = (f[5] * f[6] - f[3] * f[8]) / J;
+  Fi[1][1] = (f[0] * f[8] - f[2] * f[6]) / J, Fi[1][2] = (f[2] * f[3] - f[0] * f[5]) / J;
+  Fi[2][0] = (f[3] * f[7] - f[4] * f[6]) / J, Fi[2][1] = (f[1] * f[6] - f[0] * f[7]) / J;
+  Fi[2][2] = (f[0] * f[4] - f[1] * f[3]) / J;
+}
+
 /* One step per point (Simo 1992, box 1 / Simo & Hughes 1998, ch. 9, in principal logarithmic
  * strains; Tupek et al. 2013, sec. 2.3): b_e^tr = F Cp^-1 F^T -> eps_a = 1/2 ln(lambda_a^2) ->
  * tau_a = K tr(eps) + 2G dev(eps)_a -> radial return on q_tr with Y(eqps_n + dgam, dgam/dt) ->
@@ -258,13 +268,8 @@ static void mjc_update(const pf_fem_material *m, pf_int n, double dt, const doub
         s[a] *= scale;
       }
       /* Cp^-1 = F^-1 b_e F^-T with b_e = I + V diag(be) V^T, F^-1 = adj(F) / det F. */
-      const double J = pf_fem_det3(f);
       double Fi[3][3], W[3][3];
-      Fi[0][0] = (f[4] * f[8] - f[5] * f[7]) / J, Fi[0][1] = (f[2] * f[7] - f[1] * f[8]) / J;
-      Fi[0][2] = (f[1] * f[5] - f[2] * f[4]) / J, Fi[1][0] = (f[5] * f[6] - f[3] * f[8]) / J;
-      Fi[1][1] = (f[0] * f[8] - f[2] * f[6]) / J, Fi[1][2] = (f[2] * f[3] - f[0] * f[5]) / J;
-      Fi[2][0] = (f[3] * f[7] - f[4] * f[6]) / J, Fi[2][1] = (f[1] * f[6] - f[0] * f[7]) / J;
-      Fi[2][2] = (f[0] * f[4] - f[1] * f[3]) / J;
+      inverse3(f, Fi);
       for (int r = 0; r < 3; r++) /* W = F^-1 V */
         for (int c = 0; c < 3; c++) W[r][c] = Fi[r][0] * V[0][c] + Fi[r][1] * V[1][c] + Fi[r][2] * V[2][c];
       for (int v = 0; v < 6; v++) {
@@ -288,6 +293,29 @@ static void mjc_update(const pf_fem_material *m, pf_int n, double dt, const doub
     for (int v = 0; v < 6; v++) {
       const int r = vi[v], c = vj[v];
       sg[v] = V[r][0] * t[0] * V[c][0] + V[r][1] * t[1] * V[c][1] + V[r][2] * t[2] * V[c][2];
+    }
+  }
+}
+
+/* The estimate of F changed from Fa to Fb with the material at rest (a correspondence point
+ * that lost bonds): keep b_e = F Cp^-1 F^T, so Cp^-1 <- Fb^-1 Fa Cp^-1 Fa^T Fb^-T = M Cp^-1 M^T
+ * with M = Fb^-1 Fa (docs/theory/materials.md §2.7). eqps and D do not change. */
+static void mjc_rereference(const pf_fem_material *m, pf_int n, const double *restrict Fa,
+                            const double *restrict Fb, double *restrict state) {
+  (void)m;
+  for (pf_int i = 0; i < n; i++) {
+    const double *a = Fa + 9 * (int64_t)i, *f = Fb + 9 * (int64_t)i;
+    double *restrict st = state + (int64_t)NSTATE * i;
+    double Fi[3][3], M[3][3], C[3][3], MC[3][3];
+    inverse3(f, Fi);
+    for (int r = 0; r < 3; r++)
+      for (int c = 0; c < 3; c++) M[r][c] = Fi[r][0] * a[c] + Fi[r][1] * a[3 + c] + Fi[r][2] * a[6 + c];
+    for (int v = 0; v < 6; v++) C[vi[v]][vj[v]] = C[vj[v]][vi[v]] = st[S_CPINV + v];
+    for (int r = 0; r < 3; r++)
+      for (int c = 0; c < 3; c++) MC[r][c] = M[r][0] * C[0][c] + M[r][1] * C[1][c] + M[r][2] * C[2][c];
+    for (int v = 0; v < 6; v++) {
+      const int r = vi[v], c = vj[v];
+      st[S_CPINV + v] = MC[r][0] * M[c][0] + MC[r][1] * M[c][1] + MC[r][2] * M[c][2];
     }
   }
 }
@@ -324,4 +352,5 @@ const pf_fem_material_ops pf_fem_material_modified_johnson_cook = {
     .init = mjc_init,
     .update = mjc_update,
     .wave_speed = mjc_wave_speed,
+    .rereference = mjc_rereference,
 };

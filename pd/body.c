@@ -58,6 +58,9 @@ const pf_key pf_pd_body_keys[] = {
      "correspondence (material with a continuum model): zero-energy-mode control", pf_pd_hourglass_keys},
     {"critical_damage", PF_KEY_REAL, 0, "0.99", "",
      "correspondence with a damage model: a bond fails once either end's damage exceeds it", NULL},
+    {"bond_loss", PF_KEY_STRING, 0, "keep_stress", "",
+     "correspondence: keep_stress (a point that loses bonds keeps its elastic state) | jump (its "
+     "stress follows the new Fbar at once, as Tupek et al. 2013)", NULL},
     PF_KEY_END};
 
 double pf_pd_pmb_micromodulus(double K, const pf_influence *w, double delta) {
@@ -239,8 +242,8 @@ static int body_read(const pf_deck *d, const pf_node *owner, const pf_node *body
   const pf_node *mat = NULL;
   PF_CALL(read_material(d, owner, materials, b, &mat));
   PF_CALL(read_influence(d, body, b));
-  const char *corr_keys[] = {"hourglass", "critical_damage"};
-  for (int k = 0; k < 2 && b->ops != &pf_pd_material_correspondence; k++)
+  const char *corr_keys[] = {"hourglass", "critical_damage", "bond_loss"};
+  for (int k = 0; k < 3 && b->ops != &pf_pd_material_correspondence; k++)
     if (pf_node_get(body, corr_keys[k]))
       return pf_deck_error(d, pf_node_get(body, corr_keys[k]), corr_keys[k],
                            "only for correspondence bodies (a material whose model is one of %s)",
@@ -295,6 +298,9 @@ const pf_key pf_pd_coupled_keys[] = {
     {"hourglass", PF_KEY_MAP, 0, "type: stiffness, coefficient: 0.05", "", "zero-energy-mode control",
      pf_pd_hourglass_keys},
     {"critical_damage", PF_KEY_REAL, 0, "0.99", "", "a bond fails once either end's damage exceeds it", NULL},
+    {"bond_loss", PF_KEY_STRING, 0, "keep_stress", "",
+     "keep_stress (a point that loses bonds keeps its elastic state) | jump (its stress follows the "
+     "new Fbar at once, as Tupek et al. 2013)", NULL},
     {"damage", PF_KEY_MAP, 0, "law: none", "", "bond failure law (acts where beta = 1 only)", pf_pd_damage_keys},
     {"precracks", PF_KEY_LIST, 0, NULL, "", "planar cracks", crack_keys},
     PF_KEY_END};

@@ -42,6 +42,7 @@ typedef struct {
   pf_fem_material *cm; /* the continuum model */
   int nstate, idamage; /* history variables; index of the one named "damage", or -1 */
   int viscous;         /* hourglass control on the velocity deviation instead of the position's */
+  int keep_stress;     /* bond_loss: keep_stress (1) or jump (0) */
   double hg, dcrit;    /* C_hg, D_c */
   double cl;           /* the initial P-wave speed: the viscous form's tau = delta / c_L, the time
                           a wave takes to cross the horizon */
@@ -58,6 +59,7 @@ typedef struct {
   double *Ki;                         /* scratch [9n]: K^-1, for the partial-stress force */
   double *K0;                         /* [9n] the whole family's shape tensor (broken bonds too) */
   int *nfam;                          /* [n] the number of bonds in the point's own family */
+  unsigned char *lost;                /* [n] the point lost a bond this step (rereference) */
   double *ghost;                      /* field "ghost_correction" [3]: the corrected form's d_i */
   double *lm;                         /* field "consistent_weights": the consistent form's multipliers */
   double *rate, *whg2, *cw; /* scratch [n]: beta / sigma_min(Fbar), omega_hg^2, wave speed */
@@ -130,6 +132,11 @@ static int corr_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
                          "(modified_johnson_cook has one)", mname);
   if (!(p->dcrit > 0 && p->dcrit <= 1))
     return pf_deck_error(d, dc, "critical_damage", "must satisfy 0 < D_c <= 1 (got %g)", p->dcrit);
+  const char *loss = "keep_stress";
+  PF_CALL(pf_deck_string(d, b->node, "bond_loss", &loss));
+  p->keep_stress = !strcmp(loss, "keep_stress");
+  if (!p->keep_stress && strcmp(loss, "jump"))
+    return pf_deck_error(d, pf_node_get(b->node, "bond_loss"), "bond_loss", "unknown '%s' (known: keep_stress, jump)", loss);
   p->cl = sqrt((b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / b->density);
   return 0;
 }
@@ -299,12 +306,14 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
   PF_CALL(register_fields(b, pts));
   if (b->n > p->cap) {
     free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm);
-    free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam);
+    free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam), free(p->lost);
+    p->lost = NULL;
     p->F = p->D = p->s_old = p->saved = p->Jm = p->rate = p->whg2 = p->cw = p->Ki = p->K0 = NULL;
     p->nfam = NULL;
     PF_MALLOC(p->Ki, 9 * (size_t)b->n);
     PF_MALLOC(p->K0, 9 * (size_t)b->n);
     PF_MALLOC(p->nfam, b->n);
+    PF_MALLOC(p->lost, b->n);
     PF_MALLOC(p->Jm, b->n);
     PF_MALLOC(p->rate, b->n);
     PF_MALLOC(p->whg2, b->n);
@@ -373,7 +382,7 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
     if (b->law != PF_DAMAGE_NONE && pf_pd_may_fail(b, i, j)) { /* (both ends test every row bond) */
       const double s = (sqrt(r2) - r0) / r0;
       if (s > fmin(b->s0[i], b->s0[j])) {
-        fam->broken[k] = 1;
+        fam->broken[k] = 1, p->lost[li] = 1;
         continue;
       }
       smin = fmin(smin, s);
@@ -407,6 +416,12 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
  * at 38 km/s). */
 static const double PF_CORR_MIN_SPAN = 0.1;
 
+/* A point whose Fbar says its neighbourhood holds less than this fraction of its volume is
+ * detached (docs/theory/materials.md §2.7, "crushed points"): no solid is compressed so far (a
+ * metal at 100 GPa keeps about 0.7 of its volume), so such a Fbar is no estimate of a continuum
+ * deformation but a family that has been pinched, or passed through. */
+static const double PF_CORR_MIN_J = 0.5;
+
 /* Do the intact bonds' K of owned point li keep the span (a point that lost no bond does)? */
 static int spans(const corr *p, pf_int li, double K[3][3]) {
   double K0[3][3];
@@ -429,9 +444,28 @@ static void at_rest(pf_pd_body *b, pf_int i, int detached) {
   p->rate[li] = p->whg2[li] = 0.0, p->Jm[li] = 1.0;
 }
 
+/* Point i lost bonds this step, so its Fbar jumped to another estimate of a material that did not
+ * move: the model keeps the elastic state it would have reached with Fbar carried over the step
+ * by the velocity gradient L, F* = (I - dt/2 L)^-1 (I + dt/2 L) Fbar_n (the midpoint rule),
+ * re-expressed for the new Fbar (docs/theory/materials.md §2.7). Not after a state at rest. */
+static void rereference(pf_pd_body *b, pf_int i, double Fb[3][3], double L[3][3]) {
+  corr *p = b->mat;
+  const double *g = &p->gx[GX * i];
+  double Fn[3][3], Fx[3][3], Am[3][3], Ap[3][3], Ai[3][3], T[3][3], Fs[3][3];
+  for (int r = 0; r < 3; r++)
+    for (int c = 0; c < 3; c++) {
+      Fn[r][c] = g[G_F + 3 * r + c];
+      Am[r][c] = (r == c) - 0.5 * b->dt * L[r][c], Ap[r][c] = (r == c) + 0.5 * b->dt * L[r][c];
+    }
+  if (!p->nstate || g[G_DETACHED] || !(pf_mat3_inverse(Fn, Fx) > 0) || !(pf_mat3_inverse(Am, Ai) > 0)) return;
+  mat_mul(Ai, Ap, T), mat_mul(T, Fn, Fs);
+  pf_fem_material_rereference(p->cm, 1, &Fs[0][0], &Fb[0][0], &p->state[(size_t)p->nstate * i]);
+}
+
 /* Kinematics of point i for the model: Fbar into F, D into D, the rotated previous stress; K^-1
  * kept in the ghost record until the stress is known. Returns 0 when the point is detached: too
- * few bonds for an invertible K, or an inverted Fbar (a point with no material left around it). */
+ * few bonds for an invertible K, intact bonds that lost the span, or an inverted or crushed Fbar
+ * (det Fbar < PF_CORR_MIN_J: a point with no continuum left around it). */
 static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
   corr *p = b->mat;
   const pf_int li = i - b->first;
@@ -450,15 +484,16 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
     double J = Fb[0][0] * (Fb[1][1] * Fb[2][2] - Fb[1][2] * Fb[2][1]) -
                Fb[0][1] * (Fb[1][0] * Fb[2][2] - Fb[1][2] * Fb[2][0]) +
                Fb[0][2] * (Fb[1][0] * Fb[2][1] - Fb[1][1] * Fb[2][0]);
-    ok = J > 0 && (p->Jm[li] = pf_mat3_inverse(Fm, Fmi)) > 0;
+    ok = J > PF_CORR_MIN_J && (p->Jm[li] = pf_mat3_inverse(Fm, Fmi)) > 0;
     if (ok) step_rates(b, i, K, Fb, sums, &p->rate[li], &p->whg2[li]);
   }
   if (!ok) { /* the model sees a state at rest; its result is discarded */
     at_rest(b, i, 1);
     return 0;
   }
-  g[G_DETACHED] = 0;
   mat_mul(Fd, Fmi, L);
+  if (p->lost[li] && p->keep_stress) rereference(b, i, Fb, L);
+  g[G_DETACHED] = 0;
   for (int k = 0; k < 6; k++) D[k] = 0.5 * (L[pf_voigt_i[k]][pf_voigt_j[k]] + L[pf_voigt_j[k]][pf_voigt_i[k]]);
   pf_mat3_hughes_winget(L, b->dt, R);
   pf_sym6_rotate(R, &p->sigma[6 * i]);
@@ -500,10 +535,12 @@ static void fail_bonds(pf_pd_body *b) {
   const pf_family *fam = &b->fam;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     const double *gi = &p->gx[GX * i];
+    p->lost[i - b->first] = 0;
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      if (fam->broken[k]) continue;
       const double *gj = &p->gx[GX * fam->neighbor[k]];
       const int damaged = (gi[G_DAMAGE] > p->dcrit || gj[G_DAMAGE] > p->dcrit) && pf_pd_may_fail(b, i, fam->neighbor[k]);
-      if (gi[G_DETACHED] || gj[G_DETACHED] || damaged) fam->broken[k] = 1;
+      if (gi[G_DETACHED] || gj[G_DETACHED] || damaged) fam->broken[k] = 1, p->lost[i - b->first] = 1;
     }
   }
 }
@@ -648,7 +685,7 @@ static void corr_destroy(pf_pd_body *b) {
   corr *p = b->mat;
   pf_fem_material_destroy(&p->cm);
   free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm), free(p->out);
-  free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam);
+  free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam), free(p->lost);
   PF_FREE(b->mat);
 }
 

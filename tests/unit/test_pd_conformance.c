@@ -35,7 +35,9 @@
  *     (P = dpsi/dF = G (F - F^-T) + lambda ln J F^-T, and J^-1 P F^T is the stress above);
  *  6. linear patch test: y = (I + A) X + c with a small general A: zero force, to 1e-10 of
  *     K |A| h^2, at the points whose neighbours all have complete families (two horizons deep:
- *     state-based and correspondence forces use the neighbours' m, theta, K^-1).
+ *     state-based and correspondence forces use the neighbours' m, theta, K^-1);
+ *  7. correspondence with a damage variable: a point that loses a bond while nothing moves keeps
+ *     its stress (check_lost_bond).
  *
  * How a deformation is imposed. Correspondence bodies with a rate-form (hypoelastic, J2,
  * Johnson-Cook) model advance their stress only over a step dt > 0, from the relative
@@ -407,6 +409,74 @@ static void check_fbar(const mat_case *mc) {
   body_free(&t);
 }
 
+/* ---- 7. a lost bond leaves the stress where it was -------------------------------------- */
+/* Correspondence with critical_damage: the body is loaded past yield (y = (I + 20 A) X), unloaded
+ * elastically part way with a non-affine scatter (y = (I + 18 A) X + 2e-3 h r), then, with no
+ * motion (v = 0), a neighbour j of the centre point i is marked failed (damage 1 > D_c in the
+ * exchanged record, component 28), so i loses its bond to j and its Fbar jumps to another
+ * estimate of the same, unmoved material. The material did not move, so its stress must not
+ * change: the Kirchhoff stress J sigma of a hyperelastic model (its elastic state is carried
+ * over, docs/theory/materials.md §2.7), the Cauchy stress of a rate-form model (no rate, no
+ * change), to 1e-10 of |sigma|. The jump of Fbar must be real (above 1e-6), or the check would be
+ * vacuous. A model that rejects critical_damage (no damage variable: today all but
+ * modified_johnson_cook) is skipped, and so is neo_hookean, which has no history to carry an
+ * elastic state in (§2.7). */
+static void check_lost_bond(const mat_case *mc) {
+  if (!strcmp(mc->model, "neo_hookean")) return;
+  body_t t;
+  pf_error_set_quiet(1);
+  int ierr = body_make(mc, NSIDE, "    hourglass: {type: none}\n    critical_damage: 0.5\n", &t);
+  pf_error_set_quiet(0);
+  if (ierr) {
+    if (!strstr(pf_error_message(), "critical_damage")) {
+      fprintf(stderr, "%s: cannot build the body: %s\n", where, pf_error_message());
+      pf_test_failures++;
+    }
+    pf_error_clear();
+    return;
+  }
+  double F[3][3];
+  const double c[3] = {0, 0, 0}, x0[3] = {0, 0, 0}, x1[3] = {h, 0, 0};
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++) F[a][b] = I3[a][b] + 20 * A_SMALL[a][b];
+  target(&t, F, c, 0, 0, t.y);
+  impose(&t, t.y, DT);
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++) F[a][b] = I3[a][b] + 18 * A_SMALL[a][b];
+  target(&t, F, c, 2e-3, 11, t.y);
+  impose(&t, t.y, DT);
+  const pf_int i = nearest_point(&t, x0), j = nearest_point(&t, x1);
+  int nc = 0;
+  double *g = (double *)corr_field(&t, &nc);
+  const double *sig = pf_points_field_get(t.p, "stress");
+  EXPECT(g && nc >= 29 && sig, "fields 'correspondence' (Fbar at 9..17, damage at 28) and 'stress'");
+  if (!(g && nc >= 29 && sig)) {
+    body_free(&t);
+    return;
+  }
+  double Fa[3][3], sa[6], Ja, jump = 0, err = 0, scale = 0;
+  for (int k = 0; k < 9; k++) Fa[k / 3][k % 3] = g[nc * i + 9 + k];
+  for (int k = 0; k < 6; k++) sa[k] = sig[6 * i + k];
+  Ja = det3(Fa);
+  const int64_t broken0 = nbroken(&t);
+  g[nc * j + 28] = 1.0;
+  impose(&t, t.y, DT); /* no motion */
+  const int hyper = !strcmp(mc->model, "modified_johnson_cook");
+  double Fb[3][3];
+  for (int k = 0; k < 9; k++) Fb[k / 3][k % 3] = g[nc * i + 9 + k], jump = fmax(jump, fabs(Fb[k / 3][k % 3] - Fa[k / 3][k % 3]));
+  const double Jb = det3(Fb);
+  for (int k = 0; k < 6; k++) {
+    const double before = hyper ? Ja * sa[k] : sa[k], after = hyper ? Jb * sig[6 * i + k] : sig[6 * i + k];
+    err = fmax(err, fabs(after - before)), scale = fmax(scale, fabs(before));
+  }
+  EXPECT(nbroken(&t) > broken0, "the failed neighbour's bonds broke");
+  EXPECT(jump > 1e-6, "losing the bond moved Fbar (the check is not vacuous)");
+  EXPECT(scale > 1e6, "the point is stressed");
+  WITHIN(err, 1e-10 * scale, hyper ? "max |J sigma after - J sigma before| of the point that lost a bond"
+                                   : "max |sigma after - sigma before| of the point that lost a bond");
+  body_free(&t);
+}
+
 /* ---- 4. linear and angular momentum ------------------------------------------------------- */
 static void check_momentum(const mat_case *mc, int corr, const variant *var) {
   if (var->corr_only && !corr) return;
@@ -620,6 +690,10 @@ static void run_material(const mat_case *mc, int corr) {
   }
   AT("patch test");
   check_patch(mc);
+  if (corr) {
+    AT("a lost bond");
+    check_lost_bond(mc);
+  }
 #undef AT
 }
 
