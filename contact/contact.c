@@ -7,7 +7,9 @@
  * c = 9 k_s / (pi delta^4) per unit volume per unit (r_c - r)/delta, which Peridigm applies from
  * both ends of each pair (REFERENCES.md "Contact"), so one pair carries twice it. By default
  * bonded points do not interact (their bond carries the load); `all_points: true` acts on
- * every pair within r_c, as Peridigm does.
+ * every pair within r_c, as Peridigm does. Two points of one body use min(r_c, 0.9 |x_i - x_j|,
+ * the rest length of their broken bond) (contact/pairs.c pair_radius, docs/theory/contact.md
+ * sec. 1.1).
  *
  * FE <-> PD (Tupek et al. 2013, seed 000 sec. 3.2: penalty forces between the FE nodes and the
  * particles): `method: nodes` is the node-to-particle penalty f = k (r_c - d) between every
@@ -28,7 +30,7 @@ const pf_key pf_contact_pair_keys[] = {
     {"method", PF_KEY_STRING, 0, "surface", "", "FE <-> PD: surface (closest point of the FE surface) | nodes (node-to-particle only)", NULL},
     {"surface", PF_KEY_STRING, 0, NULL, "", "FE <-> PD: side set of the FE mesh in contact (default: the whole boundary)", NULL},
     {"surfaces", PF_KEY_STRLIST, 0, NULL, "", "FE <-> FE: a side set of each body, in the order of bodies (default: the whole boundaries)", NULL},
-    {"radius", PF_KEY_REAL, 0, NULL, "m", "contact radius (default: short range 0.9 x the larger spacing; FE <-> PD half the PD spacing; FE <-> FE 0)", NULL},
+    {"radius", PF_KEY_REAL, 0, NULL, "m", "contact radius (default: short range 0.9 x the larger spacing, within one body at most 0.9 x the reference distance and a broken bond's length at the break; FE <-> PD half the PD spacing; FE <-> FE 0)", NULL},
     {"stiffness", PF_KEY_REAL, 0, NULL, "N/m | N/m^7", "FE <-> PD: k (default K h of the PD body); FE <-> FE: k (default 10 K h of the softer body); short range: C (default 18 k_s / (pi delta^5))", NULL},
     {"spring_constant", PF_KEY_REAL, 0, NULL, "Pa", "short range: k_s (default: the larger bulk modulus)", NULL},
     {"horizon", PF_KEY_REAL, 0, NULL, "m", "short range: delta (default: the larger horizon)", NULL},
@@ -299,7 +301,7 @@ int pf_contact_destroy(pf_contact **cp) {
   free(c->surface_node), free(c->node_view), free(c->body_used), free(c->eroded_seen);
   free(c->pair), free(c->body);
   free(c->local), free(c->gid), free(c->vbody), free(c->rank);
-  free(c->y), free(c->v), free(c->vol), free(c->m), free(c->y_build);
+  free(c->y), free(c->v), free(c->vol), free(c->m), free(c->X), free(c->y_build);
   free(c->scount), free(c->send), free(c->cand_off), free(c->cand), free(c->force);
   PF_FREE(*cp);
   return 0;
@@ -401,6 +403,14 @@ double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts) {
 void pf_contact_stats(const pf_contact *c, long *rebuilds, double *seconds) {
   *rebuilds = c->rebuilds;
   *seconds = c->seconds;
+}
+
+int pf_contact_self_pair(const pf_contact *c, int b) {
+  for (int k = 0; c && k < c->npairs; k++) {
+    const pf_contact_pair *p = &c->pair[k];
+    if (p->kind == PF_PAIR_SHORT_RANGE && p->a == b && p->b == b && !p->all_points) return 1;
+  }
+  return 0;
 }
 
 int pf_contact_npairs(const pf_contact *c) { return c ? c->npairs : 0; }

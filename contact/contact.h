@@ -96,6 +96,9 @@ int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *energy,
 /* The stable step the penalties allow (2 / omega of the stiffest contact a point can see).
  * Collective. */
 double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts);
+/* 1 when body b is in short-range contact with itself between unbonded points (the default, not
+ * all_points): its broken bonds then need their rest lengths (pf_pd_body_record_breaks). */
+int pf_contact_self_pair(const pf_contact *c, int b);
 /* The pairs: count, names (history columns) and the total force on the pair's first body (the
  * FE body of an FE <-> PD pair) at the last evaluation, N. */
 int pf_contact_npairs(const pf_contact *c);

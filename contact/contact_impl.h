@@ -73,6 +73,7 @@ struct pf_contact {
   int32_t *vbody;         /* [nview] body index */
   int *rank;              /* [nview] owner rank */
   double *y, *v, *vol, *m; /* [3 nview], [3 nview], [nview], [nview] */
+  double *X;              /* [3 nview] reference positions (short range within a body) */
   double *y_build;        /* [3 nown] positions at the last build */
   pf_int cap;             /* room in the view arrays */
   /* ghost exchange lists of the last build */

@@ -58,35 +58,58 @@ double pf_contact_friction(double mu, double Fn, const double n[3], const double
   return F * s * dt;
 }
 
-/* 1 when owned particle i (store index) has an intact bond to global id g. */
-static int bonded(const pf_family *fam, const pf_points *pts, pf_int i, pf_gid g) {
+/* The bond of owned particle i (store index) to global id g: its index in the family, or -1 when
+ * they were never bonded. */
+static int64_t find_bond(const pf_family *fam, const pf_points *pts, pf_int i, pf_gid g) {
   int64_t lo = fam->offset[i - fam->first], hi = fam->offset[i - fam->first + 1] - 1;
   while (lo <= hi) {
     int64_t mid = (lo + hi) / 2;
     pf_gid x = pts->gid[fam->neighbor[mid]];
-    if (x == g) return !fam->broken[mid];
+    if (x == g) return mid;
     if (x < g) lo = mid + 1;
     else hi = mid - 1;
   }
-  return 0;
+  return -1;
 }
 
 /* A chunk's sums: sums[SUM_ENERGY], sums[SUM_DISSIPATION], and pair k's force at
  * sums[SUM_FORCE + 3 k]. */
 enum { SUM_ENERGY, SUM_DISSIPATION, SUM_FORCE };
 
-/* Short range between owned particle e and view entity j of pair k: the force on e. The pair is
- * evaluated ordered by global id (lo, hi), f on lo = C (r_c - r) V_lo V_hi (y_lo - y_hi) / r. */
-static void short_range(pf_contact *c, int k, pf_int e, pf_int j, double dt, double *sums) {
+/* The contact radius of view entities i and j of short-range pair p, the bond between them k
+ * (-1: none; k indexes the family of e, the owned one of the two). Between bodies r_c. Within one
+ * body at most 0.9 of their reference distance (Parks et al. 2008, PDLAMMPS: d_ij =
+ * min(0.9 |x0_i - x0_j|, r_c)), so that no two points of a body touch in the reference
+ * configuration whatever the shape of its cells; and for a broken bond at most its rest length,
+ * its length when it broke, so that a bond breaking in compression sets no contact force free
+ * (energy from nothing: docs/theory/contact.md sec. 1.1). */
+static double pair_radius(const pf_contact *c, const pf_contact_pair *p, pf_int i, pf_int j, int64_t k) {
+  if (c->vbody[i] != c->vbody[j]) return p->radius;
+  const double *Xi = &c->X[3 * i], *Xj = &c->X[3 * j];
+  const double d0 = Xi[0] - Xj[0], d1 = Xi[1] - Xj[1], d2 = Xi[2] - Xj[2];
+  double rc = fmin(p->radius, 0.9 * sqrt(d0 * d0 + d1 * d1 + d2 * d2));
+  if (k >= 0 && !p->all_points) {
+    const float rest = c->body[c->vbody[i]].fam->rest[k];
+    if (rest > 0) rc = fmin(rc, (double)rest);
+  }
+  return rc;
+}
+
+/* Short range between owned particle e and view entity j of pair k, joined by the (broken) bond
+ * b of e's family (-1: none): the force on e. The pair is evaluated ordered by global id
+ * (lo, hi), f on lo = C (r_c - r) V_lo V_hi (y_lo - y_hi) / r, r_c the pair's radius
+ * (pair_radius). */
+static void short_range(pf_contact *c, int k, pf_int e, pf_int j, int64_t b, double dt, double *sums) {
   const pf_contact_pair *p = &c->pair[k];
   int flip = c->gid[e] > c->gid[j];
   pf_int lo = flip ? j : e, hi = flip ? e : j;
   double d[3], r = 0;
   for (int a = 0; a < 3; a++) d[a] = c->y[3 * lo + a] - c->y[3 * hi + a], r += d[a] * d[a];
   r = sqrt(r);
-  if (r >= p->radius || r == 0) return;
+  const double rc = pair_radius(c, p, lo, hi, b);
+  if (r >= rc || r == 0) return;
   double n[3] = {d[0] / r, d[1] / r, d[2] / r}, vrel[3], ft[3];
-  double F = p->stiffness * (p->radius - r) * (c->vol[lo] * c->vol[hi]);
+  double F = p->stiffness * (rc - r) * (c->vol[lo] * c->vol[hi]);
   for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * lo + a] - c->v[3 * hi + a];
   double mr = c->m[lo] * c->m[hi] / (c->m[lo] + c->m[hi]);
   sums[SUM_DISSIPATION] += 0.5 * pf_contact_friction(p->friction, F, n, vrel, mr, dt, ft); /* half: each end counts it */
@@ -96,7 +119,7 @@ static void short_range(pf_contact *c, int k, pf_int e, pf_int j, double dt, dou
     c->force[3 * e + a] += fa;
     if (c->vbody[e] == p->a && p->a != p->b) sums[SUM_FORCE + 3 * k + a] += fa;
   }
-  sums[SUM_ENERGY] += 0.5 * 0.5 * p->stiffness * (c->vol[lo] * c->vol[hi]) * (p->radius - r) * (p->radius - r);
+  sums[SUM_ENERGY] += 0.5 * 0.5 * p->stiffness * (c->vol[lo] * c->vol[hi]) * (rc - r) * (rc - r);
 }
 
 /* Push entity e by f = k (r_c - g) n + friction against a surface point of body `body` with
@@ -230,9 +253,9 @@ static int particle_range(pf_contact *c, const pf_points *pts, pf_int e0, pf_int
           const double *yj = &c->y[3 * j];
           const double d0 = ye[0] - yj[0], d1 = ye[1] - yj[1], d2 = ye[2] - yj[2];
           if (d0 * d0 + d1 * d1 + d2 * d2 >= r2) continue;
-          if (p->all_points || c->vbody[j] != c->vbody[e] ||
-              !bonded(c->body[c->vbody[e]].fam, pts, c->local[e], c->gid[j]))
-            short_range(c, k, e, j, dt, sums);
+          const pf_family *fam = c->body[c->vbody[e]].fam;
+          const int64_t b = c->vbody[j] == c->vbody[e] ? find_bond(fam, pts, c->local[e], c->gid[j]) : -1;
+          if (p->all_points || b < 0 || fam->broken[b]) short_range(c, k, e, j, b, dt, sums);
         }
       }
       q = t;

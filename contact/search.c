@@ -86,6 +86,7 @@ static int view_reserve(pf_contact *c, pf_int n) {
   GROW(rank, 1);
   GROW(y, 3);
   GROW(v, 3);
+  GROW(X, 3);
   GROW(vol, 1);
   GROW(m, 1);
 #undef GROW
@@ -119,6 +120,7 @@ int pf_contact_collect_owned(pf_contact *c, const pf_points *pts) {
     c->rank[e] = me;
     c->vol[e] = pts->vol[i];
     c->m[e] = pts->m[i];
+    memcpy(&c->X[3 * e], &pts->X[3 * i], sizeof(double) * 3);
     e++;
   }
   c->built = 0;
@@ -249,17 +251,23 @@ static int send_lists(pf_contact *c) {
   return 0;
 }
 
-/* Ghost data at a build: gid, body, volume, mass, position, velocity. Collective. */
+/* Ghost data at a build: gid, body, volume, mass, reference position, then position and
+ * velocity. Collective. */
 static int send_ghosts(pf_contact *c) {
   if (c->nranks == 1) return 0;
+  enum { META = 7 };
   double *meta;
-  PF_MALLOC(meta, 4 * (size_t)c->nview);
-  for (pf_int e = 0; e < c->nown; e++)
-    meta[4 * e] = (double)c->gid[e], meta[4 * e + 1] = c->vbody[e], meta[4 * e + 2] = c->vol[e], meta[4 * e + 3] = c->m[e];
-  int ierr = exchange_doubles(c, 4, meta);
+  PF_MALLOC(meta, META * (size_t)c->nview);
+  for (pf_int e = 0; e < c->nown; e++) {
+    double *q = &meta[META * e];
+    q[0] = (double)c->gid[e], q[1] = c->vbody[e], q[2] = c->vol[e], q[3] = c->m[e];
+    memcpy(&q[4], &c->X[3 * e], sizeof(double) * 3);
+  }
+  int ierr = exchange_doubles(c, META, meta);
   for (pf_int e = c->nown; e < c->nview && !ierr; e++) {
-    c->gid[e] = (pf_gid)meta[4 * e], c->vbody[e] = (int32_t)meta[4 * e + 1];
-    c->vol[e] = meta[4 * e + 2], c->m[e] = meta[4 * e + 3];
+    const double *q = &meta[META * e];
+    c->gid[e] = (pf_gid)q[0], c->vbody[e] = (int32_t)q[1], c->vol[e] = q[2], c->m[e] = q[3];
+    memcpy(&c->X[3 * e], &q[4], sizeof(double) * 3);
   }
   free(meta);
   if (ierr) return ierr;

@@ -1,5 +1,5 @@
 /* Bond lists in transit (DESIGN.md 6): rows of neighbour global ids with their per-bond state
- * (broken flag, partial-volume fraction, and the reals a material keeps per bond, e.g. the
+ * (broken flag, partial-volume fraction, rest length, and the reals a material keeps per bond, e.g. the
  * plastic extensions of elastic_plastic), the form in which families move between ranks when
  * points are (re)partitioned and in which checkpoints store them. */
 #include "core/core.h"
@@ -22,7 +22,9 @@ static int grow(pf_bond_rows *r, int64_t need) {
   if (b) r->broken = b;
   float *v = realloc(r->vfrac, sizeof(float) * (size_t)cap);
   if (v) r->vfrac = v;
-  int ok = g && b && v;
+  float *l = realloc(r->rest, sizeof(float) * (size_t)cap);
+  if (l) r->rest = l;
+  int ok = g && b && v && l;
   if (r->nstate > 0) {
     double *s = realloc(r->state, sizeof(double) * (size_t)cap * (size_t)r->nstate);
     if (s) r->state = s;
@@ -47,7 +49,7 @@ int pf_bond_rows_widen(pf_bond_rows *r, int nstate) {
 }
 
 int pf_bond_rows_append_state(pf_bond_rows *r, pf_int count, const pf_gid *gid,
-                              const uint8_t *broken, const float *vfrac, int nstate,
+                              const uint8_t *broken, const float *vfrac, const float *rest, int nstate,
                               const double *state) {
   PF_CHECK(nstate >= 0, PF_ERR_RUN, "%d reals of bond state", nstate);
   PF_CALL(pf_bond_rows_widen(r, nstate));
@@ -64,6 +66,7 @@ int pf_bond_rows_append_state(pf_bond_rows *r, pf_int count, const pf_gid *gid,
   for (pf_int k = 0; k < count; k++) {
     r->broken[at + k] = broken ? broken[k] : 0;
     r->vfrac[at + k] = vfrac ? vfrac[k] : 1.0f;
+    r->rest[at + k] = rest ? rest[k] : 0.0f;
     for (int c = 0; c < r->nstate; c++)
       r->state[(at + k) * r->nstate + c] = state && c < nstate ? state[(int64_t)k * nstate + c] : 0.0;
   }
@@ -73,7 +76,7 @@ int pf_bond_rows_append_state(pf_bond_rows *r, pf_int count, const pf_gid *gid,
 
 int pf_bond_rows_append(pf_bond_rows *r, pf_int count, const pf_gid *gid, const uint8_t *broken,
                         const float *vfrac) {
-  return pf_bond_rows_append_state(r, count, gid, broken, vfrac, 0, NULL);
+  return pf_bond_rows_append_state(r, count, gid, broken, vfrac, NULL, 0, NULL);
 }
 
 int pf_bond_rows_free(pf_bond_rows *r) {
@@ -81,6 +84,7 @@ int pf_bond_rows_free(pf_bond_rows *r) {
   PF_FREE(r->gid);
   PF_FREE(r->broken);
   PF_FREE(r->vfrac);
+  PF_FREE(r->rest);
   PF_FREE(r->state);
   r->n = 0;
   r->nstate = 0;

@@ -2,6 +2,8 @@
  *   /points/{gid,body,X,u,v,f,m,vol,cell}   one row per point, ranks' points one after another
  *   /fields/<name>                          [n][ncomp], attributes ncomp, flags
  *   /bonds/{count,gid,broken,vfrac}         row lengths per point, then the bonds in that order
+ *   /bonds/rest                             the broken bonds' rest lengths (absent in older
+ *                                           files: read as not recorded, 0)
  *   /bonds/state                            [nbonds][nstate] the materials' per-bond reals,
  *                                           attribute ncomp; only when some material keeps
  *                                           them (absent in older files: read as zero state)
@@ -131,6 +133,7 @@ static int write_bonds(const h5io *pio, const pf_points *p, const pf_bond_rows *
   PF_CALL(write_rows(&io, "/bonds/gid", H5T_NATIVE_INT64, 1, rows->gid));
   PF_CALL(write_rows(&io, "/bonds/broken", H5T_NATIVE_UINT8, 1, rows->broken));
   PF_CALL(write_rows(&io, "/bonds/vfrac", H5T_NATIVE_FLOAT, 1, rows->vfrac));
+  PF_CALL(write_rows(&io, "/bonds/rest", H5T_NATIVE_FLOAT, 1, rows->rest));
   int nstate = rows->nstate; /* ranks without such a body have none: the widest rank's count */
   MPI_Allreduce(MPI_IN_PLACE, &nstate, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
   if (nstate == 0) return 0;
@@ -267,19 +270,21 @@ static int read_bonds(const h5io *pio, pf_bond_rows *rows) {
   }
   pf_gid *gid = malloc(sizeof(pf_gid) * (io.count + 1));
   uint8_t *broken = malloc(io.count + 1);
-  float *vfrac = malloc(sizeof(float) * (io.count + 1));
+  float *vfrac = malloc(sizeof(float) * (io.count + 1)), *rest = calloc(io.count + 1, sizeof(float));
   double *state = nstate ? malloc(sizeof(double) * (io.count * (size_t)nstate + 1)) : NULL;
-  if (!ierr && (!gid || !broken || !vfrac || (nstate && !state)))
+  if (!ierr && (!gid || !broken || !vfrac || !rest || (nstate && !state)))
     ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
   if (!ierr) ierr = read_rows(&io, "/bonds/gid", H5T_NATIVE_INT64, 1, gid);
   if (!ierr) ierr = read_rows(&io, "/bonds/broken", H5T_NATIVE_UINT8, 1, broken);
   if (!ierr) ierr = read_rows(&io, "/bonds/vfrac", H5T_NATIVE_FLOAT, 1, vfrac);
+  if (!ierr && H5Lexists(io.file, "/bonds/rest", H5P_DEFAULT) > 0)
+    ierr = read_rows(&io, "/bonds/rest", H5T_NATIVE_FLOAT, 1, rest);
   if (!ierr && nstate) ierr = read_rows(&io, "/bonds/state", H5T_NATIVE_DOUBLE, nstate, state);
   if (!ierr) ierr = pf_bond_rows_widen(rows, nstate);
   for (hsize_t i = 0, at = 0; i < pio->count && !ierr; at += (hsize_t)count[i], i++)
-    ierr = pf_bond_rows_append_state(rows, count[i], gid + at, broken + at, vfrac + at, nstate,
+    ierr = pf_bond_rows_append_state(rows, count[i], gid + at, broken + at, vfrac + at, rest + at, nstate,
                                      state ? state + at * (hsize_t)nstate : NULL);
-  free(count), free(gid), free(broken), free(vfrac), free(state);
+  free(count), free(gid), free(broken), free(vfrac), free(rest), free(state);
   return ierr;
 }
 

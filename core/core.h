@@ -272,19 +272,23 @@ typedef struct {
   pf_gid *gid;     /* [offset[n]] */
   uint8_t *broken; /* [offset[n]] */
   float *vfrac;    /* [offset[n]] partial-volume fraction (1 when unused) */
+  float *rest;     /* [offset[n]] a broken bond's length when it broke, the contact rest length of
+                      its two points (0: intact, or not recorded) */
   int nstate;      /* reals of material state per bond (0: none; the widest body's count) */
   double *state;   /* [offset[n] * nstate] per-bond material state, or NULL when nstate is 0 */
   int64_t cap;     /* room for bonds */
   pf_int row_cap;  /* room for rows */
 } pf_bond_rows;
 int pf_bond_rows_init(pf_bond_rows *r);
-/* Append one row (broken / vfrac may be NULL: intact, whole). Its bonds' state is zero. */
+/* Append one row (broken / vfrac may be NULL: intact, whole). Its bonds' rest lengths and state
+ * are zero. */
 int pf_bond_rows_append(pf_bond_rows *r, pf_int count, const pf_gid *gid, const uint8_t *broken,
                         const float *vfrac);
-/* Append one row with nstate reals of state per bond (state [count * nstate], or NULL: zero).
- * The rows widen to the largest nstate appended; narrower rows are padded with zeros. */
+/* Append one row with rest lengths (NULL: zero) and nstate reals of state per bond (state
+ * [count * nstate], or NULL: zero). The rows widen to the largest nstate appended; narrower rows
+ * are padded with zeros. */
 int pf_bond_rows_append_state(pf_bond_rows *r, pf_int count, const pf_gid *gid,
-                              const uint8_t *broken, const float *vfrac, int nstate,
+                              const uint8_t *broken, const float *vfrac, const float *rest, int nstate,
                               const double *state);
 /* Widen every bond's state to nstate reals (new ones zero); a no-op when not wider. */
 int pf_bond_rows_widen(pf_bond_rows *r, int nstate);

@@ -1,6 +1,6 @@
 /* Moving owned points between ranks (DESIGN.md 6): every array and registered field of a point
- * and its bond row (with the per-bond state: broken flag, partial-volume fraction, the
- * materials' per-bond reals) travel together in one packed record, so that a (re)partition
+ * and its bond row (with the per-bond state: broken flag, partial-volume fraction, rest length,
+ * the materials' per-bond reals) travel together in one packed record, so that a (re)partition
  * keeps the complete state. Records are exchanged with one MPI_Alltoallv. */
 #include "core/core.h"
 
@@ -16,8 +16,8 @@ static int field_width(const pf_points *pts) {
   return w;
 }
 
-/* Bytes of one bond in a record: gid, broken, vfrac, nstate reals of state. */
-static size_t bond_size(int nstate) { return sizeof(pf_gid) + 1 + sizeof(float) + sizeof(double) * (size_t)nstate; }
+/* Bytes of one bond in a record: gid, broken, vfrac, rest length, nstate reals of state. */
+static size_t bond_size(int nstate) { return sizeof(pf_gid) + 1 + 2 * sizeof(float) + sizeof(double) * (size_t)nstate; }
 
 static size_t record_size(int nreal, int nstate, int64_t nbonds) {
   return sizeof(pf_gid) + 2 * sizeof(int32_t) + sizeof(double) * (size_t)nreal + (size_t)nbonds * bond_size(nstate);
@@ -44,6 +44,7 @@ static char *pack(const pf_points *pts, const pf_bond_rows *rows, pf_int i, char
   p = put(p, &rows->gid[o], sizeof(pf_gid) * (size_t)nb);
   p = put(p, &rows->broken[o], (size_t)nb);
   p = put(p, &rows->vfrac[o], sizeof(float) * (size_t)nb);
+  p = put(p, &rows->rest[o], sizeof(float) * (size_t)nb);
   return rows->nstate ? put(p, &rows->state[o * rows->nstate], sizeof(double) * (size_t)nb * rows->nstate) : p;
 }
 
@@ -51,17 +52,18 @@ static char *pack(const pf_points *pts, const pf_bond_rows *rows, pf_int i, char
 typedef struct {
   double *real;
   pf_gid *gid;
-  float *vfrac;
+  float *vfrac, *rest;
   double *state;
   int32_t cap; /* bonds */
 } scratch;
 
 static int scratch_fit(scratch *sc, int32_t nb, int nstate) {
   if (nb <= sc->cap) return 0;
-  free(sc->gid), free(sc->vfrac), free(sc->state);
+  free(sc->gid), free(sc->vfrac), free(sc->rest), free(sc->state);
   sc->cap = 0;
   PF_MALLOC(sc->gid, nb);
   PF_MALLOC(sc->vfrac, nb);
+  PF_MALLOC(sc->rest, nb);
   PF_MALLOC(sc->state, (size_t)nb * nstate);
   sc->cap = nb;
   return 0;
@@ -94,10 +96,11 @@ static const char *unpack(const char *p, pf_points *pts, pf_bond_rows *rows, pf_
   if (nb > 0) { /* the scratch is not allocated before the first bond */
     memcpy(sc->gid, p, sizeof(pf_gid) * (size_t)nb);
     memcpy(sc->vfrac, p + (sizeof(pf_gid) + 1) * (size_t)nb, sizeof(float) * (size_t)nb);
+    memcpy(sc->rest, p + (sizeof(pf_gid) + 1 + sizeof(float)) * (size_t)nb, sizeof(float) * (size_t)nb);
     if (nstate)
-      memcpy(sc->state, p + (sizeof(pf_gid) + 1 + sizeof(float)) * (size_t)nb, sizeof(double) * (size_t)nb * nstate);
+      memcpy(sc->state, p + (sizeof(pf_gid) + 1 + 2 * sizeof(float)) * (size_t)nb, sizeof(double) * (size_t)nb * nstate);
   }
-  *ierr = pf_bond_rows_append_state(rows, nb, sc->gid, broken, sc->vfrac, nstate, sc->state);
+  *ierr = pf_bond_rows_append_state(rows, nb, sc->gid, broken, sc->vfrac, sc->rest, nstate, sc->state);
   return p + bond_size(nstate) * (size_t)nb;
 }
 
@@ -169,7 +172,7 @@ static int permute_rows(pf_bond_rows *rows, const pf_int *perm) {
   for (pf_int k = 0; k < rows->n; k++) {
     int64_t o = rows->offset[perm[k]];
     PF_CALL(pf_bond_rows_append_state(&out, (pf_int)(rows->offset[perm[k] + 1] - o), &rows->gid[o],
-                                      &rows->broken[o], &rows->vfrac[o], rows->nstate,
+                                      &rows->broken[o], &rows->vfrac[o], &rows->rest[o], rows->nstate,
                                       rows->state ? &rows->state[o * rows->nstate] : NULL));
   }
   pf_bond_rows_free(rows);
@@ -209,7 +212,7 @@ int pf_points_migrate(pf_points *pts, pf_bond_rows *rows, const int *dest, int n
   const char *p = rbuf;
   int ierr = 0;
   for (pf_int k = 0; k < n && !ierr; k++) p = unpack(p, pts, rows, k, nreal, nstate, &sc, &ierr);
-  free(sc.real), free(sc.gid), free(sc.vfrac), free(sc.state), free(rbuf), free(rdispl);
+  free(sc.real), free(sc.gid), free(sc.vfrac), free(sc.rest), free(sc.state), free(rbuf), free(rdispl);
   if (ierr) return ierr;
   pf_int *perm;
   PF_MALLOC(perm, n);

@@ -78,6 +78,10 @@ int pf_sim_contact_forces(pf_sim *sim, double dt) {
     total += U;
   }
   if (sim->contact) {
+    for (int b = 0; b < sim->nbodies; b++) {
+      pf_pd_body *pd = sim->body[b] ? sim->body[b] : pf_fem_body_pd(sim->fem[b]);
+      if (pd && pf_contact_self_pair(sim->contact, b)) pf_pd_body_record_breaks(pd, sim->pts);
+    }
     double U;
     PF_CALL(pf_contact_force(sim->contact, sim->pts, dt, &U, &sim->contact_dissipation));
     total += U;

@@ -57,14 +57,19 @@ int pf_fem_body_element_is_pd(const pf_fem_body *b, pf_int e) {
   return 1;
 }
 
-/* Sorted union of two ascending gid lists a (with broken flags) and e (intact) into out. */
-static pf_int merge(const pf_gid *a, const uint8_t *ab, pf_int na, const pf_gid *e, pf_int ne, pf_gid *out,
-                    uint8_t *ob) {
+/* Sorted union of the ascending gid list of row r of pd (with its broken flags and rest lengths)
+ * and the list e (intact) into out, ob, ol. */
+static pf_int merge(const pf_bond_rows *pd, pf_int r, const pf_gid *e, pf_int ne, pf_gid *out, uint8_t *ob,
+                    float *ol) {
+  const int64_t o = pd->offset[r];
+  const pf_int na = (pf_int)(pd->offset[r + 1] - o);
+  const pf_gid *a = &pd->gid[o];
   pf_int i = 0, j = 0, n = 0;
   while (i < na || j < ne) {
-    if (j >= ne || (i < na && a[i] < e[j])) ob[n] = ab[i], out[n++] = a[i++];
-    else if (i >= na || e[j] < a[i]) ob[n] = 0, out[n++] = e[j++];
-    else ob[n] = ab[i], out[n++] = a[i++], j++;
+    const int from_pd = j >= ne || (i < na && a[i] <= e[j]);
+    if (from_pd && j < ne && a[i] == e[j]) j++;
+    ob[n] = from_pd ? pd->broken[o + i] : 0, ol[n] = from_pd ? pd->rest[o + i] : 0.0f;
+    out[n++] = from_pd ? a[i++] : e[j++];
   }
   return n;
 }
@@ -73,13 +78,16 @@ int pf_fem_body_coupled_rows(const pf_fem_body *b, const pf_bond_rows *pd, const
                              pf_bond_rows *rows) {
   int ierr = 0;
   for (pf_int r = 0; r < pd->n && !ierr; r++) {
-    const int64_t o = pd->offset[r], oe = elem->offset[r];
-    const pf_int na = (pf_int)(pd->offset[r + 1] - o), ne = (pf_int)(elem->offset[r + 1] - oe);
+    const int64_t oe = elem->offset[r];
+    const pf_int na = (pf_int)(pd->offset[r + 1] - pd->offset[r]), ne = (pf_int)(elem->offset[r + 1] - oe);
     pf_gid *g = malloc(sizeof(pf_gid) * ((size_t)(na + ne) + 1));
     uint8_t *br = malloc((size_t)(na + ne) + 1);
-    if (!g || !br) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
-    else ierr = pf_bond_rows_append(rows, merge(&pd->gid[o], &pd->broken[o], na, &elem->gid[oe], ne, g, br), g, br, NULL);
-    free(g), free(br);
+    float *rest = malloc(sizeof(float) * ((size_t)(na + ne) + 1));
+    if (!g || !br || !rest) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+    else
+      ierr = pf_bond_rows_append_state(rows, merge(pd, r, &elem->gid[oe], ne, g, br, rest), g, br, NULL, rest, 0,
+                                       NULL);
+    free(g), free(br), free(rest);
   }
   (void)b;
   return ierr;

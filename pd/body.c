@@ -3,6 +3,8 @@
 #include "pd/pd_impl.h"
 #include "fem/fem.h"
 
+#include <float.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -444,6 +446,7 @@ int pf_pd_family_free(pf_family *fam) {
   PF_FREE(fam->neighbor);
   PF_FREE(fam->broken);
   PF_FREE(fam->vfrac);
+  PF_FREE(fam->rest);
   PF_FREE(fam->state);
   return 0;
 }
@@ -475,6 +478,20 @@ double pf_pd_body_take_damage_work(pf_pd_body *b) {
   double w = b->damage_work;
   b->damage_work = 0;
   return w;
+}
+
+void pf_pd_body_record_breaks(pf_pd_body *b, const pf_points *pts) {
+  pf_family *fam = &b->fam;
+#pragma omp parallel for schedule(static)
+  for (pf_int i = b->first; i < b->first + b->n; i++)
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+      if (!fam->broken[k] || fam->rest[k] > 0) continue;
+      const double *yi = &pts->y[3 * i], *yj = &pts->y[3 * fam->neighbor[k]];
+      const double d0 = yj[0] - yi[0], d1 = yj[1] - yi[1], d2 = yj[2] - yi[2], r = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+      float rest = (float)r;
+      if ((double)rest > r) rest = nextafterf(rest, 0.0f); /* never above: no force at the break */
+      fam->rest[k] = fmaxf(rest, FLT_MIN);                 /* (0 means not recorded) */
+    }
 }
 
 int64_t pf_pd_body_damage(const pf_pd_body *b, pf_points *pts) {

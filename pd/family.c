@@ -216,11 +216,13 @@ int pf_pd_family_from_rows(const pf_bond_rows *rows, const pf_int *local, pf_int
   PF_MALLOC(fam->neighbor, nb + PF_FAMILY_SLACK);
   PF_MALLOC(fam->broken, nb + PF_FAMILY_SLACK);
   if (partial_volumes) PF_MALLOC(fam->vfrac, nb + PF_FAMILY_SLACK);
+  PF_MALLOC(fam->rest, nb + 1);
   if (ns > 0) PF_MALLOC(fam->state, nb * ns);
   for (pf_int i = 0; i <= n; i++) fam->offset[i] = rows->offset[first + i] - o0;
   for (int64_t k = 0; k < nb; k++) {
     fam->neighbor[k] = local[o0 + k];
     fam->broken[k] = rows->broken[o0 + k];
+    fam->rest[k] = rows->rest[o0 + k];
     if (partial_volumes) fam->vfrac[k] = rows->vfrac[o0 + k];
     for (int c = 0; c < ns && c < nr; c++) fam->state[k * ns + c] = rows->state[(o0 + k) * nr + c];
   }
@@ -239,7 +241,7 @@ int pf_pd_family_to_rows(const pf_family *fam, const pf_points *pts, pf_bond_row
     pf_int cnt = (pf_int)(fam->offset[i + 1] - o);
     for (pf_int k = 0; k < cnt; k++) gid[k] = pts->gid[fam->neighbor[o + k]];
     ierr = pf_bond_rows_append_state(rows, cnt, gid, &fam->broken[o], fam->vfrac ? &fam->vfrac[o] : NULL,
-                                     fam->nstate, fam->state ? &fam->state[o * fam->nstate] : NULL);
+                                     &fam->rest[o], fam->nstate, fam->state ? &fam->state[o * fam->nstate] : NULL);
   }
   free(gid);
   return ierr;

@@ -18,6 +18,8 @@ typedef struct {
   pf_int *neighbor; /* [nbonds] local index into the point store */
   uint8_t *broken;  /* [nbonds] 1 once the bond has failed */
   float *vfrac;     /* [nbonds] partial-volume fraction of the neighbour, or NULL */
+  float *rest;      /* [nbonds] a broken bond's length when it broke (the contact rest length of
+                       its ends, pf_pd_body_record_breaks), 0 while intact or not recorded */
   int nstate;       /* reals of material state per bond: set by the material's create (0: none) */
   double *state;    /* [nbonds * nstate] the material's per-bond state, or NULL; it travels with
                        the rows (re-partition, checkpoint). Freed by the material's destroy. */
@@ -138,6 +140,11 @@ double pf_pd_body_energy(const pf_pd_body *b, const pf_points *pts);
  * (the damage dissipation of the energy balance; correspondence bodies, whose energy is the
  * stress work, release none), and restart the count. */
 double pf_pd_body_take_damage_work(pf_pd_body *b);
+/* Give each bond of the owned rows that broke since the last call its rest length: its length
+ * at the current positions, rounded down to a float. Below it the bond's two points are in
+ * contact (short-range self-contact, contact/pairs.c), so a bond that breaks in compression sets
+ * no contact force free. Call after the forces that broke it and before the contact forces. */
+void pf_pd_body_record_breaks(pf_pd_body *b, const pf_points *pts);
 /* Point damage phi = 1 - intact bond volume / family volume into the "damage" field;
  * returns the number of broken directed bonds. */
 int64_t pf_pd_body_damage(const pf_pd_body *b, pf_points *pts);
