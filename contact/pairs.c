@@ -78,11 +78,11 @@ enum { SUM_ENERGY, SUM_DISSIPATION, SUM_FORCE };
 
 /* The contact radius of view entities i and j of short-range pair p, the bond between them k
  * (-1: none; k indexes the family of e, the owned one of the two). Between bodies r_c. Within one
- * body at most 0.9 of their reference distance (Parks et al. 2008, PDLAMMPS: d_ij =
- * min(0.9 |x0_i - x0_j|, r_c)), so that no two points of a body touch in the reference
- * configuration whatever the shape of its cells; and for a broken bond at most its rest length,
- * its length when it broke, so that a bond breaking in compression sets no contact force free
- * (energy from nothing: docs/theory/contact.md sec. 1.1). */
+ * body at most 0.9 of their reference distance (Parks et al. 2008, PDLAMMPS; LAMMPS pair peri
+ * takes d_ij = min(0.9 |x0_i - x0_j|, 1.35 l_c), here r_c for 1.35 l_c), so that no two points
+ * of a body touch in the reference configuration whatever the shape of its cells; and for a
+ * broken bond at most its rest length, its length when it broke, so that a bond breaking in
+ * compression sets no contact force free (energy from nothing: docs/theory/contact.md sec. 1.1). */
 static double pair_radius(const pf_contact *c, const pf_contact_pair *p, pf_int i, pf_int j, int64_t k) {
   if (c->vbody[i] != c->vbody[j]) return p->radius;
   const double *Xi = &c->X[3 * i], *Xj = &c->X[3 * j];

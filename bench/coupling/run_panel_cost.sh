@@ -2,9 +2,9 @@
 # The projectile-on-panel problem (inputs/panel_impact.yaml, 530 m/s) as shipped -- peridynamics
 # within r < 16 mm of the impact axis, blended into the elements over 16-20 mm -- against the same
 # panel all peridynamic (every node a correspondence point of horizon 2.01 mm, no element
-# evaluated): time loop, steps, directed bonds, peak resident memory of one rank, and where the
-# sphere stops. Both on 2 MPI ranks, one after the other, to FINAL_TIME (default the deck's
-# 120 us: about 4 + 4.5 minutes on 2 cores). docs/examples/panel_impact.md quotes the result.
+# evaluated): time loop, steps, directed bonds, peak resident memory of one rank, where the
+# sphere stops, and the energy balance. Both on 2 MPI ranks, one after the other, to FINAL_TIME
+# (default the deck's 120 us: about 4 + 4.5 minutes on 2 cores). docs/examples/panel_impact.md quotes the result.
 # usage: bash bench/coupling/run_panel_cost.sh [PERIFEM]   (from the repository root)
 set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -37,7 +37,9 @@ t, vz, zc = h["time"][:], h["sphere_velocity_z"][:], h["sphere_position_z"][:]
 i = int(np.argmax(vz >= 0))
 stop = ("the sphere stopped at %.1f us, centre at %.1f mm" % (t[i] * 1e6, zc[i] * 1e3)) if (vz >= 0).any() \
     else "the sphere still moving at %.1f m/s" % -vz[-1]
-print("%-8s time loop %7.1f s, %d steps, directed bonds %s, peak memory of one rank %.0f MB; %s"
-      % (deck, float(m.group(2)), int(m.group(1)), bonds, rss / 1024, stop))
+balance = re.search(r"energy balance error (\S+) J \(relative (\S+);", log)
+print("%-8s time loop %7.1f s, %d steps, directed bonds %s, peak memory of one rank %.0f MB; %s; "
+      "energy balance %s J (%s of the largest energy)"
+      % (deck, float(m.group(2)), int(m.group(1)), bonds, rss / 1024, stop, balance.group(1), balance.group(2)))
 PY
 done
