@@ -98,7 +98,8 @@ static const char *unpack(const char *p, pf_points *pts, pf_bond_rows *rows, pf_
     memcpy(sc->vfrac, p + (sizeof(pf_gid) + 1) * (size_t)nb, sizeof(float) * (size_t)nb);
     memcpy(sc->rest, p + (sizeof(pf_gid) + 1 + sizeof(float)) * (size_t)nb, sizeof(float) * (size_t)nb);
     if (nstate)
-      memcpy(sc->state, p + (sizeof(pf_gid) + 1 + 2 * sizeof(float)) * (size_t)nb, sizeof(double) * (size_t)nb * nstate);
+      memcpy(sc->state, p + (sizeof(pf_gid) + 1 + 2 * sizeof(float)) * (size_t)nb,
+             sizeof(double) * (size_t)nb * nstate);
   }
   *ierr = pf_bond_rows_append_state(rows, nb, sc->gid, broken, sc->vfrac, sc->rest, nstate, sc->state);
   return p + bond_size(nstate) * (size_t)nb;
