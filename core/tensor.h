@@ -1,13 +1,20 @@
 /* Small 3x3 tensor helpers called inside the FE element and correspondence PD loops: the
- * inverse, the cross product, the Hughes-Winget incremental rotation, and symmetric tensors in
- * Voigt order (xx, yy, zz, yz, xz, xy) with tensor (not engineering) shear components. They are
- * defined here, static inline, so that they inline into those loops: called across files they
- * made the FE step 9 % slower (bench/calculix, 80,000 elements). Included by core/core.h. */
+ * determinant and inverse, the cross product, the Hughes-Winget incremental rotation, and
+ * symmetric tensors in Voigt order (xx, yy, zz, yz, xz, xy) with tensor (not engineering) shear
+ * components. They are defined here, static inline, so that they inline into those loops: called
+ * across files they made the FE step 9 % slower (bench/calculix, 80,000 elements). Included by
+ * core/core.h. */
 #ifndef PF_CORE_TENSOR_H
 #define PF_CORE_TENSOR_H
 
 /* Voigt order: component k of a symmetric tensor is (pf_voigt_i[k], pf_voigt_j[k]). */
 static const int pf_voigt_i[6] = {0, 1, 2, 1, 0, 0}, pf_voigt_j[6] = {0, 1, 2, 2, 2, 1};
+
+/* det A, by the first row's cofactors. */
+static inline double pf_mat3_det(double A[3][3]) {
+  return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+         A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+}
 
 /* inv = A^-1; returns det A (inv is not finite when det A = 0). */
 static inline double pf_mat3_inverse(double A[3][3], double inv[3][3]) {

@@ -59,18 +59,13 @@ static void grad_product(double a[8][3], double g[8][3], double M[3][3]) {
     }
 }
 
-static double det3(double A[3][3]) {
-  return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-         A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-}
-
 static double sym_dot(const double a[6], const double d[6]) {
   return a[0] * d[0] + a[1] * d[1] + a[2] * d[2] + 2 * (a[3] * d[3] + a[4] * d[4] + a[5] * d[5]);
 }
 
 /* F scaled so that det F = J: the element's volume ratio, consistent with the mesh volumes. */
 static void store_F(double Fm[3][3], double J, double *F) {
-  double s = cbrt(J / det3(Fm));
+  double s = cbrt(J / pf_mat3_det(Fm));
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) F[3 * i + j] = s * Fm[i][j];
 }

@@ -348,11 +348,6 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
   return pf_points_exchange(pts, p->gx, GX);
 }
 
-static double det3(double A[3][3]) {
-  return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-         A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-}
-
 static void mat_mul(double A[3][3], double B[3][3], double C[3][3]) {
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) C[i][j] = A[i][0] * B[0][j] + A[i][1] * B[1][j] + A[i][2] * B[2][j];
@@ -462,7 +457,7 @@ static void rereference(pf_pd_body *b, pf_int i, double Fb[3][3], double L[3][3]
       Fn[r][c] = g[G_F + 3 * r + c];
       Am[r][c] = (r == c) - 0.5 * b->dt * L[r][c], Ap[r][c] = (r == c) + 0.5 * b->dt * L[r][c];
     }
-  if (!p->nstate || g[G_DETACHED] || !(det3(Fn) > 0) || !(pf_mat3_inverse(Am, Ai) > 0)) return;
+  if (!p->nstate || g[G_DETACHED] || !(pf_mat3_det(Fn) > 0) || !(pf_mat3_inverse(Am, Ai) > 0)) return;
   mat_mul(Ai, Ap, T), mat_mul(T, Fn, Fs);
   pf_fem_material_rereference(p->cm, 1, &Fs[0][0], &Fb[0][0], &p->state[(size_t)p->nstate * i]);
 }
@@ -486,7 +481,7 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
         Fb[r][s] += H[r][s], Fd[r][s] += Hd[r][s]; /* (zero but at the consistent form's points) */
         Fm[r][s] = Fb[r][s] - 0.5 * b->dt * Fd[r][s];
       }
-    ok = det3(Fb) > PF_CORR_MIN_J && (p->Jm[li] = pf_mat3_inverse(Fm, Fmi)) > 0;
+    ok = pf_mat3_det(Fb) > PF_CORR_MIN_J && (p->Jm[li] = pf_mat3_inverse(Fm, Fmi)) > 0;
     if (ok) step_rates(b, i, K, Fb, sums, &p->rate[li], &p->whg2[li]);
   }
   if (!ok) { /* the model sees a state at rest; its result is discarded */
