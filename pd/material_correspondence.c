@@ -542,6 +542,23 @@ static void fail_bonds(pf_pd_body *b) {
   }
 }
 
+/* The model over the body's points in batches, leaving out the idle ones (coupled, beta = 0 all
+ * round: at rest for good, their stress stays zero; in a coupled panel most of the body). */
+static void update_model(pf_pd_body *b) {
+  corr *p = b->mat;
+  const int ns = p->nstate;
+  for (pf_int a = 0, e; a < b->n; a = e) {
+    if (b->idle && b->idle[a]) {
+      p->cw[a] = 0.0, e = a + 1;
+      continue;
+    }
+    for (e = a + 1; e < b->n && !(b->idle && b->idle[e]);) e++;
+    double *state = ns ? &p->state[(size_t)ns * (b->first + a)] : NULL;
+    pf_fem_material_update(p->cm, e - a, b->dt, &p->F[9 * a], &p->D[6 * a], &p->sigma[6 * (b->first + a)], state,
+                           &p->cw[a]);
+  }
+}
+
 /* Pass 1 for every owned point, the model batched over the body, then the ghost exchange. */
 static int corr_pass1(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
@@ -553,7 +570,7 @@ static int corr_pass1(pf_pd_body *b, pf_points *pts) {
     else ndetached += !kinematics(b, pts, i);
   double *state = ns ? &p->state[(size_t)ns * b->first] : NULL;
   if (ndetached && ns) memcpy(p->saved, state, sizeof(double) * ns * b->n);
-  pf_fem_material_update(p->cm, b->n, b->dt, p->F, p->D, &p->sigma[6 * b->first], state, p->cw);
+  update_model(b);
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     const pf_int li = i - b->first;
     double *g = &p->gx[GX * i];
