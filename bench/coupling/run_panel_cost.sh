@@ -4,8 +4,10 @@
 # panel all peridynamic (every node a correspondence point of horizon 2.01 mm, no element
 # evaluated): time loop, steps, directed bonds, peak resident memory of one rank, where the
 # sphere stops, and the energy balance. Both on 2 MPI ranks, one after the other, to FINAL_TIME
-# (default the deck's 120 us: about 4 + 4.5 minutes on 2 cores). docs/examples/panel_impact.md quotes the result.
-# usage: bash bench/coupling/run_panel_cost.sh [PERIFEM]   (from the repository root)
+# (default the deck's 120 us: about 4 + 4.5 minutes on 2 cores), with the panel PANEL_LENGTH long
+# along the extrusion (default the mesh's 80e-3 m; 240e-3: about 7 + 13 minutes).
+# docs/examples/panel_impact.md quotes the results.
+# usage: [PANEL_LENGTH=240e-3] bash bench/coupling/run_panel_cost.sh [PERIFEM]   (from the repository root)
 set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
 perifem=$(realpath "${1:-$root/build/perifem}")
@@ -15,7 +17,10 @@ trap 'rm -rf "$work"' EXIT
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 py=python3
 [ -x /usr/bin/python3 ] && py=/usr/bin/python3
-sed -E "s#file: \.\./meshes/#file: $root/meshes/#; s/final_time: 120.0e-6/final_time: $final/; s/interval: 200/interval: 100000/" \
+length=${PANEL_LENGTH:-80e-3}
+sed -E "s/^W = 60e-3; L = 80e-3;/W = 60e-3; L = $length;/" "$root/meshes/panel_sandwich.geo" > "$work/panel_sandwich.geo"
+grep -q "L = $length;" "$work/panel_sandwich.geo" || { echo "meshes/panel_sandwich.geo no longer sets W and L on one line: update this script" >&2; exit 1; }
+sed -E "s#file: \.\./meshes/panel_sandwich.geo#file: $work/panel_sandwich.geo#; s#file: \.\./meshes/#file: $root/meshes/#; s/final_time: 120.0e-6/final_time: $final/; s/interval: 200/interval: 100000/" \
   "$root/inputs/panel_impact.yaml" > "$work/coupled.yaml"
 sed -E 's/horizon: "2.01e-3 - 1e-3 \* \(sqrt\(x\^2 \+ y\^2\) > 0.0225\)"/horizon: 2.01e-3/; s/blending: "1 - min\(max\(\(sqrt\(x\^2 \+ y\^2\) - 0.016\) \/ 0.004, 0\), 1\)"/blending: "1"/' \
   "$work/coupled.yaml" > "$work/all_pd.yaml"
