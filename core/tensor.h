@@ -10,11 +10,14 @@
 /* Voigt order: component k of a symmetric tensor is (pf_voigt_i[k], pf_voigt_j[k]). */
 static const int pf_voigt_i[6] = {0, 1, 2, 1, 0, 0}, pf_voigt_j[6] = {0, 1, 2, 2, 2, 1};
 
-/* det A, by the first row's cofactors. */
-static inline double pf_mat3_det(double A[3][3]) {
-  return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-         A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+/* det F of a row-major F[9], by the first row's cofactors. */
+static inline double pf_det3(const double *restrict F) {
+  return F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+         F[2] * (F[3] * F[7] - F[4] * F[6]);
 }
+
+/* det A. */
+static inline double pf_mat3_det(double A[3][3]) { return pf_det3(&A[0][0]); }
 
 /* inv = A^-1; returns det A (inv is not finite when det A = 0). */
 static inline double pf_mat3_inverse(double A[3][3], double inv[3][3]) {

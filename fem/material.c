@@ -200,7 +200,7 @@ void pf_fem_material_update(const pf_fem_material *m, pf_int n, double dt,
   }
   const double K = m->K, G = m->G, rho0 = m->density;
 #pragma omp simd
-  for (pf_int i = 0; i < n; i++) c[i] = pf_fem_hypo_wave_speed(K, G, rho0, pf_fem_det3(F + 9 * i));
+  for (pf_int i = 0; i < n; i++) c[i] = pf_fem_hypo_wave_speed(K, G, rho0, pf_det3(F + 9 * i));
 }
 
 /* Safeguarded Newton on g(x) = q - G3 x - sigma_y(x) over the bracket [0, x_max] where g(0) > 0

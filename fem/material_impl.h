@@ -60,11 +60,6 @@ struct pf_fem_material_ops {
 #undef PF_FEM_MATERIAL
 
 /* ---- small tensor helpers (Voigt order xx, yy, zz, yz, xz, xy) ---------------------------- */
-/* det F, F row-major [9]. */
-static inline double pf_fem_det3(const double *restrict F) {
-  return F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
-         F[2] * (F[3] * F[7] - F[4] * F[6]);
-}
 static inline double pf_fem_trace(const double *restrict a) { return a[0] + a[1] + a[2]; }
 /* a : b of two symmetric tensors in Voigt form with tensor shear components. */
 static inline double pf_fem_ddot(const double *restrict a, const double *restrict b) {

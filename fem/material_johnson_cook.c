@@ -148,7 +148,7 @@ static void jc_update(const pf_fem_material *m, pf_int n, double dt, const doubl
   for (pf_int i = 0; i < n; i++) {
     const double *restrict d = D + 6 * i;
     double *restrict sg = sigma + 6 * i, *restrict st = state + 3 * i;
-    const double J = pf_fem_det3(F + 9 * i), trD = pf_fem_trace(d);
+    const double J = pf_det3(F + 9 * i), trD = pf_fem_trace(d);
     const double Jh = J * exp(-0.5 * dt * trD);
     double s_n[6], s[6], dd[6];
     pf_fem_deviator(sg, s_n);
@@ -195,7 +195,7 @@ static void jc_wave_speed(const pf_fem_material *m, pf_int n, const double *rest
   const jc *p = m->data;
   const double G = m->G, rho0 = m->density;
   for (pf_int i = 0; i < n; i++) {
-    const double J = pf_fem_det3(F + 9 * i);
+    const double J = pf_det3(F + 9 * i);
     double K = p->K_el;
     if (p->has_eos)
       K = fmax(K, fmax(m->K, pf_fem_eos_mg_bulk_modulus(&p->eos, J, state[3 * i + 2])));

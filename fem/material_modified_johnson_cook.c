@@ -210,7 +210,7 @@ static const int vi[6] = {0, 1, 2, 1, 0, 0}, vj[6] = {0, 1, 2, 2, 2, 1};
 
 /* Fi = F^-1 = adj(F) / det F, F row-major [9]. */
 static void inverse3(const double *restrict f, double Fi[3][3]) {
-  const double J = pf_fem_det3(f);
+  const double J = pf_det3(f);
   Fi[0][0] = (f[4] * f[8] - f[5] * f[7]) / J, Fi[0][1] = (f[2] * f[7] - f[1] * f[8]) / J;
   Fi[0][2] = (f[1] * f[5] - f[2] * f[4]) / J, Fi[1][0] = (f[5] * f[6] - f[3] * f[8]) / J;
   Fi[1][1] = (f[0] * f[8] - f[2] * f[6]) / J, Fi[1][2] = (f[2] * f[3] - f[0] * f[5]) / J;
@@ -287,7 +287,7 @@ static void mjc_update(const pf_fem_material *m, pf_int n, double dt, const doub
       }
     }
     /* sigma = V diag(tau_a / J) V^T. */
-    const double J = pf_fem_det3(f);
+    const double J = pf_det3(f);
     double t[3];
     for (int a = 0; a < 3; a++) t[a] = (tau_m + s[a]) / J;
     for (int v = 0; v < 6; v++) {
@@ -338,7 +338,7 @@ static void mjc_wave_speed(const pf_fem_material *m, pf_int n, const double *res
     const double *s = sigma + 6 * (int64_t)i;
     const double g0 = fabs(s[0]) + fabs(s[5]) + fabs(s[4]), g1 = fabs(s[1]) + fabs(s[5]) + fabs(s[3]),
                  g2 = fabs(s[2]) + fabs(s[4]) + fabs(s[3]);
-    const double J = pf_fem_det3(F + 9 * (int64_t)i);
+    const double J = pf_det3(F + 9 * (int64_t)i);
     c[i] = sqrt((M0 + J * fmax(g0, fmax(g1, g2))) / rho0);
   }
 }

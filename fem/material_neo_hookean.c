@@ -27,7 +27,7 @@ static void nh_update(const pf_fem_material *m, pf_int n, double dt, const doubl
     const double *restrict f = F + 9 * p;
     double H[9];
     for (int k = 0; k < 9; k++) H[k] = f[k] - (k % 4 == 0 ? 1.0 : 0.0);
-    const double J = pf_fem_det3(f);
+    const double J = pf_det3(f);
     const double pres = lam * log(J) / J, g = G / J;
     for (int v = 0; v < 6; v++) {
       const int i = vi[v], j = vj[v];
@@ -49,7 +49,7 @@ static void nh_wave_speed(const pf_fem_material *m, pf_int n, const double *rest
   (void)state;
   const double G = m->G, lam = m->lambda, rho0 = m->density, M0 = lam + 2.0 * G;
   for (pf_int p = 0; p < n; p++) {
-    const double J = pf_fem_det3(F + 9 * p);
+    const double J = pf_det3(F + 9 * p);
     const double *s = sigma + 6 * p;
     const double g0 = s[0] + fabs(s[5]) + fabs(s[4]), g1 = s[1] + fabs(s[5]) + fabs(s[3]),
                  g2 = s[2] + fabs(s[4]) + fabs(s[3]);
