@@ -13,7 +13,7 @@
  *    at rest), and the force sums in double.
  * Each prints its rate in directed bond evaluations per second, its ratio to production and
  * its largest force difference from production. Usage: bench_bond_variants (one rank). */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "pd/bond_batch.h"
 #include "pd/pd.h"
 #include "test_common.h"

@@ -10,6 +10,10 @@
 #include "fem/fem.h"
 #include "pd/pd.h"
 
+#ifndef PF_USES_CONTACT
+#error "contact/contact.h is included by a module below contact/ (docs/architecture.md: the module layers)"
+#endif
+
 /* ---- rigid analytic surfaces (contact/rigid.c) ---------------------------------------------
  * A sphere, a plane or a cylinder with a prescribed velocity v(t), acting on the points of the
  * bodies it names (all bodies when it names none). The force on a point of depth d (how far it
@@ -73,7 +77,7 @@ typedef struct {
   double spacing;      /* the largest cell edge of the body's points (FE nodes: cube root of the nodal volume), m */
   pf_gid gid0;         /* global id of the body's first point (FE: of mesh node 0) */
   pf_int first, n;     /* the body's owned points [first, first + n) of the store */
-  const pf_fem_mesh *mesh; /* FE: the whole mesh (every rank) */
+  const pf_mesh *mesh; /* FE: the whole mesh (every rank) */
   const pf_fem_body *fem;  /* FE: the body (its deleted elements change the surface), or NULL */
   const pf_family *fam;    /* PD: the family of the owned points (for bonded-pair exclusion) */
 } pf_contact_body;
@@ -119,7 +123,7 @@ typedef struct {
  * `sideset` (index into m->sideset; -1: the whole boundary), leaving out the elements flagged in
  * dead[nelem] (deleted by erosion; NULL: none), whose neighbours' faces then become boundary.
  * Sorted by (elem, face). */
-int pf_contact_surface_faces(const pf_fem_mesh *m, int sideset, const uint8_t *dead, pf_contact_face **faces,
+int pf_contact_surface_faces(const pf_mesh *m, int sideset, const uint8_t *dead, pf_contact_face **faces,
                              pf_int *nfaces);
 /* The point of quadrilateral face x[4] closest to p, the face taken as the four triangles
  * (x_a, x_a+1, centre), exact for a flat face. Returns the signed distance (positive on the

@@ -20,7 +20,7 @@
  * triangle (right-hand rule, outward), is the distance function whose gradient ds/dp is the
  * returned normal n = sign (p - c) / |p - c|. */
 #include "contact/contact.h"
-#include "fem/fem_impl.h"
+#include "mesh/mesh.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -60,14 +60,14 @@ static int by_elem_face(const void *pa, const void *pb) {
 }
 
 /* Face f of element e, in pf_hex8_face order (outward). */
-static void make_face(const pf_fem_mesh *m, pf_int e, int f, pf_contact_face *out) {
+static void make_face(const pf_mesh *m, pf_int e, int f, pf_contact_face *out) {
   for (int i = 0; i < 4; i++) out->node[i] = m->conn[8 * (size_t)e + pf_hex8_face[f][i]];
   out->elem = e;
   out->face = f;
 }
 
 /* Mark the element faces (6 e + f) of live elements that no other live element has. */
-static int mark_boundary(const pf_fem_mesh *m, const uint8_t *dead, unsigned char *boundary) {
+static int mark_boundary(const pf_mesh *m, const uint8_t *dead, unsigned char *boundary) {
   size_t nf = 0;
   face_key *k;
   PF_MALLOC(k, 6 * (size_t)m->nelem);
@@ -89,7 +89,7 @@ static int mark_boundary(const pf_fem_mesh *m, const uint8_t *dead, unsigned cha
   return 0;
 }
 
-int pf_contact_surface_faces(const pf_fem_mesh *m, int sideset, const uint8_t *dead, pf_contact_face **faces,
+int pf_contact_surface_faces(const pf_mesh *m, int sideset, const uint8_t *dead, pf_contact_face **faces,
                              pf_int *nfaces) {
   *faces = NULL;
   *nfaces = 0;
@@ -97,7 +97,7 @@ int pf_contact_surface_faces(const pf_fem_mesh *m, int sideset, const uint8_t *d
            "side set %d does not exist (the mesh has %d)", sideset, m->nsidesets);
   pf_contact_face *out;
   if (sideset >= 0) {
-    const pf_fem_set *s = &m->sideset[sideset];
+    const pf_mesh_set *s = &m->sideset[sideset];
     for (pf_int k = 0; k < s->n; k++)
       PF_CHECK(s->item[k] >= 0 && s->item[k] < m->nelem && s->face[k] >= 0 && s->face[k] < 6,
                PF_ERR_INPUT, "side %" PF_INT_FMT " of side set '%s' is element %" PF_INT_FMT

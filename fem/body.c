@@ -25,7 +25,7 @@ const pf_key pf_fem_body_keys[] = {
     {"name", PF_KEY_STRING, 1, NULL, "", "body name (the Exodus block name)", NULL},
     {"type", PF_KEY_STRING, 1, NULL, "", "finite_element", NULL},
     {"material", PF_KEY_STRING, 1, NULL, "", "a name under materials: (an FE model)", NULL},
-    {"mesh", PF_KEY_MAP, 1, NULL, "", "the hexahedral mesh", pf_fem_mesh_keys},
+    {"mesh", PF_KEY_MAP, 1, NULL, "", "the hexahedral mesh", pf_mesh_keys},
     {"element", PF_KEY_STRING, 0, "reduced", "",
      "reduced (one point, hourglass control) | bbar (2x2x2 selective-reduced)", NULL},
     {"hourglass", PF_KEY_MAP, 0, NULL, "", "hourglass control of reduced elements", hourglass_keys},
@@ -71,26 +71,26 @@ static int read_material(const pf_deck *d, const pf_node *body, const pf_node *m
   if (!mat) return pf_deck_error(d, pf_node_get(body, "material"), "material", "no material named '%s' under materials:", mname);
   const char *model = "";
   PF_CALL(pf_deck_string(d, mat, "model", &model));
-  if (!pf_fem_material_known(model))
+  if (!pf_material_known(model))
     return pf_deck_error(d, pf_node_get(body, "material"), "material",
                          "material '%s' has model '%s', which is not a finite-element model (known: %s)", mname,
-                         model, pf_fem_material_names());
-  PF_CALL(pf_fem_material_create(d, mat, mname, &b->mat));
-  b->rho = pf_fem_material_density(b->mat);
-  b->K = pf_fem_material_bulk_modulus(b->mat);
-  b->G = pf_fem_material_shear_modulus(b->mat);
-  b->nstate = pf_fem_material_nstate(b->mat);
+                         model, pf_material_names());
+  PF_CALL(pf_material_create(d, mat, mname, &b->mat));
+  b->rho = pf_material_density(b->mat);
+  b->K = pf_material_bulk_modulus(b->mat);
+  b->G = pf_material_shear_modulus(b->mat);
+  b->nstate = pf_material_nstate(b->mat);
   return 0;
 }
 
-static void gather_reference(const pf_fem_mesh *m, pf_int e, double x[8][3]) {
+static void gather_reference(const pf_mesh *m, pf_int e, double x[8][3]) {
   for (int I = 0; I < 8; I++)
     for (int i = 0; i < 3; i++) x[I][i] = m->X[3 * (size_t)m->conn[8 * (size_t)e + I] + i];
 }
 
 /* Lumped nodal volumes int N_I dV of the whole mesh (the points' volumes). */
 static int nodal_volumes(pf_fem_body *b) {
-  const pf_fem_mesh *m = &b->mesh;
+  const pf_mesh *m = &b->mesh;
   PF_MALLOC(b->node_volume, m->nnodes);
   for (pf_int e = 0; e < m->nelem; e++) {
     double x[8][3], w[8];
@@ -102,7 +102,7 @@ static int nodal_volumes(pf_fem_body *b) {
 }
 
 /* Node -> element CSR of the whole mesh, elements ascending. */
-static int mesh_node_elements(const pf_fem_mesh *m, int64_t **off, pf_int **item) {
+static int mesh_node_elements(const pf_mesh *m, int64_t **off, pf_int **item) {
   PF_MALLOC(*off, m->nnodes + 1);
   PF_MALLOC(*item, 8 * (size_t)m->nelem);
   int64_t *o = *off;
@@ -127,7 +127,7 @@ int pf_fem_body_create(const pf_deck *d, const pf_node *body, const pf_node *mat
   b->deck = d, b->node = body;
   if (!ierr) ierr = read_options(d, body, b);
   if (!ierr) ierr = read_material(d, body, materials, b);
-  if (!ierr) ierr = pf_fem_mesh_read(d, pf_node_get(body, "mesh"), &b->mesh);
+  if (!ierr) ierr = pf_mesh_read(d, pf_node_get(body, "mesh"), &b->mesh);
   if (!ierr) ierr = pf_fem_erosion_read(b, d, body);
   if (!ierr) ierr = nodal_volumes(b);
   if (!ierr) ierr = mesh_node_elements(&b->mesh, &b->mesh_node_off, &b->mesh_node_item);
@@ -143,19 +143,20 @@ int pf_fem_body_create(const pf_deck *d, const pf_node *body, const pf_node *mat
 int pf_fem_body_destroy(pf_fem_body **pb) {
   pf_fem_body *b = *pb;
   if (!b) return 0;
-  pf_fem_mesh_free(&b->mesh);
-  pf_fem_material_destroy(&b->mat);
+  pf_mesh_free(&b->mesh);
+  pf_material_destroy(&b->mat);
   free(b->node_volume), free(b->mesh_node_off), free(b->mesh_node_item), free(b->eid), free(b->conn), free(b->own), free(b->sigma), free(b->state);
   free(b->hgq), free(b->ref), free(b->fe), free(b->energy), free(b->node_off), free(b->node_item), free(b->buf);
   pf_pd_body_destroy(&b->pd);
   pf_expr_destroy(&b->beta_expr);
+  pf_nearest_destroy(&b->fe_region);
   free(b->fsave), free(b->mesh_eroded), free(b->due);
   PF_FREE(*pb);
   return 0;
 }
 
 int pf_fem_body_cloud(const pf_fem_body *b, pf_point_cloud *pc) {
-  const pf_fem_mesh *m = &b->mesh;
+  const pf_mesh *m = &b->mesh;
   memset(pc, 0, sizeof *pc);
   pc->n = m->nnodes;
   PF_MALLOC(pc->X, 3 * (size_t)m->nnodes);
@@ -174,7 +175,7 @@ static int cmp_gid(const void *a, const void *b) {
 
 static int element_rows(const pf_fem_body *b, const pf_points *pts, pf_int first, pf_int n, pf_gid gid0,
                         pf_bond_rows *rows) {
-  const pf_fem_mesh *m = &b->mesh;
+  const pf_mesh *m = &b->mesh;
   const int64_t *off = b->mesh_node_off;
   const pf_int *item = b->mesh_node_item;
   pf_gid row[27 * 8 + 8];

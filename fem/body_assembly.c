@@ -19,7 +19,7 @@ static int local_index(const pf_fem_body *b, int body, const pf_points *pts, pf_
 
 /* Elements with at least one owned node, ascending; their connectivity in store indices. */
 static int local_elements(pf_fem_body *b, const pf_points *pts, pf_int first, pf_int n, const pf_int *loc) {
-  const pf_fem_mesh *m = &b->mesh;
+  const pf_mesh *m = &b->mesh;
   uint8_t *mark = NULL;
   PF_MALLOC(mark, m->nelem);
   for (pf_int e = 0; e < m->nelem; e++)
@@ -114,7 +114,7 @@ static int register_fields(const pf_fem_body *b, pf_points *pts) {
   int idx;
   PF_CALL(pf_points_field_register(pts, "stress", 6, PF_FIELD_OUTPUT, &idx));
   for (int k = 0; k < b->nstate; k++)
-    PF_CALL(pf_points_field_register(pts, pf_fem_material_state_name(b->mat, k), 1, PF_FIELD_OUTPUT, &idx));
+    PF_CALL(pf_points_field_register(pts, pf_material_state_name(b->mat, k), 1, PF_FIELD_OUTPUT, &idx));
   return 0;
 }
 
@@ -144,7 +144,7 @@ int pf_fem_body_attach(pf_fem_body *b, int body, pf_points *pts, pf_int first, p
   free(b->due);
   b->due = NULL, b->n_due = 0;
   if (b->erosion) PF_MALLOC(b->due, b->nel);
-  pf_fem_material_init(b->mat, (pf_int)nq, b->state);
+  pf_material_init(b->mat, (pf_int)nq, b->state);
   b->stable_dt = reference_stable_dt(b, pts);
   PF_CALL(pf_fem_body_coupling_attach(b, pts));
   return b->pd ? 0 : register_fields(b, pts); /* (a coupled body's stress is its PD points') */
@@ -184,8 +184,8 @@ void pf_fem_body_energies(const pf_fem_body *b, double e[3]) {
   }
 }
 
-const pf_fem_mesh *pf_fem_body_mesh(const pf_fem_body *b) { return &b->mesh; }
-const pf_fem_material *pf_fem_body_material(const pf_fem_body *b) { return b->mat; }
+const pf_mesh *pf_fem_body_mesh(const pf_fem_body *b) { return &b->mesh; }
+const pf_material *pf_fem_body_material(const pf_fem_body *b) { return b->mat; }
 
 int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts) {
   if (b->pd) { /* the nodes' stress and history are the PD points'; their bond damage */
@@ -195,7 +195,7 @@ int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts) {
   double *stress = pf_points_field_get(pts, "stress");
   PF_CHECK(stress, PF_ERR_RUN, "body '%s': no stress field", b->name);
   double *st[16], *vq = NULL;
-  for (int k = 0; k < b->nstate && k < 16; k++) st[k] = pf_points_field_get(pts, pf_fem_material_state_name(b->mat, k));
+  for (int k = 0; k < b->nstate && k < 16; k++) st[k] = pf_points_field_get(pts, pf_material_state_name(b->mat, k));
   const int nq = b->nqp;
   PF_MALLOC(vq, b->nel); /* each element's current volume per quadrature point, once */
   for (pf_int e = 0; e < b->nel; e++) {

@@ -13,6 +13,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+static double fe_distance(const void *region, const double x[3]) {
+  return region ? pf_nearest_distance(region, x) : INFINITY;
+}
+
 int pf_fem_body_coupling_read(pf_fem_body *b, const pf_node *body, const pf_node *materials) {
   const pf_node *map = pf_node_get(body, "peridynamic");
   if (!map) return 0;
@@ -33,9 +37,10 @@ int pf_fem_body_coupling_read(pf_fem_body *b, const pf_node *body, const pf_node
     pd_region |= w == 1;
     if (w < 1) memcpy(&fe[3 * (size_t)nfe++], x, 3 * sizeof(double));
   }
-  int ierr = pf_pd_body_set_fe_region(b->pd, fe, nfe); /* (the horizon's d_fe) */
+  int ierr = nfe > 0 && pf_pd_body_uses_fe_distance(b->pd) ? pf_nearest_create(fe, nfe, &b->fe_region) : 0;
   free(fe);
   PF_CALL(ierr);
+  pf_pd_body_set_fe_distance(b->pd, fe_distance, b->fe_region); /* the horizon's d_fe */
   const pf_node *dmg = pf_node_get(map, "damage");
   const char *law = "none";
   PF_CALL(pf_deck_string(b->deck, dmg, "law", &law));

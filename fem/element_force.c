@@ -226,7 +226,7 @@ int pf_fem_elements_evaluate(pf_fem_body *b, const pf_points *pts, double dt) {
     for (pf_int k = 0; k < ne; k++)
       if (pf_fem_element_eroded(b, e0 + k)) at_rest(nq, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k]);
       else PF_CALL(kinematics(b, pts, e0 + k, dt, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
-    pf_fem_material_update(b->mat, ne * nq, dt, F, D, &b->sigma[6 * (size_t)nq * e0],
+    pf_material_update(b->mat, ne * nq, dt, F, D, &b->sigma[6 * (size_t)nq * e0],
                            &b->state[(size_t)b->nstate * nq * e0], c);
     for (pf_int k = 0; k < ne; k++) {
       const pf_int e = e0 + k;

@@ -32,7 +32,7 @@ int pf_fem_erosion_read(pf_fem_body *b, const pf_deck *d, const pf_node *body) {
   PF_CALL(pf_deck_real(d, map, "max_volume_ratio", &b->erode_jmax));
   if (pf_node_get(map, "plastic_strain")) {
     for (int k = 0; k < b->nstate; k++)
-      if (!strcmp(pf_fem_material_state_name(b->mat, k), "eqps")) b->eqps_slot = k;
+      if (!strcmp(pf_material_state_name(b->mat, k), "eqps")) b->eqps_slot = k;
     if (b->eqps_slot < 0)
       return pf_deck_error(d, pf_node_get(map, "plastic_strain"), "plastic_strain",
                            "the material of body '%s' has no equivalent plastic strain", b->name);

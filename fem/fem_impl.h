@@ -1,20 +1,9 @@
-/* Private to fem/: hexahedron geometry kernels and the FE body structure. */
+/* Private to fem/: hourglass vectors and the FE body structure. */
 #ifndef PF_FEM_IMPL_H
 #define PF_FEM_IMPL_H
 
 #include "fem/fem.h"
 #include "pd/pd.h"
-
-/* ---- hexahedron geometry (fem/hex8.c) ---- */
-extern const double pf_hex8_node_sign[8][3];
-extern const int pf_hex8_face[6][4];
-void pf_hex8_gauss_point(int g, double xi[3]);
-/* Gradients dN_I/dx_i at parent point xi; returns det J. */
-double pf_hex8_gradients(double x[8][3], const double xi[3], double grad[8][3]);
-/* Mean gradient B[I][i] (Flanagan & Belytschko 1981) of the element with nodes x; returns V. */
-double pf_hex8_mean_gradient(double x[8][3], double B[8][3]);
-void pf_hex8_lumped_mass(double x[8][3], double rho, double m[8]);
-double pf_hex8_char_length(double x[8][3], double V);
 
 /* ---- Flanagan-Belytschko hourglass control (fem/hourglass.c) ---- */
 typedef enum { PF_HG_NONE, PF_HG_VISCOUS, PF_HG_STIFFNESS } pf_hourglass_kind;
@@ -28,8 +17,8 @@ struct pf_fem_body {
   char name[64];
   const pf_deck *deck;
   const pf_node *node;
-  pf_fem_mesh mesh; /* the whole mesh, read on every rank */
-  pf_fem_material *mat;
+  pf_mesh mesh; /* the whole mesh, read on every rank */
+  pf_material *mat;
   double rho, K, G;
   int bbar; /* 0: one-point + hourglass control; 1: selective-reduced 2x2x2 (B-bar) */
   int nqp;  /* quadrature points per element: 1 or 8 */
@@ -61,6 +50,7 @@ struct pf_fem_body {
   pf_expr *beta_expr; /* blending weight beta(x) */
   double *beta;      /* field "blending_weight" [store] */
   double *fsave;     /* [3n] scratch of the blended force */
+  pf_nearest *fe_region; /* the nodes where the elements act (beta < 1), for the horizon's d_fe */
   /* erosion (fem/erosion.c) */
   int erosion;          /* some limit is set */
   double erode_eqps, erode_jmin, erode_jmax;

@@ -1,7 +1,7 @@
 /* A peridynamic body: its deck keys, material lookup by name, family, and the per-step entry
  * points that dispatch to the material's ops table. */
 #include "pd/pd_impl.h"
-#include "fem/fem.h"
+#include "material/material.h"
 
 #include <float.h>
 #include <math.h>
@@ -141,7 +141,7 @@ static int read_material(const pf_deck *d, const pf_node *body, const pf_node *m
     return pf_deck_error(d, pf_node_get(body, "material"), "material",
                          "no material named '%s' under materials:", mname);
   PF_CALL(pf_deck_string(d, *mat, "model", &model));
-  if (pf_fem_material_known(model)) b->ops = &pf_pd_material_correspondence; /* K, G from it */
+  if (pf_material_known(model)) b->ops = &pf_pd_material_correspondence; /* K, G from it */
   else PF_CALL(find_material(d, *mat, model, &b->ops));
   PF_CALL(pf_deck_real(d, *mat, "density", &b->density));
   PF_CALL(pf_deck_real(d, *mat, "bulk_modulus", &b->bulk_modulus));
@@ -249,7 +249,7 @@ static int body_read(const pf_deck *d, const pf_node *owner, const pf_node *body
     if (pf_node_get(body, corr_keys[k]))
       return pf_deck_error(d, pf_node_get(body, corr_keys[k]), corr_keys[k],
                            "only for correspondence bodies (a material whose model is one of %s)",
-                           pf_fem_material_names());
+                           pf_material_names());
   PF_CALL(b->ops->create(d, mat, b));
   PF_CALL(pf_deck_bool(d, body, "partial_volumes", &b->partial));
   PF_CALL(read_cracks(d, pf_node_get(body, "precracks"), &b->ncracks, &b->cracks));
@@ -281,7 +281,7 @@ int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *mate
  * act, infinite when there is none); a value that is not positive and finite is an input error
  * naming it. */
 static int horizon_at(const pf_pd_body *b, const double *x, pf_gid gid, double *h) {
-  const double d_fe = b->uses_dfe && b->fe_region ? pf_nearest_distance(b->fe_region, x) : INFINITY;
+  const double d_fe = b->uses_dfe && b->fe_distance ? b->fe_distance(b->fe_ctx, x) : INFINITY;
   *h = pf_expr_eval_vars(b->hz_expr, x[0], x[1], x[2], 0.0, &d_fe);
   if (*h > 0 && isfinite(*h)) return 0;
   return pf_deck_error(b->deck, pf_node_get(b->node, "horizon"), "horizon",
@@ -314,10 +314,11 @@ int pf_pd_body_create_coupled(const pf_deck *d, const pf_node *owner, const pf_n
 
 void pf_pd_body_set_blending(pf_pd_body *b, const double *beta) { b->blend = beta; }
 
-int pf_pd_body_set_fe_region(pf_pd_body *b, const double *X, pf_int n) {
-  pf_nearest_destroy(&b->fe_region);
-  return n > 0 && b->uses_dfe ? pf_nearest_create(X, n, &b->fe_region) : 0;
+void pf_pd_body_set_fe_distance(pf_pd_body *b, pf_pd_distance_fn distance, const void *ctx) {
+  b->fe_distance = distance, b->fe_ctx = ctx;
 }
+
+int pf_pd_body_uses_fe_distance(const pf_pd_body *b) { return b->uses_dfe; }
 
 int pf_pd_body_find_bonds(pf_pd_body *b, const pf_pd_cloud *cloud, const pf_points *pts,
                           pf_int first, pf_int n, pf_bond_rows *rows) {
@@ -431,7 +432,6 @@ int pf_pd_body_destroy(pf_pd_body **b) {
   if (!*b) return 0;
   if ((*b)->ops && (*b)->ops->destroy && (*b)->mat) (*b)->ops->destroy(*b);
   pf_pd_family_free(&(*b)->fam);
-  pf_nearest_destroy(&(*b)->fe_region);
   free((*b)->smin);
   free((*b)->lost);
   free((*b)->idle);

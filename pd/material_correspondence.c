@@ -9,7 +9,7 @@
  *   Fdot_i = [sum_j w V_j Ydot (x) xi] K_i^-1                Ydot = v_j - v_i
  * Stress: as in an FE element (fem/element_force.c), L = Fdot Fm^-1 on the mid-step
  * Fm = Fbar - dt/2 Fdot, D = sym L, the previous Cauchy stress rotated by the Hughes & Winget
- * (1980) increment of W = skew L; the continuum model then advances it (pf_fem_material_update).
+ * (1980) increment of W = skew L; the continuum model then advances it (pf_material_update).
  * Force state (Silling et al. 2007, eq. 140; Tupek et al. eq. 5): T_i<xi> = w P_i K_i^-1 xi with
  * P = J sigma Fbar^-T, so with full neighbour lists
  *   f_i = V_i sum_j w V_j (P_i K_i^-1 + P_j K_j^-1) xi.
@@ -27,7 +27,7 @@
  * C_hg ~ 1 damps a mode of wavelength ~ delta critically): it damps zero-energy modes without
  * resisting the slow, non-affine flow of plastic deformation. */
 #include "pd/pd_impl.h"
-#include "fem/fem.h"
+#include "material/material.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -39,7 +39,7 @@
 enum { G_PK = 0, G_F = 9, G_FDOT = 18, G_DETACHED = 27, G_DAMAGE = 28, G_C = 29, G_NU = 30, GX = 39 };
 
 typedef struct {
-  pf_fem_material *cm; /* the continuum model */
+  pf_material *cm; /* the continuum model */
   int nstate, idamage; /* history variables; index of the one named "damage", or -1 */
   int viscous;         /* hourglass control on the velocity deviation instead of the position's */
   int keep_stress;     /* bond_loss: keep_stress (1) or jump (0) */
@@ -115,14 +115,14 @@ static int corr_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
   corr *p;
   PF_MALLOC(p, 1);
   b->mat = p;
-  PF_CALL(pf_fem_material_create(d, mat, mname, &p->cm));
-  b->bulk_modulus = pf_fem_material_bulk_modulus(p->cm);
-  b->shear_modulus = pf_fem_material_shear_modulus(p->cm);
-  b->density = pf_fem_material_density(p->cm);
-  p->nstate = pf_fem_material_nstate(p->cm);
+  PF_CALL(pf_material_create(d, mat, mname, &p->cm));
+  b->bulk_modulus = pf_material_bulk_modulus(p->cm);
+  b->shear_modulus = pf_material_shear_modulus(p->cm);
+  b->density = pf_material_density(p->cm);
+  p->nstate = pf_material_nstate(p->cm);
   p->idamage = -1;
   for (int k = 0; k < p->nstate; k++)
-    if (!strcmp(pf_fem_material_state_name(p->cm, k), "damage")) p->idamage = k;
+    if (!strcmp(pf_material_state_name(p->cm, k), "damage")) p->idamage = k;
   PF_CALL(read_hourglass(d, pf_node_get(b->node, "hourglass"), p));
   p->dcrit = 0.99;
   PF_CALL(pf_deck_real(d, b->node, "critical_damage", &p->dcrit));
@@ -163,7 +163,7 @@ static int register_fields(pf_pd_body *b, pf_points *pts) {
   p->state = pts->fields[idx].data;
   if (!p->out) PF_MALLOC(p->out, p->nstate);
   for (int k = 0; k < p->nstate; k++) { /* the model's damage D is not the bond damage phi */
-    const char *sname = pf_fem_material_state_name(p->cm, k);
+    const char *sname = pf_material_state_name(p->cm, k);
     PF_CALL(pf_points_field_register(pts, k == p->idamage ? "material_damage" : sname, 1, PF_FIELD_OUTPUT, &idx));
     p->out[k] = pts->fields[idx].data;
   }
@@ -332,7 +332,7 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
       p->work[i] = p->hgwork[i] = 0.0;
       for (int a = 0; a < 3; a++) p->hgforce[3 * i + a] = 0.0;
     }
-    if (p->nstate) pf_fem_material_init(p->cm, b->n, &p->state[(size_t)p->nstate * b->first]);
+    if (p->nstate) pf_material_init(p->cm, b->n, &p->state[(size_t)p->nstate * b->first]);
   }
   p->gamma = wave_factor(&b->influence, b->horizon); /* (the largest horizon, once known) */
   double h = NAN, c = 0; /* the PMB micromodulus of each point's horizon, for the hourglass force */
@@ -459,7 +459,7 @@ static void rereference(pf_pd_body *b, pf_int i, double Fb[3][3], double L[3][3]
     }
   if (!p->nstate || g[G_DETACHED] || !(pf_mat3_det(Fn) > 0) || !(pf_mat3_inverse(Am, Ai) > 0)) return;
   mat_mul(Ai, Ap, T), mat_mul(T, Fn, Fs);
-  pf_fem_material_rereference(p->cm, 1, &Fs[0][0], &Fb[0][0], &p->state[(size_t)p->nstate * i]);
+  pf_material_rereference(p->cm, 1, &Fs[0][0], &Fb[0][0], &p->state[(size_t)p->nstate * i]);
 }
 
 /* Kinematics of point i for the model: Fbar into F, D into D, the rotated previous stress; K^-1
@@ -554,7 +554,7 @@ static void update_model(pf_pd_body *b) {
     }
     for (e = a + 1; e < b->n && !(b->idle && b->idle[e]);) e++;
     double *state = ns ? &p->state[(size_t)ns * (b->first + a)] : NULL;
-    pf_fem_material_update(p->cm, e - a, b->dt, &p->F[9 * a], &p->D[6 * a], &p->sigma[6 * (b->first + a)], state,
+    pf_material_update(p->cm, e - a, b->dt, &p->F[9 * a], &p->D[6 * a], &p->sigma[6 * (b->first + a)], state,
                            &p->cw[a]);
   }
 }
@@ -697,7 +697,7 @@ static double corr_stable_dt(const pf_pd_body *b, const pf_points *pts) {
 
 static void corr_destroy(pf_pd_body *b) {
   corr *p = b->mat;
-  pf_fem_material_destroy(&p->cm);
+  pf_material_destroy(&p->cm);
   free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm), free(p->out);
   free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam), free(p->lost);
   PF_FREE(b->mat);

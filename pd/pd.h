@@ -5,6 +5,10 @@
 
 #include "core/core.h"
 
+#ifndef PF_USES_PD
+#error "pd/pd.h is included by a module below pd/ (docs/architecture.md: the module layers)"
+#endif
+
 typedef struct pf_pd_body pf_pd_body;
 
 /* CSR family of the points [first, first + n) of the point store. Full lists (each bond seen
@@ -105,9 +109,12 @@ int pf_pd_body_create_coupled(const pf_deck *d, const pf_node *owner, const pf_n
 /* Each store point's blending weight (FE-coupled bodies), read at attach: points with beta < 1
  * are overlap points (no damage). */
 void pf_pd_body_set_blending(pf_pd_body *b, const double *beta);
-/* Coupled: the positions of the n nodes where the elements act (blending < 1), copied; the
- * horizon expression's d_fe is the distance to the nearest of them. */
-int pf_pd_body_set_fe_region(pf_pd_body *b, const double *X, pf_int n);
+/* Coupled: the horizon expression's d_fe at x, the distance to the region where the elements act,
+ * is distance(ctx, x) (coupling/ gives it; without it d_fe is infinite). Does the body's horizon
+ * expression name d_fe? */
+typedef double (*pf_pd_distance_fn)(const void *ctx, const double x[3]);
+void pf_pd_body_set_fe_distance(pf_pd_body *b, pf_pd_distance_fn distance, const void *ctx);
+int pf_pd_body_uses_fe_distance(const pf_pd_body *b);
 /* Append to rows the bonds of store points [first, first+n), points of this body, found in
  * the body's whole cloud (with a variable horizon, each point's own horizon: rows hold the
  * pairs either end's family has). */

@@ -42,7 +42,8 @@ struct pf_pd_body {
   pf_expr *hz_expr;        /* a variable horizon delta(x, y, z, d_fe), or NULL */
   int coupled;             /* the nodes of an FE body (its `peridynamic:` map) */
   int uses_dfe;            /* coupled: the horizon expression names d_fe */
-  pf_nearest *fe_region;   /* coupled: the nodes where the elements act (beta < 1), for d_fe */
+  pf_pd_distance_fn fe_distance; /* coupled: d_fe, the distance to where the elements act */
+  const void *fe_ctx;
   pf_pd_formulation form;
   double *hz;              /* field "horizon" [store]: each point's own horizon, ghosts too */
   double *region;          /* field "region" [store]: bit 0 (1) the partial-stress force, bit 1

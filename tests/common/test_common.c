@@ -6,7 +6,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "fem/fem.h"
 
 int pf_test_failures = 0;
@@ -94,8 +94,8 @@ const char *pf_test_write_mesh(const char *tag, const void *mesh) {
   int id = (int)getpid();
   MPI_Bcast(&id, 1, MPI_INT, 0, MPI_COMM_WORLD);
   snprintf(path, sizeof path, "/tmp/pf_test_%s_%d.e", tag, id);
-  int ok = pf_comm_rank() != 0 || pf_fem_mesh_write_exodus(path, (const pf_fem_mesh *)mesh) == 0;
-  pf_test_true(ok, "pf_fem_mesh_write_exodus", __FILE__, __LINE__);
+  int ok = pf_comm_rank() != 0 || pf_mesh_write_exodus(path, (const pf_mesh *)mesh) == 0;
+  pf_test_true(ok, "pf_mesh_write_exodus", __FILE__, __LINE__);
   MPI_Barrier(MPI_COMM_WORLD);
   return path;
 }
@@ -165,17 +165,17 @@ pf_points *pf_test_points(pf_int n, const double (*y)[3], double vol, double m) 
   return p;
 }
 
-int pf_test_material_load(const char *text, const char *name, int validate, pf_fem_material **m) {
+int pf_test_material_load(const char *text, const char *name, int validate, pf_material **m) {
   *m = NULL;
   pf_deck *d = NULL;
-  int ierr = pf_test_deck_text("fem_mat", text, validate ? pf_fem_material_keys : NULL, "materials.test", &d);
-  if (!ierr) ierr = pf_fem_material_create(d, pf_deck_root(d), name, m);
+  int ierr = pf_test_deck_text("fem_mat", text, validate ? pf_material_keys : NULL, "materials.test", &d);
+  if (!ierr) ierr = pf_material_create(d, pf_deck_root(d), name, m);
   pf_deck_destroy(&d);
   return ierr;
 }
 
-pf_fem_material *pf_test_material_must_load(const char *text, const char *name) {
-  pf_fem_material *m = NULL;
+pf_material *pf_test_material_must_load(const char *text, const char *name) {
+  pf_material *m = NULL;
   if (pf_test_material_load(text, name, 1, &m)) {
     fprintf(stderr, "cannot load material deck:\n%s\n", text);
     pf_test_failures++;
@@ -204,21 +204,21 @@ void pf_test_refused(int ierr, int made, const char *text, const char *must_ment
 }
 
 void pf_test_material_bad(const char *text, const char *name, int validate, const char *must_mention) {
-  pf_fem_material *m = NULL;
+  pf_material *m = NULL;
   pf_error_clear();
   const int ierr = pf_test_material_load(text, name, validate, &m);
   pf_test_refused(ierr, m != NULL, text, must_mention);
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 }
 
-void pf_test_point_init(const pf_fem_material *m, pf_test_point *p) {
+void pf_test_point_init(const pf_material *m, pf_test_point *p) {
   memset(p, 0, sizeof *p);
   p->F[0] = p->F[4] = p->F[8] = 1.0;
-  pf_fem_material_init(m, 1, p->st);
+  pf_material_init(m, 1, p->st);
 }
 
-void pf_test_point_step(const pf_fem_material *m, double dt, pf_test_point *p) {
-  pf_fem_material_update(m, 1, dt, p->F, p->D, p->sig, p->st, &p->c);
+void pf_test_point_step(const pf_material *m, double dt, pf_test_point *p) {
+  pf_material_update(m, 1, dt, p->F, p->D, p->sig, p->st, &p->c);
 }
 
 void pf_test_rotation(const double a[3], double t, double R[9]) {

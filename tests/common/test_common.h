@@ -2,7 +2,7 @@
 #ifndef PF_TEST_COMMON_H
 #define PF_TEST_COMMON_H
 #include "core/core.h"
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "fem/fem.h"
 
 extern int pf_test_failures;
@@ -24,7 +24,7 @@ void pf_test_true(int cond, const char *what, const char *file, int line);
 const char *pf_test_write_file(int slot, const char *tag, const char *text);
 /* Write an FE mesh as an Exodus file on rank 0, under a /tmp name every rank shares (rank 0's
  * process id); returns the path (static storage). Remove it with pf_test_remove_shared. */
-const char *pf_test_write_mesh(const char *tag, const void *mesh); /* mesh: a pf_fem_mesh */
+const char *pf_test_write_mesh(const char *tag, const void *mesh); /* mesh: a pf_mesh */
 /* A copy of the deck file beside it (same folder, so relative paths still hold) in which every
  * line containing keys[k] is replaced by lines[k]; returns its path (static storage). Rank 0
  * writes it, every rank may read it. Remove it with pf_test_remove_shared. Collective. */
@@ -55,16 +55,16 @@ typedef struct {
 } pf_test_point;
 /* Load a material from deck text whose root mapping is the material (checked against the
  * material keys when validate), named name; returns the error code (0 on success). */
-int pf_test_material_load(const char *text, const char *name, int validate, pf_fem_material **m);
+int pf_test_material_load(const char *text, const char *name, int validate, pf_material **m);
 /* The same, validated; a failure is a test failure (the deck is printed) and gives NULL. */
-pf_fem_material *pf_test_material_must_load(const char *text, const char *name);
+pf_material *pf_test_material_must_load(const char *text, const char *name);
 /* A bad material deck must be refused with an input error whose message mentions
  * must_mention (when given); otherwise a test failure. */
 void pf_test_material_bad(const char *text, const char *name, int validate, const char *must_mention);
 /* F = I, the rest zero, the model's initial history. */
-void pf_test_point_init(const pf_fem_material *m, pf_test_point *p);
+void pf_test_point_init(const pf_material *m, pf_test_point *p);
 /* Advance the point over dt with its F and D. */
-void pf_test_point_step(const pf_fem_material *m, double dt, pf_test_point *p);
+void pf_test_point_step(const pf_material *m, double dt, pf_test_point *p);
 /* Rotation by angle t about the unit axis a (Rodrigues): R = cos t I + sin t [a]x +
  * (1 - cos t) a a^T, row-major. */
 void pf_test_rotation(const double a[3], double t, double R[9]);

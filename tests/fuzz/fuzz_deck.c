@@ -3,7 +3,7 @@
  * or type (as pf_sim_create does), and every scalar read back typed. Nothing may crash, leak
  * or hit undefined behaviour; bad input only returns an error. Built by scripts/fuzz.sh (clang,
  * -fsanitize=fuzzer,address,undefined); not part of the ctest run. */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "fem/fem.h"
 #include "pd/pd.h"
 
@@ -47,7 +47,7 @@ static void check_parts(const pf_deck *d, const pf_node *root) {
     const char *name, *model = NULL;
     const pf_node *m = pf_node_map_item(mats, k, &name);
     if (pf_deck_string(d, m, "model", &model) || !model) continue;
-    pf_deck_validate(d, m, pf_fem_material_known(model) ? pf_fem_material_keys : pf_pd_material_keys, "material");
+    pf_deck_validate(d, m, pf_material_known(model) ? pf_material_keys : pf_pd_material_keys, "material");
   }
   for (int k = 0; k < pf_node_count(bodies); k++) {
     const pf_node *b = pf_node_item(bodies, k);

@@ -9,7 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "pd/pd.h"
 
 /* The s0 field of a 4 x 4 x 4 body of the given model and influence function, built from a deck

@@ -27,7 +27,7 @@ static double uniform(void) {
 
 /* An nx x ny x nz block of cells 1.1 x 0.9 x 1.0 m, nodes moved by up to 0.05 m (every element
  * keeps a positive volume), Exodus HEX8 order. */
-static void block_mesh(int nx, int ny, int nz, pf_fem_mesh *m) {
+static void block_mesh(int nx, int ny, int nz, pf_mesh *m) {
   memset(m, 0, sizeof *m);
   m->nnodes = (nx + 1) * (ny + 1) * (nz + 1);
   m->nelem = nx * ny * nz;
@@ -53,7 +53,7 @@ static void block_mesh(int nx, int ny, int nz, pf_fem_mesh *m) {
       }
 }
 
-static void block_free(pf_fem_mesh *m) {
+static void block_free(pf_mesh *m) {
   free(m->X);
   free(m->conn);
   for (int s = 0; s < m->nsidesets; s++) {
@@ -63,14 +63,14 @@ static void block_free(pf_fem_mesh *m) {
   free(m->sideset);
 }
 
-static void element_coords(const pf_fem_mesh *m, pf_int e, double x[8][3]) {
+static void element_coords(const pf_mesh *m, pf_int e, double x[8][3]) {
   for (int I = 0; I < 8; I++)
     for (int i = 0; i < 3; i++) x[I][i] = m->X[3 * (size_t)m->conn[8 * (size_t)e + I] + i];
 }
 
 /* Face normal (x2 - x0) x (x3 - x1) (the diagonals: twice the area vector of a flat face) and
  * centre of the face with mesh nodes q[4]. */
-static void face_normal(const pf_fem_mesh *m, const pf_int q[4], double nrm[3], double ctr[3]) {
+static void face_normal(const pf_mesh *m, const pf_int q[4], double nrm[3], double ctr[3]) {
   double d1[3], d2[3];
   for (int i = 0; i < 3; i++) {
     d1[i] = m->X[3 * (size_t)q[2] + i] - m->X[3 * (size_t)q[0] + i];
@@ -89,11 +89,11 @@ static int same_nodes(const pf_int a[4], const pf_int b[4]) {
 }
 
 /* Every element face of pf_hex8_face order points out of its element (right-hand rule). */
-static void check_face_table(const pf_fem_mesh *m) {
+static void check_face_table(const pf_mesh *m) {
   for (pf_int e = 0; e < m->nelem; e++) {
     double x[8][3], ce[3] = {0, 0, 0};
     element_coords(m, e, x);
-    PF_TEST_TRUE(pf_fem_hex_volume((const double(*)[3])x) > 0);
+    PF_TEST_TRUE(pf_mesh_hex_volume((const double(*)[3])x) > 0);
     for (int I = 0; I < 8; I++)
       for (int i = 0; i < 3; i++) ce[i] += x[I][i] / 8;
     for (int f = 0; f < 6; f++) {
@@ -109,7 +109,7 @@ static void check_face_table(const pf_fem_mesh *m) {
 /* Boundary faces against the brute-force count of faces with the same nodes; their normals
  * point away from the block centre (the block is convex). */
 static void check_boundary(int nx, int ny, int nz) {
-  pf_fem_mesh m;
+  pf_mesh m;
   block_mesh(nx, ny, nz, &m);
   check_face_table(&m);
   pf_contact_face *faces = NULL;
@@ -152,7 +152,7 @@ static void check_boundary(int nx, int ny, int nz) {
  * again); no face belongs to a deleted element, and each exposed face's outward normal points
  * into the hole. */
 static void check_eroded(void) {
-  pf_fem_mesh m;
+  pf_mesh m;
   block_mesh(3, 3, 3, &m);
   uint8_t dead[27] = {0};
   pf_contact_face *faces = NULL;
@@ -186,11 +186,11 @@ static void check_eroded(void) {
 /* Side sets: 4 sides given out of order come back sorted by (element, face) with the nodes of
  * the face table; an empty side set gives 0 faces; a missing side set is an error. */
 static void check_sideset(void) {
-  pf_fem_mesh m;
+  pf_mesh m;
   block_mesh(2, 2, 2, &m);
   m.nsidesets = 2;
   m.sideset = calloc(2, sizeof *m.sideset);
-  pf_fem_set *s = &m.sideset[0];
+  pf_mesh_set *s = &m.sideset[0];
   snprintf(s->name, sizeof s->name, "xmax");
   s->n = 4;
   s->item = calloc(4, sizeof(pf_int));

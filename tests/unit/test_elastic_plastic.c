@@ -22,7 +22,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 
 static const double h = 1e-3, K = 162.0e9, G = 74.76923076923077e9;
 

@@ -1,4 +1,4 @@
-/* The FE constitutive library (fem/material*.c, fem/eos_mie_gruneisen.c) against closed forms:
+/* The FE constitutive library (material/, material/eos_mie_gruneisen.c) against closed forms:
  * a conformance loop over every registered model (zero strain, rigid rotation, small-strain
  * Lame response, batching), then each model's own closed forms, the Mie-Gruneisen equation of
  * state against the Rankine-Hugoniot jump conditions, the Lexan deck of the expanding-tube
@@ -42,7 +42,7 @@
   "modified_johnson_cook: {sigma0: 250e6, B: 365e6, n: 0.04, C: 0.002, reference_strain_rate: 1}\n" \
   "damage: {d1: 0.875, d2: 0.13, d3: -1.5, d4: 0, reference_strain_rate: 1}\n"
 
-static pf_fem_material *must_load(const char *text) { return pf_test_material_must_load(text, "test"); }
+static pf_material *must_load(const char *text) { return pf_test_material_must_load(text, "test"); }
 
 /* ---- conformance suite over every registered model (STYLE.md 10) ------------------------- */
 typedef struct {
@@ -60,13 +60,13 @@ static const conf_case cases[] = {
 enum { NCASES = sizeof cases / sizeof cases[0] };
 
 static void conformance_case(const conf_case *cc) {
-  pf_fem_material *m = must_load(cc->deck);
+  pf_material *m = must_load(cc->deck);
   if (!m) return;
-  const double K = pf_fem_material_bulk_modulus(m), G = pf_fem_material_shear_modulus(m);
-  const double rho0 = pf_fem_material_density(m), lam = K - 2.0 * G / 3.0;
-  const int ns = pf_fem_material_nstate(m);
+  const double K = pf_material_bulk_modulus(m), G = pf_material_shear_modulus(m);
+  const double rho0 = pf_material_density(m), lam = K - 2.0 * G / 3.0;
+  const int ns = pf_material_nstate(m);
   PF_TEST_TRUE(ns >= 0 && ns <= 8);
-  for (int k = 0; k < ns; k++) PF_TEST_TRUE(pf_fem_material_state_name(m, k) != NULL);
+  for (int k = 0; k < ns; k++) PF_TEST_TRUE(pf_material_state_name(m, k) != NULL);
 
   /* 1. F = I, D = 0, sigma = 0: the stress stays exactly zero, the history does not move, and
    * the wave speed is at least the small-strain dilatational speed sqrt((K + 4G/3)/rho0). */
@@ -127,25 +127,25 @@ static void conformance_case(const conf_case *cc) {
     memcpy(s3 + 6 * i, q[i].sig, sizeof q[i].sig);
     for (int k = 0; k < ns; k++) st3[ns * i + k] = q[i].st[k];
   }
-  pf_fem_material_update(m, 3, 1e-6, F3, D3, s3, st3, c3);
+  pf_material_update(m, 3, 1e-6, F3, D3, s3, st3, c3);
   for (int i = 0; i < 3; i++) {
     pf_test_point_step(m, 1e-6, &q[i]);
     for (int k = 0; k < 6; k++) PF_TEST_TRUE(s3[6 * i + k] == q[i].sig[k]);
     for (int k = 0; k < ns; k++) PF_TEST_TRUE(st3[ns * i + k] == q[i].st[k]);
     PF_TEST_TRUE(c3[i] == q[i].c);
   }
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
   PF_TEST_TRUE(m == NULL);
 }
 
 static void conformance(void) {
   /* Every registered model must have at least one conformance case. */
   char names[256];
-  snprintf(names, sizeof names, "%s", pf_fem_material_names());
+  snprintf(names, sizeof names, "%s", pf_material_names());
   int nmodels = 0;
   for (char *tok = strtok(names, ", "); tok; tok = strtok(NULL, ", ")) {
     nmodels++;
-    PF_TEST_TRUE(pf_fem_material_known(tok));
+    PF_TEST_TRUE(pf_material_known(tok));
     int found = 0;
     for (int c = 0; c < NCASES; c++) found |= !strcmp(cases[c].model, tok);
     if (!found) fprintf(stderr, "model '%s' has no conformance case\n", tok), pf_test_failures++;
@@ -156,15 +156,15 @@ static void conformance(void) {
 
 /* ---- elastic --------------------------------------------------------------------------- */
 static void elastic(void) {
-  pf_fem_material *m = must_load(ELASTIC_DECK);
+  pf_material *m = must_load(ELASTIC_DECK);
   if (!m) return;
   /* K = E / (3 (1 - 2 nu)), G = E / (2 (1 + nu)), lambda = E nu / ((1 + nu)(1 - 2 nu)). */
   const double E = 200e9, nu = 0.3, lam = E * nu / ((1 + nu) * (1 - 2 * nu)), G = E / (2 * (1 + nu));
-  PF_TEST_CLOSE(pf_fem_material_bulk_modulus(m), E / (3 * (1 - 2 * nu)), 1e-15, 0);
-  PF_TEST_CLOSE(pf_fem_material_shear_modulus(m), G, 1e-15, 0);
-  PF_TEST_CLOSE(pf_fem_material_density(m), 7800, 0, 0);
-  PF_TEST_TRUE(!strcmp(pf_fem_material_name(m), "test"));
-  PF_TEST_TRUE(pf_fem_material_nstate(m) == 0);
+  PF_TEST_CLOSE(pf_material_bulk_modulus(m), E / (3 * (1 - 2 * nu)), 1e-15, 0);
+  PF_TEST_CLOSE(pf_material_shear_modulus(m), G, 1e-15, 0);
+  PF_TEST_CLOSE(pf_material_density(m), 7800, 0, 0);
+  PF_TEST_TRUE(!strcmp(pf_material_name(m), "test"));
+  PF_TEST_TRUE(pf_material_nstate(m) == 0);
   /* Uniaxial strain in N steps of d eps: sigma_xx = (lambda + 2G) eps, sigma_yy = lambda eps;
    * c = sqrt((lambda + 2G) J / rho0) with J = 1 + eps. */
   pf_test_point p;
@@ -190,25 +190,25 @@ static void elastic(void) {
   pf_test_point_step(m, 1e-6, &p);
   for (int k = 0; k < 6; k++)
     PF_TEST_CLOSE(p.sig[k], s0[k] + 1e-6 * ((k < 3 ? lam * (300.0 - 120.0 + 50.0) : 0) + 2 * G * Dg[k]), 1e-14, 0);
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
   /* The (K, G) pair and both pairs given consistently give the same constants. */
   m = must_load("model: elastic\ndensity: 7800\nbulk_modulus: 160e9\nshear_modulus: 80e9\n");
   if (m) {
-    PF_TEST_CLOSE(pf_fem_material_bulk_modulus(m), 160e9, 0, 0);
-    PF_TEST_CLOSE(pf_fem_material_shear_modulus(m), 80e9, 0, 0);
-    pf_fem_material_destroy(&m);
+    PF_TEST_CLOSE(pf_material_bulk_modulus(m), 160e9, 0, 0);
+    PF_TEST_CLOSE(pf_material_shear_modulus(m), 80e9, 0, 0);
+    pf_material_destroy(&m);
   }
   /* E = 9KG/(3K + G) = 9*160*80/560 GPa = 205.714285.. GPa, nu = (3K - 2G)/(2(3K + G)) = 320/1120. */
   m = must_load("model: elastic\ndensity: 7800\nbulk_modulus: 160e9\nshear_modulus: 80e9\n"
                 "youngs_modulus: 205.7142857142857e9\npoissons_ratio: 0.2857142857142857\n");
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 }
 
 /* ---- neo-Hookean ----------------------------------------------------------------------- */
 /* sigma = (G/J)(b - I) + (lambda ln J / J) I, b = F F^T (Bonet & Wood 2008, sec. 6.4.3),
  * written out here for the diagonal and simple-shear F used below. */
 static void neo_hookean(void) {
-  pf_fem_material *m = must_load(NH_DECK);
+  pf_material *m = must_load(NH_DECK);
   if (!m) return;
   const double K = 2.0e9, G = 0.6e9, lam = K - 2 * G / 3, rho0 = 1100;
   pf_test_point p;
@@ -256,13 +256,13 @@ static void neo_hookean(void) {
     for (int a = 0; a < 3; a++) want += R[3 * vi[v] + a] * sU[a] * R[3 * vj[v] + a];
     PF_TEST_CLOSE(p.sig[v], want, 0, 1e-12 * G);
   }
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 }
 
 /* ---- J2 -------------------------------------------------------------------------------- */
 /* One step of uniaxial stress: D = diag(d, dl, dl) with the lateral rate dl found by the secant
  * method so that sigma_yy = sigma_zz = 0 (to 1e-13 of the yield stress). */
-static void uniaxial_stress_step(const pf_fem_material *m, double dt, double d, double *dl, pf_test_point *p,
+static void uniaxial_stress_step(const pf_material *m, double dt, double d, double *dl, pf_test_point *p,
                                  double tol) {
   const pf_test_point start = *p;
   pf_test_point a = start, b = start;
@@ -286,10 +286,10 @@ static void uniaxial_stress_step(const pf_fem_material *m, double dt, double d, 
 }
 
 static void j2(void) {
-  pf_fem_material *m = must_load(J2_DECK);
+  pf_material *m = must_load(J2_DECK);
   if (!m) return;
-  PF_TEST_TRUE(pf_fem_material_nstate(m) == 1 && !strcmp(pf_fem_material_state_name(m, 0), "eqps"));
-  PF_TEST_TRUE(pf_fem_material_state_name(m, 1) == NULL);
+  PF_TEST_TRUE(pf_material_nstate(m) == 1 && !strcmp(pf_material_state_name(m, 0), "eqps"));
+  PF_TEST_TRUE(pf_material_state_name(m, 1) == NULL);
   const double E = 117e9, nu = 0.35, Y = 400e6, H = 100e6, G = E / (2 * (1 + nu));
   /* Uniaxial stress, strain eps along x. Elastic: sigma = E eps while E eps < Y. Plastic, with
    * linear hardening on this proportional path (where backward-Euler radial return is exact):
@@ -344,7 +344,7 @@ static void j2(void) {
     for (int c = 0; c < 5; c++) PF_TEST_CLOSE(p.sig[c], 0.0, 0, 1e-6);
   }
   PF_TEST_TRUE(nplastic > 50);
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 
   /* Power law sigma_y = Y + H eqps^0.5, pure shear. At every plastic step the converged state
    * satisfies consistency sqrt(3) tau = Y + H eqps^0.5 and the flow rule g = tau/G + sqrt(3)
@@ -376,7 +376,7 @@ static void j2(void) {
   PF_TEST_TRUE(p.st[0] > 0);
   PF_TEST_CLOSE(sqrt(3) * p.sig[5], Y + Hp * sqrt(p.st[0]), 1e-10, 0);
   PF_TEST_CLOSE(0.05, p.sig[5] / G + sqrt(3) * p.st[0], 1e-10, 0);
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 }
 
 /* ---- Johnson-Cook ---------------------------------------------------------------------- */
@@ -393,7 +393,7 @@ static double jc_flow_stress(double eqps, double rate, double T) {
  * rule g = tau/G + sqrt(3) deqps; adiabatic heating rho c dT = beta sigma_y deqps (J = 1 in
  * shear, so rho = rho0); and the energy E = dt (0 + tau)/2 * 2 D_xy = tau g / 2 (trapezoidal
  * stress power from zero stress, sigma : D = 2 sigma_xy D_xy). Returns deqps / dt. */
-static double jc_shear_step(const pf_fem_material *m, double eqps0, double T0, double g, double dt) {
+static double jc_shear_step(const pf_material *m, double eqps0, double T0, double g, double dt) {
   const double G = 124e9 / (2 * 1.34), rho0 = 8960, cp = 383, beta = 0.9;
   pf_test_point p;
   pf_test_point_init(m, &p);
@@ -411,24 +411,24 @@ static double jc_shear_step(const pf_fem_material *m, double eqps0, double T0, d
 }
 
 static void johnson_cook(void) {
-  pf_fem_material *m = must_load(JC_DECK);
+  pf_material *m = must_load(JC_DECK);
   if (!m) return;
   const char *names[3] = {"eqps", "temperature", "energy"};
-  PF_TEST_TRUE(pf_fem_material_nstate(m) == 3);
-  for (int k = 0; k < 3; k++) PF_TEST_TRUE(!strcmp(pf_fem_material_state_name(m, k), names[k]));
+  PF_TEST_TRUE(pf_material_nstate(m) == 3);
+  for (int k = 0; k < 3; k++) PF_TEST_TRUE(!strcmp(pf_material_state_name(m, k), names[k]));
   /* The initial temperature defaults to the reference temperature. */
   double st[6];
-  pf_fem_material_init(m, 2, st);
+  pf_material_init(m, 2, st);
   PF_TEST_CLOSE(st[1], 298, 0, 0);
   PF_TEST_CLOSE(st[4], 298, 0, 0);
   PF_TEST_CLOSE(st[0] + st[2] + st[3] + st[5], 0, 0, 0);
   {
-    pf_fem_material *m2 = must_load(JC_DECK "initial_temperature: 400\n");
+    pf_material *m2 = must_load(JC_DECK "initial_temperature: 400\n");
     if (m2) {
-      pf_fem_material_init(m2, 2, st);
+      pf_material_init(m2, 2, st);
       PF_TEST_CLOSE(st[1], 400, 0, 0);
       PF_TEST_CLOSE(st[4], 400, 0, 0);
-      pf_fem_material_destroy(&m2);
+      pf_material_destroy(&m2);
     }
   }
   /* Rate term active (deqps/dt >> rate0), with thermal softening (T = 500 K) and hardening. */
@@ -453,7 +453,7 @@ static void johnson_cook(void) {
     PF_TEST_CLOSE(p.sig[5], 0.0, 0, 1e-5);
     PF_TEST_CLOSE(p.st[0], 0.01 / sqrt(3), 1e-12, 0);
   }
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 }
 
 /* ---- Mie-Gruneisen --------------------------------------------------------------------- */
@@ -472,7 +472,7 @@ static double eos_p(const eos_par *e, double mu, double E) { return eos_f(e, mu)
 
 /* Stress of a JC+eos material at F = J^(1/3) I, D = 0, zero deviator and energy E0: no work is
  * done (D = 0) and no deviator is created, so sigma = -p(mu, E0) I. */
-static void eos_state(const pf_fem_material *m, double J, double E0, pf_test_point *p) {
+static void eos_state(const pf_material *m, double J, double E0, pf_test_point *p) {
   pf_test_point_init(m, p);
   p->F[0] = p->F[4] = p->F[8] = cbrt(J);
   p->st[2] = E0;
@@ -481,11 +481,11 @@ static void eos_state(const pf_fem_material *m, double J, double E0, pf_test_poi
 
 static void mie_gruneisen(void) {
   const eos_par lexan = {1190, 1933, 3.49, -8.2, 9.6, 0.61, 0.0};
-  pf_fem_material *m = must_load(LEXAN_DECK);
+  pf_material *m = must_load(LEXAN_DECK);
   if (!m) return;
   const double G = 2.54e9 / (2 * 1.344), rho0 = 1190, K0 = rho0 * 1933.0 * 1933.0;
-  PF_TEST_CLOSE(pf_fem_material_bulk_modulus(m), K0, 1e-15, 0);
-  PF_TEST_CLOSE(pf_fem_material_shear_modulus(m), G, 1e-15, 0);
+  PF_TEST_CLOSE(pf_material_bulk_modulus(m), K0, 1e-15, 0);
+  PF_TEST_CLOSE(pf_material_shear_modulus(m), G, 1e-15, 0);
   pf_test_point p;
   /* E = 0 on both branches, and with energy (Gamma0 E term). */
   const double mus[4] = {0.02, 0.2, 0.4, -0.05}, Es[2] = {0.0, 3e8};
@@ -556,7 +556,7 @@ static void mie_gruneisen(void) {
     PF_TEST_CLOSE(-p.sig[0], eos_p(&lexan, 1 / Jend - 1, p.st[2]), 1e-12, 0);
     PF_TEST_TRUE(p.st[0] == 0);
   }
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 
   /* Linear Us-up form (S2 = S3 = 0) with a != 0, copper-like constants: the classical
    * p = rho0 C0^2 mu (1 + (1 - Gamma0/2) mu) / (1 - (S1 - 1) mu)^2 at E = 0 and a = 0 would be
@@ -574,7 +574,7 @@ static void mie_gruneisen(void) {
                         (2.02 + 0.5 * mu) * E0;
     PF_TEST_CLOSE(-p.sig[0], want, 1e-12, 0);
   }
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
   m = must_load("model: johnson_cook\ndensity: 8930\nyoungs_modulus: 117e9\npoissons_ratio: 0.35\n"
                 "johnson_cook: {A: 90e6, B: 292e6, n: 0.31, m: 1.09, reference_temperature: 298, "
                 "melt_temperature: 1356}\n"
@@ -585,12 +585,12 @@ static void mie_gruneisen(void) {
     eos_state(m, 1 / (1 + mu), 0.0, &p);
     PF_TEST_CLOSE(-p.sig[0], k * mu * (1 + (1 - 2.02 / 2) * mu) / pow(1 - 0.489 * mu, 2), 1e-12, 0);
   }
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 }
 
 /* ---- the Lexan deck under a strong compression with plastic flow ------------------------ */
 static void lexan(void) {
-  pf_fem_material *m = must_load(LEXAN_DECK);
+  pf_material *m = must_load(LEXAN_DECK);
   if (!m) return;
   pf_test_point p;
   pf_test_point_init(m, &p);
@@ -606,7 +606,7 @@ static void lexan(void) {
   for (int c = 0; c < 6; c++) PF_TEST_TRUE(isfinite(p.sig[c]));
   PF_TEST_TRUE(p.sig[0] < 0 && p.st[0] > 0 && p.st[2] > 0);
   PF_TEST_TRUE(isfinite(p.c) && p.c > 1933);
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 }
 
 /* ---- bad decks ------------------------------------------------------------------------- */
@@ -614,8 +614,8 @@ static void bad(const char *text, const char *must_mention) { pf_test_material_b
 
 static void bad_inputs(void) {
   pf_error_set_quiet(1);
-  PF_TEST_TRUE(!pf_fem_material_known("plastic_foo"));
-  PF_TEST_TRUE(pf_fem_material_known("j2") && pf_fem_material_known("johnson_cook"));
+  PF_TEST_TRUE(!pf_material_known("plastic_foo"));
+  PF_TEST_TRUE(pf_material_known("j2") && pf_material_known("johnson_cook"));
   bad("model: plastic_foo\ndensity: 1000\nyoungs_modulus: 1e9\npoissons_ratio: 0.3\n", "johnson_cook");
   bad("model: j2\ndensity: 7800\nyoungs_modulus: 200e9\npoissons_ratio: 0.3\n", "yield_stress");
   bad("model: elastic\ndensity: 7800\nyoungs_modulus: 200e9\npoissons_ratio: 0.5\n", "poissons_ratio");

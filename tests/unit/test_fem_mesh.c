@@ -1,5 +1,5 @@
-/* Hexahedral mesh readers (fem/mesh*.c) against independent references:
- *  - pf_fem_hex_volume: unit cube, a square frustum (V = h (a^2 + b^2 + a b) / 3), an affine
+/* Hexahedral mesh readers (mesh/) against independent references:
+ *  - pf_mesh_hex_volume: unit cube, a square frustum (V = h (a^2 + b^2 + a b) / 3), an affine
  *    image of the unit cube (V = |det A|);
  *  - meshes/bar.geo: element count = nx ny nz with n = max(1, ceil(L/h - 1e-6)) (the .geo's
  *    formula), volume 10 x 1 x 1 mm^3, side and node sets on the right planes; scale/translate
@@ -16,7 +16,7 @@
  *    dropped, connectivity by coordinates, blocks, node sets, side sets (an interior surface
  *    gives both neighbours), the blocks: selection;
  *  - tests/data/mesh/tetrahedra.geo: all-hexahedra subdivision fallback, volume exact;
- *  - Exodus round trip (pf_fem_mesh_write_exodus then pf_fem_mesh_read) exact, and the side
+ *  - Exodus round trip (pf_mesh_write_exodus then pf_mesh_read) exact, and the side
  *    numbers in the file read with the Exodus API;
  *  - Pamgen: a rectilinear brick (count, volume, sets on the right planes), an annulus sector,
  *    as "radial" and as "cylindrical" (V = n_theta sin(dtheta) (ro^2 - ri^2) L / 2 exactly), a
@@ -39,44 +39,44 @@
 static char tests_dir[2048]; /* the working directory: the tests/ folder of the source tree */
 
 /* Read the mesh: mapping of a deck (text); returns the reader's error code. */
-static int read_deck(const char *text, pf_fem_mesh *m) {
+static int read_deck(const char *text, pf_mesh *m) {
   const char *path = pf_test_write_file(0, "fem_mesh", text);
   pf_deck *d = NULL;
   int ierr = pf_deck_load(path, &d);
   const pf_node *mn = ierr ? NULL : pf_node_get(pf_deck_root(d), "mesh");
-  if (!ierr) ierr = pf_deck_validate(d, mn, pf_fem_mesh_keys, "mesh");
-  if (!ierr) ierr = pf_fem_mesh_read(d, mn, m);
+  if (!ierr) ierr = pf_deck_validate(d, mn, pf_mesh_keys, "mesh");
+  if (!ierr) ierr = pf_mesh_read(d, mn, m);
   pf_deck_destroy(&d);
   remove(path);
   return ierr;
 }
 
 /* Read a file (absolute path) with optional extra deck lines. */
-static int read_file(const char *path, const char *extra, pf_fem_mesh *m) {
+static int read_file(const char *path, const char *extra, pf_mesh *m) {
   char text[8192];
   snprintf(text, sizeof text, "mesh:\n  file: %s\n%s", path, extra ? extra : "");
   return read_deck(text, m);
 }
 
 /* A shipped geometry meshes/<file> meshed at element size h. */
-static int read_shipped(const char *file, double h, pf_fem_mesh *m) {
+static int read_shipped(const char *file, double h, pf_mesh *m) {
   char path[4096], extra[256];
   snprintf(path, sizeof path, "%s/../meshes/%s", tests_dir, file);
   snprintf(extra, sizeof extra, "  element_size: %.17g\n", h);
   return read_file(path, extra, m);
 }
 
-static void element_nodes(const pf_fem_mesh *m, pf_int e, double x[8][3]) {
+static void element_nodes(const pf_mesh *m, pf_int e, double x[8][3]) {
   for (int a = 0; a < 8; a++)
     for (int i = 0; i < 3; i++) x[a][i] = m->X[3 * (size_t)m->conn[8 * (size_t)e + a] + i];
 }
 
-static double mesh_volume(const pf_fem_mesh *m) {
+static double mesh_volume(const pf_mesh *m) {
   double V = 0;
   for (pf_int e = 0; e < m->nelem; e++) {
     double x[8][3];
     element_nodes(m, e, x);
-    V += pf_fem_hex_volume((const double(*)[3])x);
+    V += pf_mesh_hex_volume((const double(*)[3])x);
   }
   return V;
 }
@@ -84,7 +84,7 @@ static double mesh_volume(const pf_fem_mesh *m) {
 /* Corner Jacobians as triple products of the three edges at each corner (Knupp, "Achieving
  * finite element mesh quality via optimization of the Jacobian matrix norm", 2000, the
  * right-handed neighbour table below): 1 when all are positive in every element. */
-static int all_corners_positive(const pf_fem_mesh *m) {
+static int all_corners_positive(const pf_mesh *m) {
   static const int nb[8][3] = {{1, 3, 4}, {2, 0, 5}, {3, 1, 6}, {0, 2, 7},
                                {7, 5, 0}, {4, 6, 1}, {5, 7, 2}, {6, 4, 3}};
   for (pf_int e = 0; e < m->nelem; e++) {
@@ -109,20 +109,20 @@ static int all_corners_positive(const pf_fem_mesh *m) {
 static const int hex_face[6][4] = {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6},
                                    {0, 4, 7, 3}, {0, 3, 2, 1}, {4, 5, 6, 7}};
 
-static double face_coord(const pf_fem_mesh *m, pf_int e, int f, int v, int comp) {
+static double face_coord(const pf_mesh *m, pf_int e, int f, int v, int comp) {
   return m->X[3 * (size_t)m->conn[8 * (size_t)e + hex_face[f][v]] + comp];
 }
 
-static const pf_fem_set *find_set(const pf_fem_set *sets, int n, const char *name) {
+static const pf_mesh_set *find_set(const pf_mesh_set *sets, int n, const char *name) {
   for (int k = 0; k < n; k++)
     if (!strcmp(sets[k].name, name)) return &sets[k];
   return NULL;
 }
 
 /* Every face of side set `name` has its 4 nodes on the plane x_comp = value. */
-static int sides_on_plane(const pf_fem_mesh *m, const char *name, int comp, double value,
+static int sides_on_plane(const pf_mesh *m, const char *name, int comp, double value,
                           pf_int count) {
-  const pf_fem_set *s = find_set(m->sideset, m->nsidesets, name);
+  const pf_mesh_set *s = find_set(m->sideset, m->nsidesets, name);
   if (!s || s->n != count) return 0;
   for (pf_int i = 0; i < s->n; i++)
     for (int v = 0; v < 4; v++)
@@ -131,9 +131,9 @@ static int sides_on_plane(const pf_fem_mesh *m, const char *name, int comp, doub
   return 1;
 }
 
-static int nodes_on_plane(const pf_fem_mesh *m, const char *name, int comp, double value,
+static int nodes_on_plane(const pf_mesh *m, const char *name, int comp, double value,
                           pf_int count) {
-  const pf_fem_set *s = find_set(m->nodeset, m->nnodesets, name);
+  const pf_mesh_set *s = find_set(m->nodeset, m->nnodesets, name);
   if (!s || s->n != count) return 0;
   for (pf_int i = 0; i < s->n; i++)
     if (fabs(m->X[3 * (size_t)s->item[i] + comp] - value) > 1e-12 * (1 + fabs(value))) return 0;
@@ -145,11 +145,11 @@ static long divisions(double L, double h) {
   return n < 1 ? 1 : n;
 }
 
-/* ---- pf_fem_hex_volume -------------------------------------------------------------------- */
+/* ---- pf_mesh_hex_volume -------------------------------------------------------------------- */
 static void test_hex_volume(void) {
   static const double cube[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                                     {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-  PF_TEST_CLOSE(pf_fem_hex_volume(cube), 1.0, 1e-15, 0);
+  PF_TEST_CLOSE(pf_mesh_hex_volume(cube), 1.0, 1e-15, 0);
   /* square frustum: bottom side a at z = 0, top side b at z = h, both centred */
   double a = 2.0, b = 0.5, h = 1.5, fr[8][3];
   for (int k = 0; k < 8; k++) {
@@ -158,7 +158,7 @@ static void test_hex_volume(void) {
     fr[k][1] = (cube[k][1] - 0.5) * s;
     fr[k][2] = cube[k][2] * h;
   }
-  PF_TEST_CLOSE(pf_fem_hex_volume((const double(*)[3])fr), h * (a * a + b * b + a * b) / 3, 1e-14,
+  PF_TEST_CLOSE(pf_mesh_hex_volume((const double(*)[3])fr), h * (a * a + b * b + a * b) / 3, 1e-14,
                 0);
   /* affine image x = A X + t of the unit cube */
   const double A[3][3] = {{1.2, 0.3, -0.1}, {0.2, 0.9, 0.4}, {-0.3, 0.1, 1.1}}, t[3] = {5, -2, 7};
@@ -169,14 +169,14 @@ static void test_hex_volume(void) {
   double detA = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
                 A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
                 A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-  PF_TEST_CLOSE(pf_fem_hex_volume((const double(*)[3])af), detA, 1e-14, 0);
+  PF_TEST_CLOSE(pf_mesh_hex_volume((const double(*)[3])af), detA, 1e-14, 0);
 }
 
 /* ---- gmsh .geo ------------------------------------------------------------------------------ */
 static void test_bar(void) {
   const double Lx = 10e-3, Ly = 1e-3, Lz = 1e-3, h = 0.3e-3;
   long nx = divisions(Lx, h), ny = divisions(Ly, h), nz = divisions(Lz, h);
-  pf_fem_mesh m;
+  pf_mesh m;
   PF_TEST_OK(read_shipped("bar.geo", h, &m));
   PF_TEST_TRUE(m.nelem == nx * ny * nz);
   PF_TEST_TRUE(m.nnodes == (nx + 1) * (ny + 1) * (nz + 1));
@@ -189,7 +189,7 @@ static void test_bar(void) {
   PF_TEST_TRUE(sides_on_plane(&m, "z0", 2, 0.0, (pf_int)(nx * ny)));
   PF_TEST_TRUE(nodes_on_plane(&m, "x0", 0, 0.0, (pf_int)((ny + 1) * (nz + 1))));
   PF_TEST_TRUE(nodes_on_plane(&m, "z1", 2, Lz, (pf_int)((nx + 1) * (ny + 1))));
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
   /* scale and translate: the bar twice as large, moved; element_size is after scale, so the
    * file is meshed at 1e-3 / 2 */
   char path[4096];
@@ -203,7 +203,7 @@ static void test_bar(void) {
   PF_TEST_CLOSE(lo[0], 1.0, 0, 1e-15);
   PF_TEST_CLOSE(lo[1], -2.0, 0, 1e-15);
   PF_TEST_CLOSE(lo[2], 3.0, 0, 1e-15);
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
 }
 
 /* meshes/panel_plate.geo (the monolithic plate of inputs/panel_plate.yaml): 60 x 80 x 8.5 mm at
@@ -212,7 +212,7 @@ static void test_bar(void) {
 static void test_panel_plate(void) {
   const double W = 60e-3, L = 80e-3, t = 8.5e-3, h = 2e-3;
   const long nx = divisions(W, h), ny = divisions(L, h), nz = divisions(t, h);
-  pf_fem_mesh m;
+  pf_mesh m;
   PF_TEST_OK(read_shipped("panel_plate.geo", h, &m));
   PF_TEST_TRUE(nx == 30 && ny == 40 && nz == 5 && m.nelem == nx * ny * nz);
   PF_TEST_CLOSE(mesh_volume(&m), W * L * t, 1e-12, 0);
@@ -221,13 +221,13 @@ static void test_panel_plate(void) {
   PF_TEST_TRUE(m.nblocks == 1 && !strcmp(m.block_name[0], "panel"));
   PF_TEST_TRUE(sides_on_plane(&m, "top", 2, 0.0, (pf_int)(nx * ny)));
   PF_TEST_TRUE(sides_on_plane(&m, "bottom", 2, -t, (pf_int)(nx * ny)));
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
 }
 
 static void test_taylor_bar(void) {
   const double R = 3.2e-3, L = 32.4e-3, a = 0.5 * R, h = 0.8e-3;
   long n = divisions(PF_PI * R / 2, h), mr = divisions(R - a, h), nz = divisions(L, h);
-  pf_fem_mesh m;
+  pf_mesh m;
   PF_TEST_OK(read_shipped("taylor_bar.geo", h, &m));
   PF_TEST_TRUE(m.nelem == (n * n + 4 * n * mr) * nz);
   PF_TEST_TRUE(all_corners_positive(&m));
@@ -237,7 +237,7 @@ static void test_taylor_bar(void) {
   PF_TEST_TRUE(V >= polygon * (1 - 1e-12) && V < circle);
   PF_TEST_CLOSE(V, polygon, 1e-12, 0);
   /* lateral faces: 4n per layer, every node on r = R */
-  const pf_fem_set *lat = find_set(m.sideset, m.nsidesets, "lateral");
+  const pf_mesh_set *lat = find_set(m.sideset, m.nsidesets, "lateral");
   PF_TEST_TRUE(lat && lat->n == N * nz);
   for (pf_int i = 0; lat && i < lat->n; i++)
     for (int v = 0; v < 4; v++) {
@@ -251,7 +251,7 @@ static void test_taylor_bar(void) {
     }
   PF_TEST_TRUE(sides_on_plane(&m, "impact_face", 2, 0.0, (pf_int)(n * n + 4 * n * mr)));
   PF_TEST_TRUE(sides_on_plane(&m, "rear_face", 2, L, (pf_int)(n * n + 4 * n * mr)));
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
 }
 
 /* meshes/expanding_tube_lexan.geo at h = 1.25 mm (the shipped deck's): two blocks, projectile
@@ -261,7 +261,7 @@ static void test_taylor_bar(void) {
 static void test_expanding_tube_lexan(void) {
   const double R = 6.35e-3, L = 25.4e-3, a = 0.5 * R, h = 1.25e-3;
   long n = divisions(PF_PI * R / 2, h), mr = divisions(R - a, h), nz = divisions(L, h);
-  pf_fem_mesh m;
+  pf_mesh m;
   PF_TEST_OK(read_shipped("expanding_tube_lexan.geo", h, &m));
   const long per = (n * n + 4 * n * mr) * nz, section_nodes = (n + 1) * (n + 1) + 4 * n * mr;
   PF_TEST_TRUE(m.nelem == 2 * per);
@@ -278,13 +278,13 @@ static void test_expanding_tube_lexan(void) {
   PF_TEST_TRUE(wrong == 0);
   PF_TEST_TRUE(sides_on_plane(&m, "rear_face", 2, 0.0, (pf_int)(n * n + 4 * n * mr)));
   PF_TEST_TRUE(sides_on_plane(&m, "far_face", 2, 2 * L, (pf_int)(n * n + 4 * n * mr)));
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
 }
 
 static void test_sphere(void) {
   const double R = 5e-3, a = 0.35 * R, h = R / 5;
   long n = divisions(R * acos(1.0 / 3), h), mr = divisions(R - a, h);
-  pf_fem_mesh m;
+  pf_mesh m;
   PF_TEST_OK(read_shipped("sphere.geo", h, &m));
   PF_TEST_TRUE(m.nelem == n * n * n + 6 * n * n * mr);
   PF_TEST_TRUE(all_corners_positive(&m));
@@ -293,7 +293,7 @@ static void test_sphere(void) {
     rmax = fmax(rmax, sqrt(m.X[3 * i] * m.X[3 * i] + m.X[3 * i + 1] * m.X[3 * i + 1] +
                            m.X[3 * i + 2] * m.X[3 * i + 2]));
   PF_TEST_TRUE(rmax <= R * (1 + 1e-12));
-  const pf_fem_set *s = find_set(m.sideset, m.nsidesets, "surface");
+  const pf_mesh_set *s = find_set(m.sideset, m.nsidesets, "surface");
   PF_TEST_TRUE(s && s->n == 6 * n * n);
   double rmin = R;
   for (pf_int i = 0; s && i < s->n; i++) {
@@ -314,19 +314,19 @@ static void test_sphere(void) {
   PF_TEST_TRUE(V <= ball);
   PF_TEST_TRUE(V >= 4.0 / 3 * PF_PI * rmin * rmin * rmin);
   PF_TEST_CLOSE(V, ball, 0.03, 0);
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
 }
 
 /* The .geo fallback: tetrahedra split into hexahedra; planar faces keep the volume exact. */
 static void test_subdivision(void) {
   char path[4096];
   snprintf(path, sizeof path, "%s/data/mesh/tetrahedra.geo", tests_dir);
-  pf_fem_mesh m;
+  pf_mesh m;
   PF_TEST_OK(read_file(path, NULL, &m));
   PF_TEST_TRUE(m.nelem == 4 * 24); /* tetrahedra.msh: the same mesh before subdivision */
   PF_TEST_CLOSE(mesh_volume(&m), 1e-9, 1e-12, 0);
   PF_TEST_TRUE(all_corners_positive(&m));
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
 }
 
 /* ---- gmsh .msh ------------------------------------------------------------------------------- */
@@ -340,7 +340,7 @@ static void grid_point(int n, double x[3]) {
 static void test_msh(void) {
   char path[4096];
   snprintf(path, sizeof path, "%s/data/mesh/two_hexes.msh", tests_dir);
-  pf_fem_mesh m;
+  pf_mesh m;
   PF_TEST_OK(read_file(path, NULL, &m));
   PF_TEST_TRUE(m.nnodes == 12 && m.nelem == 2 && m.nblocks == 2);
   for (int n = 0; n < m.nnodes && n < 12; n++) {
@@ -359,7 +359,7 @@ static void test_msh(void) {
   PF_TEST_TRUE(m.nblocks == 2 && !strcmp(m.block_name[0], "left") &&
                !strcmp(m.block_name[1], "right"));
   PF_TEST_TRUE(m.block[0] == 0 && m.block[1] == 1);
-  const pf_fem_set *s = find_set(m.sideset, m.nsidesets, "x0");
+  const pf_mesh_set *s = find_set(m.sideset, m.nsidesets, "x0");
   PF_TEST_TRUE(s && s->n == 1 && s->item[0] == 0 && s->face[0] == 3);
   s = find_set(m.sideset, m.nsidesets, "mid"); /* interior: both neighbours */
   PF_TEST_TRUE(s && s->n == 2 && s->item[0] == 0 && s->face[0] == 1 && s->item[1] == 1 &&
@@ -371,7 +371,7 @@ static void test_msh(void) {
   PF_TEST_TRUE(s && s->n == 1 && m.X[3 * s->item[0]] == 0 && m.X[3 * s->item[0] + 1] == 0 &&
                m.X[3 * s->item[0] + 2] == 0);
   PF_TEST_TRUE(m.nnodesets == 3);
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
   /* keep only block "right": its 8 nodes, the sides and nodes on it */
   PF_TEST_OK(read_file(path, "  blocks: [right]\n", &m));
   PF_TEST_TRUE(m.nnodes == 8 && m.nelem == 1 && m.nblocks == 1 &&
@@ -384,11 +384,11 @@ static void test_msh(void) {
   s = find_set(m.nodeset, m.nnodesets, "origin");
   PF_TEST_TRUE(s && s->n == 0);
   PF_TEST_TRUE(nodes_on_plane(&m, "mid", 0, 1.0, 4));
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
 }
 
 /* ---- Exodus ---------------------------------------------------------------------------------- */
-static int same_sets(const pf_fem_set *a, const pf_fem_set *b, int n) {
+static int same_sets(const pf_mesh_set *a, const pf_mesh_set *b, int n) {
   for (int k = 0; k < n; k++) {
     if (strcmp(a[k].name, b[k].name) || a[k].n != b[k].n) return 0;
     if (memcmp(a[k].item, b[k].item, sizeof(pf_int) * (size_t)a[k].n)) return 0;
@@ -398,13 +398,13 @@ static int same_sets(const pf_fem_set *a, const pf_fem_set *b, int n) {
   return 1;
 }
 
-static void round_trip(const pf_fem_mesh *m, const char *exo) {
-  PF_TEST_OK(pf_fem_mesh_write_exodus(exo, m));
-  pf_fem_mesh r;
+static void round_trip(const pf_mesh *m, const char *exo) {
+  PF_TEST_OK(pf_mesh_write_exodus(exo, m));
+  pf_mesh r;
   PF_TEST_OK(read_file(exo, NULL, &r));
   PF_TEST_TRUE(r.nnodes == m->nnodes && r.nelem == m->nelem && r.nblocks == m->nblocks);
   if (r.nnodes != m->nnodes || r.nelem != m->nelem || r.nblocks != m->nblocks) {
-    pf_fem_mesh_free(&r);
+    pf_mesh_free(&r);
     return;
   }
   PF_TEST_TRUE(!memcmp(r.X, m->X, sizeof(double) * 3 * (size_t)m->nnodes));
@@ -413,13 +413,13 @@ static void round_trip(const pf_fem_mesh *m, const char *exo) {
   for (int b = 0; b < m->nblocks; b++) PF_TEST_TRUE(!strcmp(r.block_name[b], m->block_name[b]));
   PF_TEST_TRUE(r.nnodesets == m->nnodesets && same_sets(r.nodeset, m->nodeset, m->nnodesets));
   PF_TEST_TRUE(r.nsidesets == m->nsidesets && same_sets(r.sideset, m->sideset, m->nsidesets));
-  pf_fem_mesh_free(&r);
+  pf_mesh_free(&r);
 }
 
 static void test_exodus_round_trip(void) {
   char path[4096], exo[256];
   snprintf(exo, sizeof exo, "/tmp/pf_test_fem_mesh_%d.e", (int)getpid());
-  pf_fem_mesh m;
+  pf_mesh m;
   snprintf(path, sizeof path, "%s/data/mesh/two_hexes.msh", tests_dir);
   PF_TEST_OK(read_file(path, NULL, &m));
   round_trip(&m, exo);
@@ -438,11 +438,11 @@ static void test_exodus_round_trip(void) {
                  side[0] == 4);
     ex_close(exoid);
   }
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
   snprintf(path, sizeof path, "%s/../meshes/bar.geo", tests_dir);
   PF_TEST_OK(read_file(path, "  element_size: 0.5e-3\n", &m));
   round_trip(&m, exo);
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
   remove(exo);
 }
 
@@ -475,26 +475,26 @@ static void test_exodus_inverted_block(void) {
   char exo[256];
   snprintf(exo, sizeof exo, "/tmp/pf_test_fem_mesh_inv_%d.e", (int)getpid());
   PF_TEST_OK(write_exodus_pair(exo, 3, "HEX8"));
-  pf_fem_mesh m;
+  pf_mesh m;
   PF_TEST_OK(read_file(exo, NULL, &m));
   PF_TEST_TRUE(m.nelem == 2 && all_corners_positive(&m));
   PF_TEST_CLOSE(mesh_volume(&m), 2.0, 1e-15, 0);
   PF_TEST_TRUE(m.nblocks == 1 && !strcmp(m.block_name[0], "block_10"));
   /* side 5 named nodes 1, 4, 3, 2 of the inside-out element: the face z = 1 */
   PF_TEST_TRUE(sides_on_plane(&m, "sideset_7", 2, 1.0, 1));
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
   remove(exo);
 }
 
 /* ---- Pamgen ---------------------------------------------------------------------------------- */
-static int read_pamgen(const char *pamgen, pf_fem_mesh *m) {
+static int read_pamgen(const char *pamgen, pf_mesh *m) {
   char text[8192];
   snprintf(text, sizeof text, "mesh:\n  pamgen: |\n%s", pamgen);
   return read_deck(text, m);
 }
 
 static void test_pamgen(void) {
-  pf_fem_mesh m;
+  pf_mesh m;
   /* a brick of 3 x 4 x 5 elements over [0, 0.3] x [0, 0.2] x [0, 0.1] */
   PF_TEST_OK(read_pamgen("    mesh\n"
                          "      rectilinear\n"
@@ -512,7 +512,7 @@ static void test_pamgen(void) {
   PF_TEST_TRUE(nodes_on_plane(&m, "nodeset_1", 0, 0.0, 5 * 6));
   PF_TEST_TRUE(sides_on_plane(&m, "sideset_2", 0, 0.3, 4 * 5));
   PF_TEST_TRUE(sides_on_plane(&m, "sideset_3", 2, 0.0, 3 * 4));
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
   /* an annulus sector: r in [1, 2], theta in [0, 90] degrees in 6 intervals, z in [0, 2]: each
    * element's section has corners on two arcs, area sin(dtheta) (r1^2 - r0^2) / 2 */
   PF_TEST_OK(read_pamgen("    mesh\n      radial\n"
@@ -526,7 +526,7 @@ static void test_pamgen(void) {
   PF_TEST_CLOSE(mesh_volume(&m), sector, 1e-12, 0);
   PF_TEST_TRUE(mesh_volume(&m) < PF_PI / 4 * (4 - 1) * 2);
   PF_TEST_TRUE(all_corners_positive(&m));
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
   /* the same sector in Pamgen's "cylindrical" form */
   PF_TEST_OK(read_pamgen("    mesh\n      cylindrical\n"
                          "        nr = 2\n        ntheta = 6\n        nz = 3\n"
@@ -537,7 +537,7 @@ static void test_pamgen(void) {
                          &m));
   PF_TEST_TRUE(m.nelem == 3 * 2 * 6);
   PF_TEST_CLOSE(mesh_volume(&m), sector, 1e-12, 0);
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
   /* a solid cylinder, R = 1, L = 2, 16 intervals round: the inscribed 16-gon x L */
   PF_TEST_OK(read_pamgen("    mesh\n      radial trisection\n        trisection blocks, 4\n"
                          "        numz 1\n          zblock 1 2.0 interval 3\n"
@@ -550,7 +550,7 @@ static void test_pamgen(void) {
   PF_TEST_CLOSE(V, polygon, 1e-12, 0);
   PF_TEST_TRUE(V < PF_PI * 2);
   PF_TEST_TRUE(all_corners_positive(&m));
-  pf_fem_mesh_free(&m);
+  pf_mesh_free(&m);
 }
 
 /* ---- bad input ------------------------------------------------------------------------------- */
@@ -566,7 +566,7 @@ static void expect_input_error(int ierr, const char *want, const char *want2, co
 }
 
 static void test_bad_input(void) {
-  pf_fem_mesh m;
+  pf_mesh m;
   char path[4096], text[8192], tmp[256];
   memset(&m, 0, sizeof m);
   pf_error_clear();

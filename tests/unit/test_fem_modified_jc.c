@@ -1,4 +1,4 @@
-/* The modified Johnson-Cook model (fem/material_modified_johnson_cook.c; Tupek, Rimoli &
+/* The modified Johnson-Cook model (material/material_modified_johnson_cook.c; Tupek, Rimoli &
  * Radovitzky 2013, CMAME 263:20, sec. 2.3) against closed forms derived here, in the comments:
  * the flow stress, the Johnson-Cook failure strain, Hencky elasticity, objectivity, the
  * uniaxial-stress plastic path (in logarithmic strain it is the 1-D small-strain problem), the
@@ -51,7 +51,7 @@ static double bisect(double (*g)(double, const double *), const double *par, dou
   return 0.5 * (lo + hi);
 }
 
-static pf_fem_material *must_load(const char *text) { return pf_test_material_must_load(text, "al6061"); }
+static pf_material *must_load(const char *text) { return pf_test_material_must_load(text, "al6061"); }
 
 static void set_diag(pf_test_point *p, double a, double b, double c) {
   memset(p->F, 0, sizeof p->F);
@@ -62,23 +62,23 @@ static const int vi[6] = {0, 1, 2, 1, 0, 0}, vj[6] = {0, 1, 2, 2, 2, 1};
 
 /* ---- registration, state, interface basics ------------------------------------------------ */
 static void basics(void) {
-  PF_TEST_TRUE(pf_fem_material_known("modified_johnson_cook"));
-  PF_TEST_TRUE(strstr(pf_fem_material_names(), "modified_johnson_cook") != NULL);
-  pf_fem_material *m = must_load(TUPEK_DECK);
+  PF_TEST_TRUE(pf_material_known("modified_johnson_cook"));
+  PF_TEST_TRUE(strstr(pf_material_names(), "modified_johnson_cook") != NULL);
+  pf_material *m = must_load(TUPEK_DECK);
   if (!m) return;
   static const char *names[8] = {"eqps",      "damage",    "cp_inv_xx", "cp_inv_yy",
                                  "cp_inv_zz", "cp_inv_yz", "cp_inv_xz", "cp_inv_xy"};
-  PF_TEST_TRUE(pf_fem_material_nstate(m) == 8);
+  PF_TEST_TRUE(pf_material_nstate(m) == 8);
   for (int k = 0; k < 8; k++) {
-    const char *nm = pf_fem_material_state_name(m, k);
+    const char *nm = pf_material_state_name(m, k);
     PF_TEST_TRUE(nm && !strcmp(nm, names[k]));
   }
-  PF_TEST_CLOSE(pf_fem_material_shear_modulus(m), GMOD, 1e-15, 0);
-  PF_TEST_CLOSE(pf_fem_material_bulk_modulus(m), KMOD, 1e-15, 0);
+  PF_TEST_CLOSE(pf_material_shear_modulus(m), GMOD, 1e-15, 0);
+  PF_TEST_CLOSE(pf_material_bulk_modulus(m), KMOD, 1e-15, 0);
   /* init: eqps = D = 0, Cp^-1 = I. */
   double st[16];
   for (int k = 0; k < 16; k++) st[k] = -7.0;
-  pf_fem_material_init(m, 2, st);
+  pf_material_init(m, 2, st);
   for (int i = 0; i < 2; i++)
     for (int k = 0; k < 8; k++) PF_TEST_CLOSE(st[8 * i + k], k >= 2 && k <= 4 ? 1.0 : 0.0, 0, 0);
 
@@ -112,7 +112,7 @@ static void basics(void) {
     memcpy(s3 + 6 * i, q[i].sig, sizeof q[i].sig);
     memcpy(st3 + 8 * i, q[i].st, sizeof q[i].st);
   }
-  pf_fem_material_update(m, 3, 1e-5, F3, D3, s3, st3, c3);
+  pf_material_update(m, 3, 1e-5, F3, D3, s3, st3, c3);
   for (int i = 0; i < 3; i++) {
     pf_test_point_step(m, 1e-5, &q[i]);
     for (int k = 0; k < 6; k++) PF_TEST_TRUE(s3[6 * i + k] == q[i].sig[k]);
@@ -120,7 +120,7 @@ static void basics(void) {
     PF_TEST_TRUE(c3[i] == q[i].c);
   }
   PF_TEST_TRUE(q[2].st[0] > 0.2);
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
   PF_TEST_TRUE(m == NULL);
 }
 
@@ -134,7 +134,7 @@ static double shear_residual(double x, const double *par) {
   return 2 * sqrt(3) * GMOD * par[0] - 3 * GMOD * x - flow_stress(par[1] + x, x / par[2], par[3]);
 }
 
-static void shear_step(const pf_fem_material *m, double C, double eqps0, double a, double dt) {
+static void shear_step(const pf_material *m, double C, double eqps0, double a, double dt) {
   const double par[4] = {a, eqps0, dt, C};
   const double hi = (2 * sqrt(3) * GMOD * a - flow_stress(eqps0, 0, C)) / (3 * GMOD);
   PF_TEST_TRUE(hi > 0);
@@ -155,7 +155,7 @@ static void shear_step(const pf_fem_material *m, double C, double eqps0, double 
 }
 
 static void flow(void) {
-  pf_fem_material *m = must_load(TUPEK_DECK);
+  pf_material *m = must_load(TUPEK_DECK);
   if (!m) return;
   /* The reference strain by hand: eps0 = (250/365)^25 = exp(25 ln 0.684932) = 7.7836e-5. At
    * eqps = 1 and zero rate Y = sigma0 ((1 + eps0)/eps0)^n = B (1 + eps0)^n (as eps0^n =
@@ -169,7 +169,7 @@ static void flow(void) {
   shear_step(m, 0.002, 0.3, 0.02, 1e-3);
   shear_step(m, 0.002, 0.05, 0.01, 1e3);
   shear_step(m, 0.002, 0.0, 0.2, 1e-7);
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 
   m = must_load(RI_DECK);
   if (!m) return;
@@ -191,7 +191,7 @@ static void flow(void) {
     PF_TEST_CLOSE(slope, H0, 1e-4, 0);
     PF_TEST_CLOSE(dgam, (2 * sqrt(3) * GMOD * a - SIG0) / (3 * GMOD + H0), 1e-4, 0);
   }
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 
   /* Finite value at zero rate: with C > 0 and dt = 1e6 s (r ~ 1e-8 1/s) the flow stress is the
    * rate-independent one to 1e-10 (C asinh(x) ~ C x ~ 1e-11). */
@@ -215,7 +215,7 @@ static void flow(void) {
     PF_TEST_CLOSE(p.sig[0], 2 * GMOD * 0.02, 1e-12, 0);
     PF_TEST_TRUE(p.st[0] == 0 && p.st[1] == 0 && p.st[2] == 1 && p.st[5] == 0);
   }
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 }
 
 /* ---- 2. failure strain -------------------------------------------------------------------- */
@@ -224,7 +224,7 @@ static void flow(void) {
  * D = dgam / eps_f(sigma*) with d4 = 0, i.e. eps_f = eqps / D. Raising x raises the mean stress
  * at nearly the same deviator, so sigma* sweeps from about -0.9 to 2. */
 static void failure(void) {
-  pf_fem_material *m = must_load(TUPEK_DECK);
+  pf_material *m = must_load(TUPEK_DECK);
   if (!m) return;
   const double xs[7] = {-0.03, -0.015, -0.005, 0.0, 0.003, 0.006, 0.009};
   double prev_t = -INFINITY, prev_ef = INFINITY;
@@ -247,7 +247,7 @@ static void failure(void) {
    * convention exp(D3 sigma*), D3 = -1.5); the uniaxial-stress path of test 6 measures it. */
   PF_TEST_CLOSE(failure_strain(1.0 / 3), 0.875 + 0.13 * exp(-0.5), 1e-15, 0);
   PF_TEST_CLOSE(failure_strain(1.0 / 3), 0.95384899, 1e-8, 0);
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 
   /* The rate factor: d4 = 0.1, reference 1 1/s. Below the reference rate the factor is 1;
    * above, 1 + d4 ln(r). Pure shear F = diag(e^a, e^-a, 1): sigma* = 0, eps_f = (d1 + d2) f_r. */
@@ -264,7 +264,7 @@ static void failure(void) {
     const double fr = r > 1 ? 1 + 0.1 * log(r) : 1.0;
     PF_TEST_CLOSE(p.st[0] / p.st[1], (D1 + D2) * fr, 1e-12, 0);
   }
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
   /* Without a damage mapping the damage stays zero. */
   m = must_load(RI_DECK);
   if (m) {
@@ -273,13 +273,13 @@ static void failure(void) {
     set_diag(&p, exp(0.05), exp(-0.05), 1.0);
     pf_test_point_step(m, 1e-5, &p);
     PF_TEST_TRUE(p.st[0] > 0 && p.st[1] == 0);
-    pf_fem_material_destroy(&m);
+    pf_material_destroy(&m);
   }
 }
 
 /* ---- 3. elasticity ------------------------------------------------------------------------- */
 static void elasticity(void) {
-  pf_fem_material *m = must_load(TUPEK_DECK);
+  pf_material *m = must_load(TUPEK_DECK);
   if (!m) return;
   pf_test_point p;
   /* Uniaxial stress in Hencky elasticity: F = diag(l, l^-nu, l^-nu) gives log strains
@@ -321,7 +321,7 @@ static void elasticity(void) {
   PF_TEST_CLOSE(p.sig[5], GMOD * 2e-3, 1e-6, 0);
   PF_TEST_CLOSE(p.sig[0] + p.sig[1] + p.sig[2], 0.0, 0, 1e-10 * GMOD * 2e-3);
   PF_TEST_TRUE(p.st[0] == 0);
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 }
 
 /* ---- 4. objectivity ------------------------------------------------------------------------ */
@@ -330,7 +330,7 @@ static void elasticity(void) {
  * F only through b_e = F Cp^-1 F^T, and Cp^-1 is a reference-frame tensor, so: the history is
  * the same, and sigma(R F) = R sigma(F) R^T (its invariants the same). */
 static void objectivity(void) {
-  pf_fem_material *m = must_load(TUPEK_DECK);
+  pf_material *m = must_load(TUPEK_DECK);
   if (!m) return;
   pf_test_point a, b;
   pf_test_point_init(m, &a);
@@ -379,13 +379,13 @@ static void objectivity(void) {
     for (int c = 2; c < 8; c++) PF_TEST_CLOSE(b.st[c], a.st[c], 0, 1e-11);
   }
   PF_TEST_TRUE(a.st[0] > 0.1);
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 }
 
 /* ---- 5 and 6. uniaxial stress ------------------------------------------------------------- */
 /* One step to F = diag(l, lt, lt) with ln lt found by the secant method so that
  * sigma_yy = sigma_zz = 0 to tol. The step always starts from the same history. */
-static void uniaxial_step(const pf_fem_material *m, double dt, double l, double *llt, pf_test_point *p,
+static void uniaxial_step(const pf_material *m, double dt, double l, double *llt, pf_test_point *p,
                           double tol) {
   const pf_test_point start = *p;
   pf_test_point a = start, b = start;
@@ -419,7 +419,7 @@ static double uni_residual(double e, const double *par) {
 }
 
 static void uniaxial(void) {
-  pf_fem_material *m = must_load(RI_DECK);
+  pf_material *m = must_load(RI_DECK);
   if (!m) return;
   pf_test_point p;
   pf_test_point_init(m, &p);
@@ -443,7 +443,7 @@ static void uniaxial(void) {
     }
   }
   PF_TEST_TRUE(nplastic > 100);
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 
   /* With the rate term (C = 0.002): one step from the virgin state to ln l = 0.02 in dt: the same
    * relations with Y(dgam, dgam/dt): ln l = Y/E + dgam. */
@@ -459,14 +459,14 @@ static void uniaxial(void) {
     PF_TEST_CLOSE(exp(0.02 + 2 * llt) * p.sig[0], flow_stress(e, e / dts[k], 0.002), 1e-8, 0);
     PF_TEST_CLOSE(p.st[0], e, 1e-8, 0);
   }
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 }
 
 /* Damage on the monotonic uniaxial-stress path: sigma* = 1/3 at every step and d4 = 0, so
  * eps_f is the constant d1 + d2 exp(-0.5) and D = sum dgam / eps_f = eqps / eps_f while D < 1;
  * once D reaches 1 it stays there while eqps keeps growing. */
 static void damage(void) {
-  pf_fem_material *m = must_load(TUPEK_DECK);
+  pf_material *m = must_load(TUPEK_DECK);
   if (!m) return;
   const double ef = D1 + D2 * exp(-0.5);
   pf_test_point p;
@@ -493,7 +493,7 @@ static void damage(void) {
   }
   PF_TEST_TRUE(ndamaged > 100 && nfull > 20);
   PF_TEST_TRUE(p.st[0] > 1.1 && p.st[1] >= 1);
-  pf_fem_material_destroy(&m);
+  pf_material_destroy(&m);
 }
 
 /* ---- 7. bad decks -------------------------------------------------------------------------- */

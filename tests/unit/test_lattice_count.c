@@ -4,7 +4,7 @@
  * delta = 1.5001 mm (REFERENCES.md; LAMMPS log). */
 #include "test_common.h"
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);

@@ -9,7 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 
 static pf_sim *make(const char *points) {
   char deck[1024];

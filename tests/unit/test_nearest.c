@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 
 static double brute(const double *X, pf_int n, const double x[3]) {
   double best = INFINITY;

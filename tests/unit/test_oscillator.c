@@ -7,7 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);

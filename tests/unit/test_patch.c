@@ -7,7 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 
 enum { N = 16 };
 static const double h = 1e-3, K = 14.9e9, G = 8.94e9;

@@ -1,6 +1,6 @@
 /* Conformance suite over every registered peridynamic material (STYLE.md 10): each name of
  * pf_pd_material_names() as a PD material, and a non-ordinary correspondence body
- * (pd/material_correspondence.c) for each continuum model of pf_fem_material_names(). Both lists
+ * (pd/material_correspondence.c) for each continuum model of pf_material_names(). Both lists
  * are parsed at run time; a name without deck parameters in `cases` below fails the test (add
  * its parameters there). Each material is put on a lattice block (7^3 points, spacing h, horizon
  * 3.01 h, centred on the origin; 15^3 for the patch test, where 27 points are two horizons
@@ -30,7 +30,7 @@
  *     hourglass control: both sides are trapezoid-rule quadratures of one integral, so their
  *     difference must be small (1e-3) and fall as N^-2 with the number of steps N (see
  *     check_energy_path). The neo-Hookean model
- *     (fem/material_neo_hookean.c: sigma = (G/J)(b - I) + (lambda ln J / J) I) derives from
+ *     (material/material_neo_hookean.c: sigma = (G/J)(b - I) + (lambda ln J / J) I) derives from
  *       psi(F) = G/2 (tr F^T F - 3) - G ln J + lambda/2 (ln J)^2,  lambda = K - 2G/3
  *     (P = dpsi/dF = G (F - F^-T) + lambda ln J F^-T, and J^-1 P F^T is the stress above);
  *  6. linear patch test: y = (I + A) X + c with a small general A: zero force, to 1e-10 of
@@ -65,7 +65,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "fem/fem.h"
 
 static const double h = 1e-3;        /* lattice spacing, m */
@@ -78,7 +78,7 @@ typedef double (*psi_fn)(const double H[3][3], double K, double G); /* H = F - I
 static double psi_neo_hookean(const double H[3][3], double K, double G);
 
 typedef struct {
-  const char *model;  /* a name of pf_pd_material_names() or pf_fem_material_names() */
+  const char *model;  /* a name of pf_pd_material_names() or pf_material_names() */
   const char *params; /* the rest of the material mapping, flow style */
   int potential;      /* the energy op is a stored energy, a function of y alone (check 5a) */
   psi_fn psi;         /* correspondence: the model's strain energy per reference volume, or NULL */
@@ -722,6 +722,6 @@ static int run_list(const char *names, int corr) {
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
   PF_TEST_TRUE(run_list(pf_pd_material_names(), 0) >= 3);
-  PF_TEST_TRUE(run_list(pf_fem_material_names(), 1) >= 5);
+  PF_TEST_TRUE(run_list(pf_material_names(), 1) >= 5);
   return pf_test_finish();
 }

@@ -16,7 +16,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 
 /* Q diag(l) Q^T with Q a rotation about (1, 2, 2)/3 by 0.7 rad: its smallest eigenvalue. */
 static void check_min_eigenvalue(double l0, double l1, double l2) {

@@ -6,7 +6,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 
 static double center_m(int n, int partial) {
   char deck[2048];

@@ -14,7 +14,7 @@
  * bar's within 3 % of v0; linear momentum is conserved to 1e-12 of m v0 (the pair's forces are
  * equal and opposite); the bars never overlap by more than 1 % of an element (the default
  * penalty, 10 K h); the kinetic energy at the end is that of the start within 3 %. */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "test_common.h"
 
 #include <math.h>

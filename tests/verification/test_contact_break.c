@@ -19,7 +19,7 @@
  *    test_contact_pair.c): half period pi / sqrt(2 k / m), velocities reversed, kinetic energy
  *    back, largest overlap 2 v0 / omega below the rest length.
  * The points are owned by whichever rank; every check is reduced over the ranks. */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "pd/pd.h"
 #include "test_common.h"
 

@@ -18,7 +18,7 @@
  * separation is below r_c); the total momentum stays zero (1e-12 kg m/s, it is 1.56e-5 kg m/s
  * per particle). Every check is on owned points reduced over the ranks (on 3 ranks one rank
  * owns nothing). */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "test_common.h"
 
 #include <math.h>

@@ -30,7 +30,7 @@
  * sphere); the planes-versus-triangles difference is far below h/4.
  * The checks run every 20 steps and at the end in (a), every step in (b), on owned particles
  * with the sphere's node positions gathered on every rank; results reduce over the ranks. */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "fem/fem.h"
 #include "test_common.h"
 
@@ -83,7 +83,7 @@ static double tri_distance(const double *p, const double *a, const double *b, co
 }
 
 typedef struct {
-  const pf_fem_mesh *mesh;
+  const pf_mesh *mesh;
   int body;          /* store index of the FE body */
   pf_gid gid0;       /* global id of mesh node 0 */
   double *x;         /* [3 nnodes] current node positions (every rank) */
@@ -120,7 +120,7 @@ static void sphere_init(sphere *s, pf_sim *sim) {
   for (pf_int i = 0; i < p->n_owned; i++)
     if (p->body[i] == s->body && p->gid[i] < g0) g0 = p->gid[i];
   MPI_Allreduce(&g0, &s->gid0, 1, PF_GID_MPI, MPI_MIN, MPI_COMM_WORLD);
-  const pf_fem_mesh *m = s->mesh;
+  const pf_mesh *m = s->mesh;
   s->x = malloc(sizeof(double) * 3 * (size_t)m->nnodes);
   s->box = malloc(sizeof(double) * 6 * (size_t)m->nelem);
   pf_int (*all)[5] = malloc(sizeof *all * 6 * (size_t)m->nelem), (*sorted)[4] = malloc(sizeof *sorted * 6 * (size_t)m->nelem);
@@ -157,7 +157,7 @@ static void sphere_free(sphere *s) { free(s->x), free(s->box), free(s->bnd); }
 /* Gather the current node positions on every rank and the centre (mean node position); returns
  * the sphere's mass-weighted mean velocity along z. Collective. */
 static double sphere_update(sphere *s, pf_sim *sim, double centre[3]) {
-  const pf_fem_mesh *m = s->mesh;
+  const pf_mesh *m = s->mesh;
   const pf_points *p = pf_sim_points(sim);
   memset(s->x, 0, sizeof(double) * 3 * (size_t)m->nnodes);
   double mv = 0, mass = 0;

@@ -11,7 +11,7 @@
  * FE: 5 x 5 x 10 hexahedra, end faces driven the same way. Loading is ramped over 20 us and runs
  * to 4 % strain at 200 /s (many wave transits: quasi-static). Stress: the mean over the points /
  * nodes of the middle 4 mm. */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "fem/fem.h"
 #include "test_common.h"
 

@@ -21,7 +21,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "fem/fem.h"
 
 enum { NX = 48, NY = 18 };

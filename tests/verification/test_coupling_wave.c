@@ -32,7 +32,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 
 static const char *CONSTANT = "3.01e-3", *TAPER = "\"3.01e-3 - 2.0e-3 * min(max((x - 0.08) / 0.02, 0), 1)\"";
 static const char *TAPER_PD = "\"3.01e-3 - 2.0e-3 * min(max((x - 0.10) / 0.02, 0), 1)\"";

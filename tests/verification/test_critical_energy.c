@@ -48,7 +48,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "pd/pd.h"
 
 static const double K = 1.75e9, G = 8.08e8, RHO = 2000, G0 = 12;

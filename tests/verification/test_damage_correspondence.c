@@ -15,7 +15,7 @@
  * horizon long) survive it; a critical stretch of 0.5 (a bond at 1.5 times its length no longer
  * spans continuous material) removes them once the halves have parted. It cannot break a bond
  * before the damage model does: the strains before failure are below 0.2. */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "test_common.h"
 
 #include <math.h>

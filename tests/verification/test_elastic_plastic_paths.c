@@ -36,7 +36,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 
 enum { N = 13, RMAX = 3 };
 static const double h = 1e-3, K = 162.0e9, G = 74.76923076923077e9, Y0 = 1.72e5, TOL = 1e-4;

@@ -21,7 +21,7 @@
  *  - the sphere is slowed (it does work on the plate) but passes (its mean velocity stays
  *    downward).
  * The state digest goes to mpi_verify (1, 2 and 3 ranks). */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "fem/fem_impl.h"
 #include "test_common.h"
 

@@ -7,7 +7,7 @@
  *     exactly skew and the Hughes-Winget rotation reproduces the increment exactly
  *     (docs/theory/fem.md §1); for neo-Hookean sigma(RU) = R sigma(U) R^T. Both integration
  *     options. */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "fem/fem.h"
 #include "test_common.h"
 
@@ -19,7 +19,7 @@
 #define DT 1.0e-8
 
 static const char *write_cube(void) {
-  pf_fem_mesh m;
+  pf_mesh m;
   memset(&m, 0, sizeof m);
   m.nnodes = 8, m.nelem = 1, m.nblocks = 1;
   double X[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};

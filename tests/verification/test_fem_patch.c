@@ -7,7 +7,7 @@
  * for one-point elements with hourglass control (whose vectors are orthogonal to linear fields)
  * and for the B-bar elements. The uniform stress is the hypoelastic integral of C : D, which to
  * first order in the strain is C : sym(A) t (checked to 1e-3 relative at a strain of 1e-6). */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "fem/fem.h"
 #include "test_common.h"
 
@@ -22,7 +22,7 @@ static const double A[3][3] = {{1.0, 0.4, -0.2}, {0.3, -0.6, 0.5}, {-0.1, 0.2, 0
 static int node_id(int i, int j, int k) { return i + (NE + 1) * (j + (NE + 1) * k); }
 
 static const char *write_mesh(void) {
-  pf_fem_mesh m;
+  pf_mesh m;
   memset(&m, 0, sizeof m);
   m.nnodes = (NE + 1) * (NE + 1) * (NE + 1);
   m.nelem = NE * NE * NE;

@@ -9,7 +9,7 @@
  * Second, the same bar at rest driven at x = 0 by a prescribed velocity ramp (1 - cos) to
  * 10 m/s over 1 us: the work the prescribed motion books must equal the energy the bar gains,
  * kinetic + stress work, to 0.1 % (the balance of docs/theory/pd.md §10). */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "fem/fem.h"
 #include "test_common.h"
 

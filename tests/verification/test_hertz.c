@@ -21,7 +21,7 @@
  * usage: test_hertz [h [block size / a_max [k / (K h)]]]
  *   defaults 0.75e-3 8 4; `test_hertz 0.5e-3` is the finer resolution (a_max = 5.6 h, about
  *   6 minutes). PF_TEST_VERBOSE=1 prints the numbers. */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "test_common.h"
 
 #include <math.h>

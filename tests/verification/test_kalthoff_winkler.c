@@ -15,7 +15,7 @@
  *  - its angle to the notch axis, atan(1 / b), lies in 65-72 degrees, and the two cracks agree
  *    to 1 degree (the problem is symmetric about y = 0).
  * With PF_TEST_VERBOSE the angles are printed (docs/verification.md). */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "test_common.h"
 
 #include <math.h>

@@ -33,7 +33,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 
 enum { NX = 46, NY = 17 };
 static const double h = 1e-3, E = 200e9, RHO = 7800, EPS = 1e-6, DT = 1e-7;

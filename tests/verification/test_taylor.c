@@ -10,7 +10,7 @@
  * and smallest radius are printed beside the largest (docs/verification.md, the convergence
  * table).
  * usage: test_taylor [element_size]   (default: the deck's 0.6 mm; ctest's slow variant 0.4 mm) */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "fem/fem.h"
 #include "test_common.h"
 

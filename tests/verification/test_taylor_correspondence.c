@@ -18,7 +18,7 @@
  * rim (docs/theory/materials.md §2.5); at 0.3 mm the two are the same point.
  * usage: test_taylor_correspondence [h]   (default the deck's h = l/42; ctest's slow variant
  * 0.3 mm, 38,556 points, between D2's 16,929 and D3's 130,536) */
-#include "core/simulation.h"
+#include "sim/sim.h"
 #include "test_common.h"
 
 #include <math.h>

@@ -14,7 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "core/simulation.h"
+#include "sim/sim.h"
 
 static double total_energy(pf_sim *sim) {
   pf_sim_globals g;

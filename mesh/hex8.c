@@ -1,0 +1,138 @@
+/* Geometry of the 8-node trilinear hexahedron: shape-function gradients, the exact volume, the
+ * mean (uniform) gradient of Flanagan & Belytschko (1981), the characteristic length for the
+ * stable step, and the quadrature-exact lumped mass. Node order is Exodus HEX8: nodes 0-3 the
+ * face zeta = -1 counter-clockwise seen from +zeta, nodes 4-7 above them. */
+#include "mesh/mesh.h"
+
+#include <math.h>
+
+/* Parent coordinates (xi, eta, zeta) of the nodes. */
+const double pf_hex8_node_sign[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                        {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+
+/* Gauss points of the 2x2x2 rule (weights 1): the node signs over sqrt(3). */
+void pf_hex8_gauss_point(int g, double xi[3]) {
+  for (int k = 0; k < 3; k++) xi[k] = pf_hex8_node_sign[g][k] / sqrt(3.0);
+}
+
+/* N_I(xi) = (1 + xi xi_I)(1 + eta eta_I)(1 + zeta zeta_I) / 8 (Hughes 2000, eq. 3.5.2) and its
+ * parent derivatives dN_I/dxi_k. */
+static void parent_derivatives(const double xi[3], double dN[8][3]) {
+  for (int I = 0; I < 8; I++) {
+    const double *s = pf_hex8_node_sign[I];
+    double a = 1 + xi[0] * s[0], b = 1 + xi[1] * s[1], c = 1 + xi[2] * s[2];
+    dN[I][0] = 0.125 * s[0] * b * c;
+    dN[I][1] = 0.125 * a * s[1] * c;
+    dN[I][2] = 0.125 * a * b * s[2];
+  }
+}
+
+double pf_hex8_gradients(double x[8][3], const double xi[3], double grad[8][3]) {
+  double dN[8][3], J[3][3] = {{0}};
+  parent_derivatives(xi, dN);
+  /* J_ik = dx_i / dxi_k = sum_I x_iI dN_I/dxi_k */
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++)
+      for (int k = 0; k < 3; k++) J[i][k] += x[I][i] * dN[I][k];
+  double inv[3][3], det = pf_mat3_inverse(J, inv);
+  /* dN_I/dx_i = dN_I/dxi_k (J^-1)_ki */
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++)
+      grad[I][i] = dN[I][0] * inv[0][i] + dN[I][1] * inv[1][i] + dN[I][2] * inv[2][i];
+  return det;
+}
+
+/* Mean gradient B_iI = (1/V) int_V dN_I/dx_i dV and volume V (Flanagan & Belytschko 1981,
+ * eqs. 14-16): B_I = (1/V) dV/dx_I. With x_xi = sum_I x_I dN_I/dxi etc.,
+ *     V = int det J = sum_IJK x_I . (x_J x x_K) C_IJK,   C_IJK = int N_I,xi N_J,eta N_K,zeta,
+ * and the triple product's cyclic symmetry gives
+ *     dV/dx_I = sum_{J<K} (x_J x x_K) W_IJK,   W_IJK = S_IJK - S_IKJ,   S = C_IJK + C_JKI + C_KIJ.
+ * The integrands are quadratic in each parent coordinate, so the 2x2x2 Gauss rule gives C
+ * exactly; W is computed once and kept as its nonzero entries. V = (1/3) sum_I x_I . dV/dx_I
+ * (V is homogeneous of degree 3 in x). */
+typedef struct {
+  int8_t I, J, K;
+  double w;
+} triple;
+static triple wtab[8 * 28];
+static int nw = -1;
+
+static void build_triples(void) {
+  static double C[8][8][8];
+  for (int g = 0; g < 8; g++) {
+    double xi[3], dN[8][3];
+    pf_hex8_gauss_point(g, xi);
+    parent_derivatives(xi, dN);
+    for (int I = 0; I < 8; I++)
+      for (int J = 0; J < 8; J++)
+        for (int K = 0; K < 8; K++) C[I][J][K] += dN[I][0] * dN[J][1] * dN[K][2];
+  }
+  int n = 0;
+  for (int I = 0; I < 8; I++)
+    for (int J = 0; J < 8; J++)
+      for (int K = J + 1; K < 8; K++) {
+        double w = (C[I][J][K] + C[J][K][I] + C[K][I][J]) - (C[I][K][J] + C[K][J][I] + C[J][I][K]);
+        if (fabs(w) > 1e-12) wtab[n++] = (triple){(int8_t)I, (int8_t)J, (int8_t)K, w};
+      }
+  nw = n;
+}
+
+double pf_hex8_mean_gradient(double x[8][3], double B[8][3]) {
+  if (nw < 0) build_triples(); /* first call: at set-up, before any threaded loop */
+  /* B and V do not change under translation; taking the nodes relative to their centroid keeps
+   * the cross products from cancelling (elements far from the origin lose no digits) */
+  double c[8][3], o[3] = {0, 0, 0}, cr[8][8][3];
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) o[i] += 0.125 * x[I][i];
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) c[I][i] = x[I][i] - o[i];
+  for (int J = 0; J < 8; J++)
+    for (int K = J + 1; K < 8; K++) pf_vec3_cross(c[J], c[K], cr[J][K]);
+  for (int I = 0; I < 8; I++) B[I][0] = B[I][1] = B[I][2] = 0;
+  for (int t = 0; t < nw; t++) {
+    const triple *q = &wtab[t];
+    for (int i = 0; i < 3; i++) B[q->I][i] += q->w * cr[q->J][q->K][i];
+  }
+  double V = 0;
+  for (int I = 0; I < 8; I++) V += c[I][0] * B[I][0] + c[I][1] * B[I][1] + c[I][2] * B[I][2];
+  V /= 3.0;
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) B[I][i] /= V;
+  return V;
+}
+
+/* Row-sum lumped mass: m_I = rho int N_I dV, exact with 2x2x2 Gauss (N_I det J is cubic in each
+ * parent coordinate). */
+void pf_hex8_lumped_mass(double x[8][3], double rho, double m[8]) {
+  double xi[3], grad[8][3];
+  for (int I = 0; I < 8; I++) m[I] = 0;
+  for (int g = 0; g < 8; g++) {
+    pf_hex8_gauss_point(g, xi);
+    double det = pf_hex8_gradients(x, xi, grad);
+    for (int I = 0; I < 8; I++) {
+      const double *s = pf_hex8_node_sign[I];
+      double N = 0.125 * (1 + xi[0] * s[0]) * (1 + xi[1] * s[1]) * (1 + xi[2] * s[2]);
+      m[I] += rho * N * det;
+    }
+  }
+}
+
+/* Faces of the hexahedron (Exodus side order), outward when the element has positive volume. */
+const int pf_hex8_face[6][4] = {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6},
+                                {0, 4, 7, 3}, {0, 3, 2, 1}, {4, 5, 6, 7}};
+
+/* Characteristic length l = V / A_max, A_max the largest face area (the LS-DYNA / DYNA3D choice,
+ * Hallquist 2006, LS-DYNA Theory Manual eq. 20.4); for a cube of edge h, l = h. The face area of
+ * a bilinear quadrilateral is taken as half the norm of its diagonals' cross product (exact for
+ * planar faces). */
+double pf_hex8_char_length(double x[8][3], double V) {
+  double amax = 0;
+  for (int f = 0; f < 6; f++) {
+    const int *q = pf_hex8_face[f];
+    double d1[3], d2[3], n[3];
+    for (int i = 0; i < 3; i++) d1[i] = x[q[2]][i] - x[q[0]][i], d2[i] = x[q[3]][i] - x[q[1]][i];
+    pf_vec3_cross(d1, d2, n);
+    amax = fmax(amax, 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+  }
+  return V / amax;
+}

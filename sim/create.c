@@ -1,0 +1,240 @@
+/* Building a simulation from a deck: validate every key first, then generate the points of
+ * each body (grouped by body, each body in Morton order), families and materials, initial
+ * velocities, rigid surfaces and contact, boundary conditions, and the time step. No file is written here. */
+#include "sim/sim_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const pf_key time_keys[] = {
+    {"final_time", PF_KEY_REAL, 0, NULL, "s", "end time (give this or steps)", NULL},
+    {"steps", PF_KEY_INT, 0, NULL, "", "number of steps (give this or final_time)", NULL},
+    {"dt", PF_KEY_REAL, 0, "stable", "s", "fixed time step; default: safety_factor x stable step", NULL},
+    {"safety_factor", PF_KEY_REAL, 0, "0.8", "", "fraction of the Silling–Askari stable step", NULL},
+    {"max_motion", PF_KEY_REAL, 0, "0.5", "",
+     "instability guard: the largest motion of a point in one step, as a fraction of its horizon "
+     "(PD) or cell (FE node); beyond it the run stops and writes the last good state", NULL},
+    PF_KEY_END};
+
+static const pf_key output_keys[] = {
+    {"file", PF_KEY_STRING, 0, "<deck name>.e", "", "Exodus II output file", NULL},
+    {"interval", PF_KEY_INT, 0, "100", "", "steps between Exodus outputs (0: first and last only)", NULL},
+    {"history_file", PF_KEY_STRING, 0, "<deck name>.h5", "", "HDF5 history of global quantities", NULL},
+    {"history_interval", PF_KEY_INT, 0, "10", "", "steps between history rows", NULL},
+    {"layout", PF_KEY_STRING, 0, "joined", "",
+     "on several ranks: joined (one Exodus file, written by rank 0) | spread (one file per rank, "
+     "<file>.<ranks>.<rank>, which ParaView opens as one data set)", NULL},
+    {"fragments", PF_KEY_BOOL, 0, "false", "",
+     "label the fragments (connected components of intact bonds) at every Exodus step: field "
+     "'fragment' and <file>.fragments.csv", NULL},
+    {"probes", PF_KEY_LIST, 0, NULL, "", "mass-averaged quantities over regions, as history columns",
+     pf_sim_probe_keys},
+    PF_KEY_END};
+
+const pf_key pf_deck_keys[] = {
+    {"title", PF_KEY_STRING, 0, "", "", "a title for the output", NULL},
+    {"units", PF_KEY_STRING, 0, "SI", "", "unit system; only SI is accepted", NULL},
+    {"materials", PF_KEY_ANYMAP, 1, NULL, "",
+     "named materials, each checked by its model: a peridynamic model (pmb, lps, elastic_plastic) "
+     "or a continuum model (FE bodies, and PD bodies as correspondence)", NULL},
+    {"bodies", PF_KEY_LIST, 1, NULL, "",
+     "the bodies (1 to 64), each checked by its type: peridynamic or finite_element", NULL},
+    {"indenters", PF_KEY_LIST, 0, NULL, "", "rigid surfaces with prescribed motion (the same as contact.rigid_surfaces)", pf_rigid_keys},
+    {"contact", PF_KEY_MAP, 0, NULL, "", "contact between bodies and rigid surfaces", pf_contact_keys},
+    {"walls", PF_KEY_LIST, 0, NULL, "", "rigid frictionless planes", pf_wall_keys},
+    {"boundary_conditions", PF_KEY_LIST, 0, NULL, "", "prescribed velocities/displacements", pf_bc_keys},
+    {"time", PF_KEY_MAP, 1, NULL, "", "time stepping", time_keys},
+    {"output", PF_KEY_MAP, 0, NULL, "", "output files and intervals", output_keys},
+    {"parallel", PF_KEY_MAP, 0, NULL, "", "domain decomposition over MPI ranks", pf_parallel_keys},
+    {"restart", PF_KEY_MAP, 0, NULL, "", "checkpoints for restart", pf_restart_keys},
+    PF_KEY_END};
+
+/* Each material against the table of its kind, chosen by its model. */
+static int validate_materials(const pf_deck *d, const pf_node *materials) {
+  for (int k = 0; k < pf_node_count(materials); k++) {
+    const char *name, *model = NULL;
+    const pf_node *mat = pf_node_map_item(materials, k, &name);
+    char where[160];
+    snprintf(where, sizeof where, "materials.%s", name);
+    if (pf_node_get(mat, "model")) PF_CALL(pf_deck_string(d, mat, "model", &model));
+    if (model && pf_material_known(model)) PF_CALL(pf_deck_validate(d, mat, pf_material_keys, where));
+    else if (model && pf_pd_material_known(model)) PF_CALL(pf_deck_validate(d, mat, pf_pd_material_keys, where));
+    else if (model)
+      return pf_deck_error(d, pf_node_get(mat, "model"), "model", "unknown model '%s' (known: %s, %s)", model,
+                           pf_pd_material_names(), pf_material_names());
+    else
+      return pf_deck_error(d, mat, "model", "material '%s' has no 'model' (known: %s, %s)", name,
+                           pf_pd_material_names(), pf_material_names());
+  }
+  return 0;
+}
+
+/* 1 for a finite-element body, 0 for a peridynamic one; each body against its table. */
+static int body_kind(const pf_deck *d, const pf_node *body, int b, int *fem) {
+  const char *type = "peridynamic";
+  char where[64];
+  snprintf(where, sizeof where, "bodies[%d]", b);
+  if (pf_node_get(body, "type")) PF_CALL(pf_deck_string(d, body, "type", &type));
+  *fem = !strcmp(type, "finite_element");
+  if (!*fem && strcmp(type, "peridynamic"))
+    return pf_deck_error(d, pf_node_get(body, "type"), "type", "unknown body type '%s' (known: peridynamic, finite_element)", type);
+  return pf_deck_validate(d, body, *fem ? pf_fem_body_keys : pf_pd_body_keys, where);
+}
+
+/* initial_velocity or initial_displacement (key) of body b's owned points into v, or into u
+ * (and y = X + u). */
+static int set_initial_field(pf_sim *sim, int b, const pf_node *body, const char *key) {
+  if (!pf_node_get(body, key)) return 0;
+  pf_expr *e[3];
+  PF_CALL(pf_expr3_create(sim->deck, body, key, e));
+  pf_points *p = sim->pts;
+  const int disp = !strcmp(key, "initial_displacement");
+  double *out = disp ? p->u : p->v;
+  for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++)
+    for (int c = 0; c < 3; c++) { /* owned points only: an error here may be one rank's */
+      const double *x = &p->X[3 * i];
+      out[3 * i + c] = pf_expr_eval(e[c], x[0], x[1], x[2], 0.0);
+      if (disp) p->y[3 * i + c] = x[c] + out[3 * i + c];
+      if (isfinite(out[3 * i + c])) continue;
+      pf_expr3_destroy(e);
+      return pf_deck_error(sim->deck, pf_node_item(pf_node_get(body, key), c), key,
+                           "component %d is %g at the point (%g, %g, %g)", c, out[3 * i + c], x[0], x[1], x[2]);
+    }
+  pf_expr3_destroy(e);
+  return 0;
+}
+
+static int build_bodies(pf_sim *sim, const pf_node *root) {
+  const pf_node *bodies = pf_node_get(root, "bodies");
+  sim->nbodies = pf_node_count(bodies);
+  PF_CHECK(sim->nbodies > 0 && sim->nbodies <= PF_MAX_BODIES, PF_ERR_INPUT,
+           "%s:%d:%d: 'bodies' must list 1 to %d bodies (got %d)", pf_deck_path(sim->deck),
+           pf_node_line(bodies), pf_node_column(bodies), PF_MAX_BODIES, sim->nbodies);
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_node *body = pf_node_item(bodies, b);
+    PF_CALL(pf_deck_string(sim->deck, body, "name", &sim->body_name[b]));
+    for (int q = 0; q < b; q++)
+      if (!strcmp(sim->body_name[q], sim->body_name[b]))
+        return pf_deck_error(sim->deck, pf_node_get(body, "name"), "name", "two bodies named '%s'",
+                             sim->body_name[b]);
+    int fem = 0;
+    PF_CALL(body_kind(sim->deck, body, b, &fem));
+    if (fem) PF_CALL(pf_fem_body_create(sim->deck, body, pf_node_get(root, "materials"), &sim->fem[b]));
+    else PF_CALL(pf_pd_body_create(sim->deck, body, pf_node_get(root, "materials"), &sim->body[b]));
+    sim->nfem += fem;
+  }
+  if (sim->spread_output && sim->nfem)
+    return pf_deck_error(sim->deck, pf_node_get(pf_node_get(root, "output"), "layout"), "layout",
+                         "finite_element bodies are written joined (a spread file set would cut "
+                         "elements at the rank boundaries); use output.layout: joined");
+  if (sim->opt.restart_from) return pf_sim_restore_points(sim); /* points and velocities from the file */
+  pf_point_cloud pc[PF_MAX_BODIES];
+  memset(pc, 0, sizeof pc);
+  int ierr = 0;
+  for (int b = 0; b < sim->nbodies && !ierr; b++)
+    ierr = sim->fem[b] ? pf_fem_body_cloud(sim->fem[b], &pc[b])
+                       : pf_point_cloud_from_deck(sim->deck, pf_node_get(pf_node_item(bodies, b), "geometry"), &pc[b]);
+  if (!ierr) ierr = pf_sim_distribute(sim, pc);
+  for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
+  if (ierr) return ierr;
+  for (int b = 0; b < sim->nbodies; b++) {
+    PF_CALL(set_initial_field(sim, b, pf_node_item(bodies, b), "initial_velocity"));
+    PF_CALL(set_initial_field(sim, b, pf_node_item(bodies, b), "initial_displacement"));
+  }
+  return 0;
+}
+
+static int build_bcs(pf_sim *sim, const pf_node *root) {
+  const pf_node *bcs = pf_node_get(root, "boundary_conditions");
+  sim->nbcs = pf_node_count(bcs);
+  PF_MALLOC(sim->bcs, sim->nbcs);
+  for (int k = 0; k < sim->nbcs; k++)
+    PF_CALL(pf_bc_create(sim->deck, pf_node_item(bcs, k), sim->pts, sim->nbodies, sim->body_name,
+                         &sim->bcs[k]));
+  return 0;
+}
+
+static int build_walls(pf_sim *sim, const pf_node *root) {
+  const pf_node *walls = pf_node_get(root, "walls");
+  sim->nwalls = pf_node_count(walls);
+  PF_MALLOC(sim->walls, sim->nwalls);
+  PF_MALLOC(sim->wall_reaction, sim->nwalls);
+  for (int k = 0; k < sim->nwalls; k++)
+    PF_CALL(pf_wall_create(sim->deck, pf_node_item(walls, k), sim->nbodies, sim->body_name, &sim->walls[k]));
+  return 0;
+}
+
+static int check_units(const pf_sim *sim, const pf_node *root) {
+  const char *units = "SI";
+  PF_CALL(pf_deck_string(sim->deck, root, "units", &units));
+  if (strcmp(units, "SI"))
+    return pf_deck_error(sim->deck, pf_node_get(root, "units"), "units",
+                         "only SI units are supported (got '%s')", units);
+  return 0;
+}
+
+static int sim_build(pf_sim *sim, const char *deck_path) {
+  pf_sim_catch_signals(); /* a SIGTERM during the set-up stops the run at its first step */
+  PF_CALL(pf_deck_load(deck_path, &sim->deck));
+  const pf_node *root = pf_deck_root(sim->deck);
+  PF_CALL(pf_deck_validate(sim->deck, root, pf_deck_keys, "the deck"));
+  PF_CALL(check_units(sim, root));
+  PF_CALL(validate_materials(sim->deck, pf_node_get(root, "materials")));
+  PF_CALL(pf_sim_setup_parallel(sim));
+  PF_CALL(build_bodies(sim, root));
+  PF_CALL(pf_sim_build_contact(sim));
+  PF_CALL(build_bcs(sim, root));
+  PF_CALL(build_walls(sim, root));
+  PF_CALL(pf_sim_setup_time(sim));
+  PF_CALL(pf_sim_setup_output(sim));
+  PF_CALL(pf_sim_setup_restart(sim));
+  if (sim->opt.restart_from) PF_CALL(pf_sim_restore_state(sim));
+  return 0;
+}
+
+int pf_sim_create(const char *deck_path, const pf_sim_options *opt, pf_sim **out) {
+  *out = NULL;
+  pf_sim *sim;
+  PF_MALLOC(sim, 1);
+  if (opt) sim->opt = *opt;
+  int ierr = sim_build(sim, deck_path);
+  if (ierr) {
+    pf_sim_destroy(&sim);
+    return ierr;
+  }
+  *out = sim;
+  return 0;
+}
+
+int pf_sim_destroy(pf_sim **s) {
+  pf_sim *sim = *s;
+  if (!sim) return 0;
+  pf_exodus_destroy(&sim->exo);
+  pf_history_destroy(&sim->hist);
+  for (int b = 0; b < sim->nbodies; b++) pf_pd_body_destroy(&sim->body[b]), pf_fem_body_destroy(&sim->fem[b]);
+  for (int k = 0; k < sim->nwalls && sim->walls; k++) pf_wall_destroy(&sim->walls[k]);
+  free(sim->walls), free(sim->wall_reaction);
+  for (int k = 0; k < sim->nrigid && sim->rigid; k++) pf_rigid_destroy(&sim->rigid[k]);
+  pf_contact_destroy(&sim->contact);
+  for (int k = 0; k < sim->nbcs && sim->bcs; k++) pf_bc_destroy(&sim->bcs[k]);
+  free(sim->rigid);
+  free(sim->reaction);
+  free(sim->bcs);
+  free(sim->probes);
+  pf_points_destroy(&sim->pts);
+  pf_points_destroy(&sim->joined);
+  pf_sim_restart_free(sim);
+  pf_sim_guard_free(sim);
+  pf_deck_destroy(&sim->deck);
+  PF_FREE(*s);
+  return 0;
+}
+
+pf_points *pf_sim_points(pf_sim *sim) { return sim->pts; }
+int pf_sim_nbodies(const pf_sim *sim) { return sim->nbodies; }
+pf_pd_body *pf_sim_body(pf_sim *sim, int b) { return sim->body[b]; }
+pf_fem_body *pf_sim_fem_body(pf_sim *sim, int b) { return sim->fem[b]; }
+double pf_sim_dt(const pf_sim *sim) { return sim->dt; }
+long pf_sim_nsteps(const pf_sim *sim) { return sim->nsteps; }
+int pf_sim_adaptive(const pf_sim *sim) { return sim->adaptive; }

@@ -1,0 +1,149 @@
+/* Spreading the bodies over the MPI ranks (DESIGN.md 6). At set-up every rank generates the
+ * bodies' points (cheap and deterministic), takes an equal slice of the global ids, finds the
+ * bonds of its slice, and the slices are partitioned (Zoltan RCB or METIS, weighted by bond
+ * count) and migrated to their owners with their bond rows. Ghosts are then exactly the
+ * off-rank neighbours named in the rows. A re-partition at an output step reuses the same
+ * migration with the full state. Global ids are the generation order, so nothing a point
+ * computes depends on the partition. */
+#include "sim/sim_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+const pf_key pf_parallel_keys[] = {
+    {"decomposition", PF_KEY_STRING, 0, "rcb", "",
+     "rcb (Zoltan recursive coordinate bisection) | metis (k-way on the bond graph)", NULL},
+    {"rebalance_threshold", PF_KEY_REAL, 0, "0", "",
+     "at output steps, re-partition when the largest rank's work (intact bonds + points) exceeds "
+     "this multiple of the mean; 0: never", NULL},
+    PF_KEY_END};
+
+int pf_sim_setup_parallel(pf_sim *sim) {
+  const pf_deck *d = sim->deck;
+  const pf_node *root = pf_deck_root(d), *par = pf_node_get(root, "parallel"), *out = pf_node_get(root, "output");
+  const char *method = "rcb", *layout = "joined";
+  PF_CALL(pf_deck_string(d, par, "decomposition", &method));
+  if (!strcmp(method, "rcb")) sim->decomposition = PF_PARTITION_RCB;
+  else if (!strcmp(method, "metis")) sim->decomposition = PF_PARTITION_METIS;
+  else
+    return pf_deck_error(d, pf_node_get(par, "decomposition"), "decomposition",
+                         "unknown decomposition '%s' (known: rcb, metis)", method);
+  PF_CALL(pf_deck_real(d, par, "rebalance_threshold", &sim->rebalance_threshold));
+  if (!(sim->rebalance_threshold == 0 || sim->rebalance_threshold >= 1))
+    return pf_deck_error(d, pf_node_get(par, "rebalance_threshold"), "rebalance_threshold",
+                         "must be 0 (never) or at least 1 (got %g)", sim->rebalance_threshold);
+  PF_CALL(pf_deck_string(d, out, "layout", &layout));
+  if (strcmp(layout, "joined") && strcmp(layout, "spread"))
+    return pf_deck_error(d, pf_node_get(out, "layout"), "layout", "unknown layout '%s' (known: joined, spread)", layout);
+  sim->spread_output = !strcmp(layout, "spread");
+  if (sim->spread_output && sim->rebalance_threshold > 0)
+    return pf_deck_error(d, pf_node_get(par, "rebalance_threshold"), "rebalance_threshold",
+                         "re-partitioning changes each rank's points, which a spread Exodus file "
+                         "set cannot follow; use output.layout: joined");
+  return 0;
+}
+
+/* This rank's equal slice of the global ids, with the points' data from the clouds. */
+static int make_slice(const pf_sim *sim, const pf_point_cloud *pc, const pf_gid *gid0, pf_points **out) {
+  pf_gid n = gid0[sim->nbodies];
+  int rank = pf_comm_rank(), size = pf_comm_size();
+  pf_gid lo = n * rank / size, hi = n * (rank + 1) / size;
+  PF_CALL(pf_points_create((pf_int)(hi - lo), out));
+  pf_points *p = *out;
+  p->n_global = n;
+  int b = 0;
+  for (pf_gid g = lo; g < hi; g++) {
+    while (g >= gid0[b + 1]) b++;
+    pf_int i = (pf_int)(g - lo), j = (pf_int)(g - gid0[b]);
+    memcpy(&p->X[3 * i], &pc[b].X[3 * j], 3 * sizeof(double));
+    memcpy(&p->y[3 * i], &pc[b].X[3 * j], 3 * sizeof(double));
+    p->vol[i] = pc[b].vol[j];
+    p->cell[i] = pc[b].cell[j];
+    p->gid[i] = g;
+    p->body[i] = b;
+  }
+  return 0;
+}
+
+int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh) {
+  int *owner_of = NULL, *dest = NULL;
+  pf_int *local = NULL;
+  int ierr = pf_partition_compute(sim->decomposition, sim->pts, rows, &owner_of);
+  if (!ierr && !(dest = malloc(sizeof(int) * ((size_t)sim->pts->n_owned + 1))))
+    ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+  for (pf_int i = 0; !ierr && i < sim->pts->n_owned; i++) dest[i] = owner_of[sim->pts->gid[i]];
+  if (!ierr) ierr = pf_points_migrate(sim->pts, rows, dest, sim->nbodies, sim->body_start);
+  free(dest);
+  if (!ierr && !(local = malloc(sizeof(pf_int) * ((size_t)rows->offset[rows->n] + 1))))
+    ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+  if (!ierr) ierr = pf_points_add_ghosts(sim->pts, rows, owner_of, local);
+  for (int b = 0; b < sim->nbodies && !ierr; b++) {
+    pf_int first = sim->body_start[b], n = sim->body_start[b + 1] - first;
+    pf_pd_body *coupled = sim->fem[b] ? pf_fem_body_pd(sim->fem[b]) : NULL; /* PD on FE nodes */
+    ierr = sim->fem[b] ? pf_fem_body_attach(sim->fem[b], b, sim->pts, first, n, sim->gid0[b])
+                       : pf_pd_body_attach(sim->body[b], sim->pts, first, n, rows, local, fresh);
+    if (!ierr && coupled) ierr = pf_pd_body_attach(coupled, sim->pts, first, n, rows, local, fresh);
+    if (!ierr && coupled) ierr = pf_fem_body_coupling_ready(sim->fem[b], sim->pts);
+  }
+  free(owner_of), free(local);
+  if (!ierr) ierr = pf_sim_contact_attach(sim);
+  return ierr;
+}
+
+void pf_sim_number_bodies(pf_sim *sim, const pf_gid *count) {
+  sim->gid0[0] = 0;
+  for (int b = 0; b < sim->nbodies; b++) sim->gid0[b + 1] = sim->gid0[b] + count[b];
+}
+
+int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc) {
+  pf_gid count[PF_MAX_BODIES], *gid0 = sim->gid0;
+  for (int b = 0; b < sim->nbodies; b++) count[b] = pc[b].n;
+  pf_sim_number_bodies(sim, count);
+  PF_CALL(make_slice(sim, pc, gid0, &sim->pts));
+  pf_bond_rows rows;
+  PF_CALL(pf_bond_rows_init(&rows));
+  int ierr = 0;
+  pf_int first = 0;
+  for (int b = 0; b < sim->nbodies && !ierr; b++) {
+    pf_int n = 0;
+    while (first + n < sim->pts->n_owned && sim->pts->body[first + n] == b) n++;
+    pf_pd_cloud cloud = {pc[b].X, pc[b].cell, pc[b].n, gid0[b]};
+    ierr = sim->fem[b] ? pf_fem_body_node_rows(sim->fem[b], sim->pts, first, n, gid0[b], &rows)
+                       : pf_pd_body_find_bonds(sim->body[b], &cloud, sim->pts, first, n, &rows);
+    first += n;
+  }
+  if (!ierr) ierr = pf_sim_settle(sim, &rows, 1);
+  pf_bond_rows_free(&rows);
+  return ierr;
+}
+
+/* Work of this rank: intact bonds plus points. */
+static double local_work(const pf_sim *sim) {
+  double w = sim->pts->n_owned;
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_pd_body *pd = sim->body[b] ? sim->body[b] : pf_fem_body_pd(sim->fem[b]);
+    if (!pd) continue;
+    const pf_family *fam = pf_pd_body_family(pd);
+    for (int64_t k = 0; k < pf_pd_family_nbonds(fam); k++) w += !fam->broken[k];
+  }
+  return w;
+}
+
+int pf_sim_rebalance(pf_sim *sim) {
+  if (sim->rebalance_threshold <= 0 || pf_comm_size() == 1) return 0;
+  double w = local_work(sim), mean = pf_sum_all(w) / pf_comm_size(), imbalance = pf_max_all(w) / mean;
+  if (!(imbalance > sim->rebalance_threshold)) return 0;
+  pf_bond_rows rows;
+  PF_CALL(pf_bond_rows_init(&rows));
+  int ierr = 0;
+  if (!ierr) ierr = pf_sim_bond_rows(sim, &rows);
+  if (!ierr) ierr = pf_sim_settle_keeping_fem(sim, &rows);
+  pf_bond_rows_free(&rows);
+  for (int k = 0; k < sim->nbcs && !ierr; k++) ierr = pf_bc_select(sim->bcs[k], sim->pts);
+  if (ierr) return ierr;
+  w = local_work(sim);
+  pf_log("step %ld: re-partitioned (work imbalance %.3f > %.3f); now %.3f\n", sim->step, imbalance,
+         sim->rebalance_threshold, pf_max_all(w) / (pf_sum_all(w) / pf_comm_size()));
+  return 0;
+}

@@ -1,0 +1,151 @@
+/* perifem DECK.yaml — the command line. Exit status: 0 success, 1 run failure, 2 bad input. */
+#include "sim/sim.h"
+
+#include <errno.h>
+#include <exodusII.h>
+#include <hdf5.h>
+#include <stdlib.h>
+#include <string.h>
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+#include <sys/stat.h>
+#include <yaml.h>
+
+static void usage(FILE *fp) {
+  fprintf(fp,
+          "usage: perifem [options] DECK.yaml\n"
+          "  --check            load and validate the deck and build the model; run nothing\n"
+          "  --output-dir DIR   write output files into DIR (created when missing)\n"
+          "  --restart FILE     continue from the checkpoint FILE (any number of ranks)\n"
+          "  --quiet            print only errors, the summary's digest line excepted\n"
+          "  --progress MODE    auto (one line rewritten in place on a terminal, else plain lines),\n"
+          "                     plain or line; under mpirun the ranks see a pseudo-terminal even\n"
+          "                     when mpirun's output goes to a file: use plain there\n"
+          "  --version          print the version and the libraries it was built with\n"
+          "  --deck-keys        print every deck key with its type, default and units (Markdown)\n"
+          "  --help             this text\n"
+          "exit status: 0 success, 1 run failure, 2 bad input\n");
+}
+
+static void version(void) {
+  unsigned maj, min, rel;
+  H5get_libversion(&maj, &min, &rel);
+  char mpi[MPI_MAX_LIBRARY_VERSION_STRING];
+  int len;
+  MPI_Get_library_version(mpi, &len);
+  char *nl = strchr(mpi, ',');
+  if (nl) *nl = '\0';
+  char more[256];
+  pf_library_versions(more, sizeof more);
+  printf("perifem %s\n  libyaml %s, Exodus II %.2f, HDF5 %u.%u.%u, %s\n  %s\n", PERIFEM_VERSION,
+         yaml_get_version_string(), (double)EX_API_VERS, maj, min, rel, mpi, more);
+#if defined(_OPENMP)
+  printf("  OpenMP %d: %d threads per rank (OMP_NUM_THREADS)\n", _OPENMP, omp_get_max_threads());
+#else
+  printf("  no OpenMP threads (cmake -DPERIFEM_OPENMP=ON builds them)\n");
+#endif
+}
+
+typedef struct {
+  const char *deck, *output_dir, *restart;
+  int check, quiet;
+} cli;
+
+/* Returns -1 to go on, or an exit status. */
+static int parse_args(int argc, char **argv, cli *c) {
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage(stdout), 0;
+    if (!strcmp(a, "--version")) return version(), 0;
+    if (!strcmp(a, "--deck-keys")) return pf_deck_reference(stdout);
+    if (!strcmp(a, "--check")) c->check = 1;
+    else if (!strcmp(a, "--quiet")) c->quiet = 1;
+    else if (!strcmp(a, "--progress")) {
+      const char *m = i + 1 < argc ? argv[++i] : "";
+      if (strcmp(m, "auto") && strcmp(m, "plain") && strcmp(m, "line")) {
+        fprintf(stderr, "perifem error: --progress needs auto, plain or line (got '%s')\n", m);
+        return PF_ERR_INPUT;
+      }
+      pf_log_set_status(!strcmp(m, "auto") ? -1 : !strcmp(m, "line"));
+    } else if (!strcmp(a, "--output-dir") || !strcmp(a, "--restart")) {
+      if (i + 1 >= argc) {
+        fprintf(stderr, "perifem error: %s needs a %s\n", a, a[2] == 'o' ? "directory" : "checkpoint file");
+        return PF_ERR_INPUT;
+      }
+      if (a[2] == 'o') c->output_dir = argv[++i];
+      else c->restart = argv[++i];
+    }
+    else if (a[0] == '-') {
+      fprintf(stderr, "perifem error: unknown option '%s'\n", a);
+      usage(stderr);
+      return PF_ERR_INPUT;
+    } else if (c->deck) {
+      fprintf(stderr, "perifem error: more than one deck given ('%s' and '%s')\n", c->deck, a);
+      return PF_ERR_INPUT;
+    } else c->deck = a;
+  }
+  if (!c->deck) {
+    usage(stderr);
+    return PF_ERR_INPUT;
+  }
+  return -1;
+}
+
+/* mkdir -p dir on rank 0 (the output folder of --output-dir); 0 or an errno, on every rank. */
+static int make_dir(const char *dir) {
+  int err = 0;
+  if (pf_comm_rank() == 0) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s", dir);
+    for (char *p = path + 1; !err; p++) {
+      if (*p && *p != '/') continue;
+      const char keep = *p;
+      *p = '\0';
+      if (mkdir(path, 0777) && errno != EEXIST) err = errno;
+      *p = keep;
+      if (!keep) break;
+    }
+    struct stat st;
+    if (!err && (stat(dir, &st) || !S_ISDIR(st.st_mode))) err = ENOTDIR;
+  }
+  MPI_Bcast(&err, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return err;
+}
+
+static int run(const cli *c) {
+  pf_sim_options opt = {.output_dir = c->output_dir, .restart_from = c->restart};
+  pf_sim *sim = NULL;
+  int ierr = pf_sim_create(c->deck, &opt, &sim);
+  if (ierr) return ierr == PF_ERR_INPUT ? 2 : 1;
+  if (c->check) {
+    pf_log("%s: deck is valid (%" PF_GID_FMT " points, %s%ld steps of %.4e s%s)\n", c->deck,
+           pf_sim_points(sim)->n_global, pf_sim_adaptive(sim) ? "about " : "", pf_sim_nsteps(sim), pf_sim_dt(sim),
+           pf_sim_adaptive(sim) ? " at the start; the step follows the deformation" : "");
+    pf_sim_destroy(&sim);
+    return 0;
+  }
+  const int err = c->output_dir ? make_dir(c->output_dir) : 0;
+  if (err) {
+    if (pf_comm_rank() == 0)
+      fprintf(stderr, "perifem error: --output-dir %s: cannot create the folder: %s\n", c->output_dir, strerror(err));
+    pf_sim_destroy(&sim);
+    return 2;
+  }
+  ierr = pf_sim_run(sim);
+  pf_sim_destroy(&sim);
+  return ierr ? (ierr == PF_ERR_INPUT ? 2 : 1) : 0;
+}
+
+int main(int argc, char **argv) {
+  MPI_Init(&argc, &argv);
+  cli c = {0};
+  int status = parse_args(argc, argv, &c);
+  if (status < 0) {
+    pf_log_set_quiet(c.quiet);
+    status = run(&c);
+  }
+  if (status && pf_comm_size() > 1) MPI_Abort(MPI_COMM_WORLD, status);
+  MPI_Finalize();
+  return status;
+}

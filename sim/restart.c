@@ -1,0 +1,214 @@
+/* Checkpoint and restart of a simulation (core/checkpoint.c holds the file format). A
+ * checkpoint holds the owned points with every field, the bond rows with their broken flags
+ * (PD families, FE node adjacency), the FE bodies' element state as whole tables, and the
+ * scalars of the run: time, step, dt, energies booked so far, the indenters' positions and
+ * reactions, the FE bodies' stable steps, and a hash of each part of the deck that sets the
+ * physics. A restart reads
+ * the points on any number of ranks and re-partitions them like the set-up does, so the run
+ * continues bitwise as if it had not stopped. */
+#include "sim/sim_impl.h"
+
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+
+const pf_key pf_restart_keys[] = {
+    {"file", PF_KEY_STRING, 0, "<deck name>.restart.h5", "", "checkpoint file (HDF5, written through <file>.tmp)", NULL},
+    {"interval", PF_KEY_INT, 0, "0", "", "steps between checkpoints (0: only on SIGTERM/SIGINT)", NULL},
+    PF_KEY_END};
+
+/* The parts of the deck whose change changes the physics (output, parallel and the run length
+ * may change on restart). */
+static const char *const physics_parts[] = {"units", "materials", "bodies", "indenters", "contact", "boundary_conditions",
+                                            "walls", "time.dt", "time.safety_factor"};
+enum { NPARTS = sizeof physics_parts / sizeof physics_parts[0], NFIXED = 10 };
+
+static uint64_t part_hash(const pf_deck *d, const char *part) {
+  const pf_node *root = pf_deck_root(d);
+  const char *dot = strchr(part, '.');
+  if (!dot) return pf_node_hash(pf_node_get(root, part));
+  char top[32];
+  snprintf(top, sizeof top, "%.*s", (int)(dot - part), part);
+  return pf_node_hash(pf_node_get(pf_node_get(root, top), dot + 1));
+}
+
+/* Scalar names and values: time, step, dt, contact_energy, external_work, initial_energy,
+ * wall_loss, bc_work, contact_dissipation and damage_dissipation (sums over the ranks), the deck-part hashes (two 32-bit halves each), per rigid surface its position and
+ * reaction, and per body the FE stable step of the last force evaluation (0 for PD bodies). */
+static int scalars_make(const pf_sim *sim, pf_sim_scalars *s) {
+  s->n = NFIXED + 2 * NPARTS + 6 * sim->nrigid + sim->nbodies;
+  PF_MALLOC(s->name, s->n);
+  PF_MALLOC(s->names, s->n);
+  PF_MALLOC(s->value, s->n);
+  const char *fixed[NFIXED] = {"time", "step", "dt", "contact_energy", "external_work", "initial_energy", "wall_loss", "bc_work", "contact_dissipation",
+                               "damage_dissipation"};
+  int k = 0;
+  for (; k < NFIXED; k++) snprintf(s->name[k], 96, "%s", fixed[k]);
+  for (int p = 0; p < NPARTS; p++, k += 2) {
+    snprintf(s->name[k], 96, "deck_hash_%s_hi", physics_parts[p]);
+    snprintf(s->name[k + 1], 96, "deck_hash_%s_lo", physics_parts[p]);
+  }
+  for (int q = 0, at = k; q < sim->nrigid; q++)
+    for (int a = 0; a < 3; a++) {
+      snprintf(s->name[at + 6 * q + a], 96, "indenter_%d_%s_position_%c", q, pf_rigid_name(sim->rigid[q]), 'x' + a);
+      snprintf(s->name[at + 6 * q + 3 + a], 96, "indenter_%d_%s_reaction_%c", q, pf_rigid_name(sim->rigid[q]), 'x' + a);
+    }
+  for (int b = 0, at = k + 6 * sim->nrigid; b < sim->nbodies; b++)
+    snprintf(s->name[at + b], 96, "body_%d_%s_stable_dt", b, sim->body_name[b]);
+  for (int q = 0; q < s->n; q++) s->names[q] = s->name[q];
+  return 0;
+}
+
+static void scalars_free(pf_sim_scalars *s) {
+  PF_FREE(s->name);
+  PF_FREE(s->names);
+  PF_FREE(s->value);
+}
+
+static void scalars_fill(const pf_sim *sim, pf_sim_scalars *s) {
+  double *v = s->value;
+  v[0] = sim->t, v[1] = (double)sim->step, v[2] = sim->dt;
+  v[3] = sim->contact_energy, v[4] = sim->external_work, v[5] = sim->e0;
+  v[6] = pf_sum_all(sim->wall_loss), v[7] = pf_sum_all(sim->bc_work); /* collective */
+  v[8] = pf_sum_all(sim->contact_dissipation), v[9] = pf_sum_all(sim->damage_dissipation);
+  for (int p = 0; p < NPARTS; p++) {
+    uint64_t h = part_hash(sim->deck, physics_parts[p]);
+    v[NFIXED + 2 * p] = (double)(h >> 32), v[NFIXED + 2 * p + 1] = (double)(h & 0xffffffffu);
+  }
+  for (int q = 0, at = NFIXED + 2 * NPARTS; q < sim->nrigid; q++) {
+    double x[3];
+    pf_rigid_position(sim->rigid[q], x);
+    for (int a = 0; a < 3; a++) v[at + 6 * q + a] = x[a], v[at + 6 * q + 3 + a] = sim->reaction[q][a];
+  }
+  for (int b = 0, at = NFIXED + 2 * NPARTS + 6 * sim->nrigid; b < sim->nbodies; b++)
+    v[at + b] = sim->fem[b] ? pf_min_all(pf_fem_body_stable_dt(sim->fem[b])) : 0; /* collective */
+}
+
+int pf_sim_setup_restart(pf_sim *sim) {
+  const pf_deck *d = sim->deck;
+  const pf_node *r = pf_node_get(pf_deck_root(d), "restart");
+  const char *file = NULL;
+  PF_CALL(pf_deck_string(d, r, "file", &file));
+  PF_CALL(pf_deck_int(d, r, "interval", &sim->restart_interval));
+  if (sim->restart_interval < 0)
+    return pf_deck_error(d, pf_node_get(r, "interval"), "interval", "must not be negative");
+  pf_sim_output_name(sim, file, ".restart.h5", sim->restart_path, sizeof sim->restart_path);
+  return 0;
+}
+
+int pf_sim_checkpoint(pf_sim *sim) {
+  pf_bond_rows rows;
+  pf_sim_scalars s = {0};
+  pf_table tables[PF_MAX_BODIES];
+  int ntables = 0;
+  PF_CALL(pf_bond_rows_init(&rows));
+  int ierr = scalars_make(sim, &s);
+  if (!ierr) ierr = pf_sim_bond_rows(sim, &rows);
+  if (!ierr) ierr = pf_sim_fem_tables(sim, tables, &ntables);
+  if (!ierr) {
+    scalars_fill(sim, &s);
+    pf_points owned = *sim->pts; /* the owned points only */
+    owned.n_total = owned.n_owned;
+    ierr = pf_checkpoint_write(sim->restart_path, &owned, &rows, s.n, s.names, s.value, ntables, tables);
+  }
+  pf_sim_fem_tables_free(tables, ntables);
+  pf_bond_rows_free(&rows);
+  scalars_free(&s);
+  if (!ierr) pf_log("step %ld: checkpoint %s\n", sim->step, sim->restart_path);
+  return ierr;
+}
+
+/* Refuse a checkpoint written with a deck whose physics differs, naming the part. */
+static int check_deck(const pf_sim *sim, const pf_sim_scalars *saved, const pf_sim_scalars *now) {
+  for (int p = 0; p < NPARTS; p++) {
+    int k = NFIXED + 2 * p;
+    if (saved->value[k] == now->value[k] && saved->value[k + 1] == now->value[k + 1]) continue;
+    PF_CHECK(0, PF_ERR_INPUT,
+             "%s: '%s' differs from the deck the checkpoint %s was written with; a restart may change "
+             "only output, restart, parallel, title and the run length (time.final_time/steps)",
+             pf_deck_path(sim->deck), physics_parts[p], sim->opt.restart_from);
+  }
+  return 0;
+}
+
+/* The bodies' global ids as pf_sim_distribute numbered them, from the checkpoint's point counts
+ * of each body. Collective. */
+static void body_gids(pf_sim *sim) {
+  double n[PF_MAX_BODIES] = {0};
+  pf_gid count[PF_MAX_BODIES];
+  for (pf_int i = 0; i < sim->pts->n_owned; i++) n[sim->pts->body[i]] += 1;
+  MPI_Allreduce(MPI_IN_PLACE, n, sim->nbodies, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  for (int b = 0; b < sim->nbodies; b++) count[b] = (pf_gid)n[b];
+  pf_sim_number_bodies(sim, count);
+}
+
+int pf_sim_restore_points(pf_sim *sim) {
+  pf_bond_rows rows;
+  PF_CALL(pf_bond_rows_init(&rows));
+  PF_CALL(scalars_make(sim, &sim->restart_scalars));
+  pf_sim_scalars *s = &sim->restart_scalars;
+  int ierr = pf_checkpoint_read(sim->opt.restart_from, &sim->pts, &rows, s->n, s->names, s->value);
+  if (!ierr) body_gids(sim);
+  if (!ierr) ierr = pf_sim_settle(sim, &rows, 0);
+  pf_bond_rows_free(&rows);
+  for (int b = 0; b < sim->nbodies && !ierr; b++) { /* the elements' state, whole on every rank */
+    if (!sim->fem[b]) continue;
+    pf_table t = {.total = pf_fem_body_mesh(sim->fem[b])->nelem, .ncomp = pf_fem_body_state_ncomp(sim->fem[b])};
+    pf_sim_fem_table_name(sim, b, t.name, sizeof t.name);
+    double *full = malloc(sizeof(double) * ((size_t)t.total * t.ncomp + 1));
+    if (!full) return pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+    ierr = pf_checkpoint_read_table(sim->opt.restart_from, &t, full);
+    if (!ierr) pf_fem_body_state_set(sim->fem[b], full);
+    if (!ierr) pf_fem_body_set_stable_dt(sim->fem[b], s->value[NFIXED + 2 * NPARTS + 6 * sim->nrigid + b]);
+    free(full);
+  }
+  return ierr;
+}
+
+/* A restarted run writes new output files: <name>-restart<step>.<ext>, leaving the first run's. */
+static void rename_output(char *path, size_t len, long step) {
+  char *slash = strrchr(path, '/'), *dot = strrchr(path, '.'), tail[64] = "";
+  if (!dot || (slash && dot < slash)) dot = path + strlen(path);
+  snprintf(tail, sizeof tail, "%s", dot);
+  snprintf(dot, len - (size_t)(dot - path), "-restart%ld%s", step, tail);
+}
+
+/* After the set-up: check the deck and take time, energies and indenter state from the file. */
+int pf_sim_restore_state(pf_sim *sim) {
+  pf_sim_scalars now = {0}, *saved = &sim->restart_scalars;
+  PF_CALL(scalars_make(sim, &now));
+  scalars_fill(sim, &now);
+  int ierr = check_deck(sim, saved, &now);
+  scalars_free(&now);
+  if (ierr) return ierr;
+  const double *v = saved->value;
+  if (sim->adaptive) sim->dt = v[2]; /* the step follows the elements: the last one taken */
+  PF_CHECK(v[2] == sim->dt, PF_ERR_INPUT, "the checkpoint %s was written with dt = %.17g s, this set-up gives %.17g s",
+           sim->opt.restart_from, v[2], sim->dt);
+  sim->t = v[0], sim->step = (long)v[1], sim->contact_energy = v[3], sim->external_work = v[4];
+  sim->e0 = v[5], sim->have_e0 = 1;
+  int root = pf_comm_rank() == 0; /* per-rank sums: rank 0 carries the total */
+  sim->wall_loss = root ? v[6] : 0, sim->bc_work = root ? v[7] : 0;
+  sim->contact_dissipation = root ? v[8] : 0, sim->damage_dissipation = root ? v[9] : 0;
+  for (int q = 0, at = NFIXED + 2 * NPARTS; q < sim->nrigid; q++) {
+    pf_rigid_set_position(sim->rigid[q], &v[at + 6 * q]);
+    for (int a = 0; a < 3; a++) sim->reaction[q][a] = v[at + 6 * q + 3 + a];
+  }
+  rename_output(sim->exodus_path, sizeof sim->exodus_path, sim->step);
+  rename_output(sim->history_path, sizeof sim->history_path, sim->step);
+  pf_log("restarted from %s at step %ld, t = %.6e s\n", sim->opt.restart_from, sim->step, sim->t);
+  return 0;
+}
+
+/* SIGTERM / SIGINT: checkpoint at the end of the current step, then stop. */
+static volatile sig_atomic_t stop_signal = 0;
+static void on_signal(int sig) { stop_signal = sig; }
+
+void pf_sim_catch_signals(void) {
+  signal(SIGTERM, on_signal);
+  signal(SIGINT, on_signal);
+}
+
+int pf_sim_signalled(void) { return (int)pf_max_all((double)stop_signal); }
+
+void pf_sim_restart_free(pf_sim *sim) { scalars_free(&sim->restart_scalars); }

@@ -1,0 +1,61 @@
+/* The driver: a simulation built from a deck, and its time loop. Used by main() and by tests
+ * that run whole decks. */
+#ifndef PF_SIM_H
+#define PF_SIM_H
+
+#include "core/core.h"
+
+#ifndef PF_USES_SIM
+#error "sim/sim.h is included by a module below sim/ (docs/architecture.md: the module layers)"
+#endif
+#include "pd/pd.h"
+
+typedef struct pf_sim pf_sim;
+
+typedef struct {
+  const char *output_dir; /* NULL: the current directory */
+  int no_output;          /* 1: write no Exodus or history file (tests) */
+  const char *restart_from; /* a checkpoint to continue from, or NULL */
+} pf_sim_options;
+
+/* Load and validate the deck and build everything; writes no file. */
+int pf_sim_create(const char *deck_path, const pf_sim_options *opt, pf_sim **sim);
+/* Run to the final time; writes output, prints the summary and the state digest. */
+int pf_sim_run(pf_sim *sim);
+int pf_sim_destroy(pf_sim **sim);
+
+pf_points *pf_sim_points(pf_sim *sim);
+int pf_sim_nbodies(const pf_sim *sim);
+pf_pd_body *pf_sim_body(pf_sim *sim, int b);     /* NULL for an FE body */
+struct pf_fem_body *pf_sim_fem_body(pf_sim *sim, int b); /* NULL for a PD body */
+double pf_sim_dt(const pf_sim *sim);
+long pf_sim_nsteps(const pf_sim *sim);
+/* 1 when the step follows the deformation (FE or correspondence bodies, no time.dt): then dt and
+ * nsteps are those of the set-up, estimates of the run's. */
+int pf_sim_adaptive(const pf_sim *sim);
+/* Global quantities of the current state. */
+typedef struct {
+  double time, kinetic, elastic, contact, external_work, momentum[3];
+  /* sum m (|v|^2 - (dt/2)^2 |a|^2) / 2 = sum m v(t-dt/2).v(t+dt/2) / 2: the kinetic part of
+   * the energy that velocity Verlet conserves exactly for linear forces (docs/theory/pd.md) */
+  double kinetic_centred;
+  double damage_fraction;
+  /* finite elements: stress work (internal energy), hourglass energy, bulk-viscosity work; and
+   * the kinetic energy rigid walls removed, J */
+  double fe_internal, hourglass, bulk_viscosity, wall_loss;
+  double contact_dissipation; /* friction work of contacts and rigid surfaces, J */
+  double damage_dissipation;  /* energy released by failed bonds (PMB, LPS, elastic_plastic), J */
+} pf_sim_globals;
+int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g);
+/* 1 when the run has reached its final time (or step count). */
+int pf_sim_finished(const pf_sim *sim);
+/* Advance n steps (no output). */
+int pf_sim_step(pf_sim *sim, long n);
+uint64_t pf_sim_digest(pf_sim *sim);
+
+/* The top-level deck keys (for validation and docs). */
+extern const pf_key pf_deck_keys[];
+/* Every key table the loader checks, as Markdown (perifem --deck-keys; docs/deck_keys.md). */
+int pf_deck_reference(FILE *out);
+
+#endif

@@ -1,0 +1,153 @@
+/* Private to sim/. */
+#ifndef PF_SIM_IMPL_H
+#define PF_SIM_IMPL_H
+
+#include "contact/contact.h"
+#include "sim/sim.h"
+#include "fem/fem.h"
+
+#define PF_MAX_BODIES 64
+
+/* Named scalars of a checkpoint (sim/restart.c). */
+typedef struct {
+  int n;
+  char (*name)[96];
+  const char **names;
+  double *value;
+} pf_sim_scalars;
+
+enum { PF_PROBE_MAX_QUANTITIES = 8 };
+typedef struct {
+  char name[64];
+  int body;         /* -1: every body */
+  pf_region region; /* on reference positions */
+  int nq, q[PF_PROBE_MAX_QUANTITIES];
+} pf_probe;
+
+struct pf_sim {
+  pf_deck *deck;
+  pf_sim_options opt;
+  pf_points *pts;
+  int nbodies;
+  pf_pd_body *body[PF_MAX_BODIES]; /* peridynamic bodies (NULL for an FE body) */
+  pf_fem_body *fem[PF_MAX_BODIES]; /* finite-element bodies (NULL for a PD body) */
+  int nfem;                        /* how many FE bodies */
+  pf_gid gid0[PF_MAX_BODIES + 1];  /* global ids of body b: [gid0[b], gid0[b+1]) */
+  const char *body_name[PF_MAX_BODIES];
+  pf_int body_start[PF_MAX_BODIES + 1];
+  int nrigid;
+  pf_rigid **rigid;      /* rigid surfaces: `contact: rigid_surfaces:` and `indenters:` */
+  double (*reaction)[3]; /* [nrigid] force on each rigid surface, N */
+  pf_contact *contact;   /* contact between bodies (NULL: no pair) */
+  int nbcs;
+  pf_bc **bcs;
+  int nwalls;
+  pf_wall **walls;
+  double (*wall_reaction)[3]; /* [nwalls] force of the points on each wall, N */
+  /* parallel */
+  pf_partition_method decomposition;
+  double rebalance_threshold; /* re-partition when max/mean work exceeds this (0: never) */
+  int spread_output;          /* one Exodus file per rank */
+  /* time */
+  double t, dt, final_time;
+  long step, nsteps;
+  int adaptive;         /* dt follows the FE stable step each step */
+  double safety;        /* fraction of the stable step */
+  double max_motion;    /* guard: largest step motion, as a fraction of horizon (PD) or cell (FE) */
+  double pd_stable;     /* the PD bodies' stable step (fixed) */
+  /* energy bookkeeping */
+  double contact_energy, external_work, wall_loss;
+  double contact_dissipation; /* friction work of this rank's contacts (summed in the globals) */
+  double damage_dissipation;  /* energy released by this rank's failed bonds (summed likewise) */
+  double bc_work; /* work of the prescribed motions on this rank's points (summed in the globals) */
+  double e0;   /* total energy at the start of the run (kept across restarts) */
+  int have_e0;
+  /* checkpoints */
+  char restart_path[4096];
+  long restart_interval;
+  int stopped; /* a signal stopped the run after a checkpoint */
+  pf_sim_scalars restart_scalars; /* read from the checkpoint we restart from */
+  /* output */
+  long output_interval, history_interval;
+  char exodus_path[4096], history_path[4096];
+  int fragments;                /* output.fragments: label the fragments at every Exodus step */
+  char fragments_path[4128];    /* <Exodus file less .e>.fragments.csv */
+  long fragments_rows;          /* rows written to it so far */
+  pf_probe *probes;             /* output.probes: history columns of region averages */
+  int nprobes;
+  pf_exodus *exo;
+  pf_points *joined; /* rank 0: every point in global-id order, for the joined Exodus file */
+  pf_history *hist;
+  double wall_loop;
+  /* instability guards (sim/guard.c) */
+  int guard_tripped;    /* this rank found a NaN, a runaway point or an inverted element */
+  int last_good;        /* the run stopped and the points hold the last good state */
+  double *good_u, *good_v; /* [3 n_owned] state at the start of the step */
+  pf_int good_n;
+  double good_t;
+  long good_step;
+};
+
+extern const pf_key pf_parallel_keys[];
+int pf_sim_setup_parallel(pf_sim *sim);
+/* Partition the bodies' points (clouds generated on every rank), keep this rank's points with
+ * their families and ghosts, and attach them to the bodies. Collective. */
+int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc);
+/* The bodies' global ids, consecutive in deck order: gid0[b + 1] = gid0[b] + count[b]. */
+void pf_sim_number_bodies(pf_sim *sim, const pf_gid *count);
+/* Re-partition when the work imbalance exceeds the deck's threshold (at output steps). */
+int pf_sim_rebalance(pf_sim *sim);
+int pf_sim_setup_time(pf_sim *sim);
+/* Partition, migrate, add ghosts and attach the bodies; fresh: initial state (set-up). */
+int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh);
+/* Output file name: the deck's `given` or <deck name><ext>, under --output-dir. */
+void pf_sim_output_name(const pf_sim *sim, const char *given, const char *ext, char *out, size_t len);
+extern const pf_key pf_restart_keys[];
+int pf_sim_setup_restart(pf_sim *sim);
+int pf_sim_checkpoint(pf_sim *sim);
+int pf_sim_restore_points(pf_sim *sim);
+int pf_sim_restore_state(pf_sim *sim);
+void pf_sim_restart_free(pf_sim *sim);
+void pf_sim_catch_signals(void);
+/* The largest signal number received by any rank (0: none). Collective. */
+int pf_sim_signalled(void);
+int pf_sim_setup_output(pf_sim *sim);
+/* sim/fragments.c: the "fragment" field (registered by _setup when the deck asks)
+ * and <file>.fragments.csv at an Exodus step; final: also the summary lines. Collective. */
+int pf_sim_fragments_setup(pf_sim *sim);
+int pf_sim_fragments(pf_sim *sim, int final);
+/* sim/probes.c: output.probes, mass-averaged quantities over regions. The columns'
+ * count and names; _eval fills values[count] (collective; a probe whose region holds no point
+ * is an input error). */
+extern const pf_key pf_sim_probe_keys[];
+int pf_sim_setup_probes(pf_sim *sim);
+int pf_sim_probe_columns(const pf_sim *sim);
+void pf_sim_probe_column(const pf_sim *sim, int column, char *name, size_t len, const char **units);
+int pf_sim_probes_eval(const pf_sim *sim, double *values);
+/* Instability guards: keep the state at the start of each step; flag a point moving more than
+ * time.max_motion of its horizon (PD) or cell (FE node) in one step; at the step's end check
+ * forces and velocities for NaN/Inf and, on every rank together, go back to the last good
+ * state and fail. */
+int pf_sim_guard_save(pf_sim *sim);
+void pf_sim_guard_motion(pf_sim *sim, double dt);
+int pf_sim_guard_check(pf_sim *sim);
+void pf_sim_guard_free(pf_sim *sim);
+/* sim/body_state.c: the bond rows of every owned point (PD families, FE node
+ * adjacency); the FE bodies' element state as tables (name fem_<body>); a re-partition that
+ * keeps the element state. */
+int pf_sim_bond_rows(const pf_sim *sim, pf_bond_rows *rows);
+void pf_sim_fem_table_name(const pf_sim *sim, int b, char *out, size_t len);
+int pf_sim_fem_tables(const pf_sim *sim, pf_table *t, int *n);
+void pf_sim_fem_tables_free(pf_table *t, int n);
+int pf_sim_settle_keeping_fem(pf_sim *sim, pf_bond_rows *rows);
+/* sim/contact.c: rigid surfaces and contact pairs from the deck (after the bodies);
+ * the contact's view of the bodies after every (re)partition. */
+int pf_sim_build_contact(pf_sim *sim);
+int pf_sim_contact_attach(pf_sim *sim);
+/* Contact forces (rigid surfaces and pairs) at the current positions, dt the step just taken;
+ * sets contact_energy. Collective. */
+int pf_sim_contact_forces(pf_sim *sim, double dt);
+/* The stable step of the penalties. Collective. */
+double pf_sim_contact_stable_dt(pf_sim *sim);
+
+#endif
