@@ -222,7 +222,8 @@ static int follow_erosion(pf_contact *c) {
   int changed = 0;
   for (int b = 0; b < c->nbodies; b++) {
     long n = 0;
-    const uint8_t *dead = c->body[b].fem ? pf_fem_body_eroded(c->body[b].fem, &n) : NULL;
+    const pf_contact_body *cb = &c->body[b];
+    const uint8_t *dead = cb->eroded ? cb->eroded(cb->eroded_ctx, &n) : NULL;
     if (!dead || n == c->eroded_seen[b]) continue;
     c->eroded_seen[b] = n, changed = 1;
     for (int k = 0; k < c->npairs; k++)
@@ -302,6 +303,7 @@ int pf_contact_destroy(pf_contact **cp) {
   free(c->pair), free(c->body);
   free(c->local), free(c->gid), free(c->vbody), free(c->rank);
   free(c->y), free(c->v), free(c->vol), free(c->m), free(c->X), free(c->y_build);
+  pf_exchange_destroy(&c->exchange);
   free(c->scount), free(c->send), free(c->cand_off), free(c->cand), free(c->force);
   PF_FREE(*cp);
   return 0;
@@ -332,21 +334,14 @@ static int add_forces(pf_contact *c, pf_points *pts) {
   return 0;
 }
 
-/* The pairs' forces and the energy summed over the ranks, in one reduction. Collective. */
-static int sum_over_ranks(pf_contact *c, double *energy) {
-  double *buf;
-  PF_MALLOC(buf, 3 * c->npairs + 1);
-  for (int k = 0; k < c->npairs; k++) memcpy(&buf[3 * k], c->pair[k].force, sizeof c->pair[k].force);
-  buf[3 * c->npairs] = *energy;
-  int ierr = MPI_Allreduce(MPI_IN_PLACE, buf, 3 * c->npairs + 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-  for (int k = 0; k < c->npairs; k++) memcpy(c->pair[k].force, &buf[3 * k], sizeof c->pair[k].force);
-  *energy = buf[3 * c->npairs];
-  free(buf);
-  PF_CHECK(ierr == MPI_SUCCESS, PF_ERR_LIB, "MPI_Allreduce failed summing the contact forces");
-  return 0;
+int pf_contact_nsums(const pf_contact *c) { return 3 * c->npairs + 1; }
+
+void pf_contact_sums_take(pf_contact *c, const double *sums, double *energy) {
+  for (int k = 0; k < c->npairs; k++) memcpy(c->pair[k].force, &sums[3 * k], sizeof c->pair[k].force);
+  *energy = sums[3 * c->npairs];
 }
 
-int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *energy, double *dissipation) {
+int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, double *dissipation) {
   double t0 = pf_wtime();
   PF_CALL(follow_erosion(c));
   if (!c->built) PF_CALL(pf_contact_collect_owned(c, pts));
@@ -355,8 +350,8 @@ int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *energy, d
   double U = 0;
   PF_CALL(pf_contact_pairs_evaluate(c, pts, dt, &U, dissipation));
   PF_CALL(add_forces(c, pts));
-  PF_CALL(sum_over_ranks(c, &U));
-  *energy = U;
+  for (int k = 0; k < c->npairs; k++) memcpy(&sums[3 * k], c->pair[k].force, sizeof c->pair[k].force);
+  sums[3 * c->npairs] = U;
   c->seconds += pf_wtime() - t0;
   return 0;
 }

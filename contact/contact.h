@@ -7,7 +7,7 @@
 #define PF_CONTACT_H
 
 #include "core/core.h"
-#include "fem/fem.h"
+#include "mesh/mesh.h"
 #include "pd/pd.h"
 
 #ifndef PF_USES_CONTACT
@@ -35,6 +35,9 @@ const char *pf_rigid_name(const pf_rigid *r);
  * force of the points on the surface (N) and *energy the penalty energy (J), both summed over
  * the ranks; the friction work of this rank's points over dt is added to *dissipation (J, >= 0).
  * Collective. */
+/* The same without the sums over the ranks: sums[4] gets this rank's reaction (3) and energy, to
+ * be summed by the caller with the step's other sums (one reduction a step). */
+int pf_rigid_force_local(pf_rigid *r, pf_points *pts, double dt, double sums[4], double *dissipation);
 int pf_rigid_force(pf_rigid *r, pf_points *pts, double dt, double reaction[3], double *energy,
                    double *dissipation);
 /* Move the surface from t to t + dt with its prescribed velocity v(t + dt/2) and add the work
@@ -61,6 +64,8 @@ void pf_wall_enforce_position(const pf_wall *w, pf_points *pts, double *loss);
 /* After the forces: points on the plane lose the inward normal part of their force;
  * reaction[3] gets the total force on the wall over all ranks (N). Collective. */
 void pf_wall_enforce_force(const pf_wall *w, pf_points *pts, double reaction[3]);
+/* The same with this rank's share of the reaction only (the caller sums it over the ranks). */
+void pf_wall_enforce_force_local(const pf_wall *w, pf_points *pts, double reaction[3]);
 
 /* ---- contact between bodies (contact/contact.c, search.c, surface.c, pairs.c) --------------- */
 typedef struct pf_contact pf_contact;
@@ -78,7 +83,10 @@ typedef struct {
   pf_gid gid0;         /* global id of the body's first point (FE: of mesh node 0) */
   pf_int first, n;     /* the body's owned points [first, first + n) of the store */
   const pf_mesh *mesh; /* FE: the whole mesh (every rank) */
-  const pf_fem_body *fem;  /* FE: the body (its deleted elements change the surface), or NULL */
+  /* FE: the mesh's deleted elements now (flags [nelem], their count in *count), which change the
+   * surface, or NULL when the body deletes none */
+  const uint8_t *(*eroded)(const void *ctx, long *count);
+  const void *eroded_ctx;
   const pf_family *fam;    /* PD: the family of the owned points (for bonded-pair exclusion) */
 } pf_contact_body;
 
@@ -92,11 +100,16 @@ int pf_contact_destroy(pf_contact **c);
 int pf_contact_attach(pf_contact *c, const pf_contact_body *bodies);
 /* Add the contact forces at the current positions pts->y (friction from the mid-step velocities
  * pts->v over the step dt; dt 0: none) to the owned points, each point summing its
- * interactions in an order independent of the partition. *energy gets the penalty energy
- * (summed over the ranks); the friction work of this rank over dt is added to *dissipation.
- * The per-point contact force goes to the output field "contact_force". Collective. */
-int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *energy,
-                     double *dissipation);
+ * interactions in an order independent of the partition. sums[pf_contact_nsums] gets this
+ * rank's part of the pairs' forces and of the penalty energy, which the caller sums over the
+ * ranks (with the step's other sums, in one reduction) and hands back to pf_contact_sums_take;
+ * the friction work of this rank over dt is added to *dissipation. The per-point contact force
+ * goes to the output field "contact_force". Collective (the search's exchanges). */
+int pf_contact_nsums(const pf_contact *c);
+int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, double *dissipation);
+/* The sums over the ranks: keep the pairs' forces (pf_contact_pair_force); *energy gets the
+ * penalty energy, J. */
+void pf_contact_sums_take(pf_contact *c, const double *sums, double *energy);
 /* The stable step the penalties allow (2 / omega of the stiffest contact a point can see).
  * Collective. */
 double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts);

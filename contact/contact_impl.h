@@ -80,6 +80,7 @@ struct pf_contact {
   int nranks;
   int *scount, *sdispl, *rcount, *rdispl; /* [nranks] entities */
   pf_int *send;           /* [sum scount] view index of each entity sent */
+  pf_exchange *exchange;  /* the plan of those sends (core/exchange.c) */
   /* FE nodes: view index of each mesh node of each FE body in a pair (-1: not in the view) */
   pf_int **node_view;     /* [nbodies][nnodes] */
   /* candidates of each owned entity: CSR */

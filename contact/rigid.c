@@ -237,8 +237,7 @@ static int penetration(const pf_rigid *r, const double *y, double *depth, double
   return 1;
 }
 
-int pf_rigid_force(pf_rigid *r, pf_points *pts, double dt, double reaction[3], double *energy,
-                   double *dissipation) {
+int pf_rigid_force_local(pf_rigid *r, pf_points *pts, double dt, double sums[4], double *dissipation) {
   double R[3] = {0, 0, 0}, U = 0, W = 0, k = r->stiffness;
   int slide = r->friction > 0 && dt > 0;
   for (pf_int i = 0; i < pts->n_owned; i++) {
@@ -265,9 +264,18 @@ int pf_rigid_force(pf_rigid *r, pf_points *pts, double dt, double reaction[3], d
       R[a] -= ft[a];
     }
   }
-  for (int a = 0; a < 3; a++) reaction[a] = pf_sum_all(R[a]);
-  *energy = pf_sum_all(U);
+  for (int a = 0; a < 3; a++) sums[a] = R[a];
+  sums[3] = U;
   *dissipation += W;
+  return 0;
+}
+
+int pf_rigid_force(pf_rigid *r, pf_points *pts, double dt, double reaction[3], double *energy,
+                   double *dissipation) {
+  double sums[4];
+  PF_CALL(pf_rigid_force_local(r, pts, dt, sums, dissipation));
+  for (int a = 0; a < 3; a++) reaction[a] = pf_sum_all(sums[a]);
+  *energy = pf_sum_all(sums[3]);
   return 0;
 }
 

@@ -128,22 +128,10 @@ int pf_contact_collect_owned(pf_contact *c, const pf_points *pts) {
 }
 
 /* ---- ghosts -------------------------------------------------------------------------------- */
-/* Exchange n doubles per entity: owned entities in send order to the ghosts of other ranks. */
+/* Exchange n doubles per entity: owned entities in send order to the ghosts of other ranks
+ * (core's exchange plan, made by send_lists). */
 static int exchange_doubles(pf_contact *c, int n, double *data) {
-  if (c->nranks == 1) return 0;
-  pf_int ns = c->sdispl[c->nranks - 1] + c->scount[c->nranks - 1];
-  double *buf;
-  PF_MALLOC(buf, (size_t)n * (size_t)ns);
-  for (pf_int k = 0; k < ns; k++) memcpy(&buf[(size_t)n * k], &data[(size_t)n * c->send[k]], sizeof(double) * n);
-  int *sc, *sd, *rc, *rd;
-  PF_MALLOC(sc, 4 * c->nranks);
-  sd = sc + c->nranks, rc = sd + c->nranks, rd = rc + c->nranks;
-  for (int r = 0; r < c->nranks; r++)
-    sc[r] = n * c->scount[r], sd[r] = n * c->sdispl[r], rc[r] = n * c->rcount[r], rd[r] = n * c->rdispl[r];
-  int ierr = MPI_Alltoallv(buf, sc, sd, MPI_DOUBLE, data + (size_t)n * c->nown, rc, rd, MPI_DOUBLE, MPI_COMM_WORLD);
-  free(buf), free(sc);
-  PF_CHECK(ierr == MPI_SUCCESS, PF_ERR_LIB, "MPI_Alltoallv failed in the contact ghost exchange");
-  return 0;
+  return pf_exchange_doubles(c->exchange, data, n, c->nown);
 }
 
 /* Positions and velocities of the ghosts, in one message per rank pair. */
@@ -248,7 +236,8 @@ static int send_lists(pf_contact *c) {
   c->nview = c->nown + nrecv;
   for (int r = 0; r < R; r++)
     for (pf_int k = c->rdispl[r]; k < c->rdispl[r] + c->rcount[r]; k++) c->rank[c->nown + k] = r;
-  return 0;
+  pf_exchange_destroy(&c->exchange);
+  return pf_exchange_create(c->scount, c->send, c->rcount, &c->exchange);
 }
 
 /* Ghost data at a build: gid, body, volume, mass, reference position, then position and

@@ -88,7 +88,7 @@ void pf_wall_enforce_position(const pf_wall *w, pf_points *p, double *loss) {
   }
 }
 
-void pf_wall_enforce_force(const pf_wall *w, pf_points *p, double reaction[3]) {
+void pf_wall_enforce_force_local(const pf_wall *w, pf_points *p, double reaction[3]) {
   reaction[0] = reaction[1] = reaction[2] = 0;
   for (pf_int i = 0; i < p->n_owned; i++) {
     const double *y = &p->y[3 * (size_t)i];
@@ -100,5 +100,9 @@ void pf_wall_enforce_force(const pf_wall *w, pf_points *p, double reaction[3]) {
       reaction[a] += fn * w->n[a]; /* the force the points press on the wall with */
     }
   }
+}
+
+void pf_wall_enforce_force(const pf_wall *w, pf_points *p, double reaction[3]) {
+  pf_wall_enforce_force_local(w, p, reaction);
   for (int a = 0; a < 3; a++) reaction[a] = pf_sum_all(reaction[a]);
 }

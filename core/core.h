@@ -107,7 +107,7 @@ typedef struct pf_points {
   int32_t *body;   /* body index [n] */
   int nfields;
   pf_field fields[PF_MAX_FIELDS];
-  struct pf_halo *halo; /* who sends which owned point to whom (core/halo.c); NULL: no ghosts */
+  struct pf_exchange *halo; /* who sends which owned point to whom (core/halo.c); NULL: no ghosts */
 } pf_points;
 
 int pf_points_create(pf_int n, pf_points **pts);
@@ -317,7 +317,18 @@ int pf_points_add_ghosts(pf_points *pts, const pf_bond_rows *rows, const int *ow
 int pf_points_exchange(pf_points *pts, double *data, int ncomp);
 /* Exchange u and set y = X + u on the ghosts (the per-step halo update). */
 int pf_points_exchange_positions(pf_points *pts);
-void pf_halo_destroy(struct pf_halo **h);
+
+/* ---- exchange plans (core/exchange.c): the halo's, and the contact view's ---------------- */
+typedef struct pf_exchange pf_exchange;
+/* A plan: this rank sends, to each rank r, send_count[r] local items, send_idx[] listing them
+ * rank after rank (each in the order the receiver wants them); it receives recv_count[r] items
+ * from each rank r, the blocks placed one after the other in rank order. Arrays [comm size]. */
+int pf_exchange_create(const pf_int *send_count, const pf_int *send_idx, const pf_int *recv_count, pf_exchange **x);
+/* Send ncomp doubles of each listed item of data[item * ncomp]; the k-th received item goes to
+ * data[(first + k) * ncomp]. Collective among the plan's ranks (a NULL plan: nothing). */
+int pf_exchange_doubles(pf_exchange *x, double *data, int ncomp, pf_int first);
+pf_int pf_exchange_nrecv(const pf_exchange *x); /* items received */
+void pf_exchange_destroy(pf_exchange **x);
 
 /* ---- prescribed boundary conditions (core/bc.c) -------------------------------- */
 typedef struct pf_bc pf_bc;

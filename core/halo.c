@@ -1,29 +1,12 @@
 /* Ghost points and the halo exchange (DESIGN.md 6). Ghosts are exactly the neighbours of owned
  * points that another rank owns (taken from the bond rows, not from a geometric guess). They sit
  * after the owned points, grouped by owner rank and ascending in global id, so that each
- * owner's values arrive in one contiguous block; the owner sends them in the same order. */
+ * owner's values arrive in one contiguous block; the owner sends them in the same order (an exchange
+ * plan, core/exchange.c). */
 #include "core/core.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-struct pf_halo {
-  int nnb;          /* ranks we exchange with */
-  int *rank;        /* [nnb] */
-  pf_int *send_off; /* [nnb + 1] into send_idx */
-  pf_int *send_idx; /* owned points to send, per neighbour in its ghost order */
-  pf_int *recv_off; /* [nnb + 1] ghost ranges, relative to n_owned */
-  double *buf;      /* packing buffer */
-  size_t buf_cap;
-  MPI_Request *req; /* [2 nnb] */
-};
-
-void pf_halo_destroy(struct pf_halo **h) {
-  if (!*h) return;
-  free((*h)->rank), free((*h)->send_off), free((*h)->send_idx), free((*h)->recv_off);
-  free((*h)->buf), free((*h)->req);
-  PF_FREE(*h);
-}
 
 typedef struct {
   int owner;
@@ -80,29 +63,23 @@ static int build_halo(pf_points *pts, const ghost_key *g, pf_int ng, const pf_in
   PF_MALLOC(give, sd[size]);
   for (pf_int k = 0; k < ng; k++) want[k] = g[k].gid;
   MPI_Alltoallv(want, rc, rd, PF_GID_MPI, give, sc, sd, PF_GID_MPI, MPI_COMM_WORLD);
-  struct pf_halo *h;
-  PF_MALLOC(h, 1);
-  pts->halo = h;
-  PF_MALLOC(h->rank, size);
-  PF_MALLOC(h->send_off, size + 1);
-  PF_MALLOC(h->recv_off, size + 1);
-  PF_MALLOC(h->send_idx, sd[size]);
-  PF_MALLOC(h->req, 2 * size);
-  for (int r = 0; r < size; r++) {
-    if (!rc[r] && !sc[r]) continue;
-    h->rank[h->nnb] = r;
-    h->send_off[h->nnb + 1] = h->send_off[h->nnb] + sc[r];
-    h->recv_off[h->nnb + 1] = h->recv_off[h->nnb] + rc[r];
-    for (int k = 0; k < sc[r]; k++) {
+  pf_int *send_idx = malloc(sizeof(pf_int) * ((size_t)sd[size] + 1)), *scount = malloc(sizeof(pf_int) * (size_t)size),
+         *rcount = malloc(sizeof(pf_int) * (size_t)size);
+  int ierr = send_idx && scount && rcount ? 0 : pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+  for (int r = 0; r < size && !ierr; r++) {
+    scount[r] = sc[r], rcount[r] = rc[r];
+    for (int k = 0; k < sc[r] && !ierr; k++) {
       pf_int i = loc[give[sd[r] + k]];
-      PF_CHECK(i >= 0 && i < pts->n_owned, PF_ERR_RUN, "rank %d asks for point %" PF_GID_FMT ", not owned here", r,
-               give[sd[r] + k]);
-      h->send_idx[h->send_off[h->nnb] + k] = i;
+      if (!(i >= 0 && i < pts->n_owned))
+        ierr = pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__, "rank %d asks for point %" PF_GID_FMT ", not owned here",
+                              r, give[sd[r] + k]);
+      else send_idx[sd[r] + k] = i;
     }
-    h->nnb++;
   }
+  if (!ierr) ierr = pf_exchange_create(scount, send_idx, rcount, &pts->halo);
+  free(send_idx), free(scount), free(rcount);
   free(rc), free(sc), free(rd), free(sd), free(want), free(give);
-  return 0;
+  return ierr;
 }
 
 /* Ghost copies of the owners' arrays: X, vol, cell, m, body, u (and y), and ghosted fields. */
@@ -138,7 +115,7 @@ int pf_points_add_ghosts(pf_points *pts, const pf_bond_rows *rows, const int *ow
     loc[g[k].gid] = pts->n_owned + k;
   }
   for (int64_t e = 0; e < rows->offset[rows->n] && !ierr; e++) local[e] = loc[rows->gid[e]];
-  pf_halo_destroy(&pts->halo);
+  pf_exchange_destroy(&pts->halo);
   if (!ierr) ierr = build_halo(pts, g, ng, loc);
   free(loc), free(g);
   if (!ierr) ierr = fill_ghosts(pts);
@@ -146,31 +123,7 @@ int pf_points_add_ghosts(pf_points *pts, const pf_bond_rows *rows, const int *ow
 }
 
 int pf_points_exchange(pf_points *pts, double *data, int ncomp) {
-  struct pf_halo *h = pts->halo;
-  if (!h || h->nnb == 0) return 0;
-  size_t need = (size_t)ncomp * (size_t)h->send_off[h->nnb];
-  if (need > h->buf_cap) {
-    free(h->buf);
-    h->buf_cap = 0;
-    PF_MALLOC(h->buf, need);
-    h->buf_cap = need;
-  }
-  int nreq = 0;
-  for (int q = 0; q < h->nnb; q++) {
-    int cnt = ncomp * (h->recv_off[q + 1] - h->recv_off[q]);
-    if (cnt) MPI_Irecv(data + (size_t)ncomp * (pts->n_owned + h->recv_off[q]), cnt, MPI_DOUBLE, h->rank[q], 17,
-                       MPI_COMM_WORLD, &h->req[nreq++]);
-  }
-  for (int q = 0; q < h->nnb; q++) {
-    double *b = h->buf + (size_t)ncomp * h->send_off[q];
-    for (pf_int k = h->send_off[q]; k < h->send_off[q + 1]; k++)
-      memcpy(b + (size_t)ncomp * (k - h->send_off[q]), data + (size_t)ncomp * h->send_idx[k], sizeof(double) * ncomp);
-    int cnt = ncomp * (h->send_off[q + 1] - h->send_off[q]);
-    if (cnt) MPI_Isend(b, cnt, MPI_DOUBLE, h->rank[q], 17, MPI_COMM_WORLD, &h->req[nreq++]);
-  }
-  int st = MPI_Waitall(nreq, h->req, MPI_STATUSES_IGNORE);
-  PF_CHECK(st == MPI_SUCCESS, PF_ERR_LIB, "halo exchange: MPI_Waitall returned %d", st);
-  return 0;
+  return pf_exchange_doubles(pts->halo, data, ncomp, pts->n_owned);
 }
 
 int pf_points_exchange_positions(pf_points *pts) {

@@ -202,7 +202,7 @@ int pf_points_migrate(pf_points *pts, pf_bond_rows *rows, const int *dest, int n
   PF_MALLOC(rbuf, rdispl[size]);
   MPI_Alltoallv(sbuf, scount, sdispl, MPI_BYTE, rbuf, rcount, rdispl, MPI_BYTE, MPI_COMM_WORLD);
   free(sbuf), free(scount), free(sdispl), free(rcount);
-  pf_halo_destroy(&pts->halo);
+  pf_exchange_destroy(&pts->halo);
   pf_int n = count_records(rbuf, (size_t)rdispl[size], nreal, nstate);
   PF_CALL(pf_points_resize(pts, n, 0));
   pf_bond_rows_free(rows);

@@ -41,7 +41,7 @@ int pf_points_destroy(pf_points **pts) {
   free(p->gid);
   free(p->body);
   for (int i = 0; i < p->nfields; i++) free(p->fields[i].data);
-  pf_halo_destroy(&p->halo);
+  pf_exchange_destroy(&p->halo);
   PF_FREE(*pts);
   return 0;
 }

@@ -31,9 +31,6 @@ const pf_key pf_fem_body_keys[] = {
     {"hourglass", PF_KEY_MAP, 0, NULL, "", "hourglass control of reduced elements", hourglass_keys},
     {"bulk_viscosity", PF_KEY_MAP, 0, NULL, "", "artificial bulk viscosity", bulk_viscosity_keys},
     {"initial_velocity", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m/s", "expressions in x, y, z", NULL},
-    {"peridynamic", PF_KEY_MAP, 0, NULL, "",
-     "couple a peridynamic operator on the nodes by force blending (docs/theory/coupling.md §3)",
-     pf_pd_coupled_keys},
     {"erosion", PF_KEY_MAP, 0, NULL, "", "delete elements that pass these limits (fem/erosion.c)", pf_fem_erosion_keys},
     {"initial_displacement", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m", "expressions in x, y, z; the stress follows it in hyperelastic and PD models (rate-form models start unstressed)", NULL},
     PF_KEY_END};
@@ -131,7 +128,7 @@ int pf_fem_body_create(const pf_deck *d, const pf_node *body, const pf_node *mat
   if (!ierr) ierr = pf_fem_erosion_read(b, d, body);
   if (!ierr) ierr = nodal_volumes(b);
   if (!ierr) ierr = mesh_node_elements(&b->mesh, &b->mesh_node_off, &b->mesh_node_item);
-  if (!ierr) ierr = pf_fem_body_coupling_read(b, body, materials);
+  (void)materials;
   if (ierr) {
     pf_fem_body_destroy(&b);
     return ierr;
@@ -147,10 +144,7 @@ int pf_fem_body_destroy(pf_fem_body **pb) {
   pf_material_destroy(&b->mat);
   free(b->node_volume), free(b->mesh_node_off), free(b->mesh_node_item), free(b->eid), free(b->conn), free(b->own), free(b->sigma), free(b->state);
   free(b->hgq), free(b->ref), free(b->fe), free(b->energy), free(b->node_off), free(b->node_item), free(b->buf);
-  pf_pd_body_destroy(&b->pd);
-  pf_expr_destroy(&b->beta_expr);
-  pf_nearest_destroy(&b->fe_region);
-  free(b->fsave), free(b->mesh_eroded), free(b->due);
+  free(b->mesh_eroded), free(b->due);
   PF_FREE(*pb);
   return 0;
 }
@@ -173,8 +167,8 @@ static int cmp_gid(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-static int element_rows(const pf_fem_body *b, const pf_points *pts, pf_int first, pf_int n, pf_gid gid0,
-                        pf_bond_rows *rows) {
+int pf_fem_body_node_rows(const pf_fem_body *b, const pf_points *pts, pf_int first, pf_int n, pf_gid gid0,
+                          pf_bond_rows *rows) {
   const pf_mesh *m = &b->mesh;
   const int64_t *off = b->mesh_node_off;
   const pf_int *item = b->mesh_node_item;
@@ -199,27 +193,10 @@ static int element_rows(const pf_fem_body *b, const pf_points *pts, pf_int first
   return ierr;
 }
 
-/* A coupled body's rows: each node's PD family (searched at set-up; afterwards its current
- * bonds, broken flags included) merged with its element neighbours. */
-int pf_fem_body_node_rows(const pf_fem_body *b, const pf_points *pts, pf_int first, pf_int n, pf_gid gid0,
-                          pf_bond_rows *rows) {
-  if (!b->pd) return element_rows(b, pts, first, n, gid0, rows);
-  pf_bond_rows pd, el;
-  PF_CALL(pf_bond_rows_init(&pd));
-  PF_CALL(pf_bond_rows_init(&el));
-  int ierr = element_rows(b, pts, first, n, gid0, &el);
-  if (!ierr && pf_pd_body_family(b->pd)->offset) ierr = pf_pd_body_bond_rows(b->pd, pts, &pd);
-  else if (!ierr) {
-    double *cell = malloc(sizeof(double) * ((size_t)b->mesh.nnodes + 1));
-    if (!cell) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
-    for (pf_int k = 0; !ierr && k < b->mesh.nnodes; k++) cell[k] = cbrt(b->node_volume[k]);
-    pf_pd_cloud cloud = {b->mesh.X, cell, b->mesh.nnodes, gid0};
-    if (!ierr) ierr = pf_pd_body_find_bonds(b->pd, &cloud, pts, first, n, &pd);
-    free(cell);
-  }
-  if (!ierr) ierr = pf_fem_body_coupled_rows(b, &pd, &el, rows);
-  pf_bond_rows_free(&pd), pf_bond_rows_free(&el);
-  return ierr;
+const double *pf_fem_body_node_volumes(const pf_fem_body *b) { return b->node_volume; }
+
+void pf_fem_body_set_blending(pf_fem_body *b, pf_fem_weight_fn beta, const void *ctx) {
+  b->beta_fn = beta, b->beta_ctx = ctx;
 }
 
-pf_pd_body *pf_fem_body_pd(const pf_fem_body *b) { return b->pd; }
+void pf_fem_body_set_blending_field(pf_fem_body *b, const double *beta) { b->beta = beta; }

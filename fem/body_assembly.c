@@ -17,6 +17,14 @@ static int local_index(const pf_fem_body *b, int body, const pf_points *pts, pf_
   return 0;
 }
 
+/* Blended: is element e of the mesh left to the other operator (beta = 1 at its eight nodes)? */
+static int left_to_other(const pf_fem_body *b, pf_int e) {
+  if (!b->beta_fn) return 0;
+  for (int I = 0; I < 8; I++)
+    if (b->beta_fn(b->beta_ctx, &b->mesh.X[3 * (size_t)b->mesh.conn[8 * (size_t)e + I]]) < 1) return 0;
+  return 1;
+}
+
 /* Elements with at least one owned node, ascending; their connectivity in store indices. */
 static int local_elements(pf_fem_body *b, const pf_points *pts, pf_int first, pf_int n, const pf_int *loc) {
   const pf_mesh *m = &b->mesh;
@@ -27,7 +35,7 @@ static int local_elements(pf_fem_body *b, const pf_points *pts, pf_int first, pf
       pf_int i = loc[m->conn[8 * (size_t)e + I]];
       if (i >= first && i < first + n) mark[e] = 1;
     }
-  for (pf_int e = 0; e < m->nelem; e++) mark[e] = mark[e] && !pf_fem_body_element_is_pd(b, e);
+  for (pf_int e = 0; e < m->nelem; e++) mark[e] = mark[e] && !left_to_other(b, e);
   b->nel = 0;
   for (pf_int e = 0; e < m->nelem; e++) b->nel += mark[e];
   free(b->eid), free(b->conn), free(b->own);
@@ -146,11 +154,10 @@ int pf_fem_body_attach(pf_fem_body *b, int body, pf_points *pts, pf_int first, p
   if (b->erosion) PF_MALLOC(b->due, b->nel);
   pf_material_init(b->mat, (pf_int)nq, b->state);
   b->stable_dt = reference_stable_dt(b, pts);
-  PF_CALL(pf_fem_body_coupling_attach(b, pts));
-  return b->pd ? 0 : register_fields(b, pts); /* (a coupled body's stress is its PD points') */
+  return b->beta_fn ? 0 : register_fields(b, pts); /* (a blended body's stress is the other operator's) */
 }
 
-void pf_fem_node_force(const pf_fem_body *b, pf_int i, double f[3]) {
+void pf_fem_body_node_force(const pf_fem_body *b, pf_int i, double f[3]) {
   f[0] = f[1] = f[2] = 0;
   for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
     const double *fe = &b->fe[3 * (size_t)b->node_item[q]];
@@ -158,15 +165,18 @@ void pf_fem_node_force(const pf_fem_body *b, pf_int i, double f[3]) {
   }
 }
 
-int pf_fem_body_force(pf_fem_body *b, pf_points *pts, double dt, double t, long step) {
+int pf_fem_body_evaluate(pf_fem_body *b, pf_points *pts, double dt, double t, long step) {
   b->t = t, b->step = step;
-  if (b->pd) return pf_fem_body_coupled_force(b, pts, dt);
-  int ierr = pf_fem_elements_evaluate(b, pts, dt);
+  return pf_fem_elements_evaluate(b, pts, dt);
+}
+
+int pf_fem_body_force(pf_fem_body *b, pf_points *pts, double dt, double t, long step) {
+  int ierr = pf_fem_body_evaluate(b, pts, dt, t, step);
   PF_CALL(pf_fem_erosion_sync(b)); /* (collective: also after a failed evaluation) */
   if (ierr) return ierr;
   for (pf_int i = 0; i < b->n; i++) {
     double f[3];
-    pf_fem_node_force(b, i, f);
+    pf_fem_body_node_force(b, i, f);
     for (int a = 0; a < 3; a++) pts->f[3 * (size_t)(b->first + i) + a] += f[a];
   }
   return 0;
@@ -178,8 +188,8 @@ void pf_fem_body_energies(const pf_fem_body *b, double e[3]) {
   e[0] = e[1] = e[2] = 0;
   for (pf_int k = 0; k < b->nel; k++) {
     if (!b->own[k]) continue;
-    double w = 1; /* coupled: the element's share, 1 - its nodes' mean blending weight */
-    for (int I = 0; I < 8 && b->pd; I++) w -= b->beta[b->conn[8 * (size_t)k + I]] / 8.0;
+    double w = 1; /* blended: the element's share, 1 - its nodes' mean blending weight */
+    for (int I = 0; I < 8 && b->beta; I++) w -= b->beta[b->conn[8 * (size_t)k + I]] / 8.0;
     for (int c = 0; c < 3; c++) e[c] += w * b->energy[3 * (size_t)k + c];
   }
 }
@@ -188,10 +198,7 @@ const pf_mesh *pf_fem_body_mesh(const pf_fem_body *b) { return &b->mesh; }
 const pf_material *pf_fem_body_material(const pf_fem_body *b) { return b->mat; }
 
 int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts) {
-  if (b->pd) { /* the nodes' stress and history are the PD points'; their bond damage */
-    pf_pd_body_damage(b->pd, pts);
-    return 0;
-  }
+  if (b->beta_fn) return 0; /* blended: the nodes' stress and history are the other operator's */
   double *stress = pf_points_field_get(pts, "stress");
   PF_CHECK(stress, PF_ERR_RUN, "body '%s': no stress field", b->name);
   double *st[16], *vq = NULL;

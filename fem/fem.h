@@ -25,7 +25,8 @@ int pf_fem_body_destroy(pf_fem_body **b);
 int pf_fem_body_cloud(const pf_fem_body *b, pf_point_cloud *pc);
 /* Append to rows, for store points [first, first+n) (nodes of this body, gid0 the global id of
  * node 0), every node that shares an element with it, ascending global id: the decomposition
- * then ghosts exactly the nodes of the elements of owned nodes. */
+ * then ghosts exactly the nodes of the elements of owned nodes. Fails on a node with more than
+ * 216 neighbours. */
 int pf_fem_body_node_rows(const pf_fem_body *b, const pf_points *pts, pf_int first, pf_int n,
                           pf_gid gid0, pf_bond_rows *rows);
 /* Give the body its owned nodes [first, first+n) (store body index `body`, ghosts already
@@ -62,10 +63,24 @@ void pf_fem_body_set_stable_dt(pf_fem_body *b, double dt);
 /* Fill the nodal output fields "stress" (6) and the material's state names with the
  * volume-weighted average over each owned node's elements. */
 int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts);
-/* The peridynamic operator coupled to the body's nodes (a `peridynamic:` map), or NULL
- * (fem/body_coupling.c). Its attach follows the body's, with the same rows; then
- * pf_fem_body_coupling_ready takes its stable step into the body's. */
-struct pf_pd_body *pf_fem_body_pd(const pf_fem_body *b);
-int pf_fem_body_coupling_ready(pf_fem_body *b, pf_points *pts);
+/* ---- blending (coupling/ composes an FE body with a PD operator on the same nodes) ----------- */
+/* beta(x) in [0, 1]: the other operator's weight at reference position x. */
+typedef double (*pf_fem_weight_fn)(const void *ctx, const double x[3]);
+/* Before attach: blend the body with another operator. Elements whose eight nodes all have
+ * beta = 1 are left to it (not evaluated), and the body registers no nodal stress or state
+ * fields (the nodes' are the other operator's). */
+void pf_fem_body_set_blending(pf_fem_body *b, pf_fem_weight_fn beta, const void *ctx);
+/* After each attach: beta at the store points; each owned element's energies are then weighted
+ * by 1 - its nodes' mean beta. */
+void pf_fem_body_set_blending_field(pf_fem_body *b, const double *beta);
+/* Evaluate the local elements at the current positions (element forces, energies, the stable
+ * step) without adding them to the nodes; t and step name a failure. pf_fem_body_force is this,
+ * the erosion update and the assembly. Needs the ghosts' y and v. */
+int pf_fem_body_evaluate(pf_fem_body *b, pf_points *pts, double dt, double t, long step);
+/* The assembled force of the last evaluation on the body's owned node i (0 <= i < n), its
+ * elements summed in ascending global element order, N. */
+void pf_fem_body_node_force(const pf_fem_body *b, pf_int i, double f[3]);
+/* Lumped volume of each mesh node [nnodes], m^3. */
+const double *pf_fem_body_node_volumes(const pf_fem_body *b);
 
 #endif

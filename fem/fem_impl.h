@@ -3,7 +3,6 @@
 #define PF_FEM_IMPL_H
 
 #include "fem/fem.h"
-#include "pd/pd.h"
 
 /* ---- Flanagan-Belytschko hourglass control (fem/hourglass.c) ---- */
 typedef enum { PF_HG_NONE, PF_HG_VISCOUS, PF_HG_STIFFNESS } pf_hourglass_kind;
@@ -45,12 +44,10 @@ struct pf_fem_body {
   int64_t *node_off; /* [n + 1] CSR: elements of each owned node */
   pf_int *node_item; /* element * 8 + corner, ascending element */
   double *buf;       /* chunk scratch */
-  /* coupling to peridynamics (docs/theory/coupling.md §3) */
-  pf_pd_body *pd;    /* the PD operator over the same nodes, or NULL */
-  pf_expr *beta_expr; /* blending weight beta(x) */
-  double *beta;      /* field "blending_weight" [store] */
-  double *fsave;     /* [3n] scratch of the blended force */
-  pf_nearest *fe_region; /* the nodes where the elements act (beta < 1), for the horizon's d_fe */
+  /* blending with another operator on the same nodes (coupling/, pf_fem_body_set_blending) */
+  pf_fem_weight_fn beta_fn;  /* beta(x): the other operator's weight, or NULL (no blending) */
+  const void *beta_ctx;
+  const double *beta;        /* beta at the store points (pf_fem_body_set_blending_field), or NULL */
   /* erosion (fem/erosion.c) */
   int erosion;          /* some limit is set */
   double erode_eqps, erode_jmin, erode_jmax;
@@ -78,19 +75,6 @@ static inline int pf_fem_element_eroded(const pf_fem_body *b, pf_int e) {
  * the stable step; returns 0 or an error naming a negative-Jacobian element. */
 int pf_fem_elements_evaluate(pf_fem_body *b, const pf_points *pts, double dt);
 
-/* fem/body_coupling.c: the `peridynamic:` map (the PD operator and beta), beta at a point, the
- * elements left to PD, the merged rows (PD family and element neighbours), the blending field
- * and masses at attach, and the blended force. */
-int pf_fem_body_coupling_read(pf_fem_body *b, const pf_node *body, const pf_node *materials);
-double pf_fem_body_beta(const pf_fem_body *b, const double x[3]);
-int pf_fem_body_element_is_pd(const pf_fem_body *b, pf_int e);
-int pf_fem_body_coupled_rows(const pf_fem_body *b, const pf_bond_rows *pd, const pf_bond_rows *elem,
-                             pf_bond_rows *rows);
-int pf_fem_body_coupling_attach(pf_fem_body *b, pf_points *pts);
-int pf_fem_body_coupled_force(pf_fem_body *b, pf_points *pts, double dt);
-/* fem/body_assembly.c: the assembled element force of owned node i (local index), its
- * elements summed in ascending global element order. */
-void pf_fem_node_force(const pf_fem_body *b, pf_int i, double f[3]);
 size_t pf_fem_chunk_doubles(int nqp, int nstate);
 
 #endif

@@ -1,68 +1,75 @@
 /* What a re-partition or a checkpoint must carry besides the points: every body's bond rows
- * (PD families, FE node adjacency), and the FE bodies' element state as whole tables. */
+ * (PD families, FE node adjacency), and the bodies' per-element state as whole tables. */
 #include "sim/sim_impl.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+pf_body_span pf_sim_span(const pf_sim *sim, int b) {
+  return (pf_body_span){b, sim->gid0[b], sim->body_start[b], sim->body_start[b + 1] - sim->body_start[b]};
+}
+
 int pf_sim_bond_rows(const pf_sim *sim, pf_bond_rows *rows) {
-  for (int b = 0; b < sim->nbodies; b++)
-    if (sim->body[b]) PF_CALL(pf_pd_body_bond_rows(sim->body[b], sim->pts, rows));
-    else
-      PF_CALL(pf_fem_body_node_rows(sim->fem[b], sim->pts, sim->body_start[b],
-                                    sim->body_start[b + 1] - sim->body_start[b], sim->gid0[b], rows));
-  return 0;
-}
-
-void pf_sim_fem_table_name(const pf_sim *sim, int b, char *out, size_t len) {
-  snprintf(out, len, "fem_%s", sim->body_name[b]);
-}
-
-int pf_sim_fem_tables(const pf_sim *sim, pf_table *t, int *n) {
-  *n = 0;
   for (int b = 0; b < sim->nbodies; b++) {
-    if (!sim->fem[b]) continue;
-    const pf_fem_body *f = sim->fem[b];
-    pf_table *tb = &t[(*n)++];
-    memset(tb, 0, sizeof *tb);
-    pf_sim_fem_table_name(sim, b, tb->name, sizeof tb->name);
-    tb->total = pf_fem_body_mesh(f)->nelem;
-    tb->ncomp = pf_fem_body_state_ncomp(f);
-    pf_gid *id;
-    double *data;
-    PF_MALLOC(id, pf_fem_body_nlocal(f));
-    PF_MALLOC(data, (size_t)pf_fem_body_nlocal(f) * tb->ncomp);
-    tb->id = id, tb->data = data;
-    tb->n = pf_fem_body_state_get(f, id, data);
+    const pf_body_span s = pf_sim_span(sim, b);
+    PF_CALL(sim->body[b].ops->rows(sim->body[b].data, sim->pts, &s, rows));
   }
   return 0;
 }
 
-void pf_sim_fem_tables_free(pf_table *t, int n) {
+int pf_sim_table_shape(const pf_sim *sim, int b, pf_table *t, pf_int *nlocal) {
+  const pf_body *body = &sim->body[b];
+  memset(t, 0, sizeof *t);
+  *nlocal = 0;
+  if (!body->ops->table_shape) return 0;
+  snprintf(t->name, sizeof t->name, "fem_%s", sim->body_name[b]);
+  body->ops->table_shape(body->data, &t->total, &t->ncomp, nlocal);
+  return 1;
+}
+
+int pf_sim_body_tables(const pf_sim *sim, pf_table *t, int *n) {
+  *n = 0;
+  for (int b = 0; b < sim->nbodies; b++) {
+    pf_table *tb = &t[*n];
+    pf_int nlocal;
+    if (!pf_sim_table_shape(sim, b, tb, &nlocal)) continue;
+    (*n)++;
+    pf_gid *id;
+    double *data;
+    PF_MALLOC(id, nlocal);
+    PF_MALLOC(data, (size_t)nlocal * tb->ncomp);
+    tb->id = id, tb->data = data;
+    tb->n = sim->body[b].ops->table_get(sim->body[b].data, id, data);
+  }
+  return 0;
+}
+
+void pf_sim_body_tables_free(pf_table *t, int n) {
   for (int k = 0; k < n; k++) free((void *)t[k].id), free((void *)t[k].data);
 }
 
-/* The FE bodies' state over a re-partition: gathered whole before, set back after. */
-int pf_sim_settle_keeping_fem(pf_sim *sim, pf_bond_rows *rows) {
+/* The bodies' tables over a re-partition, gathered whole before and set back after, with the
+ * stable step of their last force evaluation. */
+int pf_sim_settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows) {
   pf_table t[PF_MAX_BODIES];
   double *full[PF_MAX_BODIES] = {NULL}, stable[PF_MAX_BODIES];
-  int n = 0, ierr = pf_sim_fem_tables(sim, t, &n);
+  int n = 0, ierr = pf_sim_body_tables(sim, t, &n);
   for (int k = 0, b = 0; b < sim->nbodies; b++) {
-    stable[b] = sim->fem[b] ? pf_min_all(pf_fem_body_stable_dt(sim->fem[b])) : INFINITY;
-    if (!sim->fem[b] || ierr) continue;
+    const pf_body *body = &sim->body[b];
+    stable[b] = body->ops->set_stable_dt ? pf_min_all(body->ops->stable_dt(body->data, sim->pts)) : INFINITY;
+    if (!body->ops->table_shape || ierr) continue;
     if (!(full[b] = malloc(sizeof(double) * ((size_t)t[k].total * t[k].ncomp + 1))))
       ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
     else ierr = pf_table_allgather(&t[k], full[b]);
     k++;
   }
-  pf_sim_fem_tables_free(t, n);
+  pf_sim_body_tables_free(t, n);
   if (!ierr) ierr = pf_sim_settle(sim, rows, 0);
   for (int b = 0; b < sim->nbodies; b++) {
-    if (sim->fem[b] && !ierr) {
-      pf_fem_body_state_set(sim->fem[b], full[b]);
-      pf_fem_body_set_stable_dt(sim->fem[b], stable[b]);
-    }
+    const pf_body *body = &sim->body[b];
+    if (!ierr && body->ops->table_set) body->ops->table_set(body->data, full[b]);
+    if (!ierr && body->ops->set_stable_dt) body->ops->set_stable_dt(body->data, stable[b]);
     free(full[b]);
   }
   return ierr;

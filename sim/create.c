@@ -70,16 +70,12 @@ static int validate_materials(const pf_deck *d, const pf_node *materials) {
   return 0;
 }
 
-/* 1 for a finite-element body, 0 for a peridynamic one; each body against its table. */
-static int body_kind(const pf_deck *d, const pf_node *body, int b, int *fem) {
-  const char *type = "peridynamic";
+/* The body's kind (sim/body_kinds.h), and the body checked against the kind's keys. */
+static int body_kind(const pf_deck *d, const pf_node *body, int b, const pf_body_ops **ops) {
   char where[64];
   snprintf(where, sizeof where, "bodies[%d]", b);
-  if (pf_node_get(body, "type")) PF_CALL(pf_deck_string(d, body, "type", &type));
-  *fem = !strcmp(type, "finite_element");
-  if (!*fem && strcmp(type, "peridynamic"))
-    return pf_deck_error(d, pf_node_get(body, "type"), "type", "unknown body type '%s' (known: peridynamic, finite_element)", type);
-  return pf_deck_validate(d, body, *fem ? pf_fem_body_keys : pf_pd_body_keys, where);
+  PF_CALL(pf_body_kind(d, body, ops));
+  return pf_deck_validate(d, body, (*ops)->keys(), where);
 }
 
 /* initial_velocity or initial_displacement (key) of body b's owned points into v, or into u
@@ -118,13 +114,13 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
       if (!strcmp(sim->body_name[q], sim->body_name[b]))
         return pf_deck_error(sim->deck, pf_node_get(body, "name"), "name", "two bodies named '%s'",
                              sim->body_name[b]);
-    int fem = 0;
-    PF_CALL(body_kind(sim->deck, body, b, &fem));
-    if (fem) PF_CALL(pf_fem_body_create(sim->deck, body, pf_node_get(root, "materials"), &sim->fem[b]));
-    else PF_CALL(pf_pd_body_create(sim->deck, body, pf_node_get(root, "materials"), &sim->body[b]));
-    sim->nfem += fem;
+    pf_body *bd = &sim->body[b];
+    PF_CALL(body_kind(sim->deck, body, b, &bd->ops));
+    bd->name = sim->body_name[b];
+    PF_CALL(bd->ops->create(sim->deck, body, pf_node_get(root, "materials"), &bd->data));
+    sim->nmeshed += bd->ops->mesh != NULL;
   }
-  if (sim->spread_output && sim->nfem)
+  if (sim->spread_output && sim->nmeshed)
     return pf_deck_error(sim->deck, pf_node_get(pf_node_get(root, "output"), "layout"), "layout",
                          "finite_element bodies are written joined (a spread file set would cut "
                          "elements at the rank boundaries); use output.layout: joined");
@@ -133,8 +129,7 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
   memset(pc, 0, sizeof pc);
   int ierr = 0;
   for (int b = 0; b < sim->nbodies && !ierr; b++)
-    ierr = sim->fem[b] ? pf_fem_body_cloud(sim->fem[b], &pc[b])
-                       : pf_point_cloud_from_deck(sim->deck, pf_node_get(pf_node_item(bodies, b), "geometry"), &pc[b]);
+    ierr = sim->body[b].ops->cloud(sim->body[b].data, sim->deck, pf_node_item(bodies, b), &pc[b]);
   if (!ierr) ierr = pf_sim_distribute(sim, pc);
   for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
   if (ierr) return ierr;
@@ -212,9 +207,10 @@ int pf_sim_destroy(pf_sim **s) {
   if (!sim) return 0;
   pf_exodus_destroy(&sim->exo);
   pf_history_destroy(&sim->hist);
-  for (int b = 0; b < sim->nbodies; b++) pf_pd_body_destroy(&sim->body[b]), pf_fem_body_destroy(&sim->fem[b]);
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->body[b].ops) sim->body[b].ops->destroy(&sim->body[b].data);
   for (int k = 0; k < sim->nwalls && sim->walls; k++) pf_wall_destroy(&sim->walls[k]);
-  free(sim->walls), free(sim->wall_reaction);
+  free(sim->walls), free(sim->wall_reaction), free(sim->sums);
   for (int k = 0; k < sim->nrigid && sim->rigid; k++) pf_rigid_destroy(&sim->rigid[k]);
   pf_contact_destroy(&sim->contact);
   for (int k = 0; k < sim->nbcs && sim->bcs; k++) pf_bc_destroy(&sim->bcs[k]);
@@ -233,8 +229,20 @@ int pf_sim_destroy(pf_sim **s) {
 
 pf_points *pf_sim_points(pf_sim *sim) { return sim->pts; }
 int pf_sim_nbodies(const pf_sim *sim) { return sim->nbodies; }
-pf_pd_body *pf_sim_body(pf_sim *sim, int b) { return sim->body[b]; }
-pf_fem_body *pf_sim_fem_body(pf_sim *sim, int b) { return sim->fem[b]; }
+pf_pd_body *pf_sim_body(pf_sim *sim, int b) {
+  const pf_body *body = &sim->body[b];
+  return body->ops->as_pd ? body->ops->as_pd(body->data) : NULL;
+}
+pf_fem_body *pf_sim_fem_body(pf_sim *sim, int b) {
+  const pf_body *body = &sim->body[b];
+  return body->ops->as_fem ? body->ops->as_fem(body->data) : NULL;
+}
+int pf_sim_body_force(pf_sim *sim, int b, double dt) {
+  int tripped = 0;
+  PF_CALL(sim->body[b].ops->force(sim->body[b].data, sim->pts, dt, sim->t, sim->step, &tripped));
+  PF_CHECK(!tripped, PF_ERR_RUN, "body '%s': the force evaluation failed", sim->body_name[b]);
+  return 0;
+}
 double pf_sim_dt(const pf_sim *sim) { return sim->dt; }
 long pf_sim_nsteps(const pf_sim *sim) { return sim->nsteps; }
 int pf_sim_adaptive(const pf_sim *sim) { return sim->adaptive; }

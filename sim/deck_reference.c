@@ -3,7 +3,8 @@
  * the two, so the documentation cannot drift from the loader). */
 #include "contact/contact.h"
 #include "sim/sim.h"
-#include "fem/fem.h"
+#include "sim/body.h"
+#include "material/material.h"
 #include "pd/pd.h"
 
 #include <stdio.h>
@@ -95,8 +96,12 @@ int pf_deck_reference(FILE *out) {
   collect(&all, pf_deck_keys, "", "");
   collect(&all, pf_pd_material_keys, "materials.<name>", "peridynamic model");
   collect(&all, pf_material_keys, "materials.<name>", "continuum model: FE bodies and correspondence");
-  collect(&all, pf_pd_body_keys, "bodies[i]", "type: peridynamic");
-  collect(&all, pf_fem_body_keys, "bodies[i]", "type: finite_element");
+  static char note[16][64]; /* (collect keeps the pointer) */
+  for (int k = 0; k < pf_body_kind_count() && k < 16; k++) {
+    if (!pf_body_kind_first_of_type(k)) continue;
+    snprintf(note[k], sizeof note[k], "type: %s", pf_body_kind_at(k)->type);
+    collect(&all, pf_body_kind_at(k)->keys(), "bodies[i]", note[k]);
+  }
   collect_nested(&all);
   fprintf(out, "# Deck keys\n\n"
                "Every key the deck loader accepts, with its type, default and SI units. This page is the\n"

@@ -79,12 +79,8 @@ int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh) {
     ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
   if (!ierr) ierr = pf_points_add_ghosts(sim->pts, rows, owner_of, local);
   for (int b = 0; b < sim->nbodies && !ierr; b++) {
-    pf_int first = sim->body_start[b], n = sim->body_start[b + 1] - first;
-    pf_pd_body *coupled = sim->fem[b] ? pf_fem_body_pd(sim->fem[b]) : NULL; /* PD on FE nodes */
-    ierr = sim->fem[b] ? pf_fem_body_attach(sim->fem[b], b, sim->pts, first, n, sim->gid0[b])
-                       : pf_pd_body_attach(sim->body[b], sim->pts, first, n, rows, local, fresh);
-    if (!ierr && coupled) ierr = pf_pd_body_attach(coupled, sim->pts, first, n, rows, local, fresh);
-    if (!ierr && coupled) ierr = pf_fem_body_coupling_ready(sim->fem[b], sim->pts);
+    const pf_body_span s = pf_sim_span(sim, b);
+    ierr = sim->body[b].ops->attach(sim->body[b].data, sim->pts, &s, rows, local, fresh);
   }
   free(owner_of), free(local);
   if (!ierr) ierr = pf_sim_contact_attach(sim);
@@ -108,9 +104,8 @@ int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc) {
   for (int b = 0; b < sim->nbodies && !ierr; b++) {
     pf_int n = 0;
     while (first + n < sim->pts->n_owned && sim->pts->body[first + n] == b) n++;
-    pf_pd_cloud cloud = {pc[b].X, pc[b].cell, pc[b].n, gid0[b]};
-    ierr = sim->fem[b] ? pf_fem_body_node_rows(sim->fem[b], sim->pts, first, n, gid0[b], &rows)
-                       : pf_pd_body_find_bonds(sim->body[b], &cloud, sim->pts, first, n, &rows);
+    const pf_body_span s = {b, gid0[b], first, n};
+    ierr = sim->body[b].ops->find_rows(sim->body[b].data, &pc[b], sim->pts, &s, &rows);
     first += n;
   }
   if (!ierr) ierr = pf_sim_settle(sim, &rows, 1);
@@ -122,9 +117,9 @@ int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc) {
 static double local_work(const pf_sim *sim) {
   double w = sim->pts->n_owned;
   for (int b = 0; b < sim->nbodies; b++) {
-    const pf_pd_body *pd = sim->body[b] ? sim->body[b] : pf_fem_body_pd(sim->fem[b]);
-    if (!pd) continue;
-    const pf_family *fam = pf_pd_body_family(pd);
+    const pf_body *body = &sim->body[b];
+    if (!body->ops->family) continue;
+    const pf_family *fam = body->ops->family(body->data);
     for (int64_t k = 0; k < pf_pd_family_nbonds(fam); k++) w += !fam->broken[k];
   }
   return w;
@@ -138,7 +133,7 @@ int pf_sim_rebalance(pf_sim *sim) {
   PF_CALL(pf_bond_rows_init(&rows));
   int ierr = 0;
   if (!ierr) ierr = pf_sim_bond_rows(sim, &rows);
-  if (!ierr) ierr = pf_sim_settle_keeping_fem(sim, &rows);
+  if (!ierr) ierr = pf_sim_settle_keeping_tables(sim, &rows);
   pf_bond_rows_free(&rows);
   for (int k = 0; k < sim->nbcs && !ierr; k++) ierr = pf_bc_select(sim->bcs[k], sim->pts);
   if (ierr) return ierr;

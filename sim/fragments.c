@@ -24,9 +24,8 @@
 enum { F_BODY, F_ID, F_GID, F_N, F_M, F_X, F_V = F_X + 3, F_NREC = F_V + 3 };
 
 static const pf_family *body_family(const pf_sim *sim, int b) {
-  if (sim->body[b]) return pf_pd_body_family(sim->body[b]);
-  const pf_pd_body *c = sim->fem[b] ? pf_fem_body_pd(sim->fem[b]) : NULL;
-  return c ? pf_pd_body_family(c) : NULL;
+  const pf_body *body = &sim->body[b];
+  return body->ops->family ? body->ops->family(body->data) : NULL;
 }
 
 /* One sweep over the owned points of body b: label <- min over intact bonds. Changes counted. */

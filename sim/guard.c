@@ -29,11 +29,16 @@ void pf_sim_guard_free(pf_sim *sim) {
   PF_FREE(sim->good_v);
 }
 
-/* The length a point's step motion is measured against: the body's horizon, or the FE node's
- * cell (the cube root of its lumped volume). */
+/* The length a point's step motion is measured against, and its name: the body's (a PD point's
+ * horizon), or by default the point's cell (an FE node's: the cube root of its lumped volume). */
 static double reach(const pf_sim *sim, pf_int i) {
-  int b = sim->pts->body[i];
-  return sim->body[b] ? pf_pd_body_point_horizon(sim->body[b], i) : sim->pts->cell[i];
+  const pf_body *body = &sim->body[sim->pts->body[i]];
+  return body->ops->reach ? body->ops->reach(body->data, sim->pts, i) : sim->pts->cell[i];
+}
+
+static const char *reach_name(const pf_sim *sim, pf_int i) {
+  const pf_body *body = &sim->body[sim->pts->body[i]];
+  return body->ops->reach ? body->ops->reach_name : "cell";
 }
 
 void pf_sim_guard_motion(pf_sim *sim, double dt) {
@@ -48,7 +53,7 @@ void pf_sim_guard_motion(pf_sim *sim, double dt) {
                    "more than time.max_motion = %g of its %s (%g m): the run is unstable (reduce time.dt or "
                    "time.safety_factor)",
                    p->gid[i], sim->body_name[p->body[i]], p->y[3 * i], p->y[3 * i + 1], p->y[3 * i + 2], d,
-                   sim->step + 1, sim->t + dt, sim->max_motion, sim->body[p->body[i]] ? "horizon" : "cell", reach(sim, i));
+                   sim->step + 1, sim->t + dt, sim->max_motion, reach_name(sim, i), reach(sim, i));
   }
 }
 
@@ -66,9 +71,14 @@ static void check_finite(pf_sim *sim) {
   }
 }
 
+/* One reduction a step for both: has any rank tripped a guard, and the largest signal received. */
 int pf_sim_guard_check(pf_sim *sim) {
   check_finite(sim);
-  if (!pf_max_all(sim->guard_tripped)) return 0;
+  int flags[2] = {sim->guard_tripped, pf_sim_signal_here()};
+  PF_CHECK(MPI_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS, PF_ERR_LIB,
+           "MPI_Allreduce failed in the step's guard");
+  sim->signal = flags[1];
+  if (!flags[0]) return 0;
   pf_points *p = sim->pts;
   memcpy(p->u, sim->good_u, sizeof(double) * 3 * (size_t)p->n_owned);
   memcpy(p->v, sim->good_v, sizeof(double) * 3 * (size_t)p->n_owned);

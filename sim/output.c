@@ -155,8 +155,9 @@ static int open_exodus(pf_sim *sim, globals *g) {
   int ierr = 0;
   for (int b = 0; b < sim->nbodies; b++) {
     hex[b] = (pf_exodus_hexes){0, NULL, 0};
-    if (!sim->fem[b] || ierr) continue;
-    const pf_mesh *m = pf_fem_body_mesh(sim->fem[b]);
+    const pf_body *body = &sim->body[b];
+    if (!body->ops->mesh || ierr) continue;
+    const pf_mesh *m = body->ops->mesh(body->data);
     if (!(conn[b] = malloc(sizeof(pf_int) * 8 * ((size_t)m->nelem + 1)))) {
       ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
       break;
@@ -184,7 +185,7 @@ static int open_output(pf_sim *sim, globals *g) {
 
 static int write_exodus(pf_sim *sim, const double *values) {
   for (int b = 0; b < sim->nbodies; b++)
-    if (sim->fem[b]) PF_CALL(pf_fem_body_output_fields(sim->fem[b], sim->pts));
+    if (sim->body[b].ops->output_fields) PF_CALL(sim->body[b].ops->output_fields(sim->body[b].data, sim->pts));
   if (spread(sim)) return pf_exodus_write(sim->exo, sim->t, sim->pts, values);
   PF_CALL(pf_points_gather(sim->pts, &sim->joined));
   return sim->joined ? pf_exodus_write(sim->exo, sim->t, sim->joined, values) : 0;
@@ -245,10 +246,11 @@ static void progress(const pf_sim *sim, const globals *g, double wall0, int stat
 static void summary(const pf_sim *sim, const globals *g, double wall) {
   double nb = 0, bytes = 0;
   for (int b = 0; b < sim->nbodies; b++) {
-    const pf_pd_body *pd = sim->body[b] ? sim->body[b] : pf_fem_body_pd(sim->fem[b]);
-    if (!pd) continue;
-    nb += (double)pf_pd_body_nbonds(pd);
-    bytes += (double)pf_pd_body_nbonds(pd) * pf_pd_body_bytes_per_bond(pd);
+    const pf_body *body = &sim->body[b];
+    if (!body->ops->family) continue;
+    const double n = (double)pf_pd_family_nbonds(body->ops->family(body->data));
+    nb += n;
+    bytes += n * body->ops->bytes_per_bond(body->data);
   }
   nb = pf_sum_all(nb), bytes = pf_sum_all(bytes);
   const double *v = g->values + 2;
@@ -259,16 +261,17 @@ static void summary(const pf_sim *sim, const globals *g, double wall) {
          sim->wall_loop > 0 ? nb * sim->step / sim->wall_loop : 0.0);
   double nel = 0;
   for (int b = 0; b < sim->nbodies; b++)
-    if (sim->fem[b]) nel += pf_fem_body_mesh(sim->fem[b])->nelem;
+    if (sim->body[b].ops->mesh) nel += sim->body[b].ops->mesh(sim->body[b].data)->nelem;
   if (nel > 0)
     pf_log("  elements %.0f, element cycles per second %.4g, hourglass energy %.3g J (%.3g times the internal)\n",
            nel, sim->wall_loop > 0 ? nel * sim->step / sim->wall_loop : 0.0, v[G_HG],
            v[G_FEINT] != 0 ? v[G_HG] / v[G_FEINT] : 0.0);
   for (int b = 0; b < sim->nbodies; b++) {
+    const pf_body *body = &sim->body[b];
     long n = 0;
-    if (sim->fem[b] && pf_fem_body_eroded(sim->fem[b], &n))
+    if (body->ops->eroded && body->ops->eroded(body->data, &n))
       pf_log("  body '%s': %ld of %" PF_INT_FMT " elements deleted by erosion\n", sim->body_name[b], n,
-             pf_fem_body_mesh(sim->fem[b])->nelem);
+             body->ops->mesh(body->data)->nelem);
   }
   if (sim->contact) {
     long rebuilds;
@@ -286,7 +289,7 @@ static void summary(const pf_sim *sim, const globals *g, double wall) {
 
 /* Checkpoint at the deck's interval; on SIGTERM/SIGINT checkpoint and stop (*stop = 1). */
 static int checkpoints(pf_sim *sim, int *stop) {
-  int sig = pf_sim_signalled();
+  int sig = sim->signal; /* (reduced with the step's guard) */
   if (sig || (sim->restart_interval > 0 && sim->step % sim->restart_interval == 0)) PF_CALL(pf_sim_checkpoint(sim));
   if (sig) {
     pf_log("perifem: signal %d: stopped at step %ld, t = %.6e s; continue with --restart %s\n", sig, sim->step,

@@ -34,7 +34,8 @@ static uint64_t part_hash(const pf_deck *d, const char *part) {
 
 /* Scalar names and values: time, step, dt, contact_energy, external_work, initial_energy,
  * wall_loss, bc_work, contact_dissipation and damage_dissipation (sums over the ranks), the deck-part hashes (two 32-bit halves each), per rigid surface its position and
- * reaction, and per body the FE stable step of the last force evaluation (0 for PD bodies). */
+ * reaction, and per body the carried stable step of the last force evaluation (FE and coupled
+ * bodies; 0 for the others). */
 static int scalars_make(const pf_sim *sim, pf_sim_scalars *s) {
   s->n = NFIXED + 2 * NPARTS + 6 * sim->nrigid + sim->nbodies;
   PF_MALLOC(s->name, s->n);
@@ -80,8 +81,10 @@ static void scalars_fill(const pf_sim *sim, pf_sim_scalars *s) {
     pf_rigid_position(sim->rigid[q], x);
     for (int a = 0; a < 3; a++) v[at + 6 * q + a] = x[a], v[at + 6 * q + 3 + a] = sim->reaction[q][a];
   }
-  for (int b = 0, at = NFIXED + 2 * NPARTS + 6 * sim->nrigid; b < sim->nbodies; b++)
-    v[at + b] = sim->fem[b] ? pf_min_all(pf_fem_body_stable_dt(sim->fem[b])) : 0; /* collective */
+  for (int b = 0, at = NFIXED + 2 * NPARTS + 6 * sim->nrigid; b < sim->nbodies; b++) {
+    const pf_body *body = &sim->body[b]; /* the carried stable steps (collective) */
+    v[at + b] = body->ops->set_stable_dt ? pf_min_all(body->ops->stable_dt(body->data, sim->pts)) : 0;
+  }
 }
 
 int pf_sim_setup_restart(pf_sim *sim) {
@@ -104,14 +107,14 @@ int pf_sim_checkpoint(pf_sim *sim) {
   PF_CALL(pf_bond_rows_init(&rows));
   int ierr = scalars_make(sim, &s);
   if (!ierr) ierr = pf_sim_bond_rows(sim, &rows);
-  if (!ierr) ierr = pf_sim_fem_tables(sim, tables, &ntables);
+  if (!ierr) ierr = pf_sim_body_tables(sim, tables, &ntables);
   if (!ierr) {
     scalars_fill(sim, &s);
     pf_points owned = *sim->pts; /* the owned points only */
     owned.n_total = owned.n_owned;
     ierr = pf_checkpoint_write(sim->restart_path, &owned, &rows, s.n, s.names, s.value, ntables, tables);
   }
-  pf_sim_fem_tables_free(tables, ntables);
+  pf_sim_body_tables_free(tables, ntables);
   pf_bond_rows_free(&rows);
   scalars_free(&s);
   if (!ierr) pf_log("step %ld: checkpoint %s\n", sim->step, sim->restart_path);
@@ -152,14 +155,16 @@ int pf_sim_restore_points(pf_sim *sim) {
   if (!ierr) ierr = pf_sim_settle(sim, &rows, 0);
   pf_bond_rows_free(&rows);
   for (int b = 0; b < sim->nbodies && !ierr; b++) { /* the elements' state, whole on every rank */
-    if (!sim->fem[b]) continue;
-    pf_table t = {.total = pf_fem_body_mesh(sim->fem[b])->nelem, .ncomp = pf_fem_body_state_ncomp(sim->fem[b])};
-    pf_sim_fem_table_name(sim, b, t.name, sizeof t.name);
+    pf_body *body = &sim->body[b];
+    pf_table t;
+    pf_int nlocal;
+    if (!pf_sim_table_shape(sim, b, &t, &nlocal)) continue;
     double *full = malloc(sizeof(double) * ((size_t)t.total * t.ncomp + 1));
     if (!full) return pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
     ierr = pf_checkpoint_read_table(sim->opt.restart_from, &t, full);
-    if (!ierr) pf_fem_body_state_set(sim->fem[b], full);
-    if (!ierr) pf_fem_body_set_stable_dt(sim->fem[b], s->value[NFIXED + 2 * NPARTS + 6 * sim->nrigid + b]);
+    if (!ierr) body->ops->table_set(body->data, full);
+    if (!ierr && body->ops->set_stable_dt)
+      body->ops->set_stable_dt(body->data, s->value[NFIXED + 2 * NPARTS + 6 * sim->nrigid + b]);
     free(full);
   }
   return ierr;
@@ -209,6 +214,6 @@ void pf_sim_catch_signals(void) {
   signal(SIGINT, on_signal);
 }
 
-int pf_sim_signalled(void) { return (int)pf_max_all((double)stop_signal); }
+int pf_sim_signal_here(void) { return (int)stop_signal; }
 
 void pf_sim_restart_free(pf_sim *sim) { scalars_free(&sim->restart_scalars); }

@@ -26,8 +26,13 @@ int pf_sim_destroy(pf_sim **sim);
 
 pf_points *pf_sim_points(pf_sim *sim);
 int pf_sim_nbodies(const pf_sim *sim);
-pf_pd_body *pf_sim_body(pf_sim *sim, int b);     /* NULL for an FE body */
-struct pf_fem_body *pf_sim_fem_body(pf_sim *sim, int b); /* NULL for a PD body */
+/* Body b's PD operator (a peridynamic body; NULL for the other kinds) and FE body (finite_element
+ * bodies, coupled ones included; NULL for the other kinds): for tests and tools. */
+pf_pd_body *pf_sim_body(pf_sim *sim, int b);
+struct pf_fem_body *pf_sim_fem_body(pf_sim *sim, int b);
+/* Add body b's internal forces at the current positions to the points' f (dt: the step they
+ * advance the material over); an element failure is an error. For tests. */
+int pf_sim_body_force(pf_sim *sim, int b, double dt);
 double pf_sim_dt(const pf_sim *sim);
 long pf_sim_nsteps(const pf_sim *sim);
 /* 1 when the step follows the deformation (FE or correspondence bodies, no time.dt): then dt and

@@ -3,8 +3,9 @@
 #define PF_SIM_IMPL_H
 
 #include "contact/contact.h"
+#include "sim/body.h"
+#include "coupling/coupling.h"
 #include "sim/sim.h"
-#include "fem/fem.h"
 
 #define PF_MAX_BODIES 64
 
@@ -29,9 +30,8 @@ struct pf_sim {
   pf_sim_options opt;
   pf_points *pts;
   int nbodies;
-  pf_pd_body *body[PF_MAX_BODIES]; /* peridynamic bodies (NULL for an FE body) */
-  pf_fem_body *fem[PF_MAX_BODIES]; /* finite-element bodies (NULL for a PD body) */
-  int nfem;                        /* how many FE bodies */
+  pf_body body[PF_MAX_BODIES];     /* each body's kind (its ops) and data (sim/body.h) */
+  int nmeshed;                     /* bodies with a mesh (written joined: no spread output) */
   pf_gid gid0[PF_MAX_BODIES + 1];  /* global ids of body b: [gid0[b], gid0[b+1]) */
   const char *body_name[PF_MAX_BODIES];
   pf_int body_start[PF_MAX_BODIES + 1];
@@ -44,6 +44,8 @@ struct pf_sim {
   int nwalls;
   pf_wall **walls;
   double (*wall_reaction)[3]; /* [nwalls] force of the points on each wall, N */
+  double *sums;               /* [2 nsums] the step's contact sums, this rank's then all ranks' */
+  int nsums;
   /* parallel */
   pf_partition_method decomposition;
   double rebalance_threshold; /* re-partition when max/mean work exceeds this (0: never) */
@@ -66,6 +68,7 @@ struct pf_sim {
   char restart_path[4096];
   long restart_interval;
   int stopped; /* a signal stopped the run after a checkpoint */
+  int signal;  /* the largest signal any rank received by the last step's end (0: none) */
   pf_sim_scalars restart_scalars; /* read from the checkpoint we restart from */
   /* output */
   long output_interval, history_interval;
@@ -109,8 +112,9 @@ int pf_sim_restore_points(pf_sim *sim);
 int pf_sim_restore_state(pf_sim *sim);
 void pf_sim_restart_free(pf_sim *sim);
 void pf_sim_catch_signals(void);
-/* The largest signal number received by any rank (0: none). Collective. */
-int pf_sim_signalled(void);
+/* The signal this rank received (0: none); the step's guard reduction (pf_sim_guard_check) makes
+ * it the largest over the ranks, in sim->signal. */
+int pf_sim_signal_here(void);
 int pf_sim_setup_output(pf_sim *sim);
 /* sim/fragments.c: the "fragment" field (registered by _setup when the deck asks)
  * and <file>.fragments.csv at an Exodus step; final: also the summary lines. Collective. */
@@ -132,20 +136,22 @@ int pf_sim_guard_save(pf_sim *sim);
 void pf_sim_guard_motion(pf_sim *sim, double dt);
 int pf_sim_guard_check(pf_sim *sim);
 void pf_sim_guard_free(pf_sim *sim);
-/* sim/body_state.c: the bond rows of every owned point (PD families, FE node
- * adjacency); the FE bodies' element state as tables (name fem_<body>); a re-partition that
- * keeps the element state. */
+/* sim/body_state.c: body b's span of the store; the bond rows of every owned point (PD
+ * families, FE node adjacency); the bodies' per-element state as tables (name fem_<body>, the
+ * kinds with table ops); a re-partition that keeps that state. */
+pf_body_span pf_sim_span(const pf_sim *sim, int b);
 int pf_sim_bond_rows(const pf_sim *sim, pf_bond_rows *rows);
-void pf_sim_fem_table_name(const pf_sim *sim, int b, char *out, size_t len);
-int pf_sim_fem_tables(const pf_sim *sim, pf_table *t, int *n);
-void pf_sim_fem_tables_free(pf_table *t, int n);
-int pf_sim_settle_keeping_fem(pf_sim *sim, pf_bond_rows *rows);
+/* 1 when body b keeps a state table: t gets its name, total and ncomp, *nlocal its local rows. */
+int pf_sim_table_shape(const pf_sim *sim, int b, pf_table *t, pf_int *nlocal);
+int pf_sim_body_tables(const pf_sim *sim, pf_table *t, int *n);
+void pf_sim_body_tables_free(pf_table *t, int n);
+int pf_sim_settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows);
 /* sim/contact.c: rigid surfaces and contact pairs from the deck (after the bodies);
  * the contact's view of the bodies after every (re)partition. */
 int pf_sim_build_contact(pf_sim *sim);
 int pf_sim_contact_attach(pf_sim *sim);
-/* Contact forces (rigid surfaces and pairs) at the current positions, dt the step just taken;
- * sets contact_energy. Collective. */
+/* Contact forces (rigid surfaces, pairs and walls) at the current positions, dt the step just
+ * taken; sets the reactions and contact_energy (one reduction). Collective. */
 int pf_sim_contact_forces(pf_sim *sim, double dt);
 /* The stable step of the penalties. Collective. */
 double pf_sim_contact_stable_dt(pf_sim *sim);

@@ -10,25 +10,27 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The stable step of the PD bodies whose step changes as they deform (correspondence), now. */
-static double varying_pd_step(pf_sim *sim) {
-  double pd = INFINITY;
-  for (int b = 0; b < sim->nbodies; b++)
-    if (sim->body[b] && pf_pd_body_step_varies(sim->body[b]))
-      pd = fmin(pd, pf_pd_body_stable_dt(sim->body[b], sim->pts));
-  return pd;
+static int step_varies(const pf_body *body) {
+  return body->ops->step_varies && body->ops->step_varies(body->data);
 }
 
-/* The stable step of the set-up: the fixed one of the other PD bodies and of the contact
- * penalties (kept in pd_stable), the varying PD bodies' and the FE elements' in their reference
- * shape. Collective. */
-static double stable_step(pf_sim *sim) {
-  double pd = INFINITY, fe = INFINITY;
+/* The stable step of the bodies whose step changes as they deform (FE elements, correspondence
+ * points), now. */
+static double varying_step(pf_sim *sim) {
+  double dt = INFINITY;
   for (int b = 0; b < sim->nbodies; b++)
-    if (sim->fem[b]) fe = fmin(fe, pf_fem_body_stable_dt(sim->fem[b]));
-    else if (!pf_pd_body_step_varies(sim->body[b])) pd = fmin(pd, pf_pd_body_stable_dt(sim->body[b], sim->pts));
-  sim->pd_stable = fmin(pf_min_all(pd), pf_sim_contact_stable_dt(sim)); /* with the penalties' */
-  return fmin(sim->pd_stable, pf_min_all(fmin(fe, varying_pd_step(sim))));
+    if (step_varies(&sim->body[b])) dt = fmin(dt, sim->body[b].ops->stable_dt(sim->body[b].data, sim->pts));
+  return dt;
+}
+
+/* The stable step of the set-up: the fixed one of the other bodies and of the contact penalties
+ * (kept in pd_stable), and the varying bodies' in their reference shape. Collective. */
+static double stable_step(pf_sim *sim) {
+  double fixed = INFINITY;
+  for (int b = 0; b < sim->nbodies; b++)
+    if (!step_varies(&sim->body[b])) fixed = fmin(fixed, sim->body[b].ops->stable_dt(sim->body[b].data, sim->pts));
+  sim->pd_stable = fmin(pf_min_all(fixed), pf_sim_contact_stable_dt(sim)); /* with the penalties' */
+  return fmin(sim->pd_stable, pf_min_all(varying_step(sim)));
 }
 
 int pf_sim_setup_time(pf_sim *sim) {
@@ -45,8 +47,8 @@ int pf_sim_setup_time(pf_sim *sim) {
   double stable = stable_step(sim);
   sim->safety = safety;
   sim->dt = safety * stable;
-  int varies = sim->nfem > 0; /* FE elements and correspondence points change their stable step */
-  for (int b = 0; b < sim->nbodies; b++) varies |= sim->body[b] && pf_pd_body_step_varies(sim->body[b]);
+  int varies = 0; /* FE elements and correspondence points change their stable step */
+  for (int b = 0; b < sim->nbodies; b++) varies |= step_varies(&sim->body[b]);
   sim->adaptive = varies && !pf_node_get(tm, "dt");
   if (pf_node_get(tm, "dt")) {
     PF_CALL(pf_deck_real(d, tm, "dt", &sim->dt));
@@ -78,10 +80,7 @@ int pf_sim_setup_time(pf_sim *sim) {
  * Collective. */
 static void next_dt(pf_sim *sim) {
   if (!sim->adaptive) return;
-  double fe = INFINITY;
-  for (int b = 0; b < sim->nbodies; b++)
-    if (sim->fem[b]) fe = fmin(fe, pf_fem_body_stable_dt(sim->fem[b]));
-  sim->dt = sim->safety * fmin(sim->pd_stable, pf_min_all(fmin(fe, varying_pd_step(sim))));
+  sim->dt = sim->safety * fmin(sim->pd_stable, pf_min_all(varying_step(sim)));
 }
 
 int pf_sim_finished(const pf_sim *sim) {
@@ -147,20 +146,18 @@ static void drift(pf_points *p, double dt) {
 static int compute_forces(pf_sim *sim, double dt) {
   pf_points *p = sim->pts;
   PF_CALL(pf_points_exchange_positions(p)); /* the ghosts' u and y */
-  int rates = sim->nfem > 0; /* element and correspondence rates of deformation need the ghosts' v */
-  for (int b = 0; b < sim->nbodies; b++) rates |= sim->body[b] && pf_pd_body_uses_velocity(sim->body[b]);
+  int rates = 0; /* element and correspondence rates of deformation need the ghosts' v */
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_body *body = &sim->body[b];
+    rates |= body->ops->uses_velocity && body->ops->uses_velocity(body->data);
+  }
   if (rates) PF_CALL(pf_points_exchange(p, p->v, 3));
   memset(p->f, 0, sizeof(double) * 3 * (size_t)p->n_owned);
+  for (int b = 0; b < sim->nbodies; b++) /* an inverted element trips the guard: the step's end decides */
+    PF_CALL(sim->body[b].ops->force(sim->body[b].data, p, dt, sim->t, sim->step, &sim->guard_tripped));
   for (int b = 0; b < sim->nbodies; b++)
-    if (sim->body[b]) PF_CALL(pf_pd_body_force(sim->body[b], p, dt));
-    else if (pf_fem_body_force(sim->fem[b], p, dt, sim->t, sim->step))
-      sim->guard_tripped = 1; /* an inverted element: the step's end decides, on every rank */
-  for (int b = 0; b < sim->nbodies; b++) {
-    pf_pd_body *pd = sim->body[b] ? sim->body[b] : pf_fem_body_pd(sim->fem[b]);
-    if (pd) sim->damage_dissipation += pf_pd_body_take_damage_work(pd);
-  }
-  PF_CALL(pf_sim_contact_forces(sim, dt));
-  for (int k = 0; k < sim->nwalls; k++) pf_wall_enforce_force(sim->walls[k], p, sim->wall_reaction[k]);
+    if (sim->body[b].ops->take_damage_work) sim->damage_dissipation += sim->body[b].ops->take_damage_work(sim->body[b].data);
+  PF_CALL(pf_sim_contact_forces(sim, dt)); /* rigid surfaces, pairs and walls */
   return 0;
 }
 
@@ -183,8 +180,7 @@ static int one_step(pf_sim *sim) {
   for (int k = 0; k < sim->nbcs; k++) pf_bc_apply_endstep(sim->bcs[k], p, sim->t, dt, &sim->bc_work);
   PF_CALL(pf_sim_guard_check(sim)); /* collective: every rank stops, back at the last good state */
   for (int b = 0; b < sim->nbodies; b++)
-    if (sim->body[b]) PF_CALL(pf_pd_body_post_step(sim->body[b], p));
-    else if (pf_fem_body_pd(sim->fem[b])) PF_CALL(pf_pd_body_post_step(pf_fem_body_pd(sim->fem[b]), p));
+    if (sim->body[b].ops->post_step) PF_CALL(sim->body[b].ops->post_step(sim->body[b].data, p));
   return 0;
 }
 
@@ -213,18 +209,10 @@ int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g) {
   free(fixed);
   double el = 0, nb = 0, nbroken = 0, fe[3] = {0, 0, 0};
   for (int b = 0; b < sim->nbodies; b++) {
-    if (sim->fem[b]) {
-      double e[3];
-      pf_fem_body_energies(sim->fem[b], e);
-      for (int c = 0; c < 3; c++) fe[c] += e[c];
-      pf_pd_body *cp = pf_fem_body_pd(sim->fem[b]); /* a coupled PD operator: its blended share */
-      if (cp) el += pf_pd_body_energy(cp, sim->pts), nb += (double)pf_pd_body_nbonds(cp);
-      if (cp) nbroken += (double)pf_pd_body_damage(cp, sim->pts);
-      continue;
-    }
-    el += pf_pd_body_energy(sim->body[b], sim->pts);
-    nbroken += (double)pf_pd_body_damage(sim->body[b], sim->pts);
-    nb += (double)pf_pd_body_nbonds(sim->body[b]);
+    pf_body_energies e;
+    sim->body[b].ops->energies(sim->body[b].data, sim->pts, &e);
+    el += e.elastic, nb += e.bonds, nbroken += e.broken;
+    for (int c = 0; c < 3; c++) fe[c] += e.fe[c];
   }
   g->time = sim->t;
   g->kinetic = pf_sum_all(ke);

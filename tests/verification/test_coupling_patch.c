@@ -73,7 +73,7 @@ static double run(const char *form, const field *u, const double want[3], double
       }
       p->v[3 * i + a] = d / DT, p->u[3 * i + a] = d, p->y[3 * i + a] = X[a] + d, p->f[3 * i + a] = 0;
     }
-  PF_TEST_OK(pf_fem_body_force(pf_sim_fem_body(sim, 0), p, DT, 0.0, 0));
+  PF_TEST_OK(pf_sim_body_force(sim, 0, DT));
   double worst = 0;
   for (int r = 0; r < 4; r++) worst_by_region[r] = 0;
   for (pf_int i = 0; i < p->n_owned; i++) {

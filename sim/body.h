@@ -1,0 +1,106 @@
+/* The body interface of the driver (docs/architecture.md §3): every kind of body (peridynamic,
+ * finite-element, coupled) is an ops table registered by name in sim/body_kinds.h, and the rest of
+ * sim/ calls bodies only through it. Required ops fail the set-up with the kind's name when
+ * missing; optional ones (NULL) default as each comment says. Private to sim/. */
+#ifndef PF_SIM_BODY_H
+#define PF_SIM_BODY_H
+
+#include "pd/pd.h"
+#include "mesh/mesh.h"
+
+/* Where a body's points sit: store body index, its owned points [first, first + n) and the
+ * global id of its first point (its points' ids are gid0 + generation order). */
+typedef struct {
+  int index;
+  pf_gid gid0;
+  pf_int first, n;
+} pf_body_span;
+
+/* Energies and bond counts of a body's owned points and elements (J; counts of directed bonds). */
+typedef struct {
+  double elastic;   /* PD stored energy */
+  double fe[3];     /* elements: stress work, hourglass energy, bulk-viscosity work */
+  double bonds, broken;
+} pf_body_energies;
+
+typedef struct {
+  const char *type; /* the deck's `type:` */
+  /* Required. The keys of the body mapping; is this mapping of `type` this kind (NULL: yes)? */
+  const pf_key *(*keys)(void);
+  int (*claims)(const pf_node *body);
+  int (*create)(const pf_deck *d, const pf_node *body, const pf_node *materials, void **data);
+  int (*destroy)(void **data);
+  /* The body's points at set-up (every rank generates them all). */
+  int (*cloud)(const void *data, const pf_deck *d, const pf_node *body, pf_point_cloud *pc);
+  /* The rows of the span's owned points: at set-up found in the whole cloud (find_rows),
+   * afterwards the current ones (rows: re-partitions, checkpoints). */
+  int (*find_rows)(void *data, const pf_point_cloud *pc, const pf_points *pts, const pf_body_span *s,
+                   pf_bond_rows *rows);
+  int (*rows)(const void *data, const pf_points *pts, const pf_body_span *s, pf_bond_rows *rows);
+  /* Take the span's points (ghosts added; rows and local as pf_pd_body_attach). Collective. */
+  int (*attach)(void *data, pf_points *pts, const pf_body_span *s, const pf_bond_rows *rows,
+                const pf_int *local, int fresh);
+  /* Add the internal forces to pts->f; dt the step just taken (0: initial forces). A failure that
+   * must stop every rank at the step's end (an inverted element) sets *tripped and returns 0. */
+  int (*force)(void *data, pf_points *pts, double dt, double t, long step, int *tripped);
+  /* The stable step now, s (not collective). */
+  double (*stable_dt)(const void *data, const pf_points *pts);
+  /* Optional. Does the stable step change as the body deforms (NULL: no)? Do the forces read
+   * the neighbours' velocities (NULL: no)? */
+  int (*step_varies)(const void *data);
+  int (*uses_velocity)(const void *data);
+  /* Optional: after the step (damage-law state; NULL: nothing). */
+  int (*post_step)(void *data, pf_points *pts);
+  /* Optional: energy released by bonds failed since the last call, J (NULL: none). */
+  double (*take_damage_work)(void *data);
+  /* Required: energies and bond counts; may write the "damage" field. */
+  void (*energies)(const void *data, pf_points *pts, pf_body_energies *e);
+  /* Optional: the bonds (NULL: none); their memory per directed bond, bytes. */
+  const pf_family *(*family)(const void *data);
+  double (*bytes_per_bond)(const void *data);
+  /* Optional: give the bonds broken since the last call their rest length (self-contact). */
+  void (*record_breaks)(void *data, const pf_points *pts);
+  /* Required: density (kg/m^3) and bulk modulus (Pa); optional: the largest horizon, m. */
+  void (*material)(const void *data, double *density, double *bulk_modulus);
+  double (*horizon)(const void *data);
+  /* Optional: how far store point i may move in one step before the guard stops the run, and
+   * what that length is called (NULL: the point's cell edge, "cell"). */
+  double (*reach)(const void *data, const pf_points *pts, pf_int i);
+  const char *reach_name;
+  /* Optional: the hexahedral mesh (output blocks, element counts, contact surfaces of a body
+   * without bonds) and its deleted elements (NULL: none). */
+  const pf_mesh *(*mesh)(const void *data);
+  const uint8_t *(*eroded)(const void *data, long *count);
+  /* Optional: fill the body's output fields before an Exodus step. */
+  int (*output_fields)(void *data, pf_points *pts);
+  /* Optional: state kept per element rather than per point, as one table of `total` rows of
+   * `ncomp` reals (re-partitions and checkpoints gather it whole); table_get fills this rank's
+   * owned rows (room for nlocal) and returns their count; table_set restores from the whole table. */
+  void (*table_shape)(const void *data, pf_gid *total, int *ncomp, pf_int *nlocal);
+  pf_int (*table_get)(const void *data, pf_gid *ids, double *rows);
+  void (*table_set)(void *data, const double *full);
+  /* Optional: a stable step carried across re-partitions and restarts (that of the last force
+   * evaluation, which the state alone does not give back). */
+  void (*set_stable_dt)(void *data, double dt);
+  /* Optional, for tests and tools (pf_sim_body, pf_sim_fem_body): the body's PD or FE operator. */
+  pf_pd_body *(*as_pd)(void *data);
+  struct pf_fem_body *(*as_fem)(void *data);
+} pf_body_ops;
+
+/* A body of the simulation. */
+typedef struct {
+  const pf_body_ops *ops;
+  void *data;
+  const char *name;
+} pf_body;
+
+/* The kind of the deck's body mapping (by `type:`, default peridynamic, then by claims); an
+ * unknown type is an input error listing the known ones. */
+int pf_body_kind(const pf_deck *d, const pf_node *body, const pf_body_ops **ops);
+/* The registered kinds in list order; is kind k the first of its type (whose keys are the
+ * type's: the kinds of one type share one key table)? */
+int pf_body_kind_count(void);
+const pf_body_ops *pf_body_kind_at(int k);
+int pf_body_kind_first_of_type(int k);
+
+#endif
