@@ -14,6 +14,11 @@ static const pf_body_ops *const kinds[] = {
 };
 enum { NKINDS = sizeof kinds / sizeof kinds[0] };
 
+int pf_body_always(const void *data) {
+  (void)data;
+  return 1;
+}
+
 int pf_body_kind_count(void) { return NKINDS; }
 
 const pf_body_ops *pf_body_kind_at(int k) { return kinds[k]; }
@@ -46,7 +51,7 @@ int pf_body_kind(const pf_deck *d, const pf_node *body, const pf_body_ops **ops)
     return pf_deck_error(d, pf_node_get(body, "type"), "type", "unknown body type '%s' (known: %s)", type,
                          type_names());
   const pf_body_ops *o = *ops; /* the required ops */
-  PF_CHECK(o->keys && o->create && o->destroy && o->cloud && o->find_rows && o->rows && o->attach && o->force &&
+  PF_CHECK(o->keys && o->create && o->destroy && o->cloud && o->rows && o->attach && o->force &&
                o->stable_dt && o->energies && o->material,
            PF_ERR_RUN, "body kind '%s' lacks a required op (sim/body.h)", o->type);
   return 0;

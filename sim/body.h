@@ -32,11 +32,11 @@ typedef struct {
   int (*destroy)(void **data);
   /* The body's points at set-up (every rank generates them all). */
   int (*cloud)(const void *data, const pf_deck *d, const pf_node *body, pf_point_cloud *pc);
-  /* The rows of the span's owned points: at set-up found in the whole cloud (find_rows),
-   * afterwards the current ones (rows: re-partitions, checkpoints). */
+  /* The rows of the span's owned points: the current ones (rows: re-partitions, checkpoints)
+   * and, optionally, at set-up those found in the whole cloud (find_rows; NULL: rows). */
+  int (*rows)(const void *data, const pf_points *pts, const pf_body_span *s, pf_bond_rows *rows);
   int (*find_rows)(void *data, const pf_point_cloud *pc, const pf_points *pts, const pf_body_span *s,
                    pf_bond_rows *rows);
-  int (*rows)(const void *data, const pf_points *pts, const pf_body_span *s, pf_bond_rows *rows);
   /* Take the span's points (ghosts added; rows and local as pf_pd_body_attach). Collective. */
   int (*attach)(void *data, pf_points *pts, const pf_body_span *s, const pf_bond_rows *rows,
                 const pf_int *local, int fresh);
@@ -102,5 +102,7 @@ int pf_body_kind(const pf_deck *d, const pf_node *body, const pf_body_ops **ops)
 int pf_body_kind_count(void);
 const pf_body_ops *pf_body_kind_at(int k);
 int pf_body_kind_first_of_type(int k);
+/* An optional flag op that is always true (step_varies, uses_velocity). */
+int pf_body_always(const void *data);
 
 #endif

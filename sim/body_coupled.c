@@ -29,12 +29,6 @@ static int rows(const void *data, const pf_points *pts, const pf_body_span *s, p
   return pf_coupled_body_rows(data, pts, s->first, s->n, s->gid0, out);
 }
 
-static int find_rows(void *data, const pf_point_cloud *pc, const pf_points *pts, const pf_body_span *s,
-                     pf_bond_rows *out) {
-  (void)pc;
-  return rows(data, pts, s, out);
-}
-
 static int attach(void *data, pf_points *pts, const pf_body_span *s, const pf_bond_rows *r, const pf_int *local,
                   int fresh) {
   return pf_coupled_body_attach(data, s->index, pts, s->first, s->n, s->gid0, r, local, fresh);
@@ -80,11 +74,6 @@ static void table_set(void *data, const double *full) { fe->table_set(fem_of(dat
 static void set_stable_dt(void *data, double dt) { fe->set_stable_dt(fem_of(data), dt); }
 static pf_fem_body *as_fem(void *data) { return fem_of(data); }
 
-static int always(const void *data) {
-  (void)data;
-  return 1;
-}
-
 const pf_body_ops pf_body_kind_coupled = {
     .type = "finite_element",
     .keys = pf_coupled_body_keys,
@@ -92,13 +81,12 @@ const pf_body_ops pf_body_kind_coupled = {
     .create = create,
     .destroy = destroy,
     .cloud = cloud,
-    .find_rows = find_rows,
     .rows = rows,
     .attach = attach,
     .force = force,
     .stable_dt = stable_dt,
-    .step_varies = always,
-    .uses_velocity = always,
+    .step_varies = pf_body_always,
+    .uses_velocity = pf_body_always,
     .post_step = post_step,
     .take_damage_work = take_damage_work,
     .energies = energies,

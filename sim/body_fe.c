@@ -24,12 +24,6 @@ static int rows(const void *data, const pf_points *pts, const pf_body_span *s, p
   return pf_fem_body_node_rows(data, pts, s->first, s->n, s->gid0, out);
 }
 
-static int find_rows(void *data, const pf_point_cloud *pc, const pf_points *pts, const pf_body_span *s,
-                     pf_bond_rows *out) {
-  (void)pc;
-  return rows(data, pts, s, out);
-}
-
 static int attach(void *data, pf_points *pts, const pf_body_span *s, const pf_bond_rows *r, const pf_int *local,
                   int fresh) {
   (void)r, (void)local, (void)fresh;
@@ -45,11 +39,6 @@ static int force(void *data, pf_points *pts, double dt, double t, long step, int
 static double stable_dt(const void *data, const pf_points *pts) {
   (void)pts;
   return pf_fem_body_stable_dt(data);
-}
-
-static int always(const void *data) {
-  (void)data;
-  return 1;
 }
 
 static void energies(const void *data, pf_points *pts, pf_body_energies *e) {
@@ -84,13 +73,12 @@ const pf_body_ops pf_body_kind_fe = {
     .create = create,
     .destroy = destroy,
     .cloud = cloud,
-    .find_rows = find_rows,
     .rows = rows,
     .attach = attach,
     .force = force,
     .stable_dt = stable_dt,
-    .step_varies = always,  /* the elements' step follows their deformation */
-    .uses_velocity = always, /* rates of deformation */
+    .step_varies = pf_body_always,  /* the elements' step follows their deformation */
+    .uses_velocity = pf_body_always, /* rates of deformation */
     .energies = energies,
     .material = material,
     .mesh = mesh,

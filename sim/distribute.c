@@ -105,7 +105,9 @@ int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc) {
     pf_int n = 0;
     while (first + n < sim->pts->n_owned && sim->pts->body[first + n] == b) n++;
     const pf_body_span s = {b, gid0[b], first, n};
-    ierr = sim->body[b].ops->find_rows(sim->body[b].data, &pc[b], sim->pts, &s, &rows);
+    const pf_body *body = &sim->body[b];
+    ierr = body->ops->find_rows ? body->ops->find_rows(body->data, &pc[b], sim->pts, &s, &rows)
+                                : body->ops->rows(body->data, sim->pts, &s, &rows);
     first += n;
   }
   if (!ierr) ierr = pf_sim_settle(sim, &rows, 1);
