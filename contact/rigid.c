@@ -13,7 +13,7 @@
  *   quadratic law (default): F = k d^2 V_i, energy k d^3 V_i / 3, k in N/m^5. This is LAMMPS
  *     fix indent as used with the PERI package, where per-atom forces are force densities, so
  *     the force density k d^2 times V_i: the indenter of the Silling & Askari 2005 / Parks et
- *     al. 2008 disk impact (k = 1e17 N/m^5); the foundation's contact/indenter.c, whose
+ *     al. 2008 disk impact (k = 1e17 N/m^5); the foundation's contact/rigid.c, whose
  *     arithmetic is kept here operation for operation for the frictionless sphere and plane.
  *   linear law: F = k d, energy k d^2 / 2, k in N/m (a penalty spring per point; the stable
  *     step of a point of mass m on it is 2 / omega = 2 sqrt(m / k)).
@@ -244,7 +244,7 @@ int pf_rigid_force_local(pf_rigid *r, pf_points *pts, double dt, double sums[4],
     double depth, dir[3];
     if (!acts_on(r, pts, i) || !penetration(r, &pts->y[3 * (size_t)i], &depth, dir)) continue;
     double F;
-    if (r->law == LAW_QUADRATIC) { /* F = k d^2 V, U = k d^3 V / 3 (as contact/indenter.c) */
+    if (r->law == LAW_QUADRATIC) { /* F = k d^2 V, U = k d^3 V / 3 (as contact/rigid.c) */
       F = k * depth * depth * pts->vol[i];
       U += k * depth * depth * depth * pts->vol[i] / 3.0;
     } else { /* F = k d, U = k d^2 / 2 */
