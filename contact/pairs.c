@@ -349,7 +349,7 @@ static int share_cmp(const void *a, const void *b) {
 
 /* Sum each owned node's shares in (pair, particle) order. */
 static void sum_shares(pf_contact *c, share_list *mine) {
-  qsort(mine->s, (size_t)mine->n, sizeof *mine->s, share_cmp);
+  if (mine->n > 1) qsort(mine->s, (size_t)mine->n, sizeof *mine->s, share_cmp); /* (s is NULL when empty) */
   for (int64_t q = 0; q < mine->n; q++) {
     const node_share *s = &mine->s[q];
     pf_int j = c->node_view[(int)s->body][(pf_int)((pf_gid)s->node - c->body[(int)s->body].gid0)];

@@ -42,14 +42,18 @@ static int add_rigid(pf_sim *sim, const pf_node *list) {
   return 0;
 }
 
-int pf_sim_build_contact(pf_sim *sim) {
+int pf_sim_build_rigid(pf_sim *sim) {
   const pf_node *root = pf_deck_root(sim->deck), *contact = pf_node_get(root, "contact");
   const pf_node *inds = pf_node_get(root, "indenters"), *surf = pf_node_get(contact, "rigid_surfaces");
   int n = pf_node_count(inds) + pf_node_count(surf);
   PF_MALLOC(sim->rigid, n);
   PF_MALLOC(sim->reaction, n);
   PF_CALL(add_rigid(sim, inds));
-  PF_CALL(add_rigid(sim, surf));
+  return add_rigid(sim, surf);
+}
+
+int pf_sim_build_contact(pf_sim *sim) {
+  const pf_node *contact = pf_node_get(pf_deck_root(sim->deck), "contact");
   if (!contact) return 0;
   pf_contact_body cb[PF_MAX_BODIES];
   contact_bodies(sim, cb);

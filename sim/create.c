@@ -124,6 +124,7 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
     return pf_deck_error(sim->deck, pf_node_get(pf_node_get(root, "output"), "layout"), "layout",
                          "finite_element bodies are written joined (a spread file set would cut "
                          "elements at the rank boundaries); use output.layout: joined");
+  PF_CALL(pf_sim_build_rigid(sim)); /* (a checkpoint holds their positions and reactions) */
   if (sim->opt.restart_from) return pf_sim_restore_points(sim); /* points and velocities from the file */
   pf_point_cloud pc[PF_MAX_BODIES];
   memset(pc, 0, sizeof pc);

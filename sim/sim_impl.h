@@ -149,6 +149,9 @@ int pf_sim_settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows);
 /* sim/contact.c: rigid surfaces and contact pairs from the deck (after the bodies);
  * the contact's view of the bodies after every (re)partition. */
 int pf_sim_build_contact(pf_sim *sim);
+/* The rigid surfaces (`contact: rigid_surfaces:` and `indenters:`): after the bodies' names and
+ * before a restart reads the checkpoint, whose scalars hold their positions. */
+int pf_sim_build_rigid(pf_sim *sim);
 int pf_sim_contact_attach(pf_sim *sim);
 /* Contact forces (rigid surfaces, pairs and walls) at the current positions, dt the step just
  * taken; sets the reactions and contact_energy (one reduction). Collective. */

@@ -12,6 +12,8 @@
 #     adaptive step, rigid wall): a run with a checkpoint at step 160 on 2 ranks, restarted on
 #     3 and on 1, ends with the uninterrupted 1-rank run's digest; the same with element
 #     erosion (elements deleted before and after the checkpoint).
+#  6. PD materials with history, the coupled bar, contact, and a rigid indenter (1 -> 1, 1 -> 3,
+#     2 -> 2, 2 -> 1): restarts end with the uninterrupted run's digest.
 # usage: mpi_restart.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
@@ -122,5 +124,19 @@ sed -E 's#\.\./\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/data/sphere_on_blo
 for m in ep jc cb cc cn sb; do
   printf 'restart:\n  file: ck%s.h5\n  interval: %d\n' $m $(case $m in ep) echo 60 ;; jc) echo 150 ;; sb) echo 100 ;; *) echo 25 ;; esac) >> $m$tag.yaml
   check_restart $m$tag.yaml ck$m.h5 $m
+done
+# A rigid indenter (inputs/disk_impact_rigid.yaml, reduced: radius 12 mm, 60 steps, checkpoint at
+# step 50): its position and reaction travel in the checkpoint's scalars, which must know the
+# indenter when the restart reads them. Written on 1 rank, restarted on 1 and 3; written on 2,
+# restarted on 2 and 1: each ends with the uninterrupted 1-rank run's digest.
+sed -E 's/radius: 0.037/radius: 0.012/; s/^(\s*)final_time:.*/\1steps: 60/' "$OLDPWD/../inputs/disk_impact_rigid.yaml" > ri$tag.yaml
+printf 'restart:\n  file: ckri.h5\n  interval: 25\n' >> ri$tag.yaml
+ref=$(digest_of "$(run 1 "$exe" --quiet ri$tag.yaml 2>&1)")
+for pair in "1 1" "1 3" "2 2" "2 1"; do
+  set -- $pair
+  rm -f ckri.h5
+  run $1 "$exe" --quiet ri$tag.yaml > /dev/null 2>&1 || { echo "indenter: the run with checkpoints on $1 ranks failed"; fail=1; }
+  d=$(digest_of "$(run $2 "$exe" --quiet --restart ckri.h5 ri$tag.yaml 2>&1)")
+  [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "indenter: written on $1 ranks, restarted on $2: digest '$d', uninterrupted '$ref'"; fail=1; }
 done
 exit $fail
