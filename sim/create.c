@@ -185,7 +185,9 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   PF_CALL(pf_sim_setup_time(sim));
   PF_CALL(pf_sim_setup_output(sim));
   PF_CALL(pf_sim_setup_restart(sim));
-  if (sim->opt.restart_from) PF_CALL(pf_sim_restore_state(sim));
+  if (sim->opt.restart_from) PF_CALL(pf_sim_restore_state(sim)); /* (renames the outputs) */
+  pf_sim_fragments_name(sim);
+  PF_CALL(pf_sim_check_paths(sim));
   return 0;
 }
 

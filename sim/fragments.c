@@ -160,6 +160,12 @@ int pf_sim_fragments(pf_sim *sim, int final) {
   return ierr;
 }
 
+void pf_sim_fragments_name(pf_sim *sim) {
+  size_t stem = strlen(sim->exodus_path);
+  if (stem > 2 && !strcmp(sim->exodus_path + stem - 2, ".e")) stem -= 2;
+  snprintf(sim->fragments_path, sizeof sim->fragments_path, "%.*s.fragments.csv", (int)stem, sim->exodus_path);
+}
+
 int pf_sim_fragments_setup(pf_sim *sim) {
   if (!sim->fragments) return 0;
   int idx;

@@ -175,9 +175,6 @@ static int open_exodus(pf_sim *sim, globals *g) {
 
 static int open_output(pf_sim *sim, globals *g) {
   if (sim->opt.no_output) return 0;
-  size_t stem = strlen(sim->exodus_path);
-  if (stem > 2 && !strcmp(sim->exodus_path + stem - 2, ".e")) stem -= 2;
-  snprintf(sim->fragments_path, sizeof sim->fragments_path, "%.*s.fragments.csv", (int)stem, sim->exodus_path);
   PF_CALL(open_exodus(sim, g));
   PF_CALL(pf_history_create(sim->history_path, g->n + 2, (const char *const *)g->names, g->units, &sim->hist));
   return 0;

@@ -119,6 +119,11 @@ int pf_sim_setup_output(pf_sim *sim);
 /* sim/fragments.c: the "fragment" field (registered by _setup when the deck asks)
  * and <file>.fragments.csv at an Exodus step; final: also the summary lines. Collective. */
 int pf_sim_fragments_setup(pf_sim *sim);
+/* The fragments table's name, <Exodus file less .e>.fragments.csv (after the output names). */
+void pf_sim_fragments_name(pf_sim *sim);
+/* sim/paths.c: no output may be an input (deck, meshes, point files, the checkpoint restarted
+ * from) or another output, compared through the file system; an input error naming the key. */
+int pf_sim_check_paths(pf_sim *sim);
 int pf_sim_fragments(pf_sim *sim, int final);
 /* sim/probes.c: output.probes, mass-averaged quantities over regions. The columns'
  * count and names; _eval fills values[count] (collective; a probe whose region holds no point

@@ -119,9 +119,6 @@ int pf_sim_setup_output(pf_sim *sim) {
     return pf_deck_error(d, pf_node_get(out, "history_interval"), "history_interval", "must be at least 1");
   pf_sim_output_name(sim, file, ".e", sim->exodus_path, sizeof sim->exodus_path);
   pf_sim_output_name(sim, hfile, ".h5", sim->history_path, sizeof sim->history_path);
-  if (!strcmp(sim->exodus_path, sim->history_path))
-    return pf_deck_error(d, pf_node_get(out, "history_file"), "history_file",
-                         "the history would overwrite the Exodus file '%s'", sim->exodus_path);
   return 0;
 }
 
