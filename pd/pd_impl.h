@@ -81,9 +81,9 @@ struct pf_pd_body {
  * positions) before marking it PF_BOND_BROKEN, all within one force pass. */
 enum { PF_BOND_BROKEN = 1, PF_BOND_FRESH = 2 };
 
-/* A material: one file, one line in pd/materials.h (STYLE.md 2). Required: create, force,
- * energy. Optional: setup (NULL: nothing to precompute), micromodulus (NULL: the bulk-modulus
- * estimate 18 K / (pi delta^4) is used for the time step). */
+/* A material: one file, one line in pd/materials.h (docs/architecture.md §5). Required: create,
+ * force, energy. Optional: setup (NULL: nothing to precompute), micromodulus (NULL: the
+ * bulk-modulus estimate 18 K / (pi delta^4) is used for the time step). */
 struct pf_pd_material_ops {
   const char *name;
   int (*create)(const pf_deck *d, const pf_node *mat, pf_pd_body *b);

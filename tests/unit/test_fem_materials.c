@@ -44,7 +44,7 @@
 
 static pf_material *must_load(const char *text) { return pf_test_material_must_load(text, "test"); }
 
-/* ---- conformance suite over every registered model (STYLE.md 10) ------------------------- */
+/* ---- conformance suite over every registered model -------------------------------------- */
 typedef struct {
   const char *model, *deck;
   int hyper;  /* stress from F alone (ignores the incoming stress) */
