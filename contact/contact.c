@@ -1,17 +1,17 @@
 /* Contact between bodies: the `contact:` deck section, defaults derived from the materials and
  * the discretization, the stable step of the penalties, and the per-step entry point.
  *
- * Short range (PD <-> PD, and a PD body with itself): Littlewood (seed 001, "Contact in
+ * Short range (PD <-> PD, and a PD body with itself): Littlewood (2014, "Contact in
  * peridynamic simulations"; Silling & Askari 2005) f = C (r_c - r) V_i V_j for r < r_c, along
  * the line of centres, with C = 18 k_s / (pi delta^5): Peridigm's short-range force
  * c = 9 k_s / (pi delta^4) per unit volume per unit (r_c - r)/delta, which Peridigm applies from
- * both ends of each pair (REFERENCES.md "Contact"), so one pair carries twice it. By default
+ * both ends of each pair, so one pair carries twice it. By default
  * bonded points do not interact (their bond carries the load); `all_points: true` acts on
  * every pair within r_c, as Peridigm does. Two points of one body use min(r_c, 0.9 |x_i - x_j|,
  * the rest length of their broken bond) (contact/pairs.c pair_radius, docs/theory/contact.md
  * sec. 1.1).
  *
- * FE <-> PD (Tupek et al. 2013, seed 000 sec. 3.2: penalty forces between the FE nodes and the
+ * FE <-> PD (Tupek et al. 2013, sec. 3.2: penalty forces between the FE nodes and the
  * particles): `method: nodes` is the node-to-particle penalty f = k (r_c - d) between every
  * surface node and particle closer than r_c; `method: surface` (the default) takes the gap of a
  * particle to the closest point of the FE surface - a node, an edge or a face (the

@@ -1,8 +1,8 @@
-/* perifem contact (DESIGN.md 3): rigid analytic surfaces (sphere, plane, cylinder) pushing on
- * points, rigid planar walls, and the contact of bodies with each other: node-to-particle
- * penalty with a particle-to-face check between FE and PD bodies, short-range forces between PD
- * particles (other bodies, or fragments of one body), over a binned search with a skin that
- * works across MPI ranks. */
+/* perifem contact (docs/architecture.md §3): rigid analytic surfaces (sphere, plane, cylinder)
+ * pushing on points, rigid planar walls, and the contact of bodies with each other:
+ * node-to-particle penalty with a particle-to-face check between FE and PD bodies, short-range
+ * forces between PD particles (other bodies, or fragments of one body), over a binned search with a
+ * skin that works across MPI ranks. */
 #ifndef PF_CONTACT_H
 #define PF_CONTACT_H
 

@@ -1,4 +1,4 @@
-/* Bond lists in transit (DESIGN.md 6): rows of neighbour global ids with their per-bond state
+/* Bond lists in transit: rows of neighbour global ids with their per-bond state
  * (broken flag, partial-volume fraction, rest length, and the reals a material keeps per bond,
  * e.g. the plastic extensions of elastic_plastic), the form in which families move between ranks
  * when points are (re)partitioned and in which checkpoints store them. */

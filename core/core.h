@@ -13,7 +13,7 @@
 
 #define PF_PI 3.14159265358979323846
 
-/* ---- integer types (STYLE.md 4) ---------------------------------------- */
+/* ---- integer types ----------------------------------------------------- */
 typedef int32_t pf_int; /* local indices */
 typedef int64_t pf_gid; /* global ids and global counts */
 #define PF_INT_FMT PRId32
@@ -21,7 +21,7 @@ typedef int64_t pf_gid; /* global ids and global counts */
 #define PF_INT_MPI MPI_INT32_T
 #define PF_GID_MPI MPI_INT64_T
 
-/* ---- errors (STYLE.md 5) ------------------------------------------------- */
+/* ---- errors ------------------------------------------------------------- */
 enum pf_error_code {
   PF_SUCCESS = 0,
   PF_ERR_RUN = 1,   /* a run failed: NaN, instability, I/O */
@@ -76,7 +76,7 @@ int pf_log_terminal(void);
 void pf_log_set_status(int mode);
 void pf_log_status(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
-/* ---- the point store (DESIGN.md 2) --------------------------------------- */
+/* ---- the point store (docs/architecture.md §2) -------------------------- */
 enum pf_field_flags {
   PF_FIELD_GHOST = 1,   /* exchanged with ghosts */
   PF_FIELD_RESTART = 2, /* written to restart files */

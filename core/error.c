@@ -1,4 +1,4 @@
-/* Error recording and logging (STYLE.md 5): the first error raised is kept with its origin
+/* Error recording and logging: the first error raised is kept with its origin
  * and printed once to stderr (with its source position when PERIFEM_DEBUG is set); the
  * PF_CALL levels above it return the same code without printing again. */
 #include "core/core.h"

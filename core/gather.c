@@ -1,4 +1,4 @@
-/* The joined view for output (DESIGN.md 6): rank 0 holds a copy of every owned point in
+/* The joined view for output: rank 0 holds a copy of every owned point in
  * global-id order (positions, displacement, velocity, force, body and the output fields), so
  * one Exodus file is the same whatever the number of ranks. Positions and bodies, which a
  * point keeps for good, are gathered once, when the view is created. */

@@ -1,4 +1,4 @@
-/* Ghost points and the halo exchange (DESIGN.md 6). Ghosts are exactly the neighbours of owned
+/* Ghost points and the halo exchange. Ghosts are exactly the neighbours of owned
  * points that another rank owns (taken from the bond rows, not from a geometric guess). They sit
  * after the owned points, grouped by owner rank and ascending in global id, so that each
  * owner's values arrive in one contiguous block; the owner sends them in the same order (an exchange

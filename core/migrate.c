@@ -1,4 +1,4 @@
-/* Moving owned points between ranks (DESIGN.md 6): every array and registered field of a point
+/* Moving owned points between ranks: every array and registered field of a point
  * and its bond row (with the per-bond state: broken flag, partial-volume fraction, rest length,
  * the materials' per-bond reals) travel together in one packed record, so that a (re)partition
  * keeps the complete state. Records are exchanged with one MPI_Alltoallv. */

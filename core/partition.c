@@ -1,4 +1,4 @@
-/* Partitioning the points over the ranks (DESIGN.md 6): Zoltan's recursive coordinate bisection
+/* Partitioning the points over the ranks: Zoltan's recursive coordinate bisection
  * of the reference positions, each point weighted by its intact bond count plus one (the work
  * of its force loop), or METIS k-way on the bond graph with the same vertex weights. The result is
  * the owner of every global id, the same table on every rank. */

@@ -1,5 +1,5 @@
-/* The point store (DESIGN.md 2): one structure of arrays for every kinematic point, with
- * per-module fields registered by name (as PETSc's DMSwarm and LAMMPS' atom_vec_peri do), so
+/* The point store (docs/architecture.md §2): one structure of arrays for every kinematic point,
+ * with per-module fields registered by name (as PETSc's DMSwarm and LAMMPS' atom_vec_peri do), so
  * that halo exchange, restart and output are written once. */
 #include "core/core.h"
 

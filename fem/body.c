@@ -1,9 +1,9 @@
 /* FE bodies: a hexahedral mesh whose nodes live in the point store beside the PD points, its
- * material, the element options, and the owner-computes assembly (DESIGN.md 2): every rank
- * evaluates each element that has one of its owned nodes (elements on a partition boundary are
- * evaluated by both ranks, identically, from the same ghosted node data), and each owned node
- * sums its elements' forces in ascending global element order. No reverse communication, and
- * the same bits on any number of ranks. */
+ * material, the element options, and the owner-computes assembly (docs/architecture.md §2): every
+ * rank evaluates each element that has one of its owned nodes (elements on a partition boundary are
+ * evaluated by both ranks, identically, from the same ghosted node data), and each owned node sums
+ * its elements' forces in ascending global element order. No reverse communication, and the same
+ * bits on any number of ranks. */
 #include "fem/fem_impl.h"
 
 #include <math.h>

@@ -1,4 +1,4 @@
-/* Internal forces of 8-node hexahedra, updated Lagrangian, explicit (DESIGN.md 3).
+/* Internal forces of 8-node hexahedra, updated Lagrangian, explicit (docs/architecture.md §3).
  *
  * Kinematics at mid-step (Belytschko, Liu & Moran 2000, Box 6.1): the velocity gradient
  * L = sum_I v_I (x) dN_I/dx on the mid-step configuration x_{n+1/2} = x_{n+1} - dt/2 v_{n+1/2},

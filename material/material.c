@@ -65,7 +65,7 @@ int pf_material_known(const char *model) { return find_model(model) != NULL; }
 
 const char *pf_material_names(void) { return model_names + 2; }
 
-/* Every key of the mapping must be one the model reads (STYLE.md 2: a key that would be
+/* Every key of the mapping must be one the model reads (a key that would be
  * silently ignored is an error naming it). */
 static int check_keys(const pf_deck *d, const pf_node *mat, const pf_material_ops *ops) {
   for (int i = 0; i < pf_node_count(mat); i++) {

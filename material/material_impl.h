@@ -1,4 +1,4 @@
-/* Private to material/: the constitutive-library plug-in table (STYLE.md 2-3, 8), the material
+/* Private to material/: the constitutive-library plug-in table, the material
  * object, small tensor helpers shared by the models, the radial-return scalar solver and the
  * Mie-Gruneisen equation of state. Theory: docs/theory/fem_materials.md.
  *

@@ -1,6 +1,6 @@
 /* Hexahedral meshes: the `mesh:` keys of an FE body, the choice of reader by file extension
- * (readers registered by name in mesh/readers.h, DESIGN.md 4), and the steps every mesh
- * goes through after its reader: block selection, dropping unused nodes, scale and translate,
+ * (readers registered by name in mesh/readers.h, docs/architecture.md §5), and the steps every
+ * mesh goes through after its reader: block selection, dropping unused nodes, scale and translate,
  * and validation (positive Jacobian at every corner of every element, inside-out blocks turned
  * over). See docs/meshes.md. */
 #include "mesh/mesh_impl.h"

@@ -1,5 +1,5 @@
 // panel_sandwich.geo: an extruded aluminium sandwich panel with a triangular corrugated core,
-// resembling the extruded 6061-T6 panels of Tupek et al. 2013 (seed 000, sec. 3.2; Wetzel 2009):
+// resembling the extruded 6061-T6 panels of Tupek et al. 2013 (sec. 3.2; Wetzel 2009):
 // two face sheets joined by inclined webs. The cross-section is drawn in the x-z plane as
 // quadrilateral blocks (face-sheet segments and parallelogram webs sharing their edges), meshed
 // transfinite, and extruded along y (the extrusion direction) in layers: all hexahedra.

@@ -1,6 +1,6 @@
 /* Families: O(n) cell-list neighbour search into CSR full neighbour lists, each row sorted by
- * global id (DESIGN.md 2: owner-computes, partition-independent summation order), with the
- * pre-crack bond filter and Peridigm's partial-volume fractions. */
+ * global id (docs/architecture.md §2: owner-computes, partition-independent summation order),
+ * with the pre-crack bond filter and Peridigm's partial-volume fractions. */
 #include "pd/pd_impl.h"
 
 #include <stdlib.h>

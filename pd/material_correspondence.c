@@ -16,9 +16,9 @@
  * Damage correspondence (Tupek et al. 2013, eqs. 6-7): w = w_xi(|xi|) w_D(D_i, D_j), w_D = 0 once
  * either end's damage (the model's state "damage") exceeds D_c: the bond fails for good, so both
  * Fbar (from the next step) and the force use the degraded w.
- * Zero-energy-mode control (Littlewood 2012, IMECE2012-87977; seed 001 "Suppression of Low-Energy
- * Modes"): each end predicts the neighbour at x_i + Fbar_i xi; the deviation Gamma_i = Fbar_i xi - Y
- * projected on the bond direction M = Y/|Y| gives the pair force
+ * Zero-energy-mode control (Littlewood 2012, IMECE2012-87977; Littlewood 2014 "Suppression of
+ * Low-Energy Modes"): each end predicts the neighbour at x_i + Fbar_i xi; the deviation
+ * Gamma_i = Fbar_i xi - Y projected on the bond direction M = Y/|Y| gives the pair force
  *   f_i += -C_hg c w V_i V_j [(Gamma_i + Gamma_j) . M] / |xi| M,  c = 18 K / (4 pi int w r^3 dr),
  * equal and opposite and along the bond (momentum and angular momentum conserved), zero under
  * any homogeneous deformation. The viscous variant (the analogue of Flanagan & Belytschko's

@@ -1,5 +1,5 @@
 /* The partial-stress form of a state-based material (Silling & Seleson 2013; Littlewood 2014,
- * seed 001 "Partial stress formulation" and "Application of partial stress"), for a variable
+ * "Partial stress formulation" and "Application of partial stress"), for a variable
  * horizon without ghost forces. Theory: docs/theory/coupling.md §2.
  *   nu_i   = sum_j T_i<xi> (x) xi V_j                                (partial stress)
  *   L_i    = div nu = tr( [sum_j w (nu_j - nu_i) (x) xi V_j] K_i^-1 )  (nonlocal divergence)

@@ -9,9 +9,9 @@
 typedef struct pf_pd_material_ops pf_pd_material_ops;
 
 /* How a point's internal force is formed (docs/theory/coupling.md §2). Standard: from the force
- * states of both ends of each bond. Partial stress (Silling & Seleson 2013; seed 001 "Partial
- * stress formulation"): the nonlocal divergence of nu = sum_j T<xi> (x) xi V_j. Auto: partial
- * stress at the interior points whose bond rows reach a point of another horizon (the
+ * states of both ends of each bond. Partial stress (Silling & Seleson 2013; Littlewood 2014,
+ * "Partial stress formulation"): the nonlocal divergence of nu = sum_j T<xi> (x) xi V_j. Auto:
+ * partial stress at the interior points whose bond rows reach a point of another horizon (the
  * transition), standard elsewhere. Corrected: the standard force, less at the transition points
  * the ghost force it would give under their own uniform stress (§2.5). Consistent: the standard
  * (energy) form with the transition points' gradient weights corrected so that a uniform stress
@@ -81,9 +81,9 @@ struct pf_pd_body {
  * positions) before marking it PF_BOND_BROKEN, all within one force pass. */
 enum { PF_BOND_BROKEN = 1, PF_BOND_FRESH = 2 };
 
-/* A material: one file, one line in pd/materials.h (STYLE.md 2). Required: create, force,
- * energy. Optional: setup (NULL: nothing to precompute), micromodulus (NULL: the bulk-modulus
- * estimate 18 K / (pi delta^4) is used for the time step). */
+/* A material: one file, one line in pd/materials.h (docs/architecture.md §5). Required: create,
+ * force, energy. Optional: setup (NULL: nothing to precompute), micromodulus (NULL: the
+ * bulk-modulus estimate 18 K / (pi delta^4) is used for the time step). */
 struct pf_pd_material_ops {
   const char *name;
   int (*create)(const pf_deck *d, const pf_node *mat, pf_pd_body *b);
@@ -129,7 +129,7 @@ static inline int pf_pd_corrected_at(const pf_pd_body *b, pf_int i) { return (in
 static inline int pf_pd_consistent_at(const pf_pd_body *b, pf_int i) { return (int)b->region[i] & 8; }
 
 /* May the damage law fail the bond i - j? Only between points of the standard force: the
- * partial-stress transition carries no damage (seed 001: "not a good candidate for modeling
+ * partial-stress transition carries no damage (Littlewood 2014: "not a good candidate for modeling
  * material failure"). */
 static inline int pf_pd_may_fail(const pf_pd_body *b, pf_int i, pf_int j) {
   return b->region[i] == 0 && b->region[j] == 0;

@@ -1,5 +1,5 @@
 """Residual velocity against impact velocity for the projectile-on-panel problem (Tupek et al.
-2013, seed 000 sec. 3.2; docs/examples/panel_impact.md), with the ballistic limit from a
+2013, sec. 3.2; docs/examples/panel_impact.md), with the ballistic limit from a
 Recht-Ipson fit v_r = a (v_i^p - v_bl^p)^(1/p).
 
   /usr/bin/python3 scripts/panel_sweep.py [--deck inputs/panel_impact.yaml] [--ranks 2]

@@ -1,4 +1,4 @@
-/* Spreading the bodies over the MPI ranks (DESIGN.md 6). At set-up every rank generates the
+/* Spreading the bodies over the MPI ranks. At set-up every rank generates the
  * bodies' points (cheap and deterministic), takes an equal slice of the global ids, finds the
  * bonds of its slice, and the slices are partitioned (Zoltan RCB or METIS, weighted by bond
  * count) and migrated to their owners with their bond rows. Ghosts are then exactly the

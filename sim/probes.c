@@ -1,7 +1,7 @@
 /* Probes (`output: probes:`): mass-averaged quantities over the points of a region, as history
  * columns probe_<name>_<quantity>, e.g. the radial velocity and displacement of the outer
  * surface of the expanding tube over +-0.4 mm rings (Vogler et al. 2003; Littlewood's model,
- * seed 001):
+ * Littlewood 2014):
  *   q_probe = sum_i m_i q_i / sum_i m_i   over the owned points of the body (or of every body)
  *             whose reference position lies in the region (chosen again at every row, so the
  *             points may move between ranks; a region without points is a deck error).

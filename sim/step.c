@@ -1,4 +1,4 @@
-/* The time loop (DESIGN.md 3): explicit velocity Verlet,
+/* The time loop (docs/architecture.md §3): explicit velocity Verlet,
  *   v(t+dt/2) = v(t) + dt/2 a(t);  u(t+dt) = u(t) + dt v(t+dt/2);
  *   f(t+dt) from PD bodies, FE bodies, contact and walls;  v(t+dt) = v(t+dt/2) + dt/2 a(t+dt),
  * with prescribed motions applied to the mid-step velocity, walls to the new positions, a step

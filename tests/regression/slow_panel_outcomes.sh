@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The projectile-on-panel problem (inputs/panel_impact.yaml as shipped; docs/examples/panel_impact.md)
-# against Tupek et al. 2013's qualitative outcomes (seed 000 sec. 3.2): at 370 m/s the sphere is
+# against Tupek et al. 2013's qualitative outcomes (sec. 3.2): at 370 m/s the sphere is
 # well below the ballistic limit (the panel stops it); at 530 m/s it perforates the top face and
 # the bottom face stops it; at 900 m/s it perforates both, leaving with a residual velocity
 # between 0 and its impact velocity. 740 m/s, which the paper does not describe, must run to its

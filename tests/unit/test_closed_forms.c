@@ -1,8 +1,8 @@
 /* PMB micromodulus and critical stretch against their closed forms (Silling & Askari 2005,
- * eqs. 7 and 9; REFERENCES.md), the influence-function moments against hand integrals, the
+ * eqs. 7 and 9), the influence-function moments against hand integrals, the
  * critical stretch s0(G0) that a deck's `energy_release_rate` gives each material and influence
  * function (PMB sqrt(5 G0 / (9 K delta)); LPS omega = 1: sqrt(8 G0 / (15 K delta)), omega = 1/|xi|:
- * sqrt(5 G0 / (9 K delta)); REFERENCES.md, CabanaPD's LPS), and the critical-energy constant
+ * sqrt(5 G0 / (9 K delta)); CabanaPD's LPS), and the critical-energy constant
  * w_c = 4 G0 / (pi delta^4) against a quadrature of the crossing-bond integral. */
 #include "test_common.h"
 
@@ -52,7 +52,7 @@ int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
   const double K = 14.9e9, delta = 1.5e-3;
   pf_influence one = {PF_INFLUENCE_CONSTANT, 0}, inv = {PF_INFLUENCE_INVERSE_DISTANCE, 0};
-  /* c = 18 K / (pi delta^4) = 1.68634e22 (REFERENCES.md; LAMMPS Howto_peri). */
+  /* c = 18 K / (pi delta^4) = 1.68634e22 (LAMMPS Howto_peri). */
   PF_TEST_CLOSE(pf_pd_pmb_micromodulus(K, &one, delta), 1.68634e22, 1e-5, 0);
   PF_TEST_CLOSE(pf_pd_pmb_micromodulus(K, &one, delta), 18 * K / (PF_PI * pow(delta, 4)), 1e-13, 0);
   /* omega = 1/r: c = 18 K / (4 pi delta^3 / 3) */

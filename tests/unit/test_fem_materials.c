@@ -15,7 +15,7 @@
 /* ---- decks ------------------------------------------------------------------------------- */
 #define ELASTIC_DECK "model: elastic\ndensity: 7800\nyoungs_modulus: 200e9\npoissons_ratio: 0.3\n"
 #define NH_DECK "model: neo_hookean\ndensity: 1100\nbulk_modulus: 2.0e9\nshear_modulus: 0.6e9\n"
-/* Taylor-bar copper (REFERENCES.md): E = 117 GPa, nu = 0.35, 400 MPa, H = 100 MPa. */
+/* Taylor-bar copper (inputs/taylor_impact.yaml): E = 117 GPa, nu = 0.35, 400 MPa, H = 100 MPa. */
 #define J2_DECK                                                                                    \
   "model: j2\ndensity: 8930\nyoungs_modulus: 117e9\npoissons_ratio: 0.35\n"                       \
   "yield_stress: 400e6\nhardening_modulus: 100e6\n"
@@ -28,7 +28,7 @@
   "specific_heat: 383\ntaylor_quinney: 0.9\n"                                                      \
   "johnson_cook:\n  A: 90e6\n  B: 292e6\n  C: 0.025\n  n: 0.31\n  m: 1.09\n"                      \
   "  reference_strain_rate: 1.0\n  reference_temperature: 298\n  melt_temperature: 1356\n"
-/* Lexan of the expanding-tube experiment (seed 001 back-up slides; REFERENCES.md): 70 F =
+/* Lexan of the expanding-tube experiment (Littlewood 2014, back-up slides): 70 F =
  * 294.26 K, 500 F = 533.15 K. */
 #define LEXAN_DECK                                                                                 \
   "model: johnson_cook\ndensity: 1190\nyoungs_modulus: 2.54e9\npoissons_ratio: 0.344\n"           \
@@ -44,7 +44,7 @@
 
 static pf_material *must_load(const char *text) { return pf_test_material_must_load(text, "test"); }
 
-/* ---- conformance suite over every registered model (STYLE.md 10) ------------------------- */
+/* ---- conformance suite over every registered model -------------------------------------- */
 typedef struct {
   const char *model, *deck;
   int hyper;  /* stress from F alone (ignores the incoming stress) */

@@ -1,7 +1,7 @@
 /* Lattice bookkeeping: LAMMPS's examples/peri target (a cylinder of radius 5 mm along y,
  * y in [-5, 0] mm, on a 0.5 mm simple cubic lattice) has 3487 points (11 layers of the 317
  * lattice points of a disk of radius 10 spacings) and 335,966 directed bonds with
- * delta = 1.5001 mm (REFERENCES.md; LAMMPS log). */
+ * delta = 1.5001 mm (LAMMPS's log of examples/peri). */
 #include "test_common.h"
 
 #include "sim/sim.h"

@@ -1,4 +1,4 @@
-/* Conformance suite over every registered peridynamic material (STYLE.md 10): each name of
+/* Conformance suite over every registered peridynamic material: each name of
  * pf_pd_material_names() as a PD material, and a non-ordinary correspondence body
  * (pd/material_correspondence.c) for each continuum model of pf_material_names(). Both lists
  * are parsed at run time; a name without deck parameters in `cases` below fails the test (add

@@ -1,8 +1,8 @@
 /* Critical time step (Silling & Askari 2005; Peridigm's form dt = min_i sqrt(2 rho / sum_j V_j
- * c / |xi_ij|)) for K = 14.9 GPa, rho = 2200, h = 0.5 mm at an interior point, against the
- * values of REFERENCES.md (recomputed independently there): delta/h = 2, 3, 4, 5 -> 9.66e-8,
- * 1.355e-7, 1.863e-7, 2.298e-7 s. Bonds with |xi| = delta count (delta is taken 1e-9 above
- * ratio*h so that round-off in the lattice does not decide).
+ * c / |xi_ij|)) for K = 14.9 GPa, rho = 2200, h = 0.5 mm at an interior point, against
+ * values computed independently of the code (recomputed in docs/theory/pd.md §6): delta/h = 2,
+ * 3, 4, 5 -> 9.66e-8, 1.355e-7, 1.863e-7, 2.298e-7 s. Bonds with |xi| = delta count (delta is
+ * taken 1e-9 above ratio*h so that round-off in the lattice does not decide).
  *
  * Correspondence (docs/theory/materials.md §2.6): at an interior point of a 13^3 lattice (w = 1,
  * delta = 3.01 h, elastic, at rest) the field "stable_step" must be 2 lambda_min(K) / (c_L gamma

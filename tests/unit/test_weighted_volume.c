@@ -1,5 +1,5 @@
 /* LPS weighted volume m (omega = 1, delta = 1) at the centre of an n^3 grid of cells on
- * [-1, 1]^3, against Peridigm's published convergence table (REFERENCES.md / the foundation
+ * [-1, 1]^3, against Peridigm's published convergence table (as quoted in the foundation
  * issue), with whole-cell and with partial volumes; the continuum value is 4 pi / 5. */
 #include "test_common.h"
 

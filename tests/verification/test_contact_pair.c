@@ -1,5 +1,5 @@
-/* Short-range contact of two particles (Peridigm's regression Contact_2x1x1; REFERENCES.md
- * "Contact"): two one-point PMB bodies on the x axis, 2 mm apart, V = 2e-9 m^3 each,
+/* Short-range contact of two particles (Peridigm's regression Contact_2x1x1): two one-point
+ * PMB bodies on the x axis, 2 mm apart, V = 2e-9 m^3 each,
  * rho = 7800 kg/m^3, approaching at +-1 m/s; contact radius r_c = 2 mm (they touch from the
  * start), spring constant k_s = 1.95e12 Pa, horizon delta = 1 mm.
  *

@@ -1,6 +1,6 @@
 /* Uniaxial and hydrostatic compression of a block: correspondence PD and the FE module, with the
  * same J2 material (one constitutive library), give the same stress-strain response within 1 %
- * (the test Littlewood describes in seed 001, "Examples of Simple Test Problems"), and both
+ * (the test Littlewood 2014 describes, "Examples of Simple Test Problems"), and both
  * follow the closed forms of rate-form J2 with linear hardening:
  *   uniaxial stress, compression at log strain e < 0: |sigma_zz| = E |e| below yield, above
  *     |sigma_zz| = sigma_y0 + H eqps with eqps = |e| - |sigma_zz| / E, i.e.

@@ -1,5 +1,5 @@
 /* A longitudinal pulse through a varying horizon and from the PD region into the FE region
- * (issue 7, test 4; Littlewood 2014, seed 001 "Wave propagation through region of varying
+ * (issue 7, test 4; Littlewood 2014, "Wave propagation through region of varying
  * horizon"; docs/theory/coupling.md §4). A steel bar 240 x 8 x 8 mm on a 1 mm grid (neo-Hookean,
  * E = 200 GPa, nu = 0, rho = 7800: c = sqrt(E/rho) = 5064 m/s); the pulse u_x = U exp(-((x-x0)/s)^2),
  * s = 8 mm (about 32 mm wide, more than 10 horizons), starts at x0 = 50 mm travelling right

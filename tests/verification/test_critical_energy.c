@@ -10,7 +10,7 @@
  *    which is also the LPS energy of the pair over V^2 (so the factor 1/2 is that of the
  *    code's energy, not of the slide's 1/4).
  *
- * 2. Separation (Willberg's material, seed 004: K = 1.75 GPa, G = 0.808 GPa, rho = 2000, G0 = 12
+ * 2. Separation (Willberg's material, DLR slides: K = 1.75 GPa, G = 0.808 GPa, rho = 2000, G0 = 12
  *    J/m^2; delta = 3.015 h, h = 0.5 mm). A bar of 12 x 16 x 16 points is pulled apart along x by
  *    its three end layers at +-V(t), V ramped. Its mid-plane x = 5.5 h is weakened so that it,
  *    and nothing else, separates: pre-cracks (bonds crossing them are not created) leave only

@@ -1,4 +1,4 @@
-/* Patch tests of the partial-stress form (Littlewood 2014, seed 001 "Patch tests for partial
+/* Patch tests of the partial-stress form (Littlewood 2014, "Patch tests for partial
  * stress formulation"; issue 7, tests 1-2): an elastic correspondence bar (rho = 7800,
  * E = 200 GPa, nu = 0, no hourglass control) under a prescribed displacement, with a constant
  * horizon (3.01 dx) and with one that tapers from 3.01 dx to 1.01 dx along the bar, in the

@@ -7,7 +7,8 @@
  *    against the PMB dispersion relation on this lattice,
  *      rho w^2 = c sum_j V_j (xi_x^2 / |xi|^3) (1 - cos(k xi_x))   (linearized PMB, plane wave),
  *    summed here independently over the lattice offsets, to 2 %; and against the continuum PMB
- *    value c_p / c_L = 0.98035 at k delta = 1 (REFERENCES.md), c_L = sqrt(1.8 K / rho), to 3 %. */
+ *    value c_p / c_L = 0.98035 at k delta = 1 (docs/theory/pd.md §7), c_L = sqrt(1.8 K / rho),
+ *    to 3 %. */
 #include "test_common.h"
 
 #include <math.h>
