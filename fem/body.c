@@ -143,7 +143,7 @@ int pf_fem_body_destroy(pf_fem_body **pb) {
   pf_mesh_free(&b->mesh);
   pf_material_destroy(&b->mat);
   free(b->node_volume), free(b->mesh_node_off), free(b->mesh_node_item), free(b->eid), free(b->conn), free(b->own), free(b->sigma), free(b->state);
-  free(b->hgq), free(b->ref), free(b->fe), free(b->energy), free(b->node_off), free(b->node_item), free(b->buf);
+  free(b->hgq), free(b->bvq), free(b->ref), free(b->fe), free(b->energy), free(b->node_off), free(b->node_item), free(b->buf);
   free(b->mesh_eroded), free(b->due);
   PF_FREE(*pb);
   return 0;

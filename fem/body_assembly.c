@@ -136,7 +136,7 @@ int pf_fem_body_attach(pf_fem_body *b, int body, pf_points *pts, pf_int first, p
   PF_CALL(node_lists(b));
   PF_CALL(lumped_masses(b, pts));
   size_t nq = (size_t)b->nqp * b->nel;
-  free(b->sigma), free(b->state), free(b->hgq), free(b->fe), free(b->energy), free(b->buf), free(b->ref);
+  free(b->sigma), free(b->state), free(b->hgq), free(b->bvq), free(b->fe), free(b->energy), free(b->buf), free(b->ref);
   PF_MALLOC(b->ref, 25 * (size_t)b->nel);
   for (pf_int e = 0; e < b->nel; e++) {
     double x[8][3];
@@ -146,6 +146,7 @@ int pf_fem_body_attach(pf_fem_body *b, int body, pf_points *pts, pf_int first, p
   PF_MALLOC(b->sigma, 6 * nq);
   PF_MALLOC(b->state, (size_t)b->nstate * nq);
   PF_MALLOC(b->hgq, 12 * (size_t)b->nel);
+  PF_MALLOC(b->bvq, b->nel);
   PF_MALLOC(b->fe, 24 * (size_t)b->nel);
   PF_MALLOC(b->energy, 3 * (size_t)b->nel);
   PF_MALLOC(b->buf, pf_fem_chunk_doubles(b->nqp, b->nstate));

@@ -1,12 +1,13 @@
 /* The state of an FE body's elements as rows of a global table (one row per mesh element):
- * stress and material history at each quadrature point, the stiffness-form hourglass forces,
- * the element energies and whether the element is deleted (fem/erosion.c). Checkpoints write
+ * stress and material history at each quadrature point, the hourglass forces and the
+ * bulk-viscosity pressure of the last evaluation, the element energies and whether the element
+ * is deleted (fem/erosion.c). Checkpoints write
  * it, a restart or a re-partition gives it back. */
 #include "fem/fem_impl.h"
 
 #include <string.h>
 
-int pf_fem_body_state_ncomp(const pf_fem_body *b) { return b->nqp * (6 + b->nstate) + 12 + 3 + 1; }
+int pf_fem_body_state_ncomp(const pf_fem_body *b) { return b->nqp * (6 + b->nstate) + 12 + 1 + 3 + 1; }
 
 static void pack(const pf_fem_body *b, pf_int e, double *row) {
   const size_t nq = (size_t)b->nqp;
@@ -15,8 +16,9 @@ static void pack(const pf_fem_body *b, pf_int e, double *row) {
   memcpy(row, &b->state[(size_t)b->nstate * nq * e], sizeof(double) * b->nstate * nq);
   row += (size_t)b->nstate * nq;
   memcpy(row, &b->hgq[12 * (size_t)e], sizeof(double) * 12);
-  memcpy(row + 12, &b->energy[3 * (size_t)e], sizeof(double) * 3);
-  row[15] = pf_fem_element_eroded(b, e);
+  row[12] = b->bvq[e];
+  memcpy(row + 13, &b->energy[3 * (size_t)e], sizeof(double) * 3);
+  row[16] = pf_fem_element_eroded(b, e);
 }
 
 static void unpack(pf_fem_body *b, pf_int e, const double *row) {
@@ -26,7 +28,8 @@ static void unpack(pf_fem_body *b, pf_int e, const double *row) {
   memcpy(&b->state[(size_t)b->nstate * nq * e], row, sizeof(double) * b->nstate * nq);
   row += (size_t)b->nstate * nq;
   memcpy(&b->hgq[12 * (size_t)e], row, sizeof(double) * 12);
-  memcpy(&b->energy[3 * (size_t)e], row + 12, sizeof(double) * 3);
+  b->bvq[e] = row[12];
+  memcpy(&b->energy[3 * (size_t)e], row + 13, sizeof(double) * 3);
 }
 
 pf_int pf_fem_body_state_get(const pf_fem_body *b, pf_gid *ids, double *data) {

@@ -105,7 +105,7 @@ static int kinematics(pf_fem_body *b, const pf_points *p, pf_int e, double dt, d
   grad_product(v, Bm, Lm);
   s->trD = Lm[0][0] + Lm[1][1] + Lm[2][2];
   pf_mat3_hughes_winget(Lm, dt, R);
-  for (int a = 0; a < 4 && b->hg == PF_HG_STIFFNESS; a++)
+  for (int a = 0; a < 4 && b->hg != PF_HG_NONE; a++) /* (the viscous form's: for its work) */
     for (int i = 0; i < 3; i++)
       s->Q_old[3 * a + i] = R[i][0] * b->hgq[12 * e + 3 * a] + R[i][1] * b->hgq[12 * e + 3 * a + 1] +
                             R[i][2] * b->hgq[12 * e + 3 * a + 2];
@@ -147,11 +147,14 @@ static void hourglass_force(pf_fem_body *b, pf_int e, double x[8][3], double v[8
     for (int I = 0; I < 8; I++)
       for (int i = 0; i < 3; i++) qd[a][i] += v[I][i] * gam[a][I];
   if (b->hg == PF_HG_VISCOUS) { /* FB eq. 88: Q = q_hv rho c V^(2/3) / 4 qdot */
-    double cv = b->hg_coef * rho * c * cbrt(V * V) / 4.0;
+    double cv = b->hg_coef * rho * c * cbrt(V * V) / 4.0, *Q = &b->hgq[12 * (size_t)e];
     for (int a = 0; a < 4; a++)
       for (int i = 0; i < 3; i++) {
-        en[1] += dt * cv * qd[a][i] * qd[a][i];
-        for (int I = 0; I < 8; I++) f[I][i] -= cv * qd[a][i] * gam[a][I];
+        Q[3 * a + i] = cv * qd[a][i];
+        /* the work over the step as velocity Verlet does it: the mean of the last and this
+         * evaluation's forces on the mid-step velocity (docs/theory/fem.md §6) */
+        en[1] += dt * 0.5 * (s->Q_old[3 * a + i] + Q[3 * a + i]) * qd[a][i];
+        for (int I = 0; I < 8; I++) f[I][i] -= Q[3 * a + i] * gam[a][I];
       }
     return;
   }
@@ -208,7 +211,10 @@ static int element_forces(pf_fem_body *b, const pf_points *p, pf_int e, double d
     en[0] += dt * s->vmid[g] * sym_dot(avg, &D[6 * g]);
     Vmid += s->vmid[g];
   }
-  en[2] += dt * q * (-s->trD) * Vmid; /* bulk-viscosity work, >= 0 */
+  /* bulk-viscosity work: the mean of the last and this evaluation's q, as velocity Verlet
+   * applies the forces (docs/theory/fem.md §6) */
+  en[2] += dt * 0.5 * (b->bvq[e] + q) * (-s->trD) * Vmid;
+  b->bvq[e] = q;
   if (!b->bbar && b->hg != PF_HG_NONE) hourglass_force(b, e, x, v, B, V, cmax, rho, dt, s, f);
   memcpy(&b->fe[24 * (size_t)e], f, sizeof f);
   double Qb = s->trD < 0 ? b->bv_linear * cmax + b->bv_quadratic * l * fabs(s->trD) : 0;

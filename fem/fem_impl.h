@@ -37,7 +37,9 @@ struct pf_fem_body {
   uint8_t *own;      /* [nel] this rank owns the element (owns its node 0): sums and output */
   double *sigma;     /* [6 nqp nel] Cauchy stress */
   double *state;     /* [nstate nqp nel] material history */
-  double *hgq;       /* [12 nel] stiffness-form hourglass generalized forces Q_ia */
+  double *hgq;       /* [12 nel] hourglass generalized forces Q_ia of the last evaluation (the
+                        stiffness form's state; the viscous form's, for the work's trapezoid) */
+  double *bvq;       /* [nel] bulk-viscosity pressure q of the last evaluation, Pa */
   double *ref;       /* [25 nel] reference mean gradient B0 (24) and volume V0 */
   double *fe;        /* [24 nel] element nodal forces of the last evaluation */
   double *energy;    /* [3 nel] internal (stress work), hourglass, bulk-viscosity work, J */
