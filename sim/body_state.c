@@ -15,6 +15,14 @@ int pf_sim_bond_rows(const pf_sim *sim, pf_bond_rows *rows) {
   return 0;
 }
 
+int pf_sim_bond_fields(const pf_sim *sim, pf_bond_rows *rows) {
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_pd_body *pd = sim->body[b] ? sim->body[b] : pf_fem_body_pd(sim->fem[b]);
+    if (pd) PF_CALL(pf_pd_body_bond_fields(pd, rows));
+  }
+  return 0;
+}
+
 void pf_sim_fem_table_name(const pf_sim *sim, int b, char *out, size_t len) {
   snprintf(out, len, "fem_%s", sim->body_name[b]);
 }

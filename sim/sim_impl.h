@@ -133,9 +133,11 @@ void pf_sim_guard_motion(pf_sim *sim, double dt);
 int pf_sim_guard_check(pf_sim *sim);
 void pf_sim_guard_free(pf_sim *sim);
 /* sim/body_state.c: the bond rows of every owned point (PD families, FE node
- * adjacency); the FE bodies' element state as tables (name fem_<body>); a re-partition that
- * keeps the element state. */
+ * adjacency), and the bond fields those rows carry (registered alone: before a checkpoint is
+ * read into them); the FE bodies' element state as tables (name fem_<body>); a re-partition
+ * that keeps the element state. */
 int pf_sim_bond_rows(const pf_sim *sim, pf_bond_rows *rows);
+int pf_sim_bond_fields(const pf_sim *sim, pf_bond_rows *rows);
 void pf_sim_fem_table_name(const pf_sim *sim, int b, char *out, size_t len);
 int pf_sim_fem_tables(const pf_sim *sim, pf_table *t, int *n);
 void pf_sim_fem_tables_free(pf_table *t, int n);
