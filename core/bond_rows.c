@@ -1,8 +1,8 @@
-/* Bond lists in transit: rows of neighbour global ids with their per-bond state
- * (broken flag, partial-volume fraction, rest length, and the reals a material keeps per bond,
- * e.g. the plastic extensions of elastic_plastic), the form in which families move between ranks
- * when points are (re)partitioned and in which checkpoints store them. */
-#include "core/core.h"
+/* Bond lists in transit: rows of neighbour global ids with the registered
+ * per-bond fields (core/bond_fields.c), the form in which families move between ranks when
+ * points are (re)partitioned and in which checkpoints store them. Appending a row sets every
+ * field: from the values given, from another rows' bonds, or to the field's init. */
+#include "core/bond_rows_impl.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -10,49 +10,44 @@
 int pf_bond_rows_init(pf_bond_rows *r) {
   memset(r, 0, sizeof *r);
   PF_MALLOC(r->offset, 1);
+  PF_MALLOC(r->gid, 1); /* never NULL: an HDF5 transfer of no bonds still names a buffer */
   return 0;
 }
 
+int pf_bond_rows_free(pf_bond_rows *r) {
+  PF_FREE(r->offset);
+  PF_FREE(r->gid);
+  for (int k = 0; k < r->nfields; k++) PF_FREE(r->field[k].data);
+  memset(r, 0, sizeof *r);
+  return 0;
+}
+
+void pf_bond_rows_clear(pf_bond_rows *r) {
+  r->n = 0;
+  if (r->offset) r->offset[0] = 0;
+}
+
+/* Room for need bonds in gid and every field. */
 static int grow(pf_bond_rows *r, int64_t need) {
   if (need <= r->cap) return 0;
-  int64_t cap = need + need / 2 + 1024;
+  const int64_t cap = need + need / 2 + 1024;
   pf_gid *g = realloc(r->gid, sizeof(pf_gid) * (size_t)cap);
-  if (g) r->gid = g;
-  uint8_t *b = realloc(r->broken, (size_t)cap);
-  if (b) r->broken = b;
-  float *v = realloc(r->vfrac, sizeof(float) * (size_t)cap);
-  if (v) r->vfrac = v;
-  float *l = realloc(r->rest, sizeof(float) * (size_t)cap);
-  if (l) r->rest = l;
-  int ok = g && b && v && l;
-  if (r->nstate > 0) {
-    double *s = realloc(r->state, sizeof(double) * (size_t)cap * (size_t)r->nstate);
-    if (s) r->state = s;
-    ok = ok && s;
+  PF_CHECK(g, PF_ERR_MEMORY, "out of memory for %" PRId64 " bonds", cap);
+  r->gid = g;
+  for (int k = 0; k < r->nfields; k++) {
+    pf_bond_field *f = &r->field[k];
+    void *d = realloc(f->data, pf_bond_type_size(f->type) * (size_t)f->ncomp * (size_t)cap);
+    PF_CHECK(d, PF_ERR_MEMORY, "out of memory for the bond field '%s' of %" PRId64 " bonds", f->name, cap);
+    f->data = d;
   }
-  PF_CHECK(ok, PF_ERR_MEMORY, "out of memory for %" PRId64 " bonds", cap);
   r->cap = cap;
   return 0;
 }
 
-int pf_bond_rows_widen(pf_bond_rows *r, int nstate) {
-  if (nstate <= r->nstate) return 0;
-  double *s = calloc((size_t)(r->cap > 0 ? r->cap : 1) * (size_t)nstate, sizeof(double));
-  PF_CHECK(s, PF_ERR_MEMORY, "out of memory for the state of %" PRId64 " bonds", r->cap);
-  int64_t nb = r->offset[r->n];
-  for (int64_t k = 0; k < nb; k++)
-    for (int c = 0; c < r->nstate; c++) s[k * nstate + c] = r->state[k * r->nstate + c];
-  free(r->state);
-  r->state = s;
-  r->nstate = nstate;
-  return 0;
-}
-
-int pf_bond_rows_append_state(pf_bond_rows *r, pf_int count, const pf_gid *gid,
-                              const uint8_t *broken, const float *vfrac, const float *rest, int nstate,
-                              const double *state) {
-  PF_CHECK(nstate >= 0, PF_ERR_RUN, "%d reals of bond state", nstate);
-  PF_CALL(pf_bond_rows_widen(r, nstate));
+/* A new row of count bonds with neighbours gid (NULL: zeros); its first bond is *at. The
+ * fields' values are for the caller to set. */
+static int add_row(pf_bond_rows *r, pf_int count, const pf_gid *gid, int64_t *at) {
+  PF_CHECK(count >= 0, PF_ERR_RUN, "a bond row of %" PF_INT_FMT " bonds", count);
   if (r->n + 1 >= r->row_cap) {
     pf_int cap = r->row_cap + r->row_cap / 2 + 1024;
     int64_t *o = realloc(r->offset, sizeof(int64_t) * ((size_t)cap + 1));
@@ -60,34 +55,95 @@ int pf_bond_rows_append_state(pf_bond_rows *r, pf_int count, const pf_gid *gid,
     r->offset = o;
     r->row_cap = cap;
   }
-  int64_t at = r->offset[r->n];
-  PF_CALL(grow(r, at + count));
-  if (count > 0) memcpy(r->gid + at, gid, sizeof(pf_gid) * (size_t)count); /* gid may be NULL then */
-  for (pf_int k = 0; k < count; k++) {
-    r->broken[at + k] = broken ? broken[k] : 0;
-    r->vfrac[at + k] = vfrac ? vfrac[k] : 1.0f;
-    r->rest[at + k] = rest ? rest[k] : 0.0f;
-    for (int c = 0; c < r->nstate; c++)
-      r->state[(at + k) * r->nstate + c] = state && c < nstate ? state[(int64_t)k * nstate + c] : 0.0;
-  }
-  r->offset[++r->n] = at + count;
+  *at = r->offset[r->n];
+  PF_CALL(grow(r, *at + count));
+  if (gid && count > 0) memcpy(r->gid + *at, gid, sizeof(pf_gid) * (size_t)count);
+  else if (count > 0) memset(r->gid + *at, 0, sizeof(pf_gid) * (size_t)count);
+  r->offset[r->n + 1] = *at + count;
+  r->n++;
   return 0;
 }
 
-int pf_bond_rows_append(pf_bond_rows *r, pf_int count, const pf_gid *gid, const uint8_t *broken,
-                        const float *vfrac) {
-  return pf_bond_rows_append_state(r, count, gid, broken, vfrac, NULL, 0, NULL);
+/* Bonds [at, at + count) of f from data [count * nc] of its type; components beyond nc init. */
+static void put_values(pf_bond_field *f, int64_t at, int64_t count, const void *data, int nc) {
+  const size_t sz = pf_bond_type_size(f->type);
+  char *dst = (char *)f->data + (size_t)(at * f->ncomp) * sz;
+  if (nc == f->ncomp) {
+    memcpy(dst, data, (size_t)(count * nc) * sz);
+    return;
+  }
+  for (int64_t k = 0; k < count; k++)
+    memcpy(dst + (size_t)(k * f->ncomp) * sz, (const char *)data + (size_t)(k * nc) * sz, (size_t)nc * sz);
+  pf_bond_field_fill(f, at, count, nc);
 }
 
-int pf_bond_rows_free(pf_bond_rows *r) {
-  PF_FREE(r->offset);
-  PF_FREE(r->gid);
-  PF_FREE(r->broken);
-  PF_FREE(r->vfrac);
-  PF_FREE(r->rest);
-  PF_FREE(r->state);
-  r->n = 0;
-  r->nstate = 0;
-  r->cap = 0;
+int pf_bond_rows_append(pf_bond_rows *r, pf_int count, const pf_gid *gid, int nvalues,
+                        const pf_bond_values *values) {
+  for (int v = 0; v < nvalues; v++) {
+    const pf_bond_field *f = pf_bond_rows_field(r, values[v].name);
+    PF_CHECK(f, PF_ERR_RUN, "no bond field '%s' is registered", values[v].name);
+    PF_CHECK(values[v].ncomp >= 0 && values[v].ncomp <= f->ncomp, PF_ERR_RUN,
+             "%d components for the bond field '%s' of %d", values[v].ncomp, f->name, f->ncomp);
+  }
+  int64_t at;
+  PF_CALL(add_row(r, count, gid, &at));
+  for (int k = 0; k < r->nfields; k++) {
+    pf_bond_field *f = &r->field[k];
+    const pf_bond_values *v = NULL;
+    for (int q = 0; q < nvalues && !v; q++)
+      if (!strcmp(values[q].name, f->name)) v = &values[q];
+    if (v && v->data && count > 0) put_values(f, at, count, v->data, v->ncomp);
+    else pf_bond_field_fill(f, at, count, 0);
+  }
+  return 0;
+}
+
+/* Bond k of f from bond q of s (the same type; q < 0: init). */
+static void copy_bond(pf_bond_field *f, int64_t k, const pf_bond_field *s, int64_t q) {
+  const size_t sz = pf_bond_type_size(f->type);
+  const int nc = q < 0 ? 0 : f->ncomp < s->ncomp ? f->ncomp : s->ncomp;
+  if (nc) memcpy((char *)f->data + (size_t)(k * f->ncomp) * sz, (const char *)s->data + (size_t)(q * s->ncomp) * sz,
+                 (size_t)nc * sz);
+  if (nc < f->ncomp) pf_bond_field_fill(f, k, 1, nc);
+}
+
+/* The field of src that f takes its values from, or NULL (then f takes init). */
+static int source_field(const pf_bond_field *f, const pf_bond_rows *src, const pf_bond_field **s) {
+  *s = pf_bond_rows_field(src, f->name);
+  PF_CHECK(!*s || (*s)->type == f->type, PF_ERR_RUN, "bond field '%s' of two types", f->name);
+  return 0;
+}
+
+int pf_bond_rows_append_from(pf_bond_rows *r, pf_int count, const pf_gid *gid, const pf_bond_rows *src,
+                             const int64_t *from) {
+  for (pf_int k = 0; k < count; k++)
+    PF_CHECK(from[k] < pf_bond_rows_nbonds(src), PF_ERR_RUN, "bond %" PRId64 " of %" PRId64, from[k],
+             pf_bond_rows_nbonds(src));
+  int64_t at;
+  PF_CALL(add_row(r, count, gid, &at));
+  for (int f = 0; f < r->nfields; f++) {
+    const pf_bond_field *s;
+    PF_CALL(source_field(&r->field[f], src, &s));
+    for (pf_int k = 0; k < count; k++) copy_bond(&r->field[f], at + k, s, s ? from[k] : -1);
+  }
+  return 0;
+}
+
+int pf_bond_rows_append_row(pf_bond_rows *r, const pf_bond_rows *src, pf_int row) {
+  PF_CHECK(row >= 0 && row < src->n, PF_ERR_RUN, "bond row %" PF_INT_FMT " of %" PF_INT_FMT, row, src->n);
+  const int64_t o = src->offset[row];
+  const pf_int count = (pf_int)(src->offset[row + 1] - o);
+  int64_t at;
+  PF_CALL(add_row(r, count, &src->gid[o], &at));
+  for (int f = 0; f < r->nfields; f++) {
+    const pf_bond_field *s;
+    PF_CALL(source_field(&r->field[f], src, &s));
+    if (!s) pf_bond_field_fill(&r->field[f], at, count, 0);
+    else if (count > 0 && s->ncomp == r->field[f].ncomp)
+      put_values(&r->field[f], at, count, (const char *)s->data + (size_t)(o * s->ncomp) * pf_bond_type_size(s->type),
+                 s->ncomp);
+    else
+      for (pf_int k = 0; k < count; k++) copy_bond(&r->field[f], at + k, s, o + k);
+  }
   return 0;
 }

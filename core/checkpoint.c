@@ -1,18 +1,17 @@
 /* Checkpoints in parallel HDF5 (MPI-IO, collective writes). Layout:
  *   /points/{gid,body,X,u,v,f,m,vol,cell}   one row per point, ranks' points one after another
  *   /fields/<name>                          [n][ncomp], attributes ncomp, flags
- *   /bonds/{count,gid,broken,vfrac}         row lengths per point, then the bonds in that order
- *   /bonds/rest                             the broken bonds' rest lengths (absent in older
- *                                           files: read as not recorded, 0)
- *   /bonds/state                            [nbonds][nstate] the materials' per-bond reals,
- *                                           attribute ncomp; only when some material keeps
- *                                           them (absent in older files: read as zero state)
+ *   /bonds/{count,gid}                      row lengths per point, then the bonds in that order
+ *   /bonds/<name>                           [nbonds][ncomp] each bond field flagged
+ *                                           PF_FIELD_RESTART, of its own type (uint8, float,
+ *                                           double); a reader refuses a file without one of
+ *                                           the fields it registers
  *   /tables/<name>                          [total][ncomp] whole tables (written by rank 0)
  *   attributes of "/": the named scalars (time, step, ...), written alike by every rank.
  * The file is written as path.tmp and renamed by rank 0 once every rank has closed it, so a
  * kill at any moment leaves the previous checkpoint whole. A reader on any number of ranks
  * takes an equal slice of the rows; the caller re-partitions. */
-#include "core/core.h"
+#include "core/bond_rows_impl.h"
 
 #include <hdf5.h>
 #include <stdio.h>
@@ -120,6 +119,12 @@ static int write_points(const h5io *io, const pf_points *p) {
   return 0;
 }
 
+static hid_t h5_type(pf_bond_type t) {
+  return t == PF_BOND_UINT8 ? H5T_NATIVE_UINT8 : t == PF_BOND_FLOAT ? H5T_NATIVE_FLOAT : H5T_NATIVE_DOUBLE;
+}
+
+/* The rows' lengths and neighbours, then each restart bond field (the fields agreed on every
+ * rank, so that each writes the same datasets). */
 static int write_bonds(const h5io *pio, const pf_points *p, const pf_bond_rows *rows) {
   int32_t *count;
   PF_MALLOC(count, p->n_owned);
@@ -128,27 +133,17 @@ static int write_bonds(const h5io *pio, const pf_points *p, const pf_bond_rows *
   free(count);
   if (ierr) return ierr;
   h5io io = *pio;
-  io.count = (hsize_t)rows->offset[rows->n];
+  io.count = (hsize_t)pf_bond_rows_nbonds(rows);
   rank_range(io.count, &io.total, &io.offset);
   PF_CALL(write_rows(&io, "/bonds/gid", H5T_NATIVE_INT64, 1, rows->gid));
-  PF_CALL(write_rows(&io, "/bonds/broken", H5T_NATIVE_UINT8, 1, rows->broken));
-  PF_CALL(write_rows(&io, "/bonds/vfrac", H5T_NATIVE_FLOAT, 1, rows->vfrac));
-  PF_CALL(write_rows(&io, "/bonds/rest", H5T_NATIVE_FLOAT, 1, rows->rest));
-  int nstate = rows->nstate; /* ranks without such a body have none: the widest rank's count */
-  MPI_Allreduce(MPI_IN_PLACE, &nstate, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  if (nstate == 0) return 0;
-  double *state;
-  PF_MALLOC(state, io.count * (size_t)nstate);
-  for (hsize_t k = 0; k < io.count; k++)
-    for (int c = 0; c < rows->nstate; c++) state[k * (size_t)nstate + c] = rows->state[k * (size_t)rows->nstate + c];
-  ierr = write_rows(&io, "/bonds/state", H5T_NATIVE_DOUBLE, nstate, state);
-  free(state);
-  if (ierr) return ierr;
-  hid_t d = H5Dopen2(io.file, "/bonds/state", H5P_DEFAULT);
-  H5_TRY(&io, d >= 0, "/bonds/state");
-  ierr = int_attr(&io, d, "ncomp", &nstate, 1);
-  H5Dclose(d);
-  return ierr;
+  for (int k = 0; k < rows->nfields; k++) {
+    const pf_bond_field *f = &rows->field[k];
+    if (!(f->flags & PF_FIELD_RESTART)) continue;
+    char name[64];
+    snprintf(name, sizeof name, "/bonds/%s", f->name);
+    PF_CALL(write_rows(&io, name, h5_type(f->type), f->ncomp, f->data));
+  }
+  return 0;
 }
 
 static int write_scalars(const h5io *io, int n, const char *const *names, const double *values) {
@@ -191,11 +186,12 @@ static int write_all(const h5io *io, const pf_points *pts, const pf_bond_rows *r
   return write_scalars(io, n, names, values);
 }
 
-int pf_checkpoint_write(const char *path, const pf_points *pts, const pf_bond_rows *rows, int nscalars,
+int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *rows, int nscalars,
                         const char *const *names, const double *values, int ntables, const pf_table *tables) {
   char tmp[4200];
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  PF_CALL(pf_bond_rows_fields_agree(rows));
   h5io io = {open_file(tmp, 1), tmp, 0, 0, (hsize_t)pts->n_owned};
   H5_TRY(&io, io.file >= 0, "H5Fcreate");
   rank_range(io.count, &io.total, &io.offset);
@@ -251,7 +247,38 @@ static int read_points(const h5io *io, pf_points *p) {
   return read_fields(io, p);
 }
 
+/* Is the file's /bonds/<name> the restart field f: its type and components? */
+static int field_matches(const h5io *io, const char *name, const pf_bond_field *f) {
+  if (H5Lexists(io->file, name, H5P_DEFAULT) <= 0) return 0;
+  hid_t d = H5Dopen2(io->file, name, H5P_DEFAULT);
+  if (d < 0) return 0;
+  hid_t t = H5Dget_type(d), sp = H5Dget_space(d);
+  hsize_t dims[2] = {0, 1};
+  int rank = H5Sget_simple_extent_dims(sp, dims, NULL);
+  const H5T_class_t want = f->type == PF_BOND_UINT8 ? H5T_INTEGER : H5T_FLOAT;
+  int ok = H5Tget_class(t) == want && H5Tget_size(t) == pf_bond_type_size(f->type) &&
+           (rank == 1 || rank == 2) && (rank == 2 ? dims[1] : 1) == (hsize_t)f->ncomp;
+  H5Tclose(t), H5Sclose(sp), H5Dclose(d);
+  return ok;
+}
+
+static const char *type_name(pf_bond_type t) {
+  return t == PF_BOND_UINT8 ? "uint8" : t == PF_BOND_FLOAT ? "float" : "double";
+}
+
+/* This rank's rows: their lengths and neighbours, then each restart field the rows register
+ * (the others keep their init). */
 static int read_bonds(const h5io *pio, pf_bond_rows *rows) {
+  PF_CHECK(rows->n == 0, PF_ERR_RUN, "reading a checkpoint into bond rows that are not empty");
+  PF_CALL(pf_bond_rows_fields_agree(rows));
+  for (int k = 0; k < rows->nfields; k++) {
+    const pf_bond_field *f = &rows->field[k];
+    char name[64];
+    snprintf(name, sizeof name, "/bonds/%s", f->name);
+    PF_CHECK(!(f->flags & PF_FIELD_RESTART) || field_matches(pio, name, f), PF_ERR_INPUT,
+             "checkpoint %s has no bond field '%s' (%s, %d per bond), which this run keeps: it was written "
+             "by another model or another version of perifem", pio->path, f->name, type_name(f->type), f->ncomp);
+  }
   int32_t *count;
   PF_MALLOC(count, pio->count);
   int ierr = read_rows(pio, "/bonds/count", H5T_NATIVE_INT32, 1, count);
@@ -259,32 +286,15 @@ static int read_bonds(const h5io *pio, pf_bond_rows *rows) {
   io.count = 0;
   for (hsize_t i = 0; i < pio->count; i++) io.count += (hsize_t)count[i];
   rank_range(io.count, &io.total, &io.offset);
-  int nstate = 0; /* the per-bond state, when the file has it */
-  if (!ierr && H5Lexists(io.file, "/bonds/state", H5P_DEFAULT) > 0) {
-    hid_t d = H5Dopen2(io.file, "/bonds/state", H5P_DEFAULT);
-    int bad = d < 0 || int_attr(&io, d, "ncomp", &nstate, 0) || nstate < 1;
-    if (d >= 0) H5Dclose(d);
-    if (bad)
-      ierr = pf_error_raise(PF_ERR_LIB, __FILE__, __LINE__, __func__,
-                            "HDF5: reading /bonds/state failed (checkpoint %s)", io.path);
+  for (hsize_t i = 0; i < pio->count && !ierr; i++) ierr = pf_bond_rows_append(rows, count[i], NULL, 0, NULL);
+  free(count);
+  if (!ierr) ierr = read_rows(&io, "/bonds/gid", H5T_NATIVE_INT64, 1, rows->gid);
+  for (int k = 0; k < rows->nfields && !ierr; k++) {
+    const pf_bond_field *f = &rows->field[k];
+    char name[64];
+    snprintf(name, sizeof name, "/bonds/%s", f->name);
+    if (f->flags & PF_FIELD_RESTART) ierr = read_rows(&io, name, h5_type(f->type), f->ncomp, f->data);
   }
-  pf_gid *gid = malloc(sizeof(pf_gid) * (io.count + 1));
-  uint8_t *broken = malloc(io.count + 1);
-  float *vfrac = malloc(sizeof(float) * (io.count + 1)), *rest = calloc(io.count + 1, sizeof(float));
-  double *state = nstate ? malloc(sizeof(double) * (io.count * (size_t)nstate + 1)) : NULL;
-  if (!ierr && (!gid || !broken || !vfrac || !rest || (nstate && !state)))
-    ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
-  if (!ierr) ierr = read_rows(&io, "/bonds/gid", H5T_NATIVE_INT64, 1, gid);
-  if (!ierr) ierr = read_rows(&io, "/bonds/broken", H5T_NATIVE_UINT8, 1, broken);
-  if (!ierr) ierr = read_rows(&io, "/bonds/vfrac", H5T_NATIVE_FLOAT, 1, vfrac);
-  if (!ierr && H5Lexists(io.file, "/bonds/rest", H5P_DEFAULT) > 0)
-    ierr = read_rows(&io, "/bonds/rest", H5T_NATIVE_FLOAT, 1, rest);
-  if (!ierr && nstate) ierr = read_rows(&io, "/bonds/state", H5T_NATIVE_DOUBLE, nstate, state);
-  if (!ierr) ierr = pf_bond_rows_widen(rows, nstate);
-  for (hsize_t i = 0, at = 0; i < pio->count && !ierr; at += (hsize_t)count[i], i++)
-    ierr = pf_bond_rows_append_state(rows, count[i], gid + at, broken + at, vfrac + at, rest + at, nstate,
-                                     state ? state + at * (hsize_t)nstate : NULL);
-  free(count), free(gid), free(broken), free(vfrac), free(rest), free(state);
   return ierr;
 }
 

@@ -265,45 +265,91 @@ int pf_comm_size(void);
 
 /* ---- MPI domain decomposition (core/partition.c, migrate.c, halo.c) -------------- */
 /* Bond lists in transit between ranks: one row per owned point, neighbours by global id, each
- * row ascending, with the per-bond state that travels with them. */
+ * row ascending, with the per-bond quantities that travel with them as registered bond fields
+ * (core/bond_fields.c): a model registers a field by name once, and migration, checkpoints and
+ * the row operations below carry it without naming it. */
+typedef enum { PF_BOND_UINT8, PF_BOND_FLOAT, PF_BOND_DOUBLE } pf_bond_type;
+/* Bytes of one component of the type: 1, 4, 8. */
+size_t pf_bond_type_size(pf_bond_type type);
+
+#define PF_MAX_BOND_FIELDS 16
+typedef struct {
+  char name[32];
+  pf_bond_type type;
+  int ncomp;   /* components per bond */
+  int flags;   /* PF_FIELD_RESTART: written to checkpoints (migration carries every field) */
+  double init; /* the value of every component of a bond appended without one */
+  void *data;  /* [offset[n] * ncomp] of type, component-minor (room for cap bonds) */
+} pf_bond_field;
+
 typedef struct {
   pf_int n;        /* rows */
   int64_t *offset; /* [n + 1] */
   pf_gid *gid;     /* [offset[n]] */
-  uint8_t *broken; /* [offset[n]] */
-  float *vfrac;    /* [offset[n]] partial-volume fraction (1 when unused) */
-  float *rest;     /* [offset[n]] a broken bond's length when it broke, the contact rest length of
-                      its two points (0: intact, or not recorded) */
-  int nstate;      /* reals of material state per bond (0: none; the widest body's count) */
-  double *state;   /* [offset[n] * nstate] per-bond material state, or NULL when nstate is 0 */
+  int nfields;
+  pf_bond_field field[PF_MAX_BOND_FIELDS]; /* ascending by name: the same order on every rank
+                                              that has the same names */
   int64_t cap;     /* room for bonds */
   pf_int row_cap;  /* room for rows */
 } pf_bond_rows;
 int pf_bond_rows_init(pf_bond_rows *r);
-/* Append one row (broken / vfrac may be NULL: intact, whole). Its bonds' rest lengths and state
- * are zero. */
-int pf_bond_rows_append(pf_bond_rows *r, pf_int count, const pf_gid *gid, const uint8_t *broken,
-                        const float *vfrac);
-/* Append one row with rest lengths (NULL: zero) and nstate reals of state per bond (state
- * [count * nstate], or NULL: zero). The rows widen to the largest nstate appended; narrower rows
- * are padded with zeros. */
-int pf_bond_rows_append_state(pf_bond_rows *r, pf_int count, const pf_gid *gid,
-                              const uint8_t *broken, const float *vfrac, const float *rest, int nstate,
-                              const double *state);
-/* Widen every bond's state to nstate reals (new ones zero); a no-op when not wider. */
-int pf_bond_rows_widen(pf_bond_rows *r, int nstate);
+/* Free the rows and the fields' data; the rows are empty and without fields afterwards. */
 int pf_bond_rows_free(pf_bond_rows *r);
+/* Drop every row, keeping the fields registered. */
+void pf_bond_rows_clear(pf_bond_rows *r);
+
+/* Register a per-bond field of ncomp components of type, flags PF_FIELD_RESTART or 0, init the
+ * value of a bond appended without one. The bonds already in the rows take init. Registering
+ * a name again with the same type and init widens it to the larger ncomp (new components take
+ * init) and adds the flags; another type or init is an error, as are the names "count" and
+ * "gid" (the checkpoint keeps the rows' lengths and neighbours under them). Field data
+ * pointers are valid until the next registration or append. */
+int pf_bond_rows_field_register(pf_bond_rows *r, const char *name, pf_bond_type type, int ncomp,
+                                int flags, double init);
+/* The field registered under name, or NULL. */
+const pf_bond_field *pf_bond_rows_field(const pf_bond_rows *r, const char *name);
+/* The data of the field name when it is registered with this type, else NULL. */
+void *pf_bond_rows_field_data(const pf_bond_rows *r, const char *name, pf_bond_type type);
+/* Copy bonds [first, first + count) of the field name into out [count * ncomp] of its type
+ * (type must be the field's): the first min(ncomp, field's ncomp) components of each bond; the
+ * other components, and all of out when no such field is registered, are left as they are. */
+int pf_bond_rows_field_copy(const pf_bond_rows *r, const char *name, pf_bond_type type,
+                            int64_t first, int64_t count, int ncomp, void *out);
+/* Register in dst every field of src (name, type, ncomp, flags, init). */
+int pf_bond_rows_fields_copy(pf_bond_rows *dst, const pf_bond_rows *src);
+/* Make every rank's fields the union of all ranks' (each the widest registered, flags
+ * combined), hence the same fields in the same order everywhere. Collective. */
+int pf_bond_rows_fields_agree(pf_bond_rows *r);
+
+/* The values of one field for the bonds of a row being appended. */
+typedef struct {
+  const char *name; /* a registered field */
+  const void *data; /* [count * ncomp] of the field's type */
+  int ncomp;        /* components per bond in data, at most the field's (the others take init) */
+} pf_bond_values;
+/* Append a row of count bonds to the neighbours gid[count] (NULL: zeros, to be filled by the
+ * caller); the fields named in values[nvalues] take those values, every other field its init. */
+int pf_bond_rows_append(pf_bond_rows *r, pf_int count, const pf_gid *gid, int nvalues,
+                        const pf_bond_values *values);
+/* Append a row of count bonds to gid[count] whose fields take the values of the bonds from[k]
+ * of src (bond indices into src's rows; -1: the field's init). A field src lacks takes init,
+ * and so do the components beyond src's. */
+int pf_bond_rows_append_from(pf_bond_rows *r, pf_int count, const pf_gid *gid,
+                             const pf_bond_rows *src, const int64_t *from);
+/* Append a copy of row `row` of src (neighbours and fields, as pf_bond_rows_append_from). */
+int pf_bond_rows_append_row(pf_bond_rows *r, const pf_bond_rows *src, pf_int row);
 
 typedef enum { PF_PARTITION_RCB, PF_PARTITION_METIS } pf_partition_method;
 /* The owner rank of every global id (owner_of[n_global], the same on every rank) after
  * partitioning the owned points: Zoltan recursive coordinate bisection of X weighted by each
- * point's bond count, or METIS k-way on the bond graph with the same vertex weights.
- * Collective. */
+ * point's intact bond count plus one (intact: the bond's uint8 field "broken", when registered,
+ * is 0), or METIS k-way on the bond graph with the same vertex weights. Collective. */
 int pf_partition_compute(pf_partition_method method, const pf_points *pts,
                          const pf_bond_rows *rows, int **owner_of);
-/* Send each owned point (every array and field) and its bond row to rank dest[i]. Afterwards
- * the store holds what this rank received, no ghosts, grouped by body (ascending) and in Morton
- * order within a body; body_start[nbodies + 1] gives the ranges. Collective. */
+/* Send each owned point (every array and field) and its bond row (every bond field, after
+ * pf_bond_rows_fields_agree) to rank dest[i]. Afterwards the store holds what this rank
+ * received, no ghosts, grouped by body (ascending) and in Morton order within a body;
+ * body_start[nbodies + 1] gives the ranges. Collective. */
 int pf_points_migrate(pf_points *pts, pf_bond_rows *rows, const int *dest, int nbodies,
                       pf_int *body_start);
 /* Append as ghosts every neighbour in rows that this rank does not own, ordered by owner rank
@@ -364,15 +410,19 @@ typedef struct {
 int pf_table_allgather(const pf_table *t, double *full);
 
 /* ---- checkpoints (core/checkpoint.c): parallel HDF5 ---------------------------------- */
-/* Write the owned points (every array and field) and their bond rows, plus named scalars and
+/* Write the owned points (every array and field) and their bond rows (each bond field flagged
+ * PF_FIELD_RESTART under /bonds/<name>, after pf_bond_rows_fields_agree), plus named scalars and
  * tables (each written whole, under /tables/<name>), to path (through path.tmp, renamed when
  * complete, so a kill leaves the previous checkpoint). Collective. */
-int pf_checkpoint_write(const char *path, const pf_points *pts, const pf_bond_rows *rows,
+int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *rows,
                         int nscalars, const char *const *names, const double *values,
                         int ntables, const pf_table *tables);
 /* Read a checkpoint written on any number of ranks: this rank gets an equal slice of its
- * points (a new store, n_global set, fields registered) with their rows, and the scalars. A
- * missing scalar is an error. Collective. */
+ * points (a new store, n_global set, fields registered) with their rows, and the scalars. rows
+ * comes empty with the bond fields the caller keeps registered: each one flagged
+ * PF_FIELD_RESTART is read (a file without it, or with another type or width, is refused naming
+ * it), the others take their init; bond fields of the file the caller does not register are
+ * not read. A missing scalar is an error. Collective. */
 int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, int nscalars,
                        const char *const *names, double *values);
 /* Read a table written with the checkpoint whole on every rank: full[total * ncomp] (name,

@@ -1,8 +1,9 @@
 /* Moving owned points between ranks: every array and registered field of a point
- * and its bond row (with the per-bond state: broken flag, partial-volume fraction, rest length,
- * the materials' per-bond reals) travel together in one packed record, so that a (re)partition
- * keeps the complete state. Records are exchanged with one MPI_Alltoallv. */
-#include "core/core.h"
+ * and its bond row (with every registered bond field: broken flags, partial-volume fractions,
+ * rest lengths, the materials' per-bond reals, whatever a model registered) travel together in
+ * one packed record, so that a (re)partition keeps the complete state. Records are exchanged
+ * with one MPI_Alltoallv. */
+#include "core/bond_rows_impl.h"
 
 #include <limits.h>
 #include <stdlib.h>
@@ -16,16 +17,25 @@ static int field_width(const pf_points *pts) {
   return w;
 }
 
-/* Bytes of one bond in a record: gid, broken, vfrac, rest length, nstate reals of state. */
-static size_t bond_size(int nstate) { return sizeof(pf_gid) + 1 + 2 * sizeof(float) + sizeof(double) * (size_t)nstate; }
+/* Bytes of one bond in a record: its neighbour's gid and every bond field. */
+static size_t bond_size(const pf_bond_rows *rows) {
+  size_t s = sizeof(pf_gid);
+  for (int k = 0; k < rows->nfields; k++) s += pf_bond_type_size(rows->field[k].type) * (size_t)rows->field[k].ncomp;
+  return s;
+}
 
-static size_t record_size(int nreal, int nstate, int64_t nbonds) {
-  return sizeof(pf_gid) + 2 * sizeof(int32_t) + sizeof(double) * (size_t)nreal + (size_t)nbonds * bond_size(nstate);
+static size_t record_size(int nreal, size_t bond_bytes, int64_t nbonds) {
+  return sizeof(pf_gid) + 2 * sizeof(int32_t) + sizeof(double) * (size_t)nreal + (size_t)nbonds * bond_bytes;
 }
 
 static char *put(char *p, const void *src, size_t n) {
   if (n) memcpy(p, src, n); /* src may be NULL when n is 0 (a body without bonds) */
   return p + n;
+}
+
+/* Bytes of bonds [o, o + nb) of field f. */
+static size_t field_bytes(const pf_bond_field *f, int64_t nb) {
+  return pf_bond_type_size(f->type) * (size_t)f->ncomp * (size_t)nb;
 }
 
 static char *pack(const pf_points *pts, const pf_bond_rows *rows, pf_int i, char *p) {
@@ -42,42 +52,20 @@ static char *pack(const pf_points *pts, const pf_bond_rows *rows, pf_int i, char
     p = put(p, &fl->data[(size_t)i * fl->ncomp], sizeof(double) * fl->ncomp);
   }
   p = put(p, &rows->gid[o], sizeof(pf_gid) * (size_t)nb);
-  p = put(p, &rows->broken[o], (size_t)nb);
-  p = put(p, &rows->vfrac[o], sizeof(float) * (size_t)nb);
-  p = put(p, &rows->rest[o], sizeof(float) * (size_t)nb);
-  return rows->nstate ? put(p, &rows->state[o * rows->nstate], sizeof(double) * (size_t)nb * rows->nstate) : p;
-}
-
-/* Aligned copies of one record's parts, reused from record to record. */
-typedef struct {
-  double *real;
-  pf_gid *gid;
-  float *vfrac, *rest;
-  double *state;
-  int32_t cap; /* bonds */
-} scratch;
-
-static int scratch_fit(scratch *sc, int32_t nb, int nstate) {
-  if (nb <= sc->cap) return 0;
-  free(sc->gid), free(sc->vfrac), free(sc->rest), free(sc->state);
-  sc->cap = 0;
-  PF_MALLOC(sc->gid, nb);
-  PF_MALLOC(sc->vfrac, nb);
-  PF_MALLOC(sc->rest, nb);
-  PF_MALLOC(sc->state, (size_t)nb * nstate);
-  sc->cap = nb;
-  return 0;
+  for (int k = 0; k < rows->nfields; k++)
+    p = put(p, (const char *)rows->field[k].data + field_bytes(&rows->field[k], o), field_bytes(&rows->field[k], nb));
+  return p;
 }
 
 /* Unpack one record into point k of pts and append its row; returns the next record. */
 static const char *unpack(const char *p, pf_points *pts, pf_bond_rows *rows, pf_int k, int nreal,
-                          int nstate, scratch *sc, int *ierr) {
+                          double *real, int *ierr) {
   int32_t nb;
   memcpy(&pts->gid[k], p, sizeof(pf_gid)), p += sizeof(pf_gid);
   memcpy(&pts->body[k], p, sizeof(int32_t)), p += sizeof(int32_t);
   memcpy(&nb, p, sizeof(int32_t)), p += sizeof(int32_t);
-  memcpy(sc->real, p, sizeof(double) * (size_t)nreal), p += sizeof(double) * (size_t)nreal;
-  const double *r = sc->real;
+  memcpy(real, p, sizeof(double) * (size_t)nreal), p += sizeof(double) * (size_t)nreal;
+  const double *r = real;
   for (int a = 0; a < 3; a++) {
     pts->X[3 * k + a] = r[a], pts->u[3 * k + a] = r[3 + a];
     pts->v[3 * k + a] = r[6 + a], pts->f[3 * k + a] = r[9 + a];
@@ -90,19 +78,15 @@ static const char *unpack(const char *p, pf_points *pts, pf_bond_rows *rows, pf_
     memcpy(&fl->data[(size_t)k * fl->ncomp], r, sizeof(double) * fl->ncomp);
     r += fl->ncomp;
   }
-  *ierr = scratch_fit(sc, nb, nstate);
+  *ierr = pf_bond_rows_append(rows, nb, NULL, 0, NULL); /* then the bonds' bytes over it */
   if (*ierr) return p;
-  const uint8_t *broken = (const uint8_t *)(p + sizeof(pf_gid) * (size_t)nb);
-  if (nb > 0) { /* the scratch is not allocated before the first bond */
-    memcpy(sc->gid, p, sizeof(pf_gid) * (size_t)nb);
-    memcpy(sc->vfrac, p + (sizeof(pf_gid) + 1) * (size_t)nb, sizeof(float) * (size_t)nb);
-    memcpy(sc->rest, p + (sizeof(pf_gid) + 1 + sizeof(float)) * (size_t)nb, sizeof(float) * (size_t)nb);
-    if (nstate)
-      memcpy(sc->state, p + (sizeof(pf_gid) + 1 + 2 * sizeof(float)) * (size_t)nb,
-             sizeof(double) * (size_t)nb * nstate);
+  const int64_t at = rows->offset[rows->n - 1];
+  memcpy(rows->gid + at, p, sizeof(pf_gid) * (size_t)nb), p += sizeof(pf_gid) * (size_t)nb;
+  for (int q = 0; q < rows->nfields; q++) {
+    const pf_bond_field *f = &rows->field[q];
+    memcpy((char *)f->data + field_bytes(f, at), p, field_bytes(f, nb)), p += field_bytes(f, nb);
   }
-  *ierr = pf_bond_rows_append_state(rows, nb, sc->gid, broken, sc->vfrac, sc->rest, nstate, sc->state);
-  return p + bond_size(nstate) * (size_t)nb;
+  return p;
 }
 
 /* Pack the owned points by destination rank: buffer, byte counts and displacements. */
@@ -114,7 +98,7 @@ static int pack_all(const pf_points *pts, const pf_bond_rows *rows, const int *d
   for (pf_int i = 0; i < pts->n_owned; i++) {
     PF_CHECK(dest[i] >= 0 && dest[i] < size, PF_ERR_RUN, "point %" PF_GID_FMT " sent to rank %d of %d",
              pts->gid[i], dest[i], size);
-    bytes[dest[i]] += record_size(nreal, rows->nstate, rows->offset[i + 1] - rows->offset[i]);
+    bytes[dest[i]] += record_size(nreal, bond_size(rows), rows->offset[i + 1] - rows->offset[i]);
   }
   size_t *at;
   PF_MALLOC(at, size);
@@ -131,12 +115,12 @@ static int pack_all(const pf_points *pts, const pf_bond_rows *rows, const int *d
 }
 
 /* Count the records in a received buffer. */
-static pf_int count_records(const char *p, size_t len, int nreal, int nstate) {
+static pf_int count_records(const char *p, size_t len, int nreal, size_t bond_bytes) {
   pf_int n = 0;
   for (size_t at = 0; at < len; n++) {
     int32_t nb;
     memcpy(&nb, p + at + sizeof(pf_gid) + sizeof(int32_t), sizeof nb);
-    at += record_size(nreal, nstate, nb);
+    at += record_size(nreal, bond_bytes, nb);
   }
   return n;
 }
@@ -169,12 +153,11 @@ static int order_by_body(const pf_points *pts, int nbodies, pf_int *body_start, 
 static int permute_rows(pf_bond_rows *rows, const pf_int *perm) {
   pf_bond_rows out;
   PF_CALL(pf_bond_rows_init(&out));
-  PF_CALL(pf_bond_rows_widen(&out, rows->nstate));
-  for (pf_int k = 0; k < rows->n; k++) {
-    int64_t o = rows->offset[perm[k]];
-    PF_CALL(pf_bond_rows_append_state(&out, (pf_int)(rows->offset[perm[k] + 1] - o), &rows->gid[o],
-                                      &rows->broken[o], &rows->vfrac[o], &rows->rest[o], rows->nstate,
-                                      rows->state ? &rows->state[o * rows->nstate] : NULL));
+  int ierr = pf_bond_rows_fields_copy(&out, rows);
+  for (pf_int k = 0; k < rows->n && !ierr; k++) ierr = pf_bond_rows_append_row(&out, rows, perm[k]);
+  if (ierr) {
+    pf_bond_rows_free(&out);
+    return ierr;
   }
   pf_bond_rows_free(rows);
   *rows = out;
@@ -182,10 +165,8 @@ static int permute_rows(pf_bond_rows *rows, const pf_int *perm) {
 }
 
 int pf_points_migrate(pf_points *pts, pf_bond_rows *rows, const int *dest, int nbodies, pf_int *body_start) {
-  int size = pf_comm_size(), nreal = NFIXED + field_width(pts), nstate = rows->nstate;
-  /* every record carries the same number of state reals per bond: the widest rank's */
-  MPI_Allreduce(MPI_IN_PLACE, &nstate, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  PF_CALL(pf_bond_rows_widen(rows, nstate));
+  int size = pf_comm_size(), nreal = NFIXED + field_width(pts);
+  PF_CALL(pf_bond_rows_fields_agree(rows)); /* every record carries the same bond fields */
   int *scount, *sdispl, *rcount, *rdispl;
   PF_MALLOC(scount, size);
   PF_MALLOC(sdispl, size);
@@ -203,17 +184,15 @@ int pf_points_migrate(pf_points *pts, pf_bond_rows *rows, const int *dest, int n
   MPI_Alltoallv(sbuf, scount, sdispl, MPI_BYTE, rbuf, rcount, rdispl, MPI_BYTE, MPI_COMM_WORLD);
   free(sbuf), free(scount), free(sdispl), free(rcount);
   pf_exchange_destroy(&pts->halo);
-  pf_int n = count_records(rbuf, (size_t)rdispl[size], nreal, nstate);
+  pf_int n = count_records(rbuf, (size_t)rdispl[size], nreal, bond_size(rows));
   PF_CALL(pf_points_resize(pts, n, 0));
-  pf_bond_rows_free(rows);
-  PF_CALL(pf_bond_rows_init(rows));
-  PF_CALL(pf_bond_rows_widen(rows, nstate));
-  scratch sc = {0};
-  PF_MALLOC(sc.real, nreal);
+  pf_bond_rows_clear(rows);
+  double *real;
+  PF_MALLOC(real, nreal);
   const char *p = rbuf;
   int ierr = 0;
-  for (pf_int k = 0; k < n && !ierr; k++) p = unpack(p, pts, rows, k, nreal, nstate, &sc, &ierr);
-  free(sc.real), free(sc.gid), free(sc.vfrac), free(sc.rest), free(sc.state), free(rbuf), free(rdispl);
+  for (pf_int k = 0; k < n && !ierr; k++) p = unpack(p, pts, rows, k, nreal, real, &ierr);
+  free(real), free(rbuf), free(rdispl);
   if (ierr) return ierr;
   pf_int *perm;
   PF_MALLOC(perm, n);

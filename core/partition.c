@@ -14,10 +14,13 @@ typedef struct {
   const pf_bond_rows *rows;
 } zctx;
 
-/* The work of point i's force loop: its intact bonds, plus one. */
+/* The work of point i's force loop: its intact bonds, plus one. A bond is intact unless its
+ * uint8 bond field "broken" is registered and not 0. */
 static int weight(const pf_bond_rows *rows, pf_int i) {
+  const pf_bond_field *f = pf_bond_rows_field(rows, "broken");
+  const uint8_t *broken = f && f->type == PF_BOND_UINT8 ? f->data : NULL;
   int w = 1;
-  for (int64_t k = rows->offset[i]; k < rows->offset[i + 1]; k++) w += !rows->broken[k];
+  for (int64_t k = rows->offset[i]; k < rows->offset[i + 1]; k++) w += broken ? !broken[k * f->ncomp] : 1;
   return w;
 }
 

@@ -121,10 +121,9 @@ int pf_coupled_body_destroy(pf_coupled_body **pc) {
 pf_fem_body *pf_coupled_body_fem(const pf_coupled_body *c) { return c->fe; }
 pf_pd_body *pf_coupled_body_pd(const pf_coupled_body *c) { return c->pd; }
 
-/* Sorted union of the ascending gid list of row r of pd (with its broken flags and rest lengths)
- * and the list e (intact) into out, ob, ol. */
-static pf_int merge(const pf_bond_rows *pd, pf_int r, const pf_gid *e, pf_int ne, pf_gid *out, uint8_t *ob,
-                    float *ol) {
+/* Sorted union of the ascending gid list of row r of pd and the list e into out; from[k] is the
+ * bond of pd whose fields bond k takes (-1: an element neighbour only, intact). */
+static pf_int merge(const pf_bond_rows *pd, pf_int r, const pf_gid *e, pf_int ne, pf_gid *out, int64_t *from) {
   const int64_t o = pd->offset[r];
   const pf_int na = (pf_int)(pd->offset[r + 1] - o);
   const pf_gid *a = &pd->gid[o];
@@ -132,25 +131,22 @@ static pf_int merge(const pf_bond_rows *pd, pf_int r, const pf_gid *e, pf_int ne
   while (i < na || j < ne) {
     const int from_pd = j >= ne || (i < na && a[i] <= e[j]);
     if (from_pd && j < ne && a[i] == e[j]) j++;
-    ob[n] = from_pd ? pd->broken[o + i] : 0, ol[n] = from_pd ? pd->rest[o + i] : 0.0f;
+    from[n] = from_pd ? o + i : -1;
     out[n++] = from_pd ? a[i++] : e[j++];
   }
   return n;
 }
 
 static int merged_rows(const pf_bond_rows *pd, const pf_bond_rows *elem, pf_bond_rows *rows) {
-  int ierr = 0;
+  int ierr = pf_bond_rows_fields_copy(rows, pd);
   for (pf_int r = 0; r < pd->n && !ierr; r++) {
     const int64_t oe = elem->offset[r];
     const pf_int na = (pf_int)(pd->offset[r + 1] - pd->offset[r]), ne = (pf_int)(elem->offset[r + 1] - oe);
     pf_gid *g = malloc(sizeof(pf_gid) * ((size_t)(na + ne) + 1));
-    uint8_t *br = malloc((size_t)(na + ne) + 1);
-    float *rest = malloc(sizeof(float) * ((size_t)(na + ne) + 1));
-    if (!g || !br || !rest) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
-    else
-      ierr = pf_bond_rows_append_state(rows, merge(pd, r, &elem->gid[oe], ne, g, br, rest), g, br, NULL, rest, 0,
-                                       NULL);
-    free(g), free(br), free(rest);
+    int64_t *from = malloc(sizeof(int64_t) * ((size_t)(na + ne) + 1));
+    if (!g || !from) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+    else ierr = pf_bond_rows_append_from(rows, merge(pd, r, &elem->gid[oe], ne, g, from), g, pd, from);
+    free(g), free(from);
   }
   return ierr;
 }

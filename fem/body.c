@@ -188,7 +188,7 @@ int pf_fem_body_node_rows(const pf_fem_body *b, const pf_points *pts, pf_int fir
                                               b->name, k + 1, sizeof row / sizeof row[0]);
       }
     qsort(row, (size_t)cnt, sizeof row[0], cmp_gid);
-    if (!ierr) ierr = pf_bond_rows_append(rows, cnt, row, NULL, NULL);
+    if (!ierr) ierr = pf_bond_rows_append(rows, cnt, row, 0, NULL);
   }
   return ierr;
 }

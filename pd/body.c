@@ -428,6 +428,10 @@ int pf_pd_body_bond_rows(const pf_pd_body *b, const pf_points *pts, pf_bond_rows
   return pf_pd_family_to_rows(&b->fam, pts, rows);
 }
 
+int pf_pd_body_bond_fields(const pf_pd_body *b, pf_bond_rows *rows) {
+  return pf_pd_family_register_fields(rows, b->partial, b->fam.nstate);
+}
+
 int pf_pd_body_destroy(pf_pd_body **b) {
   if (!*b) return 0;
   if ((*b)->ops && (*b)->ops->destroy && (*b)->mat) (*b)->ops->destroy(*b);

@@ -167,15 +167,25 @@ static pf_int find_row(const search_ctx *s, const cell_list *cl, const double *x
   return count;
 }
 
-static int append_row(pf_bond_rows *rows, const candidate *row, pf_int count, pf_gid *gid, float *frac) {
+static int append_row(pf_bond_rows *rows, const candidate *row, pf_int count, int partial, pf_gid *gid, float *frac) {
   for (pf_int k = 0; k < count; k++) gid[k] = row[k].gid, frac[k] = row[k].frac;
-  return pf_bond_rows_append(rows, count, gid, NULL, frac);
+  const pf_bond_values v = {"vfrac", frac, 1};
+  return pf_bond_rows_append(rows, count, gid, partial, &v);
+}
+
+int pf_pd_family_register_fields(pf_bond_rows *rows, int partial_volumes, int nstate) {
+  PF_CALL(pf_bond_rows_field_register(rows, "broken", PF_BOND_UINT8, 1, PF_FIELD_RESTART, 0.0));
+  PF_CALL(pf_bond_rows_field_register(rows, "rest", PF_BOND_FLOAT, 1, PF_FIELD_RESTART, 0.0));
+  if (partial_volumes) PF_CALL(pf_bond_rows_field_register(rows, "vfrac", PF_BOND_FLOAT, 1, PF_FIELD_RESTART, 1.0));
+  if (nstate > 0) PF_CALL(pf_bond_rows_field_register(rows, "state", PF_BOND_DOUBLE, nstate, PF_FIELD_RESTART, 0.0));
+  return 0;
 }
 
 int pf_pd_family_build(const pf_pd_cloud *src, const pf_points *pts, pf_int first, pf_int n,
                        double horizon, const double *hz, int partial_volumes, int ncracks,
                        const pf_precrack *cracks, pf_bond_rows *rows) {
   PF_CHECK(horizon > 0, PF_ERR_INPUT, "horizon must be positive (got %g)", horizon);
+  PF_CALL(pf_pd_family_register_fields(rows, partial_volumes, 0));
   double hmax = 0;
   for (pf_int j = 0; j < src->n; j++) hmax = fmax(hmax, src->cell[j]);
   search_ctx s = {src, hz, horizon, horizon + (partial_volumes ? 0.8660254037844387 * hmax : 0),
@@ -194,7 +204,7 @@ int pf_pd_family_build(const pf_pd_cloud *src, const pf_points *pts, pf_int firs
   int ierr = 0;
   for (pf_int i = first; i < first + n && !ierr; i++) {
     pf_int self = (pf_int)(pts->gid[i] - src->gid0);
-    ierr = append_row(rows, row, find_row(&s, &cl, &pts->X[3 * i], self, row), gid, frac);
+    ierr = append_row(rows, row, find_row(&s, &cl, &pts->X[3 * i], self, row), partial_volumes, gid, frac);
   }
   free(row), free(gid), free(frac);
   free(cl.start);
@@ -204,7 +214,7 @@ int pf_pd_family_build(const pf_pd_cloud *src, const pf_points *pts, pf_int firs
 
 int pf_pd_family_from_rows(const pf_bond_rows *rows, const pf_int *local, pf_int first, pf_int n,
                            int partial_volumes, pf_family *fam) {
-  const int ns = fam->nstate, nr = rows->nstate; /* ns: set by the material, kept */
+  const int ns = fam->nstate; /* set by the material, kept */
   pf_pd_family_free(fam);
   PF_FREE(fam->state);
   fam->nstate = ns;
@@ -219,17 +229,18 @@ int pf_pd_family_from_rows(const pf_bond_rows *rows, const pf_int *local, pf_int
   PF_MALLOC(fam->rest, nb + 1);
   if (ns > 0) PF_MALLOC(fam->state, nb * ns);
   for (pf_int i = 0; i <= n; i++) fam->offset[i] = rows->offset[first + i] - o0;
-  for (int64_t k = 0; k < nb; k++) {
-    fam->neighbor[k] = local[o0 + k];
-    fam->broken[k] = rows->broken[o0 + k];
-    fam->rest[k] = rows->rest[o0 + k];
-    if (partial_volumes) fam->vfrac[k] = rows->vfrac[o0 + k];
-    for (int c = 0; c < ns && c < nr; c++) fam->state[k * ns + c] = rows->state[(o0 + k) * nr + c];
-  }
+  for (int64_t k = 0; k < nb; k++) fam->neighbor[k] = local[o0 + k];
+  for (int64_t k = 0; k < nb && partial_volumes; k++) fam->vfrac[k] = 1.0f; /* (rows without fractions) */
+  /* each array from the bond field of its name (left zero, or 1, where the rows lack it) */
+  PF_CALL(pf_bond_rows_field_copy(rows, "broken", PF_BOND_UINT8, o0, nb, 1, fam->broken));
+  PF_CALL(pf_bond_rows_field_copy(rows, "rest", PF_BOND_FLOAT, o0, nb, 1, fam->rest));
+  if (partial_volumes) PF_CALL(pf_bond_rows_field_copy(rows, "vfrac", PF_BOND_FLOAT, o0, nb, 1, fam->vfrac));
+  if (ns > 0) PF_CALL(pf_bond_rows_field_copy(rows, "state", PF_BOND_DOUBLE, o0, nb, ns, fam->state));
   return 0;
 }
 
 int pf_pd_family_to_rows(const pf_family *fam, const pf_points *pts, pf_bond_rows *rows) {
+  PF_CALL(pf_pd_family_register_fields(rows, fam->vfrac != NULL, fam->nstate));
   pf_gid *gid;
   int64_t maxrow = 0;
   for (pf_int i = 0; i < fam->n; i++)
@@ -238,10 +249,12 @@ int pf_pd_family_to_rows(const pf_family *fam, const pf_points *pts, pf_bond_row
   int ierr = 0;
   for (pf_int i = 0; i < fam->n && !ierr; i++) {
     int64_t o = fam->offset[i];
-    pf_int cnt = (pf_int)(fam->offset[i + 1] - o);
+    pf_int cnt = (pf_int)(fam->offset[i + 1] - o), nv = 2;
     for (pf_int k = 0; k < cnt; k++) gid[k] = pts->gid[fam->neighbor[o + k]];
-    ierr = pf_bond_rows_append_state(rows, cnt, gid, &fam->broken[o], fam->vfrac ? &fam->vfrac[o] : NULL,
-                                     &fam->rest[o], fam->nstate, fam->state ? &fam->state[o * fam->nstate] : NULL);
+    pf_bond_values v[4] = {{"broken", &fam->broken[o], 1}, {"rest", &fam->rest[o], 1}};
+    if (fam->vfrac) v[nv++] = (pf_bond_values){"vfrac", &fam->vfrac[o], 1};
+    if (fam->nstate > 0 && fam->state) v[nv++] = (pf_bond_values){"state", &fam->state[o * fam->nstate], fam->nstate};
+    ierr = pf_bond_rows_append(rows, cnt, gid, nv, v);
   }
   free(gid);
   return ierr;

@@ -14,7 +14,9 @@ typedef struct pf_pd_body pf_pd_body;
 /* CSR family of the points [first, first + n) of the point store. Full lists (each bond seen
  * from both ends), each row sorted by the neighbour's global id. neighbor, broken and vfrac
  * have PF_FAMILY_SLACK zero entries past the last bond, so that a batched bond loop may read a
- * whole batch at a row's end. */
+ * whole batch at a row's end. broken, vfrac, rest and state travel in the bond rows as the bond
+ * fields of those names (pf_pd_family_register_fields): filled from the rows by
+ * pf_pd_family_from_rows, written back by pf_pd_family_to_rows. */
 enum { PF_FAMILY_SLACK = 8 };
 typedef struct {
   pf_int first, n;
@@ -46,6 +48,10 @@ typedef struct {
   pf_gid gid0;
 } pf_pd_cloud;
 
+/* Register in rows the bond fields a family keeps (core/ carries them through migration and
+ * checkpoints): "broken" (uint8, 1 once failed), "rest" (float, m), with partial volumes
+ * "vfrac" (float, init 1), and with nstate > 0 "state" (nstate doubles). */
+int pf_pd_family_register_fields(pf_bond_rows *rows, int partial_volumes, int nstate);
 /* Append to rows the bonds of points [first, first+n) of pts (which are points of the cloud)
  * to every cloud point within `horizon` (|xi| <= horizon), each row ascending in global id.
  * With hz (each cloud point's own horizon; then `horizon` is their largest), the rows hold
@@ -53,7 +59,8 @@ typedef struct {
  * so that the rows stay symmetric; the kernels tell the two apart (pf_pd_in_family).
  * With partial_volumes, neighbours whose cell only partly lies in the horizon sphere are kept
  * with the fraction of the cell inside (16^3 sub-cell midpoint rule, as Peridigm). Bonds
- * crossing a pre-crack are left out. O(n) cell-list search. */
+ * crossing a pre-crack are left out. O(n) cell-list search. The family's bond fields are
+ * registered in rows (without "state": the new bonds have none yet). */
 int pf_pd_family_build(const pf_pd_cloud *src, const pf_points *pts, pf_int first, pf_int n,
                        double horizon, const double *hz, int partial_volumes, int ncracks,
                        const pf_precrack *cracks, pf_bond_rows *rows);
@@ -63,7 +70,7 @@ int pf_pd_family_build(const pf_pd_cloud *src, const pf_points *pts, pf_int firs
 int pf_pd_family_from_rows(const pf_bond_rows *rows, const pf_int *local, pf_int first, pf_int n,
                            int partial_volumes, pf_family *fam);
 /* Append the family's rows (neighbours by global id, with their state, per-bond reals
- * included) to rows. */
+ * included) to rows, registering the family's bond fields in rows first. */
 int pf_pd_family_to_rows(const pf_family *fam, const pf_points *pts, pf_bond_rows *rows);
 int pf_pd_family_free(pf_family *fam);
 int64_t pf_pd_family_nbonds(const pf_family *fam);
@@ -128,6 +135,9 @@ int pf_pd_body_attach(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n,
                       const pf_bond_rows *rows, const pf_int *local, int fresh);
 /* Append the rows of the body's owned points (neighbours by global id) to rows. */
 int pf_pd_body_bond_rows(const pf_pd_body *b, const pf_points *pts, pf_bond_rows *rows);
+/* Register in rows the bond fields the body's rows carry (pf_pd_family_register_fields), as
+ * its rows would: before reading a checkpoint into them. */
+int pf_pd_body_bond_fields(const pf_pd_body *b, pf_bond_rows *rows);
 int pf_pd_body_destroy(pf_pd_body **b);
 double pf_pd_body_density(const pf_pd_body *b);
 double pf_pd_body_horizon(const pf_pd_body *b); /* the constant one, or the largest */

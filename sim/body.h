@@ -37,6 +37,9 @@ typedef struct {
   int (*rows)(const void *data, const pf_points *pts, const pf_body_span *s, pf_bond_rows *rows);
   int (*find_rows)(void *data, const pf_point_cloud *pc, const pf_points *pts, const pf_body_span *s,
                    pf_bond_rows *rows);
+  /* Optional: register on rows the bond fields the body's rows carry (NULL: none beyond the
+   * global ids). */
+  int (*bond_fields)(const void *data, pf_bond_rows *rows);
   /* Take the span's points (ghosts added; rows and local as pf_pd_body_attach). Collective. */
   int (*attach)(void *data, pf_points *pts, const pf_body_span *s, const pf_bond_rows *rows,
                 const pf_int *local, int fresh);

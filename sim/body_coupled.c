@@ -29,6 +29,8 @@ static int rows(const void *data, const pf_points *pts, const pf_body_span *s, p
   return pf_coupled_body_rows(data, pts, s->first, s->n, s->gid0, out);
 }
 
+static int bond_fields(const void *data, pf_bond_rows *out) { return pd->bond_fields(pd_of(data), out); }
+
 static int attach(void *data, pf_points *pts, const pf_body_span *s, const pf_bond_rows *r, const pf_int *local,
                   int fresh) {
   return pf_coupled_body_attach(data, s->index, pts, s->first, s->n, s->gid0, r, local, fresh);
@@ -82,6 +84,7 @@ const pf_body_ops pf_body_kind_coupled = {
     .destroy = destroy,
     .cloud = cloud,
     .rows = rows,
+    .bond_fields = bond_fields,
     .attach = attach,
     .force = force,
     .stable_dt = stable_dt,

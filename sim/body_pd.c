@@ -26,6 +26,8 @@ static int rows(const void *data, const pf_points *pts, const pf_body_span *s, p
   return pf_pd_body_bond_rows(data, pts, out);
 }
 
+static int bond_fields(const void *data, pf_bond_rows *out) { return pf_pd_body_bond_fields(data, out); }
+
 static int attach(void *data, pf_points *pts, const pf_body_span *s, const pf_bond_rows *r, const pf_int *local,
                   int fresh) {
   return pf_pd_body_attach(data, pts, s->first, s->n, r, local, fresh);
@@ -72,6 +74,7 @@ const pf_body_ops pf_body_kind_pd = {
     .cloud = cloud,
     .find_rows = find_rows,
     .rows = rows,
+    .bond_fields = bond_fields,
     .attach = attach,
     .force = force,
     .stable_dt = stable_dt,

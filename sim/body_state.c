@@ -18,6 +18,12 @@ int pf_sim_bond_rows(const pf_sim *sim, pf_bond_rows *rows) {
   return 0;
 }
 
+int pf_sim_bond_fields(const pf_sim *sim, pf_bond_rows *rows) {
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->body[b].ops->bond_fields) PF_CALL(sim->body[b].ops->bond_fields(sim->body[b].data, rows));
+  return 0;
+}
+
 int pf_sim_table_shape(const pf_sim *sim, int b, pf_table *t, pf_int *nlocal) {
   const pf_body *body = &sim->body[b];
   memset(t, 0, sizeof *t);

@@ -150,7 +150,8 @@ int pf_sim_restore_points(pf_sim *sim) {
   PF_CALL(pf_bond_rows_init(&rows));
   PF_CALL(scalars_make(sim, &sim->restart_scalars));
   pf_sim_scalars *s = &sim->restart_scalars;
-  int ierr = pf_checkpoint_read(sim->opt.restart_from, &sim->pts, &rows, s->n, s->names, s->value);
+  int ierr = pf_sim_bond_fields(sim, &rows);
+  if (!ierr) ierr = pf_checkpoint_read(sim->opt.restart_from, &sim->pts, &rows, s->n, s->names, s->value);
   if (!ierr) body_gids(sim);
   if (!ierr) ierr = pf_sim_settle(sim, &rows, 0);
   pf_bond_rows_free(&rows);

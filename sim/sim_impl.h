@@ -146,6 +146,9 @@ void pf_sim_guard_free(pf_sim *sim);
  * kinds with table ops); a re-partition that keeps that state. */
 pf_body_span pf_sim_span(const pf_sim *sim, int b);
 int pf_sim_bond_rows(const pf_sim *sim, pf_bond_rows *rows);
+/* The bond fields the bodies' rows carry, registered alone (before a checkpoint is read into
+ * rows). */
+int pf_sim_bond_fields(const pf_sim *sim, pf_bond_rows *rows);
 /* 1 when body b keeps a state table: t gets its name, total and ncomp, *nlocal its local rows. */
 int pf_sim_table_shape(const pf_sim *sim, int b, pf_table *t, pf_int *nlocal);
 int pf_sim_body_tables(const pf_sim *sim, pf_table *t, int *n);
