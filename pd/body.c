@@ -212,7 +212,7 @@ static int check_variable_horizon(const pf_deck *d, const pf_node *body, const p
     return pf_deck_error(d, b->hz_expr ? h : f, b->hz_expr ? "horizon" : "formulation",
                          "a variable horizon and the partial-stress form need lps or a correspondence "
                          "material (body '%s' has %s)", b->name, b->ops->name);
-  if (b->form == PF_PD_PARTIAL_STRESS && b->law != PF_DAMAGE_NONE)
+  if (b->form == PF_PD_PARTIAL_STRESS && (b->damage->fails_on_stretch || b->damage->fails_on_energy))
     return pf_deck_error(d, dmg, "damage", "body '%s' is all partial stress (a transition region), which "
                          "carries no damage; use formulation: auto to keep damage where the horizon is "
                          "constant", b->name);
@@ -224,7 +224,7 @@ static int check_variable_horizon(const pf_deck *d, const pf_node *body, const p
     return pf_deck_error(d, pf_node_get(body, "influence"), "influence",
                          "the gaussian influence scales with the horizon; with a variable horizon use "
                          "constant or inverse_distance");
-  if (b->law == PF_DAMAGE_CRITICAL_ENERGY || (dmg && pf_node_get(dmg, "energy_release_rate")))
+  if (b->damage->fails_on_energy || (dmg && pf_node_get(dmg, "energy_release_rate")))
     return pf_deck_error(d, dmg, "damage", "the energy-based laws depend on the horizon; with a variable "
                          "horizon give a critical_stretch");
   return 0;
@@ -440,6 +440,7 @@ int pf_pd_body_destroy(pf_pd_body **b) {
   free((*b)->lost);
   free((*b)->idle);
   free((*b)->cracks);
+  free((*b)->damage_data);
   pf_expr_destroy(&(*b)->hz_expr);
   PF_FREE(*b);
   return 0;

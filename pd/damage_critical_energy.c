@@ -18,10 +18,12 @@ double pf_pd_critical_energy(double G0, double delta) {
   return 4.0 * G0 / (PF_PI * delta * delta * delta * delta);
 }
 
+static const char *const keys[] = {"energy_release_rate", NULL};
+
 /* The materials whose force kernels evaluate the bond energy. */
 static const pf_pd_material_ops *const supported[] = {&pf_pd_material_pmb, &pf_pd_material_lps};
 
-int pf_pd_damage_critical_energy_read(const pf_deck *d, const pf_node *map, pf_pd_body *b) {
+static int read_critical_energy(const pf_deck *d, const pf_node *map, pf_pd_body *b) {
   int ok = 0;
   for (size_t k = 0; k < sizeof supported / sizeof supported[0]; k++) ok |= b->ops == supported[k];
   if (!ok)
@@ -34,8 +36,14 @@ int pf_pd_damage_critical_energy_read(const pf_deck *d, const pf_node *map, pf_p
                          "law 'critical_energy' needs 'energy_release_rate' (G0, J/m^2)");
   double G0;
   PF_CALL(pf_deck_positive(d, map, "energy_release_rate", &G0));
-  b->law = PF_DAMAGE_CRITICAL_ENERGY;
   b->critical_energy = pf_pd_critical_energy(G0, b->horizon);
   b->s0_init = INFINITY; /* no stretch limit */
   return 0;
 }
+
+const pf_pd_damage_ops pf_pd_damage_critical_energy = {
+    .name = "critical_energy",
+    .keys = keys,
+    .read = read_critical_energy,
+    .fails_on_energy = 1,
+};

@@ -221,7 +221,7 @@ static inline __attribute__((always_inline)) int64_t forces(pf_pd_body *b, pf_po
 
 int64_t pf_pd_lps_batched_force(pf_pd_body *b, pf_points *pts, const double *rec, const double *rm) {
   const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = b->fam.vfrac != NULL;
-  const int energy = b->law == PF_DAMAGE_CRITICAL_ENERGY;
+  const int energy = b->damage->fails_on_energy;
   int64_t failed = 0;
 #pragma omp parallel reduction(+ : failed)
   {

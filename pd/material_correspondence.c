@@ -362,7 +362,7 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
   const corr *p = b->mat;
   const pf_family *fam = &b->fam;
   const pf_int li = i - b->first;
-  const int consistent = pf_pd_consistent_at(b, i);
+  const int consistent = pf_pd_consistent_at(b, i), stretch = b->damage->fails_on_stretch;
   double smin = INFINITY;
   int nb = 0;
   memset(K, 0, 9 * sizeof(double)), memset(A, 0, 9 * sizeof(double)), memset(B, 0, 9 * sizeof(double));
@@ -379,7 +379,7 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
       r02 += xi[a] * xi[a], r2 += Y[a] * Y[a];
     }
     const double r0 = sqrt(r02);
-    if (b->law != PF_DAMAGE_NONE && pf_pd_may_fail(b, i, j)) { /* (both ends test every row bond) */
+    if (stretch && pf_pd_may_fail(b, i, j)) { /* (both ends test every row bond) */
       const double s = (sqrt(r2) - r0) / r0;
       if (s > fmin(b->s0[i], b->s0[j])) {
         fam->broken[k] = 1, p->lost[li] = 1;

@@ -148,7 +148,7 @@ static int lps_force_batched(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
 static int lps_force_general(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
   lps *p = b->mat;
   const double K = b->bulk_modulus, G = b->shear_modulus, wc = b->critical_energy;
-  const int energy = b->law == PF_DAMAGE_CRITICAL_ENERGY;
+  const int energy = b->damage->fails_on_energy;
   const pf_family *fam = &b->fam;
   for (pf_int i = b->first; i < b->first + b->n; i++) p->theta[i] = lps_dilatation(b, pts, i, p->m[i]);
   PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta for the force pass */

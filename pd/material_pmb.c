@@ -190,12 +190,13 @@ static int pmb_force(pf_pd_body *b, pf_points *pts) {
   const double c = ((const pmb *)b->mat)->c;
   PF_CALL(pf_batch_records_fill(&((pmb *)b->mat)->rec, pts, b->s0));
   const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = b->fam.vfrac != NULL;
+  const int energy = b->damage->fails_on_energy;
   int any = 0;
 #pragma omp parallel reduction(| : any)
   {
     pf_int lo, hi;
     pf_thread_range(b->first, b->n, &lo, &hi);
-    if (b->law == PF_DAMAGE_CRITICAL_ENERGY) any = pmb_force_energy(b, pts, c, lo, hi, weighted, partial);
+    if (energy) any = pmb_force_energy(b, pts, c, lo, hi, weighted, partial);
     else if (!weighted && !partial) any = pmb_loop(b, pts, c, lo, hi, 0, 0, 0);
     else if (!weighted) any = pmb_loop(b, pts, c, lo, hi, 0, 1, 0);
     else if (!partial) any = pmb_loop(b, pts, c, lo, hi, 1, 0, 0);

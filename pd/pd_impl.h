@@ -7,6 +7,7 @@
 #include <math.h>
 
 typedef struct pf_pd_material_ops pf_pd_material_ops;
+typedef struct pf_pd_damage_ops pf_pd_damage_ops;
 
 /* How a point's internal force is formed (docs/theory/coupling.md §2). Standard: from the force
  * states of both ends of each bond. Partial stress (Silling & Seleson 2013; Littlewood 2014,
@@ -17,17 +18,6 @@ typedef struct pf_pd_material_ops pf_pd_material_ops;
  * (energy) form with the transition points' gradient weights corrected so that a uniform stress
  * gives no ghost force (§2.6). */
 typedef enum { PF_PD_AUTO, PF_PD_STANDARD, PF_PD_PARTIAL_STRESS, PF_PD_CORRECTED, PF_PD_CONSISTENT } pf_pd_formulation;
-
-/* Damage laws (the list: pd/damage_critical_stretch.c). Stretch laws: a bond fails when its
- * stretch exceeds min(s0_i, s0_j) (both ends, as LAMMPS' peri pair styles), s0 constant or
- * evolving (Silling–Askari). Critical energy (pd/damage_critical_energy.c): a bond in tension
- * fails when its energy per V_i V_j exceeds w_c; the material's force kernel evaluates it. */
-typedef enum {
-  PF_DAMAGE_NONE,
-  PF_DAMAGE_CRITICAL_STRETCH,
-  PF_DAMAGE_SILLING_ASKARI,
-  PF_DAMAGE_CRITICAL_ENERGY
-} pf_damage_law;
 
 struct pf_pd_body {
   char name[64];
@@ -64,10 +54,10 @@ struct pf_pd_body {
   const pf_pd_material_ops *ops;
   void *mat; /* the material's own data */
   /* damage */
-  pf_damage_law law;
-  double s0_init;    /* initial critical stretch */
-  double s00, alpha; /* Silling–Askari: s0 = s00 - alpha s_min */
-  double critical_energy; /* critical_energy: w_c = 4 G0 / (pi delta^4), J/m^6 */
+  const pf_pd_damage_ops *damage; /* the law (pd/damage_laws.h); "none" when the deck gives none */
+  void *damage_data; /* the law's own parameters, or NULL (allocated by its read, freed with the body) */
+  double s0_init;    /* initial critical stretch (INFINITY: none) */
+  double critical_energy; /* a law that fails bonds on energy: w_c, J/m^6 */
   double *s0;        /* field "critical_stretch": per point, used by the force kernels */
   double *smin;      /* [n] smallest stretch of each point's intact bonds this step */
   uint8_t *lost;     /* [n] scratch of the threaded bond loops: 1 where the point's row has
@@ -99,13 +89,48 @@ struct pf_pd_material_ops {
   int partial_stress; /* 1: takes a variable horizon and the partial-stress form */
 };
 
-/* pd/damage_critical_stretch.c: read the damage law (create), fill s0 (attach). */
+/* A damage law (bond failure): one file pd/damage_<id>.c defining pf_pd_damage_<id>, and one
+ * line in pd/damage_laws.h. Stretch laws: a bond fails when its stretch exceeds min(s0_i, s0_j)
+ * (both ends, as LAMMPS' peri pair styles), s0 being the point field "critical_stretch" (b->s0),
+ * constant or evolving. Energy laws: a bond in tension fails when its energy per V_i V_j
+ * exceeds b->critical_energy; the material's force kernel evaluates it. The force kernels read
+ * the flags once per call, never the law's name. Required: name, read. Optional: keys (NULL:
+ * none besides `law`), attach (NULL: every owned point starts at b->s0_init), post_step (NULL:
+ * s0 stays), the flags (0). */
+struct pf_pd_damage_ops {
+  const char *name;        /* the deck's `law:` value (the <id>) */
+  const char *const *keys; /* the keys of pf_pd_damage_keys it reads besides `law` (NULL-ended):
+                              any other one in the deck is an error naming it */
+  /* Read its parameters from the body's `damage:` mapping (NULL when the deck has none; the
+   * material is created): set b->s0_init (INFINITY: no stretch limit), b->critical_energy for an
+   * energy law, b->damage_data for parameters of its own. */
+  int (*read)(const pf_deck *d, const pf_node *map, pf_pd_body *b);
+  /* At attach, the field "critical_stretch" (b->s0) registered: when fresh, fill the owned
+   * points' initial s0 (their ghosts follow); register any field of its own. */
+  int (*attach)(pf_pd_body *b, pf_points *pts, int fresh);
+  /* After each step: update s0 from the step's b->smin, ghosts included. Collective. */
+  int (*post_step)(pf_pd_body *b, pf_points *pts);
+  int fails_on_stretch; /* 1: a bond fails when s > min(s0_i, s0_j) (kernels that otherwise skip
+                           the test, correspondence, run it) */
+  int fails_on_energy;  /* 1: the material's force kernel fails a bond in tension whose energy
+                           per V_i V_j exceeds b->critical_energy */
+};
+
+#define PF_PD_DAMAGE_LAW(id) extern const pf_pd_damage_ops pf_pd_damage_##id;
+#include "pd/damage_laws.h"
+#undef PF_PD_DAMAGE_LAW
+
+/* pd/damage.c: the law named name, or NULL; the known names, comma separated. */
+const pf_pd_damage_ops *pf_pd_damage_find(const char *name);
+const char *pf_pd_damage_names(void);
+/* Read the body's damage law and its parameters (b->damage and what its read sets). */
 int pf_pd_damage_read(const pf_deck *d, const pf_node *map, pf_pd_body *b);
+/* The per-point s0 field: initial values when fresh (the law's attach); ghosts from owners. */
 int pf_pd_damage_setup(pf_pd_body *b, pf_points *pts, int fresh);
-/* pd/damage_critical_energy.c: the critical bond energy w_c = 4 G0 / (pi delta^4) (J/m^6) and
- * the law's deck reader (G0 from 'energy_release_rate'). */
+/* The positive real *v of key, which this law requires (an error naming the key if absent). */
+int pf_pd_damage_read_required(const pf_deck *d, const pf_node *map, const char *key, double *v);
+/* pd/damage_critical_energy.c: the critical bond energy w_c = 4 G0 / (pi delta^4) (J/m^6). */
 double pf_pd_critical_energy(double G0, double delta);
-int pf_pd_damage_critical_energy_read(const pf_deck *d, const pf_node *map, pf_pd_body *b);
 
 /* Non-ordinary correspondence (pd/material_correspondence.c): the body's material is a
  * continuum model of the constitutive library (fem/), not a name in pd/materials.h. */

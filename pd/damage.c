@@ -1,0 +1,103 @@
+/* The damage laws: their deck keys, lookup by name in the list pd/damage_laws.h, and the body's
+ * entry points that dispatch to the law's ops table (pf_pd_damage_ops, pd/pd_impl.h). The laws
+ * themselves are pd/damage_<id>.c. */
+#include "pd/pd_impl.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static const pf_pd_damage_ops *const law_list[] = {
+#define PF_PD_DAMAGE_LAW(id) &pf_pd_damage_##id,
+#include "pd/damage_laws.h"
+#undef PF_PD_DAMAGE_LAW
+};
+enum { NLAWS = sizeof law_list / sizeof law_list[0] };
+
+const pf_key pf_pd_damage_keys[] = {
+    {"law", PF_KEY_STRING, 1, NULL, "", "none | critical_stretch | silling_askari | critical_energy",
+     NULL},
+    {"critical_stretch", PF_KEY_REAL, 0, NULL, "", "critical_stretch: s0", NULL},
+    {"energy_release_rate", PF_KEY_REAL, 0, NULL, "J/m^2",
+     "critical_stretch: G0, converted to s0 by the material's closed form; critical_energy: G0, "
+     "converted to the critical bond energy w_c = 4 G0 / (pi delta^4)", NULL},
+    {"s00", PF_KEY_REAL, 0, NULL, "", "silling_askari: s00 in s0 = s00 - alpha s_min", NULL},
+    {"alpha", PF_KEY_REAL, 0, "0.25", "", "silling_askari: alpha in s0 = s00 - alpha s_min", NULL},
+    PF_KEY_END};
+
+const pf_pd_damage_ops *pf_pd_damage_find(const char *name) {
+  for (int k = 0; k < NLAWS; k++)
+    if (!strcmp(law_list[k]->name, name)) return law_list[k];
+  return NULL;
+}
+
+/* words joined by sep into out (size n), cut short rather than overflow. */
+static const char *join(const char *const *words, int count, const char *sep, char *out, size_t n) {
+  size_t len = 0;
+  out[0] = '\0';
+  for (int k = 0; k < count && len < n; k++)
+    len += (size_t)snprintf(out + len, n - len, "%s%s", k ? sep : "", words[k]);
+  return out;
+}
+
+const char *pf_pd_damage_names(void) {
+  static char known[256];
+  const char *names[NLAWS];
+  for (int k = 0; k < NLAWS; k++) names[k] = law_list[k]->name;
+  return join(names, NLAWS, ", ", known, sizeof known);
+}
+
+int pf_pd_damage_read_required(const pf_deck *d, const pf_node *map, const char *key, double *v) {
+  if (!pf_node_get(map, key)) return pf_deck_error(d, map, key, "this damage law needs '%s'", key);
+  return pf_deck_positive(d, map, key, v);
+}
+
+/* Does the law read key? */
+static int takes(const pf_pd_damage_ops *law, const char *key) {
+  for (int q = 0; law->keys && law->keys[q]; q++)
+    if (!strcmp(law->keys[q], key)) return 1;
+  return 0;
+}
+
+/* A key of pf_pd_damage_keys in the deck that the law does not read is an error naming it and
+ * the keys the law does read. */
+static int check_keys(const pf_deck *d, const pf_node *map, const pf_pd_damage_ops *law) {
+  for (const pf_key *key = pf_pd_damage_keys + 1; map && key->name; key++) {
+    if (takes(law, key->name) || !pf_node_get(map, key->name)) continue;
+    int n = 0;
+    while (law->keys && law->keys[n]) n++;
+    char list[256];
+    return pf_deck_error(d, pf_node_get(map, key->name), key->name,
+                         "not a parameter of damage law '%s' (it takes: %s)", law->name,
+                         n ? join(law->keys, n, ", ", list, sizeof list) : "nothing else");
+  }
+  return 0;
+}
+
+/* Read the damage law and its parameters (the initial s0, or w_c). A key that belongs to
+ * another law is an error naming it. */
+int pf_pd_damage_read(const pf_deck *d, const pf_node *map, pf_pd_body *b) {
+  const char *name = "none";
+  if (map) PF_CALL(pf_deck_string(d, map, "law", &name));
+  const pf_pd_damage_ops *law = pf_pd_damage_find(name);
+  if (!law)
+    return pf_deck_error(d, pf_node_get(map, "law"), "law", "unknown damage law '%s' (known: %s)",
+                         name, pf_pd_damage_names());
+  PF_CALL(check_keys(d, map, law));
+  b->damage = law;
+  return law->read(d, map, b);
+}
+
+/* The per-point s0 field: initial values when fresh; ghosts from their owners. */
+int pf_pd_damage_setup(pf_pd_body *b, pf_points *pts, int fresh) {
+  int idx;
+  PF_CALL(pf_points_field_register(pts, "critical_stretch", 1, PF_FIELD_GHOST | PF_FIELD_RESTART, &idx));
+  b->s0 = pts->fields[idx].data;
+  if (b->damage->attach) PF_CALL(b->damage->attach(b, pts, fresh));
+  else if (fresh)
+    for (pf_int i = b->first; i < b->first + b->n; i++) b->s0[i] = b->s0_init;
+  return pf_points_exchange(pts, b->s0, 1);
+}
+
+int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts) {
+  return b->damage->post_step ? b->damage->post_step(b, pts) : 0;
+}
