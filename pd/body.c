@@ -79,14 +79,25 @@ int pf_pd_material_known(const char *model) {
   return 0;
 }
 
-const char *pf_pd_material_names(void) {
+/* The registered materials whose int flag at byte offset `flag` is set (every one: flag < 0). */
+static const char *names_with(long flag) {
   static char known[256];
   known[0] = '\0';
   for (int k = 0; k < NMATERIALS; k++) {
-    strcat(known, k ? ", " : "");
+    if (flag >= 0 && !*(const int *)((const char *)material_list[k] + flag)) continue;
+    strcat(known, known[0] ? ", " : "");
     strcat(known, material_list[k]->name);
   }
   return known;
+}
+
+const char *pf_pd_material_names(void) { return names_with(-1); }
+const char *pf_pd_material_names_with(size_t flag) { return names_with((long)flag); }
+
+int pf_pd_material_reads_key(const pf_pd_material_ops *m, const char *key) {
+  for (const char *const *k = m->body_keys; k && *k; k++)
+    if (!strcmp(*k, key)) return 1;
+  return 0;
 }
 
 static int find_material(const pf_deck *d, const pf_node *mat, const char *model,
@@ -205,7 +216,7 @@ static int read_formulation(const pf_deck *d, const pf_node *body, pf_pd_body *b
 static int check_variable_horizon(const pf_deck *d, const pf_node *body, const pf_pd_body *b) {
   const pf_node *h = pf_node_get(body, "horizon"), *f = pf_node_get(body, "formulation");
   const pf_node *dmg = pf_node_get(body, "damage");
-  if ((b->form == PF_PD_CORRECTED || b->form == PF_PD_CONSISTENT) && b->ops != &pf_pd_material_correspondence)
+  if ((b->form == PF_PD_CORRECTED || b->form == PF_PD_CONSISTENT) && !b->ops->gradient_forms)
     return pf_deck_error(d, f, "formulation", "the %s form needs a correspondence material (body '%s' has %s)",
                          b->form == PF_PD_CORRECTED ? "corrected" : "consistent", b->name, b->ops->name);
   if ((b->hz_expr || b->form == PF_PD_PARTIAL_STRESS) && !b->ops->partial_stress)
@@ -245,8 +256,8 @@ static int body_read(const pf_deck *d, const pf_node *owner, const pf_node *body
   PF_CALL(read_material(d, owner, materials, b, &mat));
   PF_CALL(read_influence(d, body, b));
   const char *corr_keys[] = {"hourglass", "critical_damage", "bond_loss"};
-  for (int k = 0; k < 3 && b->ops != &pf_pd_material_correspondence; k++)
-    if (pf_node_get(body, corr_keys[k]))
+  for (int k = 0; k < 3; k++)
+    if (pf_node_get(body, corr_keys[k]) && !pf_pd_material_reads_key(b->ops, corr_keys[k]))
       return pf_deck_error(d, pf_node_get(body, corr_keys[k]), corr_keys[k],
                            "only for correspondence bodies (a material whose model is one of %s)",
                            pf_material_names());
@@ -475,7 +486,7 @@ int pf_pd_body_force(pf_pd_body *b, pf_points *pts, double dt) {
   return b->ops->force(b, pts);
 }
 
-int pf_pd_body_uses_velocity(const pf_pd_body *b) { return b->ops == &pf_pd_material_correspondence; }
+int pf_pd_body_uses_velocity(const pf_pd_body *b) { return b->ops->uses_velocity; }
 
 double pf_pd_body_energy(const pf_pd_body *b, const pf_points *pts) { return b->ops->energy(b, pts); }
 

@@ -14,23 +14,20 @@
  * Both ends compute the same w from the same operands, so they take the same decision. */
 #include "pd/pd_impl.h"
 
+#include <stddef.h>
+
 double pf_pd_critical_energy(double G0, double delta) {
   return 4.0 * G0 / (PF_PI * delta * delta * delta * delta);
 }
 
 static const char *const keys[] = {"energy_release_rate", NULL};
 
-/* The materials whose force kernels evaluate the bond energy. */
-static const pf_pd_material_ops *const supported[] = {&pf_pd_material_pmb, &pf_pd_material_lps};
-
 static int read_critical_energy(const pf_deck *d, const pf_node *map, pf_pd_body *b) {
-  int ok = 0;
-  for (size_t k = 0; k < sizeof supported / sizeof supported[0]; k++) ok |= b->ops == supported[k];
-  if (!ok)
+  if (!b->ops->bond_energy) /* (the force kernel evaluates the bond energy) */
     return pf_deck_error(d, pf_node_get(map, "law"), "law",
                          "law 'critical_energy' needs the bond energy from the material's force "
-                         "kernel; material model '%s' does not provide it (it does: pmb, lps)",
-                         b->ops->name);
+                         "kernel; material model '%s' does not provide it (it does: %s)",
+                         b->ops->name, pf_pd_material_names_with(offsetof(pf_pd_material_ops, bond_energy)));
   if (!pf_node_get(map, "energy_release_rate"))
     return pf_deck_error(d, map, "energy_release_rate",
                          "law 'critical_energy' needs 'energy_release_rate' (G0, J/m^2)");

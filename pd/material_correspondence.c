@@ -703,6 +703,9 @@ static void corr_destroy(pf_pd_body *b) {
   PF_FREE(b->mat);
 }
 
+/* The body keys only correspondence reads (pf_pd_body_keys). */
+static const char *const body_keys[] = {"hourglass", "critical_damage", "bond_loss", NULL};
+
 const pf_pd_material_ops pf_pd_material_correspondence = {
     .name = "correspondence",
     .create = corr_create,
@@ -712,4 +715,7 @@ const pf_pd_material_ops pf_pd_material_correspondence = {
     .stable_dt = corr_stable_dt,
     .destroy = corr_destroy,
     .partial_stress = 1,
+    .gradient_forms = 1,
+    .uses_velocity = 1,
+    .body_keys = body_keys,
 };

@@ -288,4 +288,5 @@ const pf_pd_material_ops pf_pd_material_lps = {
     .critical_stretch = pf_pd_lps_critical_stretch,
     .destroy = lps_destroy,
     .partial_stress = 1,
+    .bond_energy = 1,
 };

@@ -265,4 +265,5 @@ const pf_pd_material_ops pf_pd_material_pmb = {
     .micromodulus = pmb_micromodulus,
     .critical_stretch = pmb_critical_stretch,
     .destroy = pmb_destroy,
+    .bond_energy = 1,
 };

@@ -87,7 +87,17 @@ struct pf_pd_material_ops {
   double (*critical_stretch)(const pf_pd_body *b, double G0); /* from G0, or NULL */
   void (*destroy)(pf_pd_body *b);
   int partial_stress; /* 1: takes a variable horizon and the partial-stress form */
+  /* What else the material offers, asked by the body and the laws instead of which it is: */
+  int gradient_forms; /* 1: takes the corrected and consistent forms (a deformation gradient) */
+  int uses_velocity;  /* 1: its forces read the neighbours' velocities (a rate form) */
+  int bond_energy;    /* 1: its force kernel evaluates each bond's energy (critical_energy law) */
+  const char *const *body_keys; /* keys of the body mapping only it reads (NULL-ended), or NULL */
 };
+/* Does material m read body key `key` (one of its body_keys)? */
+int pf_pd_material_reads_key(const pf_pd_material_ops *m, const char *key);
+/* The registered materials whose flag at byte offset `flag` of pf_pd_material_ops is set, comma
+ * separated (for messages: "pmb, lps"). */
+const char *pf_pd_material_names_with(size_t flag);
 
 /* A damage law (bond failure): one file pd/damage_<id>.c defining pf_pd_damage_<id>, and one
  * line in pd/damage_laws.h. Stretch laws: a bond fails when its stretch exceeds min(s0_i, s0_j)
