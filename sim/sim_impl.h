@@ -116,6 +116,29 @@ void pf_sim_catch_signals(void);
  * it the largest over the ranks, in sim->signal. */
 int pf_sim_signal_here(void);
 int pf_sim_setup_output(pf_sim *sim);
+/* sim/output.c: the history's columns (fixed ones, then per rigid surface, wall and contact pair,
+ * per body and per probe) and one row of them; the Exodus file; output at a step; the last good
+ * state. Collective. */
+enum { G_KE, G_EL, G_CONTACT, G_WEXT, G_EERR, G_PX, G_PY, G_PZ, G_DAMAGE,
+       G_FEINT, G_HG, G_BV, G_WALL, G_CDISS, G_DDISS, G_FIXED };
+typedef struct {
+  int n;
+  char **names;
+  const char **units;
+  double *values;
+  double e0; /* initial total energy */
+  int body0, probe0; /* the columns (after time and step) where the bodies' and the probes' start */
+} pf_sim_history_row;
+int pf_sim_globals_init(const pf_sim *sim, pf_sim_history_row *g);
+/* Fill values[0..n+1]: time, step, the columns; first: the initial energy too. */
+int pf_sim_globals_eval(pf_sim *sim, pf_sim_history_row *g, int first);
+void pf_sim_globals_free(pf_sim_history_row *g);
+int pf_sim_open_output(pf_sim *sim, pf_sim_history_row *g);
+int pf_sim_write_output(pf_sim *sim, pf_sim_history_row *g, int exodus, int history, int last);
+int pf_sim_write_last_good(pf_sim *sim, pf_sim_history_row *g, int ierr);
+/* 1 when the Exodus output is one file per rank (output.layout: spread, on several ranks). */
+int pf_sim_spread_output(const pf_sim *sim);
+
 /* sim/fragments.c: the "fragment" field (registered by _setup when the deck asks)
  * and <file>.fragments.csv at an Exodus step; final: also the summary lines. Collective. */
 int pf_sim_fragments_setup(pf_sim *sim);

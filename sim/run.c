@@ -1,0 +1,146 @@
+/* The time loop (sim/step.c takes one step): output and history at their intervals, checkpoints
+ * and signals, re-partitioning when the work is imbalanced, the progress line, the end-of-run
+ * summary and the state digest. */
+#include "sim/sim_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The energy balance error relative to the largest energy in play. */
+static double relative_error(const pf_sim_history_row *g) {
+  const double *v = g->values + 2;
+  double scale = fmax(fabs(g->e0), fmax(fabs(v[G_WEXT]), v[G_KE] + v[G_EL] + v[G_CONTACT] + fabs(v[G_FEINT])));
+  return scale > 0 ? fabs(v[G_EERR]) / scale : 0.0;
+}
+
+/* How far the run is, 0..1: by time when the step follows the deformation (the step count is
+ * not known ahead), else by steps. */
+static double run_fraction(const pf_sim *sim) {
+  if (sim->adaptive && isfinite(sim->final_time)) return sim->t / sim->final_time;
+  return (double)sim->step / fmax((double)sim->nsteps, 1.0);
+}
+
+/* Progress (rank 0): the step (of the total when the step is fixed, else with the step size),
+ * simulated time of the final time, steps per second of wall time, the time left at that rate,
+ * and the energy balance error and damage fraction of the last history row (no collective:
+ * ranks need not agree on when). */
+static void progress(const pf_sim *sim, const pf_sim_history_row *g, double wall0, int status) {
+  double el = pf_wtime() - wall0, rate = sim->step / fmax(el, 1e-9);
+  const int by_time = sim->adaptive && isfinite(sim->final_time);
+  const double frac = run_fraction(sim);
+  double tend = isfinite(sim->final_time) ? sim->final_time : sim->t / fmax(frac, 1e-300);
+  char line[256];
+  int n = by_time ? snprintf(line, sizeof line, "step %ld  dt = %.3e s", sim->step, sim->dt)
+                  : snprintf(line, sizeof line, "step %ld/%ld", sim->step, sim->nsteps);
+  snprintf(line + n, sizeof line - n,
+           "  t = %.4e / %.4e s (%.0f %%)  %.1f steps/s  about %.0f s left  energy error %.2e  damage %.4g",
+           sim->t, tend, 100 * frac, rate, el * (1 - frac) / fmax(frac, 1e-9), relative_error(g),
+           g->values[2 + G_DAMAGE]);
+  if (status) pf_log_status("%s", line);
+  else pf_log("%s\n", line);
+}
+
+static void summary(const pf_sim *sim, const pf_sim_history_row *g, double wall) {
+  double nb = 0, bytes = 0;
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_body *body = &sim->body[b];
+    if (!body->ops->family) continue;
+    const double n = (double)pf_pd_family_nbonds(body->ops->family(body->data));
+    nb += n;
+    bytes += n * body->ops->bytes_per_bond(body->data);
+  }
+  nb = pf_sum_all(nb), bytes = pf_sum_all(bytes);
+  const double *v = g->values + 2;
+  pf_log("perifem: %ld steps of %.4e s to t = %.4e s in %.2f s (time loop %.2f s)\n", sim->step,
+         sim->dt, sim->t, wall, sim->wall_loop);
+  pf_log("  points %" PF_GID_FMT ", directed bonds %.0f (%.3g bytes each), bond evaluations per second %.4g\n",
+         sim->pts->n_global, nb, nb > 0 ? bytes / nb : 0.0,
+         sim->wall_loop > 0 ? nb * sim->step / sim->wall_loop : 0.0);
+  double nel = 0;
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->body[b].ops->mesh) nel += sim->body[b].ops->mesh(sim->body[b].data)->nelem;
+  if (nel > 0)
+    pf_log("  elements %.0f, element cycles per second %.4g, hourglass energy %.3g J (%.3g times the internal)\n",
+           nel, sim->wall_loop > 0 ? nel * sim->step / sim->wall_loop : 0.0, v[G_HG],
+           v[G_FEINT] != 0 ? v[G_HG] / v[G_FEINT] : 0.0);
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_body *body = &sim->body[b];
+    long n = 0;
+    if (body->ops->eroded && body->ops->eroded(body->data, &n))
+      pf_log("  body '%s': %ld of %" PF_INT_FMT " elements deleted by erosion\n", sim->body_name[b], n,
+             body->ops->mesh(body->data)->nelem);
+  }
+  if (sim->contact) {
+    long rebuilds;
+    double sec;
+    pf_contact_stats(sim->contact, &rebuilds, &sec);
+    sec = pf_max_all(sec);
+    pf_log("  contact: %ld search rebuilds, %.3g s (%.1f %% of the time loop), dissipation %.3g J\n", rebuilds, sec,
+           sim->wall_loop > 0 ? 100 * sec / sim->wall_loop : 0.0, v[G_CDISS]);
+  }
+  pf_log("  final damage fraction %.6g, energy balance error %.3g J (relative %.3g; damage dissipated %.3g J)\n",
+         v[G_DAMAGE], v[G_EERR], relative_error(g), v[G_DDISS]);
+  if (!sim->opt.no_output)
+    pf_log("  output: %s%s, %s\n", sim->exodus_path, pf_sim_spread_output(sim) ? ".<ranks>.<rank>" : "", sim->history_path);
+}
+
+/* Checkpoint at the deck's interval; on SIGTERM/SIGINT checkpoint and stop (*stop = 1). */
+static int checkpoints(pf_sim *sim, int *stop) {
+  int sig = sim->signal; /* (reduced with the step's guard) */
+  if (sig || (sim->restart_interval > 0 && sim->step % sim->restart_interval == 0)) PF_CALL(pf_sim_checkpoint(sim));
+  if (sig) {
+    pf_log("perifem: signal %d: stopped at step %ld, t = %.6e s; continue with --restart %s\n", sig, sim->step,
+           sim->t, sim->restart_path);
+    *stop = 1;
+  }
+  return 0;
+}
+
+static int run_loop(pf_sim *sim, pf_sim_history_row *g, double wall0) {
+  const int status = pf_log_terminal();
+  int twentieths = 0; /* plain lines: one at each twentieth of the run */
+  double loop0 = pf_wtime(), shown = loop0;
+  while (!pf_sim_finished(sim) && !sim->stopped) {
+    int ierr = pf_sim_step(sim, 1);
+    if (ierr && sim->last_good) return pf_sim_write_last_good(sim, g, ierr);
+    if (ierr) return ierr;
+    PF_CALL(checkpoints(sim, &sim->stopped));
+    int last = pf_sim_finished(sim) || sim->stopped;
+    int exo = last || (sim->output_interval > 0 && sim->step % sim->output_interval == 0);
+    int his = last || sim->step % sim->history_interval == 0;
+    if (exo || his) {
+      double t0 = pf_wtime();
+      if (exo) PF_CALL(pf_sim_rebalance(sim));
+      PF_CALL(pf_sim_globals_eval(sim, g, 0));
+      PF_CALL(pf_sim_write_output(sim, g, exo, his, last));
+      loop0 += pf_wtime() - t0; /* output is not part of the step rate */
+    }
+    if (last) continue;
+    if (status && pf_wtime() - shown > 0.25) progress(sim, g, wall0, 1), shown = pf_wtime();
+    else if (!status && (int)(20 * run_fraction(sim)) > twentieths)
+      twentieths = (int)(20 * run_fraction(sim)), progress(sim, g, wall0, 0);
+  }
+  sim->wall_loop = pf_wtime() - loop0;
+  return 0;
+}
+
+int pf_sim_run(pf_sim *sim) {
+  double wall0 = pf_wtime();
+  pf_sim_history_row g = {0};
+  int ierr = pf_sim_globals_init(sim, &g);
+  if (!ierr) ierr = pf_sim_step(sim, 0); /* forces at t = 0 */
+  if (!ierr) ierr = pf_sim_globals_eval(sim, &g, 1);
+  if (!ierr) ierr = pf_sim_open_output(sim, &g);
+  if (!ierr) ierr = pf_sim_write_output(sim, &g, 1, 1, 0);
+  if (!ierr) ierr = run_loop(sim, &g, wall0);
+  if (!ierr) summary(sim, &g, pf_wtime() - wall0);
+  pf_sim_globals_free(&g);
+  pf_exodus_destroy(&sim->exo);
+  pf_history_destroy(&sim->hist);
+  if (ierr || sim->stopped) return ierr;
+  uint64_t h;
+  PF_CALL(pf_state_digest(sim->pts, &h));
+  if (pf_comm_rank() == 0) printf("state digest: %016" PRIx64 "\n", h); /* even with --quiet */
+  return 0;
+}
