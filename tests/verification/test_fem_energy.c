@@ -44,6 +44,7 @@ static void run(const char *mesh, const char *name, const char *options, int vis
   PF_TEST_CLOSE(worst, 0.0, 0, 1e-3 * g0.kinetic_centred);
   if (viscous_hourglass) PF_TEST_TRUE(g.hourglass > 0);
   if (bulk) PF_TEST_TRUE(g.bulk_viscosity > 0);
+  pf_test_print_digest(name, sim);
   pf_sim_destroy(&sim);
 }
 
