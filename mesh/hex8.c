@@ -5,6 +5,7 @@
 #include "mesh/mesh.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 /* Parent coordinates (xi, eta, zeta) of the nodes. */
 const double pf_hex8_node_sign[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
@@ -49,13 +50,16 @@ double pf_hex8_gradients(double x[8][3], const double xi[3], double grad[8][3]) 
  *     dV/dx_I = sum_{J<K} (x_J x x_K) W_IJK,   W_IJK = S_IJK - S_IKJ,   S = C_IJK + C_JKI + C_KIJ.
  * The integrands are quadratic in each parent coordinate, so the 2x2x2 Gauss rule gives C
  * exactly; W is computed once and kept as its nonzero entries. V = (1/3) sum_I x_I . dV/dx_I
- * (V is homogeneous of degree 3 in x). */
+ * (V is homogeneous of degree 3 in x). Every node has the same number of nonzero W_IJK (nine,
+ * by the element's symmetry), kept per node in (J, K) order; the sum for a node runs in three
+ * local accumulators, which the compiler keeps in registers. */
+enum { PER_NODE = 9 };
 typedef struct {
-  int8_t I, J, K;
+  int8_t J, K;
   double w;
-} triple;
-static triple wtab[8 * 28];
-static int nw = -1;
+} pair_weight;
+static pair_weight wtab[8][PER_NODE];
+static int built = 0;
 
 static void build_triples(void) {
   static double C[8][8][8];
@@ -67,18 +71,21 @@ static void build_triples(void) {
       for (int J = 0; J < 8; J++)
         for (int K = 0; K < 8; K++) C[I][J][K] += dN[I][0] * dN[J][1] * dN[K][2];
   }
-  int n = 0;
-  for (int I = 0; I < 8; I++)
+  for (int I = 0; I < 8; I++) {
+    int n = 0;
     for (int J = 0; J < 8; J++)
       for (int K = J + 1; K < 8; K++) {
         double w = (C[I][J][K] + C[J][K][I] + C[K][I][J]) - (C[I][K][J] + C[K][J][I] + C[J][I][K]);
-        if (fabs(w) > 1e-12) wtab[n++] = (triple){(int8_t)I, (int8_t)J, (int8_t)K, w};
+        if (fabs(w) > 1e-12 && n < PER_NODE) wtab[I][n] = (pair_weight){(int8_t)J, (int8_t)K, w};
+        n += fabs(w) > 1e-12;
       }
-  nw = n;
+    if (n != PER_NODE) abort(); /* the trilinear hexahedron has nine per node */
+  }
+  built = 1;
 }
 
 double pf_hex8_mean_gradient(double x[8][3], double B[8][3]) {
-  if (nw < 0) build_triples(); /* first call: at set-up, before any threaded loop */
+  if (!built) build_triples(); /* first call: at set-up, before any threaded loop */
   /* B and V do not change under translation; taking the nodes relative to their centroid keeps
    * the cross products from cancelling (elements far from the origin lose no digits) */
   double c[8][3], o[3] = {0, 0, 0}, cr[8][8][3];
@@ -88,10 +95,14 @@ double pf_hex8_mean_gradient(double x[8][3], double B[8][3]) {
     for (int i = 0; i < 3; i++) c[I][i] = x[I][i] - o[i];
   for (int J = 0; J < 8; J++)
     for (int K = J + 1; K < 8; K++) pf_vec3_cross(c[J], c[K], cr[J][K]);
-  for (int I = 0; I < 8; I++) B[I][0] = B[I][1] = B[I][2] = 0;
-  for (int t = 0; t < nw; t++) {
-    const triple *q = &wtab[t];
-    for (int i = 0; i < 3; i++) B[q->I][i] += q->w * cr[q->J][q->K][i];
+  for (int I = 0; I < 8; I++) {
+    double b0 = 0, b1 = 0, b2 = 0;
+    for (int t = 0; t < PER_NODE; t++) {
+      const pair_weight *q = &wtab[I][t];
+      const double *r = cr[q->J][q->K];
+      b0 += q->w * r[0], b1 += q->w * r[1], b2 += q->w * r[2];
+    }
+    B[I][0] = b0, B[I][1] = b1, B[I][2] = b2;
   }
   double V = 0;
   for (int I = 0; I < 8; I++) V += c[I][0] * B[I][0] + c[I][1] * B[I][1] + c[I][2] * B[I][2];

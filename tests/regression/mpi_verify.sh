@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Every verification test passes on 1, 2 and 3 ranks, and the state digests it prints (with
-# PF_TEST_DIGESTS set) are the same on every rank count. test_taylor (2 minutes per run) is left
+# PF_TEST_DIGESTS set) are the same on every rank count. test_taylor (40 s per run) is left
 # to 1 rank here: its deck, cut to 120 steps, runs on 1, 2 and 3 ranks in mpi_digests.sh; so are
 # test_taylor_correspondence, test_damage_correspondence and test_correspondence_compression
 # (20-30 s each), whose materials run on 1, 2 and 3 ranks there (taylor_corr, damage_bar); and

@@ -9,13 +9,20 @@
  * (the face's nodes on the outer circle, r = 3.2 mm) is not round on the O-grid mesh; its mean
  * and smallest radius are printed beside the largest (docs/verification.md, the convergence
  * table).
- * usage: test_taylor [element_size]   (default: the deck's 0.6 mm; ctest's slow variant 0.4 mm) */
+ * On the 0.8 mm mesh (ctest's default run: 4,305 elements, about 40 s) the bands are not the
+ * reference: that mesh is too coarse for them (its radius sits at their lower edge). There the
+ * reference is CalculiX's explicit solver on the same mesh (C3D8R, its finite-strain J2, the
+ * face held at u_z = 0; bench/calculix/README.md, "The Taylor bar in CalculiX"): rim radius
+ * 6.997 mm and length 21.495 mm, within 1 %.
+ * usage: test_taylor [element_size]   (default: the deck's 0.6 mm, the bands; ctest runs 0.8 mm
+ * by default and 0.6 and 0.4 mm under the label slow) */
 #include "sim/sim.h"
 #include "fem/fem.h"
 #include "test_common.h"
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
@@ -50,10 +57,15 @@ int main(int argc, char **argv) {
            "hourglass/internal %.4f, energy error %.3g of KE0\n",
            L, R, rim[1], rim[0] / rim[1] * 1e3, rim[2] * 1e3, g.hourglass / g.fe_internal,
            (g.kinetic_centred + g.fe_internal + g.hourglass + g.bulk_viscosity + g.wall_loss - g0.kinetic_centred) / g0.kinetic);
-  PF_TEST_TRUE(L >= 21.42 && L <= 21.66);
-  PF_TEST_TRUE(R >= 7.0 && R <= 7.25);
-  if (!(L >= 21.42 && L <= 21.66 && R >= 7.0 && R <= 7.25))
-    fprintf(stderr, "taylor: final length %.3f mm (21.42-21.66), face radius %.3f mm (7.0-7.25)\n", L, R);
+  /* the reference: the published bands, or CalculiX on the same 0.8 mm mesh within 1 % */
+  const int coarse = argc > 1 && atof(argv[1]) > 0.7e-3;
+  double Llo = 21.42, Lhi = 21.66, Rlo = 7.0, Rhi = 7.25;
+  if (coarse) Llo = 0.99 * 21.495, Lhi = 1.01 * 21.495, Rlo = 0.99 * 6.997, Rhi = 1.01 * 6.997;
+  PF_TEST_TRUE(L >= Llo && L <= Lhi);
+  PF_TEST_TRUE(R >= Rlo && R <= Rhi);
+  if (!(L >= Llo && L <= Lhi && R >= Rlo && R <= Rhi))
+    fprintf(stderr, "taylor: final length %.3f mm (%.3f-%.3f), face radius %.3f mm (%.3f-%.3f)\n", L, Llo, Lhi,
+            R, Rlo, Rhi);
   PF_TEST_TRUE(g.hourglass < 0.05 * g.fe_internal);
   double err = g.kinetic_centred + g.fe_internal + g.hourglass + g.bulk_viscosity + g.wall_loss - g0.kinetic_centred;
   PF_TEST_CLOSE(err, 0.0, 0, 5e-3 * g0.kinetic);
