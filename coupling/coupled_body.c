@@ -1,12 +1,18 @@
-/* An FE body coupled to peridynamics by force blending on its own nodes (docs/theory/coupling.md
- * §3; Seleson, Beneddine & Prudhomme 2013, force-based blending; D'Elia et al. 2021, §4): the
- * nodes are also the points of a peridynamic operator (correspondence, the body's own material;
- * variable horizon and the transition forms of pd/), and each node's force is
- *   f_i = beta_i f_i^PD + (1 - beta_i) f_i^FE,
- * with beta(x) in [0, 1] from the deck. Elements whose eight nodes all have beta = 1 are not
- * evaluated (the PD region, where bonds may break); the PD operator acts everywhere else too,
- * its forces weighted by beta. Both operators give zero force under a linear displacement and
- * the exact div sigma under a quadratic one at interior nodes, so the blend does too. */
+/* An FE body coupled to peridynamics by blending on its own nodes (docs/theory/coupling.md §3):
+ * the nodes are also the points of a peridynamic operator (correspondence, the body's own
+ * material; variable horizon and the transition forms of pd/), with beta(x) in [0, 1] from the
+ * deck. Elements whose eight nodes all have beta = 1 are not evaluated (the PD region, where
+ * bonds may break). Two forms (the key `overlap`):
+ * - force (Seleson, Beneddine & Prudhomme 2013, force-based blending; D'Elia et al. 2021, §4):
+ *     f_i = beta_i f_i^PD + (1 - beta_i) f_i^FE.
+ *   Both operators give zero force under a linear displacement and the exact div sigma under a
+ *   quadratic one at interior nodes, so the blend does too; it conserves neither momentum nor
+ *   energy where beta varies.
+ * - energy: the forces of E = sum_i beta_i W_i V_i + sum_e (1 - beta_e) W_e V_e (beta_e the mean
+ *   of element e's nodes), the energy the run books in both forms: each PD point's force state
+ *   and each element's forces carry their weight (§3.4). Momentum and energy are conserved by
+ *   construction; under a uniform stress and a linear beta the two operators' ghost forces,
+ *   +sigma grad beta V_i from PD and -sigma grad beta V_i from the elements, cancel. */
 #include "coupling/coupling.h"
 
 #include <math.h>
@@ -24,6 +30,7 @@ struct pf_coupled_body {
   pf_int first, n;       /* owned nodes [first, first + n) of the store */
   double *beta;          /* field "blending_weight" [store] */
   double *fsave;         /* [3n] scratch of the blended force */
+  int energy_form;       /* overlap: energy */
 };
 
 static double fe_distance(const void *region, const double x[3]) {
@@ -84,6 +91,12 @@ static int read_coupling(pf_coupled_body *c, const pf_node *body, const pf_node 
     return pf_deck_error(c->deck, dmg, "damage", "body '%s' has no node with blending weight 1: damage acts only "
                          "in the peridynamic region, never in the transition, overlap or elements", c->name);
   pf_fem_body_set_blending(c->fe, beta_at, c);
+  const char *form = "force";
+  PF_CALL(pf_deck_string(c->deck, map, "overlap", &form));
+  if (strcmp(form, "force") && strcmp(form, "energy"))
+    return pf_deck_error(c->deck, pf_node_get(map, "overlap"), "overlap",
+                         "body '%s': unknown overlap form '%s' (known: force, energy)", c->name, form);
+  c->energy_form = !strcmp(form, "energy");
   return 0;
 }
 
@@ -180,7 +193,7 @@ static int attach_blending(pf_coupled_body *c, pf_points *pts) {
   c->beta = pts->fields[idx].data;
   for (pf_int i = c->first; i < c->first + c->n; i++) c->beta[i] = beta_at(c, &pts->X[3 * (size_t)i]);
   PF_CALL(pf_points_exchange(pts, c->beta, 1));
-  pf_pd_body_set_blending(c->pd, c->beta);
+  pf_pd_body_set_blending(c->pd, c->beta, c->energy_form);
   pf_fem_body_set_blending_field(c->fe, c->beta);
   for (pf_int i = c->first; i < c->first + c->n; i++) pts->m[i] = c->rho * pts->vol[i]; /* all nodes */
   free(c->fsave);
@@ -198,8 +211,25 @@ int pf_coupled_body_attach(pf_coupled_body *c, int body, pf_points *pts, pf_int 
   return 0;
 }
 
-/* f = beta f_PD + (1 - beta) f_FE on the owned nodes, added to what pts->f already holds. */
+/* The energy form: the PD operator weights its force states itself, the elements' shares carry
+ * their weights. */
+static int energy_form_force(pf_coupled_body *c, pf_points *pts, double dt, double t, long step) {
+  PF_CALL(pf_pd_body_force(c->pd, pts, dt));
+  PF_CALL(pf_fem_body_evaluate(c->fe, pts, dt, t, step));
+  double *f = &pts->f[3 * (size_t)c->first];
+  for (pf_int i = 0; i < c->n; i++) {
+    double fe[3];
+    pf_fem_body_node_force_weighted(c->fe, i, fe);
+    for (int a = 0; a < 3; a++) f[3 * (size_t)i + a] += fe[a];
+  }
+  pf_fem_body_set_stable_dt(c->fe, fmin(pf_fem_body_stable_dt(c->fe), pf_pd_body_stable_dt(c->pd, pts)));
+  return 0;
+}
+
+/* Force form: f = beta f_PD + (1 - beta) f_FE on the owned nodes; energy form: the forces of the
+ * blended energy. Added to what pts->f already holds. */
 int pf_coupled_body_force(pf_coupled_body *c, pf_points *pts, double dt, double t, long step) {
+  if (c->energy_form) return energy_form_force(c, pts, dt, t, step);
   double *f = &pts->f[3 * (size_t)c->first], *keep = c->fsave;
   const size_t n3 = 3 * (size_t)c->n;
   memcpy(keep, f, n3 * sizeof(double));

@@ -1,5 +1,5 @@
 /* perifem coupling: the coupled body, an FE body and a peridynamic operator on the same nodes
- * composed by force blending over an overlap (docs/theory/coupling.md §3), with the horizon
+ * composed by blending forces or energies over an overlap (docs/theory/coupling.md §3), with the horizon
  * field's distance to the FE region (d_fe). The transition forms of the PD operator itself
  * (partial stress, corrected, consistent) are kernels of its force pass and live in pd/
  * (docs/architecture.md says why). Depends on core/, material/, mesh/, pd/ and fem/. */
@@ -38,7 +38,8 @@ int pf_coupled_body_rows(const pf_coupled_body *c, const pf_points *pts, pf_int 
  * Collective. */
 int pf_coupled_body_attach(pf_coupled_body *c, int body, pf_points *pts, pf_int first, pf_int n,
                            pf_gid gid0, const pf_bond_rows *rows, const pf_int *local, int fresh);
-/* Add f = beta f_PD + (1 - beta) f_FE to the owned nodes' pts->f; the stable step becomes the
+/* Add the blended force (overlap: force, f = beta f_PD + (1 - beta) f_FE; overlap: energy, the
+ * forces of beta W_PD + (1 - beta) W_FE) to the owned nodes' pts->f; the stable step becomes the
  * smaller of the elements' and the PD operator's. t and step name an element failure. */
 int pf_coupled_body_force(pf_coupled_body *c, pf_points *pts, double dt, double t, long step);
 

@@ -166,6 +166,21 @@ void pf_fem_body_node_force(const pf_fem_body *b, pf_int i, double f[3]) {
   }
 }
 
+/* 1 - the mean blending weight of element e's nodes (1 without blending). */
+static double element_weight(const pf_fem_body *b, pf_int e) {
+  double w = 1;
+  for (int I = 0; I < 8 && b->beta; I++) w -= b->beta[b->conn[8 * (size_t)e + I]] / 8.0;
+  return w;
+}
+
+void pf_fem_body_node_force_weighted(const pf_fem_body *b, pf_int i, double f[3]) {
+  f[0] = f[1] = f[2] = 0;
+  for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
+    const double *fe = &b->fe[3 * (size_t)b->node_item[q]], w = element_weight(b, b->node_item[q] / 8);
+    f[0] += w * fe[0], f[1] += w * fe[1], f[2] += w * fe[2];
+  }
+}
+
 int pf_fem_body_evaluate(pf_fem_body *b, pf_points *pts, double dt, double t, long step) {
   b->t = t, b->step = step;
   return pf_fem_elements_evaluate(b, pts, dt);
@@ -189,8 +204,7 @@ void pf_fem_body_energies(const pf_fem_body *b, double e[3]) {
   e[0] = e[1] = e[2] = 0;
   for (pf_int k = 0; k < b->nel; k++) {
     if (!b->own[k]) continue;
-    double w = 1; /* blended: the element's share, 1 - its nodes' mean blending weight */
-    for (int I = 0; I < 8 && b->beta; I++) w -= b->beta[b->conn[8 * (size_t)k + I]] / 8.0;
+    const double w = element_weight(b, k); /* blended: the element's share */
     for (int c = 0; c < 3; c++) e[c] += w * b->energy[3 * (size_t)k + c];
   }
 }

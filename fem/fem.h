@@ -80,6 +80,9 @@ int pf_fem_body_evaluate(pf_fem_body *b, pf_points *pts, double dt, double t, lo
 /* The assembled force of the last evaluation on the body's owned node i (0 <= i < n), its
  * elements summed in ascending global element order, N. */
 void pf_fem_body_node_force(const pf_fem_body *b, pf_int i, double f[3]);
+/* The same with each element's share weighted by 1 - its nodes' mean beta (the blending field),
+ * the weight its energies carry: the forces of sum_e (1 - beta_e) W_e (the energy form). */
+void pf_fem_body_node_force_weighted(const pf_fem_body *b, pf_int i, double f[3]);
 /* Lumped volume of each mesh node [nnodes], m^3. */
 const double *pf_fem_body_node_volumes(const pf_fem_body *b);
 

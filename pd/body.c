@@ -306,6 +306,9 @@ const pf_key pf_pd_coupled_keys[] = {
      "where the elements act, blending < 1)", NULL},
     {"blending", PF_KEY_EXPR, 1, NULL, "",
      "blending weight beta(x, y, z) in [0, 1]: 1 peridynamics only, 0 elements only", NULL},
+    {"overlap", PF_KEY_STRING, 0, "force", "",
+     "force (f = beta f_PD + (1 - beta) f_FE at each node) | energy (the forces of beta W_PD + (1 - beta) W_FE: "
+     "conserves momentum and energy; docs/theory/coupling.md §3.4)", NULL},
     {"formulation", PF_KEY_STRING, 0, "auto", "", "auto | standard | partial_stress | corrected | consistent", NULL},
     {"influence", PF_KEY_STRING, 0, "constant", "", "constant | inverse_distance", NULL},
     {"hourglass", PF_KEY_MAP, 0, "type: stiffness, coefficient: 0.05", "", "zero-energy-mode control",
@@ -323,7 +326,9 @@ int pf_pd_body_create_coupled(const pf_deck *d, const pf_node *owner, const pf_n
   return create(d, owner, map, materials, 1, out);
 }
 
-void pf_pd_body_set_blending(pf_pd_body *b, const double *beta) { b->blend = beta; }
+void pf_pd_body_set_blending(pf_pd_body *b, const double *beta, int weight_states) {
+  b->blend = beta, b->blend_states = weight_states;
+}
 
 void pf_pd_body_set_fe_distance(pf_pd_body *b, pf_pd_distance_fn distance, const void *ctx) {
   b->fe_distance = distance, b->fe_ctx = ctx;
@@ -368,6 +373,19 @@ int pf_pd_family_complete(const pf_pd_body *b, const pf_points *pts, pf_int i, d
   return sqrt(m1[0] * m1[0] + m1[1] * m1[1] + m1[2] * m1[2]) <= 0.01 * m0;
 }
 
+/* Coupled in the energy form: the transition forms (partial stress, corrected, consistent) are
+ * written for unweighted force states, so a point whose row reaches beta < 1 takes the standard
+ * form, whose force states carry the weights (docs/theory/coupling.md §3.4). */
+static void standard_in_overlap(const pf_pd_body *b) {
+  const pf_family *fam = &b->fam;
+  for (pf_int i = b->first; i < b->first + b->n && b->blend && b->blend_states; i++) {
+    int inside = b->blend[i] == 1;
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1] && inside; k++)
+      inside = b->blend[fam->neighbor[k]] == 1;
+    if (!inside) b->region[i] = 2 * (b->blend[i] < 1);
+  }
+}
+
 /* Each point's horizon (ghosts too) and its force form: with auto, partial stress where its row
  * reaches a point of another horizon and its own family is complete; standard at free surfaces,
  * where the strong form has no traction-free condition and is unstable (docs/theory/coupling.md
@@ -395,6 +413,7 @@ static int set_regions(pf_pd_body *b, pf_points *pts) {
     b->region[i] = ps + 2 * (b->blend && b->blend[i] < 1) + 4 * (b->form == PF_PD_CORRECTED && varies) +
                    8 * (b->form == PF_PD_CONSISTENT && varies);
   }
+  standard_in_overlap(b);
   free(b->idle);
   b->idle = NULL;
   if (b->blend) {

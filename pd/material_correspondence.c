@@ -616,7 +616,10 @@ static void consistent_pair(const pf_pd_body *b, const pf_points *pts, pf_int i,
  * the bonds of its own family (T_i<xi> for j within delta_i, T_j<-xi> for i within delta_j):
  * f_i = V_i sum_j w V_j ([j in H_i] P_i K_i^-1 + [i in H_j] P_j K_j^-1) xi. A point of the
  * partial-stress form takes V_i div nu instead (pd/partial_stress.c); the hourglass pair
- * forces, zero under any affine motion, are the same in both forms. */
+ * forces, zero under any affine motion, are the same in both forms. Coupled in the energy form
+ * (pf_pd_body_set_blending), each end's force state carries its own blending weight,
+ * beta_i P_i K_i^-1 and beta_j P_j K_j^-1, and so does each end's hourglass stiffness: the
+ * forces of sum_i beta_i W_i V_i (docs/theory/coupling.md §3.4). */
 static int corr_force(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   PF_CALL(corr_pass1(b, pts));
@@ -624,8 +627,9 @@ static int corr_force(pf_pd_body *b, pf_points *pts) {
   const int gdev = p->viscous ? G_FDOT : G_F; /* the predicted relative position or velocity */
   const double *dev = p->viscous ? pts->v : pts->y;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
-    if (b->blend && b->blend[i] == 0) continue; /* coupled: no PD force wanted here */
-    const double *gi = &p->gx[GX * i];
+    const int states = b->blend && b->blend_states; /* coupled, energy form */
+    if (b->blend && (states ? b->idle[i - b->first] : b->blend[i] == 0)) continue; /* no PD force wanted */
+    const double *gi = &p->gx[GX * i], bi = states ? b->blend[i] : 1.0;
     const int standard = !pf_pd_partial_stress_at(b, i);
     const double ki = p->hg * gi[G_C] * (p->viscous ? b->hz[i] / p->cl : 1.0);
     double f[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
@@ -640,7 +644,8 @@ static int corr_force(pf_pd_body *b, pf_points *pts) {
         Z[a] = dev[3 * j + a] - dev[3 * i + a];
         r02 += xi[a] * xi[a], r2 += Y[a] * Y[a];
       }
-      const double r0 = sqrt(r02), r = sqrt(r2), hi = pf_pd_in_family(b, i, r0), hj = pf_pd_in_family(b, j, r0);
+      const double r0 = sqrt(r02), r = sqrt(r2), bj = states ? b->blend[j] : 1.0;
+      const double hi = bi * pf_pd_in_family(b, i, r0), hj = bj * pf_pd_in_family(b, j, r0);
       const double om = pf_pd_omega(&b->influence, r0), w = om * pf_pd_bond_volume(fam, pts->vol, k, j);
       const double kj = p->hg * gj[G_C] * (p->viscous ? b->hz[j] / p->cl : 1.0);
       double gam = 0;
@@ -681,8 +686,10 @@ static int corr_force(pf_pd_body *b, pf_points *pts) {
 static double corr_energy(const pf_pd_body *b, const pf_points *pts) {
   const corr *p = b->mat;
   double e = 0;
-  for (pf_int i = b->first; i < b->first + b->n; i++) /* (coupled to FE: its blended share) */
-    e += (b->blend ? b->blend[i] : 1.0) * (pts->vol[i] * p->work[i] + p->hgwork[i]);
+  for (pf_int i = b->first; i < b->first + b->n; i++) { /* (coupled to FE: its blended share) */
+    const double w = b->blend ? b->blend[i] : 1.0; /* (energy form: the hourglass forces carry it) */
+    e += b->blend_states ? w * pts->vol[i] * p->work[i] + p->hgwork[i] : w * (pts->vol[i] * p->work[i] + p->hgwork[i]);
+  }
   return e;
 }
 

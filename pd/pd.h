@@ -114,8 +114,11 @@ extern const pf_key pf_pd_coupled_keys[];
 int pf_pd_body_create_coupled(const pf_deck *d, const pf_node *owner, const pf_node *map,
                               const pf_node *materials, pf_pd_body **b);
 /* Each store point's blending weight (FE-coupled bodies), read at attach: points with beta < 1
- * are overlap points (no damage). */
-void pf_pd_body_set_blending(pf_pd_body *b, const double *beta);
+ * are overlap points (no damage). weight_states 0: the caller weights the operator's net force
+ * at each point by beta (force blending); 1: each point's force state is weighted by its own
+ * beta, the forces of the energy sum_i beta_i W_i V_i (the energy form, docs/theory/coupling.md
+ * §3.4), which conserve linear and angular momentum pair by pair. */
+void pf_pd_body_set_blending(pf_pd_body *b, const double *beta, int weight_states);
 /* Coupled: the horizon expression's d_fe at x, the distance to the region where the elements act,
  * is distance(ctx, x) (coupling/ gives it; without it d_fe is infinite). Does the body's horizon
  * expression name d_fe? */

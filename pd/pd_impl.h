@@ -41,6 +41,7 @@ struct pf_pd_body {
                               ghost-corrected standard force, bit 3 (8) the consistent
                               weights; 0: the PD region */
   const double *blend;     /* coupled to FE elements: each store point's blending weight, or NULL */
+  int blend_states;        /* 1: each point's force state carries its blending weight (energy form) */
   uint8_t *idle;           /* [n] coupled: 1 where beta = 0 at the point and its whole row (no PD
                               force is wanted there, nor its state by a neighbour), or NULL */
   int one_sided;           /* rows may hold bonds outside a point's own family (variable
