@@ -39,6 +39,17 @@ void pf_error_clear(void);
 /* When quiet, errors are recorded but not printed (tests of bad input). */
 void pf_error_set_quiet(int quiet);
 
+/* Collective: when ok is 0 on any rank, every rank raises the same error, with the message of
+ * the lowest such rank (each failing rank passes its own text; the others may pass ""), and
+ * returns code; else 0 everywhere. For checks whose outcome may differ between ranks, before
+ * the next collective call. */
+int pf_error_agree(int ok, int code, const char *file, int line, const char *func, const char *message);
+#define PF_AGREE(ok, code, message)                                                                \
+  do {                                                                                             \
+    int pf_agree_ierr_ = pf_error_agree((ok), (code), __FILE__, __LINE__, __func__, (message));    \
+    if (pf_agree_ierr_) return pf_agree_ierr_;                                                     \
+  } while (0)
+
 #define PF_CHECK(cond, code, ...)                                                                  \
   do {                                                                                             \
     if (!(cond)) return pf_error_raise((code), __FILE__, __LINE__, __func__, __VA_ARGS__);         \
