@@ -130,8 +130,9 @@ static int read_rows(const h5io *io, const char *name, hid_t type, int ncomp, vo
     hid_t fspace = H5Dget_space(dset), mspace;
     select_rows(fspace, &mspace, io->offset, io->count, ncomp);
     ok = H5Dread(dset, type, mspace, fspace, H5P_DEFAULT, data) >= 0;
+    if (!ok) hdf5_reason(why); /* (before the next call clears HDF5's error stack) */
     H5Sclose(mspace), H5Sclose(fspace);
-    if (!ok) hdf5_reason(why), snprintf(msg, sizeof msg, "checkpoint %s: dataset %s cannot be read (HDF5: %s): the "
+    if (!ok) snprintf(msg, sizeof msg, "checkpoint %s: dataset %s cannot be read (HDF5: %s): the "
                                         "file is damaged", io->path, name, why);
   }
   if (dset >= 0) H5Dclose(dset);
@@ -153,11 +154,13 @@ static int int_attr(const h5io *io, hid_t obj, const char *name, int *value, int
   return 0;
 }
 
-static hid_t open_file(const char *path, int create) {
+/* Create (why NULL) or open path on every rank; a failed open leaves HDF5's reason in why. */
+static hid_t open_file(const char *path, int create, char *why) {
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   H5Pset_fapl_mpio(fapl, MPI_COMM_WORLD, MPI_INFO_NULL);
   if (create) H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_LATEST); /* checksummed metadata */
   hid_t f = create ? H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl) : H5Fopen(path, H5F_ACC_RDONLY, fapl);
+  if (f < 0 && why) hdf5_reason(why);
   H5Pclose(fapl);
   return f;
 }
@@ -261,7 +264,7 @@ int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *ro
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   PF_CALL(pf_bond_rows_fields_agree(rows));
-  h5io io = {open_file(tmp, 1), tmp, 0, 0, (hsize_t)pts->n_owned};
+  h5io io = {open_file(tmp, 1, NULL), tmp, 0, 0, (hsize_t)pts->n_owned};
   H5_TRY(&io, io.file >= 0, "H5Fcreate");
   rank_range(io.count, &io.total, &io.offset);
   int ierr = write_all(&io, pts, rows, nscalars, names, values, ntables, tables);
@@ -473,8 +476,7 @@ static int open_for_reading(const char *path, hid_t *file) {
   PF_CHECK(fp, PF_ERR_INPUT, "cannot open the checkpoint %s", path);
   fclose(fp);
   char msg[512] = "", why[160] = "";
-  *file = open_file(path, 0);
-  if (*file < 0) hdf5_reason(why);
+  *file = open_file(path, 0, why);
   if (*file < 0) snprintf(msg, sizeof msg, "checkpoint %s cannot be opened as HDF5 (%s): not a perifem checkpoint, or "
                           "damaged (truncated?)", path, why);
   PF_AGREE(*file >= 0, PF_ERR_INPUT, msg);

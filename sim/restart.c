@@ -5,7 +5,8 @@
  * reactions, the FE bodies' stable steps, and a hash of each part of the deck that sets the
  * physics. A restart reads
  * the points on any number of ranks and re-partitions them like the set-up does, so the run
- * continues bitwise as if it had not stopped. */
+ * continues bitwise as if it had not stopped. What it reads is checked before use: by the reader
+ * (core/checkpoint_check.c) and against the deck (sim/restart_check.c). */
 #include "sim/sim_impl.h"
 
 #include <signal.h>
