@@ -53,13 +53,16 @@ static void select_rows(hid_t fspace, hid_t *mspace, hsize_t offset, hsize_t cou
   else H5Sselect_none(fspace), H5Sselect_none(*mspace);
 }
 
-/* Chunks of up to 1 MiB with the Fletcher32 checksum (an empty dataset stays contiguous: it
- * has no data to check and HDF5 refuses chunks larger than the dataset). */
+/* Chunks of equal rows, up to 1 MiB each (the last one, stored whole, wastes little), with the
+ * Fletcher32 checksum (an empty dataset stays contiguous: it has no data to check and HDF5
+ * refuses chunks larger than the dataset). */
 static hid_t checksummed_layout(hsize_t total, int ncomp, hid_t type) {
   hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
   if (total == 0) return dcpl;
-  hsize_t rows = (hsize_t)(1 << 20) / ((hsize_t)ncomp * H5Tget_size(type));
-  hsize_t chunk[2] = {rows < 1 ? 1 : rows < total ? rows : total, (hsize_t)ncomp};
+  hsize_t most = (hsize_t)(1 << 20) / ((hsize_t)ncomp * H5Tget_size(type));
+  if (most < 1) most = 1;
+  const hsize_t nchunks = (total + most - 1) / most;
+  hsize_t chunk[2] = {(total + nchunks - 1) / nchunks, (hsize_t)ncomp};
   H5Pset_chunk(dcpl, ncomp > 1 ? 2 : 1, chunk);
   H5Pset_fletcher32(dcpl);
   return dcpl;
