@@ -10,10 +10,19 @@
  *   attributes of "/": the named scalars (time, step, ...), written alike by every rank.
  * The file is written as path.tmp and renamed by rank 0 once every rank has closed it, so a
  * kill at any moment leaves the previous checkpoint whole. A reader on any number of ranks
- * takes an equal slice of the rows; the caller re-partitions. */
-#include "core/bond_rows_impl.h"
+ * takes an equal slice of the rows; the caller re-partitions.
+ * Integrity: every dataset is chunked and carries HDF5's Fletcher32 checksum filter (parallel
+ * filtered writes, collective, HDF5 >= 1.10.2), and the file is written in the HDF5 1.10
+ * format, whose superblock, object headers (with the attributes) and chunk indexes carry
+ * HDF5's own checksums: a flipped byte fails a read, which the reader refuses naming the file
+ * and the dataset. It refuses a dataset without the checksum too (a file written before them),
+ * and checks what it read before using it (core/checkpoint_check.c). Reads are independent,
+ * so a rank that meets a bad chunk returns from HDF5 alone; every read's outcome is then
+ * agreed by all ranks (pf_error_agree). */
+#include "core/checkpoint_impl.h"
 
 #include <hdf5.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -44,10 +53,27 @@ static void select_rows(hid_t fspace, hid_t *mspace, hsize_t offset, hsize_t cou
   else H5Sselect_none(fspace), H5Sselect_none(*mspace);
 }
 
+/* Chunks of equal rows, up to 1 MiB each (the last one, stored whole, wastes little), with the
+ * Fletcher32 checksum (an empty dataset stays contiguous: it has no data to check and HDF5
+ * refuses chunks larger than the dataset). */
+static hid_t checksummed_layout(hsize_t total, int ncomp, hid_t type) {
+  hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  if (total == 0) return dcpl;
+  hsize_t most = (hsize_t)(1 << 20) / ((hsize_t)ncomp * H5Tget_size(type));
+  if (most < 1) most = 1;
+  const hsize_t nchunks = (total + most - 1) / most;
+  hsize_t chunk[2] = {(total + nchunks - 1) / nchunks, (hsize_t)ncomp};
+  H5Pset_chunk(dcpl, ncomp > 1 ? 2 : 1, chunk);
+  H5Pset_fletcher32(dcpl);
+  return dcpl;
+}
+
 static int write_rows(const h5io *io, const char *name, hid_t type, int ncomp, const void *data) {
   hsize_t dims[2] = {io->total, (hsize_t)ncomp};
   hid_t fspace = H5Screate_simple(ncomp > 1 ? 2 : 1, dims, NULL), mspace;
-  hid_t dset = H5Dcreate2(io->file, name, type, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t dcpl = checksummed_layout(io->total, ncomp, type);
+  hid_t dset = H5Dcreate2(io->file, name, type, fspace, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  H5Pclose(dcpl);
   select_rows(fspace, &mspace, io->offset, io->count, ncomp);
   hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
   H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
@@ -58,16 +84,62 @@ static int write_rows(const h5io *io, const char *name, hid_t type, int ncomp, c
   return 0;
 }
 
+/* What went wrong, from HDF5's error stack: its innermost message (where the error was found,
+ * e.g. "data error detected by Fletcher32 checksum"). */
+static herr_t innermost(unsigned n, const H5E_error2_t *e, void *out) {
+  if (n == 0) snprintf(out, 160, "%s", e->desc ? e->desc : "");
+  return 0;
+}
+
+static void hdf5_reason(char *out) {
+  out[0] = '\0';
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, innermost, out);
+  H5Eclear2(H5E_DEFAULT);
+}
+
+/* Is the dataset [total][ncomp] (or [total] when ncomp is 1), and checksummed when not empty? */
+static int shape_ok(const h5io *io, hid_t dset, const char *name, int ncomp, char *msg, size_t len) {
+  hid_t sp = H5Dget_space(dset), dcpl = H5Dget_create_plist(dset);
+  hsize_t dims[2] = {0, 1};
+  int rank = H5Sget_simple_extent_ndims(sp);
+  if (rank == 1 || rank == 2) H5Sget_simple_extent_dims(sp, dims, NULL);
+  unsigned flags = 0, conf = 0;
+  size_t nelmts = 0;
+  int summed = dims[0] == 0 || H5Pget_filter_by_id2(dcpl, H5Z_FILTER_FLETCHER32, &flags, &nelmts, NULL, 0, NULL,
+                                                     &conf) >= 0;
+  H5Eclear2(H5E_DEFAULT);
+  H5Sclose(sp), H5Pclose(dcpl);
+  int ok = (rank == 1 || rank == 2) && dims[0] == io->total && dims[1] == (hsize_t)ncomp && (ncomp == 1 || rank == 2);
+  if (!ok)
+    snprintf(msg, len, "checkpoint %s: dataset %s has %d dimensions (%llu x %llu), expected %llu x %d: the file is "
+             "damaged or is not a perifem checkpoint of this run", io->path, name, rank, (unsigned long long)dims[0],
+             (unsigned long long)dims[1], (unsigned long long)io->total, ncomp);
+  else if (!summed)
+    snprintf(msg, len, "checkpoint %s: dataset %s has no Fletcher32 checksum: written by a perifem from before "
+             "checkpoints were checksummed, or by another tool", io->path, name);
+  return ok && summed;
+}
+
+/* This rank's rows of the dataset name, checked against its checksums; every rank agrees on the
+ * outcome. (Independent reads: a rank whose chunk fails leaves HDF5 alone, without a hang.) */
 static int read_rows(const h5io *io, const char *name, hid_t type, int ncomp, void *data) {
+  char msg[512] = "", why[160];
   hid_t dset = H5Dopen2(io->file, name, H5P_DEFAULT);
-  H5_TRY(io, dset >= 0, name);
-  hid_t fspace = H5Dget_space(dset), mspace;
-  select_rows(fspace, &mspace, io->offset, io->count, ncomp);
-  hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
-  H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
-  herr_t st = H5Dread(dset, type, mspace, fspace, dxpl, data);
-  H5Pclose(dxpl), H5Sclose(mspace), H5Sclose(fspace), H5Dclose(dset);
-  H5_TRY(io, st >= 0, name);
+  int ok = dset >= 0;
+  if (!ok) hdf5_reason(why), snprintf(msg, sizeof msg, "checkpoint %s: cannot open dataset %s (HDF5: %s): the file "
+                                      "is damaged or is not a perifem checkpoint", io->path, name, why);
+  if (ok) ok = shape_ok(io, dset, name, ncomp, msg, sizeof msg);
+  if (ok) {
+    hid_t fspace = H5Dget_space(dset), mspace;
+    select_rows(fspace, &mspace, io->offset, io->count, ncomp);
+    ok = H5Dread(dset, type, mspace, fspace, H5P_DEFAULT, data) >= 0;
+    if (!ok) hdf5_reason(why); /* (before the next call clears HDF5's error stack) */
+    H5Sclose(mspace), H5Sclose(fspace);
+    if (!ok) snprintf(msg, sizeof msg, "checkpoint %s: dataset %s cannot be read (HDF5: %s): the "
+                                        "file is damaged", io->path, name, why);
+  }
+  if (dset >= 0) H5Dclose(dset);
+  PF_AGREE(ok, PF_ERR_INPUT, msg);
   return 0;
 }
 
@@ -85,10 +157,13 @@ static int int_attr(const h5io *io, hid_t obj, const char *name, int *value, int
   return 0;
 }
 
-static hid_t open_file(const char *path, int create) {
+/* Create (why NULL) or open path on every rank; a failed open leaves HDF5's reason in why. */
+static hid_t open_file(const char *path, int create, char *why) {
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   H5Pset_fapl_mpio(fapl, MPI_COMM_WORLD, MPI_INFO_NULL);
+  if (create) H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_LATEST); /* checksummed metadata */
   hid_t f = create ? H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl) : H5Fopen(path, H5F_ACC_RDONLY, fapl);
+  if (f < 0 && why) hdf5_reason(why);
   H5Pclose(fapl);
   return f;
 }
@@ -192,7 +267,7 @@ int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *ro
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   PF_CALL(pf_bond_rows_fields_agree(rows));
-  h5io io = {open_file(tmp, 1), tmp, 0, 0, (hsize_t)pts->n_owned};
+  h5io io = {open_file(tmp, 1, NULL), tmp, 0, 0, (hsize_t)pts->n_owned};
   H5_TRY(&io, io.file >= 0, "H5Fcreate");
   rank_range(io.count, &io.total, &io.offset);
   int ierr = write_all(&io, pts, rows, nscalars, names, values, ntables, tables);
@@ -209,41 +284,84 @@ int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *ro
 
 /* ---- read ------------------------------------------------------------------- */
 
-static int read_fields(const h5io *io, pf_points *p) {
-  hid_t g = H5Gopen2(io->file, "/fields", H5P_DEFAULT);
-  H5_TRY(io, g >= 0, "/fields");
-  H5G_info_t info;
-  herr_t st = H5Gget_info(g, &info);
-  int ierr = st < 0;
-  for (hsize_t k = 0; k < info.nlinks && !ierr; k++) {
-    char name[40], full[64];
-    if (H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name, H5P_DEFAULT) < 0) {
-      ierr = 1;
-      break;
-    }
-    snprintf(full, sizeof full, "/fields/%s", name);
-    hid_t d = H5Dopen2(io->file, full, H5P_DEFAULT);
-    int ncomp = 0, flags = 0, idx;
-    ierr = d < 0 || int_attr(io, d, "ncomp", &ncomp, 0) || int_attr(io, d, "flags", &flags, 0);
-    if (d >= 0) H5Dclose(d);
-    if (!ierr) ierr = pf_points_field_register(p, name, ncomp, flags, &idx);
-    if (!ierr) ierr = read_rows(io, full, H5T_NATIVE_DOUBLE, ncomp, p->fields[idx].data);
+/* The rows (first dimension) of the dataset name, the same on every rank. */
+static int dataset_rows(const h5io *io, const char *name, hsize_t *rows) {
+  char msg[512] = "", why[160];
+  hsize_t dims[2] = {0, 0};
+  hid_t d = H5Dopen2(io->file, name, H5P_DEFAULT);
+  int ok = d >= 0;
+  if (ok) {
+    hid_t sp = H5Dget_space(d);
+    int rank = H5Sget_simple_extent_ndims(sp);
+    ok = (rank == 1 || rank == 2) && H5Sget_simple_extent_dims(sp, dims, NULL) >= 0;
+    H5Sclose(sp), H5Dclose(d);
   }
-  H5Gclose(g);
-  H5_TRY(io, !ierr, "reading /fields");
+  if (!ok) hdf5_reason(why), snprintf(msg, sizeof msg, "checkpoint %s: cannot open dataset %s (HDF5: %s): the file is "
+                                      "damaged or is not a perifem checkpoint", io->path, name, why);
+  PF_AGREE(ok, PF_ERR_INPUT, msg);
+  *rows = dims[0];
   return 0;
 }
 
+/* A point field's components and flags, as its attributes give them: 1..64 and PF_FIELD_*. */
+static int field_shape(const h5io *io, const char *full, int *ncomp, int *flags) {
+  hid_t d = H5Dopen2(io->file, full, H5P_DEFAULT);
+  int ok = d >= 0 && !int_attr(io, d, "ncomp", ncomp, 0) && !int_attr(io, d, "flags", flags, 0);
+  if (d >= 0) H5Dclose(d);
+  char msg[512] = "";
+  ok = ok && *ncomp >= 1 && *ncomp <= 64 && *flags >= 0 && *flags <= 7;
+  if (!ok) snprintf(msg, sizeof msg, "checkpoint %s: dataset %s: attributes ncomp %d, flags %d missing or out of "
+                    "range: the file is damaged", io->path, full, *ncomp, *flags);
+  PF_AGREE(ok, PF_ERR_INPUT, msg);
+  return 0;
+}
+
+static int read_fields(const h5io *io, pf_points *p) {
+  hid_t g = H5Gopen2(io->file, "/fields", H5P_DEFAULT);
+  H5G_info_t info = {0};
+  int ok = g >= 0 && H5Gget_info(g, &info) >= 0;
+  char msg[512] = "";
+  if (!ok) snprintf(msg, sizeof msg, "checkpoint %s: cannot open group /fields: the file is damaged", io->path);
+  if (!ok && g >= 0) H5Gclose(g);
+  PF_AGREE(ok, PF_ERR_INPUT, msg);
+  int ierr = 0;
+  for (hsize_t k = 0; k < info.nlinks && !ierr; k++) {
+    char name[40], full[64];
+    int ncomp = 0, flags = 0, idx;
+    ok = H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name, H5P_DEFAULT) >= 0;
+    snprintf(full, sizeof full, "/fields/%s", ok ? name : "?");
+    if (!ok) snprintf(msg, sizeof msg, "checkpoint %s: cannot name field %llu of /fields", io->path, (unsigned long long)k);
+    ierr = pf_error_agree(ok, PF_ERR_INPUT, __FILE__, __LINE__, __func__, msg);
+    if (!ierr) ierr = field_shape(io, full, &ncomp, &flags);
+    if (!ierr) ierr = pf_points_field_register(p, name, ncomp, flags, &idx);
+    if (!ierr) ierr = read_rows(io, full, H5T_NATIVE_DOUBLE, ncomp, p->fields[idx].data);
+    if (!ierr) ierr = pf_ckpt_check_values(io->path, full, p->fields[idx].data, io->count * (size_t)ncomp, -INFINITY, 1);
+  }
+  H5Gclose(g);
+  return ierr;
+}
+
+/* The points' arrays, each checked: ids distinct and in range, bodies not negative, positions,
+ * motion and forces finite, masses, volumes and cells finite and not negative. */
 static int read_points(const h5io *io, pf_points *p) {
+  const size_t n = io->count;
   PF_CALL(read_rows(io, "/points/gid", H5T_NATIVE_INT64, 1, p->gid));
+  PF_CALL(pf_ckpt_check_ids(io->path, "/points/gid", p->gid, (int64_t)n, (pf_gid)io->total, 1));
   PF_CALL(read_rows(io, "/points/body", H5T_NATIVE_INT32, 1, p->body));
+  PF_CALL(pf_ckpt_check_bodies(io->path, p->body, (int64_t)n));
   const char *vec[] = {"/points/X", "/points/u", "/points/v", "/points/f"};
   double *vdata[] = {p->X, p->u, p->v, p->f};
-  for (int k = 0; k < 4; k++) PF_CALL(read_rows(io, vec[k], H5T_NATIVE_DOUBLE, 3, vdata[k]));
-  PF_CALL(read_rows(io, "/points/m", H5T_NATIVE_DOUBLE, 1, p->m));
-  PF_CALL(read_rows(io, "/points/vol", H5T_NATIVE_DOUBLE, 1, p->vol));
-  PF_CALL(read_rows(io, "/points/cell", H5T_NATIVE_DOUBLE, 1, p->cell));
-  for (size_t i = 0; i < 3 * (size_t)p->n_owned; i++) p->y[i] = p->X[i] + p->u[i];
+  for (int k = 0; k < 4; k++) {
+    PF_CALL(read_rows(io, vec[k], H5T_NATIVE_DOUBLE, 3, vdata[k]));
+    PF_CALL(pf_ckpt_check_values(io->path, vec[k], vdata[k], 3 * n, -INFINITY, 0));
+  }
+  const char *sca[] = {"/points/m", "/points/vol", "/points/cell"};
+  double *sdata[] = {p->m, p->vol, p->cell};
+  for (int k = 0; k < 3; k++) {
+    PF_CALL(read_rows(io, sca[k], H5T_NATIVE_DOUBLE, 1, sdata[k]));
+    PF_CALL(pf_ckpt_check_values(io->path, sca[k], sdata[k], n, 0.0, 0));
+  }
+  for (size_t i = 0; i < 3 * n; i++) p->y[i] = p->X[i] + p->u[i];
   return read_fields(io, p);
 }
 
@@ -266,101 +384,130 @@ static const char *type_name(pf_bond_type t) {
   return t == PF_BOND_UINT8 ? "uint8" : t == PF_BOND_FLOAT ? "float" : "double";
 }
 
-/* This rank's rows: their lengths and neighbours, then each restart field the rows register
- * (the others keep their init). */
-static int read_bonds(const h5io *pio, pf_bond_rows *rows) {
-  PF_CHECK(rows->n == 0, PF_ERR_RUN, "reading a checkpoint into bond rows that are not empty");
-  PF_CALL(pf_bond_rows_fields_agree(rows));
+/* Refuse a file without one of the restart fields the rows register (or of another type or width). */
+static int bond_fields_present(const h5io *io, const pf_bond_rows *rows) {
   for (int k = 0; k < rows->nfields; k++) {
     const pf_bond_field *f = &rows->field[k];
     char name[64];
     snprintf(name, sizeof name, "/bonds/%s", f->name);
-    PF_CHECK(!(f->flags & PF_FIELD_RESTART) || field_matches(pio, name, f), PF_ERR_INPUT,
+    PF_CHECK(!(f->flags & PF_FIELD_RESTART) || field_matches(io, name, f), PF_ERR_INPUT,
              "checkpoint %s has no bond field '%s' (%s, %d per bond), which this run keeps: it was written "
-             "by another model or another version of perifem", pio->path, f->name, type_name(f->type), f->ncomp);
+             "by another model or another version of perifem", io->path, f->name, type_name(f->type), f->ncomp);
   }
+  return 0;
+}
+
+/* Each restart field the rows register (the others keep their init), checked not NaN. */
+static int read_bond_fields(const h5io *io, pf_bond_rows *rows) {
+  for (int k = 0; k < rows->nfields; k++) {
+    const pf_bond_field *f = &rows->field[k];
+    if (!(f->flags & PF_FIELD_RESTART)) continue;
+    char name[64];
+    snprintf(name, sizeof name, "/bonds/%s", f->name);
+    PF_CALL(read_rows(io, name, h5_type(f->type), f->ncomp, f->data));
+    const size_t n = io->count * (size_t)f->ncomp;
+    if (f->type == PF_BOND_DOUBLE) PF_CALL(pf_ckpt_check_values(io->path, name, f->data, n, -INFINITY, 1));
+    if (f->type == PF_BOND_FLOAT) PF_CALL(pf_ckpt_check_floats(io->path, name, f->data, n));
+  }
+  return 0;
+}
+
+/* This rank's rows: their lengths (checked: not negative, adding up to the bonds in the file)
+ * and neighbours (in range, ascending), then each restart field the rows register. */
+static int read_bonds(const h5io *pio, pf_bond_rows *rows) {
+  PF_CHECK(rows->n == 0, PF_ERR_RUN, "reading a checkpoint into bond rows that are not empty");
+  PF_CALL(pf_bond_rows_fields_agree(rows));
+  PF_CALL(bond_fields_present(pio, rows));
+  hsize_t nbonds = 0;
+  PF_CALL(dataset_rows(pio, "/bonds/gid", &nbonds));
   int32_t *count;
   PF_MALLOC(count, pio->count);
   int ierr = read_rows(pio, "/bonds/count", H5T_NATIVE_INT32, 1, count);
+  if (!ierr) ierr = pf_ckpt_check_counts(pio->path, count, (int64_t)pio->count, (pf_gid)pio->total, (int64_t)nbonds);
   h5io io = *pio;
   io.count = 0;
-  for (hsize_t i = 0; i < pio->count; i++) io.count += (hsize_t)count[i];
-  rank_range(io.count, &io.total, &io.offset);
+  for (hsize_t i = 0; i < pio->count && !ierr; i++) io.count += (hsize_t)count[i];
+  if (!ierr) rank_range(io.count, &io.total, &io.offset);
   for (hsize_t i = 0; i < pio->count && !ierr; i++) ierr = pf_bond_rows_append(rows, count[i], NULL, 0, NULL);
   free(count);
   if (!ierr) ierr = read_rows(&io, "/bonds/gid", H5T_NATIVE_INT64, 1, rows->gid);
-  for (int k = 0; k < rows->nfields && !ierr; k++) {
-    const pf_bond_field *f = &rows->field[k];
-    char name[64];
-    snprintf(name, sizeof name, "/bonds/%s", f->name);
-    if (f->flags & PF_FIELD_RESTART) ierr = read_rows(&io, name, h5_type(f->type), f->ncomp, f->data);
-  }
+  if (!ierr) ierr = pf_ckpt_check_rows(pio->path, rows, (pf_gid)pio->total);
+  if (!ierr) ierr = read_bond_fields(&io, rows);
   return ierr;
 }
 
+/* The named scalars, each there and finite (the same attributes on every rank). */
 static int read_scalars(const h5io *io, int n, const char *const *names, double *values) {
   for (int k = 0; k < n; k++) {
+    char msg[512] = "", why[160] = "";
     hid_t a = H5Aopen(io->file, names[k], H5P_DEFAULT);
-    PF_CHECK(a >= 0, PF_ERR_INPUT, "checkpoint %s has no '%s': not a perifem checkpoint of this kind", io->path,
-             names[k]);
-    herr_t st = H5Aread(a, H5T_NATIVE_DOUBLE, &values[k]);
-    H5Aclose(a);
-    H5_TRY(io, st >= 0, names[k]);
+    int ok = a >= 0 && H5Aread(a, H5T_NATIVE_DOUBLE, &values[k]) >= 0;
+    if (!ok) hdf5_reason(why);
+    if (a >= 0) H5Aclose(a);
+    if (!ok) snprintf(msg, sizeof msg, "checkpoint %s has no attribute '%s' (HDF5: %s): not a perifem checkpoint of "
+                      "this kind, or damaged", io->path, names[k], why);
+    else if (!isfinite(values[k]))
+      ok = 0, snprintf(msg, sizeof msg, "checkpoint %s: attribute '%s' is %g, not finite: the file is damaged", io->path,
+                       names[k], values[k]);
+    PF_AGREE(ok, PF_ERR_INPUT, msg);
   }
   return 0;
 }
 
 static int read_all(h5io *io, pf_points **pts, pf_bond_rows *rows, int n, const char *const *names,
                     double *values) {
-  hid_t d = H5Dopen2(io->file, "/points/gid", H5P_DEFAULT);
-  PF_CHECK(d >= 0, PF_ERR_INPUT, "checkpoint %s has no /points/gid: not a perifem checkpoint", io->path);
-  hid_t sp = H5Dget_space(d);
   hsize_t total = 0;
-  H5Sget_simple_extent_dims(sp, &total, NULL);
-  H5Sclose(sp), H5Dclose(d);
+  PF_CALL(dataset_rows(io, "/points/gid", &total));
+  PF_CHECK(total <= (hsize_t)INT32_MAX * 64, PF_ERR_INPUT, "checkpoint %s: dataset /points/gid has %llu rows: the "
+           "file is damaged", io->path, (unsigned long long)total);
   int rank = pf_comm_rank(), size = pf_comm_size();
   io->total = total;
   io->offset = total * (hsize_t)rank / (hsize_t)size;
   io->count = total * (hsize_t)(rank + 1) / (hsize_t)size - io->offset;
+  PF_CALL(read_scalars(io, n, names, values)); /* the smallest part first */
   PF_CALL(pf_points_create((pf_int)io->count, pts));
   (*pts)->n_global = (pf_gid)total;
   PF_CALL(read_points(io, *pts));
-  PF_CALL(read_bonds(io, rows));
-  return read_scalars(io, n, names, values);
+  return read_bonds(io, rows);
 }
 
-int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, int nscalars,
-                       const char *const *names, double *values) {
+/* Open for reading on every rank, or refuse naming the file and HDF5's reason (e.g. "truncated
+ * file"). */
+static int open_for_reading(const char *path, hid_t *file) {
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   FILE *fp = fopen(path, "rb");
   PF_CHECK(fp, PF_ERR_INPUT, "cannot open the checkpoint %s", path);
   fclose(fp);
-  h5io io = {open_file(path, 0), path, 0, 0, 0};
-  PF_CHECK(io.file >= 0, PF_ERR_INPUT, "%s is not an HDF5 file (a perifem checkpoint)", path);
+  char msg[512] = "", why[160] = "";
+  *file = open_file(path, 0, why);
+  if (*file < 0) snprintf(msg, sizeof msg, "checkpoint %s cannot be opened as HDF5 (%s): not a perifem checkpoint, or "
+                          "damaged (truncated?)", path, why);
+  PF_AGREE(*file >= 0, PF_ERR_INPUT, msg);
+  return 0;
+}
+
+int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, int nscalars,
+                       const char *const *names, double *values) {
+  h5io io = {-1, path, 0, 0, 0};
+  PF_CALL(open_for_reading(path, &io.file));
   int ierr = read_all(&io, pts, rows, nscalars, names, values);
   H5Fclose(io.file);
   return ierr;
 }
 
 int pf_checkpoint_read_table(const char *path, const pf_table *t, double *full) {
-  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  h5io io = {open_file(path, 0), path, (hsize_t)t->total, 0, (hsize_t)t->total};
-  PF_CHECK(io.file >= 0, PF_ERR_INPUT, "%s is not an HDF5 file (a perifem checkpoint)", path);
+  h5io io = {-1, path, (hsize_t)t->total, 0, (hsize_t)t->total};
+  PF_CALL(open_for_reading(path, &io.file));
   char name[128];
   snprintf(name, sizeof name, "/tables/%s", t->name);
-  hid_t d = H5Dopen2(io.file, name, H5P_DEFAULT);
-  hsize_t dims[2] = {0, 1};
-  if (d >= 0) {
-    hid_t sp = H5Dget_space(d);
-    H5Sget_simple_extent_dims(sp, dims, NULL);
-    H5Sclose(sp), H5Dclose(d);
-  }
-  int ierr = 0;
-  if (d < 0 || dims[0] != (hsize_t)t->total || (t->ncomp > 1 && dims[1] != (hsize_t)t->ncomp))
+  int ierr = H5Lexists(io.file, "/tables", H5P_DEFAULT) > 0 && H5Lexists(io.file, name, H5P_DEFAULT) > 0 ? 0 : 1;
+  H5Eclear2(H5E_DEFAULT);
+  if (ierr)
     ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
                           "checkpoint %s has no table %s of %" PF_GID_FMT " x %d (the mesh or the model changed?)",
                           path, name, t->total, t->ncomp);
   if (!ierr) ierr = read_rows(&io, name, H5T_NATIVE_DOUBLE, t->ncomp, full);
+  if (!ierr) ierr = pf_ckpt_check_values(path, name, full, (size_t)t->total * (size_t)t->ncomp, -INFINITY, 1);
   H5Fclose(io.file);
   return ierr;
 }

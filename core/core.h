@@ -39,6 +39,17 @@ void pf_error_clear(void);
 /* When quiet, errors are recorded but not printed (tests of bad input). */
 void pf_error_set_quiet(int quiet);
 
+/* Collective: when ok is 0 on any rank, every rank raises the same error, with the message of
+ * the lowest such rank (each failing rank passes its own text; the others may pass ""), and
+ * returns code; else 0 everywhere. For checks whose outcome may differ between ranks, before
+ * the next collective call. */
+int pf_error_agree(int ok, int code, const char *file, int line, const char *func, const char *message);
+#define PF_AGREE(ok, code, message)                                                                \
+  do {                                                                                             \
+    int pf_agree_ierr_ = pf_error_agree((ok), (code), __FILE__, __LINE__, __func__, (message));    \
+    if (pf_agree_ierr_) return pf_agree_ierr_;                                                     \
+  } while (0)
+
 #define PF_CHECK(cond, code, ...)                                                                  \
   do {                                                                                             \
     if (!(cond)) return pf_error_raise((code), __FILE__, __LINE__, __func__, __VA_ARGS__);         \
@@ -413,7 +424,8 @@ int pf_table_allgather(const pf_table *t, double *full);
 /* Write the owned points (every array and field) and their bond rows (each bond field flagged
  * PF_FIELD_RESTART under /bonds/<name>, after pf_bond_rows_fields_agree), plus named scalars and
  * tables (each written whole, under /tables/<name>), to path (through path.tmp, renamed when
- * complete, so a kill leaves the previous checkpoint). Collective. */
+ * complete, so a kill leaves the previous checkpoint). Every dataset is chunked with HDF5's
+ * Fletcher32 checksum, the file in the HDF5 1.10 format (checksummed metadata). Collective. */
 int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *rows,
                         int nscalars, const char *const *names, const double *values,
                         int ntables, const pf_table *tables);
@@ -422,7 +434,11 @@ int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *ro
  * comes empty with the bond fields the caller keeps registered: each one flagged
  * PF_FIELD_RESTART is read (a file without it, or with another type or width, is refused naming
  * it), the others take their init; bond fields of the file the caller does not register are
- * not read. A missing scalar is an error. Collective. */
+ * not read. A missing scalar is an error. A failed checksum, a dataset without one, and content
+ * that cannot be a state (ids out of range or repeated, negative bodies or bond counts, counts
+ * not adding up to the bonds, rows not ascending, NaN values, non-finite scalars:
+ * core/checkpoint_check.c) are refused before use with PF_ERR_INPUT and a message naming the
+ * file and the dataset, on every rank alike. Collective. */
 int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, int nscalars,
                        const char *const *names, double *values);
 /* Read a table written with the checkpoint whole on every rank: full[total * ncomp] (name,

@@ -3,6 +3,7 @@
  * PF_CALL levels above it return the same code without printing again. */
 #include "core/core.h"
 
+#include <limits.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -41,6 +42,20 @@ int pf_error_raise(int code, const char *file, int line, const char *func, const
     fflush(stderr);
   }
   return code;
+}
+
+/* The lowest failing rank's message goes to every rank (a rank that has no error of its own yet
+ * raises it too), so that all of them stop together at the same point and say the same. */
+int pf_error_agree(int ok, int code, const char *file, int line, const char *func, const char *message) {
+  int rank = pf_comm_rank(), first = ok ? INT_MAX : rank;
+  if (pf_comm_size() > 1) MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (first == INT_MAX) return 0;
+  char text[1024];
+  snprintf(text, sizeof text, "%s", message ? message : "");
+  if (pf_comm_size() > 1) MPI_Bcast(text, (int)sizeof text, MPI_CHAR, first, MPI_COMM_WORLD);
+  if (first != rank && pf_comm_size() > 1)
+    return pf_error_raise(code, file, line, func, "%s (found by rank %d)", text, first);
+  return pf_error_raise(code, file, line, func, "%s", text);
 }
 
 const char *pf_error_message(void) { return have_error ? first_message : ""; }

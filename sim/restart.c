@@ -5,7 +5,8 @@
  * reactions, the FE bodies' stable steps, and a hash of each part of the deck that sets the
  * physics. A restart reads
  * the points on any number of ranks and re-partitions them like the set-up does, so the run
- * continues bitwise as if it had not stopped. */
+ * continues bitwise as if it had not stopped. What it reads is checked before use: by the reader
+ * (core/checkpoint_check.c) and against the deck (sim/restart_check.c). */
 #include "sim/sim_impl.h"
 
 #include <signal.h>
@@ -152,7 +153,10 @@ int pf_sim_restore_points(pf_sim *sim) {
   pf_sim_scalars *s = &sim->restart_scalars;
   int ierr = pf_sim_bond_fields(sim, &rows);
   if (!ierr) ierr = pf_checkpoint_read(sim->opt.restart_from, &sim->pts, &rows, s->n, s->names, s->value);
+  if (!ierr) ierr = pf_sim_check_restart_scalars(sim, s->value, &s->value[NFIXED + 2 * NPARTS + 6 * sim->nrigid]);
+  if (!ierr) ierr = pf_sim_check_restart_bodies(sim);
   if (!ierr) body_gids(sim);
+  if (!ierr) ierr = pf_sim_check_restart_gids(sim);
   if (!ierr) ierr = pf_sim_settle(sim, &rows, 0);
   pf_bond_rows_free(&rows);
   for (int b = 0; b < sim->nbodies && !ierr; b++) { /* the elements' state, whole on every rank */
@@ -188,6 +192,7 @@ int pf_sim_restore_state(pf_sim *sim) {
   scalars_free(&now);
   if (ierr) return ierr;
   const double *v = saved->value;
+  PF_CALL(pf_sim_check_restart_time(sim, v));
   if (sim->adaptive) sim->dt = v[2]; /* the step follows the elements: the last one taken */
   PF_CHECK(v[2] == sim->dt, PF_ERR_INPUT, "the checkpoint %s was written with dt = %.17g s, this set-up gives %.17g s",
            sim->opt.restart_from, v[2], sim->dt);

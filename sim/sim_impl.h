@@ -111,6 +111,14 @@ int pf_sim_checkpoint(pf_sim *sim);
 int pf_sim_restore_points(pf_sim *sim);
 int pf_sim_restore_state(pf_sim *sim);
 void pf_sim_restart_free(pf_sim *sim);
+/* A checkpoint's content checked against the deck (sim/restart_check.c): bodies (collective),
+ * global ids within their body's range (collective, after pf_sim_number_bodies), the scalars
+ * time v[0], step v[1], dt v[2] and the bodies' stable steps, and (after the set-up) time,
+ * step and dt against each other and the run's end. */
+int pf_sim_check_restart_bodies(const pf_sim *sim);
+int pf_sim_check_restart_gids(const pf_sim *sim);
+int pf_sim_check_restart_scalars(const pf_sim *sim, const double *v, const double *stable);
+int pf_sim_check_restart_time(const pf_sim *sim, const double *v);
 void pf_sim_catch_signals(void);
 /* The signal this rank received (0: none); the step's guard reduction (pf_sim_guard_check) makes
  * it the largest over the ranks, in sim->signal. */
