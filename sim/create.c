@@ -171,7 +171,7 @@ static int check_units(const pf_sim *sim, const pf_node *root) {
 }
 
 static int sim_build(pf_sim *sim, const char *deck_path) {
-  pf_sim_catch_signals(); /* a SIGTERM during the set-up stops the run at its first step */
+  pf_sim_catch_signals(); /* a SIGTERM during the set-up ends the process at once */
   PF_CALL(pf_deck_load(deck_path, &sim->deck));
   const pf_node *root = pf_deck_root(sim->deck);
   PF_CALL(pf_deck_validate(sim->deck, root, pf_deck_keys, "the deck"));
@@ -197,6 +197,7 @@ int pf_sim_create(const char *deck_path, const pf_sim_options *opt, pf_sim **out
   PF_MALLOC(sim, 1);
   if (opt) sim->opt = *opt;
   int ierr = sim_build(sim, deck_path);
+  pf_sim_setup_done(); /* from here a SIGTERM stops the run at the end of a step */
   if (ierr) {
     pf_sim_destroy(&sim);
     return ierr;
