@@ -77,7 +77,9 @@ static int gmsh_check(gmsh_reader *r, int ierr, const char *what) {
 
 /* ---- the process guarded against gmsh -------------------------------------------------------
  * gmsh ends the process itself in some cases: an `Exit;` command in a .geo file calls exit(0)
- * (gmsh 4.8's Msg::Exit; measured: perifem then ended with status 0 and nothing run); an
+ * (gmsh 4.8's Msg::Exit; measured: perifem then ended with status 0 and nothing run, and
+ * gmshOpen never returns whatever General.AbortOnError is, 0 to 3, so gmsh offers no way to
+ * refuse it); an
  * exception escaping one of its OpenMP meshing loops (std::bad_alloc when memory runs out)
  * calls std::terminate, i.e. abort(); and its C API copies its results into malloc'ed arrays
  * without checking malloc, so it crashes on a null pointer when memory is short (measured under
@@ -683,6 +685,8 @@ static int gmsh_read(const pf_mesh_source *src, pf_mesh_raw *raw) {
   else {
     code = read_model(&r, raw);
     gmshLoggerStop(&ierr);
+    if (!code && ierr) code = PF_MESH_ERROR(src, "gmshLoggerStop returned %d", ierr);
+    ierr = 0;
     gmshFinalize(&ierr);
     if (!code && ierr) code = PF_MESH_ERROR(src, "gmshFinalize returned %d", ierr);
   }
