@@ -273,6 +273,11 @@ double pf_min_all(double local);
 double pf_max_all(double local);
 int pf_comm_rank(void);
 int pf_comm_size(void);
+/* The memory this process may use, in bytes: the machine's physical memory (sysconf), or the
+ * address-space limit (ulimit -v, less the address space in use now) or data-segment limit
+ * (ulimit -d) when lower. For refusing, before
+ * allocating, a model that cannot fit (core/lattice.c, mesh/gmsh.c). */
+double pf_memory_limit(void);
 
 /* ---- MPI domain decomposition (core/partition.c, migrate.c, halo.c) -------------- */
 /* Bond lists in transit between ranks: one row per owned point, neighbours by global id, each

@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 static char first_message[2048];
@@ -95,4 +96,23 @@ void pf_log_status(const char *fmt, ...) {
   fputs("\033[K", stdout); /* clear what a longer previous line left */
   fflush(stdout);
   status_open = 1;
+}
+
+double pf_memory_limit(void) {
+  long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  double limit = pages > 0 && page > 0 ? (double)pages * (double)page : 1e18;
+  double used = 0; /* the address space in use now (libraries, the deck, ...) */
+  FILE *fp = fopen("/proc/self/statm", "r");
+  unsigned long vm = 0;
+  if (fp && fscanf(fp, "%lu", &vm) == 1 && page > 0) used = (double)vm * (double)page;
+  if (fp) fclose(fp);
+  const int which[2] = {RLIMIT_AS, RLIMIT_DATA};
+  for (int k = 0; k < 2; k++) {
+    struct rlimit rl;
+    if (getrlimit(which[k], &rl) == 0 && rl.rlim_cur != RLIM_INFINITY) {
+      double left = (double)rl.rlim_cur - (k == 0 ? used : 0);
+      if (left < limit) limit = left > 0 ? left : 0;
+    }
+  }
+  return limit;
 }

@@ -236,6 +236,55 @@ static int cloud_from_file(const pf_deck *d, const pf_node *g, pf_point_cloud *p
   return 0;
 }
 
+/* A box of zero extent in exactly one axis (lo[c] == hi[c]) is a sheet of one point layer, whose
+ * families are flat discs that a 3-D material model was not calibrated for (the PMB and LPS
+ * moduli assume full spheres): refused. Zero extent in two or three axes (a line or a single
+ * point, as the two-point tests use) stays valid. */
+static int check_thickness(const pf_deck *d, const pf_node *g, const pf_region *r, double h) {
+  if (r->kind != PF_REGION_BOX) return 0;
+  int zero = -1, nzero = 0;
+  for (int c = 0; c < 3; c++)
+    if (r->hi[c] == r->lo[c]) zero = c, nzero++;
+  if (nzero != 1) return 0;
+  return pf_deck_error(d, pf_node_get(g, "hi"), "hi",
+                       "the box has zero thickness in %c (lo[%d] = hi[%d] = %g m): one layer of points "
+                       "whose families are flat, which a 3-D material model is not calibrated for; give "
+                       "it a thickness of at least one spacing (%g m), e.g. hi[%d] = %g",
+                       'x' + zero, zero, zero, r->lo[zero], h, zero, r->lo[zero] + h);
+}
+
+/* Bytes a point costs at the peak of the set-up without its bonds (the clouds, the points'
+ * fields, the Morton order and the partition): measured about 1 KB per point on a 227 000-point
+ * PMB box (docs/user_guide.md §4.4); the bonds add their share in the PD body (sim/body_pd.c). */
+#define PF_LATTICE_BYTES_PER_POINT 1024.0
+
+/* Before filling: the points the lattice would make, estimated as the lattice cells covering
+ * the shape's bounding box times the shape's share of that box, refused beyond the local index
+ * range (pf_int) or beyond the memory each rank may use for its share. */
+static int check_lattice_size(const pf_deck *d, const pf_node *g, const pf_region *r, double h,
+                              double cells) {
+  double lo[3], hi[3], box = 1, vol;
+  region_bounds(r, lo, hi);
+  for (int c = 0; c < 3; c++) box *= hi[c] - lo[c];
+  if (r->kind == PF_REGION_BOX) vol = box;
+  else if (r->kind == PF_REGION_CYLINDER)
+    vol = 3.14159265358979323846 * (r->radius * r->radius - r->inner_radius * r->inner_radius) * r->height;
+  else vol = 4.0 / 3.0 * 3.14159265358979323846 * r->radius * r->radius * r->radius;
+  const double points = cells * (box > 0 && vol < box ? vol / box : 1);
+  const double bytes = points * PF_LATTICE_BYTES_PER_POINT, limit = pf_memory_limit();
+  const int ranks = pf_comm_size();
+  if (points < INT32_MAX && bytes / ranks <= limit) return 0;
+  return pf_deck_error(d, pf_node_get(g, "spacing"), "spacing",
+                       "spacing %g m would make about %.3g points, needing about %.3g GB before "
+                       "any bond (%.3g GB on each of %d rank(s)); %s (a rank may use %.3g GB here); "
+                       "use a larger spacing or a smaller geometry (a length in millimetres typed "
+                       "as metres?)",
+                       h, points, bytes / 1e9, bytes / ranks / 1e9, ranks,
+                       points < INT32_MAX ? "more than the memory available"
+                                          : "more than the 2^31 points one rank can index",
+                       limit / 1e9);
+}
+
 int pf_point_cloud_from_deck(const pf_deck *d, const pf_node *g, pf_point_cloud *pc) {
   memset(pc, 0, sizeof *pc);
   const char *shape = NULL;
@@ -272,7 +321,10 @@ int pf_point_cloud_from_deck(const pf_deck *d, const pf_node *g, pf_point_cloud 
   double cells = lattice_range(&r, h, origin, i0, i1);
   if (!(cells < PF_LATTICE_MAX_CELLS))
     return pf_deck_error(d, pf_node_get(g, "spacing"), "spacing",
-                         "the lattice of %.3g cells is too large for spacing %g m", cells, h);
+                         "the lattice of %.3g cells is too large for spacing %g m (at most 2e9 cells; "
+                         "a length in millimetres typed as metres?)", cells, h);
+  PF_CALL(check_thickness(d, g, &r, h));
+  PF_CALL(check_lattice_size(d, g, &r, h, cells));
   PF_CALL(pf_lattice_fill(&r, h, origin, pc));
   if (pc->n == 0) return pf_deck_error(d, g, "shape", "the shape holds no lattice point (spacing %g m)", h);
   if (amp > 0) perturb(pc, amp * h, (uint64_t)seed);

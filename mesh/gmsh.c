@@ -16,10 +16,13 @@
 
 #include <gmshc.h>
 #include <locale.h>
+#include <math.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #define GMSH_HEX8 5 /* gmsh element types */
 #define GMSH_QUAD4 3
@@ -61,7 +64,7 @@ static int gmsh_check(gmsh_reader *r, int ierr, const char *what) {
   int code = 0;
   if (ierr || err)
     code = PF_MESH_ERROR(r->src, "gmsh failed %s: %s", what,
-                         err ? err + strspn(err, ": ") : "no message in gmsh's log");
+                         err ? err + strspn(err, ": ") : "gmsh gave no message (out of memory?)");
   for (size_t i = 0; i < n; i++) gmshFree(log[i]);
   gmshFree(log);
   return code;
@@ -71,6 +74,68 @@ static int gmsh_check(gmsh_reader *r, int ierr, const char *what) {
     int pf_gmsh_code_ = gmsh_check((r), ierr, (what));                                             \
     if (pf_gmsh_code_) return pf_gmsh_code_;                                                       \
   } while (0)
+
+/* ---- the process guarded against gmsh -------------------------------------------------------
+ * gmsh ends the process itself in some cases: an `Exit;` command in a .geo file calls exit(0)
+ * (gmsh 4.8's Msg::Exit; measured: perifem then ended with status 0 and nothing run, and
+ * gmshOpen never returns whatever General.AbortOnError is, 0 to 3, so gmsh offers no way to
+ * refuse it); an
+ * exception escaping one of its OpenMP meshing loops (std::bad_alloc when memory runs out)
+ * calls std::terminate, i.e. abort(); and its C API copies its results into malloc'ed arrays
+ * without checking malloc, so it crashes on a null pointer when memory is short (measured under
+ * ulimit -v). While gmsh runs, an atexit handler and a SIGABRT/SIGSEGV/SIGBUS handler turn these
+ * into a perifem error naming the file and the deck key, with exit status 2. Nothing is
+ * written during the set-up, so nothing is left half-written. */
+static volatile sig_atomic_t in_gmsh = 0;
+static char guard_exit_msg[2048], guard_crash_msg[2048];
+static const int guard_signals[3] = {SIGABRT, SIGSEGV, SIGBUS};
+static struct sigaction guard_old[3];
+
+static void guard_write(const char *msg) {
+  size_t n = strlen(msg);
+  while (n > 0) {
+    ssize_t w = write(STDERR_FILENO, msg, n);
+    if (w <= 0) break;
+    msg += w, n -= (size_t)w;
+  }
+}
+static void guard_at_exit(void) {
+  if (!in_gmsh) return;
+  guard_write(guard_exit_msg);
+  _exit(PF_ERR_INPUT);
+}
+static void guard_on_crash(int sig) {
+  (void)sig;
+  guard_write(guard_crash_msg);
+  _exit(PF_ERR_INPUT);
+}
+
+static void guard_start(const pf_mesh_source *src) {
+  static int registered = 0;
+  if (!registered) registered = atexit(guard_at_exit) == 0;
+  const char *key = src->key ? src->key : "mesh";
+  snprintf(guard_exit_msg, sizeof guard_exit_msg,
+           "perifem error: %s: %s: gmsh ended the process while reading or meshing this file (an "
+           "'Exit;' command in it, or in a file it includes?); perifem needs the whole mesh, so "
+           "the run stops here (nothing was run or written)\n",
+           key, src->label);
+  snprintf(guard_crash_msg, sizeof guard_crash_msg,
+           "perifem error: %s: %s: gmsh aborted or crashed while reading or meshing this file "
+           "(out of memory, e.g. std::bad_alloc from a too-fine element_size?); nothing was run "
+           "or written\n",
+           src->size_key ? src->size_key : key, src->label);
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = guard_on_crash;
+  sigemptyset(&sa.sa_mask);
+  for (int k = 0; k < 3; k++) sigaction(guard_signals[k], &sa, &guard_old[k]);
+  in_gmsh = 1;
+}
+
+static void guard_stop(void) {
+  in_gmsh = 0;
+  for (int k = 0; k < 3; k++) sigaction(guard_signals[k], &guard_old[k], NULL);
+}
 
 /* ---- nodes ----------------------------------------------------------------------------------- */
 static int by_size_t(const void *a, const void *b) {
@@ -525,6 +590,42 @@ static int mesh_geo(gmsh_reader *r) {
   return 0;
 }
 
+/* Bytes one element costs at its peak while gmsh meshes it and perifem reads it: measured
+ * 1.3 KB per hexahedron on meshes/bar.geo (1.25 million transfinite hexahedra, 1.6 GB peak
+ * resident); 2 KB allows for the tetrahedra of an unstructured mesh before its subdivision. */
+#define PF_GMSH_BYTES_PER_ELEMENT 2048.0
+#define PF_GMSH_MAX_ELEMENTS 2.6e8 /* pf_mesh's 32-bit connectivity: 8 nelem <= INT32_MAX */
+
+/* Before meshing a .geo with element_size h: the number of elements estimated from the
+ * geometry's bounding box, prod_i max(1, ceil(L_i / h)), refused beyond the 32-bit limit or
+ * beyond what the memory this process may use (pf_memory_limit) would hold. */
+static int check_estimate(gmsh_reader *r) {
+  const double h = r->src->element_size;
+  if (!(h > 0)) return 0; /* the .geo sets its own sizes */
+  double lo[3], hi[3];
+  int ierr = 0;
+  gmshModelGetBoundingBox(-1, -1, &lo[0], &lo[1], &lo[2], &hi[0], &hi[1], &hi[2], &ierr);
+  GMSH_TRY(r, "computing the bounding box of the geometry");
+  double n = 1, div[3];
+  for (int c = 0; c < 3; c++) {
+    double L = hi[c] - lo[c];
+    div[c] = isfinite(L) && L > 0 ? fmax(1, ceil(L / h - 1e-6)) : 1;
+    n *= div[c];
+  }
+  const double bytes = n * PF_GMSH_BYTES_PER_ELEMENT, limit = pf_memory_limit();
+  if (n <= PF_GMSH_MAX_ELEMENTS && bytes <= limit) return 0;
+  return pf_error_raise(
+      PF_ERR_INPUT, __FILE__, __LINE__, __func__,
+      "%s: %s: element_size %g (in the file's units) would make about %.3g elements "
+      "(%.0f x %.0f x %.0f divisions of the geometry's bounding box), needing about %.3g GB; "
+      "%s (this process may use %.3g GB); use a larger element_size",
+      r->src->size_key ? r->src->size_key : "mesh", r->src->label, h, n, div[0], div[1], div[2],
+      bytes / 1e9,
+      n > PF_GMSH_MAX_ELEMENTS ? "perifem's meshes hold at most 2.6e8 elements"
+                               : "more than the memory available",
+      limit / 1e9);
+}
+
 static int read_model(gmsh_reader *r, pf_mesh_raw *raw) {
   int ierr = 0;
   gmshOptionSetNumber("General.Terminal", 0, &ierr);
@@ -536,6 +637,7 @@ static int read_model(gmsh_reader *r, pf_mesh_raw *raw) {
   }
   gmshOpen(r->src->path, &ierr);
   GMSH_TRY(r, "reading the file");
+  if (r->is_geo) PF_CALL(check_estimate(r));
   if (r->is_geo) PF_CALL(mesh_geo(r));
   char others[512];
   size_t n3 = 0;
@@ -576,15 +678,19 @@ static int gmsh_read(const pf_mesh_source *src, pf_mesh_raw *raw) {
   struct rlimit stack;
   int have_stack = getrlimit(RLIMIT_STACK, &stack) == 0;
   int ierr = 0, code = 0;
+  guard_start(src);
   gmshInitialize(0, NULL, 0, &ierr);
   if (ierr)
     code = PF_MESH_ERROR(src, "cannot start gmsh (gmshInitialize returned %d)", ierr);
   else {
     code = read_model(&r, raw);
     gmshLoggerStop(&ierr);
+    if (!code && ierr) code = PF_MESH_ERROR(src, "gmshLoggerStop returned %d", ierr);
+    ierr = 0;
     gmshFinalize(&ierr);
     if (!code && ierr) code = PF_MESH_ERROR(src, "gmshFinalize returned %d", ierr);
   }
+  guard_stop();
   if (locale[0]) setlocale(LC_ALL, locale);
   if (have_stack) setrlimit(RLIMIT_STACK, &stack);
   free(r.node_tag), free(r.hex_tag), free(r.hex_nodes), free(r.hex_block), free(r.faces);

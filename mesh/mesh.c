@@ -86,13 +86,14 @@ static void known_extensions(char *out, size_t len) {
 
 /* ---- shared helpers (mesh/mesh_impl.h) ---------------------------------------------------- */
 
-int pf_mesh_error_(const char *label, const char *file, int line, const char *func,
-                       const char *fmt, ...) {
+int pf_mesh_error_(const char *key, const char *label, const char *file, int line,
+                   const char *func, const char *fmt, ...) {
   char msg[1280];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
+  if (key) return pf_error_raise(PF_ERR_INPUT, file, line, func, "%s: %s: %s", key, label, msg);
   return pf_error_raise(PF_ERR_INPUT, file, line, func, "%s: %s", label, msg);
 }
 
@@ -224,13 +225,13 @@ static int64_t elem_id(const pf_mesh_raw *raw, pf_int e) {
 }
 
 /* Every index the reader produced is in range and blocks are contiguous. */
-static int check_structure(const pf_mesh_raw *raw, const char *label) {
+static int check_structure(const pf_mesh_raw *raw, const char *key, const char *label) {
   const pf_mesh *m = &raw->mesh;
   for (pf_int e = 0; e < m->nelem; e++) {
     for (int a = 0; a < 8; a++) {
       pf_int k = m->conn[8 * (size_t)e + a];
       if (k < 0 || k >= m->nnodes)
-        return pf_mesh_error_(label, __FILE__, __LINE__, __func__,
+        return pf_mesh_error_(key, label, __FILE__, __LINE__, __func__,
                                   "element %" PRId64 " names node %" PRId64
                                   " but the mesh has %" PF_INT_FMT " nodes",
                                   elem_id(raw, e), (int64_t)k + 1, m->nnodes);
@@ -245,7 +246,7 @@ static int check_structure(const pf_mesh_raw *raw, const char *label) {
   for (int s = 0; s < m->nnodesets; s++)
     for (pf_int i = 0; i < m->nodeset[s].n; i++)
       if (m->nodeset[s].item[i] < 0 || m->nodeset[s].item[i] >= m->nnodes)
-        return pf_mesh_error_(label, __FILE__, __LINE__, __func__,
+        return pf_mesh_error_(key, label, __FILE__, __LINE__, __func__,
                                   "node set '%s' names node %" PRId64 " of %" PF_INT_FMT,
                                   m->nodeset[s].name, (int64_t)m->nodeset[s].item[i] + 1,
                                   m->nnodes);
@@ -253,7 +254,7 @@ static int check_structure(const pf_mesh_raw *raw, const char *label) {
     for (pf_int i = 0; i < m->sideset[s].n; i++)
       if (m->sideset[s].item[i] < 0 || m->sideset[s].item[i] >= m->nelem ||
           m->sideset[s].face[i] < 0 || m->sideset[s].face[i] > 5)
-        return pf_mesh_error_(label, __FILE__, __LINE__, __func__,
+        return pf_mesh_error_(key, label, __FILE__, __LINE__, __func__,
                                   "side set '%s' names side %d of element %" PRId64
                                   " (elements 1..%" PF_INT_FMT ", sides 1..6)",
                                   m->sideset[s].name, m->sideset[s].face[i] + 1,
@@ -354,7 +355,7 @@ static int drop_unused_nodes(pf_mesh_raw *raw) {
 
 /* Positive Jacobians: turn over blocks whose every element is inside out, then every element
  * must have det J > 0 at its 8 corners. */
-static int validate(pf_mesh_raw *raw, const char *label) {
+static int validate(pf_mesh_raw *raw, const char *key, const char *label) {
   pf_mesh *m = &raw->mesh;
   if (m->nelem == 0) {
     char known[1024] = "";
@@ -362,13 +363,13 @@ static int validate(pf_mesh_raw *raw, const char *label) {
       size_t used = strlen(known);
       snprintf(known + used, sizeof known - used, "%s'%s'", k ? ", " : "", m->block_name[k]);
     }
-    return pf_mesh_error_(label, __FILE__, __LINE__, __func__,
+    return pf_mesh_error_(key, label, __FILE__, __LINE__, __func__,
                               "no hexahedra to read (blocks kept: %s)",
                               m->nblocks ? known : "none");
   }
   for (pf_int i = 0; i < 3 * m->nnodes; i++)
     if (!isfinite(m->X[i]))
-      return pf_mesh_error_(label, __FILE__, __LINE__, __func__,
+      return pf_mesh_error_(key, label, __FILE__, __LINE__, __func__,
                                 "node %" PRId64 " has a coordinate that is not a finite number",
                                 raw->node_id ? raw->node_id[i / 3] : (int64_t)i / 3 + 1);
   int8_t *sign = NULL;
@@ -426,7 +427,7 @@ static int validate(pf_mesh_raw *raw, const char *label) {
     int flat = fabs(dmin) <= 1e-10 * L * L * L; /* zero to round-off: a flat or collapsed corner */
     free(sign);
     return pf_mesh_error_(
-        label, __FILE__, __LINE__, __func__,
+        key, label, __FILE__, __LINE__, __func__,
         "element %" PRId64 " (block '%s', centroid (%g, %g, %g) m) is %s: det J = %g at its "
         "node %d; elements need a positive Jacobian at all 8 corners with nodes in Exodus HEX8 "
         "order (1-4 counter-clockwise seen from 5-8)",
@@ -443,6 +444,7 @@ typedef struct {
   pf_mesh_source src;
   char path[4096];
   char label[4200];
+  char key[4200], size_key[4200]; /* "deck.yaml:L:C: key 'file'" and the same for element_size */
   double scale, translate[3];
 } mesh_request;
 
@@ -497,6 +499,14 @@ static int parse_request(const pf_deck *d, const pf_node *mn, mesh_request *rq) 
                            "applies to .geo files only ('%s' is already a mesh)", file);
     rq->src.path = rq->path;
     snprintf(rq->label, sizeof rq->label, "%s", rq->path);
+    snprintf(rq->key, sizeof rq->key, "%s:%d:%d: key 'file'", pf_deck_path(d), pf_node_line(fn),
+             pf_node_column(fn));
+    rq->src.key = rq->key;
+    if (es) {
+      snprintf(rq->size_key, sizeof rq->size_key, "%s:%d:%d: key 'element_size'",
+               pf_deck_path(d), pf_node_line(es), pf_node_column(es));
+      rq->src.size_key = rq->size_key;
+    }
   }
   rq->src.label = rq->label;
   PF_CHECK(rq->reader, PF_ERR_INPUT, "no mesh reader named '%s' is registered",
@@ -513,7 +523,7 @@ int pf_mesh_read(const pf_deck *d, const pf_node *mn, pf_mesh *m) {
   memset(&raw, 0, sizeof raw);
   int ierr = parse_request(d, mn, rq);
   if (!ierr) ierr = rq->reader->read(&rq->src, &raw);
-  if (!ierr) ierr = check_structure(&raw, rq->label);
+  if (!ierr) ierr = check_structure(&raw, rq->src.key, rq->label);
   if (!ierr) ierr = select_blocks(d, mn, &raw);
   if (!ierr) ierr = drop_unused_nodes(&raw);
   if (!ierr)
@@ -521,7 +531,7 @@ int pf_mesh_read(const pf_deck *d, const pf_node *mn, pf_mesh *m) {
       for (int c = 0; c < 3; c++)
         raw.mesh.X[3 * (size_t)i + c] =
             rq->scale * raw.mesh.X[3 * (size_t)i + c] + rq->translate[c];
-  if (!ierr) ierr = validate(&raw, rq->label);
+  if (!ierr) ierr = validate(&raw, rq->src.key, rq->label);
   if (!ierr)
     pf_log("mesh %s: %" PF_INT_FMT " nodes, %" PF_INT_FMT " hexahedra in %d block(s), %d node "
            "set(s), %d side set(s)\n",

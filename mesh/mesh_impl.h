@@ -12,6 +12,8 @@ typedef struct {
   const char *text;    /* inline mesh description; NULL for files */
   const char *label;   /* names the source in messages: the path, or "pamgen mesh at deck:l:c" */
   double element_size; /* element edge in the file's units (the deck's m / scale); 0: none */
+  const char *key;     /* the deck key naming the source, "deck.yaml:L:C: key 'file'"; or NULL */
+  const char *size_key; /* the same for element_size (NULL when not given) */
 } pf_mesh_source;
 
 /* A mesh as a reader returns it, before the common steps (block selection, dropping unused
@@ -40,10 +42,11 @@ int pf_mesh_add_set(pf_mesh_set **sets, int *nsets, const char *name, int64_t n,
                         pf_mesh_set **out);
 /* Copy a name into a 64-byte slot: trailing blanks dropped; fallback when the name is empty. */
 void pf_mesh_set_name(char out[64], const char *name, const char *fallback, int64_t id);
-/* Raise a PF_ERR_INPUT error whose message starts with the source label. */
+/* Raise a PF_ERR_INPUT error whose message starts with the deck key naming the source (when
+ * known) and the source label: "deck.yaml:9:11: key 'file': meshes/bar.geo: ...". */
 #define PF_MESH_ERROR(src, ...)                                                                    \
-  pf_mesh_error_((src)->label, __FILE__, __LINE__, __func__, __VA_ARGS__)
-int pf_mesh_error_(const char *label, const char *file, int line, const char *func,
-                       const char *fmt, ...) __attribute__((format(printf, 5, 6)));
+  pf_mesh_error_((src)->key, (src)->label, __FILE__, __LINE__, __func__, __VA_ARGS__)
+int pf_mesh_error_(const char *key, const char *label, const char *file, int line,
+                   const char *func, const char *fmt, ...) __attribute__((format(printf, 6, 7)));
 
 #endif

@@ -101,6 +101,82 @@ static int set_initial_field(pf_sim *sim, int b, const pf_node *body, const char
   return 0;
 }
 
+/* Bodies whose points coincide: every point of one body at a point of another (the same body
+ * given twice, or one lattice inside another's with the same origin) is refused naming both; a
+ * partial coincidence (e.g. bodies sharing a boundary plane of lattice points) is reported. */
+typedef struct {
+  const double *x;
+  int body;
+} overlap_item;
+static int by_position_body(const void *a, const void *b) {
+  const overlap_item *p = a, *q = b;
+  for (int c = 0; c < 3; c++)
+    if (p->x[c] != q->x[c]) return p->x[c] < q->x[c] ? -1 : 1;
+  return (p->body > q->body) - (p->body < q->body);
+}
+
+static int check_overlap(const pf_sim *sim, const pf_point_cloud *pc, const pf_node *bodies) {
+  const int nb = sim->nbodies;
+  double lo[PF_MAX_BODIES][3], hi[PF_MAX_BODIES][3];
+  int take[PF_MAX_BODIES] = {0}, any = 0;
+  for (int b = 0; b < nb; b++) {
+    for (int c = 0; c < 3; c++) lo[b][c] = INFINITY, hi[b][c] = -INFINITY;
+    for (pf_int i = 0; i < pc[b].n; i++)
+      for (int c = 0; c < 3; c++)
+        lo[b][c] = fmin(lo[b][c], pc[b].X[3 * i + c]), hi[b][c] = fmax(hi[b][c], pc[b].X[3 * i + c]);
+  }
+  for (int b = 0; b < nb; b++) /* only bodies whose bounding boxes meet another's */
+    for (int q = 0; q < b; q++) {
+      int meet = pc[b].n > 0 && pc[q].n > 0;
+      for (int c = 0; c < 3; c++) meet &= lo[b][c] <= hi[q][c] && lo[q][c] <= hi[b][c];
+      if (meet) take[b] = take[q] = any = 1;
+    }
+  if (!any) return 0;
+  size_t n = 0;
+  for (int b = 0; b < nb; b++) n += take[b] ? (size_t)pc[b].n : 0;
+  overlap_item *it = malloc(sizeof *it * n);
+  pf_gid *shared = calloc((size_t)nb * nb, sizeof *shared); /* [b * nb + q]: points of b at one of q */
+  if (!it || !shared) {
+    free(it), free(shared);
+    return pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory comparing the bodies' points");
+  }
+  size_t k = 0;
+  for (int b = 0; b < nb; b++)
+    for (pf_int i = 0; take[b] && i < pc[b].n; i++) it[k++] = (overlap_item){&pc[b].X[3 * i], b};
+  qsort(it, n, sizeof *it, by_position_body);
+  for (size_t g = 0, e; g < n; g = e) { /* a group of points at one position */
+    for (e = g + 1; e < n && !memcmp(it[e].x, it[g].x, 3 * sizeof(double)); e++) {}
+    if (it[e - 1].body == it[g].body) continue; /* (sorted by body within the group) */
+    for (size_t i = g; i < e; i++) {
+      int last = -1;
+      for (size_t j = g; j < e; j++)
+        if (it[j].body != it[i].body && it[j].body != last) shared[it[i].body * nb + it[j].body]++, last = it[j].body;
+    }
+  }
+  free(it);
+  int ierr = 0;
+  for (int b = 1; b < nb && !ierr; b++)
+    for (int q = 0; q < b && !ierr; q++) {
+      const pf_gid sb = shared[b * nb + q], sq = shared[q * nb + b];
+      if (!sb && !sq) continue;
+      const int full_b = sb == pc[b].n, full_q = sq == pc[q].n;
+      if (full_b || full_q) {
+        const int in = full_b ? b : q, other = full_b ? q : b; /* every point of `in` is one of `other`'s */
+        ierr = pf_deck_error(sim->deck, pf_node_get(pf_node_item(bodies, b), "name"), "name",
+                             "bodies '%s' and '%s' overlap: every one of the %" PF_INT_FMT " points of '%s' "
+                             "coincides with a point of '%s' (the same points twice); give each region of "
+                             "material to one body",
+                             sim->body_name[q], sim->body_name[b], pc[in].n, sim->body_name[in],
+                             sim->body_name[other]);
+      } else
+        pf_log("note: bodies '%s' and '%s' share %" PF_GID_FMT " point positions (of %" PF_INT_FMT
+               " and %" PF_INT_FMT " points)\n",
+               sim->body_name[q], sim->body_name[b], sb, pc[q].n, pc[b].n);
+    }
+  free(shared);
+  return ierr;
+}
+
 static int build_bodies(pf_sim *sim, const pf_node *root) {
   const pf_node *bodies = pf_node_get(root, "bodies");
   sim->nbodies = pf_node_count(bodies);
@@ -131,6 +207,7 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
   int ierr = 0;
   for (int b = 0; b < sim->nbodies && !ierr; b++)
     ierr = sim->body[b].ops->cloud(sim->body[b].data, sim->deck, pf_node_item(bodies, b), &pc[b]);
+  if (!ierr) ierr = check_overlap(sim, pc, bodies);
   if (!ierr) ierr = pf_sim_distribute(sim, pc);
   for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
   if (ierr) return ierr;
@@ -171,7 +248,7 @@ static int check_units(const pf_sim *sim, const pf_node *root) {
 }
 
 static int sim_build(pf_sim *sim, const char *deck_path) {
-  pf_sim_catch_signals(); /* a SIGTERM during the set-up stops the run at its first step */
+  pf_sim_catch_signals(); /* a SIGTERM during the set-up ends the process at once */
   PF_CALL(pf_deck_load(deck_path, &sim->deck));
   const pf_node *root = pf_deck_root(sim->deck);
   PF_CALL(pf_deck_validate(sim->deck, root, pf_deck_keys, "the deck"));
@@ -197,6 +274,7 @@ int pf_sim_create(const char *deck_path, const pf_sim_options *opt, pf_sim **out
   PF_MALLOC(sim, 1);
   if (opt) sim->opt = *opt;
   int ierr = sim_build(sim, deck_path);
+  pf_sim_setup_done(); /* from here a SIGTERM stops the run at the end of a step */
   if (ierr) {
     pf_sim_destroy(&sim);
     return ierr;

@@ -1,4 +1,5 @@
-/* perifem DECK.yaml — the command line. Exit status: 0 success, 1 run failure, 2 bad input. */
+/* perifem DECK.yaml — the command line. Exit status: 0 success, 1 run failure, 2 bad input,
+ * 128 + N stopped by signal N during the set-up (sim/restart.c). */
 #include "sim/sim.h"
 
 #include <errno.h>
@@ -25,7 +26,8 @@ static void usage(FILE *fp) {
           "  --version          print the version and the libraries it was built with\n"
           "  --deck-keys        print every deck key with its type, default and units (Markdown)\n"
           "  --help             this text\n"
-          "exit status: 0 success, 1 run failure, 2 bad input\n");
+          "exit status: 0 success, 1 run failure, 2 bad input, 128+N stopped by signal N during\n"
+          "the set-up\n");
 }
 
 static void version(void) {

@@ -119,7 +119,12 @@ int pf_sim_check_restart_bodies(const pf_sim *sim);
 int pf_sim_check_restart_gids(const pf_sim *sim);
 int pf_sim_check_restart_scalars(const pf_sim *sim, const double *v, const double *stable);
 int pf_sim_check_restart_time(const pf_sim *sim, const double *v);
+/* SIGTERM / SIGINT: caught from the start of the set-up. During the set-up (meshing, lattices,
+ * neighbour search: nothing is written then) a signal ends the process at once with a message
+ * and exit status 128 + signal; after pf_sim_setup_done it stops the run at the end of the
+ * current step with a checkpoint. */
 void pf_sim_catch_signals(void);
+void pf_sim_setup_done(void);
 /* The signal this rank received (0: none); the step's guard reduction (pf_sim_guard_check) makes
  * it the largest over the ranks, in sim->signal. */
 int pf_sim_signal_here(void);
