@@ -9,22 +9,55 @@
  *   /tables/<name>                          [total][ncomp] whole tables (written by rank 0)
  *   attributes of "/": the named scalars (time, step, ...), written alike by every rank.
  * The file is written as path.tmp and renamed by rank 0 once every rank has closed it, so a
- * kill at any moment leaves the previous checkpoint whole. A reader on any number of ranks
+ * kill at any moment leaves the previous checkpoint whole. A failed write (a full disk) is
+ * agreed by every rank after each collective call; the ranks then leave the file without
+ * closing it (HDF5's collective close of a file it cannot write fails on one rank and hangs the
+ * others, and leaves the file half destroyed), rank 0 removes path.tmp, and the process must
+ * end through MPI_Abort (pf_io_abandon). A reader on any number of ranks
  * takes an equal slice of the rows; the caller re-partitions. */
 #include "core/bond_rows_impl.h"
 
+#include <errno.h>
 #include <hdf5.h>
 #include <stdio.h>
+#include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
 
 typedef struct {
   hid_t file;
-  const char *path;
+  const char *path;   /* the file open (path.tmp while writing) */
+  const char *target; /* the checkpoint's name */
   hsize_t total, offset, count; /* rows: over all ranks, this rank's first and number */
 } h5io;
 
 #define H5_TRY(io, ok, what) PF_CHECK((ok), PF_ERR_LIB, "HDF5: %s failed (checkpoint %s)", (what), (io)->path)
+
+/* The innermost message of HDF5's error stack (the failing call's, before another call clears it). */
+static herr_t first_error(unsigned n, const H5E_error2_t *e, void *out) {
+  if (n == 0) snprintf((char *)out, 256, "%s: %s", e->func_name, e->desc);
+  return 0;
+}
+
+/* Why a call failed: errno when it is set (the POSIX drivers), else HDF5's innermost message. */
+static void h5_reason(int ok, int err, char *buf) {
+  buf[0] = '\0';
+  if (ok) return;
+  snprintf(buf, 256, "%s", err ? strerror(err) : "no system error reported");
+  if (!err) H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, first_error, buf);
+}
+
+/* A write that failed on this rank (err: errno right after it, why: the HDF5 error stack), agreed
+ * with the other ranks. */
+static int write_agree(const h5io *io, int ok, const char *what, const char *why) {
+  int ierr = 0;
+  if (!ok)
+    ierr = pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+                          "cannot write the checkpoint %s: HDF5 failed writing %s to %s (%s); the previous "
+                          "checkpoint, if any, is kept",
+                          io->target, what, io->path, why);
+  return pf_agree(ierr, "writing the checkpoint %s", io->target);
+}
 
 /* This rank's range of n items among all ranks' (an exclusive scan). */
 static void rank_range(hsize_t n, hsize_t *total, hsize_t *offset) {
@@ -51,11 +84,13 @@ static int write_rows(const h5io *io, const char *name, hid_t type, int ncomp, c
   select_rows(fspace, &mspace, io->offset, io->count, ncomp);
   hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
   H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
+  errno = 0;
   herr_t st = dset >= 0 ? H5Dwrite(dset, type, mspace, fspace, dxpl, data) : -1;
+  char why[256];
+  h5_reason(st >= 0, errno, why);
   H5Pclose(dxpl), H5Sclose(mspace), H5Sclose(fspace);
   if (dset >= 0) H5Dclose(dset);
-  H5_TRY(io, st >= 0, name);
-  return 0;
+  return write_agree(io, st >= 0, name, why);
 }
 
 static int read_rows(const h5io *io, const char *name, hid_t type, int ncomp, void *data) {
@@ -109,12 +144,11 @@ static int write_points(const h5io *io, const pf_points *p) {
     snprintf(name, sizeof name, "/fields/%s", p->fields[k].name);
     PF_CALL(write_rows(io, name, H5T_NATIVE_DOUBLE, p->fields[k].ncomp, p->fields[k].data));
     hid_t d = H5Dopen2(io->file, name, H5P_DEFAULT);
-    H5_TRY(io, d >= 0, name);
     int ncomp = p->fields[k].ncomp, flags = p->fields[k].flags;
-    int ierr = int_attr(io, d, "ncomp", &ncomp, 1);
+    int ierr = d >= 0 ? int_attr(io, d, "ncomp", &ncomp, 1) : 1;
     if (!ierr) ierr = int_attr(io, d, "flags", &flags, 1);
-    H5Dclose(d);
-    if (ierr) return ierr;
+    if (d >= 0) H5Dclose(d);
+    PF_CALL(write_agree(io, !ierr, name, "an attribute"));
   }
   return 0;
 }
@@ -150,10 +184,13 @@ static int write_scalars(const h5io *io, int n, const char *const *names, const 
   for (int k = 0; k < n; k++) {
     hid_t sp = H5Screate(H5S_SCALAR);
     hid_t a = H5Acreate2(io->file, names[k], H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, H5P_DEFAULT);
+    errno = 0;
     herr_t st = a >= 0 ? H5Awrite(a, H5T_NATIVE_DOUBLE, &values[k]) : -1;
+    char why[256];
+    h5_reason(st >= 0, errno, why);
     if (a >= 0) H5Aclose(a);
     H5Sclose(sp);
-    H5_TRY(io, st >= 0, names[k]);
+    PF_CALL(write_agree(io, st >= 0, names[k], why));
   }
   return 0;
 }
@@ -162,7 +199,7 @@ static int write_scalars(const h5io *io, int n, const char *const *names, const 
 static int write_table(const h5io *pio, const pf_table *t) {
   double *full = NULL;
   PF_MALLOC(full, (size_t)t->total * t->ncomp);
-  int ierr = pf_table_allgather(t, full);
+  int ierr = pf_agree(pf_table_allgather(t, full), "gathering the table %s", t->name);
   char name[128];
   snprintf(name, sizeof name, "/tables/%s", t->name);
   h5io io = *pio;
@@ -176,14 +213,36 @@ static int write_all(const h5io *io, const pf_points *pts, const pf_bond_rows *r
                      const char *const *names, const double *values, int ntables, const pf_table *tables) {
   const char *groups[] = {"/points", "/fields", "/bonds", "/tables"};
   for (int k = 0; k < 4; k++) {
+    errno = 0;
     hid_t g = H5Gcreate2(io->file, groups[k], H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    H5_TRY(io, g >= 0, groups[k]);
-    H5Gclose(g);
+    char why[256];
+    h5_reason(g >= 0, errno, why);
+    if (g >= 0) H5Gclose(g);
+    PF_CALL(write_agree(io, g >= 0, groups[k], why));
   }
   PF_CALL(write_points(io, pts));
   PF_CALL(write_bonds(io, pts, rows));
   for (int k = 0; k < ntables; k++) PF_CALL(write_table(io, &tables[k]));
   return write_scalars(io, n, names, values);
+}
+
+/* Every rank agreed that the write failed: leave the file open (see the top), remove path.tmp. */
+static int discard(const h5io *io, int ierr) {
+  pf_io_abandon();
+  if (pf_comm_rank() == 0) unlink(io->path);
+  return ierr;
+}
+
+/* H5Fclose failed on this rank: the others may wait inside it for ever, and no reduction can
+ * reach them. Say so, remove path.tmp and end every rank. */
+static void close_failed(const h5io *io, const char *why) {
+  pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+                 "cannot write the checkpoint %s: HDF5 failed closing %s (%s); the previous checkpoint, if any, "
+                 "is kept",
+                 io->target, io->path, why);
+  unlink(io->path);
+  fflush(stdout), fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, PF_ERR_RUN);
 }
 
 int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *rows, int nscalars,
@@ -192,13 +251,16 @@ int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *ro
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   PF_CALL(pf_bond_rows_fields_agree(rows));
-  h5io io = {open_file(tmp, 1), tmp, 0, 0, (hsize_t)pts->n_owned};
-  H5_TRY(&io, io.file >= 0, "H5Fcreate");
+  errno = 0;
+  h5io io = {open_file(tmp, 1), tmp, path, 0, 0, (hsize_t)pts->n_owned};
+  char why[256];
+  h5_reason(io.file >= 0, errno, why);
+  int ierr = write_agree(&io, io.file >= 0, "the file (H5Fcreate)", why);
   rank_range(io.count, &io.total, &io.offset);
-  int ierr = write_all(&io, pts, rows, nscalars, names, values, ntables, tables);
-  herr_t st = H5Fclose(io.file);
-  if (ierr) return ierr;
-  H5_TRY(&io, st >= 0, "H5Fclose");
+  if (!ierr) ierr = write_all(&io, pts, rows, nscalars, names, values, ntables, tables);
+  if (ierr) return discard(&io, ierr);
+  errno = 0;
+  if (H5Fclose(io.file) < 0) h5_reason(0, errno, why), close_failed(&io, why);
   MPI_Barrier(MPI_COMM_WORLD);
   int ok = 1;
   if (pf_comm_rank() == 0) ok = rename(tmp, path) == 0;
@@ -335,7 +397,7 @@ int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, in
   FILE *fp = fopen(path, "rb");
   PF_CHECK(fp, PF_ERR_INPUT, "cannot open the checkpoint %s", path);
   fclose(fp);
-  h5io io = {open_file(path, 0), path, 0, 0, 0};
+  h5io io = {open_file(path, 0), path, path, 0, 0, 0};
   PF_CHECK(io.file >= 0, PF_ERR_INPUT, "%s is not an HDF5 file (a perifem checkpoint)", path);
   int ierr = read_all(&io, pts, rows, nscalars, names, values);
   H5Fclose(io.file);
@@ -344,7 +406,7 @@ int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, in
 
 int pf_checkpoint_read_table(const char *path, const pf_table *t, double *full) {
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  h5io io = {open_file(path, 0), path, (hsize_t)t->total, 0, (hsize_t)t->total};
+  h5io io = {open_file(path, 0), path, path, (hsize_t)t->total, 0, (hsize_t)t->total};
   PF_CHECK(io.file >= 0, PF_ERR_INPUT, "%s is not an HDF5 file (a perifem checkpoint)", path);
   char name[128];
   snprintf(name, sizeof name, "/tables/%s", t->name);
