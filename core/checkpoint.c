@@ -18,8 +18,10 @@
 #include "core/bond_rows_impl.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <hdf5.h>
 #include <stdio.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
@@ -226,6 +228,32 @@ static int write_all(const h5io *io, const pf_points *pts, const pf_bond_rows *r
   return write_scalars(io, n, names, values);
 }
 
+/* Room for the rest of the file, taken before the collective close: HDF5's close writes the
+ * metadata and sets the file's size, and a write that fails there on one rank leaves the others
+ * waiting inside HDF5 for ever. Once every dataset is written (the file as long as its data),
+ * rank 0 reserves a margin past the file's end for the metadata still to come (a few kB here;
+ * HDF5 1.10's MPI-IO driver cannot tell its end of allocated space), and the close sets the
+ * size back to HDF5's end, so that a full disk (ENOSPC) or a file-size limit (EFBIG) fails
+ * here, where the ranks can still agree. */
+#define PF_CHECKPOINT_MARGIN (1 << 20)
+
+static int reserve_tail(const h5io *io) {
+  int ierr = 0;
+  if (pf_comm_rank() == 0) {
+    struct stat st;
+    int fd = open(io->path, O_WRONLY), e = 0;
+    if (fd < 0 || fstat(fd, &st)) e = errno ? errno : EIO;
+    else e = posix_fallocate(fd, st.st_size, PF_CHECKPOINT_MARGIN);
+    if (fd >= 0) close(fd);
+    if (e)
+      ierr = pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+                            "cannot write the checkpoint %s: no room for the last %d kB of %s (%s); the previous "
+                            "checkpoint, if any, is kept",
+                            io->target, PF_CHECKPOINT_MARGIN >> 10, io->path, strerror(e));
+  }
+  return pf_agree(ierr, "writing the checkpoint %s", io->target);
+}
+
 /* Every rank agreed that the write failed: leave the file open (see the top), remove path.tmp. */
 static int discard(const h5io *io, int ierr) {
   pf_io_abandon();
@@ -258,6 +286,7 @@ int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *ro
   int ierr = write_agree(&io, io.file >= 0, "the file (H5Fcreate)", why);
   rank_range(io.count, &io.total, &io.offset);
   if (!ierr) ierr = write_all(&io, pts, rows, nscalars, names, values, ntables, tables);
+  if (!ierr) ierr = reserve_tail(&io);
   if (ierr) return discard(&io, ierr);
   errno = 0;
   if (H5Fclose(io.file) < 0) h5_reason(0, errno, why), close_failed(&io, why);
