@@ -21,10 +21,10 @@
 #include <fcntl.h>
 #include <hdf5.h>
 #include <stdio.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 typedef struct {
   hid_t file;

@@ -31,8 +31,9 @@ struct pf_history {
 /* A row that could not be written (err: errno right after the failing call). */
 static int append_failed(pf_history *h, const char *call, int err) {
   h->failed = 1;
-  return pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__, "cannot write the history %s: HDF5 %s of row %llu failed (%s)",
-                        h->path, call, (unsigned long long)h->nrows, err ? strerror(err) : "no system error reported");
+  return pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+                        "cannot write the history %s: HDF5 %s of row %llu failed (%s)", h->path, call,
+                        (unsigned long long)h->nrows, err ? strerror(err) : "no system error reported");
 }
 
 /* ---- create ---------------------------------------------------------------- */

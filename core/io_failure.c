@@ -9,9 +9,7 @@
 static int abandoned = 0;
 
 int pf_agree(int ierr, const char *fmt, ...) {
-  int flag = ierr != 0, any = flag;
-  MPI_Allreduce(&flag, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  if (!any || ierr) return ierr;
+  if (!(pf_max_all(ierr != 0) > 0) || ierr) return ierr; /* (no reduction before MPI_Init) */
   char what[512];
   va_list ap;
   va_start(ap, fmt);

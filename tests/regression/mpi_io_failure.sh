@@ -23,13 +23,13 @@ limited() {
   timeout 60 mpirun --oversubscribe --mca btl self,tcp -np "$np" bash -c "ulimit -f $kb; exec \"\$@\"" limited "$@"
 }
 bar=$OLDPWD/../inputs/wave_in_bar.yaml
-sed -E 's/^(\s*)final_time:.*/\1steps: 120/; s/interval: 50/interval: 1000/' "$bar" > ck.yaml
+sed -E 's/^(\s*)final_time:.*/\1steps: 60/; s/interval: 50/interval: 1000/' "$bar" > ck.yaml
 printf 'restart:\n  file: cp.h5\n  interval: 40\n' >> ck.yaml
 sed -E 's/interval: 40/interval: 0/' ck.yaml > ck_out.yaml
 sed -E 's/^(\s*)final_time:.*/\1steps: 120/; s/interval: 50/interval: 20/' "$bar" > ex.yaml
 sed -E 's/^(\s*)final_time:.*/\1steps: 20/; s/hi: \[0.00995, 0.00095, 0.00095\]/hi: [0.00295, 0.00025, 0.00025]/' "$bar" > hi.yaml
 # the previous checkpoint: step 40 of the bar
-sed -E 's/steps: 120/steps: 40/' ck.yaml > ck40.yaml
+sed -E 's/steps: 60/steps: 40/' ck.yaml > ck40.yaml
 run 1 "$exe" --quiet ck40.yaml > /dev/null 2>&1 && cp cp.h5 good.h5 || { echo "no checkpoint to start from"; exit 1; }
 
 # expect_failure LABEL NP KB DECK PATTERN: exit 1, in time, no signal, the message
