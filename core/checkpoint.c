@@ -9,7 +9,12 @@
  *   /tables/<name>                          [total][ncomp] whole tables (written by rank 0)
  *   attributes of "/": the named scalars (time, step, ...), written alike by every rank.
  * The file is written as path.tmp and renamed by rank 0 once every rank has closed it, so a
- * kill at any moment leaves the previous checkpoint whole. A reader on any number of ranks
+ * kill at any moment leaves the previous checkpoint whole.
+ * A failed write (a full disk) is agreed by every rank after each collective call; the ranks
+ * then leave the file without closing it (HDF5's collective close of a file it cannot write
+ * fails on one rank and hangs the others, and leaves the file half destroyed), rank 0 removes
+ * path.tmp, and the process must end through MPI_Abort (pf_io_abandon).
+ * A reader on any number of ranks
  * takes an equal slice of the rows; the caller re-partitions.
  * Integrity: every dataset is chunked and carries HDF5's Fletcher32 checksum filter (parallel
  * filtered writes, collective, HDF5 >= 1.10.2), and the file is written in the HDF5 1.10
@@ -21,19 +26,57 @@
  * agreed by all ranks (pf_error_agree). */
 #include "core/checkpoint_impl.h"
 
+#include <errno.h>
+#include <fcntl.h>
 #include <hdf5.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 typedef struct {
   hid_t file;
-  const char *path;
+  const char *path;   /* the file open (path.tmp while writing) */
+  const char *target; /* the checkpoint's name */
   hsize_t total, offset, count; /* rows: over all ranks, this rank's first and number */
 } h5io;
 
 #define H5_TRY(io, ok, what) PF_CHECK((ok), PF_ERR_LIB, "HDF5: %s failed (checkpoint %s)", (what), (io)->path)
+
+/* What went wrong, from HDF5's error stack: its innermost message (where the error was found,
+ * e.g. "data error detected by Fletcher32 checksum"), before another call clears it. */
+static herr_t innermost(unsigned n, const H5E_error2_t *e, void *out) {
+  if (n == 0) snprintf(out, 256, "%s: %s", e->func_name ? e->func_name : "", e->desc ? e->desc : "");
+  return 0;
+}
+
+static void hdf5_reason(char *out) {
+  out[0] = '\0';
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, innermost, out);
+  H5Eclear2(H5E_DEFAULT);
+}
+
+/* Why a call failed: errno when it is set (the POSIX drivers), else HDF5's innermost message. */
+static void h5_reason(int ok, int err, char *buf) {
+  buf[0] = '\0';
+  if (ok) return;
+  if (err) snprintf(buf, 256, "%s", strerror(err));
+  else hdf5_reason(buf);
+}
+
+/* A write that failed on this rank (err: errno right after it, why: the HDF5 error stack), agreed
+ * with the other ranks. */
+static int write_agree(const h5io *io, int ok, const char *what, const char *why) {
+  int ierr = 0;
+  if (!ok)
+    ierr = pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+                          "cannot write the checkpoint %s: HDF5 failed writing %s to %s (%s); the previous "
+                          "checkpoint, if any, is kept",
+                          io->target, what, io->path, why);
+  return pf_agree(ierr, "writing the checkpoint %s", io->target);
+}
 
 /* This rank's range of n items among all ranks' (an exclusive scan). */
 static void rank_range(hsize_t n, hsize_t *total, hsize_t *offset) {
@@ -77,25 +120,15 @@ static int write_rows(const h5io *io, const char *name, hid_t type, int ncomp, c
   select_rows(fspace, &mspace, io->offset, io->count, ncomp);
   hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
   H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
+  errno = 0;
   herr_t st = dset >= 0 ? H5Dwrite(dset, type, mspace, fspace, dxpl, data) : -1;
+  char why[256];
+  h5_reason(st >= 0, errno, why);
   H5Pclose(dxpl), H5Sclose(mspace), H5Sclose(fspace);
   if (dset >= 0) H5Dclose(dset);
-  H5_TRY(io, st >= 0, name);
-  return 0;
+  return write_agree(io, st >= 0, name, why);
 }
 
-/* What went wrong, from HDF5's error stack: its innermost message (where the error was found,
- * e.g. "data error detected by Fletcher32 checksum"). */
-static herr_t innermost(unsigned n, const H5E_error2_t *e, void *out) {
-  if (n == 0) snprintf(out, 160, "%s", e->desc ? e->desc : "");
-  return 0;
-}
-
-static void hdf5_reason(char *out) {
-  out[0] = '\0';
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, innermost, out);
-  H5Eclear2(H5E_DEFAULT);
-}
 
 /* Is the dataset [total][ncomp] (or [total] when ncomp is 1), and checksummed when not empty? */
 static int shape_ok(const h5io *io, hid_t dset, const char *name, int ncomp, char *msg, size_t len) {
@@ -123,7 +156,7 @@ static int shape_ok(const h5io *io, hid_t dset, const char *name, int ncomp, cha
 /* This rank's rows of the dataset name, checked against its checksums; every rank agrees on the
  * outcome. (Independent reads: a rank whose chunk fails leaves HDF5 alone, without a hang.) */
 static int read_rows(const h5io *io, const char *name, hid_t type, int ncomp, void *data) {
-  char msg[512] = "", why[160];
+  char msg[640] = "", why[256];
   hid_t dset = H5Dopen2(io->file, name, H5P_DEFAULT);
   int ok = dset >= 0;
   if (!ok) hdf5_reason(why), snprintf(msg, sizeof msg, "checkpoint %s: cannot open dataset %s (HDF5: %s): the file "
@@ -184,12 +217,11 @@ static int write_points(const h5io *io, const pf_points *p) {
     snprintf(name, sizeof name, "/fields/%s", p->fields[k].name);
     PF_CALL(write_rows(io, name, H5T_NATIVE_DOUBLE, p->fields[k].ncomp, p->fields[k].data));
     hid_t d = H5Dopen2(io->file, name, H5P_DEFAULT);
-    H5_TRY(io, d >= 0, name);
     int ncomp = p->fields[k].ncomp, flags = p->fields[k].flags;
-    int ierr = int_attr(io, d, "ncomp", &ncomp, 1);
+    int ierr = d >= 0 ? int_attr(io, d, "ncomp", &ncomp, 1) : 1;
     if (!ierr) ierr = int_attr(io, d, "flags", &flags, 1);
-    H5Dclose(d);
-    if (ierr) return ierr;
+    if (d >= 0) H5Dclose(d);
+    PF_CALL(write_agree(io, !ierr, name, "an attribute"));
   }
   return 0;
 }
@@ -225,10 +257,13 @@ static int write_scalars(const h5io *io, int n, const char *const *names, const 
   for (int k = 0; k < n; k++) {
     hid_t sp = H5Screate(H5S_SCALAR);
     hid_t a = H5Acreate2(io->file, names[k], H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, H5P_DEFAULT);
+    errno = 0;
     herr_t st = a >= 0 ? H5Awrite(a, H5T_NATIVE_DOUBLE, &values[k]) : -1;
+    char why[256];
+    h5_reason(st >= 0, errno, why);
     if (a >= 0) H5Aclose(a);
     H5Sclose(sp);
-    H5_TRY(io, st >= 0, names[k]);
+    PF_CALL(write_agree(io, st >= 0, names[k], why));
   }
   return 0;
 }
@@ -237,7 +272,7 @@ static int write_scalars(const h5io *io, int n, const char *const *names, const 
 static int write_table(const h5io *pio, const pf_table *t) {
   double *full = NULL;
   PF_MALLOC(full, (size_t)t->total * t->ncomp);
-  int ierr = pf_table_allgather(t, full);
+  int ierr = pf_agree(pf_table_allgather(t, full), "gathering the table %s", t->name);
   char name[128];
   snprintf(name, sizeof name, "/tables/%s", t->name);
   h5io io = *pio;
@@ -251,14 +286,62 @@ static int write_all(const h5io *io, const pf_points *pts, const pf_bond_rows *r
                      const char *const *names, const double *values, int ntables, const pf_table *tables) {
   const char *groups[] = {"/points", "/fields", "/bonds", "/tables"};
   for (int k = 0; k < 4; k++) {
+    errno = 0;
     hid_t g = H5Gcreate2(io->file, groups[k], H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    H5_TRY(io, g >= 0, groups[k]);
-    H5Gclose(g);
+    char why[256];
+    h5_reason(g >= 0, errno, why);
+    if (g >= 0) H5Gclose(g);
+    PF_CALL(write_agree(io, g >= 0, groups[k], why));
   }
   PF_CALL(write_points(io, pts));
   PF_CALL(write_bonds(io, pts, rows));
   for (int k = 0; k < ntables; k++) PF_CALL(write_table(io, &tables[k]));
   return write_scalars(io, n, names, values);
+}
+
+/* Room for the rest of the file, taken before the collective close: HDF5's close writes the
+ * metadata and sets the file's size, and a write that fails there on one rank leaves the others
+ * waiting inside HDF5 for ever. Once every dataset is written (the file as long as its data),
+ * rank 0 reserves a margin past the file's end for the metadata still to come (a few kB here;
+ * HDF5 1.10's MPI-IO driver cannot tell its end of allocated space), and the close sets the
+ * size back to HDF5's end, so that a full disk (ENOSPC) or a file-size limit (EFBIG) fails
+ * here, where the ranks can still agree. */
+#define PF_CHECKPOINT_MARGIN (1 << 20)
+
+static int reserve_tail(const h5io *io) {
+  int ierr = 0;
+  if (pf_comm_rank() == 0) {
+    struct stat st;
+    int fd = open(io->path, O_WRONLY), e = 0;
+    if (fd < 0 || fstat(fd, &st)) e = errno ? errno : EIO;
+    else e = posix_fallocate(fd, st.st_size, PF_CHECKPOINT_MARGIN);
+    if (fd >= 0) close(fd);
+    if (e)
+      ierr = pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+                            "cannot write the checkpoint %s: no room for the last %d kB of %s (%s); the previous "
+                            "checkpoint, if any, is kept",
+                            io->target, PF_CHECKPOINT_MARGIN >> 10, io->path, strerror(e));
+  }
+  return pf_agree(ierr, "writing the checkpoint %s", io->target);
+}
+
+/* Every rank agreed that the write failed: leave the file open (see the top), remove path.tmp. */
+static int discard(const h5io *io, int ierr) {
+  pf_io_abandon();
+  if (pf_comm_rank() == 0) unlink(io->path);
+  return ierr;
+}
+
+/* H5Fclose failed on this rank: the others may wait inside it for ever, and no reduction can
+ * reach them. Say so, remove path.tmp and end every rank. */
+static void close_failed(const h5io *io, const char *why) {
+  pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+                 "cannot write the checkpoint %s: HDF5 failed closing %s (%s); the previous checkpoint, if any, "
+                 "is kept",
+                 io->target, io->path, why);
+  unlink(io->path);
+  fflush(stdout), fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, PF_ERR_RUN);
 }
 
 int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *rows, int nscalars,
@@ -267,13 +350,17 @@ int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *ro
   snprintf(tmp, sizeof tmp, "%s.tmp", path);
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   PF_CALL(pf_bond_rows_fields_agree(rows));
-  h5io io = {open_file(tmp, 1, NULL), tmp, 0, 0, (hsize_t)pts->n_owned};
-  H5_TRY(&io, io.file >= 0, "H5Fcreate");
+  errno = 0;
+  h5io io = {open_file(tmp, 1, NULL), tmp, path, 0, 0, (hsize_t)pts->n_owned};
+  char why[256];
+  h5_reason(io.file >= 0, errno, why);
+  int ierr = write_agree(&io, io.file >= 0, "the file (H5Fcreate)", why);
   rank_range(io.count, &io.total, &io.offset);
-  int ierr = write_all(&io, pts, rows, nscalars, names, values, ntables, tables);
-  herr_t st = H5Fclose(io.file);
-  if (ierr) return ierr;
-  H5_TRY(&io, st >= 0, "H5Fclose");
+  if (!ierr) ierr = write_all(&io, pts, rows, nscalars, names, values, ntables, tables);
+  if (!ierr) ierr = reserve_tail(&io);
+  if (ierr) return discard(&io, ierr);
+  errno = 0;
+  if (H5Fclose(io.file) < 0) h5_reason(0, errno, why), close_failed(&io, why);
   MPI_Barrier(MPI_COMM_WORLD);
   int ok = 1;
   if (pf_comm_rank() == 0) ok = rename(tmp, path) == 0;
@@ -286,7 +373,7 @@ int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *ro
 
 /* The rows (first dimension) of the dataset name, the same on every rank. */
 static int dataset_rows(const h5io *io, const char *name, hsize_t *rows) {
-  char msg[512] = "", why[160];
+  char msg[640] = "", why[256];
   hsize_t dims[2] = {0, 0};
   hid_t d = H5Dopen2(io->file, name, H5P_DEFAULT);
   int ok = d >= 0;
@@ -439,7 +526,7 @@ static int read_bonds(const h5io *pio, pf_bond_rows *rows) {
 /* The named scalars, each there and finite (the same attributes on every rank). */
 static int read_scalars(const h5io *io, int n, const char *const *names, double *values) {
   for (int k = 0; k < n; k++) {
-    char msg[512] = "", why[160] = "";
+    char msg[640] = "", why[256] = "";
     hid_t a = H5Aopen(io->file, names[k], H5P_DEFAULT);
     int ok = a >= 0 && H5Aread(a, H5T_NATIVE_DOUBLE, &values[k]) >= 0;
     if (!ok) hdf5_reason(why);
@@ -478,7 +565,7 @@ static int open_for_reading(const char *path, hid_t *file) {
   FILE *fp = fopen(path, "rb");
   PF_CHECK(fp, PF_ERR_INPUT, "cannot open the checkpoint %s", path);
   fclose(fp);
-  char msg[512] = "", why[160] = "";
+  char msg[640] = "", why[256] = "";
   *file = open_file(path, 0, why);
   if (*file < 0) snprintf(msg, sizeof msg, "checkpoint %s cannot be opened as HDF5 (%s): not a perifem checkpoint, or "
                           "damaged (truncated?)", path, why);
@@ -488,7 +575,7 @@ static int open_for_reading(const char *path, hid_t *file) {
 
 int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, int nscalars,
                        const char *const *names, double *values) {
-  h5io io = {-1, path, 0, 0, 0};
+  h5io io = {-1, path, path, 0, 0, 0};
   PF_CALL(open_for_reading(path, &io.file));
   int ierr = read_all(&io, pts, rows, nscalars, names, values);
   H5Fclose(io.file);
@@ -496,7 +583,7 @@ int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, in
 }
 
 int pf_checkpoint_read_table(const char *path, const pf_table *t, double *full) {
-  h5io io = {-1, path, (hsize_t)t->total, 0, (hsize_t)t->total};
+  h5io io = {-1, path, path, (hsize_t)t->total, 0, (hsize_t)t->total};
   PF_CALL(open_for_reading(path, &io.file));
   char name[128];
   snprintf(name, sizeof name, "/tables/%s", t->name);

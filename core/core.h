@@ -38,6 +38,17 @@ const char *pf_error_message(void);
 void pf_error_clear(void);
 /* When quiet, errors are recorded but not printed (tests of bad input). */
 void pf_error_set_quiet(int quiet);
+/* Where the run is (e.g. "at step 80, t = 1.2e-06 s"), appended to an error raised until the
+ * context is cleared with NULL: the writers of files do not know the step. */
+void pf_error_context(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Collective: 0 when no rank failed; else this rank's ierr, or on a rank that did not fail a
+ * PF_ERR_RUN "stopped: another rank failed <what>" (core/io_failure.c). For an error the failing
+ * rank has already raised (a failed write); pf_error_agree below is for a check whose message
+ * is not raised yet, and gives every rank the same message. */
+int pf_agree(int ierr, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* A file left open after a failed write or close: the process must not call MPI_Finalize. */
+void pf_io_abandon(void);
+int pf_io_abandoned(void);
 
 /* Collective: when ok is 0 on any rank, every rank raises the same error, with the message of
  * the lowest such rank (each failing rank passes its own text; the others may pass ""), and

@@ -16,6 +16,16 @@ static int error_quiet = 0;
 static int log_quiet = 0;
 static int status_open = 0; /* a status line is on the terminal without its newline */
 static int status_mode = -1; /* -1: when standard output is a terminal; 0: never; 1: always */
+static char context[256];    /* appended to the message: where the run is */
+
+void pf_error_context(const char *fmt, ...) {
+  context[0] = '\0';
+  if (!fmt) return;
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(context, sizeof context, fmt, ap);
+  va_end(ap);
+}
 
 /* End an open status line before other output. */
 static void close_status(void) {
@@ -29,8 +39,9 @@ int pf_error_raise(int code, const char *file, int line, const char *func, const
   va_list ap;
   va_start(ap, fmt);
   char msg[1536];
-  vsnprintf(msg, sizeof msg, fmt, ap);
+  int len = vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
+  if (context[0] && len >= 0 && (size_t)len < sizeof msg) snprintf(msg + len, sizeof msg - len, " %s", context);
   int rank = pf_comm_rank();
   if (pf_comm_size() > 1)
     snprintf(first_message, sizeof first_message, "error (rank %d): %s", rank, msg);

@@ -4,9 +4,12 @@
  * appended row; an optional fixed-length, null-terminated ASCII string attribute "units" on
  * each dataset. Link creation order is tracked, so the columns list in the order given.
  * The file is flushed after every row so a reader sees complete rows.
- * HDF5's own error printing is turned off; failures come back through PF_CHECK. */
+ * HDF5's own error printing is turned off; failures come back through PF_CHECK. After a failed
+ * write (a full disk) the file is left open, not closed: HDF5 cannot close a file it cannot
+ * write and keeps it half destroyed, to crash in MPI_Finalize (pf_io_abandon). */
 #include "core/core.h"
 
+#include <errno.h>
 #include <hdf5.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,10 +22,19 @@ struct pf_history {
   hid_t *dset;   /* [ncol] */
   hsize_t nrows; /* rows written so far */
   char *path;    /* for error messages */
+  int failed;    /* a write failed: leave the file open */
 };
 
 #define PF_H5_CHECK(h, ok, call, col)                                                              \
   PF_CHECK((ok), PF_ERR_LIB, "HDF5: %s failed (file %s, column '%s')", (call), (h)->path, (col))
+
+/* A row that could not be written (err: errno right after the failing call). */
+static int append_failed(pf_history *h, const char *call, int err) {
+  h->failed = 1;
+  return pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+                        "cannot write the history %s: HDF5 %s of row %llu failed (%s)", h->path, call,
+                        (unsigned long long)h->nrows, err ? strerror(err) : "no system error reported");
+}
 
 /* ---- create ---------------------------------------------------------------- */
 
@@ -110,26 +122,25 @@ int pf_history_create(const char *path, int ncol, const char *const *names,
 static int append_value(pf_history *h, int i, double value) {
   hid_t dset = h->dset[i];
   hsize_t newdims[1] = {h->nrows + 1}, start[1] = {h->nrows}, one[1] = {1};
+  errno = 0;
   herr_t st = H5Dset_extent(dset, newdims);
   hid_t fspace = st >= 0 ? H5Dget_space(dset) : -1;
   st = fspace >= 0 ? H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, one, NULL) : -1;
   hid_t mspace = st >= 0 ? H5Screate_simple(1, one, NULL) : -1;
   st = mspace >= 0 ? H5Dwrite(dset, H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, &value) : -1;
+  int err = errno;
   if (mspace >= 0) H5Sclose(mspace);
   if (fspace >= 0) H5Sclose(fspace);
-  PF_CHECK(st >= 0, PF_ERR_LIB,
-           "HDF5: H5Dset_extent/H5Dwrite of row %llu failed (file %s, column %d)",
-           (unsigned long long)h->nrows, h->path, i);
-  return PF_SUCCESS;
+  return st >= 0 ? PF_SUCCESS : append_failed(h, "H5Dset_extent/H5Dwrite", err);
 }
 
 int pf_history_append(pf_history *h, const double *row) {
   if (!h) return PF_SUCCESS;
   PF_CHECK(row || h->ncol == 0, PF_ERR_INPUT, "history %s: NULL row", h->path);
   for (int i = 0; i < h->ncol; i++) PF_CALL(append_value(h, i, row[i]));
+  errno = 0;
+  if (H5Fflush(h->file, H5F_SCOPE_LOCAL) < 0) return append_failed(h, "H5Fflush", errno);
   h->nrows++;
-  PF_CHECK(H5Fflush(h->file, H5F_SCOPE_LOCAL) >= 0, PF_ERR_LIB, "HDF5: H5Fflush failed (file %s)",
-           h->path);
   return PF_SUCCESS;
 }
 
@@ -140,9 +151,10 @@ int pf_history_destroy(pf_history **h) {
   pf_history *hh = *h;
   *h = NULL;
   int bad = 0;
-  for (int i = 0; hh->dset && i < hh->ncol; i++)
+  if (hh->failed) pf_io_abandon();
+  for (int i = 0; hh->dset && i < hh->ncol && !hh->failed; i++)
     if (hh->dset[i] >= 0 && H5Dclose(hh->dset[i]) < 0) bad = 1;
-  if (hh->file >= 0 && H5Fclose(hh->file) < 0) bad = 1;
+  if (hh->file >= 0 && !hh->failed && H5Fclose(hh->file) < 0) bad = 1, pf_io_abandon();
   int err = bad ? pf_error_raise(PF_ERR_LIB, __FILE__, __LINE__, __func__,
                                  "HDF5: H5Dclose/H5Fclose failed (file %s)", hh->path)
                 : PF_SUCCESS;

@@ -40,8 +40,11 @@ static int pf_exodus_fail_(const char *path, const char *call, int line, const c
   const char *msg = NULL, *where = NULL;
   int code = 0;
   ex_get_err(&msg, &where, &code);
-  return pf_error_raise(PF_ERR_LIB, __FILE__, line, func, "Exodus: %s failed (file %s): %s", call,
-                        path, msg && msg[0] ? msg : "no message");
+  char why[64]; /* netCDF gives a system error as its positive errno */
+  if (code > 0) snprintf(why, sizeof why, "%s", strerror(code));
+  else snprintf(why, sizeof why, "status %d", code);
+  return pf_error_raise(PF_ERR_LIB, __FILE__, line, func, "Exodus: %s failed (file %s): %s (%s)", call, path,
+                        msg && msg[0] ? msg : "no message", why);
 }
 
 /* ---- create ---------------------------------------------------------------- */

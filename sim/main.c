@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <exodusII.h>
 #include <hdf5.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #if defined(_OPENMP)
@@ -140,6 +141,9 @@ static int run(const cli *c) {
 }
 
 int main(int argc, char **argv) {
+  /* A write past the file-size limit (ulimit -f) fails with EFBIG, like one on a full disk
+   * fails with ENOSPC, and ends the run with a message instead of killing the process. */
+  signal(SIGXFSZ, SIG_IGN);
   MPI_Init(&argc, &argv);
   cli c = {0};
   int status = parse_args(argc, argv, &c);
@@ -147,7 +151,8 @@ int main(int argc, char **argv) {
     pf_log_set_quiet(c.quiet);
     status = run(&c);
   }
-  if (status && pf_comm_size() > 1) MPI_Abort(MPI_COMM_WORLD, status);
+  /* (a file HDF5 could not write is left open: MPI_Finalize would make HDF5 close it, and crash) */
+  if (status && (pf_comm_size() > 1 || pf_io_abandoned())) MPI_Abort(MPI_COMM_WORLD, status);
   MPI_Finalize();
   return status;
 }

@@ -165,9 +165,9 @@ static int open_exodus(pf_sim *sim, pf_sim_history_row *g) {
 
 int pf_sim_open_output(pf_sim *sim, pf_sim_history_row *g) {
   if (sim->opt.no_output) return 0;
-  PF_CALL(open_exodus(sim, g));
-  PF_CALL(pf_history_create(sim->history_path, g->n + 2, (const char *const *)g->names, g->units, &sim->hist));
-  return 0;
+  PF_CALL(pf_agree(open_exodus(sim, g), "creating the Exodus output %s", sim->exodus_path));
+  int ierr = pf_history_create(sim->history_path, g->n + 2, (const char *const *)g->names, g->units, &sim->hist);
+  return pf_agree(ierr, "creating the history %s", sim->history_path);
 }
 
 static int write_exodus(pf_sim *sim, const double *values) {
@@ -178,12 +178,18 @@ static int write_exodus(pf_sim *sim, const double *values) {
   return sim->joined ? pf_exodus_write(sim->exo, sim->t, sim->joined, values) : 0;
 }
 
+/* A failed write (rank 0's joined Exodus file or history, or a rank's spread file) is agreed by
+ * every rank before the next collective call; the message names the file, step and time. */
 int pf_sim_write_output(pf_sim *sim, pf_sim_history_row *g, int exodus, int history, int last) {
   if (exodus) PF_CALL(pf_sim_fragments(sim, last));
   if (sim->opt.no_output) return 0;
-  if (exodus) PF_CALL(write_exodus(sim, g->values + 2));
-  if (history) PF_CALL(pf_history_append(sim->hist, g->values));
-  return 0;
+  pf_error_context("(output of step %ld, t = %.6e s)", sim->step, sim->t);
+  int ierr = exodus ? write_exodus(sim, g->values + 2) : 0;
+  ierr = pf_agree(ierr, "writing the Exodus output %s", sim->exodus_path);
+  if (!ierr && history) ierr = pf_agree(pf_history_append(sim->hist, g->values), "writing the history %s",
+                                        sim->history_path);
+  pf_error_context(NULL);
+  return ierr;
 }
 
 /* The guards stopped the run with every rank back at the start of the failed step: write that

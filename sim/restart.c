@@ -114,7 +114,9 @@ int pf_sim_checkpoint(pf_sim *sim) {
     scalars_fill(sim, &s);
     pf_points owned = *sim->pts; /* the owned points only */
     owned.n_total = owned.n_owned;
+    pf_error_context("(checkpoint of step %ld, t = %.6e s)", sim->step, sim->t);
     ierr = pf_checkpoint_write(sim->restart_path, &owned, &rows, s.n, s.names, s.value, ntables, tables);
+    pf_error_context(NULL);
   }
   pf_sim_body_tables_free(tables, ntables);
   pf_bond_rows_free(&rows);
