@@ -299,30 +299,44 @@ static int write_all(const h5io *io, const pf_points *pts, const pf_bond_rows *r
   return write_scalars(io, n, names, values);
 }
 
-/* Room for the rest of the file, taken before the collective close: HDF5's close writes the
- * metadata and sets the file's size, and a write that fails there on one rank leaves the others
- * waiting inside HDF5 for ever. Once every dataset is written (the file as long as its data),
- * rank 0 reserves a margin past the file's end for the metadata still to come (a few kB here;
- * HDF5 1.10's MPI-IO driver cannot tell its end of allocated space), and the close sets the
- * size back to HDF5's end, so that a full disk (ENOSPC) or a file-size limit (EFBIG) fails
- * here, where the ranks can still agree. */
+/* Room for the file, taken by rank 0 before any dataset is created and again before the
+ * collective close. HDF5 creates chunked datasets collectively (allocating their chunks behind a
+ * barrier) and writes its metadata when it closes the file; a write that fails there on one rank
+ * leaves the others waiting inside HDF5 for ever. So rank 0 first reserves the whole file (the
+ * data's size plus a margin) and, once every dataset is written, a margin past the file's end
+ * for the metadata still to come (HDF5 1.10's MPI-IO driver cannot tell its end of allocated
+ * space); the close sets the size back to HDF5's end. A full disk (ENOSPC) or a file-size limit
+ * (EFBIG) then fails here, where the ranks can still agree. */
 #define PF_CHECKPOINT_MARGIN (1 << 20)
 
-static int reserve_tail(const h5io *io) {
+static int reserve_room(const h5io *io, int at_end, off_t bytes) {
   int ierr = 0;
   if (pf_comm_rank() == 0) {
     struct stat st;
     int fd = open(io->path, O_WRONLY), e = 0;
     if (fd < 0 || fstat(fd, &st)) e = errno ? errno : EIO;
-    else e = posix_fallocate(fd, st.st_size, PF_CHECKPOINT_MARGIN);
+    else e = posix_fallocate(fd, at_end ? st.st_size : 0, bytes);
     if (fd >= 0) close(fd);
     if (e)
       ierr = pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
-                            "cannot write the checkpoint %s: no room for the last %d kB of %s (%s); the previous "
+                            "cannot write the checkpoint %s: no room for %s %lld kB of %s (%s); the previous "
                             "checkpoint, if any, is kept",
-                            io->target, PF_CHECKPOINT_MARGIN >> 10, io->path, strerror(e));
+                            io->target, at_end ? "the last" : "its", (long long)(bytes >> 10), io->path, strerror(e));
   }
   return pf_agree(ierr, "writing the checkpoint %s", io->target);
+}
+
+/* The bytes of the checkpoint's datasets, over all ranks, plus 2 % and the margin (chunk
+ * indexes, checksums, headers). */
+static off_t data_bytes(const pf_points *pts, const pf_bond_rows *rows, int ntables, const pf_table *tables) {
+  double point = 8 + 4 + 4 * 24 + 3 * 8 + 4, bond = 8, table = 0;
+  for (int k = 0; k < pts->nfields; k++) point += 8.0 * pts->fields[k].ncomp;
+  for (int k = 0; k < rows->nfields; k++)
+    if (rows->field[k].flags & PF_FIELD_RESTART)
+      bond += (double)rows->field[k].ncomp * (double)H5Tget_size(h5_type(rows->field[k].type));
+  for (int k = 0; k < ntables; k++) table += 8.0 * (double)tables[k].total * tables[k].ncomp;
+  double local = point * (double)pts->n_owned + bond * (double)pf_bond_rows_nbonds(rows);
+  return (off_t)(1.02 * (pf_sum_all(local) + table)) + PF_CHECKPOINT_MARGIN;
 }
 
 /* Every rank agreed that the write failed: leave the file open (see the top), remove path.tmp. */
@@ -356,8 +370,10 @@ int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *ro
   h5_reason(io.file >= 0, errno, why);
   int ierr = write_agree(&io, io.file >= 0, "the file (H5Fcreate)", why);
   rank_range(io.count, &io.total, &io.offset);
+  const off_t bytes = data_bytes(pts, rows, ntables, tables); /* (collective) */
+  if (!ierr) ierr = reserve_room(&io, 0, bytes);
   if (!ierr) ierr = write_all(&io, pts, rows, nscalars, names, values, ntables, tables);
-  if (!ierr) ierr = reserve_tail(&io);
+  if (!ierr) ierr = reserve_room(&io, 1, PF_CHECKPOINT_MARGIN);
   if (ierr) return discard(&io, ierr);
   errno = 0;
   if (H5Fclose(io.file) < 0) h5_reason(0, errno, why), close_failed(&io, why);
