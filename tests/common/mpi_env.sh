@@ -1,6 +1,10 @@
 # Shared by the mpi_*.sh tests (sourced, not run): mpirun as root and oversubscribed, and a
 # python3 that has netCDF4.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# Ranks that wait yield the core: ctest -j2 runs two multi-rank tests on 2 cores, and busy-waiting
+# ranks took the core from the rank they waited for (mpi_verify and mpi_digests side by side:
+# 265 and 184 s busy-waiting, 195 and 150 s yielding).
+export OMPI_MCA_mpi_yield_when_idle=1
 PY=python3
 [ -x /usr/bin/python3 ] && PY=/usr/bin/python3
 # run NP ARGS...: mpirun on NP ranks, output to stdout
