@@ -11,3 +11,11 @@ PY=python3
 run() { local np=$1; shift; mpirun --oversubscribe -np "$np" "$@"; }
 # digest_of TEXT: the "state digest: X" value
 digest_of() { echo "$1" | sed -n 's/^state digest: //p'; }
+# crash_in TEXT: 0 when TEXT shows a crash (a segmentation fault, a core dump, a double free, a
+# process ended by a signal other than the SIGTERM with which MPI_Abort ends the other ranks of a
+# run that stopped on an error)
+crash_in() {
+  echo "$1" | grep -qiE "segmentation|core dumped|double free" && return 0
+  echo "$1" | grep -iE "signal [0-9]+|Signal:" | grep -qvE "signal 15\b|Terminated"
+}
+

@@ -14,6 +14,9 @@ int pf_test_failures = 0;
 void pf_test_init(int *argc, char ***argv) {
   MPI_Init(argc, argv);
   pf_log_set_quiet(1);
+  const char *path = getenv("PF_TEST_DIGEST_FILE"); /* emptied here, appended to below */
+  FILE *f = path && pf_comm_rank() == 0 ? fopen(path, "w") : NULL;
+  if (f) fclose(f);
 }
 
 int pf_test_finish(void) {
@@ -87,6 +90,9 @@ struct pf_sim *pf_test_bond_lattice(const char *model) {
 void pf_test_print_digest(const char *tag, struct pf_sim *sim) {
   uint64_t h = pf_sim_digest(sim);
   if (getenv("PF_TEST_DIGESTS") && pf_comm_rank() == 0) printf("state digest (%s): %016" PRIx64 "\n", tag, h);
+  const char *path = getenv("PF_TEST_DIGEST_FILE");
+  FILE *f = path && pf_comm_rank() == 0 ? fopen(path, "a") : NULL;
+  if (f) fprintf(f, "state digest (%s): %016" PRIx64 "\n", tag, h), fclose(f);
 }
 
 const char *pf_test_write_mesh(const char *tag, const void *mesh) {

@@ -77,6 +77,8 @@ const char *pf_test_pamgen_box(int nx, int ny, int nz, const double lo[3], const
  * (g0) and after (g) when not NULL. Returns the steps taken. Collective. */
 long pf_test_run_to_end(pf_sim *sim, pf_sim_globals *g0, pf_sim_globals *g);
 /* With PF_TEST_DIGESTS set, rank 0 prints "state digest (tag): <hex>" (tests/regression/mpi_verify.sh
- * compares them over rank counts). Collective. */
+ * compares them over rank counts); with PF_TEST_DIGEST_FILE set it appends the same line to that
+ * file, which pf_test_init empties (ctest sets it for the verification tests: mpi_verify takes
+ * their 1-rank digests from there instead of running them again). Collective. */
 void pf_test_print_digest(const char *tag, struct pf_sim *sim);
 #endif

@@ -41,7 +41,7 @@ launch() {
 # result NP FILE: sets out and status of a finished launch
 result() { out=$(cat "$2.$1.out"); status=$(cat "$2.$1.status"); }
 # a crash: killed by a signal (status > 128 from timeout/mpirun, or mpirun's report of it)
-crashed() { [ $status -gt 128 ] || echo "$out" | grep -qiE "signal [0-9]+|segmentation|core dumped|double free"; }
+crashed() { [ $status -gt 128 ] || crash_in "$out"; }
 # refused NP FILE WHAT LABEL: non-zero, no crash, in time, a perifem error naming FILE and WHAT
 refused() {
   result "$1" "$2"

@@ -41,8 +41,7 @@ expect_failure() {
   status=$?
   [ $status -ne 124 ] || { echo "$label on $np ranks: still running after 60 s"; fail=1; return; }
   [ $status -eq 1 ] || { echo "$label on $np ranks: exit status $status, expected 1"; fail=1; }
-  echo "$out" | grep -qiE "segmentation|signal [0-9]|Signal:|core dumped" &&
-    { echo "$label on $np ranks: crashed:"; echo "$out"; fail=1; }
+  crash_in "$out" && { echo "$label on $np ranks: crashed:"; echo "$out"; fail=1; }
   echo "$out" | grep -qE "perifem error.*$pattern" ||
     { echo "$label on $np ranks: no message matching '$pattern':"; echo "$out"; fail=1; }
 }
