@@ -150,12 +150,19 @@ typedef struct pf_deck pf_deck;
 typedef struct pf_node pf_node; /* a node of the YAML tree */
 
 int pf_deck_load(const char *path, pf_deck **deck);
+/* The same with command-line overrides, each "a.b.c=value" (a YAML value; sequence items by
+ * index or by their name:), applied after the deck's include: files and before its
+ * parameters: are substituted (core/deck_compose.c). */
+int pf_deck_load_with(const char *path, const char *const *sets, int nsets, pf_deck **deck);
 int pf_deck_destroy(pf_deck **deck);
 const pf_node *pf_deck_root(const pf_deck *deck);
 const char *pf_deck_path(const pf_deck *deck);
+/* The k-th file the deck included (include:), or NULL past the last (at most this many). */
+enum { PF_DECK_MAX_INCLUDES = 32 };
+const char *pf_deck_included(const pf_deck *deck, int k);
 /* A file named in the deck, relative to the deck's folder unless absolute. */
 void pf_deck_relative_path(const pf_deck *d, const char *name, char *out, size_t len);
-/* A hash of the deck's text (for restart checks and the run log). */
+/* A hash of the composed deck's tree (includes, overrides and parameters applied). */
 uint64_t pf_deck_hash(const pf_deck *deck);
 
 /* Kinds of value a key may hold, used by the schema tables. */
@@ -217,6 +224,9 @@ int pf_deck_body_index(const pf_deck *d, const pf_node *item, const char *key, i
                        const char *const *names, int *b);
 /* A hash of a node's content (keys and scalar text, not layout or comments); 0-safe for NULL. */
 uint64_t pf_node_hash(const pf_node *n);
+/* Where a node was given: "deck.yaml:12:5" (the included file's name for an included node), or
+ * "--set a.b=v" for an override. */
+void pf_node_where(const pf_deck *d, const pf_node *n, char *out, size_t len);
 /* An error about a node: "deck.yaml:12:5: key 'horizon': <message>". */
 int pf_deck_error(const pf_deck *d, const pf_node *n, const char *key, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
@@ -234,6 +244,9 @@ enum { PF_EXPR_MAXVARS = 4 };
 int pf_expr_create_vars(const char *text, const pf_deck *d, const pf_node *n, const char *key,
                         const char *const *names, int nnames, pf_expr **e);
 double pf_expr_eval_vars(pf_expr *e, double x, double y, double z, double t, const double *vars);
+/* A constant expression of the deck's parameters (no x, y, z, t), evaluated; errors name the
+ * deck position given by (deck, node, key). */
+int pf_expr_constant(const pf_deck *d, const pf_node *n, const char *key, const char *text, double *v);
 /* Three expressions from a PF_KEY_EXPR3 node. */
 int pf_expr3_create(const pf_deck *d, const pf_node *map, const char *key, pf_expr *e[3]);
 void pf_expr3_destroy(pf_expr *e[3]);

@@ -14,10 +14,10 @@
 
 #include "core/deck_impl.h"
 
-static void node_free(pf_node *n) {
+void pf_deck_node_free(pf_node *n) {
   if (!n) return;
   for (int i = 0; i < n->n; i++) {
-    node_free(n->items[i]);
+    pf_deck_node_free(n->items[i]);
     if (n->keys) free(n->keys[i]);
   }
   free(n->items);
@@ -30,7 +30,7 @@ static void node_free(pf_node *n) {
 
 /* What the YAML-to-tree conversion carries along. */
 typedef struct {
-  const char *path;
+  const char *path; /* kept by the deck: every node points to it */
   yaml_document_t *doc;
   long budget; /* nodes left: aliases can make a small file expand exponentially */
 } convert_ctx;
@@ -75,6 +75,7 @@ static int convert(convert_ctx *cx, yaml_node_t *y, int depth, pf_node **out) {
   pf_node *n;
   PF_MALLOC(n, 1);
   *out = n;
+  n->file = path;
   n->line = (int)y->start_mark.line + 1;
   n->col = (int)y->start_mark.column + 1;
   if (y->type == YAML_SCALAR_NODE) {
@@ -98,12 +99,6 @@ static int convert(convert_ctx *cx, yaml_node_t *y, int depth, pf_node **out) {
   }
   n->kind = NODE_MAP;
   return convert_map(cx, y, depth, n);
-}
-
-static uint64_t hash_text(const char *s, size_t len) {
-  uint64_t h = 1469598103934665603ULL;
-  for (size_t i = 0; i < len; i++) h = (h ^ (unsigned char)s[i]) * 1099511628211ULL;
-  return h;
 }
 
 static int read_file(const char *path, char **text, size_t *len) {
@@ -132,7 +127,9 @@ static int read_file(const char *path, char **text, size_t *len) {
   return 0;
 }
 
-static int parse_text(const char *path, const char *text, size_t len, pf_deck *d) {
+/* One YAML document into a tree; a deck file's root must be a mapping (need_map), an override's
+ * value may be anything. */
+static int parse_text(const char *path, const char *text, size_t len, int need_map, pf_node **out) {
   yaml_parser_t parser;
   yaml_document_t doc;
   PF_CHECK(yaml_parser_initialize(&parser), PF_ERR_MEMORY, "libyaml: cannot initialize");
@@ -158,49 +155,88 @@ static int parse_text(const char *path, const char *text, size_t len, pf_deck *d
   }
   if (ierr) (void)0;
   else if (!root) ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__, "%s: the deck is empty", path);
-  else if (root->type != YAML_MAPPING_NODE)
+  else if (need_map && root->type != YAML_MAPPING_NODE)
     ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
                           "%s:%d:%d: the deck must be a mapping of keys (title:, bodies:, ...)",
                           path, (int)root->start_mark.line + 1, (int)root->start_mark.column + 1);
   else {
     convert_ctx cx = {path, &doc, 1000000};
-    ierr = convert(&cx, root, 0, &d->root);
+    ierr = convert(&cx, root, 0, out);
   }
   yaml_document_delete(&doc);
   yaml_parser_delete(&parser);
   return ierr;
 }
 
-int pf_deck_load(const char *path, pf_deck **deck) {
-  *deck = NULL;
+const char *pf_deck_keep(pf_deck *d, const char *text) {
+  char **grown = realloc(d->names, sizeof *grown * (size_t)(d->nnames + 1));
+  if (!grown) return NULL;
+  d->names = grown;
+  return (d->names[d->nnames] = strdup(text)) ? d->names[d->nnames++] : NULL;
+}
+
+int pf_deck_parse_file(pf_deck *d, const char *path, pf_node **root) {
+  *root = NULL;
+  const char *kept = pf_deck_keep(d, path);
+  PF_CHECK(kept, PF_ERR_MEMORY, "out of memory");
   char *text = NULL;
   size_t len = 0;
   PF_CALL(read_file(path, &text, &len));
+  int ierr = parse_text(kept, text, len, 1, root);
+  free(text);
+  return ierr;
+}
+
+static void forget_lines(pf_node *n) {
+  n->line = n->col = 0;
+  for (int i = 0; i < n->n; i++) {
+    forget_lines(n->items[i]);
+    if (n->key_line) n->key_line[i] = n->key_col[i] = 0;
+  }
+}
+
+int pf_deck_parse_value(pf_deck *d, const char *origin, const char *text, pf_node **value) {
+  *value = NULL;
+  const char *kept = pf_deck_keep(d, origin);
+  PF_CHECK(kept, PF_ERR_MEMORY, "out of memory");
+  PF_CALL(parse_text(kept, text, strlen(text), 0, value));
+  forget_lines(*value);
+  return 0;
+}
+
+int pf_deck_load(const char *path, pf_deck **deck) { return pf_deck_load_with(path, NULL, 0, deck); }
+
+int pf_deck_load_with(const char *path, const char *const *sets, int nsets, pf_deck **deck) {
+  *deck = NULL;
   pf_deck *d = calloc(1, sizeof *d);
-  if (!d) free(text);
   PF_CHECK(d, PF_ERR_MEMORY, "out of memory");
   d->path = strdup(path);
-  d->hash = hash_text(text, len);
-  int ierr = parse_text(path, text, len, d);
-  free(text);
+  int ierr = d->path ? pf_deck_parse_file(d, path, &d->root) : PF_ERR_MEMORY;
+  if (!ierr) ierr = pf_deck_compose(d, sets, nsets);
   if (ierr) {
     pf_deck_destroy(&d);
     return ierr;
   }
+  d->hash = pf_node_hash(d->root);
   *deck = d;
   return 0;
 }
 
 int pf_deck_destroy(pf_deck **deck) {
-  if (!*deck) return 0;
-  node_free((*deck)->root);
-  free((*deck)->path);
+  pf_deck *d = *deck;
+  if (!d) return 0;
+  pf_deck_node_free(d->root);
+  for (int k = 0; k < d->nnames; k++) free(d->names[k]);
+  for (int k = 0; k < d->nparams; k++) free(d->param_name[k]);
+  free(d->names), free(d->param_name), free(d->param_value), free(d->included);
+  free(d->path);
   PF_FREE(*deck);
   return 0;
 }
 
 const pf_node *pf_deck_root(const pf_deck *deck) { return deck->root; }
 const char *pf_deck_path(const pf_deck *deck) { return deck->path; }
+const char *pf_deck_included(const pf_deck *deck, int k) { return k < deck->nincluded ? deck->included[k] : NULL; }
 uint64_t pf_deck_hash(const pf_deck *deck) { return deck->hash; }
 
 const pf_node *pf_node_get(const pf_node *map, const char *key) {
@@ -222,14 +258,21 @@ const char *pf_node_text(const pf_node *n) { return n && n->kind == NODE_SCALAR 
 int pf_node_line(const pf_node *n) { return n ? n->line : 0; }
 int pf_node_column(const pf_node *n) { return n ? n->col : 0; }
 
+void pf_node_where(const pf_deck *d, const pf_node *n, char *out, size_t len) {
+  const char *file = n && n->file ? n->file : d->path;
+  if (n && n->line > 0) snprintf(out, len, "%s:%d:%d", file, n->line, n->col);
+  else snprintf(out, len, "%s", file);
+}
+
 int pf_deck_error(const pf_deck *d, const pf_node *n, const char *key, const char *fmt, ...) {
   char msg[1024];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  return pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__, "%s:%d:%d: key '%s': %s",
-                        d->path, pf_node_line(n), pf_node_column(n), key, msg);
+  char where[512];
+  pf_node_where(d, n, where, sizeof where);
+  return pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__, "%s: key '%s': %s", where, key, msg);
 }
 
 /* FNV-1a over a node's kind, keys and scalar text, depth first: equal for decks that say the

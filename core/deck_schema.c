@@ -26,10 +26,19 @@ static int edit_distance(const char *a, const char *b) {
   return row[lb];
 }
 
+/* Where key i of a map was given (its value's file: a key and its value come from one file). */
+static void key_where(const pf_deck *d, const pf_node *map, int i, char *out, size_t len) {
+  const char *file = map->items[i]->file ? map->items[i]->file : d->path;
+  if (map->key_line[i] > 0) snprintf(out, len, "%s:%d:%d", file, map->key_line[i], map->key_col[i]);
+  else snprintf(out, len, "%s", file);
+}
+
 static int key_error(const pf_deck *d, const pf_node *map, int i, const char *fmt, const char *a,
                      const char *b) {
-  return pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__, "%s:%d:%d: key '%s': %s%s%s",
-                        d->path, map->key_line[i], map->key_col[i], map->keys[i], fmt, a, b);
+  char where[512];
+  key_where(d, map, i, where, sizeof where);
+  return pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__, "%s: key '%s': %s%s%s", where,
+                        map->keys[i], fmt, a, b);
 }
 
 static int unknown_key(const pf_deck *d, const pf_node *map, int i, const pf_key *table,
@@ -144,8 +153,9 @@ static int check_value(const pf_deck *d, const pf_node *map, int i, const pf_key
 }
 
 int pf_deck_validate(const pf_deck *d, const pf_node *map, const pf_key *table, const char *where) {
-  PF_CHECK(map && map->kind == NODE_MAP, PF_ERR_INPUT, "%s:%d:%d: %s must be a mapping", d->path,
-           pf_node_line(map), pf_node_column(map), where);
+  char pos[512];
+  pf_node_where(d, map, pos, sizeof pos);
+  PF_CHECK(map && map->kind == NODE_MAP, PF_ERR_INPUT, "%s: %s must be a mapping", pos, where);
   for (int i = 0; i < map->n; i++) {
     const pf_key *k = table;
     while (k->name && strcmp(k->name, map->keys[i])) k++;
@@ -155,8 +165,7 @@ int pf_deck_validate(const pf_deck *d, const pf_node *map, const pf_key *table, 
   for (const pf_key *k = table; k->name; k++)
     if (k->required && !pf_node_get(map, k->name))
       return pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
-                            "%s:%d:%d: missing required key '%s' in %s (%s%s%s)", d->path,
-                            map->line, map->col, k->name, where, k->doc,
+                            "%s: missing required key '%s' in %s (%s%s%s)", pos, k->name, where, k->doc,
                             k->units && k->units[0] ? ", " : "", k->units ? k->units : "");
   return 0;
 }

@@ -1,8 +1,11 @@
 /* Expressions of position and time from the deck (initial velocities, prescribed motions),
- * compiled and evaluated by muparser through its C API. */
+ * compiled and evaluated by muparser through its C API; the deck's parameters (core/deck_compose.c)
+ * are constants in every expression. */
 #include "core/core.h"
+#include "core/deck_impl.h"
 
 #include <muParserDLL.h>
+#include <math.h>
 #include <stdlib.h>
 
 struct pf_expr {
@@ -33,6 +36,7 @@ int pf_expr_create_vars(const char *text, const pf_deck *d, const pf_node *n, co
   mupDefineVar(e->parser, "z", &e->z);
   mupDefineVar(e->parser, "t", &e->t);
   for (int k = 0; k < nnames; k++) mupDefineVar(e->parser, names[k], &e->var[k]);
+  for (int k = 0; d && k < d->nparams; k++) mupDefineConst(e->parser, d->param_name[k], d->param_value[k]);
   e->nvars = nnames;
   mupSetExpr(e->parser, text);
   (void)mupEval(e->parser); /* compiles; syntax and unknown names show up here */
@@ -44,6 +48,30 @@ int pf_expr_create_vars(const char *text, const pf_deck *d, const pf_node *n, co
   }
   *out = e;
   return 0;
+}
+
+/* The deck's parameters as constants. */
+static int define_parameters(muParserHandle_t p, const pf_deck *d, const pf_node *n, const char *key) {
+  for (int k = 0; k < d->nparams; k++) mupDefineConst(p, d->param_name[k], d->param_value[k]);
+  if (mupError(p)) return pf_deck_error(d, n, key, "parameter names: %s", mupGetErrorMsg(p));
+  return 0;
+}
+
+int pf_expr_constant(const pf_deck *d, const pf_node *n, const char *key, const char *text, double *v) {
+  muParserHandle_t p = mupCreate(muBASETYPE_FLOAT);
+  PF_CHECK(p, PF_ERR_MEMORY, "muparser: cannot create a parser");
+  int ierr = define_parameters(p, d, n, key);
+  if (!ierr) {
+    mupSetExpr(p, text);
+    *v = mupEval(p);
+    if (mupError(p))
+      ierr = pf_deck_error(d, n, key, "bad expression '%s': %s (at character %d; the names known here are the "
+                           "parameters given above)", text, mupGetErrorMsg(p), (int)mupGetErrorPos(p) + 1);
+    else if (!isfinite(*v))
+      ierr = pf_deck_error(d, n, key, "the expression '%s' is not finite (%g)", text, *v);
+  }
+  mupRelease(p);
+  return ierr;
 }
 
 int pf_expr_destroy(pf_expr **e) {

@@ -471,8 +471,9 @@ static int parse_request(const pf_deck *d, const pf_node *mn, mesh_request *rq) 
     rq->reader = reader_by_name("pamgen");
     rq->src.text = text;
     const pf_node *tn = pf_node_get(mn, "pamgen");
-    snprintf(rq->label, sizeof rq->label, "pamgen mesh at %s:%d:%d", pf_deck_path(d),
-             pf_node_line(tn), pf_node_column(tn));
+    char where[400];
+    pf_node_where(d, tn, where, sizeof where);
+    snprintf(rq->label, sizeof rq->label, "pamgen mesh at %s", where);
     if (es)
       return pf_deck_error(d, es, "element_size",
                            "applies to .geo files only; a Pamgen text gives its own intervals");
@@ -499,12 +500,13 @@ static int parse_request(const pf_deck *d, const pf_node *mn, mesh_request *rq) 
                            "applies to .geo files only ('%s' is already a mesh)", file);
     rq->src.path = rq->path;
     snprintf(rq->label, sizeof rq->label, "%s", rq->path);
-    snprintf(rq->key, sizeof rq->key, "%s:%d:%d: key 'file'", pf_deck_path(d), pf_node_line(fn),
-             pf_node_column(fn));
+    char where[400];
+    pf_node_where(d, fn, where, sizeof where);
+    snprintf(rq->key, sizeof rq->key, "%s: key 'file'", where);
     rq->src.key = rq->key;
     if (es) {
-      snprintf(rq->size_key, sizeof rq->size_key, "%s:%d:%d: key 'element_size'",
-               pf_deck_path(d), pf_node_line(es), pf_node_column(es));
+      pf_node_where(d, es, where, sizeof where);
+      snprintf(rq->size_key, sizeof rq->size_key, "%s: key 'element_size'", where);
       rq->src.size_key = rq->size_key;
     }
   }

@@ -34,6 +34,13 @@ static const pf_key output_keys[] = {
 
 const pf_key pf_deck_keys[] = {
     {"title", PF_KEY_STRING, 0, "", "", "a title for the output", NULL},
+    {"include", PF_KEY_STRLIST, 0, NULL, "",
+     "deck files merged in before this one, relative to its folder: mappings merge, lists join (the "
+     "included items first), a value given twice is an error; file names inside them are relative to "
+     "the main deck", NULL},
+    {"parameters", PF_KEY_ANYMAP, 0, NULL, "",
+     "named numbers (or expressions of the ones above): ${expression} anywhere in the deck is replaced "
+     "by its value, and the names can be used bare in expressions of x, y, z, t", NULL},
     {"units", PF_KEY_STRING, 0, "SI", "", "unit system; only SI is accepted", NULL},
     {"materials", PF_KEY_ANYMAP, 1, NULL, "",
      "named materials, each checked by its model: a peridynamic model (pmb, lps, elastic_plastic) "
@@ -180,9 +187,10 @@ static int check_overlap(const pf_sim *sim, const pf_point_cloud *pc, const pf_n
 static int build_bodies(pf_sim *sim, const pf_node *root) {
   const pf_node *bodies = pf_node_get(root, "bodies");
   sim->nbodies = pf_node_count(bodies);
+  char where[512];
+  pf_node_where(sim->deck, bodies, where, sizeof where);
   PF_CHECK(sim->nbodies > 0 && sim->nbodies <= PF_MAX_BODIES, PF_ERR_INPUT,
-           "%s:%d:%d: 'bodies' must list 1 to %d bodies (got %d)", pf_deck_path(sim->deck),
-           pf_node_line(bodies), pf_node_column(bodies), PF_MAX_BODIES, sim->nbodies);
+           "%s: 'bodies' must list 1 to %d bodies (got %d)", where, PF_MAX_BODIES, sim->nbodies);
   for (int b = 0; b < sim->nbodies; b++) {
     const pf_node *body = pf_node_item(bodies, b);
     PF_CALL(pf_deck_string(sim->deck, body, "name", &sim->body_name[b]));
@@ -249,7 +257,7 @@ static int check_units(const pf_sim *sim, const pf_node *root) {
 
 static int sim_build(pf_sim *sim, const char *deck_path) {
   pf_sim_catch_signals(); /* a SIGTERM during the set-up ends the process at once */
-  PF_CALL(pf_deck_load(deck_path, &sim->deck));
+  PF_CALL(pf_deck_load_with(deck_path, sim->opt.sets, sim->opt.nsets, &sim->deck));
   const pf_node *root = pf_deck_root(sim->deck);
   PF_CALL(pf_deck_validate(sim->deck, root, pf_deck_keys, "the deck"));
   PF_CALL(check_units(sim, root));

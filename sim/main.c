@@ -20,6 +20,10 @@ static void usage(FILE *fp) {
           "  --check            load and validate the deck and build the model; run nothing\n"
           "  --output-dir DIR   write output files into DIR (created when missing)\n"
           "  --restart FILE     continue from the checkpoint FILE (any number of ranks)\n"
+          "  --set KEY=VALUE    override a deck value, e.g. --set materials.glass.density=2500 or\n"
+          "                     --set bodies.sphere.velocity=[0,0,-900] (a list item by its index or its\n"
+          "                     name; a YAML value; repeatable; applied after include: and before\n"
+          "                     the deck's parameters are substituted)\n"
           "  --quiet            print only errors, the summary's digest line excepted\n"
           "  --progress MODE    auto (one line rewritten in place on a terminal, else plain lines),\n"
           "                     plain or line; under mpirun the ranks see a pseudo-terminal even\n"
@@ -50,9 +54,13 @@ static void version(void) {
 #endif
 }
 
+enum { MAX_SETS = 256 };
+
 typedef struct {
   const char *deck, *output_dir, *restart;
   int check, quiet;
+  const char *sets[MAX_SETS];
+  int nsets;
 } cli;
 
 /* Returns -1 to go on, or an exit status. */
@@ -71,6 +79,12 @@ static int parse_args(int argc, char **argv, cli *c) {
         return PF_ERR_INPUT;
       }
       pf_log_set_status(!strcmp(m, "auto") ? -1 : !strcmp(m, "line"));
+    } else if (!strcmp(a, "--set")) {
+      if (i + 1 >= argc || c->nsets == MAX_SETS) {
+        fprintf(stderr, "perifem error: --set needs KEY.PATH=VALUE%s\n", i + 1 < argc ? " (at most 256 of them)" : "");
+        return PF_ERR_INPUT;
+      }
+      c->sets[c->nsets++] = argv[++i];
     } else if (!strcmp(a, "--output-dir") || !strcmp(a, "--restart")) {
       if (i + 1 >= argc) {
         fprintf(stderr, "perifem error: %s needs a %s\n", a, a[2] == 'o' ? "directory" : "checkpoint file");
@@ -117,7 +131,7 @@ static int make_dir(const char *dir) {
 }
 
 static int run(const cli *c) {
-  pf_sim_options opt = {.output_dir = c->output_dir, .restart_from = c->restart};
+  pf_sim_options opt = {.output_dir = c->output_dir, .restart_from = c->restart, .sets = c->sets, .nsets = c->nsets};
   pf_sim *sim = NULL;
   int ierr = pf_sim_create(c->deck, &opt, &sim);
   if (ierr) return ierr == PF_ERR_INPUT ? 2 : 1;

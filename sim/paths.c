@@ -64,12 +64,14 @@ static void add_body_file(const pf_sim *sim, named_file *list, int *n, int cap, 
 }
 
 int pf_sim_check_paths(pf_sim *sim) {
-  enum { CAP = 2 * PF_MAX_BODIES + 8 };
+  enum { CAP = 2 * PF_MAX_BODIES + 8 + PF_DECK_MAX_INCLUDES };
   named_file in[CAP], out[4];
   int nin = 0, nout = 0;
   const pf_node *root = pf_deck_root(sim->deck), *output = pf_node_get(root, "output"),
                 *restart = pf_node_get(root, "restart");
   add(in, &nin, CAP, pf_deck_path(sim->deck), root, NULL, "the deck");
+  for (int k = 0; pf_deck_included(sim->deck, k); k++)
+    add(in, &nin, CAP, pf_deck_included(sim->deck, k), pf_node_get(root, "include"), "include", "an included deck");
   for (int b = 0; b < sim->nbodies; b++) {
     add_body_file(sim, in, &nin, CAP, b, "mesh");
     add_body_file(sim, in, &nin, CAP, b, "geometry");

@@ -16,6 +16,8 @@ typedef struct {
   const char *output_dir; /* NULL: the current directory */
   int no_output;          /* 1: write no Exodus or history file (tests) */
   const char *restart_from; /* a checkpoint to continue from, or NULL */
+  const char *const *sets;  /* deck overrides "a.b.c=value" (--set), applied in order */
+  int nsets;
 } pf_sim_options;
 
 /* Load and validate the deck and build everything; writes no file. */
