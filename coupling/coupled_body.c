@@ -194,7 +194,7 @@ static int attach_blending(pf_coupled_body *c, pf_points *pts) {
   for (pf_int i = c->first; i < c->first + c->n; i++) c->beta[i] = beta_at(c, &pts->X[3 * (size_t)i]);
   PF_CALL(pf_points_exchange(pts, c->beta, 1));
   pf_pd_body_set_blending(c->pd, c->beta, c->energy_form);
-  pf_fem_body_set_blending_field(c->fe, c->beta);
+  PF_CALL(pf_fem_body_set_blending_field(c->fe, c->beta));
   for (pf_int i = c->first; i < c->first + c->n; i++) pts->m[i] = c->rho * pts->vol[i]; /* all nodes */
   free(c->fsave);
   PF_MALLOC(c->fsave, 3 * (size_t)c->n + 1);
@@ -219,7 +219,7 @@ static int energy_form_force(pf_coupled_body *c, pf_points *pts, double dt, doub
   double *f = &pts->f[3 * (size_t)c->first];
   for (pf_int i = 0; i < c->n; i++) {
     double fe[3];
-    pf_fem_body_node_force_weighted(c->fe, i, fe);
+    pf_fem_body_node_force(c->fe, i, 1, fe);
     for (int a = 0; a < 3; a++) f[3 * (size_t)i + a] += fe[a];
   }
   pf_fem_body_set_stable_dt(c->fe, fmin(pf_fem_body_stable_dt(c->fe), pf_pd_body_stable_dt(c->pd, pts)));
@@ -239,7 +239,7 @@ int pf_coupled_body_force(pf_coupled_body *c, pf_points *pts, double dt, double 
   PF_CALL(pf_fem_body_evaluate(c->fe, pts, dt, t, step));
   for (pf_int i = 0; i < c->n; i++) {
     double fe[3];
-    pf_fem_body_node_force(c->fe, i, fe);
+    pf_fem_body_node_force(c->fe, i, 0, fe);
     const double w = 1.0 - c->beta[c->first + i];
     for (int a = 0; a < 3; a++) f[3 * (size_t)i + a] = keep[3 * (size_t)i + a] + w * fe[a];
   }

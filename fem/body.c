@@ -143,7 +143,7 @@ int pf_fem_body_destroy(pf_fem_body **pb) {
   pf_mesh_free(&b->mesh);
   pf_material_destroy(&b->mat);
   free(b->node_volume), free(b->mesh_node_off), free(b->mesh_node_item), free(b->eid), free(b->conn), free(b->own), free(b->sigma), free(b->state);
-  free(b->hgq), free(b->bvq), free(b->ref), free(b->fe), free(b->energy), free(b->node_off), free(b->node_item), free(b->buf);
+  free(b->hgq), free(b->bvq), free(b->ref), free(b->share), free(b->fe), free(b->energy), free(b->node_off), free(b->node_item), free(b->buf);
   free(b->mesh_eroded), free(b->due);
   PF_FREE(*pb);
   return 0;
@@ -199,4 +199,15 @@ void pf_fem_body_set_blending(pf_fem_body *b, pf_fem_weight_fn beta, const void 
   b->beta_fn = beta, b->beta_ctx = ctx;
 }
 
-void pf_fem_body_set_blending_field(pf_fem_body *b, const double *beta) { b->beta = beta; }
+/* Each element's share of the blended energy, 1 - the mean beta of its eight nodes (the nodes'
+ * beta is fixed for a store layout: computed here, at every attach, not every step). */
+int pf_fem_body_set_blending_field(pf_fem_body *b, const double *beta) {
+  free(b->share);
+  PF_MALLOC(b->share, (size_t)b->nel + 1);
+  for (pf_int e = 0; e < b->nel; e++) {
+    double w = 1;
+    for (int I = 0; I < 8; I++) w -= beta[b->conn[8 * (size_t)e + I]] / 8.0;
+    b->share[e] = w;
+  }
+  return 0;
+}

@@ -158,25 +158,12 @@ int pf_fem_body_attach(pf_fem_body *b, int body, pf_points *pts, pf_int first, p
   return b->beta_fn ? 0 : register_fields(b, pts); /* (a blended body's stress is the other operator's) */
 }
 
-void pf_fem_body_node_force(const pf_fem_body *b, pf_int i, double f[3]) {
+void pf_fem_body_node_force(const pf_fem_body *b, pf_int i, int weighted, double f[3]) {
+  const double *share = weighted ? b->share : NULL;
   f[0] = f[1] = f[2] = 0;
   for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
-    const double *fe = &b->fe[3 * (size_t)b->node_item[q]];
-    f[0] += fe[0], f[1] += fe[1], f[2] += fe[2];
-  }
-}
-
-/* 1 - the mean blending weight of element e's nodes (1 without blending). */
-static double element_weight(const pf_fem_body *b, pf_int e) {
-  double w = 1;
-  for (int I = 0; I < 8 && b->beta; I++) w -= b->beta[b->conn[8 * (size_t)e + I]] / 8.0;
-  return w;
-}
-
-void pf_fem_body_node_force_weighted(const pf_fem_body *b, pf_int i, double f[3]) {
-  f[0] = f[1] = f[2] = 0;
-  for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
-    const double *fe = &b->fe[3 * (size_t)b->node_item[q]], w = element_weight(b, b->node_item[q] / 8);
+    const pf_int k = b->node_item[q];
+    const double *fe = &b->fe[3 * (size_t)k], w = share ? share[k / 8] : 1.0; /* (1.0 * x is x) */
     f[0] += w * fe[0], f[1] += w * fe[1], f[2] += w * fe[2];
   }
 }
@@ -192,7 +179,7 @@ int pf_fem_body_force(pf_fem_body *b, pf_points *pts, double dt, double t, long 
   if (ierr) return ierr;
   for (pf_int i = 0; i < b->n; i++) {
     double f[3];
-    pf_fem_body_node_force(b, i, f);
+    pf_fem_body_node_force(b, i, 0, f);
     for (int a = 0; a < 3; a++) pts->f[3 * (size_t)(b->first + i) + a] += f[a];
   }
   return 0;
@@ -204,7 +191,7 @@ void pf_fem_body_energies(const pf_fem_body *b, double e[3]) {
   e[0] = e[1] = e[2] = 0;
   for (pf_int k = 0; k < b->nel; k++) {
     if (!b->own[k]) continue;
-    const double w = element_weight(b, k); /* blended: the element's share */
+    const double w = b->share ? b->share[k] : 1.0; /* blended: the element's share */
     for (int c = 0; c < 3; c++) e[c] += w * b->energy[3 * (size_t)k + c];
   }
 }

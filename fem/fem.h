@@ -72,17 +72,16 @@ typedef double (*pf_fem_weight_fn)(const void *ctx, const double x[3]);
 void pf_fem_body_set_blending(pf_fem_body *b, pf_fem_weight_fn beta, const void *ctx);
 /* After each attach: beta at the store points; each owned element's energies are then weighted
  * by 1 - its nodes' mean beta. */
-void pf_fem_body_set_blending_field(pf_fem_body *b, const double *beta);
+int pf_fem_body_set_blending_field(pf_fem_body *b, const double *beta);
 /* Evaluate the local elements at the current positions (element forces, energies, the stable
  * step) without adding them to the nodes; t and step name a failure. pf_fem_body_force is this,
  * the erosion update and the assembly. Needs the ghosts' y and v. */
 int pf_fem_body_evaluate(pf_fem_body *b, pf_points *pts, double dt, double t, long step);
 /* The assembled force of the last evaluation on the body's owned node i (0 <= i < n), its
- * elements summed in ascending global element order, N. */
-void pf_fem_body_node_force(const pf_fem_body *b, pf_int i, double f[3]);
-/* The same with each element's share weighted by 1 - its nodes' mean beta (the blending field),
- * the weight its energies carry: the forces of sum_e (1 - beta_e) W_e (the energy form). */
-void pf_fem_body_node_force_weighted(const pf_fem_body *b, pf_int i, double f[3]);
+ * elements summed in ascending global element order, N; weighted (a blended body): each
+ * element's share weighted by 1 - its nodes' mean beta, the weight its energies carry — the
+ * forces of sum_e (1 - beta_e) W_e (the energy form). */
+void pf_fem_body_node_force(const pf_fem_body *b, pf_int i, int weighted, double f[3]);
 /* Lumped volume of each mesh node [nnodes], m^3. */
 const double *pf_fem_body_node_volumes(const pf_fem_body *b);
 

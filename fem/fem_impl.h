@@ -49,7 +49,8 @@ struct pf_fem_body {
   /* blending with another operator on the same nodes (coupling/, pf_fem_body_set_blending) */
   pf_fem_weight_fn beta_fn;  /* beta(x): the other operator's weight, or NULL (no blending) */
   const void *beta_ctx;
-  const double *beta;        /* beta at the store points (pf_fem_body_set_blending_field), or NULL */
+  double *share; /* [nel] 1 - the mean beta of each element's nodes (pf_fem_body_set_blending_field),
+                    or NULL (no blending) */
   /* erosion (fem/erosion.c) */
   int erosion;          /* some limit is set */
   double erode_eqps, erode_jmin, erode_jmax;
