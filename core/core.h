@@ -481,15 +481,24 @@ int pf_state_digest(const pf_points *pts, uint64_t *digest);
 
 
 /* ---- output: Exodus II (core/output_exodus.c) and HDF5 history (core/history.c) ---- */
+/* What made an output file, written into it: a title (the deck's), and lines of text (the code,
+ * its version and git commit, the date, the command line, the deck and its parts). */
+typedef struct {
+  const char *title;
+  const char *const *lines;
+  int nlines;
+} pf_provenance;
 typedef struct pf_exodus pf_exodus;
 /* Create an Exodus II file: coordinates of the owned points, one SPHERE element block per body
  * (body_start has nbodies + 1 entries from 0 to n_owned: points are grouped by body, body b
  * owning [body_start[b], body_start[b+1])), nodal variables displacement_{x,y,z},
  * velocity_{x,y,z}, force_{x,y,z} and every field flagged PF_FIELD_OUTPUT (a field with ncomp 3
- * gets _x/_y/_z, ncomp 6 _xx/_yy/_zz/_yz/_xz/_xy), and global variables named by global_names. */
+ * gets _x/_y/_z, ncomp 6 _xx/_yy/_zz/_xy/_yz/_zx), and global variables named by global_names;
+ * prov (or NULL) gives the title, a QA record (code, version, date, time) and the info records
+ * (its lines, folded at 80 characters). */
 int pf_exodus_create(const char *path, const pf_points *pts, int nbodies,
                      const char *const *body_names, const pf_int *body_start, int nglobals,
-                     const char *const *global_names, pf_exodus **ex);
+                     const char *const *global_names, const pf_provenance *prov, pf_exodus **ex);
 /* An FE body's block: HEX8 elements whose nodes are points of the file (0-based indices in the
  * order of pts), element ids first_id + 1, first_id + 2, ... */
 typedef struct {
@@ -501,7 +510,7 @@ typedef struct {
 int pf_exodus_create_mixed(const char *path, const pf_points *pts, int nbodies,
                            const char *const *body_names, const pf_int *body_start,
                            const pf_exodus_hexes *hexes, int nglobals,
-                           const char *const *global_names, pf_exodus **ex);
+                           const char *const *global_names, const pf_provenance *prov, pf_exodus **ex);
 /* The joined view: rank 0 gets (*all, created on the first call) a copy of every owned point
  * in global-id order — X, u, v, f, body and the PF_FIELD_OUTPUT fields; other ranks get NULL.
  * Collective. */
@@ -512,9 +521,11 @@ int pf_exodus_destroy(pf_exodus **ex);
 
 typedef struct pf_history pf_history;
 /* HDF5 history: one extendible 1-D dataset per column name under "/", plus attribute "units"
- * on each when given (units may be NULL). Rank 0 writes; others get a NULL handle. */
+ * on each when given (units may be NULL); on "/" the attributes "columns" (the names in order),
+ * "title" and "provenance" (prov's lines, one text; prov may be NULL). Rank 0 writes; others get
+ * a NULL handle. */
 int pf_history_create(const char *path, int ncol, const char *const *names,
-                      const char *const *units, pf_history **h);
+                      const char *const *units, const pf_provenance *prov, pf_history **h);
 int pf_history_append(pf_history *h, const double *row);
 int pf_history_destroy(pf_history **h);
 

@@ -38,19 +38,27 @@ static int append_failed(pf_history *h, const char *call, int err) {
 
 /* ---- create ---------------------------------------------------------------- */
 
-static int put_units(pf_history *h, hid_t dset, const char *name, const char *units) {
+/* A fixed-length, null-terminated ASCII string attribute key = text on obj (named name), or, with
+ * n > 0, an array of n such strings of width len (texts[k] at k * len). */
+static int put_string_attr(pf_history *h, hid_t obj, const char *name, const char *key, const char *text, size_t n,
+                           size_t len) {
   hid_t type = H5Tcopy(H5T_C_S1);
   PF_H5_CHECK(h, type >= 0, "H5Tcopy", name);
-  herr_t st = H5Tset_size(type, strlen(units) + 1);
+  herr_t st = H5Tset_size(type, n ? len : strlen(text) + 1);
   if (st >= 0) st = H5Tset_strpad(type, H5T_STR_NULLTERM);
-  hid_t space = st >= 0 ? H5Screate(H5S_SCALAR) : -1;
-  hid_t attr = space >= 0 ? H5Acreate2(dset, "units", type, space, H5P_DEFAULT, H5P_DEFAULT) : -1;
-  st = attr >= 0 ? H5Awrite(attr, type, units) : -1;
+  hsize_t dims[1] = {n};
+  hid_t space = st >= 0 ? (n ? H5Screate_simple(1, dims, NULL) : H5Screate(H5S_SCALAR)) : -1;
+  hid_t attr = space >= 0 ? H5Acreate2(obj, key, type, space, H5P_DEFAULT, H5P_DEFAULT) : -1;
+  st = attr >= 0 ? H5Awrite(attr, type, text) : -1;
   if (attr >= 0) H5Aclose(attr);
   if (space >= 0) H5Sclose(space);
   H5Tclose(type);
-  PF_H5_CHECK(h, st >= 0, "H5Acreate2/H5Awrite of attribute 'units'", name);
+  PF_H5_CHECK(h, st >= 0, "H5Acreate2/H5Awrite of a string attribute", name);
   return PF_SUCCESS;
+}
+
+static int put_units(pf_history *h, hid_t dset, const char *name, const char *units) {
+  return put_string_attr(h, dset, name, "units", units, 0, 0);
 }
 
 static int create_column(pf_history *h, int i, const char *name, const char *units) {
@@ -87,8 +95,25 @@ static int open_history(pf_history *h, const char *const *names, const char *con
   return PF_SUCCESS;
 }
 
+/* The file's attributes: "title", "provenance" (the lines, one text) and "columns" (the column
+ * names in their order, which readers listing datasets by name do not keep). */
+static int put_provenance(pf_history *h, const char *const *names, const pf_provenance *p) {
+  size_t width = 1, len = 1;
+  for (int i = 0; i < h->ncol; i++) width = strlen(names[i]) + 1 > width ? strlen(names[i]) + 1 : width;
+  for (int k = 0; p && k < p->nlines; k++) len += strlen(p->lines[k]) + 1;
+  char *cols = calloc((size_t)h->ncol * width + 1, 1), *text = calloc(len, 1);
+  int ierr = cols && text ? 0 : pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+  for (int i = 0; !ierr && i < h->ncol; i++) memcpy(cols + (size_t)i * width, names[i], strlen(names[i]));
+  for (int k = 0; !ierr && p && k < p->nlines; k++) strcat(strcat(text, p->lines[k]), "\n");
+  if (!ierr && h->ncol) ierr = put_string_attr(h, h->file, "/", "columns", cols, (size_t)h->ncol, width);
+  if (!ierr) ierr = put_string_attr(h, h->file, "/", "title", p && p->title ? p->title : "", 0, 0);
+  if (!ierr) ierr = put_string_attr(h, h->file, "/", "provenance", text, 0, 0);
+  free(cols), free(text);
+  return ierr;
+}
+
 int pf_history_create(const char *path, int ncol, const char *const *names,
-                      const char *const *units, pf_history **h) {
+                      const char *const *units, const pf_provenance *prov, pf_history **h) {
   PF_CHECK(h, PF_ERR_INPUT, "pf_history_create: NULL handle");
   *h = NULL;
   if (pf_comm_rank() != 0) return PF_SUCCESS;
@@ -108,6 +133,7 @@ int pf_history_create(const char *path, int ncol, const char *const *names,
   }
   memcpy(hh->path, path, len);
   int err = open_history(hh, names, units);
+  if (!err) err = put_provenance(hh, names, prov);
   if (err) {
     pf_history_destroy(&hh);
     return err;

@@ -4,14 +4,17 @@
  * block per body of type "SPHERE" with one node per element (element i of block b is point
  * body_start[b] + i), block names = body names, node and element id maps = global id + 1,
  * nodal variables displacement_{x,y,z}, velocity_{x,y,z}, force_{x,y,z} and then every field
- * flagged PF_FIELD_OUTPUT (ncomp 1: name, ncomp 3: name_{x,y,z}, ncomp 6: name_{xx,yy,zz,yz,xz,xy},
- * else name_0, name_1, ...),
+ * flagged PF_FIELD_OUTPUT (ncomp 1: name, ncomp 3: name_{x,y,z}, ncomp 6 (a symmetric tensor, kept in
+ * Voigt order xx, yy, zz, yz, xz, xy): name_{xx,yy,zz,xy,yz,zx} in that order, the suffixes and
+ * order by which ParaView's Exodus readers join six variables into one symmetric tensor; else
+ * name_0, name_1, ...),
  * and global variables. Each pf_exodus_write appends one time step and calls ex_update. */
 #include "core/core.h"
 
 #include <exodusII.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #define PF_EX_NAME_LEN 64 /* longest variable / block name we hand to Exodus */
 #define PF_EX_NBUILTIN 9  /* displacement, velocity, force: 3 components each */
@@ -77,9 +80,10 @@ static int plan_variables(pf_exodus *ex, const pf_points *pts) {
   int j = 0;
   for (int k = 0; k < pts->nfields; k++) {
     if (!field_is_output(&pts->fields[k])) continue;
+    static const int tensor_order[6] = {0, 1, 2, 5, 3, 4}; /* xx yy zz xy yz zx from Voigt */
     for (int c = 0; c < pts->fields[k].ncomp; c++, j++) {
       ex->var_field[j] = k;
-      ex->var_comp[j] = c;
+      ex->var_comp[j] = pts->fields[k].ncomp == 6 ? tensor_order[c] : c;
     }
   }
   return PF_SUCCESS;
@@ -91,8 +95,8 @@ static void variable_name(const pf_field *fld, int comp, char *out) {
     snprintf(out, PF_EX_NAME_LEN + 1, "%s", fld->name);
   else if (fld->ncomp == 3)
     snprintf(out, PF_EX_NAME_LEN + 1, "%s_%c", fld->name, xyz[comp]);
-  else if (fld->ncomp == 6) /* a symmetric tensor in Voigt order */
-    snprintf(out, PF_EX_NAME_LEN + 1, "%s_%s", fld->name, (const char *[]){"xx", "yy", "zz", "yz", "xz", "xy"}[comp]);
+  else if (fld->ncomp == 6) /* comp: the Voigt component */
+    snprintf(out, PF_EX_NAME_LEN + 1, "%s_%s", fld->name, (const char *[]){"xx", "yy", "zz", "yz", "zx", "xy"}[comp]);
   else
     snprintf(out, PF_EX_NAME_LEN + 1, "%s_%d", fld->name, comp);
 }
@@ -213,7 +217,8 @@ static int put_blocks(pf_exodus *ex, int nbodies, const char *const *body_names,
   return PF_SUCCESS;
 }
 
-static int open_file(pf_exodus *ex, int nbodies, const pf_int *body_start, const pf_exodus_hexes *hexes) {
+static int open_file(pf_exodus *ex, int nbodies, const pf_int *body_start, const pf_exodus_hexes *hexes,
+                     const char *title) {
   int cpu_ws = 8, io_ws = 8;
   int mode = EX_CLOBBER | EX_LARGE_MODEL | EX_MAPS_INT64_API | EX_BULK_INT64_API;
   ex->exoid = ex_create(ex->path, mode, &cpu_ws, &io_ws);
@@ -223,17 +228,56 @@ static int open_file(pf_exodus *ex, int nbodies, const pf_int *body_start, const
   for (int b = 0; b < nbodies; b++)
     nelem += hexes && hexes[b].nelem > 0 ? hexes[b].nelem : body_start[b + 1] - body_start[b];
   ex->nelem = nelem;
-  PF_EX_TRY(ex, ex_put_init(ex->exoid, "perifem output", 3, ex->n, nelem, nbodies, 0, 0),
-            "ex_put_init");
+  char line[MAX_LINE_LENGTH + 1];
+  snprintf(line, sizeof line, "%s", title ? title : "perifem output");
+  PF_EX_TRY(ex, ex_put_init(ex->exoid, line, 3, ex->n, nelem, nbodies, 0, 0), "ex_put_init");
+  return PF_SUCCESS;
+}
+
+/* One QA record (code, version, date, time of now, UTC) and the provenance's lines as info
+ * records, each folded into pieces of at most 80 characters. */
+static int put_provenance(pf_exodus *ex, const pf_provenance *p) {
+  char qa_store[4][MAX_STR_LENGTH + 1], *qa[1][4];
+  const time_t now = time(NULL);
+  struct tm utc;
+  gmtime_r(&now, &utc);
+  snprintf(qa_store[0], sizeof qa_store[0], "perifem");
+  snprintf(qa_store[1], sizeof qa_store[1], "%s", PERIFEM_VERSION);
+  strftime(qa_store[2], sizeof qa_store[2], "%Y-%m-%d", &utc);
+  strftime(qa_store[3], sizeof qa_store[3], "%H:%M:%S", &utc);
+  for (int k = 0; k < 4; k++) qa[0][k] = qa_store[k];
+  PF_EX_TRY(ex, ex_put_qa(ex->exoid, 1, qa), "ex_put_qa");
+  int n = 0;
+  for (int k = 0; k < p->nlines; k++) n += strlen(p->lines[k]) ? (int)((strlen(p->lines[k]) + 79) / 80) : 1;
+  if (n == 0) return PF_SUCCESS;
+  char(*store)[MAX_LINE_LENGTH + 1] = NULL;
+  char **info = NULL;
+  PF_MALLOC(store, n);
+  info = malloc(sizeof *info * (size_t)n);
+  if (!info) PF_FREE(store);
+  PF_CHECK(info, PF_ERR_MEMORY, "out of memory for the Exodus info records");
+  int j = 0;
+  for (int k = 0; k < p->nlines; k++) {
+    const char *s = p->lines[k];
+    do {
+      snprintf(store[j], sizeof store[j], "%.80s", s);
+      info[j] = store[j], j++;
+      s += strlen(s) > 80 ? 80 : strlen(s);
+    } while (*s);
+  }
+  const int st = ex_put_info(ex->exoid, n, info);
+  free(info), free(store);
+  PF_EX_TRY(ex, st, "ex_put_info");
   return PF_SUCCESS;
 }
 
 static int setup(pf_exodus *ex, const pf_points *pts, int nbodies, const char *const *body_names,
                  const pf_int *body_start, const pf_exodus_hexes *hexes, int nglobals,
-                 const char *const *global_names) {
+                 const char *const *global_names, const pf_provenance *prov) {
   PF_CALL(plan_variables(ex, pts));
   PF_MALLOC(ex->buf, ex->n);
-  PF_CALL(open_file(ex, nbodies, body_start, hexes));
+  PF_CALL(open_file(ex, nbodies, body_start, hexes, prov && prov->title && prov->title[0] ? prov->title : NULL));
+  if (prov) PF_CALL(put_provenance(ex, prov));
   PF_CALL(put_coordinates(ex, pts));
   PF_CALL(put_blocks(ex, nbodies, body_names, body_start, hexes));
   PF_CALL(put_id_maps(ex, pts, nbodies, body_start, hexes));
@@ -245,15 +289,15 @@ static int setup(pf_exodus *ex, const pf_points *pts, int nbodies, const char *c
 
 int pf_exodus_create(const char *path, const pf_points *pts, int nbodies,
                      const char *const *body_names, const pf_int *body_start, int nglobals,
-                     const char *const *global_names, pf_exodus **ex) {
+                     const char *const *global_names, const pf_provenance *prov, pf_exodus **ex) {
   return pf_exodus_create_mixed(path, pts, nbodies, body_names, body_start, NULL, nglobals,
-                                global_names, ex);
+                                global_names, prov, ex);
 }
 
 int pf_exodus_create_mixed(const char *path, const pf_points *pts, int nbodies,
                            const char *const *body_names, const pf_int *body_start,
                            const pf_exodus_hexes *hexes, int nglobals,
-                           const char *const *global_names, pf_exodus **ex) {
+                           const char *const *global_names, const pf_provenance *prov, pf_exodus **ex) {
   PF_CHECK(path && pts && ex, PF_ERR_INPUT, "pf_exodus_create: NULL argument");
   *ex = NULL;
   PF_CALL(check_bodies(pts, nbodies, body_names, body_start));
@@ -272,7 +316,7 @@ int pf_exodus_create_mixed(const char *path, const pf_points *pts, int nbodies,
                           "out of memory for the Exodus path %s", path);
   }
   memcpy(e->path, path, len);
-  int err = setup(e, pts, nbodies, body_names, body_start, hexes, nglobals, global_names);
+  int err = setup(e, pts, nbodies, body_names, body_start, hexes, nglobals, global_names, prov);
   if (err) {
     pf_exodus_destroy(&e);
     return err;

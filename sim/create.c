@@ -261,6 +261,7 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   const pf_node *root = pf_deck_root(sim->deck);
   PF_CALL(pf_deck_validate(sim->deck, root, pf_deck_keys, "the deck"));
   PF_CALL(check_units(sim, root));
+  PF_CALL(pf_sim_provenance(sim));
   PF_CALL(validate_materials(sim->deck, pf_node_get(root, "materials")));
   PF_CALL(pf_sim_setup_parallel(sim));
   PF_CALL(build_bodies(sim, root));
@@ -296,6 +297,7 @@ int pf_sim_destroy(pf_sim **s) {
   if (!sim) return 0;
   pf_exodus_destroy(&sim->exo);
   pf_history_destroy(&sim->hist);
+  pf_sim_provenance_free(sim);
   for (int b = 0; b < sim->nbodies; b++)
     if (sim->body[b].ops) sim->body[b].ops->destroy(&sim->body[b].data);
   for (int k = 0; k < sim->nwalls && sim->walls; k++) pf_wall_destroy(&sim->walls[k]);

@@ -61,6 +61,7 @@ typedef struct {
   int check, quiet;
   const char *sets[MAX_SETS];
   int nsets;
+  char command[8192];
 } cli;
 
 /* Returns -1 to go on, or an exit status. */
@@ -130,8 +131,21 @@ static int make_dir(const char *dir) {
   return err;
 }
 
+/* The command line as a shell would take it back (arguments with other than plain characters
+ * in single quotes), for the outputs' provenance. */
+static void command_line(int argc, char **argv, char *out, size_t len) {
+  size_t at = 0;
+  out[0] = '\0';
+  for (int i = 0; i < argc && at < len; i++) {
+    const int plain = argv[i][0] && strspn(argv[i], "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                   "0123456789_-+=.,/:@%") == strlen(argv[i]);
+    at += (size_t)snprintf(out + at, len - at, plain ? "%s%s" : "%s'%s'", i ? " " : "", argv[i]);
+  }
+}
+
 static int run(const cli *c) {
-  pf_sim_options opt = {.output_dir = c->output_dir, .restart_from = c->restart, .sets = c->sets, .nsets = c->nsets};
+  pf_sim_options opt = {.output_dir = c->output_dir, .restart_from = c->restart, .sets = c->sets, .nsets = c->nsets,
+                        .command_line = c->command};
   pf_sim *sim = NULL;
   int ierr = pf_sim_create(c->deck, &opt, &sim);
   if (ierr) return ierr == PF_ERR_INPUT ? 2 : 1;
@@ -159,7 +173,8 @@ int main(int argc, char **argv) {
    * fails with ENOSPC, and ends the run with a message instead of killing the process. */
   signal(SIGXFSZ, SIG_IGN);
   MPI_Init(&argc, &argv);
-  cli c = {0};
+  static cli c; /* (large: not on the stack) */
+  command_line(argc, argv, c.command, sizeof c.command);
   int status = parse_args(argc, argv, &c);
   if (status < 0) {
     pf_log_set_quiet(c.quiet);

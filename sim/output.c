@@ -130,7 +130,7 @@ static int open_exodus(pf_sim *sim, pf_sim_history_row *g) {
   if (pf_sim_spread_output(sim)) {
     char path[sizeof sim->exodus_path + 32];
     spread_name(sim->exodus_path, path, sizeof path);
-    return pf_exodus_create(path, sim->pts, sim->nbodies, sim->body_name, sim->body_start, g->n, names, &sim->exo);
+    return pf_exodus_create(path, sim->pts, sim->nbodies, sim->body_name, sim->body_start, g->n, names, &sim->prov, &sim->exo);
   }
   PF_CALL(pf_points_gather(sim->pts, &sim->joined));
   if (!sim->joined) return 0; /* rank 0 writes */
@@ -158,7 +158,7 @@ static int open_exodus(pf_sim *sim, pf_sim_history_row *g) {
   }
   if (!ierr)
     ierr = pf_exodus_create_mixed(sim->exodus_path, sim->joined, sim->nbodies, sim->body_name, start, hex, g->n,
-                                  names, &sim->exo);
+                                  names, &sim->prov, &sim->exo);
   for (int b = 0; b < sim->nbodies; b++) free(conn[b]);
   return ierr;
 }
@@ -166,7 +166,7 @@ static int open_exodus(pf_sim *sim, pf_sim_history_row *g) {
 int pf_sim_open_output(pf_sim *sim, pf_sim_history_row *g) {
   if (sim->opt.no_output) return 0;
   PF_CALL(pf_agree(open_exodus(sim, g), "creating the Exodus output %s", sim->exodus_path));
-  int ierr = pf_history_create(sim->history_path, g->n + 2, (const char *const *)g->names, g->units, &sim->hist);
+  int ierr = pf_history_create(sim->history_path, g->n + 2, (const char *const *)g->names, g->units, &sim->prov, &sim->hist);
   return pf_agree(ierr, "creating the history %s", sim->history_path);
 }
 

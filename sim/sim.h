@@ -18,6 +18,7 @@ typedef struct {
   const char *restart_from; /* a checkpoint to continue from, or NULL */
   const char *const *sets;  /* deck overrides "a.b.c=value" (--set), applied in order */
   int nsets;
+  const char *command_line; /* recorded in the outputs, or NULL */
 } pf_sim_options;
 
 /* Load and validate the deck and build everything; writes no file. */

@@ -73,6 +73,8 @@ struct pf_sim {
   /* output */
   long output_interval, history_interval;
   char exodus_path[4096], history_path[4096];
+  pf_provenance prov; /* written into the outputs (sim/provenance.c) */
+  char **prov_lines, title[256];
   int fragments;                /* output.fragments: label the fragments at every Exodus step */
   char fragments_path[4128];    /* <Exodus file less .e>.fragments.csv */
   long fragments_rows;          /* rows written to it so far */
@@ -93,6 +95,9 @@ struct pf_sim {
 
 extern const pf_key pf_parallel_keys[];
 int pf_sim_setup_parallel(pf_sim *sim);
+/* sim/provenance.c: the outputs' title and provenance lines (sim->prov), and their release. */
+int pf_sim_provenance(pf_sim *sim);
+void pf_sim_provenance_free(pf_sim *sim);
 /* Partition the bodies' points (clouds generated on every rank), keep this rank's points with
  * their families and ghosts, and attach them to the bodies. Collective. */
 int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc);

@@ -173,7 +173,7 @@ static void test_exodus(void) {
   pf_points *pts = make_points(&damage, &traction);
   if (!pts || damage < 0 || traction < 0) return;
   pf_exodus *ex = NULL;
-  PF_TEST_OK(pf_exodus_create(EXO_PATH, pts, 2, body_names, body_start, 2, global_names, &ex));
+  PF_TEST_OK(pf_exodus_create(EXO_PATH, pts, 2, body_names, body_start, 2, global_names, NULL, &ex));
   for (int s = 1; s <= 2 && ex; s++) {
     double g[2] = {global_at(s, 0), global_at(s, 1)};
     fill_step(pts, s, damage, traction);
@@ -234,7 +234,7 @@ static void check_column(hid_t file, int c, int nrows) {
 
 static void test_history(void) {
   pf_history *h = NULL;
-  PF_TEST_OK(pf_history_create(H5_PATH, 3, cols, units, &h));
+  PF_TEST_OK(pf_history_create(H5_PATH, 3, cols, units, NULL, &h));
   PF_TEST_TRUE(h != NULL);
   for (int r = 0; r < 4 && h; r++) {
     double row[3] = {row_value(r, 0), row_value(r, 1), row_value(r, 2)};
@@ -261,12 +261,12 @@ static void test_errors(void) {
   pf_history *h = NULL;
   pf_error_set_quiet(1);
   pf_error_clear();
-  PF_TEST_TRUE(pf_exodus_create(bad_exo, pts, 2, body_names, body_start, 0, NULL, &ex) ==
+  PF_TEST_TRUE(pf_exodus_create(bad_exo, pts, 2, body_names, body_start, 0, NULL, NULL, &ex) ==
                PF_ERR_LIB);
   PF_TEST_TRUE(ex == NULL && strstr(pf_error_message(), "ex_create"));
   PF_TEST_TRUE(strstr(pf_error_message(), bad_exo) != NULL);
   pf_error_clear();
-  PF_TEST_TRUE(pf_history_create(bad_h5, 3, cols, units, &h) == PF_ERR_LIB);
+  PF_TEST_TRUE(pf_history_create(bad_h5, 3, cols, units, NULL, &h) == PF_ERR_LIB);
   PF_TEST_TRUE(h == NULL && strstr(pf_error_message(), "H5Fcreate"));
   PF_TEST_TRUE(strstr(pf_error_message(), bad_h5) != NULL);
   pf_error_clear();
