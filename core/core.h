@@ -489,16 +489,25 @@ typedef struct {
   int nlines;
 } pf_provenance;
 typedef struct pf_exodus pf_exodus;
+/* How an Exodus file is written (NULL: every variable, double precision, no compression). */
+typedef struct {
+  const pf_provenance *prov; /* the title and the QA and info records, or NULL */
+  int single;                /* 1: nodal and global values stored in single precision */
+  int compression;           /* 1-9: a netCDF-4 file, deflated at that level (shuffled); 0: classic */
+  const char *const *fields; /* the nodal variables written: displacement, velocity, force and output
+                                field names; NULL: all of them */
+  int nfields;
+} pf_exodus_options;
 /* Create an Exodus II file: coordinates of the owned points, one SPHERE element block per body
  * (body_start has nbodies + 1 entries from 0 to n_owned: points are grouped by body, body b
  * owning [body_start[b], body_start[b+1])), nodal variables displacement_{x,y,z},
  * velocity_{x,y,z}, force_{x,y,z} and every field flagged PF_FIELD_OUTPUT (a field with ncomp 3
  * gets _x/_y/_z, ncomp 6 _xx/_yy/_zz/_xy/_yz/_zx), and global variables named by global_names;
- * prov (or NULL) gives the title, a QA record (code, version, date, time) and the info records
+ * o->prov (or NULL) gives the title, a QA record (code, version, date, time) and the info records
  * (its lines, folded at 80 characters). */
 int pf_exodus_create(const char *path, const pf_points *pts, int nbodies,
                      const char *const *body_names, const pf_int *body_start, int nglobals,
-                     const char *const *global_names, const pf_provenance *prov, pf_exodus **ex);
+                     const char *const *global_names, const pf_exodus_options *o, pf_exodus **ex);
 /* An FE body's block: HEX8 elements whose nodes are points of the file (0-based indices in the
  * order of pts), element ids first_id + 1, first_id + 2, ... */
 typedef struct {
@@ -510,7 +519,7 @@ typedef struct {
 int pf_exodus_create_mixed(const char *path, const pf_points *pts, int nbodies,
                            const char *const *body_names, const pf_int *body_start,
                            const pf_exodus_hexes *hexes, int nglobals,
-                           const char *const *global_names, const pf_provenance *prov, pf_exodus **ex);
+                           const char *const *global_names, const pf_exodus_options *o, pf_exodus **ex);
 /* The joined view: rank 0 gets (*all, created on the first call) a copy of every owned point
  * in global-id order — X, u, v, f, body and the PF_FIELD_OUTPUT fields; other ranks get NULL.
  * Collective. */

@@ -17,7 +17,6 @@
 #include <time.h>
 
 #define PF_EX_NAME_LEN 64 /* longest variable / block name we hand to Exodus */
-#define PF_EX_NBUILTIN 9  /* displacement, velocity, force: 3 components each */
 
 struct pf_exodus {
   int exoid;      /* -1 when not open */
@@ -27,8 +26,8 @@ struct pf_exodus {
   int64_t nelem;  /* elements over all blocks */
   int nvars;      /* nodal variables, built-ins first */
   int nglobals;   /* global variables */
-  int *var_field; /* [nvars - PF_EX_NBUILTIN]: field index in pts->fields */
-  int *var_comp;  /* [nvars - PF_EX_NBUILTIN]: component in that field */
+  int *var_field; /* [nvars]: field index in pts->fields, or -1 - b for built-in b (u, v, f) */
+  int *var_comp;  /* [nvars]: component in that field */
   double *buf;    /* [n] one component of one variable */
 };
 
@@ -69,42 +68,54 @@ static int check_bodies(const pf_points *pts, int nbodies, const char *const *bo
 
 static int field_is_output(const pf_field *fld) { return (fld->flags & PF_FIELD_OUTPUT) != 0; }
 
-/* Count the nodal variables and record which field component each non-built-in one takes. */
-static int plan_variables(pf_exodus *ex, const pf_points *pts) {
-  int nextra = 0;
-  for (int k = 0; k < pts->nfields; k++)
-    if (field_is_output(&pts->fields[k])) nextra += pts->fields[k].ncomp;
-  ex->nvars = PF_EX_NBUILTIN + nextra;
-  PF_MALLOC(ex->var_field, nextra);
-  PF_MALLOC(ex->var_comp, nextra);
-  int j = 0;
-  for (int k = 0; k < pts->nfields; k++) {
-    if (!field_is_output(&pts->fields[k])) continue;
-    static const int tensor_order[6] = {0, 1, 2, 5, 3, 4}; /* xx yy zz xy yz zx from Voigt */
-    for (int c = 0; c < pts->fields[k].ncomp; c++, j++) {
-      ex->var_field[j] = k;
-      ex->var_comp[j] = pts->fields[k].ncomp == 6 ? tensor_order[c] : c;
-    }
+/* The built-in vectors, written first: sources -1, -2, -3 of var_field. */
+static const char *const builtin_name[3] = {"displacement", "velocity", "force"};
+
+/* Whether the options select the variable named name (all when they list none). */
+static int selected(const pf_exodus_options *o, const char *name) {
+  if (!o || !o->fields) return 1;
+  for (int k = 0; k < o->nfields; k++)
+    if (!strcmp(o->fields[k], name)) return 1;
+  return 0;
+}
+
+static void add_source(pf_exodus *ex, int field, int ncomp) {
+  static const int tensor_order[6] = {0, 1, 2, 5, 3, 4}; /* xx yy zz xy yz zx from Voigt */
+  for (int c = 0; c < ncomp; c++, ex->nvars++) {
+    ex->var_field[ex->nvars] = field;
+    ex->var_comp[ex->nvars] = ncomp == 6 ? tensor_order[c] : c;
   }
+}
+
+/* The nodal variables: the selected built-ins, then the selected output fields; for each, its
+ * source (a field index, or -1 - b for built-in b) and component. */
+static int plan_variables(pf_exodus *ex, const pf_points *pts, const pf_exodus_options *o) {
+  int max = 9;
+  for (int k = 0; k < pts->nfields; k++)
+    if (field_is_output(&pts->fields[k])) max += pts->fields[k].ncomp;
+  PF_MALLOC(ex->var_field, max);
+  PF_MALLOC(ex->var_comp, max);
+  ex->nvars = 0;
+  for (int b = 0; b < 3; b++)
+    if (selected(o, builtin_name[b])) add_source(ex, -1 - b, 3);
+  for (int k = 0; k < pts->nfields; k++)
+    if (field_is_output(&pts->fields[k]) && selected(o, pts->fields[k].name)) add_source(ex, k, pts->fields[k].ncomp);
   return PF_SUCCESS;
 }
 
-static void variable_name(const pf_field *fld, int comp, char *out) {
+static void variable_name(const char *base, int ncomp, int comp, char *out) {
   static const char xyz[3] = {'x', 'y', 'z'};
-  if (fld->ncomp == 1)
-    snprintf(out, PF_EX_NAME_LEN + 1, "%s", fld->name);
-  else if (fld->ncomp == 3)
-    snprintf(out, PF_EX_NAME_LEN + 1, "%s_%c", fld->name, xyz[comp]);
-  else if (fld->ncomp == 6) /* comp: the Voigt component */
-    snprintf(out, PF_EX_NAME_LEN + 1, "%s_%s", fld->name, (const char *[]){"xx", "yy", "zz", "yz", "zx", "xy"}[comp]);
+  if (ncomp == 1)
+    snprintf(out, PF_EX_NAME_LEN + 1, "%s", base);
+  else if (ncomp == 3)
+    snprintf(out, PF_EX_NAME_LEN + 1, "%s_%c", base, xyz[comp]);
+  else if (ncomp == 6) /* comp: the Voigt component */
+    snprintf(out, PF_EX_NAME_LEN + 1, "%s_%s", base, (const char *[]){"xx", "yy", "zz", "yz", "zx", "xy"}[comp]);
   else
-    snprintf(out, PF_EX_NAME_LEN + 1, "%s_%d", fld->name, comp);
+    snprintf(out, PF_EX_NAME_LEN + 1, "%s_%d", base, comp);
 }
 
 static int put_variable_names(pf_exodus *ex, const pf_points *pts) {
-  static const char *const builtin[PF_EX_NBUILTIN] = {
-      "displacement_x", "displacement_y", "displacement_z", "velocity_x", "velocity_y",
-      "velocity_z",     "force_x",        "force_y",        "force_z"};
   char(*store)[PF_EX_NAME_LEN + 1] = NULL;
   char **names = NULL;
   PF_MALLOC(store, ex->nvars);
@@ -115,12 +126,10 @@ static int put_variable_names(pf_exodus *ex, const pf_points *pts) {
                           "out of memory for %d Exodus variable names", ex->nvars);
   }
   for (int j = 0; j < ex->nvars; j++) {
+    const int k = ex->var_field[j];
     names[j] = store[j];
-    if (j < PF_EX_NBUILTIN)
-      snprintf(store[j], sizeof(store[j]), "%s", builtin[j]);
-    else
-      variable_name(&pts->fields[ex->var_field[j - PF_EX_NBUILTIN]],
-                    ex->var_comp[j - PF_EX_NBUILTIN], store[j]);
+    if (k < 0) variable_name(builtin_name[-1 - k], 3, ex->var_comp[j], store[j]);
+    else variable_name(pts->fields[k].name, pts->fields[k].ncomp, ex->var_comp[j], store[j]);
   }
   int st = ex_put_variable_param(ex->exoid, EX_NODAL, ex->nvars);
   if (st >= 0) st = ex_put_variable_names(ex->exoid, EX_NODAL, ex->nvars, names);
@@ -218,11 +227,17 @@ static int put_blocks(pf_exodus *ex, int nbodies, const char *const *body_names,
 }
 
 static int open_file(pf_exodus *ex, int nbodies, const pf_int *body_start, const pf_exodus_hexes *hexes,
-                     const char *title) {
-  int cpu_ws = 8, io_ws = 8;
-  int mode = EX_CLOBBER | EX_LARGE_MODEL | EX_MAPS_INT64_API | EX_BULK_INT64_API;
+                     const pf_exodus_options *o) {
+  const char *title = o && o->prov && o->prov->title && o->prov->title[0] ? o->prov->title : NULL;
+  int cpu_ws = 8, io_ws = o && o->single ? 4 : 8; /* (Exodus converts the doubles given to it) */
+  int mode = EX_CLOBBER | EX_MAPS_INT64_API | EX_BULK_INT64_API;
+  mode |= o && o->compression > 0 ? EX_NETCDF4 : EX_LARGE_MODEL;
   ex->exoid = ex_create(ex->path, mode, &cpu_ws, &io_ws);
   PF_EX_TRY(ex, ex->exoid, "ex_create");
+  if (o && o->compression > 0) {
+    PF_EX_TRY(ex, ex_set_option(ex->exoid, EX_OPT_COMPRESSION_LEVEL, o->compression), "ex_set_option(compression)");
+    PF_EX_TRY(ex, ex_set_option(ex->exoid, EX_OPT_COMPRESSION_SHUFFLE, 1), "ex_set_option(shuffle)");
+  }
   PF_EX_TRY(ex, ex_set_max_name_length(ex->exoid, PF_EX_NAME_LEN), "ex_set_max_name_length");
   int64_t nelem = 0; /* one SPHERE element per point of a PD body, the hexahedra of an FE body */
   for (int b = 0; b < nbodies; b++)
@@ -273,10 +288,11 @@ static int put_provenance(pf_exodus *ex, const pf_provenance *p) {
 
 static int setup(pf_exodus *ex, const pf_points *pts, int nbodies, const char *const *body_names,
                  const pf_int *body_start, const pf_exodus_hexes *hexes, int nglobals,
-                 const char *const *global_names, const pf_provenance *prov) {
-  PF_CALL(plan_variables(ex, pts));
+                 const char *const *global_names, const pf_exodus_options *o) {
+  const pf_provenance *prov = o ? o->prov : NULL;
+  PF_CALL(plan_variables(ex, pts, o));
   PF_MALLOC(ex->buf, ex->n);
-  PF_CALL(open_file(ex, nbodies, body_start, hexes, prov && prov->title && prov->title[0] ? prov->title : NULL));
+  PF_CALL(open_file(ex, nbodies, body_start, hexes, o));
   if (prov) PF_CALL(put_provenance(ex, prov));
   PF_CALL(put_coordinates(ex, pts));
   PF_CALL(put_blocks(ex, nbodies, body_names, body_start, hexes));
@@ -289,15 +305,15 @@ static int setup(pf_exodus *ex, const pf_points *pts, int nbodies, const char *c
 
 int pf_exodus_create(const char *path, const pf_points *pts, int nbodies,
                      const char *const *body_names, const pf_int *body_start, int nglobals,
-                     const char *const *global_names, const pf_provenance *prov, pf_exodus **ex) {
+                     const char *const *global_names, const pf_exodus_options *o, pf_exodus **ex) {
   return pf_exodus_create_mixed(path, pts, nbodies, body_names, body_start, NULL, nglobals,
-                                global_names, prov, ex);
+                                global_names, o, ex);
 }
 
 int pf_exodus_create_mixed(const char *path, const pf_points *pts, int nbodies,
                            const char *const *body_names, const pf_int *body_start,
                            const pf_exodus_hexes *hexes, int nglobals,
-                           const char *const *global_names, const pf_provenance *prov, pf_exodus **ex) {
+                           const char *const *global_names, const pf_exodus_options *o, pf_exodus **ex) {
   PF_CHECK(path && pts && ex, PF_ERR_INPUT, "pf_exodus_create: NULL argument");
   *ex = NULL;
   PF_CALL(check_bodies(pts, nbodies, body_names, body_start));
@@ -316,7 +332,7 @@ int pf_exodus_create_mixed(const char *path, const pf_points *pts, int nbodies,
                           "out of memory for the Exodus path %s", path);
   }
   memcpy(e->path, path, len);
-  int err = setup(e, pts, nbodies, body_names, body_start, hexes, nglobals, global_names, prov);
+  int err = setup(e, pts, nbodies, body_names, body_start, hexes, nglobals, global_names, o);
   if (err) {
     pf_exodus_destroy(&e);
     return err;
@@ -343,8 +359,9 @@ static int check_fields(const pf_exodus *ex, const pf_points *pts) {
   PF_CHECK(pts->n_owned == ex->n, PF_ERR_RUN,
            "Exodus output %s: %" PF_INT_FMT " points, the file was created with %" PF_INT_FMT,
            ex->path, pts->n_owned, ex->n);
-  for (int j = 0; j < ex->nvars - PF_EX_NBUILTIN; j++) {
+  for (int j = 0; j < ex->nvars; j++) {
     int k = ex->var_field[j];
+    if (k < 0) continue;
     PF_CHECK(k < pts->nfields && field_is_output(&pts->fields[k]) &&
                  ex->var_comp[j] < pts->fields[k].ncomp,
              PF_ERR_RUN, "Exodus output %s: the output fields changed since the file was created",
@@ -359,13 +376,10 @@ int pf_exodus_write(pf_exodus *ex, double time, const pf_points *pts, const doub
   ex->step++;
   PF_EX_TRY(ex, ex_put_time(ex->exoid, ex->step, &time), "ex_put_time");
   const double *vec[3] = {pts->u, pts->v, pts->f};
-  for (int j = 0; j < PF_EX_NBUILTIN; j++) {
-    gather(ex, vec[j / 3], 3, j % 3);
-    PF_CALL(put_nodal(ex, j));
-  }
-  for (int j = PF_EX_NBUILTIN; j < ex->nvars; j++) {
-    const pf_field *fld = &pts->fields[ex->var_field[j - PF_EX_NBUILTIN]];
-    gather(ex, fld->data, fld->ncomp, ex->var_comp[j - PF_EX_NBUILTIN]);
+  for (int j = 0; j < ex->nvars; j++) {
+    const int k = ex->var_field[j];
+    if (k < 0) gather(ex, vec[-1 - k], 3, ex->var_comp[j]);
+    else gather(ex, pts->fields[k].data, pts->fields[k].ncomp, ex->var_comp[j]);
     PF_CALL(put_nodal(ex, j));
   }
   if (ex->nglobals > 0) {

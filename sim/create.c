@@ -22,6 +22,12 @@ static const pf_key output_keys[] = {
     {"interval", PF_KEY_INT, 0, "100", "", "steps between Exodus outputs (0: first and last only)", NULL},
     {"history_file", PF_KEY_STRING, 0, "<deck name>.h5", "", "HDF5 history of global quantities", NULL},
     {"history_interval", PF_KEY_INT, 0, "10", "", "steps between history rows", NULL},
+    {"fields", PF_KEY_STRLIST, 0, "all", "",
+     "the nodal variables of the Exodus file: displacement, velocity, force and any of the output fields "
+     "(damage, stress, ...; an unknown name is an error listing the known ones)", NULL},
+    {"precision", PF_KEY_STRING, 0, "double", "", "double | single: the Exodus file's values in 8 or 4 bytes", NULL},
+    {"compression", PF_KEY_INT, 0, "0", "",
+     "0 (none) or 1-9: the Exodus file written as netCDF-4 and deflated at that level", NULL},
     {"layout", PF_KEY_STRING, 0, "joined", "",
      "on several ranks: joined (one Exodus file, written by rank 0) | spread (one file per rank, "
      "<file>.<ranks>.<rank>, which ParaView opens as one data set)", NULL},
@@ -298,6 +304,7 @@ int pf_sim_destroy(pf_sim **s) {
   pf_exodus_destroy(&sim->exo);
   pf_history_destroy(&sim->hist);
   pf_sim_provenance_free(sim);
+  free(sim->exo_fields);
   for (int b = 0; b < sim->nbodies; b++)
     if (sim->body[b].ops) sim->body[b].ops->destroy(&sim->body[b].data);
   for (int k = 0; k < sim->nwalls && sim->walls; k++) pf_wall_destroy(&sim->walls[k]);

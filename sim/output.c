@@ -125,12 +125,50 @@ static void spread_name(const char *path, char *out, size_t len) {
   snprintf(out, len, "%s.%d.%0*d", path, size, width, pf_comm_rank());
 }
 
+/* Whether name is a nodal variable the Exodus file can hold; else an error listing them. */
+static int known_field(const pf_sim *sim, const pf_node *item) {
+  const char *name = pf_node_text(item);
+  char known[1024] = "displacement, velocity, force";
+  if (!strcmp(name, "displacement") || !strcmp(name, "velocity") || !strcmp(name, "force")) return 0;
+  for (int k = 0; k < sim->pts->nfields; k++) {
+    const pf_field *f = &sim->pts->fields[k];
+    if (!(f->flags & PF_FIELD_OUTPUT)) continue;
+    if (!strcmp(f->name, name)) return 0;
+    size_t at = strlen(known);
+    snprintf(known + at, sizeof known - at, ", %s", f->name);
+  }
+  return pf_deck_error(sim->deck, item, "fields", "no output field '%s' in this deck (known: %s)", name, known);
+}
+
+int pf_sim_setup_exodus_format(pf_sim *sim, const pf_node *out) {
+  const pf_deck *d = sim->deck;
+  const char *precision = "double";
+  long level = 0;
+  PF_CALL(pf_deck_string(d, out, "precision", &precision));
+  PF_CALL(pf_deck_int(d, out, "compression", &level));
+  if (strcmp(precision, "double") && strcmp(precision, "single"))
+    return pf_deck_error(d, pf_node_get(out, "precision"), "precision", "double or single (got '%s')", precision);
+  if (level < 0 || level > 9)
+    return pf_deck_error(d, pf_node_get(out, "compression"), "compression", "0 to 9 (got %ld)", level);
+  sim->exo_opt = (pf_exodus_options){&sim->prov, !strcmp(precision, "single"), (int)level, NULL, 0};
+  const pf_node *list = pf_node_get(out, "fields");
+  if (!list) return 0;
+  free(sim->exo_fields);
+  PF_MALLOC(sim->exo_fields, pf_node_count(list) + 1);
+  for (int k = 0; k < pf_node_count(list); k++) {
+    PF_CALL(known_field(sim, pf_node_item(list, k)));
+    sim->exo_fields[k] = pf_node_text(pf_node_item(list, k));
+  }
+  sim->exo_opt.fields = sim->exo_fields, sim->exo_opt.nfields = pf_node_count(list);
+  return 0;
+}
+
 static int open_exodus(pf_sim *sim, pf_sim_history_row *g) {
   const char *const *names = (const char *const *)g->names + 2;
   if (pf_sim_spread_output(sim)) {
     char path[sizeof sim->exodus_path + 32];
     spread_name(sim->exodus_path, path, sizeof path);
-    return pf_exodus_create(path, sim->pts, sim->nbodies, sim->body_name, sim->body_start, g->n, names, &sim->prov, &sim->exo);
+    return pf_exodus_create(path, sim->pts, sim->nbodies, sim->body_name, sim->body_start, g->n, names, &sim->exo_opt, &sim->exo);
   }
   PF_CALL(pf_points_gather(sim->pts, &sim->joined));
   if (!sim->joined) return 0; /* rank 0 writes */
@@ -158,7 +196,7 @@ static int open_exodus(pf_sim *sim, pf_sim_history_row *g) {
   }
   if (!ierr)
     ierr = pf_exodus_create_mixed(sim->exodus_path, sim->joined, sim->nbodies, sim->body_name, start, hex, g->n,
-                                  names, &sim->prov, &sim->exo);
+                                  names, &sim->exo_opt, &sim->exo);
   for (int b = 0; b < sim->nbodies; b++) free(conn[b]);
   return ierr;
 }

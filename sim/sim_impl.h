@@ -74,6 +74,8 @@ struct pf_sim {
   long output_interval, history_interval;
   char exodus_path[4096], history_path[4096];
   pf_provenance prov; /* written into the outputs (sim/provenance.c) */
+  pf_exodus_options exo_opt; /* output.fields, precision, compression (sim/output.c) */
+  const char **exo_fields;
   char **prov_lines, title[256];
   int fragments;                /* output.fragments: label the fragments at every Exodus step */
   char fragments_path[4128];    /* <Exodus file less .e>.fragments.csv */
@@ -95,6 +97,8 @@ struct pf_sim {
 
 extern const pf_key pf_parallel_keys[];
 int pf_sim_setup_parallel(pf_sim *sim);
+/* sim/output.c: output.fields, precision and compression, checked against the output fields. */
+int pf_sim_setup_exodus_format(pf_sim *sim, const pf_node *out);
 /* sim/provenance.c: the outputs' title and provenance lines (sim->prov), and their release. */
 int pf_sim_provenance(pf_sim *sim);
 void pf_sim_provenance_free(pf_sim *sim);

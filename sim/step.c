@@ -119,7 +119,7 @@ int pf_sim_setup_output(pf_sim *sim) {
     return pf_deck_error(d, pf_node_get(out, "history_interval"), "history_interval", "must be at least 1");
   pf_sim_output_name(sim, file, ".e", sim->exodus_path, sizeof sim->exodus_path);
   pf_sim_output_name(sim, hfile, ".h5", sim->history_path, sizeof sim->history_path);
-  return 0;
+  return pf_sim_setup_exodus_format(sim, out);
 }
 
 static void half_kick(pf_points *p, double dt) {
