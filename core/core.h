@@ -287,7 +287,7 @@ int pf_lattice_fill(const pf_region *r, double h, const double origin[3], pf_poi
 /* The polar lattice of a cylinder or tube (core/lattice_polar.c): layers, rings and sectors
  * of edge about h tiling the shape, a point at each cell's centre with the cell's volume. */
 int pf_polar_fill(const pf_region *r, double h, pf_point_cloud *pc);
-int pf_point_file_read(const char *path, pf_point_cloud *pc);
+int pf_point_file_read(const char *path, int peridigm, pf_point_cloud *pc);
 /* Permutation that orders points along a Morton (Z-order) curve. */
 int pf_morton_order(pf_int n, const double *X, pf_int *perm);
 

@@ -28,7 +28,12 @@ const pf_key pf_geometry_keys[] = {
      "random offset of each point, uniform in [-a h, a h] per component", NULL},
     {"seed", PF_KEY_INT, 0, "1", "", "seed of the perturbation", NULL},
     {"file", PF_KEY_STRING, 0, NULL, "",
-     "points_file: text file, one point a line: x y z volume block (relative to the deck)", NULL},
+     "points_file: text file, one point a line (relative to the deck; '#' starts a comment)", NULL},
+    {"columns", PF_KEY_STRING, 0, "perifem", "",
+     "points_file: perifem (x y z volume [block]) | peridigm (x y z block_id volume, Peridigm's text "
+     "discretization)", NULL},
+    {"scale", PF_KEY_REAL, 0, "1", "",
+     "points_file: the file's length unit in metres (x, y, z times scale, volume times scale^3)", NULL},
     {"block", PF_KEY_INT, 0, NULL, "", "points_file: take only the points of this block", NULL},
     PF_KEY_END};
 
@@ -145,7 +150,30 @@ static void perturb(pf_point_cloud *pc, double amplitude, uint64_t seed) {
   }
 }
 
-int pf_point_file_read(const char *path, pf_point_cloud *pc) {
+/* One point of a line: "x y z volume [block]", or Peridigm's "x y z block_id volume"; the
+ * number of values read (0 when the line has text after them). */
+static int parse_point(const char *p, int peridigm, double x[3], double *vol, double *block) {
+  double v[5];
+  int used = 0, got = 0;
+  for (; got < 5; got++) {
+    int more = 0;
+    if (sscanf(p + used, "%lf %n", &v[got], &more) != 1) break;
+    used += more;
+  }
+  if (p[used] != '\0' && p[used] != '#' && p[used] != '\n') return 0; /* trailing text */
+  x[0] = v[0], x[1] = v[1], x[2] = v[2], *block = 0;
+  if (peridigm) {
+    if (got != 5) return 0;
+    *block = v[3], *vol = v[4];
+  } else {
+    if (got < 4) return 0;
+    *vol = v[3];
+    if (got == 5) *block = v[4];
+  }
+  return got;
+}
+
+int pf_point_file_read(const char *path, int peridigm, pf_point_cloud *pc) {
   memset(pc, 0, sizeof *pc);
   FILE *fp = fopen(path, "r");
   PF_CHECK(fp, PF_ERR_INPUT, "cannot open point file '%s': %s", path, strerror(errno));
@@ -157,18 +185,12 @@ int pf_point_file_read(const char *path, pf_point_cloud *pc) {
     char *p = line;
     while (*p == ' ' || *p == '\t') p++;
     if (*p == '#' || *p == '\n' || *p == '\0') continue;
-    double x[3], vol, block = 0;
-    int used = 0, got = sscanf(p, "%lf %lf %lf %lf %n", &x[0], &x[1], &x[2], &vol, &used);
-    if (got == 4 && p[used] != '\0' && p[used] != '#') {
-      int more = 0;
-      got += sscanf(p + used, "%lf %n", &block, &more) == 1;
-      used += more;
-    }
-    if (got >= 4 && p[used] != '\0' && p[used] != '#' && p[used] != '\n') got = 0; /* trailing text */
-    if (got < 4 || !isfinite(x[0] + x[1] + x[2] + vol) || !(vol > 0) || block != floor(block))
+    double x[3], vol = 0, block = 0;
+    if (!parse_point(p, peridigm, x, &vol, &block) || !isfinite(x[0] + x[1] + x[2] + vol) || !(vol > 0) ||
+        block != floor(block))
       ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
-                            "%s:%d: expected 'x y z volume [block]' with a positive volume and an integer block", path,
-                            lineno);
+                            "%s:%d: expected '%s' with a positive volume and an integer block", path, lineno,
+                            peridigm ? "x y z block_id volume" : "x y z volume [block]");
     else
       ierr = cloud_push(pc, &cap, x, vol, (int32_t)block);
   }
@@ -218,7 +240,19 @@ static int cloud_from_file(const pf_deck *d, const pf_node *g, pf_point_cloud *p
     return pf_deck_error(d, pf_node_get(g, "file"), "file", "cannot open point file '%s': %s",
                          path, strerror(errno));
   fclose(probe);
-  PF_CALL(pf_point_file_read(path, pc));
+  const char *columns = "perifem";
+  double scale = 1;
+  PF_CALL(pf_deck_string(d, g, "columns", &columns));
+  PF_CALL(pf_deck_real(d, g, "scale", &scale));
+  if (strcmp(columns, "perifem") && strcmp(columns, "peridigm"))
+    return pf_deck_error(d, pf_node_get(g, "columns"), "columns", "perifem or peridigm (got '%s')", columns);
+  if (!(scale > 0)) return pf_deck_error(d, pf_node_get(g, "scale"), "scale", "must be positive (got %g)", scale);
+  PF_CALL(pf_point_file_read(path, !strcmp(columns, "peridigm"), pc));
+  for (pf_int i = 0; i < pc->n; i++) {
+    for (int c = 0; c < 3; c++) pc->X[3 * i + c] *= scale;
+    pc->vol[i] *= scale * scale * scale;
+    pc->cell[i] *= scale;
+  }
   PF_CALL(check_distinct(path, pc));
   long block = -1;
   PF_CALL(pf_deck_int(d, g, "block", &block));
