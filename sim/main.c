@@ -21,6 +21,8 @@ static void usage(FILE *fp) {
           "  --output-dir DIR   write output files into DIR (created when missing)\n"
           "  --restart FILE     continue from the checkpoint FILE (any number of ranks)\n"
           "  --quiet            print only errors, the summary's digest line excepted\n"
+          "  --strict           a run-health warning (energy error, hourglass, damage jump,\n"
+          "                     interpenetration) stops the run as an error (exit status 1)\n"
           "  --progress MODE    auto (one line rewritten in place on a terminal, else plain lines),\n"
           "                     plain or line; under mpirun the ranks see a pseudo-terminal even\n"
           "                     when mpirun's output goes to a file: use plain there\n"
@@ -52,7 +54,7 @@ static void version(void) {
 
 typedef struct {
   const char *deck, *output_dir, *restart;
-  int check, quiet;
+  int check, quiet, strict;
 } cli;
 
 /* Returns -1 to go on, or an exit status. */
@@ -64,6 +66,7 @@ static int parse_args(int argc, char **argv, cli *c) {
     if (!strcmp(a, "--deck-keys")) return pf_deck_reference(stdout);
     if (!strcmp(a, "--check")) c->check = 1;
     else if (!strcmp(a, "--quiet")) c->quiet = 1;
+    else if (!strcmp(a, "--strict")) c->strict = 1;
     else if (!strcmp(a, "--progress")) {
       const char *m = i + 1 < argc ? argv[++i] : "";
       if (strcmp(m, "auto") && strcmp(m, "plain") && strcmp(m, "line")) {
@@ -117,7 +120,7 @@ static int make_dir(const char *dir) {
 }
 
 static int run(const cli *c) {
-  pf_sim_options opt = {.output_dir = c->output_dir, .restart_from = c->restart};
+  pf_sim_options opt = {.output_dir = c->output_dir, .restart_from = c->restart, .strict = c->strict};
   pf_sim *sim = NULL;
   int ierr = pf_sim_create(c->deck, &opt, &sim);
   if (ierr) return ierr == PF_ERR_INPUT ? 2 : 1;

@@ -16,6 +16,7 @@ typedef struct {
   const char *output_dir; /* NULL: the current directory */
   int no_output;          /* 1: write no Exodus or history file (tests) */
   const char *restart_from; /* a checkpoint to continue from, or NULL */
+  int strict;             /* 1: a run-health warning stops the run as an error (--strict) */
 } pf_sim_options;
 
 /* Load and validate the deck and build everything; writes no file. */
