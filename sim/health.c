@@ -58,9 +58,9 @@ static int energy(pf_sim *sim, const pf_sim_history_row *g, const double *s) {
       worst = b;
   const double change = body_energy(&s[H_N * worst]) - sim->health.e0[worst];
   char whose[160];
-  if (sim->nbodies == 1) snprintf(whose, sizeof whose, "body '%s', the only body", sim->body_name[0]);
+  if (sim->nbodies == 1) snprintf(whose, sizeof whose, "in body '%s', the only body", sim->body_name[0]);
   else
-    snprintf(whose, sizeof whose, "the whole run's, not one body's: body '%s' changed most since step %ld (%+.3g J)",
+    snprintf(whose, sizeof whose, "over the whole run, not one body: body '%s' changed most since step %ld (%+.3g J)",
              sim->body_name[worst], sim->health.step0, change);
   const double level[2] = {PF_HEALTH_ENERGY_LOW, PF_HEALTH_ENERGY_HIGH};
   for (int k = 0; k < 2; k++) {
@@ -69,7 +69,7 @@ static int energy(pf_sim *sim, const pf_sim_history_row *g, const double *s) {
     snprintf(what, sizeof what, "energy error %g %%", 100 * level[k]);
     PF_CALL(warn(sim, what,
                  "energy balance error passed %g %% at t = %.4e s (step %ld): %.3g J, %.3g %% of the largest energy "
-                 "in play (%.3g J); the balance is %s",
+                 "in play (%.3g J), %s",
                  100 * level[k], sim->t, sim->step, g->values[2 + G_EERR], 100 * err, pf_sim_energy_scale(g), whose));
   }
   return 0;
