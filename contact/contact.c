@@ -252,8 +252,10 @@ static int contact_setup(const pf_deck *d, const pf_node *map, pf_contact *c) {
   for (int k = 0; k < c->npairs; k++) {
     PF_CALL(read_pair(d, pf_node_item(pairs, k), c->nbodies, c->body, &c->pair[k]));
     rmax = fmax(rmax, c->pair[k].radius);
+    c->pair[k].length = c->pair[k].radius, c->pair[k].gap = INFINITY;
     if (c->pair[k].kind == PF_PAIR_SURFACES) /* r_c may be 0: half the finer spacing */
-      rmax = fmax(rmax, 0.5 * fmin(c->body[c->pair[k].a].spacing, c->body[c->pair[k].b].spacing));
+      c->pair[k].length = fmax(c->pair[k].radius, 0.5 * fmin(c->body[c->pair[k].a].spacing, c->body[c->pair[k].b].spacing));
+    rmax = fmax(rmax, c->pair[k].length);
     c->has_fe |= c->pair[k].kind != PF_PAIR_SHORT_RANGE;
   }
   c->skin = rmax;
@@ -411,3 +413,9 @@ int pf_contact_self_pair(const pf_contact *c, int b) {
 int pf_contact_npairs(const pf_contact *c) { return c ? c->npairs : 0; }
 const char *pf_contact_pair_name(const pf_contact *c, int k) { return c->pair[k].name; }
 void pf_contact_pair_force(const pf_contact *c, int k, double f[3]) { memcpy(f, c->pair[k].force, sizeof c->pair[k].force); }
+
+double pf_contact_pair_gap(const pf_contact *c, int k, pf_contact_gap *info) {
+  const pf_contact_pair *p = &c->pair[k];
+  *info = (pf_contact_gap){p->a, p->b, p->kind == PF_PAIR_SURFACE || p->kind == PF_PAIR_SURFACES, p->length};
+  return p->gap;
+}

@@ -121,6 +121,18 @@ int pf_contact_self_pair(const pf_contact *c, int b);
 int pf_contact_npairs(const pf_contact *c);
 const char *pf_contact_pair_name(const pf_contact *c, int k);
 void pf_contact_pair_force(const pf_contact *c, int k, double f[3]);
+/* Pair k's smallest gap among this rank's interactions at the last force evaluation, over
+ * info->length (INFINITY: no interaction within reach): for a pair against an FE surface the
+ * signed distance of a point from the surface (negative: behind it, inside the body), for
+ * point pairs (short range, nodes) the distance of the two centres over the contact radius;
+ * info gets the pair's bodies, kind and length (m): r_c, or half the finer spacing of an FE <-> FE
+ * pair with r_c = 0. Read by the run-health monitor; not collective. */
+typedef struct {
+  int a, b;    /* the bodies (an FE <-> PD pair: a the FE body) */
+  int surface; /* 1: against a surface (signed gap) */
+  double length;
+} pf_contact_gap;
+double pf_contact_pair_gap(const pf_contact *c, int k, pf_contact_gap *info);
 /* Search statistics: rebuilds so far, and the contact share of the time (seconds spent). */
 void pf_contact_stats(const pf_contact *c, long *rebuilds, double *seconds);
 

@@ -31,6 +31,10 @@ typedef struct {
   int nside;         /* SURFACE / NODES: 1 (body a's surface); SURFACES: 2 (a's, then b's) */
   pf_contact_side side[2];
   double force[3];   /* total force on body a at the last evaluation (all ranks), N */
+  double gap;        /* smallest gap of this rank's interactions at the last evaluation over the
+                      * pair's length (surface pairs: signed, negative behind the surface;
+                      * point pairs: centre distance over r_c); INFINITY: none within reach */
+  double length;     /* the gap's scale: r_c, or half the finer spacing when r_c = 0 (FE <-> FE) */
 } pf_contact_pair;
 
 /* The side of pair p whose faces the entities of body `body` meet: the other body's

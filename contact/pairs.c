@@ -72,8 +72,9 @@ static int64_t find_bond(const pf_family *fam, const pf_points *pts, pf_int i, p
   return -1;
 }
 
-/* A chunk's sums: sums[SUM_ENERGY], sums[SUM_DISSIPATION], and pair k's force at
- * sums[SUM_FORCE + 3 k]. */
+/* A chunk's sums: sums[SUM_ENERGY], sums[SUM_DISSIPATION], pair k's force at
+ * sums[SUM_FORCE + 3 k], and after the forces pair k's smallest gap over the contact radius
+ * (a minimum, not a sum; read by the run-health monitor). */
 enum { SUM_ENERGY, SUM_DISSIPATION, SUM_FORCE };
 
 /* The contact radius of view entities i and j of short-range pair p, the bond between them k
@@ -108,6 +109,8 @@ static void short_range(pf_contact *c, int k, pf_int e, pf_int j, int64_t b, dou
   r = sqrt(r);
   const double rc = pair_radius(c, p, lo, hi, b);
   if (r >= rc || r == 0) return;
+  double *gap = &sums[SUM_FORCE + 3 * c->npairs + k];
+  *gap = fmin(*gap, r / rc);
   double n[3] = {d[0] / r, d[1] / r, d[2] / r}, vrel[3], ft[3];
   double F = p->stiffness * (rc - r) * (c->vol[lo] * c->vol[hi]);
   for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * lo + a] - c->v[3 * hi + a];
@@ -135,6 +138,8 @@ static int push(pf_contact *c, int k, int body, pf_int e, const pf_int *nv, int 
   }
   for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * e + a] - vs[a];
   double F = p->stiffness * (p->radius - g);
+  double *gap = &sums[SUM_FORCE + 3 * c->npairs + k];
+  *gap = fmin(*gap, g / p->length);
   sums[SUM_DISSIPATION] += pf_contact_friction(p->friction, F, n, vrel, c->m[e] * ms / (c->m[e] + ms), dt, ft);
   const double on_a = body == p->a ? -1.0 : 1.0;
   for (int a = 0; a < 3; a++) {
@@ -270,7 +275,7 @@ static int particle_range(pf_contact *c, const pf_points *pts, pf_int e0, pf_int
  * count. Sets the pairs' forces; adds to *U and *diss. */
 static int particle_forces(pf_contact *c, const pf_points *pts, double dt, share_list *l, double *U, double *diss) {
   enum { CHUNK = 2048 };
-  const int ns = SUM_FORCE + 3 * c->npairs;
+  const int ns = SUM_FORCE + 4 * c->npairs;
   const int64_t nchunk = (c->nown + CHUNK - 1) / CHUNK;
   int nthreads = 1, ierr = 0;
 #if defined(_OPENMP)
@@ -280,6 +285,8 @@ static int particle_forces(pf_contact *c, const pf_points *pts, double dt, share
   share_list *tl = calloc((size_t)nthreads, sizeof *tl);
   if (!sums || !tl) free(sums), free(tl);
   PF_CHECK(sums && tl, PF_ERR_MEMORY, "out of memory for the contact sums of %lld chunks", (long long)nchunk);
+  for (int64_t q = 0; q < nchunk; q++)
+    for (int k = 0; k < c->npairs; k++) sums[q * ns + SUM_FORCE + 3 * c->npairs + k] = INFINITY;
 #pragma omp parallel for schedule(dynamic, 1) reduction(max : ierr)
   for (int64_t q = 0; q < nchunk; q++) {
     int t = 0;
@@ -290,12 +297,13 @@ static int particle_forces(pf_contact *c, const pf_points *pts, double dt, share
     const int err = particle_range(c, pts, e0, e1, dt, &tl[t], &sums[q * ns]);
     ierr = err > ierr ? err : ierr; /* (the reduction's private copy starts at INT_MIN) */
   }
-  for (int k = 0; k < c->npairs; k++) memset(c->pair[k].force, 0, sizeof c->pair[k].force);
+  for (int k = 0; k < c->npairs; k++) memset(c->pair[k].force, 0, sizeof c->pair[k].force), c->pair[k].gap = INFINITY;
   for (int64_t q = 0; !ierr && q < nchunk; q++) {
     const double *s = &sums[q * ns];
     *U += s[SUM_ENERGY], *diss += s[SUM_DISSIPATION];
     for (int k = 0; k < c->npairs; k++)
       for (int a = 0; a < 3; a++) c->pair[k].force[a] += s[SUM_FORCE + 3 * k + a];
+    for (int k = 0; k < c->npairs; k++) c->pair[k].gap = fmin(c->pair[k].gap, s[SUM_FORCE + 3 * c->npairs + k]);
   }
   for (int t = 0; !ierr && t < nthreads; t++) /* one list: each thread's in turn */
     for (int64_t q = 0; q < tl[t].n && !ierr; q++) ierr = share_append(l, &tl[t].s[q]);

@@ -25,6 +25,8 @@ static void usage(FILE *fp) {
           "                     name; a YAML value; repeatable; applied after include: and before\n"
           "                     the deck's parameters are substituted)\n"
           "  --quiet            print only errors, the summary's digest line excepted\n"
+          "  --strict           a run-health warning (energy error, hourglass, damage jump,\n"
+          "                     interpenetration) stops the run as an error (exit status 1)\n"
           "  --progress MODE    auto (one line rewritten in place on a terminal, else plain lines),\n"
           "                     plain or line; under mpirun the ranks see a pseudo-terminal even\n"
           "                     when mpirun's output goes to a file: use plain there\n"
@@ -58,7 +60,7 @@ enum { MAX_SETS = 256 };
 
 typedef struct {
   const char *deck, *output_dir, *restart;
-  int check, quiet;
+  int check, quiet, strict;
   const char *sets[MAX_SETS];
   int nsets;
   char command[8192];
@@ -73,6 +75,7 @@ static int parse_args(int argc, char **argv, cli *c) {
     if (!strcmp(a, "--deck-keys")) return pf_deck_reference(stdout);
     if (!strcmp(a, "--check")) c->check = 1;
     else if (!strcmp(a, "--quiet")) c->quiet = 1;
+    else if (!strcmp(a, "--strict")) c->strict = 1;
     else if (!strcmp(a, "--progress")) {
       const char *m = i + 1 < argc ? argv[++i] : "";
       if (strcmp(m, "auto") && strcmp(m, "plain") && strcmp(m, "line")) {
@@ -145,7 +148,7 @@ static void command_line(int argc, char **argv, char *out, size_t len) {
 
 static int run(const cli *c) {
   pf_sim_options opt = {.output_dir = c->output_dir, .restart_from = c->restart, .sets = c->sets, .nsets = c->nsets,
-                        .command_line = c->command};
+                        .command_line = c->command, .strict = c->strict};
   pf_sim *sim = NULL;
   int ierr = pf_sim_create(c->deck, &opt, &sim);
   if (ierr) return ierr == PF_ERR_INPUT ? 2 : 1;

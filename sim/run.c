@@ -7,11 +7,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The energy balance error relative to the largest energy in play. */
-static double relative_error(const pf_sim_history_row *g) {
+double pf_sim_energy_scale(const pf_sim_history_row *g) {
   const double *v = g->values + 2;
-  double scale = fmax(fabs(g->e0), fmax(fabs(v[G_WEXT]), v[G_KE] + v[G_EL] + v[G_CONTACT] + fabs(v[G_FEINT])));
-  return scale > 0 ? fabs(v[G_EERR]) / scale : 0.0;
+  return fmax(fabs(g->e0), fmax(fabs(v[G_WEXT]), v[G_KE] + v[G_EL] + v[G_CONTACT] + fabs(v[G_FEINT])));
+}
+
+double pf_sim_energy_error(const pf_sim_history_row *g) {
+  const double scale = pf_sim_energy_scale(g);
+  return scale > 0 ? fabs(g->values[2 + G_EERR]) / scale : 0.0;
 }
 
 /* How far the run is, 0..1: by time when the step follows the deformation (the step count is
@@ -35,7 +38,7 @@ static void progress(const pf_sim *sim, const pf_sim_history_row *g, double wall
                   : snprintf(line, sizeof line, "step %ld/%ld", sim->step, sim->nsteps);
   snprintf(line + n, sizeof line - n,
            "  t = %.4e / %.4e s (%.0f %%)  %.1f steps/s  about %.0f s left  energy error %.2e  damage %.4g",
-           sim->t, tend, 100 * frac, rate, el * (1 - frac) / fmax(frac, 1e-9), relative_error(g),
+           sim->t, tend, 100 * frac, rate, el * (1 - frac) / fmax(frac, 1e-9), pf_sim_energy_error(g),
            g->values[2 + G_DAMAGE]);
   if (status) pf_log_status("%s", line);
   else pf_log("%s\n", line);
@@ -80,9 +83,10 @@ static void summary(const pf_sim *sim, const pf_sim_history_row *g, double wall)
            sim->wall_loop > 0 ? 100 * sec / sim->wall_loop : 0.0, v[G_CDISS]);
   }
   pf_log("  final damage fraction %.6g, energy balance error %.3g J (relative %.3g; damage dissipated %.3g J)\n",
-         v[G_DAMAGE], v[G_EERR], relative_error(g), v[G_DDISS]);
+         v[G_DAMAGE], v[G_EERR], pf_sim_energy_error(g), v[G_DDISS]);
   if (!sim->opt.no_output)
     pf_log("  output: %s%s, %s\n", sim->exodus_path, pf_sim_spread_output(sim) ? ".<ranks>.<rank>" : "", sim->history_path);
+  pf_sim_health_summary(sim);
 }
 
 /* Checkpoint at the deck's interval; on SIGTERM/SIGINT checkpoint and stop (*stop = 1). */
@@ -114,6 +118,7 @@ static int run_loop(pf_sim *sim, pf_sim_history_row *g, double wall0) {
       if (exo) PF_CALL(pf_sim_rebalance(sim));
       PF_CALL(pf_sim_globals_eval(sim, g, 0));
       PF_CALL(pf_sim_write_output(sim, g, exo, his, last));
+      if (his) PF_CALL(pf_sim_health_check(sim, g));
       loop0 += pf_wtime() - t0; /* output is not part of the step rate */
     }
     if (last) continue;
@@ -133,6 +138,7 @@ int pf_sim_run(pf_sim *sim) {
   if (!ierr) ierr = pf_sim_globals_eval(sim, &g, 1);
   if (!ierr) ierr = pf_sim_open_output(sim, &g);
   if (!ierr) ierr = pf_sim_write_output(sim, &g, 1, 1, 0);
+  if (!ierr) ierr = pf_sim_health_check(sim, &g);
   if (!ierr) ierr = run_loop(sim, &g, wall0);
   if (!ierr) summary(sim, &g, pf_wtime() - wall0);
   pf_sim_globals_free(&g);

@@ -19,6 +19,7 @@ typedef struct {
   const char *const *sets;  /* deck overrides "a.b.c=value" (--set), applied in order */
   int nsets;
   const char *command_line; /* recorded in the outputs, or NULL */
+  int strict;             /* 1: a run-health warning stops the run as an error (--strict) */
 } pf_sim_options;
 
 /* Load and validate the deck and build everything; writes no file. */

@@ -18,6 +18,18 @@ typedef struct {
 } pf_sim_scalars;
 
 enum { PF_PROBE_MAX_QUANTITIES = 8 };
+/* The run-health monitor's state (sim/health.c). */
+enum { PF_HEALTH_MAX_WARNINGS = 32 };
+typedef struct {
+  pf_body_energies local[PF_MAX_BODIES]; /* this rank's, from the last pf_sim_globals_get */
+  double e0[PF_MAX_BODIES];     /* each body's energy at the first check, J */
+  double damage[PF_MAX_BODIES]; /* each body's damaged fraction at the last check */
+  long step0;                   /* the step of the first check */
+  int started;                  /* the first check is done */
+  int n;                        /* warnings given so far */
+  char what[PF_HEALTH_MAX_WARNINGS][96]; /* each one's class and body, for the summary */
+} pf_sim_health;
+
 typedef struct {
   char name[64];
   int body;         /* -1: every body */
@@ -93,6 +105,7 @@ struct pf_sim {
   pf_int good_n;
   double good_t;
   long good_step;
+  pf_sim_health health; /* run-health monitor (sim/health.c) */
 };
 
 extern const pf_key pf_parallel_keys[];
@@ -186,6 +199,18 @@ int pf_sim_guard_save(pf_sim *sim);
 void pf_sim_guard_motion(pf_sim *sim, double dt);
 int pf_sim_guard_check(pf_sim *sim);
 void pf_sim_guard_free(pf_sim *sim);
+/* The largest energy in play, max(|E0|, |W_ext|, KE + W_el + U_contact + |U_FE|), J, and the
+ * energy balance error relative to it (sim/run.c). */
+double pf_sim_energy_scale(const pf_sim_history_row *g);
+double pf_sim_energy_error(const pf_sim_history_row *g);
+/* sim/health.c, the run-health monitor: at each history row (g just evaluated), warn on rank 0
+ * once per class and body when the energy error passes 1 % and 5 %, a body's hourglass energy
+ * passes 10 % of its internal energy, a body's damaged fraction rises by more than 0.1 between
+ * two rows, or a contact pair's bodies interpenetrate; with --strict the first warning is a run
+ * failure on every rank. Two small reductions. Collective. */
+int pf_sim_health_check(pf_sim *sim, const pf_sim_history_row *g);
+/* The summary's last line: "health: ok" or "health: N warnings (…)". */
+void pf_sim_health_summary(const pf_sim *sim);
 /* sim/body_state.c: body b's span of the store; the bond rows of every owned point (PD
  * families, FE node adjacency); the bodies' per-element state as tables (name fem_<body>, the
  * kinds with table ops); a re-partition that keeps that state. */

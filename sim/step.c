@@ -208,6 +208,7 @@ int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g) {
   for (int b = 0; b < sim->nbodies; b++) {
     pf_body_energies e;
     sim->body[b].ops->energies(sim->body[b].data, sim->pts, &e);
+    sim->health.local[b] = e; /* the run-health monitor's per-body figures */
     el += e.elastic, nb += e.bonds, nbroken += e.broken;
     for (int c = 0; c < 3; c++) fe[c] += e.fe[c];
   }

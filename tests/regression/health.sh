@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# The run-health monitor (docs/user_guide.md, "Run health"). Checks:
+#  1. a healthy run (an FE sphere of B-bar elements hitting a PD block, with contact, the
+#     block's self-contact and damage: data/sphere_on_block.yaml with `element: bbar`) prints
+#     "health: ok" and no warning;
+#  2. an FE box started 3.5 mm inside an LPS block it is in contact with
+#     (data/box_inside_block.yaml) exits 0 with warnings naming the bodies: the interpenetration
+#     at t = 0, the energy error (1 % and 5 %) and the box's hourglass energy; the summary counts
+#     them; with --strict it exits 1 at t = 0 with the interpenetration as the error, and no
+#     state digest;
+#  3. the user guide's minimal deck (taken from docs/user_guide.md) at 2 m/s instead of 20 m/s
+#     breaks a few bonds and ends between 1 % and 5 % of energy error: exactly the 1 % warning;
+#     the deck as the guide prints it passes 5 %: both energy warnings;
+#  4. on 2 ranks case 2 gives each warning once (not once per rank), the same summary as on one
+#     rank, and with --strict stops with the error.
+# usage: health.sh PERIFEM SCRATCH   (from the tests/ folder)
+set -u
+exe=$(cd "$(dirname "$1")" && pwd)/$(basename "$1") scratch=$2 fail=0
+source common/mpi_env.sh
+here=$PWD
+rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch"
+bad() { echo "FAIL: $*"; fail=1; }
+has() { grep -qF -- "$2" "$1" || bad "$1: no line with '$2'"; }
+count() { grep -c -- "$2" "$1"; }
+
+# 1. healthy
+sed "s#\.\./\.\./meshes/#$here/../meshes/#; s/^    material: steel$/    material: steel\n    element: bbar/" \
+  "$here/data/sphere_on_block.yaml" > sphere.yaml
+grep -q "element: bbar" sphere.yaml || bad "data/sphere_on_block.yaml changed: no line '    material: steel' to add B-bar to"
+"$exe" --progress plain --output-dir o1 sphere.yaml > healthy.log 2>&1 || bad "healthy run: exit $?"
+has healthy.log "health: ok"
+[ "$(count healthy.log 'perifem warning')" = 0 ] || bad "healthy run warns: $(grep 'perifem warning' healthy.log)"
+
+# 2. the FE box inside the LPS block
+cp "$here/data/box_inside_block.yaml" box.yaml
+"$exe" --progress plain --output-dir o2 box.yaml > box.log 2>&1 || bad "box inside block: exit $? (a warning is not an error)"
+has box.log "perifem warning: bodies 'box' and 'block' interpenetrate at t = 0.0000e+00 s (step 0)"
+has box.log "perifem warning: energy balance error passed 1 %"
+has box.log "perifem warning: energy balance error passed 5 %"
+has box.log "perifem warning: body 'box': hourglass energy"
+has box.log "health: 5 warnings (interpenetration 'box'/'block'; energy error 1 %; energy error 5 %; hourglass 'box'; damage jump 'block')"
+has box.log "state digest:"
+"$exe" --strict --output-dir o2s box.yaml > strict.log 2>&1
+rc=$?
+[ $rc = 1 ] || bad "--strict: exit $rc, expected 1"
+has strict.log "perifem error: bodies 'box' and 'block' interpenetrate at t = 0.0000e+00 s (step 0)"
+has strict.log "stopped by --strict"
+grep -q "state digest:" strict.log && bad "--strict: the stopped run printed a state digest"
+
+# 3. the user guide's minimal deck: at 2 m/s one energy warning, as printed two
+awk '/^A minimal deck:/ {on = 1; next} on && /^```yaml/ {copy = 1; next} copy && /^```/ {exit} copy' \
+  "$here/../docs/user_guide.md" > guide.yaml
+grep -q "initial_velocity: \[\"0\", \"0\", \"z > 0.0015 ? -20 : 0\"\]" guide.yaml ||
+  bad "docs/user_guide.md: the minimal deck changed; update this test ($(wc -l < guide.yaml) lines read)"
+sed 's/? -20 : 0/? -2 : 0/; s/final_time: 2.0e-6/final_time: 4.0e-6/' guide.yaml > slow.yaml
+printf 'output: {history_interval: 2}\n' >> slow.yaml
+"$exe" --output-dir o3 slow.yaml > slow.log 2>&1 || bad "minimal deck at 2 m/s: exit $?"
+[ "$(count slow.log 'perifem warning')" = 1 ] || bad "minimal deck at 2 m/s: $(count slow.log 'perifem warning') warnings, expected 1"
+has slow.log "perifem warning: energy balance error passed 1 %"
+has slow.log "health: 1 warning (energy error 1 %)"
+"$exe" --output-dir o3g guide.yaml > guide.log 2>&1 || bad "minimal deck: exit $?"
+has guide.log "perifem warning: energy balance error passed 5 %"
+
+# 4. two ranks
+run 2 "$exe" --progress plain --output-dir o4 box.yaml > box2.log 2>&1 || bad "2 ranks: exit $?"
+for w in "interpenetrate at t = 0" "passed 1 %" "passed 5 %" "body 'box': hourglass" "body 'block': damaged fraction"; do
+  [ "$(count box2.log "perifem warning: .*$w")" = 1 ] || bad "2 ranks: '$w' warned $(count box2.log "perifem warning: .*$w") times"
+done
+[ "$(grep '^health:' box2.log)" = "$(grep '^health:' box.log)" ] || bad "2 ranks: '$(grep '^health:' box2.log)'"
+run 2 "$exe" --strict --output-dir o4s box.yaml > strict2.log 2>&1 && bad "2 ranks --strict: exit 0"
+has strict2.log "interpenetrate at t = 0.0000e+00 s (step 0)"
+crash_in "$(cat strict2.log)" && bad "2 ranks --strict: crashed: $(cat strict2.log)"
+exit $fail
