@@ -6,7 +6,9 @@
 #               (tests/fuzz/fuzz_checkpoint.c), from seeds written here: the checkpoint of each
 #               deck in tests/fuzz/decks at step 2 (by build/perifem, or $PERIFEM), behind the
 #               byte that picks the deck, plus copies with damaged content (h5py, when installed).
-# New inputs go to build-fuzz/corpus_TARGET, crashes to build-fuzz/crash-*.
+# New inputs go to build-fuzz/corpus_TARGET, crashes to build-fuzz/crash-*. An input running longer
+# than FUZZ_TIMEOUT seconds (default 10, wall time) is a hang: on a machine shared with other
+# jobs, raise it (28_alias_bomb.yaml takes 1.4 s of CPU but 18 s of wall time at a load of 17).
 #   bash scripts/fuzz.sh [deck|checkpoint] [SECONDS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -68,5 +70,5 @@ mkdir -p build-fuzz/corpus_"$target"
 # exit would report MPI_Init's allocations as a crash of the last input.
 export ASAN_OPTIONS="detect_leaks=0" UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1" # (any UB is a crash)
 cd build-fuzz
-./fuzz_"$target" -max_total_time="$secs" -print_final_stats=1 -timeout=10 -rss_limit_mb=2048 -detect_leaks=0 \
+./fuzz_"$target" -max_total_time="$secs" -print_final_stats=1 -timeout="${FUZZ_TIMEOUT:-10}" -rss_limit_mb=2048 -detect_leaks=0 \
   "${extra[@]}" corpus_"$target" ../"$seeds"
