@@ -3,7 +3,7 @@
 # with ENOSPC (mpi_io_failure makes EFBIG with `ulimit -f`; this is the file system running out).
 # A bar (inputs/wave_in_bar.yaml cut to 30 x 10 x 10 points, 40 steps):
 #  (1) checkpoints at steps 20 and 40 into a tmpfs that holds the first (with its reserve) but
-#      not the second beside it: the run exits with status 1 within 30 s, no signal, with a
+#      not the second beside it: the run exits with status 1 within 60 s, no signal, with a
 #      message naming the checkpoint, the step and "No space left on device"; no .tmp is left,
 #      and the step-20 checkpoint restarts (on 1 rank, into another folder) to the digest of the
 #      uninterrupted 40-step run;
@@ -38,7 +38,7 @@ sed -E 's/^(\s*)interval: 1000$/\1interval: 5/; s/interval: 20$/interval: 0/' ck
 # expect_full LABEL OUT STATUS FILE: exit 1 in time, no signal, the message naming FILE and ENOSPC
 expect_full() {
   local label=$1 out=$2 status=$3 file=$4
-  [ "$status" -ne 124 ] || { echo "$label: still running after 30 s"; fail=1; return; }
+  [ "$status" -ne 124 ] || { echo "$label: still running after 60 s"; fail=1; return; }
   [ "$status" -eq 1 ] || { echo "$label: exit status $status, expected 1"; fail=1; }
   crash_in "$out" && { echo "$label: crashed:"; echo "$out"; fail=1; }
   echo "$out" | grep "perifem error" | grep -F "$file" | grep -q "No space left on device" ||
@@ -46,22 +46,23 @@ expect_full() {
 }
 
 # (1) the checkpoint
-ref=$(digest_of "$("$exe" --quiet --output-dir . ex.yaml 2>&1)")
-[ -n "$ref" ] || { echo "the uninterrupted run failed"; exit 1; }
+out=$(timeout 60 "$exe" --quiet --output-dir . ex.yaml 2>&1)
+ref=$(digest_of "$out")
+[ -n "$ref" ] || { echo "the uninterrupted run failed:"; echo "$out"; exit 1; }
 tmpfs ck 8192
 start=$(date +%s)
-out=$(timeout 30 mpirun --oversubscribe -np 2 "$exe" --quiet --output-dir ck ck.yaml 2>&1)
+out=$(timeout 60 mpirun --oversubscribe -np 2 "$exe" --quiet --output-dir ck ck.yaml 2>&1)
 expect_full checkpoint "$out" $? ck/cp.h5
 echo "$out" | grep "perifem error" | grep -q "step 40," || { echo "checkpoint: the message names no step 40:"; echo "$out"; fail=1; }
 [ ! -e ck/cp.h5.tmp ] || { echo "checkpoint: ck/cp.h5.tmp left behind"; fail=1; }
 mkdir -p again
-out=$(timeout 30 "$exe" --quiet --output-dir again --restart ck/cp.h5 ex.yaml 2>&1)
+out=$(timeout 60 "$exe" --quiet --output-dir again --restart ck/cp.h5 ex.yaml 2>&1)
 [ "$(digest_of "$out")" = "$ref" ] ||
   { echo "checkpoint: the step-20 checkpoint left in the full tmpfs does not restart to $ref:"; echo "$out"; fail=1; }
 
 # (2) the Exodus file
 tmpfs ex 1024
-out=$(timeout 30 mpirun --oversubscribe -np 2 "$exe" --quiet --output-dir ex ex.yaml 2>&1)
+out=$(timeout 60 mpirun --oversubscribe -np 2 "$exe" --quiet --output-dir ex ex.yaml 2>&1)
 expect_full Exodus "$out" $? ex/ex.e
 frames=$($PY -c "
 import netCDF4, sys
