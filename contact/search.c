@@ -405,7 +405,8 @@ static int build_candidates(pf_contact *c) {
   for (pf_int e = 0; e < c->nown && !ierr; e++) {
     c->cand_off[e] = n;
     ierr = entity_candidates(c, &g, fs, e, &n);
-    if (!ierr) qsort(&c->cand[c->cand_off[e]], (size_t)(n - c->cand_off[e]), sizeof *c->cand, cand_cmp);
+    if (!ierr && n > c->cand_off[e]) /* (none yet: c->cand may still be NULL, which qsort must not get) */
+      qsort(&c->cand[c->cand_off[e]], (size_t)(n - c->cand_off[e]), sizeof *c->cand, cand_cmp);
   }
   if (c->cand_off) c->cand_off[c->nown] = n;
   for (int k = 0; k < c->npairs; k++)

@@ -78,7 +78,7 @@ int pf_sim_contact_forces(pf_sim *sim, double dt) {
     PF_MALLOC(sim->sums, 2 * (size_t)n);
     sim->nsums = n;
   }
-  double *local = sim->sums, *sum = local + n;
+  double *local = sim->sums, *sum = local ? local + n : NULL; /* (NULL: no contact of any kind) */
   int ierr = 0;
   for (int k = 0; k < sim->nrigid && !ierr; k++)
     ierr = pf_rigid_force_local(sim->rigid[k], sim->pts, dt, &local[4 * k], &sim->contact_dissipation);
