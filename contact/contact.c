@@ -411,3 +411,4 @@ int pf_contact_self_pair(const pf_contact *c, int b) {
 int pf_contact_npairs(const pf_contact *c) { return c ? c->npairs : 0; }
 const char *pf_contact_pair_name(const pf_contact *c, int k) { return c->pair[k].name; }
 void pf_contact_pair_force(const pf_contact *c, int k, double f[3]) { memcpy(f, c->pair[k].force, sizeof c->pair[k].force); }
+void pf_contact_pair_force_set(pf_contact *c, int k, const double f[3]) { memcpy(c->pair[k].force, f, sizeof c->pair[k].force); }

@@ -121,6 +121,8 @@ int pf_contact_self_pair(const pf_contact *c, int b);
 int pf_contact_npairs(const pf_contact *c);
 const char *pf_contact_pair_name(const pf_contact *c, int k);
 void pf_contact_pair_force(const pf_contact *c, int k, double f[3]);
+/* Set it back (restart: the history row of the restarted step shows the force last evaluated). */
+void pf_contact_pair_force_set(pf_contact *c, int k, const double f[3]);
 /* Search statistics: rebuilds so far, and the contact share of the time (seconds spent). */
 void pf_contact_stats(const pf_contact *c, long *rebuilds, double *seconds);
 
