@@ -419,3 +419,4 @@ double pf_contact_pair_gap(const pf_contact *c, int k, pf_contact_gap *info) {
   *info = (pf_contact_gap){p->a, p->b, p->kind == PF_PAIR_SURFACE || p->kind == PF_PAIR_SURFACES, p->length};
   return p->gap;
 }
+void pf_contact_pair_force_set(pf_contact *c, int k, const double f[3]) { memcpy(c->pair[k].force, f, sizeof c->pair[k].force); }

@@ -133,6 +133,8 @@ typedef struct {
   double length;
 } pf_contact_gap;
 double pf_contact_pair_gap(const pf_contact *c, int k, pf_contact_gap *info);
+/* Set it back (restart: the history row of the restarted step shows the force last evaluated). */
+void pf_contact_pair_force_set(pf_contact *c, int k, const double f[3]);
 /* Search statistics: rebuilds so far, and the contact share of the time (seconds spent). */
 void pf_contact_stats(const pf_contact *c, long *rebuilds, double *seconds);
 

@@ -7,7 +7,9 @@
  *                                           double); a reader refuses a file without one of
  *                                           the fields it registers
  *   /tables/<name>                          [total][ncomp] whole tables (written by rank 0)
- *   attributes of "/": the named scalars (time, step, ...), written alike by every rank.
+ *   attributes of "/": the named scalars (time, step, ...), written alike by every rank, and
+ *                      the integer "format" (PF_CHECKPOINT_FORMAT; a file without it is of
+ *                      format 1), which a reader checks before anything else.
  * The file is written as path.tmp and renamed by rank 0 once every rank has closed it, so a
  * kill at any moment leaves the previous checkpoint whole.
  * A failed write (a full disk) is agreed by every rank after each collective call; the ranks
@@ -296,6 +298,8 @@ static int write_all(const h5io *io, const pf_points *pts, const pf_bond_rows *r
   PF_CALL(write_points(io, pts));
   PF_CALL(write_bonds(io, pts, rows));
   for (int k = 0; k < ntables; k++) PF_CALL(write_table(io, &tables[k]));
+  int format = PF_CHECKPOINT_FORMAT, ierr = int_attr(io, io->file, "format", &format, 1);
+  PF_CALL(write_agree(io, !ierr, "the attribute format", "an attribute"));
   return write_scalars(io, n, names, values);
 }
 
@@ -604,11 +608,33 @@ static int open_for_reading(const char *path, hid_t *file) {
   return 0;
 }
 
+/* The file's format (1 when it has no "format" attribute: written before checkpoints recorded
+ * it), refused unless it is this perifem's, before anything else is read. */
+static int check_format(const h5io *io) {
+  int format = 1, ok = 1;
+  char msg[640] = "";
+  if (H5Aexists(io->file, "format") > 0) {
+    hid_t a = H5Aopen(io->file, "format", H5P_DEFAULT);
+    ok = a >= 0 && H5Aread(a, H5T_NATIVE_INT, &format) >= 0;
+    if (a >= 0) H5Aclose(a);
+  }
+  H5Eclear2(H5E_DEFAULT);
+  if (!ok) snprintf(msg, sizeof msg, "checkpoint %s: attribute 'format' cannot be read: the file is damaged", io->path);
+  else if (format != PF_CHECKPOINT_FORMAT)
+    ok = 0, snprintf(msg, sizeof msg, "checkpoint %s is of format %d, this perifem reads format %d only (%s): restart it "
+                     "with the perifem that wrote it, or run the deck from the start", io->path, format,
+                     PF_CHECKPOINT_FORMAT, format < PF_CHECKPOINT_FORMAT ? "written by an older perifem, whose "
+                     "checkpoints lack state this one restores and checks" : "written by a newer perifem");
+  PF_AGREE(ok, PF_ERR_INPUT, msg);
+  return 0;
+}
+
 int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, int nscalars,
                        const char *const *names, double *values) {
   h5io io = {-1, path, path, 0, 0, 0};
   PF_CALL(open_for_reading(path, &io.file));
-  int ierr = read_all(&io, pts, rows, nscalars, names, values);
+  int ierr = check_format(&io);
+  if (!ierr) ierr = read_all(&io, pts, rows, nscalars, names, values);
   H5Fclose(io.file);
   return ierr;
 }

@@ -450,6 +450,10 @@ typedef struct {
 int pf_table_allgather(const pf_table *t, double *full);
 
 /* ---- checkpoints (core/checkpoint.c): parallel HDF5 ---------------------------------- */
+/* The checkpoint format this perifem writes and reads, recorded in the file (attribute "format"
+ * of "/"; files without it are format 1). 2: the bodies' geometry (point and element counts,
+ * a hash of the reference positions and connectivity), the walls' and contact pairs' forces. */
+#define PF_CHECKPOINT_FORMAT 2
 /* Write the owned points (every array and field) and their bond rows (each bond field flagged
  * PF_FIELD_RESTART under /bonds/<name>, after pf_bond_rows_fields_agree), plus named scalars and
  * tables (each written whole, under /tables/<name>), to path (through path.tmp, renamed when
@@ -459,7 +463,8 @@ int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *ro
                         int nscalars, const char *const *names, const double *values,
                         int ntables, const pf_table *tables);
 /* Read a checkpoint written on any number of ranks: this rank gets an equal slice of its
- * points (a new store, n_global set, fields registered) with their rows, and the scalars. rows
+ * points (a new store, n_global set, fields registered) with their rows, and the scalars.
+ * A file of another format (PF_CHECKPOINT_FORMAT) is refused first, naming both formats. rows
  * comes empty with the bond fields the caller keeps registered: each one flagged
  * PF_FIELD_RESTART is read (a file without it, or with another type or width, is refused naming
  * it), the others take their init; bond fields of the file the caller does not register are
@@ -478,6 +483,9 @@ int pf_checkpoint_read_table(const char *path, const pf_table *t, double *full);
 /* FNV-1a 64-bit hash of the displacement of all owned points in global-id order (gathered on
  * rank 0, broadcast to all). Collective. */
 int pf_state_digest(const pf_points *pts, uint64_t *digest);
+/* FNV-1a 64-bit over len bytes, continuing from h (PF_FNV1A_SEED to start). */
+#define PF_FNV1A_SEED 1469598103934665603ULL
+uint64_t pf_fnv1a(uint64_t h, const void *data, size_t len);
 
 
 /* ---- output: Exodus II (core/output_exodus.c) and HDF5 history (core/history.c) ---- */

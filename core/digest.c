@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static uint64_t fnv1a(uint64_t h, const void *data, size_t len) {
+uint64_t pf_fnv1a(uint64_t h, const void *data, size_t len) {
   const unsigned char *p = data;
   for (size_t i = 0; i < len; i++) {
     h ^= p[i];
@@ -41,7 +41,7 @@ int pf_state_digest(const pf_points *pts, uint64_t *digest) {
                "global id %" PF_GID_FMT " outside [0, %" PF_GID_FMT ")", gid[k], pts->n_global);
       memcpy(&byid[3 * gid[k]], &u[3 * k], 3 * sizeof(double));
     }
-    h = fnv1a(1469598103934665603ULL, byid, 3 * (size_t)pts->n_global * sizeof(double));
+    h = pf_fnv1a(PF_FNV1A_SEED, byid, 3 * (size_t)pts->n_global * sizeof(double));
   }
   MPI_Bcast(&h, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
   *digest = h;

@@ -215,12 +215,16 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
                          "finite_element bodies are written joined (a spread file set would cut "
                          "elements at the rank boundaries); use output.layout: joined");
   PF_CALL(pf_sim_build_rigid(sim)); /* (a checkpoint holds their positions and reactions) */
-  if (sim->opt.restart_from) return pf_sim_restore_points(sim); /* points and velocities from the file */
   pf_point_cloud pc[PF_MAX_BODIES];
   memset(pc, 0, sizeof pc);
   int ierr = 0;
   for (int b = 0; b < sim->nbodies && !ierr; b++)
     ierr = sim->body[b].ops->cloud(sim->body[b].data, sim->deck, pf_node_item(bodies, b), &pc[b]);
+  if (!ierr) pf_sim_geometry_take(sim, pc); /* (checkpoints record it; a restart compares) */
+  if (!ierr && sim->opt.restart_from) {      /* points and velocities from the file */
+    for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
+    return pf_sim_restore_points(sim);
+  }
   if (!ierr) ierr = check_overlap(sim, pc, bodies);
   if (!ierr) ierr = pf_sim_distribute(sim, pc);
   for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);

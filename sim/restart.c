@@ -2,7 +2,8 @@
  * checkpoint holds the owned points with every field, the bond rows with their broken flags
  * (PD families, FE node adjacency), the FE bodies' element state as whole tables, and the
  * scalars of the run: time, step, dt, energies booked so far, the indenters' positions and
- * reactions, the FE bodies' stable steps, and a hash of each part of the deck that sets the
+ * reactions, the FE bodies' stable steps, the walls' and contact pairs' last forces, each
+ * body's geometry (sim/restart_geometry.c) and a hash of each part of the deck that sets the
  * physics. A restart reads
  * the points on any number of ranks and re-partitions them like the set-up does, so the run
  * continues bitwise as if it had not stopped. What it reads is checked before use: by the reader
@@ -34,12 +35,29 @@ static uint64_t part_hash(const pf_deck *d, const char *part) {
   return pf_node_hash(pf_node_get(pf_node_get(root, top), dot + 1));
 }
 
+/* The walls and contact pairs as the deck lists them (known before they are built: a restart
+ * reads the scalars with the points). */
+static int deck_walls(const pf_sim *sim) { return pf_node_count(pf_node_get(pf_deck_root(sim->deck), "walls")); }
+static int deck_pairs(const pf_sim *sim) {
+  return pf_node_count(pf_node_get(pf_node_get(pf_deck_root(sim->deck), "contact"), "pairs"));
+}
+
+/* Where each group of scalars starts (see scalars_make). */
+static int at_rigid(void) { return NFIXED + 2 * NPARTS; }
+static int at_stable(const pf_sim *sim) { return at_rigid() + 6 * sim->nrigid; }
+static int at_geometry(const pf_sim *sim) { return at_stable(sim) + sim->nbodies; }
+static int at_walls(const pf_sim *sim) { return at_geometry(sim) + PF_GEOMETRY_SCALARS * sim->nbodies; }
+static int at_pairs(const pf_sim *sim) { return at_walls(sim) + 3 * deck_walls(sim); }
+
 /* Scalar names and values: time, step, dt, contact_energy, external_work, initial_energy,
- * wall_loss, bc_work, contact_dissipation and damage_dissipation (sums over the ranks), the deck-part hashes (two 32-bit halves each), per rigid surface its position and
- * reaction, and per body the carried stable step of the last force evaluation (FE and coupled
- * bodies; 0 for the others). */
+ * wall_loss, bc_work, contact_dissipation and damage_dissipation (sums over the ranks), the
+ * deck-part hashes (two 32-bit halves each), per rigid surface its position and reaction, per
+ * body the carried stable step of the last force evaluation (FE and coupled bodies; 0 for the
+ * others), per body its geometry (points, elements, hash halves: sim/restart_geometry.c), and
+ * the last forces on each wall and contact pair (the history row of the restarted step). */
 static int scalars_make(const pf_sim *sim, pf_sim_scalars *s) {
-  s->n = NFIXED + 2 * NPARTS + 6 * sim->nrigid + sim->nbodies;
+  const int nw = deck_walls(sim), np = deck_pairs(sim);
+  s->n = at_pairs(sim) + 3 * np;
   PF_MALLOC(s->name, s->n);
   PF_MALLOC(s->names, s->n);
   PF_MALLOC(s->value, s->n);
@@ -56,8 +74,17 @@ static int scalars_make(const pf_sim *sim, pf_sim_scalars *s) {
       snprintf(s->name[at + 6 * q + a], 96, "indenter_%d_%s_position_%c", q, pf_rigid_name(sim->rigid[q]), 'x' + a);
       snprintf(s->name[at + 6 * q + 3 + a], 96, "indenter_%d_%s_reaction_%c", q, pf_rigid_name(sim->rigid[q]), 'x' + a);
     }
-  for (int b = 0, at = k + 6 * sim->nrigid; b < sim->nbodies; b++)
-    snprintf(s->name[at + b], 96, "body_%d_%s_stable_dt", b, sim->body_name[b]);
+  const char *geo[PF_GEOMETRY_SCALARS] = {"points", "elements", "positions_hash_hi", "positions_hash_lo",
+                                          "connectivity_hash_hi", "connectivity_hash_lo"};
+  for (int b = 0; b < sim->nbodies; b++) {
+    snprintf(s->name[at_stable(sim) + b], 96, "body_%d_%s_stable_dt", b, sim->body_name[b]);
+    for (int c = 0; c < PF_GEOMETRY_SCALARS; c++)
+      snprintf(s->name[at_geometry(sim) + PF_GEOMETRY_SCALARS * b + c], 96, "body_%d_%s_%s", b, sim->body_name[b], geo[c]);
+  }
+  for (int q = 0; q < nw; q++)
+    for (int a = 0; a < 3; a++) snprintf(s->name[at_walls(sim) + 3 * q + a], 96, "wall_%d_force_%c", q, 'x' + a);
+  for (int q = 0; q < np; q++)
+    for (int a = 0; a < 3; a++) snprintf(s->name[at_pairs(sim) + 3 * q + a], 96, "contact_pair_%d_force_%c", q, 'x' + a);
   for (int q = 0; q < s->n; q++) s->names[q] = s->name[q];
   return 0;
 }
@@ -78,14 +105,22 @@ static void scalars_fill(const pf_sim *sim, pf_sim_scalars *s) {
     uint64_t h = part_hash(sim->deck, physics_parts[p]);
     v[NFIXED + 2 * p] = (double)(h >> 32), v[NFIXED + 2 * p + 1] = (double)(h & 0xffffffffu);
   }
-  for (int q = 0, at = NFIXED + 2 * NPARTS; q < sim->nrigid; q++) {
+  for (int q = 0, at = at_rigid(); q < sim->nrigid; q++) {
     double x[3];
     pf_rigid_position(sim->rigid[q], x);
     for (int a = 0; a < 3; a++) v[at + 6 * q + a] = x[a], v[at + 6 * q + 3 + a] = sim->reaction[q][a];
   }
-  for (int b = 0, at = NFIXED + 2 * NPARTS + 6 * sim->nrigid; b < sim->nbodies; b++) {
+  for (int b = 0, at = at_stable(sim); b < sim->nbodies; b++) {
     const pf_body *body = &sim->body[b]; /* the carried stable steps (collective) */
     v[at + b] = body->ops->set_stable_dt ? pf_min_all(body->ops->stable_dt(body->data, sim->pts)) : 0;
+  }
+  pf_sim_geometry_scalars(sim, &v[at_geometry(sim)]);
+  for (int q = 0; q < deck_walls(sim); q++) /* (0 before the walls are built: only compared then) */
+    for (int a = 0; a < 3; a++) v[at_walls(sim) + 3 * q + a] = q < sim->nwalls ? sim->wall_reaction[q][a] : 0;
+  for (int q = 0; q < deck_pairs(sim); q++) {
+    double f[3] = {0, 0, 0};
+    if (sim->contact) pf_contact_pair_force(sim->contact, q, f);
+    for (int a = 0; a < 3; a++) v[at_pairs(sim) + 3 * q + a] = f[a];
   }
 }
 
@@ -156,7 +191,8 @@ int pf_sim_restore_points(pf_sim *sim) {
   pf_sim_scalars *s = &sim->restart_scalars;
   int ierr = pf_sim_bond_fields(sim, &rows);
   if (!ierr) ierr = pf_checkpoint_read(sim->opt.restart_from, &sim->pts, &rows, s->n, s->names, s->value);
-  if (!ierr) ierr = pf_sim_check_restart_scalars(sim, s->value, &s->value[NFIXED + 2 * NPARTS + 6 * sim->nrigid]);
+  if (!ierr) ierr = pf_sim_check_restart_geometry(sim, &s->value[at_geometry(sim)]);
+  if (!ierr) ierr = pf_sim_check_restart_scalars(sim, s->value, &s->value[at_stable(sim)]);
   if (!ierr) ierr = pf_sim_check_restart_bodies(sim);
   if (!ierr) body_gids(sim);
   if (!ierr) ierr = pf_sim_check_restart_gids(sim);
@@ -172,7 +208,7 @@ int pf_sim_restore_points(pf_sim *sim) {
     ierr = pf_checkpoint_read_table(sim->opt.restart_from, &t, full);
     if (!ierr) body->ops->table_set(body->data, full);
     if (!ierr && body->ops->set_stable_dt)
-      body->ops->set_stable_dt(body->data, s->value[NFIXED + 2 * NPARTS + 6 * sim->nrigid + b]);
+      body->ops->set_stable_dt(body->data, s->value[at_stable(sim) + b]);
     free(full);
   }
   return ierr;
@@ -204,10 +240,13 @@ int pf_sim_restore_state(pf_sim *sim) {
   int root = pf_comm_rank() == 0; /* per-rank sums: rank 0 carries the total */
   sim->wall_loss = root ? v[6] : 0, sim->bc_work = root ? v[7] : 0;
   sim->contact_dissipation = root ? v[8] : 0, sim->damage_dissipation = root ? v[9] : 0;
-  for (int q = 0, at = NFIXED + 2 * NPARTS; q < sim->nrigid; q++) {
+  for (int q = 0, at = at_rigid(); q < sim->nrigid; q++) {
     pf_rigid_set_position(sim->rigid[q], &v[at + 6 * q]);
     for (int a = 0; a < 3; a++) sim->reaction[q][a] = v[at + 6 * q + 3 + a];
   }
+  for (int q = 0; q < sim->nwalls; q++)
+    for (int a = 0; a < 3; a++) sim->wall_reaction[q][a] = v[at_walls(sim) + 3 * q + a];
+  for (int q = 0; q < deck_pairs(sim) && sim->contact; q++) pf_contact_pair_force_set(sim->contact, q, &v[at_pairs(sim) + 3 * q]);
   rename_output(sim->exodus_path, sizeof sim->exodus_path, sim->step);
   rename_output(sim->history_path, sizeof sim->history_path, sim->step);
   pf_log("restarted from %s at step %ld, t = %.6e s\n", sim->opt.restart_from, sim->step, sim->t);

@@ -17,6 +17,14 @@ typedef struct {
   double *value;
 } pf_sim_scalars;
 
+/* A body's geometry as the set-up made it (sim/restart_geometry.c): its points, its elements
+ * (0 without a mesh), a hash of the points' reference positions and one of the connectivity. */
+typedef struct {
+  double points, elements;
+  uint64_t hash[2];
+} pf_sim_geometry;
+enum { PF_GEOMETRY_SCALARS = 6 }; /* a checkpoint's scalars per body: counts, hash halves */
+
 enum { PF_PROBE_MAX_QUANTITIES = 8 };
 /* The run-health monitor's state (sim/health.c). */
 enum { PF_HEALTH_MAX_WARNINGS = 32 };
@@ -43,6 +51,7 @@ struct pf_sim {
   pf_points *pts;
   int nbodies;
   pf_body body[PF_MAX_BODIES];     /* each body's kind (its ops) and data (sim/body.h) */
+  pf_sim_geometry geometry[PF_MAX_BODIES]; /* recorded in checkpoints, compared on restart */
   int nmeshed;                     /* bodies with a mesh (written joined: no spread output) */
   pf_gid gid0[PF_MAX_BODIES + 1];  /* global ids of body b: [gid0[b], gid0[b+1]) */
   const char *body_name[PF_MAX_BODIES];
@@ -141,6 +150,13 @@ int pf_sim_check_restart_bodies(const pf_sim *sim);
 int pf_sim_check_restart_gids(const pf_sim *sim);
 int pf_sim_check_restart_scalars(const pf_sim *sim, const double *v, const double *stable);
 int pf_sim_check_restart_time(const pf_sim *sim, const double *v);
+/* sim/restart_geometry.c: each body's geometry from its set-up cloud pc[nbodies] (and mesh);
+ * as checkpoint scalars v[PF_GEOMETRY_SCALARS nbodies] (points, elements, hash halves); a
+ * checkpoint's saved[PF_GEOMETRY_SCALARS nbodies] against this set-up's, refused naming the body, its mesh or point file and what
+ * differs. */
+void pf_sim_geometry_take(pf_sim *sim, const pf_point_cloud *pc);
+void pf_sim_geometry_scalars(const pf_sim *sim, double *v);
+int pf_sim_check_restart_geometry(const pf_sim *sim, const double *saved);
 /* SIGTERM / SIGINT: caught from the start of the set-up. During the set-up (meshing, lattices,
  * neighbour search: nothing is written then) a signal ends the process at once with a message
  * and exit status 128 + signal; after pf_sim_setup_done it stops the run at the end of the
