@@ -1,8 +1,8 @@
 /* What `perifem --check` prints about the run a deck makes, once the model is built and before
  * any step: per body its kind, points, directed bonds, elements, horizon/spacing ratio and
  * material; the time step and the number of steps; the memory per rank, estimated from the point
- * counts and horizons with the constants the set-up refuses by (sim/body_pd.c, mesh/gmsh.c) and
- * beside it the peak the set-up measured; the output and checkpoint sizes; and a rough run time
+ * counts and horizons with the constants the set-up refuses PD bodies by (sim/body_pd.c) and an
+ * element's measured here, and beside it the set-up's measured growth; the output and checkpoint sizes; and a rough run time
  * from bond and element rates measured on a 2-core Xeon (stated in the output). Collective. */
 #include "sim/sim_impl.h"
 
@@ -16,8 +16,8 @@
 #define PF_RATE_BONDS_OTHER 1.5e8
 #define PF_RATE_ELEMENTS 1.1e6
 /* Memory constants of the estimate: a node of a meshed body (as a PD point without bonds) and
- * an element, measured as the set-up's growth of resident memory: 15.2 MB for a pamgen block of
- * 11 849 nodes and 10 240 elements, 21.9 MB for the Taylor bar's gmsh mesh of 11 440 nodes and
+ * an element, measured as the set-up's growth of resident memory: 15.1 MB for a pamgen block of
+ * 11 849 nodes and 10 240 elements, 22.1 MB for the Taylor bar's gmsh mesh of 11 440 nodes and
  * 10 206 elements (1 KB a node, 0.3 and 1.1 KB an element). */
 #define PF_BYTES_PER_NODE PF_PD_BYTES_PER_POINT
 #define PF_BYTES_PER_ELEMENT 1024.0
