@@ -231,6 +231,11 @@ void pf_node_where(const pf_deck *d, const pf_node *n, char *out, size_t len);
 int pf_deck_error(const pf_deck *d, const pf_node *n, const char *key, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 
+/* A warning about a node, on rank 0's stderr (also under --quiet):
+ * "perifem warning: deck.yaml:12:5: key 'density': <message>". */
+void pf_deck_warn(const pf_deck *d, const pf_node *n, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
 /* ---- expressions in x, y, z, t (muparser) ------------------------------- */
 typedef struct pf_expr pf_expr;
 /* Compile an expression; errors name the deck position given by (deck, node, key). */
@@ -282,6 +287,11 @@ extern const pf_key pf_geometry_keys[];
 /* Points of a body from its `geometry:` mapping: a lattice inside a shape, or a point file. */
 int pf_point_cloud_from_deck(const pf_deck *d, const pf_node *geometry, pf_point_cloud *pc);
 int pf_point_cloud_free(pf_point_cloud *pc);
+/* Before generating them: about how many points a lattice `geometry:` mapping makes and its
+ * spacing (m), from the lattice cells covering the shape times the shape's share of them; 0 and
+ * 0 for a point file or a mapping pf_point_cloud_from_deck refuses (a value it cannot read is
+ * the same error here). Nothing is allocated. */
+int pf_point_cloud_estimate(const pf_deck *d, const pf_node *geometry, double *points, double *spacing);
 /* Simple cubic lattice origin + h*(i,j,k) inside region (boundary inclusive to 1e-9 h). */
 int pf_lattice_fill(const pf_region *r, double h, const double origin[3], pf_point_cloud *pc);
 /* The polar lattice of a cylinder or tube (core/lattice_polar.c): layers, rings and sectors
@@ -302,6 +312,8 @@ int pf_comm_size(void);
  * (ulimit -d) when lower. For refusing, before
  * allocating, a model that cannot fit (core/lattice.c, mesh/gmsh.c). */
 double pf_memory_limit(void);
+/* The largest resident memory of this process so far (getrusage ru_maxrss), bytes. */
+double pf_memory_peak(void);
 
 /* ---- MPI domain decomposition (core/partition.c, migrate.c, halo.c) -------------- */
 /* Bond lists in transit between ranks: one row per owned point, neighbours by global id, each

@@ -275,6 +275,19 @@ int pf_deck_error(const pf_deck *d, const pf_node *n, const char *key, const cha
   return pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__, "%s: key '%s': %s", where, key, msg);
 }
 
+void pf_deck_warn(const pf_deck *d, const pf_node *n, const char *key, const char *fmt, ...) {
+  if (pf_comm_rank() != 0) return;
+  char msg[1024];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  fflush(stdout);
+  fprintf(stderr, "perifem warning: %s:%d:%d: key '%s': %s\n", d->path, pf_node_line(n), pf_node_column(n), key,
+          msg);
+  fflush(stderr);
+}
+
 /* FNV-1a over a node's kind, keys and scalar text, depth first: equal for decks that say the
  * same thing however they are laid out or commented. */
 static uint64_t hash_bytes(uint64_t h, const void *p, size_t n) {

@@ -127,3 +127,8 @@ double pf_memory_limit(void) {
   }
   return limit;
 }
+
+double pf_memory_peak(void) {
+  struct rusage ru;
+  return getrusage(RUSAGE_SELF, &ru) ? 0 : (double)ru.ru_maxrss * 1024.0; /* (KB on Linux) */
+}

@@ -295,16 +295,26 @@ static int check_thickness(const pf_deck *d, const pf_node *g, const pf_region *
 /* Before filling: the points the lattice would make, estimated as the lattice cells covering
  * the shape's bounding box times the shape's share of that box, refused beyond the local index
  * range (pf_int) or beyond the memory each rank may use for its share. */
+static double region_volume(const pf_region *r, double *box) {
+  double lo[3], hi[3];
+  region_bounds(r, lo, hi);
+  *box = 1;
+  for (int c = 0; c < 3; c++) *box *= hi[c] - lo[c];
+  if (r->kind == PF_REGION_BOX) return *box;
+  if (r->kind == PF_REGION_CYLINDER)
+    return 3.14159265358979323846 * (r->radius * r->radius - r->inner_radius * r->inner_radius) * r->height;
+  return 4.0 / 3.0 * 3.14159265358979323846 * r->radius * r->radius * r->radius;
+}
+
+static double lattice_points(const pf_region *r, double cells) {
+  double box;
+  const double vol = region_volume(r, &box);
+  return cells * (box > 0 && vol < box ? vol / box : 1);
+}
+
 static int check_lattice_size(const pf_deck *d, const pf_node *g, const pf_region *r, double h,
                               double cells) {
-  double lo[3], hi[3], box = 1, vol;
-  region_bounds(r, lo, hi);
-  for (int c = 0; c < 3; c++) box *= hi[c] - lo[c];
-  if (r->kind == PF_REGION_BOX) vol = box;
-  else if (r->kind == PF_REGION_CYLINDER)
-    vol = 3.14159265358979323846 * (r->radius * r->radius - r->inner_radius * r->inner_radius) * r->height;
-  else vol = 4.0 / 3.0 * 3.14159265358979323846 * r->radius * r->radius * r->radius;
-  const double points = cells * (box > 0 && vol < box ? vol / box : 1);
+  const double points = lattice_points(r, cells);
   const double bytes = points * PF_LATTICE_BYTES_PER_POINT, limit = pf_memory_limit();
   const int ranks = pf_comm_size();
   if (points < INT32_MAX && bytes / ranks <= limit) return 0;
@@ -362,5 +372,29 @@ int pf_point_cloud_from_deck(const pf_deck *d, const pf_node *g, pf_point_cloud 
   PF_CALL(pf_lattice_fill(&r, h, origin, pc));
   if (pc->n == 0) return pf_deck_error(d, g, "shape", "the shape holds no lattice point (spacing %g m)", h);
   if (amp > 0) perturb(pc, amp * h, (uint64_t)seed);
+  return 0;
+}
+
+/* The reads in pf_point_cloud_from_deck's order, so that a bad value raises the same error
+ * first; what that function refuses with its own message is left to it (points 0). The origin
+ * is not read: it moves the cells by less than one layer. */
+int pf_point_cloud_estimate(const pf_deck *d, const pf_node *g, double *points, double *spacing) {
+  const char *shape = NULL, *lattice = pf_node_text(pf_node_get(g, "lattice"));
+  double h = 0, box;
+  const double origin[3] = {0, 0, 0};
+  pf_region r;
+  *points = 0, *spacing = 0;
+  PF_CALL(pf_deck_string(d, g, "shape", &shape));
+  if (shape && !strcmp(shape, "points_file")) return 0;
+  PF_CALL(pf_region_from_deck(d, g, &r));
+  if (r.kind == PF_REGION_ALL || !pf_node_get(g, "spacing")) return 0;
+  PF_CALL(pf_deck_real(d, g, "spacing", &h));
+  if (!(h > 0)) return 0;
+  *spacing = h;
+  if (lattice && !strcmp(lattice, "polar")) *points = region_volume(&r, &box) / (h * h * h);
+  else {
+    long i0[3], i1[3];
+    *points = lattice_points(&r, lattice_range(&r, h, origin, i0, i1));
+  }
   return 0;
 }

@@ -59,6 +59,7 @@ static double bytes_per_bond(const void *data) { return pd->bytes_per_bond(pd_of
 static void record_breaks(void *data, const pf_points *pts) { pd->record_breaks(pd_of(data), pts); }
 static void material(const void *data, double *density, double *bulk) { fe->material(fem_of(data), density, bulk); }
 static double horizon(const void *data) { return pd->horizon(pd_of(data)); }
+static double point_horizon(const void *data, pf_int i) { return pd->point_horizon(pd_of(data), i); }
 static const pf_mesh *mesh(const void *data) { return fe->mesh(fem_of(data)); }
 static const uint8_t *eroded(const void *data, long *count) { return fe->eroded(fem_of(data), count); }
 
@@ -98,6 +99,7 @@ const pf_body_ops pf_body_kind_coupled = {
     .record_breaks = record_breaks,
     .material = material,
     .horizon = horizon,
+    .point_horizon = point_horizon,
     .mesh = mesh,
     .eroded = eroded,
     .output_fields = output_fields,

@@ -3,6 +3,7 @@
 #include "sim/body.h"
 
 #include <math.h>
+#include <stdint.h>
 
 static const pf_key *keys(void) { return pf_pd_body_keys; }
 
@@ -15,13 +16,44 @@ static int destroy(void **data) { return pf_pd_body_destroy((pf_pd_body **)data)
 /* Horizon against the points, before any bond is searched: a horizon of more than
  * PF_MAX_HORIZON_SPACINGS mean spacings is refused (a horizon in millimetres typed as metres
  * made a neighbour search of every point with every other, ending in "migration of more than
- * 2 GB from one rank"), and so is a model whose bonds would not fit in memory. */
+ * 2 GB from one rank"), and so is a model whose bonds would not fit in memory: from the lattice's
+ * estimate before its points are generated, and from the points themselves. A horizon larger
+ * than the body is warned about. */
 #define PF_MAX_HORIZON_SPACINGS 50.0
-/* Bytes a point and a bond cost at the peak of the set-up: measured on a 227 000-point PMB
- * box, 5.1 KB per point at 3.015 spacings (123 bonds a point) and 18.5 KB at 5.015 (515 bonds):
- * about 1 KB + 34 bytes a bond; 40 bytes allowed. */
-#define PF_BYTES_PER_POINT 1024.0
-#define PF_BYTES_PER_BOND 40.0
+double pf_body_pd_bonds_per_point(double points, double m) {
+  return fmax(0, fmin(points - 1, 4.0 / 3.0 * 3.14159265358979323846 * m * m * m));
+}
+
+double pf_body_pd_bytes(double points, double m) {
+  return points * (PF_PD_BYTES_PER_POINT + PF_PD_BYTES_PER_BOND * pf_body_pd_bonds_per_point(points, m));
+}
+
+/* The memory refusal: key is the one that drives the estimate (a horizon beyond 4 spacings,
+ * else the spacing). */
+static int refuse_memory(const pf_deck *d, const pf_node *body, double points, double m, const char *what) {
+  const double bytes = pf_body_pd_bytes(points, m), limit = pf_memory_limit();
+  const int ranks = pf_comm_size();
+  if (bytes / ranks <= limit) return 0;
+  const char *key = m > 4 ? "horizon" : "spacing";
+  const pf_node *n = m > 4 ? pf_node_get(body, "horizon") : pf_node_get(pf_node_get(body, "geometry"), "spacing");
+  return pf_deck_error(d, n, key,
+                       "%s %.4g points with a horizon of %.3g spacings (about %.0f bonds a point): "
+                       "about %.3g GB (%.3g GB on each of %d rank(s)), more than the memory "
+                       "available (a rank may use %.3g GB here); use a larger spacing, a smaller "
+                       "horizon or more ranks",
+                       what, points, m, pf_body_pd_bonds_per_point(points, m), bytes / 1e9, bytes / ranks / 1e9,
+                       ranks, limit / 1e9);
+}
+
+static int check_estimate(const void *data, const pf_deck *d, const pf_node *body) {
+  const double delta = pf_pd_body_horizon(data);
+  double points, h;
+  PF_CALL(pf_point_cloud_estimate(d, pf_node_get(body, "geometry"), &points, &h));
+  if (!(delta > 0) || !(h > 0) || !(points > 0) || delta / h > PF_MAX_HORIZON_SPACINGS) return 0;
+  if (points >= INT32_MAX || points * PF_PD_BYTES_PER_POINT / pf_comm_size() > pf_memory_limit())
+    return 0; /* the points alone: the lattice refuses them, saying so */
+  return refuse_memory(d, body, points, delta / h, "the lattice would make about");
+}
 
 static int check_horizon(const void *data, const pf_deck *d, const pf_node *body, const pf_point_cloud *pc) {
   const double delta = pf_pd_body_horizon(data); /* 0: an expression, known once the points are */
@@ -41,20 +73,16 @@ static int check_horizon(const void *data, const pf_deck *d, const pf_node *body
                          "body's largest extent (%g m); at most %g spacings are accepted, typically 3 "
                          "(a length in millimetres typed as metres? units are SI)",
                          delta, m, h, delta / extent, extent, PF_MAX_HORIZON_SPACINGS);
-  double bonds = fmin((double)pc->n - 1, 4.0 / 3.0 * 3.14159265358979323846 * m * m * m);
-  const double bytes = (double)pc->n * (PF_BYTES_PER_POINT + PF_BYTES_PER_BOND * bonds);
-  const double limit = pf_memory_limit();
-  const int ranks = pf_comm_size();
-  if (bytes / ranks <= limit) return 0;
-  return pf_deck_error(d, hn, "horizon",
-                       "%" PF_INT_FMT " points with a horizon of %.3g spacings (about %.0f bonds a point) "
-                       "need about %.3g GB (%.3g GB on each of %d rank(s)), more than the memory "
-                       "available (a rank may use %.3g GB here); use a larger spacing, a smaller "
-                       "horizon or more ranks",
-                       pc->n, m, bonds, bytes / 1e9, bytes / ranks / 1e9, ranks, limit / 1e9);
+  if (delta > extent)
+    pf_deck_warn(d, hn, "horizon",
+                 "the horizon %g m is larger than the body's largest extent (%g m): every point "
+                 "is bonded to every other (a length in millimetres typed as metres? units are SI)",
+                 delta, extent);
+  return refuse_memory(d, body, (double)pc->n, m, "the body's");
 }
 
 static int cloud(const void *data, const pf_deck *d, const pf_node *body, pf_point_cloud *pc) {
+  PF_CALL(check_estimate(data, d, body));
   PF_CALL(pf_point_cloud_from_deck(d, pf_node_get(body, "geometry"), pc));
   return check_horizon(data, d, body, pc);
 }
@@ -104,6 +132,7 @@ static void material(const void *data, double *density, double *bulk_modulus) {
 }
 
 static double horizon(const void *data) { return pf_pd_body_horizon(data); }
+static double point_horizon(const void *data, pf_int i) { return pf_pd_body_point_horizon(data, i); }
 static double reach(const void *data, const pf_points *pts, pf_int i) {
   (void)pts;
   return pf_pd_body_point_horizon(data, i);
@@ -132,6 +161,7 @@ const pf_body_ops pf_body_kind_pd = {
     .record_breaks = record_breaks,
     .material = material,
     .horizon = horizon,
+    .point_horizon = point_horizon,
     .reach = reach,
     .reach_name = "horizon",
     .as_pd = as_pd,

@@ -267,12 +267,14 @@ static int check_units(const pf_sim *sim, const pf_node *root) {
 
 static int sim_build(pf_sim *sim, const char *deck_path) {
   pf_sim_catch_signals(); /* a SIGTERM during the set-up ends the process at once */
+  sim->rss0 = pf_memory_peak();
   PF_CALL(pf_deck_load_with(deck_path, sim->opt.sets, sim->opt.nsets, &sim->deck));
   const pf_node *root = pf_deck_root(sim->deck);
   PF_CALL(pf_deck_validate(sim->deck, root, pf_deck_keys, "the deck"));
   PF_CALL(check_units(sim, root));
   PF_CALL(pf_sim_provenance(sim));
   PF_CALL(validate_materials(sim->deck, pf_node_get(root, "materials")));
+  pf_sim_warn_unit_slips(sim->deck, pf_node_get(root, "materials"));
   PF_CALL(pf_sim_setup_parallel(sim));
   PF_CALL(build_bodies(sim, root));
   PF_CALL(pf_sim_build_contact(sim));

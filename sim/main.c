@@ -17,7 +17,8 @@
 static void usage(FILE *fp) {
   fprintf(fp,
           "usage: perifem [options] DECK.yaml\n"
-          "  --check            load and validate the deck and build the model; run nothing\n"
+          "  --check            validate the deck and build the model; print the bodies, step, memory,\n"
+          "                     output size and a rough run time; run nothing\n"
           "  --output-dir DIR   write output files into DIR (created when missing)\n"
           "  --restart FILE     continue from the checkpoint FILE (any number of ranks)\n"
           "  --set KEY=VALUE    override a deck value, e.g. --set materials.glass.density=2500 or\n"
@@ -153,11 +154,9 @@ static int run(const cli *c) {
   int ierr = pf_sim_create(c->deck, &opt, &sim);
   if (ierr) return ierr == PF_ERR_INPUT ? 2 : 1;
   if (c->check) {
-    pf_log("%s: deck is valid (%" PF_GID_FMT " points, %s%ld steps of %.4e s%s)\n", c->deck,
-           pf_sim_points(sim)->n_global, pf_sim_adaptive(sim) ? "about " : "", pf_sim_nsteps(sim), pf_sim_dt(sim),
-           pf_sim_adaptive(sim) ? " at the start; the step follows the deformation" : "");
+    ierr = pf_sim_check_report(sim);
     pf_sim_destroy(&sim);
-    return 0;
+    return ierr ? 1 : 0;
   }
   const int err = c->output_dir ? make_dir(c->output_dir) : 0;
   if (err) {

@@ -42,6 +42,11 @@ long pf_sim_nsteps(const pf_sim *sim);
 /* 1 when the step follows the deformation (FE or correspondence bodies, no time.dt): then dt and
  * nsteps are those of the set-up, estimates of the run's. */
 int pf_sim_adaptive(const pf_sim *sim);
+/* perifem --check (sim/check_report.c): print on rank 0 what the run will be: per body its kind,
+ * points, directed bonds, elements, horizon/spacing and material; the step and the number of
+ * steps; the memory per rank (the estimate and the measured peak); the output and checkpoint
+ * sizes; a rough run time. Collective. */
+int pf_sim_check_report(pf_sim *sim);
 /* Global quantities of the current state. */
 typedef struct {
   double time, kinetic, elastic, contact, external_work, momentum[3];

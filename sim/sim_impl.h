@@ -107,6 +107,7 @@ struct pf_sim {
   pf_points *joined; /* rank 0: every point in global-id order, for the joined Exodus file */
   pf_history *hist;
   double wall_loop;
+  double rss0; /* the process's peak resident memory before the set-up, bytes (--check) */
   /* instability guards (sim/guard.c) */
   int guard_tripped;    /* this rank found a NaN, a runaway point or an inverted element */
   int last_good;        /* the run stopped and the points hold the last good state */
@@ -198,6 +199,9 @@ void pf_sim_fragments_name(pf_sim *sim);
 /* sim/paths.c: no output may be an input (deck, meshes, point files, the checkpoint restarted
  * from) or another output, compared through the file system; an input error naming the key. */
 int pf_sim_check_paths(pf_sim *sim);
+/* sim/unit_slips.c: warn (rank 0, with file:line:key) about material values that look like a
+ * unit slip: a density outside [100, 1e5] kg/m^3, a modulus outside [1e6, 1e13] Pa. */
+void pf_sim_warn_unit_slips(const pf_deck *d, const pf_node *materials);
 int pf_sim_fragments(pf_sim *sim, int final);
 /* sim/probes.c: output.probes, mass-averaged quantities over regions. The columns'
  * count and names; _eval fills values[count] (collective; a probe whose region holds no point

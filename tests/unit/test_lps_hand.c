@@ -15,7 +15,7 @@ static pf_sim *make(const char *points) {
   char deck[1024];
   const char *file = pf_test_write_file(0, "lps_points", points);
   snprintf(deck, sizeof deck,
-           "materials: {m: {model: lps, density: 1, bulk_modulus: 130.0e9, shear_modulus: 78.0e9}}\n"
+           "materials: {m: {model: lps, density: 1000, bulk_modulus: 130.0e9, shear_modulus: 78.0e9}}\n"
            "bodies:\n  - {name: b, material: m, horizon: 10.0, geometry: {shape: points_file, file: %s}}\n"
            "time: {steps: 0, dt: 1}\n", file);
   pf_sim *sim = pf_test_sim("lps_hand", deck);

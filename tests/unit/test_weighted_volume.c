@@ -12,7 +12,7 @@ static double center_m(int n, int partial) {
   char deck[2048];
   double h = 2.0 / n, lo = -1 + h / 2;
   snprintf(deck, sizeof deck,
-           "materials: {m: {model: lps, density: 1, bulk_modulus: 1, shear_modulus: 1}}\n"
+           "materials: {m: {model: lps, density: 1000, bulk_modulus: 1.0e9, shear_modulus: 1.0e9}}\n"
            "bodies:\n"
            "  - name: grid\n    material: m\n    horizon: 1.0\n    partial_volumes: %s\n"
            "    geometry: {shape: box, lo: [%.17g, %.17g, %.17g], hi: [%.17g, %.17g, %.17g],\n"
