@@ -55,7 +55,7 @@ title = title.decode() if isinstance(title, bytes) else title
 check(title == "two hexahedra, pulled", "history title '%s'" % title)
 prov = h.attrs["provenance"]
 prov = (prov.decode() if isinstance(prov, bytes) else prov).splitlines()
-check(prov[0] == "perifem %s, git %s" % (version, git), "version and commit: '%s' (git describe: %s)" % (prov[0], git))
+check(prov[0] == "perifem %s, git %s" % (version, git), "version and commit: '%s' (git describe of the source: %s; a build older than the source fails here: rebuild)" % (prov[0], git))
 check(prov[1].endswith("on 2 MPI ranks"), "ranks: '%s'" % prov[1])
 check(prov[2] == "command: %s --quiet prov.yaml --set time.steps=4" % exe, "command line: '%s'" % prov[2])
 i = prov.index("---- deck prov.yaml ----")
