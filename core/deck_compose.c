@@ -281,11 +281,12 @@ static int substitute_scalar(pf_deck *d, pf_node *n, const char *key) {
   }
   len += (size_t)snprintf(out + len, sizeof out - len, "%s", from);
   if (len >= sizeof out) return pf_deck_error(d, n, key, "the value is too long after substitution");
+  const int alone = whole && !*from; /* "${v0}" alone is the number (from points into the old text) */
   char *text = strdup(out);
   PF_CHECK(text, PF_ERR_MEMORY, "out of memory");
   free(n->text);
   n->text = text;
-  if (whole && !*from) n->quoted = 0; /* "${v0}" alone is the number */
+  if (alone) n->quoted = 0;
   return 0;
 }
 
