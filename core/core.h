@@ -432,16 +432,22 @@ void pf_exchange_destroy(pf_exchange **x);
 typedef struct pf_bc pf_bc;
 extern const pf_key pf_bc_keys[];
 /* A prescribed velocity or displacement, component by component ("free" leaves a component
- * alone), on the points of a region (optionally of one body, by index into body_names). */
+ * alone), on the points of a region (optionally of one body, by index into body_names); index:
+ * its place in the deck's list, which names it "bc<index>" unless the deck gives `name:`. */
 int pf_bc_create(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
-                 const char *const *body_names, pf_bc **bc);
+                 const char *const *body_names, int index, pf_bc **bc);
 int pf_bc_destroy(pf_bc **bc);
 /* (Re)select the owned points of the condition's region and body (after a re-partition). */
 int pf_bc_select(pf_bc *bc, const pf_points *pts);
 pf_int pf_bc_npoints(const pf_bc *bc);
+const char *pf_bc_name(const pf_bc *bc);
+/* This rank's impulse of the condition's reaction on its owned points (N s, the momentum the
+ * condition gave them): over the last step taken (0 before the first) and since the start. */
+void pf_bc_impulse(const pf_bc *bc, double step[3], double total[3]);
 /* Velocity Verlet hooks: after the first half kick (mid-step velocity at t + dt/2) and after
  * the second half kick (velocity at t; dt the step just taken). The work of the conditions'
- * reactions on the owned points is added to *work (J; core/bc.c gives the rule). */
+ * reactions on owned point i is added to work[pts->body[i]] (J, per body; core/bc.c gives the
+ * rule), their impulse to the condition's (pf_bc_impulse). */
 void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt, double *work);
 void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t, double dt, double *work);
 /* Set mask[3 i + c] = 1 for every component c of owned point i the condition prescribes. */

@@ -63,8 +63,12 @@ struct pf_pd_body {
   double *smin;      /* [n] smallest stretch of each point's intact bonds this step */
   uint8_t *lost;     /* [n] scratch of the threaded bond loops: 1 where the point's row has
                         PF_BOND_FRESH bonds, whose energy a serial pass then books */
-  double damage_work; /* energy released by the bonds this rank's points lost since it was last
+  double damage_work; /* change of the stored energy when this rank's points lost bonds (the
+                         energy with them less without, at the same positions) since it was last
                          taken (pf_pd_body_take_damage_work), J */
+  double damage_redistribution; /* the part of damage_work that is not released but moved: the
+                                   LPS dilatation's cross term where negative (docs/theory/pd.md
+                                   §5.1), J, <= 0; taken by pf_pd_body_take_damage_redistribution */
 };
 
 /* A bond a force kernel fails is first marked PF_BOND_FRESH, so that the kernel can book the
@@ -189,10 +193,11 @@ double pf_pd_lps_critical_stretch(const pf_pd_body *b, double G0);
  * with the deviatoric extensions less ep[stride k] when ep is given (elastic_plastic). */
 double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_int i, double theta, double m,
                                 const double *ep, int stride);
-/* The energy (J) released by the PF_BOND_FRESH bonds of point i, V_i (W_i - W_i'), W_i' the LPS
- * energy (with ep, as above) without them and with the dilatation they no longer carry; marks
- * them PF_BOND_BROKEN. */
-double pf_pd_lps_release(const pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
+/* The change of stored energy (J) when point i loses its PF_BOND_FRESH bonds, V_i (W_i - W_i'),
+ * W_i' the LPS energy (with ep, as above) without them and with the dilatation they no longer
+ * carry; its negative cross term (docs/theory/pd.md §5.1) is also added to
+ * b->damage_redistribution. Marks them PF_BOND_BROKEN. */
+double pf_pd_lps_release(pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
                          int stride);
 
 /* The batched LPS loops (pd/lps_batched.c), for a body of one horizon whose points all take
