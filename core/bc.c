@@ -109,6 +109,10 @@ void pf_bc_impulse(const pf_bc *bc, double step[3], double total[3]) {
   for (int c = 0; c < 3; c++) step[c] = bc->step_impulse[c], total[c] = bc->impulse[c];
 }
 
+void pf_bc_impulse_set(pf_bc *bc, const double step[3], const double total[3]) {
+  for (int c = 0; c < 3; c++) bc->step_impulse[c] = step[c], bc->impulse[c] = total[c];
+}
+
 /* Setting a velocity component from v- (after the half kick of dt/2 by the force f) to v+ is
  * the impulse J = m (v+ - v-) of the condition's reaction over that half step (added to the
  * condition's impulses), during which the

@@ -88,6 +88,7 @@ struct pf_sim {
   /* the same per body, this rank's points: prescribed motions' work, damage dissipation and
    * redistribution, J (the history's per-body columns) */
   double body_bc_work[PF_MAX_BODIES], body_damage[PF_MAX_BODIES], body_redistribution[PF_MAX_BODIES];
+  int restart_format;           /* the format of the checkpoint restarted from */
   double *row_sums;            /* the last pf_sim_globals_get's sums over the ranks (sim/step.c) */
   double *rigid_work;          /* [nrigid] work of each rigid surface's prescribed motion, J */
   double (*rigid_impulse)[3];  /* [nrigid] impulse of each surface on the points, N s (rank 0 keeps it) */
