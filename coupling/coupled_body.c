@@ -37,6 +37,12 @@ static double fe_distance(const void *region, const double x[3]) {
   return region ? pf_nearest_distance(region, x) : INFINITY;
 }
 
+/* The elements' part of the consistent form's targets at owned store node i (energy form). */
+static void fe_vector(const void *ctx, pf_int i, double out[3]) {
+  const pf_coupled_body *c = ctx;
+  pf_fem_body_node_blend_vector(c->fe, i - c->first, c->beta[i], out);
+}
+
 static double beta_at(const void *ctx, const double x[3]) {
   const pf_coupled_body *c = ctx;
   return pf_expr_eval(c->beta_expr, x[0], x[1], x[2], 0.0);
@@ -91,7 +97,7 @@ static int read_coupling(pf_coupled_body *c, const pf_node *body, const pf_node 
     return pf_deck_error(c->deck, dmg, "damage", "body '%s' has no node with blending weight 1: damage acts only "
                          "in the peridynamic region, never in the transition, overlap or elements", c->name);
   pf_fem_body_set_blending(c->fe, beta_at, c);
-  const char *form = "force";
+  const char *form = "energy";
   PF_CALL(pf_deck_string(c->deck, map, "overlap", &form));
   if (strcmp(form, "force") && strcmp(form, "energy"))
     return pf_deck_error(c->deck, pf_node_get(map, "overlap"), "overlap",
@@ -195,6 +201,7 @@ static int attach_blending(pf_coupled_body *c, pf_points *pts) {
   PF_CALL(pf_points_exchange(pts, c->beta, 1));
   pf_pd_body_set_blending(c->pd, c->beta, c->energy_form);
   PF_CALL(pf_fem_body_set_blending_field(c->fe, c->beta));
+  pf_pd_body_set_fe_vector(c->pd, fe_vector, c);
   for (pf_int i = c->first; i < c->first + c->n; i++) pts->m[i] = c->rho * pts->vol[i]; /* all nodes */
   free(c->fsave);
   PF_MALLOC(c->fsave, 3 * (size_t)c->n + 1);

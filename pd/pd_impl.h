@@ -34,6 +34,8 @@ struct pf_pd_body {
   int uses_dfe;            /* coupled: the horizon expression names d_fe */
   pf_pd_distance_fn fe_distance; /* coupled: d_fe, the distance to where the elements act */
   const void *fe_ctx;
+  pf_pd_fe_vector_fn fe_vector; /* coupled, energy form: the elements' uniform-stress vector */
+  const void *fe_vector_ctx;
   pf_pd_formulation form;
   double *hz;              /* field "horizon" [store]: each point's own horizon, ghosts too */
   double *region;          /* field "region" [store]: bit 0 (1) the partial-stress force, bit 1
@@ -169,6 +171,12 @@ static inline int pf_pd_consistent_at(const pf_pd_body *b, pf_int i) { return (i
  * material failure"). */
 static inline int pf_pd_may_fail(const pf_pd_body *b, pf_int i, pf_int j) {
   return b->region[i] == 0 && b->region[j] == 0;
+}
+
+/* The weight of point i's energy: its blending weight beta_i when coupled in the energy form
+ * (docs/theory/coupling.md §3.4), else 1. */
+static inline double pf_pd_energy_weight(const pf_pd_body *b, pf_int i) {
+  return b->blend && b->blend_states ? b->blend[i] : 1.0;
 }
 
 /* omega(r), inlined in the bond loops. */
