@@ -3,16 +3,19 @@
  * material; variable horizon and the transition forms of pd/), with beta(x) in [0, 1] from the
  * deck. Elements whose eight nodes all have beta = 1 are not evaluated (the PD region, where
  * bonds may break). Two forms (the key `overlap`):
- * - force (Seleson, Beneddine & Prudhomme 2013, force-based blending; D'Elia et al. 2021, §4):
+ * - force, a statics and patch-test tool (Seleson, Beneddine & Prudhomme 2013, force-based blending; D'Elia et al. 2021, §4):
  *     f_i = beta_i f_i^PD + (1 - beta_i) f_i^FE.
  *   Both operators give zero force under a linear displacement and the exact div sigma under a
  *   quadratic one at interior nodes, so the blend does too; it conserves neither momentum nor
  *   energy where beta varies.
- * - energy: the forces of E = sum_i beta_i W_i V_i + sum_e (1 - beta_e) W_e V_e (beta_e the mean
- *   of element e's nodes), the energy the run books in both forms: each PD point's force state
- *   and each element's forces carry their weight (§3.4). Momentum and energy are conserved by
- *   construction; under a uniform stress and a linear beta the two operators' ghost forces,
- *   +sigma grad beta V_i from PD and -sigma grad beta V_i from the elements, cancel. */
+ * - energy, the default: the forces of E = sum_i beta_i W_i V_i + sum_e (1 - beta_e) W_e V_e
+ *   (beta_e the mean of element e's nodes), the energy the run books in both forms: each PD
+ *   point's force state and each element's forces carry their weight (§3.4). Momentum and energy
+ *   are conserved by construction; under a uniform stress and a linear beta the two operators'
+ *   ghost forces, +sigma grad beta V_i from PD and -sigma grad beta V_i from the elements,
+ *   cancel, and where they do not (beta's kinks) the consistent form (the default formulation)
+ *   corrects the PD points' gradient weights once at set-up, taking the elements' part of the
+ *   uniform-stress vector (fe_vector) into its targets. */
 #include "coupling/coupling.h"
 
 #include <math.h>

@@ -3,15 +3,18 @@
  * by the smallest h_ik (in sum |h_ik|^2 / (w V_k)) such that
  *   (B) sum_k h_ik (x) xi_ik = 0               at every transition point i (Fbar exact for a
  *                                               linear motion: sum_k xi (x) g_ik = I stays),
- *   (C) sum_j (V_j h_jn - V_n h_nj) = V_n d_n   at every point n a correction reaches,
- * where d_n is the uniform-stress ghost vector of the standard form (§2.5) at a transition point
- * and 0 elsewhere. (C) makes the energy's force under a uniform stress P,
+ *   (C) sum_j (V_j h_jn - V_n h_nj) = t_n      at every point n a correction reaches,
+ * where t_n = V_n d_n, d_n the uniform-stress ghost vector of the standard form (§2.5) at a
+ * transition point and 0 elsewhere. (C) makes the energy's force under a uniform stress P,
  * f_n = -P sum_j (V_j g_jn - V_n g_nj), the one a constant horizon gives: zero at an interior
- * point. At a free-surface point (an incomplete family, first moment S) only the components of
+ * point. Coupled to elements in the energy form (§3.4) each V of (C) and of h's owner is the
+ * weight of the point's energy, beta V, and t_n also holds the blending's part of the
+ * uniform-stress vector (PD one-sided sums and the elements' sum, pd/material_correspondence.c),
+ * so that the overlap's kinks are free of ghost forces too. At a free-surface point (an incomplete family, first moment S) only the components of
  * (C) across S are kept, those a traction-free surface leaves to the model; the surface-normal
  * component balances the rest (the sum of (C) over all points vanishes for any weights).
  *
- * Lagrange's conditions give h_ik = w V_k (Lambda_i xi + V_i (mu_k - mu_i)) with mu already
+ * Lagrange's conditions give h_ik = w V_k (Lambda_i xi + beta_i V_i (mu_k - mu_i)) with mu already
  * projected at surface points; the multipliers solve the normal equations A W A^T lambda = r
  * (the surface rows made slightly soft, diagonal_blocks) by
  * conjugate gradients with a block-Jacobi preconditioner (Lambda_i: the 3x3 moment

@@ -666,7 +666,8 @@ static void consistent_pair(const pf_pd_body *b, const pf_points *pts, pf_int i,
  * forces, zero under any affine motion, are the same in both forms. Coupled in the energy form
  * (pf_pd_body_set_blending), each end's force state carries its own blending weight,
  * beta_i P_i K_i^-1 and beta_j P_j K_j^-1, and so does each end's hourglass stiffness: the
- * forces of sum_i beta_i W_i V_i (docs/theory/coupling.md §3.4). */
+ * forces of sum_i beta_i W_i V_i (docs/theory/coupling.md §3.4); so do the consistent form's
+ * corrections (consistent_pair). */
 static int corr_force(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   PF_CALL(corr_pass1(b, pts));
