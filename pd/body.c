@@ -42,7 +42,7 @@ const pf_key pf_pd_body_keys[] = {
     {"horizon", PF_KEY_EXPR, 1, NULL, "m",
      "horizon delta (bonds with |xi| <= delta): a number, or an expression in x, y, z (a variable "
      "horizon; lps and correspondence materials)", NULL},
-    {"formulation", PF_KEY_STRING, 0, "auto", "",
+    {"formulation", PF_KEY_STRING, 0, "consistent (correspondence), auto (lps)", "",
      "auto (partial stress at interior points whose family reaches another horizon, standard elsewhere) | "
      "standard | partial_stress (lps and correspondence materials) | corrected (the standard force less "
      "its uniform-stress ghost force where the horizon varies; correspondence) | consistent (the "
@@ -200,8 +200,12 @@ static int read_horizon(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
   return pf_expr_create_vars(text, d, h, "horizon", vars, 1, &b->hz_expr);
 }
 
+/* The default is the consistent form, the transition for dynamics, when the material has a
+ * deformation gradient (correspondence); auto otherwise (lps: partial stress in the transition).
+ * After the material is read. */
 static int read_formulation(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
-  const char *name = "auto", *names[] = {"auto", "standard", "partial_stress", "corrected", "consistent"};
+  const char *names[] = {"auto", "standard", "partial_stress", "corrected", "consistent"};
+  const char *name = b->ops->gradient_forms ? "consistent" : "auto";
   PF_CALL(pf_deck_string(d, body, "formulation", &name));
   for (int k = 0; k < 5; k++)
     if (!strcmp(name, names[k])) {
@@ -251,9 +255,9 @@ static int body_read(const pf_deck *d, const pf_node *owner, const pf_node *body
   PF_CALL(pf_deck_string(d, owner, "name", &name));
   snprintf(b->name, sizeof b->name, "%s", name);
   PF_CALL(read_horizon(d, body, b));
-  PF_CALL(read_formulation(d, body, b));
   const pf_node *mat = NULL;
   PF_CALL(read_material(d, owner, materials, b, &mat));
+  PF_CALL(read_formulation(d, body, b));
   PF_CALL(read_influence(d, body, b));
   const char *corr_keys[] = {"hourglass", "critical_damage", "bond_loss"};
   for (int k = 0; k < 3; k++)
@@ -306,10 +310,13 @@ const pf_key pf_pd_coupled_keys[] = {
      "where the elements act, blending < 1)", NULL},
     {"blending", PF_KEY_EXPR, 1, NULL, "",
      "blending weight beta(x, y, z) in [0, 1]: 1 peridynamics only, 0 elements only", NULL},
-    {"overlap", PF_KEY_STRING, 0, "force", "",
-     "force (f = beta f_PD + (1 - beta) f_FE at each node) | energy (the forces of beta W_PD + (1 - beta) W_FE: "
-     "conserves momentum and energy; docs/theory/coupling.md §3.4)", NULL},
-    {"formulation", PF_KEY_STRING, 0, "auto", "", "auto | standard | partial_stress | corrected | consistent", NULL},
+    {"overlap", PF_KEY_STRING, 0, "energy", "",
+     "energy (the forces of beta W_PD + (1 - beta) W_FE: conserves momentum and energy; with the consistent "
+     "formulation free of ghost forces; docs/theory/coupling.md §3.4) | force (f = beta f_PD + (1 - beta) f_FE "
+     "at each node: a statics tool, conserves neither)", NULL},
+    {"formulation", PF_KEY_STRING, 0, "consistent", "",
+     "consistent (for dynamics) | auto | partial_stress | corrected (statics and patch-test tools) | "
+     "standard (no correction; docs/theory/coupling.md §2.2)", NULL},
     {"influence", PF_KEY_STRING, 0, "constant", "", "constant | inverse_distance", NULL},
     {"hourglass", PF_KEY_MAP, 0, "type: stiffness, coefficient: 0.05", "", "zero-energy-mode control",
      pf_pd_hourglass_keys},
@@ -335,6 +342,10 @@ void pf_pd_body_set_fe_distance(pf_pd_body *b, pf_pd_distance_fn distance, const
 }
 
 int pf_pd_body_uses_fe_distance(const pf_pd_body *b) { return b->uses_dfe; }
+
+void pf_pd_body_set_fe_vector(pf_pd_body *b, pf_pd_fe_vector_fn vector, const void *ctx) {
+  b->fe_vector = vector, b->fe_vector_ctx = ctx;
+}
 
 int pf_pd_body_find_bonds(pf_pd_body *b, const pf_pd_cloud *cloud, const pf_points *pts,
                           pf_int first, pf_int n, pf_bond_rows *rows) {
@@ -373,16 +384,20 @@ int pf_pd_family_complete(const pf_pd_body *b, const pf_points *pts, pf_int i, d
   return sqrt(m1[0] * m1[0] + m1[1] * m1[1] + m1[2] * m1[2]) <= 0.01 * m0;
 }
 
-/* Coupled in the energy form: the transition forms (partial stress, corrected, consistent) are
- * written for unweighted force states, so a point whose row reaches beta < 1 takes the standard
- * form, whose force states carry the weights (docs/theory/coupling.md §3.4). */
+/* Coupled in the energy form: the partial-stress and corrected forms are written for unweighted
+ * force states, so a point whose row reaches beta < 1 takes the standard form, whose force states
+ * carry the weights. The consistent form takes the weights into its corrections instead
+ * (docs/theory/coupling.md §3.4): a point with beta > 0 whose row reaches another beta (the
+ * overlap and its kinks) or another horizon gets corrected gradient weights (bit 8). */
 static void standard_in_overlap(const pf_pd_body *b) {
   const pf_family *fam = &b->fam;
   for (pf_int i = b->first; i < b->first + b->n && b->blend && b->blend_states; i++) {
-    int inside = b->blend[i] == 1;
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1] && inside; k++)
-      inside = b->blend[fam->neighbor[k]] == 1;
-    if (!inside) b->region[i] = 2 * (b->blend[i] < 1);
+    int inside = b->blend[i] == 1, same = 1;
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++)
+      inside &= b->blend[fam->neighbor[k]] == 1, same &= b->blend[fam->neighbor[k]] == b->blend[i];
+    if (inside) continue;
+    const int corrected = b->form == PF_PD_CONSISTENT && b->blend[i] > 0 && (!same || ((int)b->region[i] & 8));
+    b->region[i] = 2 * (b->blend[i] < 1) + 8 * corrected;
   }
 }
 

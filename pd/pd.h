@@ -125,6 +125,12 @@ void pf_pd_body_set_blending(pf_pd_body *b, const double *beta, int weight_state
 typedef double (*pf_pd_distance_fn)(const void *ctx, const double x[3]);
 void pf_pd_body_set_fe_distance(pf_pd_body *b, pf_pd_distance_fn distance, const void *ctx);
 int pf_pd_body_uses_fe_distance(const pf_pd_body *b);
+/* Coupled in the energy form: the elements' part of the uniform-stress vector at owned store
+ * point i, sum_e (beta_i - beta_e) V_e B_ei over its elements (reference volume and mean gradient,
+ * beta_e the mean of the element's nodes), into out; the consistent form takes it into the
+ * targets of its weight corrections at the overlap's kinks (docs/theory/coupling.md §3.4). */
+typedef void (*pf_pd_fe_vector_fn)(const void *ctx, pf_int i, double out[3]);
+void pf_pd_body_set_fe_vector(pf_pd_body *b, pf_pd_fe_vector_fn vector, const void *ctx);
 /* Append to rows the bonds of store points [first, first+n), points of this body, found in
  * the body's whole cloud (with a variable horizon, each point's own horizon: rows hold the
  * pairs either end's family has). */
