@@ -42,7 +42,7 @@ const pf_key pf_pd_body_keys[] = {
     {"horizon", PF_KEY_EXPR, 1, NULL, "m",
      "horizon delta (bonds with |xi| <= delta): a number, or an expression in x, y, z (a variable "
      "horizon; lps and correspondence materials)", NULL},
-    {"formulation", PF_KEY_STRING, 0, "consistent (correspondence), auto (lps)", "",
+    {"formulation", PF_KEY_STRING, 0, "consistent (correspondence), standard (lps)", "",
      "auto (partial stress at interior points whose family reaches another horizon, standard elsewhere) | "
      "standard | partial_stress (lps and correspondence materials) | corrected (the standard force less "
      "its uniform-stress ghost force where the horizon varies; correspondence) | consistent (the "
@@ -200,12 +200,14 @@ static int read_horizon(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
   return pf_expr_create_vars(text, d, h, "horizon", vars, 1, &b->hz_expr);
 }
 
-/* The default is the consistent form, the transition for dynamics, when the material has a
- * deformation gradient (correspondence); auto otherwise (lps: partial stress in the transition).
- * After the material is read. */
+/* The default is a form for dynamics: the consistent form when the material has a deformation
+ * gradient (correspondence), the standard form otherwise (lps: the gradient of its energy,
+ * stable and conservative, with the ghost forces of a varying horizon; the partial stress of
+ * auto is a strong form that conserves nothing and grows unstable in long runs,
+ * docs/theory/coupling.md §2.4). After the material is read. */
 static int read_formulation(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
   const char *names[] = {"auto", "standard", "partial_stress", "corrected", "consistent"};
-  const char *name = b->ops->gradient_forms ? "consistent" : "auto";
+  const char *name = b->ops->gradient_forms ? "consistent" : "standard";
   PF_CALL(pf_deck_string(d, body, "formulation", &name));
   for (int k = 0; k < 5; k++)
     if (!strcmp(name, names[k])) {
