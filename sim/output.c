@@ -52,6 +52,30 @@ static void appended_columns(const pf_sim *sim, pf_sim_history_row *g) {
   }
 }
 
+static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+/* Two columns of one name (a body, condition, surface or wall named so that its column takes
+ * another's name, e.g. a body "fe" and fe_internal_energy) would make the history unwritable:
+ * refuse at set-up, naming the column. */
+static int unique_columns(const pf_sim *sim, const pf_sim_history_row *g) {
+  char **sorted;
+  PF_MALLOC(sorted, g->n + 2);
+  memcpy(sorted, g->names, sizeof *sorted * (size_t)(g->n + 2));
+  qsort(sorted, (size_t)g->n + 2, sizeof *sorted, by_name);
+  const char *twice = NULL;
+  for (int k = 1; k < g->n + 2 && !twice; k++)
+    if (!strcmp(sorted[k - 1], sorted[k])) twice = sorted[k];
+  char name[192] = "";
+  if (twice) snprintf(name, sizeof name, "%s", twice);
+  free(sorted);
+  PF_CHECK(!twice, PF_ERR_INPUT,
+           "%s: the history would have two columns named '%s' (a body's, condition's, rigid surface's or "
+           "wall's columns are its name followed by _<quantity>, e.g. <body>_internal_energy): rename the body, "
+           "condition (name:), surface or wall",
+           pf_deck_path(sim->deck), name);
+  return 0;
+}
+
 int pf_sim_globals_init(const pf_sim *sim, pf_sim_history_row *g) {
   int npairs = pf_contact_npairs(sim->contact);
   const int body0 = g->body0 = G_FIXED + 3 * (sim->nrigid + sim->nwalls + npairs);
@@ -104,7 +128,7 @@ int pf_sim_globals_init(const pf_sim *sim, pf_sim_history_row *g) {
   }
   appended_columns(sim, g);
   for (int k = 0; k < g->n + 2; k++) PF_CHECK(g->names[k], PF_ERR_MEMORY, "out of memory");
-  return 0;
+  return unique_columns(sim, g);
 }
 
 /* Each body's centre of mass (current positions) and mass-averaged velocity into v[6 b ..]:
