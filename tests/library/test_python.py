@@ -68,7 +68,7 @@ with perifem.Simulation(deck, output_dir=out, quiet=True, comm=comm) as sim:
     names = sim.history_names
 if rank == 0:
     import h5py
-    with h5py.File(os.path.join(out, "free_body.h5"), "r") as f:
+    with h5py.File(os.path.join(out, os.path.splitext(os.path.basename(deck))[0] + ".h5"), "r") as f:
         last = {k: f[k][-1] for k in names if k in f}
     check(len(last) == len(names), "the history file has the columns %s" % sorted(set(names) - set(last)))
     check(all(last[k] == h[k] for k in last), "the history file's last row is the library's")
