@@ -154,6 +154,9 @@ int pf_deck_load(const char *path, pf_deck **deck);
  * index or by their name:), applied after the deck's include: files and before its
  * parameters: are substituted (core/deck_compose.c). */
 int pf_deck_load_with(const char *path, const char *const *sets, int nsets, pf_deck **deck);
+/* The same from the YAML text of a deck that stands for the file path (not read): messages name
+ * path, and files it names are relative to path's folder. */
+int pf_deck_load_text(const char *path, const char *text, const char *const *sets, int nsets, pf_deck **deck);
 int pf_deck_destroy(pf_deck **deck);
 const pf_node *pf_deck_root(const pf_deck *deck);
 const char *pf_deck_path(const pf_deck *deck);

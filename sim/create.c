@@ -269,9 +269,11 @@ static int check_units(const pf_sim *sim, const pf_node *root) {
 }
 
 static int sim_build(pf_sim *sim, const char *deck_path) {
-  pf_sim_catch_signals(); /* a SIGTERM during the set-up ends the process at once */
+  if (!sim->opt.keep_signals) pf_sim_catch_signals(); /* a SIGTERM during the set-up ends the process at once */
   sim->rss0 = pf_memory_peak();
-  PF_CALL(pf_deck_load_with(deck_path, sim->opt.sets, sim->opt.nsets, &sim->deck));
+  if (sim->opt.deck_text)
+    PF_CALL(pf_deck_load_text(deck_path, sim->opt.deck_text, sim->opt.sets, sim->opt.nsets, &sim->deck));
+  else PF_CALL(pf_deck_load_with(deck_path, sim->opt.sets, sim->opt.nsets, &sim->deck));
   const pf_node *root = pf_deck_root(sim->deck);
   PF_CALL(pf_deck_validate(sim->deck, root, pf_deck_keys, "the deck"));
   PF_CALL(check_units(sim, root));
@@ -330,6 +332,7 @@ int pf_sim_destroy(pf_sim **s) {
   pf_points_destroy(&sim->joined);
   pf_sim_restart_free(sim);
   pf_sim_guard_free(sim);
+  pf_sim_run_free(sim);
   pf_deck_destroy(&sim->deck);
   PF_FREE(*s);
   return 0;

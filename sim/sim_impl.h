@@ -126,6 +126,7 @@ struct pf_sim {
   double good_t;
   long good_step;
   pf_sim_health health; /* run-health monitor (sim/health.c) */
+  struct pf_sim_run *run; /* the time loop between calls (sim/run.c); NULL until it starts */
 };
 
 extern const pf_key pf_parallel_keys[];
@@ -207,6 +208,11 @@ int pf_sim_globals_init(const pf_sim *sim, pf_sim_history_row *g);
 /* Fill values[0..n+1]: time, step, the columns; first: the initial energy too. */
 int pf_sim_globals_eval(pf_sim *sim, pf_sim_history_row *g, int first);
 void pf_sim_globals_free(pf_sim_history_row *g);
+/* sim/run.c: the history columns as last evaluated (at the start of the run and at each history
+ * row; sim/api.c evaluates them again at the end of each call), or NULL before the run starts or
+ * after it failed. */
+pf_sim_history_row *pf_sim_history(pf_sim *sim);
+void pf_sim_run_free(pf_sim *sim);
 int pf_sim_open_output(pf_sim *sim, pf_sim_history_row *g);
 int pf_sim_write_output(pf_sim *sim, pf_sim_history_row *g, int exodus, int history, int last);
 int pf_sim_write_last_good(pf_sim *sim, pf_sim_history_row *g, int ierr);
