@@ -36,7 +36,7 @@ fe_deck() { # an FE body reading the mesh $1
   cat <<DECK
 materials: {steel: {model: elastic, density: 7800, youngs_modulus: 200.0e9, poissons_ratio: 0.3}}
 bodies:
-  - {name: fe, type: finite_element, material: steel, mesh: {file: $1}}
+  - {name: block, type: finite_element, material: steel, mesh: {file: $1}}
 time: {steps: 3}
 DECK
 }

@@ -42,7 +42,7 @@ static pf_sim *make(int hydro) {
   char deck[8192], bcs[4096] = "";
   const double L[3] = {0.01, 0.01, 0.02};
   for (int f = 0; f < 2; f++) {
-    const char *body = f ? "fe" : "pd";
+    const char *body = f ? "hex" : "pd";
     const double x0 = f ? 0.02 : 0.0, w = f ? 1e-6 : 3.5e-3;
     for (int a = hydro ? 0 : 2; a < 3; a++)
       for (int side = 0; side < 2; side++) {
@@ -58,7 +58,7 @@ static pf_sim *make(int hydro) {
            "bodies:\n"
            "  - {name: pd, material: steel, horizon: 3.01e-3,\n"
            "     geometry: {shape: box, lo: [0, 0, 0], hi: [0.01, 0.01, 0.02], spacing: 1.0e-3, origin: [0.5e-3, 0.5e-3, 0.5e-3]}}\n"
-           "  - name: fe\n    type: finite_element\n    material: steel\n%s"
+           "  - name: hex\n    type: finite_element\n    material: steel\n%s"
            "boundary_conditions:\n%s"
            "time: {final_time: 2.0e-4}\n",
            E, NU, SY, H, pf_test_pamgen_box(5, 5, 10, (const double[3]){0.02, 0, 0}, (const double[3]){0.03, 0.01, 0.02}),
