@@ -10,18 +10,21 @@
 # callgrind counts the instructions of STEPS whole steps (pf_sim_step: forces, damage, contact,
 # integration, halo exchange, per-step records; no output files), then those of a fixed
 # reference workload written in step_guard.c (4 velocity-Verlet steps of a plain bond-based PMB
-# lattice, 1,000 points, 84,288 directed bonds, none failing, one bond at a time). The guarded number is
+# lattice, 1,000 points, 84,288 directed bonds, none failing, one bond at a time). The guarded
+# number is
 #   ratio = instructions of the steps / instructions of the reference.
 #
-# Why instructions and why a ratio. Instruction counts do not depend on the machine's load or
-# on the CPU model: repeated runs give the same count (spread 0, also beside a loaded machine,
+# Why instructions and why a ratio. Instruction counts do not depend on the machine's load, nor
+# on the CPU model but for glibc's CPU-dispatched string functions (under 1 % of a step; valgrind
+# shows every CPU at most AVX2): repeated runs give the same count (spread 0, also beside a loaded machine,
 # docs/verification.md), so a 10 % margin is all regression. They depend on the compiler and its
 # flags; the reference, compiled by the same compiler with the same flags in the same build,
 # moves with them, so the ratio follows the code rather than the toolchain. Valgrind does not
 # execute AVX-512, so step_guard links a third build of the modules for x86-64-v3 (AVX2 and
 # FMA, the batched bond loops' AVX2 form); the AVX-512 kernels are timed by
 # unit/test_bond_loop_speed. Only one rank: the busy-polling of MPI waits would make the counts
-# depend on timing. What counts cannot see: cache misses and memory traffic.
+# depend on timing (so the halo exchange is the 1-rank one, next to nothing). What counts cannot
+# see: cache misses and memory traffic.
 #
 # The recorded ratios (BASELINE below) were measured with Debian 12's GCC 12.2 and valgrind
 # 3.19 on the build of the commit that added this guard; the test fails when a ratio exceeds
