@@ -241,7 +241,7 @@ static int build_bcs(pf_sim *sim, const pf_node *root) {
   sim->nbcs = pf_node_count(bcs);
   PF_MALLOC(sim->bcs, sim->nbcs);
   for (int k = 0; k < sim->nbcs; k++)
-    PF_CALL(pf_bc_create(sim->deck, pf_node_item(bcs, k), sim->pts, sim->nbodies, sim->body_name,
+    PF_CALL(pf_bc_create(sim->deck, pf_node_item(bcs, k), sim->pts, sim->nbodies, sim->body_name, k,
                          &sim->bcs[k]));
   return 0;
 }
@@ -251,6 +251,9 @@ static int build_walls(pf_sim *sim, const pf_node *root) {
   sim->nwalls = pf_node_count(walls);
   PF_MALLOC(sim->walls, sim->nwalls);
   PF_MALLOC(sim->wall_reaction, sim->nwalls);
+  PF_MALLOC(sim->wall_impulse, sim->nwalls);
+  PF_MALLOC(sim->rigid_work, sim->nrigid); /* (the rigid surfaces are built with the bodies) */
+  PF_MALLOC(sim->rigid_impulse, sim->nrigid);
   for (int k = 0; k < sim->nwalls; k++)
     PF_CALL(pf_wall_create(sim->deck, pf_node_item(walls, k), sim->nbodies, sim->body_name, &sim->walls[k]));
   return 0;
@@ -315,6 +318,7 @@ int pf_sim_destroy(pf_sim **s) {
     if (sim->body[b].ops) sim->body[b].ops->destroy(&sim->body[b].data);
   for (int k = 0; k < sim->nwalls && sim->walls; k++) pf_wall_destroy(&sim->walls[k]);
   free(sim->walls), free(sim->wall_reaction), free(sim->sums);
+  free(sim->wall_impulse), free(sim->rigid_work), free(sim->rigid_impulse), free(sim->row_sums);
   for (int k = 0; k < sim->nrigid && sim->rigid; k++) pf_rigid_destroy(&sim->rigid[k]);
   pf_contact_destroy(&sim->contact);
   for (int k = 0; k < sim->nbcs && sim->bcs; k++) pf_bc_destroy(&sim->bcs[k]);

@@ -58,7 +58,10 @@ typedef struct {
    * the kinetic energy rigid walls removed, J */
   double fe_internal, hourglass, bulk_viscosity, wall_loss;
   double contact_dissipation; /* friction work of contacts and rigid surfaces, J */
-  double damage_dissipation;  /* energy released by failed bonds (PMB, LPS, elastic_plastic), J */
+  double damage_dissipation;  /* energy released by failed bonds (PMB, LPS, elastic_plastic), J, >= 0 */
+  /* the stored energy failed bonds moved rather than released (LPS: the dilatation's cross term
+   * where negative; docs/theory/pd.md §5.1), J, <= 0; the balance books both */
+  double damage_redistribution;
 } pf_sim_globals;
 int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g);
 /* 1 when the run has reached its final time (or step count). */
