@@ -41,11 +41,11 @@ limit=1.10
 
 # family deck warm-up steps, counted steps, baseline ratio
 BASELINE=(
-  "pmb             pmb.yaml                  2 10 11.7861"
-  "lps_inv_dist    lps_inverse_distance.yaml 2 10 24.9082"
-  "correspondence  correspondence.yaml       2 10 33.1749"
-  "hex8            hex8.yaml                 2 10 16.6461"
-  "contact         contact.yaml              2 10 5.9297"
+  "pmb             pmb.yaml                  2 10 11.7864"
+  "lps_inv_dist    lps_inverse_distance.yaml 2 10 24.2414"
+  "correspondence  correspondence.yaml       2 10 31.3127"
+  "hex8            hex8.yaml                 2 10 16.6463"
+  "contact         contact.yaml              2 10 5.7747"
 )
 
 command -v valgrind >/dev/null 2>&1 || { echo "step_guard: valgrind not found (apt-get install valgrind); skipped"; exit 77; }
