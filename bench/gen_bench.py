@@ -3,7 +3,8 @@
 
     gen_bench.py generate WORKDIR [--skin S] [--steps N]
         writes into WORKDIR: points.txt (perifem point file), points.data (LAMMPS data file,
-        atom_style peri), pmb.yaml, lps.yaml (perifem decks), in.pmb, in.lps (LAMMPS inputs).
+        atom_style peri), pmb.yaml, lps.yaml (omega = 1/|xi|), lps_w1.yaml (omega = 1, perifem
+        only) (perifem decks), in.pmb, in.lps (LAMMPS inputs).
     gen_bench.py count POINTFILE DELTA
         counts directed bonds (ordered pairs i != j with |x_j - x_i| <= DELTA) of a point file,
         independently of both codes, and prints the number.
@@ -104,7 +105,7 @@ bodies:
       shape: points_file
       file: points.txt
     horizon: {delta}
-    damage:
+{influence}    damage:
 {damage}
 indenters:
   - name: sphere
@@ -169,25 +170,37 @@ def write_inputs(workdir, skin, steps):
     cases = {
         "pmb": dict(
             what="PMB, Silling-Askari damage s0 = s00 - alpha s_min",
-            model="pmb", extra_material="",
+            model="pmb", extra_material="", influence="",
             damage=f"      law: silling_askari\n      s00: {S00}\n      alpha: {ALPHA}",
             pair_style="peri/pmb",
             # pair_coeff * * c horizon s00 alpha   (LAMMPS pair_peri doc)
             pair_coeff=f"* * {c:.6e} {DELTA} {S00} {ALPHA}"),
+        # LAMMPS's peri/lps weighs every bond by omega = 1/|xi| (PairPeriLPS::influence_function,
+        # in the weighted volume, the dilatation and the force state), so the compared perifem
+        # deck uses influence: inverse_distance (README: what each code computes).
         "lps": dict(
-            what="LPS, constant critical stretch",
+            what="LPS, influence function omega = 1/|xi| (as LAMMPS peri/lps), constant critical stretch",
             model="lps", extra_material=f"    shear_modulus: {G:g}\n",
+            influence="    influence: inverse_distance\n",
             damage=f"      law: critical_stretch\n      critical_stretch: {S0_LPS}",
             pair_style="peri/lps",
             # pair_coeff * * K G horizon s00 alpha   (LAMMPS pair_peri doc); alpha = 0 makes
             # s0 = s00 constant, the critical_stretch law of the perifem deck
             pair_coeff=f"* * {K:g} {G:g} {DELTA} {S0_LPS} 0.0"),
+        # perifem only (LAMMPS has no omega = 1 LPS): the same deck with omega = 1, the model
+        # of perifem's AVX-512 LPS kernels.
+        "lps_w1": dict(
+            what="LPS, influence function omega = 1 (perifem only), constant critical stretch",
+            model="lps", extra_material=f"    shear_modulus: {G:g}\n", influence="",
+            damage=f"      law: critical_stretch\n      critical_stretch: {S0_LPS}",
+            pair_style=None, pair_coeff="-"),
     }
     for name, cs in cases.items():
         with open(f"{workdir}/{name}.yaml", "w") as f:
             f.write(DECK.format(name=name, skin=skin, **common, **cs))
-        with open(f"{workdir}/in.{name}", "w") as f:
-            f.write(LMP.format(name=name, skin=skin, h=H, **common, **cs))
+        if cs["pair_style"]:
+            with open(f"{workdir}/in.{name}", "w") as f:
+                f.write(LMP.format(name=name, skin=skin, h=H, **common, **cs))
         print(f"{name}: pair_coeff {cs['pair_coeff']}")
 
 

@@ -5,7 +5,8 @@
 #
 # Generates the LAMMPS examples/peri target scaled by 3 (cylinder r = 15 mm, 15 mm long,
 # 0.5 mm simple cubic lattice, ~87k points) as a perifem point file and a LAMMPS data file,
-# runs PMB and LPS for 150 steps of 1e-7 s with a rigid sphere indenter in both codes, and
+# runs PMB and LPS (influence function 1/|xi|, the one of LAMMPS's peri/lps) for 150 steps of
+# 1e-7 s with a rigid sphere indenter in both codes, and perifem alone with the omega = 1 LPS, and
 # prints directed bond evaluations per second (directed bonds x steps / time-loop seconds) and
 # the parallel efficiency of each code, rate on 2 ranks / (2 x rate on 1 rank).
 # The table also goes to bench/results/latest.txt. See bench/README.md.
@@ -80,12 +81,16 @@ grab() {
   echo "$v"
 }
 
+# the table's name of a case
+label() { case $1 in pmb) echo PMB ;; lps) echo "LPS 1/|xi|" ;; lps_w1) echo "LPS w=1 (pf only)" ;; *) echo "$1" ;; esac; }
+
 # the smaller of two times (the first may be empty)
 fastest() { if [[ -z $1 ]]; then echo "$2"; else awk -v a="$1" -v b="$2" 'BEGIN { print (b < a ? b : a) }'; fi; }
 
 declare -A pf_loop pf_bonds pf_bytes pf_contact pf_rate lmp_loop lmp_bonds lmp_neigh lmp_builds lmp_danger lmp_update
+models="pmb lps lps_w1" # lps_w1: perifem only (omega = 1; LAMMPS has no such LPS)
 for np in $ranks; do
-for m in pmb lps; do
+for m in $models; do
   k=$m,$np
   for rep in $(seq "$repeat"); do
   echo "== perifem $m ($np rank(s), run $rep of $repeat)" >&2
@@ -93,13 +98,15 @@ for m in pmb lps; do
   launch "$np" "$perifem" --output-dir "$work/out_$m$np" "$work/$m.yaml" >"$work/perifem_$m$np.log" 2>&1 \
     || { tail -30 "$work/perifem_$m$np.log" >&2; die "perifem failed on $m.yaml on $np ranks (log above)"; }
   grep -E '^perifem:|points|damage' "$work/perifem_$m$np.log" >&2 || true
-  t=$(grab 's/.*(time loop \([0-9.eE+-]*\) s).*/\1/p' "$work/perifem_$m$np.log" "time loop")
+  t=$(grab 's/.*(time loop \([0-9.eE+-]*\) s[,)].*/\1/p' "$work/perifem_$m$np.log" "time loop")
   pf_loop[$k]=$(fastest "${pf_loop[$k]:-}" "$t")
   done
   pf_bonds[$k]=$(grab 's/.*directed bonds \([0-9]*\) .*/\1/p' "$work/perifem_$m$np.log" "directed bonds")
   pf_bytes[$k]=$(grab 's/.*directed bonds [0-9]* (\([0-9.eE+-]*\) bytes each).*/\1/p' "$work/perifem_$m$np.log" "bytes each")
   pf_contact[$k]=$(grab 's/.*contact: .* search rebuilds, \([0-9.eE+-]*\) s (\([0-9.]*\) %.*/\1 s, \2 %/p' "$work/perifem_$m$np.log" "contact: N search rebuilds")
   pf_rate[$k]=$(grab 's/.*bond evaluations per second \([0-9.eE+-]*\).*/\1/p' "$work/perifem_$m$np.log" "bond evaluations per second")
+
+  [[ -f $work/in.$m ]] || continue # perifem only
 
   for rep in $(seq "$repeat"); do
   echo "== LAMMPS $m ($np rank(s), run $rep of $repeat)" >&2
@@ -151,35 +158,41 @@ table=$work/table.txt
   echo "LAMMPS:   PMB pair_coeff $pair_pmb"
   echo "          LPS pair_coeff $pair_lps"
   echo
-  printf '%-5s %5s %12s %12s %12s %14s %14s %10s\n' model ranks "dir. bonds" "perifem [s]" "LAMMPS [s]" "perifem ev/s" "LAMMPS ev/s" "pf/LAMMPS"
-  for m in pmb lps; do
+  printf '%-18s %5s %12s %12s %12s %14s %14s %10s\n' model ranks "dir. bonds" "perifem [s]" "LAMMPS [s]" "perifem ev/s" "LAMMPS ev/s" "pf/LAMMPS"
+  for m in $models; do
     for np in $ranks; do
       k=$m,$np
-      awk -v m="${m^^}" -v np="$np" -v b="${pf_bonds[$k]}" -v s="$steps" -v tp="${pf_loop[$k]}" -v tl="${lmp_loop[$k]}" 'BEGIN {
-        rp = b * s / tp; rl = b * s / tl;
-        printf "%-5s %5d %12d %12.2f %12.2f %14.4g %14.4g %10.2f\n", m, np, b, tp, tl, rp, rl, rp / rl }'
+      awk -v m="$(label "$m")" -v np="$np" -v b="${pf_bonds[$k]}" -v s="$steps" -v tp="${pf_loop[$k]}" -v tl="${lmp_loop[$k]:-}" 'BEGIN {
+        rp = b * s / tp
+        if (tl == "") { printf "%-18s %5d %12d %12.2f %12s %14.4g %14s %10s\n", m, np, b, tp, "-", rp, "-", "-"; exit }
+        rl = b * s / tl;
+        printf "%-18s %5d %12d %12.2f %12.2f %14.4g %14.4g %10.2f\n", m, np, b, tp, tl, rp, rl, rp / rl }'
     done
   done
+  echo "LPS 1/|xi|: influence function omega = 1/|xi| in both codes (LAMMPS peri/lps's own); LPS w=1 (perifem"
+  echo "  only): omega = 1, perifem's AVX-512 LPS kernels. bench/README.md lists what each code computes."
   if [[ " $ranks " == *" 1 "* && " $ranks " == *" 2 "* ]]; then
     echo
     echo "parallel efficiency, rate on 2 ranks / (2 x rate on 1 rank) = time on 1 / (2 x time on 2):"
-    for m in pmb lps; do
-      awk -v m="${m^^}" -v p1="${pf_loop[$m,1]}" -v p2="${pf_loop[$m,2]}" -v l1="${lmp_loop[$m,1]}" -v l2="${lmp_loop[$m,2]}" 'BEGIN {
+    for m in $models; do
+      [[ -n ${lmp_loop[$m,1]:-} ]] || { awk -v m="$(label "$m")" -v p1="${pf_loop[$m,1]}" -v p2="${pf_loop[$m,2]}" 'BEGIN {
+        printf "  %s: perifem %.3f\n", m, p1 / (2 * p2) }'; continue; }
+      awk -v m="$(label "$m")" -v p1="${pf_loop[$m,1]}" -v p2="${pf_loop[$m,2]}" -v l1="${lmp_loop[$m,1]}" -v l2="${lmp_loop[$m,2]}" 'BEGIN {
         printf "  %s: perifem %.3f, LAMMPS %.3f\n", m, p1 / (2 * p2), l1 / (2 * l2) }'
     done
   fi
   echo
   echo "directed bonds (|xi| <= $horizon): independent python count $bonds_ref"
-  for m in pmb lps; do
+  for m in $models; do
     for np in $ranks; do
       k=$m,$np
       status=match
-      if [[ ${pf_bonds[$k]} != "$bonds_ref" || ${lmp_bonds[$k]} != "$bonds_ref" ]]; then status=MISMATCH; ok=0; fi
-      echo "  ${m^^} on $np rank(s): perifem ${pf_bonds[$k]}, LAMMPS ${lmp_bonds[$k]} (fix PERI_NEIGH 'total # of bonds') -> $status"
+      if [[ ${pf_bonds[$k]} != "$bonds_ref" || ${lmp_bonds[$k]:-$bonds_ref} != "$bonds_ref" ]]; then status=MISMATCH; ok=0; fi
+      echo "  $(label "$m") on $np rank(s): perifem ${pf_bonds[$k]}, LAMMPS ${lmp_bonds[$k]:--} (fix PERI_NEIGH 'total # of bonds') -> $status"
     done
   done
   r1=${ranks%% *}
-  echo "perifem's own summary rate on $r1 rank(s): PMB ${pf_rate[pmb,$r1]}, LPS ${pf_rate[lps,$r1]} bond evaluations/s"
+  echo "perifem's own summary rate on $r1 rank(s): PMB ${pf_rate[pmb,$r1]}, LPS 1/|xi| ${pf_rate[lps,$r1]}, LPS w=1 ${pf_rate[lps_w1,$r1]} bond evaluations/s"
   echo "perifem's bond memory: PMB ${pf_bytes[pmb,$r1]}, LPS ${pf_bytes[lps,$r1]} bytes per directed bond (plus a 64-byte"
   echo "  record per point, 0.6 bytes per bond here); one core's memory bandwidth (bench/stream.c triad): $triad GB/s"
   echo "times: perifem 'time loop' seconds; LAMMPS 'Loop time of X on N procs for $steps steps'; the fastest of $repeat run(s) each."
@@ -190,7 +203,7 @@ table=$work/table.txt
   echo "  (dangerous ${lmp_danger[pmb,$r1]}, ${lmp_danger[lps,$r1]}; update every ${lmp_update[pmb,$r1]});"
   echo "  perifem's decks have the target's self-contact pair (radius 0.9 h, bonded points excluded,"
   echo "  search skin $skin m, the same),"
-  echo "  its share of perifem's time loop on $r1 rank(s): PMB ${pf_contact[pmb,$r1]}, LPS ${pf_contact[lps,$r1]}."
+  echo "  its share of perifem's time loop on $r1 rank(s): PMB ${pf_contact[pmb,$r1]}, LPS 1/|xi| ${pf_contact[lps,$r1]}, LPS w=1 ${pf_contact[lps_w1,$r1]}."
 } >"$table"
 
 cat "$table"

@@ -116,7 +116,9 @@ struct pf_sim {
   pf_exodus *exo;
   pf_points *joined; /* rank 0: every point in global-id order, for the joined Exodus file */
   pf_history *hist;
-  double wall_loop;
+  double wall_loop;   /* seconds of the time loop's steps (output excluded) */
+  double wall_output; /* seconds of the time loop's output, history and rebalancing */
+  long loop_steps;    /* steps this run took (after a restart: since the checkpoint) */
   double rss0; /* the process's peak resident memory before the set-up, bytes (--check) */
   /* instability guards (sim/guard.c) */
   int guard_tripped;    /* this rank found a NaN, a runaway point or an inverted element */

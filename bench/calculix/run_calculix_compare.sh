@@ -133,7 +133,7 @@ for r in $(seq 1 "$repeat"); do
     read -r _ c[p$k] < <(timed "$prf/p$k.log" "$perifem" --output-dir "$prf" "$prf/p$k.yaml")
     grep -q "^state digest" "$prf/p$k.log" || die "perifem failed on $prf/p$k.yaml:"$'\n'"$(tail -20 "$prf/p$k.log")"
     if grep -q "^warning: dt" "$prf/p$k.log"; then die "perifem: $(grep '^warning: dt' "$prf/p$k.log")"; fi
-    w[p$k]=$(sed -n 's/.*(time loop \([0-9.]*\) s).*/\1/p' "$prf/p$k.log")
+    w[p$k]=$(sed -n 's/.*(time loop \([0-9.]*\) s[,)].*/\1/p' "$prf/p$k.log")
   done
   if [[ $r == 1 ]]; then
     $tool inp "$prf/p0.e" "$prf/c0.inp" --dt $pdt --steps $s0 --print-every 0 > /dev/null
