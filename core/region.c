@@ -37,8 +37,8 @@ static int set_from_deck(const pf_deck *d, const pf_node *map, const char *shape
                          int body, pf_region *r) {
   if (!sets)
     return pf_deck_error(d, pf_node_get(map, "shape"), "shape",
-                         "a %s selects points of a body that exists; it cannot shape one (known here: "
-                         "box, cylinder, sphere)", shape);
+                         "a %s selects points of a body that exists; it cannot make a body's points "
+                         "(a geometry's shapes: box, cylinder, sphere, points_file, exodus)", shape);
   const char *name = NULL;
   PF_CALL(need(d, map, "set", shape));
   PF_CALL(pf_deck_string(d, map, "set", &name));
