@@ -15,9 +15,14 @@ struct pf_bc {
   int body;      /* -1: every body */
   pf_int n;
   pf_int *points; /* owned points selected */
+  char name[64];  /* the deck's `name:`, or "bc<k>" by its place in the list (k from 0) */
+  /* this rank's impulse of the reaction on its points, N s: accumulated, and over the step
+   * being taken (from the mid-step hook, which starts it, to the end-of-step hook) */
+  double impulse[3], step_impulse[3];
 };
 
 const pf_key pf_bc_keys[] = {
+    {"name", PF_KEY_STRING, 0, NULL, "", "names its history columns <name>_reaction_x ... (default bc<k>)", NULL},
     {"region", PF_KEY_MAP, 0, "shape: all", "", "where: a region", pf_region_keys},
     {"body", PF_KEY_STRING, 0, NULL, "", "only the points of this body", NULL},
     {"velocity", PF_KEY_EXPR3, 0, NULL, "m/s", "expressions in x, y, z, t, or free", NULL},
@@ -60,6 +65,14 @@ static int select_points(const pf_deck *d, const pf_node *map, const pf_points *
 
 static int bc_setup(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
                     const char *const *body_names, const pf_point_sets *sets, pf_bc *bc) {
+  const char *name = NULL;
+  PF_CALL(pf_deck_string(d, map, "name", &name));
+  if (name) {
+    if (!name[0] || strlen(name) >= sizeof bc->name)
+      return pf_deck_error(d, pf_node_get(map, "name"), "name", "1 to %d characters (got '%s')",
+                           (int)sizeof bc->name - 1, name);
+    snprintf(bc->name, sizeof bc->name, "%s", name);
+  }
   int hv = pf_node_get(map, "velocity") != NULL, hd = pf_node_get(map, "displacement") != NULL;
   if (hv == hd) return pf_deck_error(d, map, "velocity", "give exactly one of 'velocity' and 'displacement'");
   bc->is_velocity = hv;
@@ -68,10 +81,11 @@ static int bc_setup(const pf_deck *d, const pf_node *map, const pf_points *pts, 
 }
 
 int pf_bc_create(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
-                 const char *const *body_names, const pf_point_sets *sets, pf_bc **out) {
+                 const char *const *body_names, const pf_point_sets *sets, int index, pf_bc **out) {
   *out = NULL;
   pf_bc *bc;
   PF_MALLOC(bc, 1);
+  snprintf(bc->name, sizeof bc->name, "bc%d", index);
   int ierr = bc_setup(d, map, pts, nbodies, body_names, sets, bc);
   if (ierr) {
     pf_bc_destroy(&bc);
@@ -91,20 +105,34 @@ int pf_bc_destroy(pf_bc **bc) {
 
 pf_int pf_bc_npoints(const pf_bc *bc) { return bc->n; }
 
+const char *pf_bc_name(const pf_bc *bc) { return bc->name; }
+
+void pf_bc_impulse(const pf_bc *bc, double step[3], double total[3]) {
+  for (int c = 0; c < 3; c++) step[c] = bc->step_impulse[c], total[c] = bc->impulse[c];
+}
+
+void pf_bc_impulse_set(pf_bc *bc, const double step[3], const double total[3]) {
+  for (int c = 0; c < 3; c++) bc->step_impulse[c] = step[c], bc->impulse[c] = total[c];
+}
+
 /* Setting a velocity component from v- (after the half kick of dt/2 by the force f) to v+ is
- * the impulse J = m (v+ - v-) of the condition's reaction over that half step, during which the
- * velocity went from v0 = v- - f dt / (2m) to v+; its work, booked in *work, is taken by the
+ * the impulse J = m (v+ - v-) of the condition's reaction over that half step (added to the
+ * condition's impulses), during which the
+ * velocity went from v0 = v- - f dt / (2m) to v+; its work, booked in work[body of the point], is taken by the
  * trapezoidal rule, J (v0 + v+) / 2. This is the reaction's power integrated consistently with
  * the centred kinetic energy: a point held at a constant velocity against a force f does work
  * -f v dt per step exactly (an impulse's m (v+^2 - v-^2) / 2 would add a spurious
  * -m (f dt / 2m)^2 each time). */
-static void set_velocity(pf_points *pts, pf_int i, int c, double vnew, double half_dt, double *work) {
+static void set_velocity(pf_bc *bc, pf_points *pts, pf_int i, int c, double vnew, double half_dt, double *work) {
   double vkick = pts->v[3 * i + c], v0 = vkick - half_dt * pts->f[3 * i + c] / pts->m[i];
-  *work += pts->m[i] * (vnew - vkick) * 0.5 * (v0 + vnew);
+  const double J = pts->m[i] * (vnew - vkick);
+  work[pts->body[i]] += J * 0.5 * (v0 + vnew);
+  bc->impulse[c] += J, bc->step_impulse[c] += J;
   pts->v[3 * i + c] = vnew;
 }
 
 void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt, double *work) {
+  for (int c = 0; c < 3; c++) bc->step_impulse[c] = 0.0; /* a new step */
   for (pf_int k = 0; k < bc->n; k++) {
     pf_int i = bc->points[k];
     const double *x = &pts->X[3 * i];
@@ -112,7 +140,7 @@ void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt, double 
       if (!bc->e[c]) continue;
       double v = bc->is_velocity ? pf_expr_eval(bc->e[c], x[0], x[1], x[2], t + 0.5 * dt)
                                  : (pf_expr_eval(bc->e[c], x[0], x[1], x[2], t + dt) - pts->u[3 * i + c]) / dt;
-      set_velocity(pts, i, c, v, 0.5 * dt, work);
+      set_velocity(bc, pts, i, c, v, 0.5 * dt, work);
     }
   }
 }
@@ -126,7 +154,7 @@ void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t, double dt, double 
       /* a prescribed displacement keeps its mid-step velocity (the half kick is the reaction's) */
       double v = bc->is_velocity ? pf_expr_eval(bc->e[c], x[0], x[1], x[2], t)
                                  : pts->v[3 * i + c] - 0.5 * dt * pts->f[3 * i + c] / pts->m[i];
-      set_velocity(pts, i, c, v, 0.5 * dt, work);
+      set_velocity(bc, pts, i, c, v, 0.5 * dt, work);
     }
   }
 }

@@ -610,7 +610,7 @@ static int open_for_reading(const char *path, hid_t *file) {
 
 /* The file's format (1 when it has no "format" attribute: written before checkpoints recorded
  * it), refused unless it is this perifem's, before anything else is read. */
-static int check_format(const h5io *io) {
+static int check_format(const h5io *io, int *file_format) {
   int format = 1, ok = 1;
   char msg[640] = "";
   if (H5Aexists(io->file, "format") > 0) {
@@ -620,20 +620,23 @@ static int check_format(const h5io *io) {
   }
   H5Eclear2(H5E_DEFAULT);
   if (!ok) snprintf(msg, sizeof msg, "checkpoint %s: attribute 'format' cannot be read: the file is damaged", io->path);
-  else if (format != PF_CHECKPOINT_FORMAT)
-    ok = 0, snprintf(msg, sizeof msg, "checkpoint %s is of format %d, this perifem reads format %d only (%s): restart it "
-                     "with the perifem that wrote it, or run the deck from the start", io->path, format,
-                     PF_CHECKPOINT_FORMAT, format < PF_CHECKPOINT_FORMAT ? "written by an older perifem, whose "
-                     "checkpoints lack state this one restores and checks" : "written by a newer perifem");
+  else if (format < PF_CHECKPOINT_FORMAT_OLDEST || format > PF_CHECKPOINT_FORMAT)
+    ok = 0, snprintf(msg, sizeof msg, "checkpoint %s is of format %d, this perifem reads formats %d to %d only (%s): "
+                     "restart it with the perifem that wrote it, or run the deck from the start", io->path, format,
+                     PF_CHECKPOINT_FORMAT_OLDEST, PF_CHECKPOINT_FORMAT, format < PF_CHECKPOINT_FORMAT_OLDEST ?
+                     "written by an older perifem, whose checkpoints lack state this one restores and checks" :
+                     "written by a newer perifem");
   PF_AGREE(ok, PF_ERR_INPUT, msg);
+  *file_format = format;
   return 0;
 }
 
 int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, int nscalars,
-                       const char *const *names, double *values) {
+                       const char *const *names, double *values, int nscalars_format2, int *format) {
   h5io io = {-1, path, path, 0, 0, 0};
   PF_CALL(open_for_reading(path, &io.file));
-  int ierr = check_format(&io);
+  int ierr = check_format(&io, format);
+  if (!ierr && *format == 2) nscalars = nscalars_format2;
   if (!ierr) ierr = read_all(&io, pts, rows, nscalars, names, values);
   H5Fclose(io.file);
   return ierr;

@@ -154,6 +154,9 @@ int pf_deck_load(const char *path, pf_deck **deck);
  * index or by their name:), applied after the deck's include: files and before its
  * parameters: are substituted (core/deck_compose.c). */
 int pf_deck_load_with(const char *path, const char *const *sets, int nsets, pf_deck **deck);
+/* The same from the YAML text of a deck that stands for the file path (not read): messages name
+ * path, and files it names are relative to path's folder. */
+int pf_deck_load_text(const char *path, const char *text, const char *const *sets, int nsets, pf_deck **deck);
 int pf_deck_destroy(pf_deck **deck);
 const pf_node *pf_deck_root(const pf_deck *deck);
 const char *pf_deck_path(const pf_deck *deck);
@@ -477,16 +480,24 @@ typedef struct pf_bc pf_bc;
 extern const pf_key pf_bc_keys[];
 /* A prescribed velocity or displacement, component by component ("free" leaves a component
  * alone), on the points of a region (optionally of one body, by index into body_names); sets:
- * the named sets a region may select (NULL: none). */
+ * the named sets a region may select (NULL: none); index: its place in the deck's list, which
+ * names it "bc<index>" unless the deck gives `name:`. */
 int pf_bc_create(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
-                 const char *const *body_names, const pf_point_sets *sets, pf_bc **bc);
+                 const char *const *body_names, const pf_point_sets *sets, int index, pf_bc **bc);
 int pf_bc_destroy(pf_bc **bc);
 /* (Re)select the owned points of the condition's region and body (after a re-partition). */
 int pf_bc_select(pf_bc *bc, const pf_points *pts);
 pf_int pf_bc_npoints(const pf_bc *bc);
+const char *pf_bc_name(const pf_bc *bc);
+/* This rank's impulse of the condition's reaction on its owned points (N s, the momentum the
+ * condition gave them): over the last step taken (0 before the first) and since the start. */
+void pf_bc_impulse(const pf_bc *bc, double step[3], double total[3]);
+/* Set them (a restart: rank 0 takes the sums over the ranks that wrote the checkpoint). */
+void pf_bc_impulse_set(pf_bc *bc, const double step[3], const double total[3]);
 /* Velocity Verlet hooks: after the first half kick (mid-step velocity at t + dt/2) and after
  * the second half kick (velocity at t; dt the step just taken). The work of the conditions'
- * reactions on the owned points is added to *work (J; core/bc.c gives the rule). */
+ * reactions on owned point i is added to work[pts->body[i]] (J, per body; core/bc.c gives the
+ * rule), their impulse to the condition's (pf_bc_impulse). */
 void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt, double *work);
 void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t, double dt, double *work);
 /* Set mask[3 i + c] = 1 for every component c of owned point i the condition prescribes. */
@@ -507,10 +518,13 @@ typedef struct {
 int pf_table_allgather(const pf_table *t, double *full);
 
 /* ---- checkpoints (core/checkpoint.c): parallel HDF5 ---------------------------------- */
-/* The checkpoint format this perifem writes and reads, recorded in the file (attribute "format"
- * of "/"; files without it are format 1). 2: the bodies' geometry (point and element counts,
- * a hash of the reference positions and connectivity), the walls' and contact pairs' forces. */
-#define PF_CHECKPOINT_FORMAT 2
+/* The checkpoint format this perifem writes, recorded in the file (attribute "format" of "/";
+ * files without it are format 1). 2: the bodies' geometry (point and element counts, a hash of
+ * the reference positions and connectivity), the walls' and contact pairs' forces. 3: the
+ * history's running sums per body, per condition, per rigid surface and per wall (appended
+ * scalars). Formats PF_CHECKPOINT_FORMAT_OLDEST to PF_CHECKPOINT_FORMAT are read. */
+#define PF_CHECKPOINT_FORMAT 3
+#define PF_CHECKPOINT_FORMAT_OLDEST 2
 /* Write the owned points (every array and field) and their bond rows (each bond field flagged
  * PF_FIELD_RESTART under /bonds/<name>, after pf_bond_rows_fields_agree), plus named scalars and
  * tables (each written whole, under /tables/<name>), to path (through path.tmp, renamed when
@@ -521,7 +535,9 @@ int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *ro
                         int ntables, const pf_table *tables);
 /* Read a checkpoint written on any number of ranks: this rank gets an equal slice of its
  * points (a new store, n_global set, fields registered) with their rows, and the scalars.
- * A file of another format (PF_CHECKPOINT_FORMAT) is refused first, naming both formats. rows
+ * A file of a format this perifem does not read is refused first, naming the formats; *format
+ * is the file's. A file of format 2 holds only the first nscalars_format2 scalars: the others
+ * keep the values the caller put in values[] (the caller says what that means). rows
  * comes empty with the bond fields the caller keeps registered: each one flagged
  * PF_FIELD_RESTART is read (a file without it, or with another type or width, is refused naming
  * it), the others take their init; bond fields of the file the caller does not register are
@@ -531,7 +547,7 @@ int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *ro
  * core/checkpoint_check.c) are refused before use with PF_ERR_INPUT and a message naming the
  * file and the dataset, on every rank alike. Collective. */
 int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, int nscalars,
-                       const char *const *names, double *values);
+                       const char *const *names, double *values, int nscalars_format2, int *format);
 /* Read a table written with the checkpoint whole on every rank: full[total * ncomp] (name,
  * total and ncomp as written; a mismatch is an error). Collective. */
 int pf_checkpoint_read_table(const char *path, const pf_table *t, double *full);

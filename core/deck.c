@@ -206,12 +206,16 @@ int pf_deck_parse_value(pf_deck *d, const char *origin, const char *text, pf_nod
 
 int pf_deck_load(const char *path, pf_deck **deck) { return pf_deck_load_with(path, NULL, 0, deck); }
 
-int pf_deck_load_with(const char *path, const char *const *sets, int nsets, pf_deck **deck) {
+/* The deck of the file path, or of text (not NULL) standing for that file. */
+static int load(const char *path, const char *text, const char *const *sets, int nsets, pf_deck **deck) {
   *deck = NULL;
   pf_deck *d = calloc(1, sizeof *d);
   PF_CHECK(d, PF_ERR_MEMORY, "out of memory");
   d->path = strdup(path);
-  int ierr = d->path ? pf_deck_parse_file(d, path, &d->root) : PF_ERR_MEMORY;
+  const char *kept = d->path && text ? pf_deck_keep(d, path) : NULL;
+  int ierr = !d->path || (text && !kept) ? PF_ERR_MEMORY
+             : text                     ? parse_text(kept, text, strlen(text), 1, &d->root)
+                                        : pf_deck_parse_file(d, path, &d->root);
   if (!ierr) ierr = pf_deck_compose(d, sets, nsets);
   if (ierr) {
     pf_deck_destroy(&d);
@@ -220,6 +224,14 @@ int pf_deck_load_with(const char *path, const char *const *sets, int nsets, pf_d
   d->hash = pf_node_hash(d->root);
   *deck = d;
   return 0;
+}
+
+int pf_deck_load_with(const char *path, const char *const *sets, int nsets, pf_deck **deck) {
+  return load(path, NULL, sets, nsets, deck);
+}
+
+int pf_deck_load_text(const char *path, const char *text, const char *const *sets, int nsets, pf_deck **deck) {
+  return load(path, text, sets, nsets, deck);
 }
 
 int pf_deck_destroy(pf_deck **deck) {

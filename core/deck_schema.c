@@ -185,6 +185,8 @@ int pf_deck_int(const pf_deck *d, const pf_node *map, const char *key, long *out
   if (!v) return 0;
   if (v->kind != NODE_SCALAR || !parse_real(v->text, &r) || r != floor(r))
     return pf_deck_error(d, v, key, "expected an integer");
+  if (!(fabs(r) < 9e15)) /* (the bound pf_deck_validate applies; beyond a long the cast is undefined) */
+    return pf_deck_error(d, v, key, "expected an integer below 9e15 in magnitude");
   *out = (long)r;
   return 0;
 }

@@ -3,16 +3,19 @@
  * material; variable horizon and the transition forms of pd/), with beta(x) in [0, 1] from the
  * deck. Elements whose eight nodes all have beta = 1 are not evaluated (the PD region, where
  * bonds may break). Two forms (the key `overlap`):
- * - force (Seleson, Beneddine & Prudhomme 2013, force-based blending; D'Elia et al. 2021, §4):
+ * - force, a statics and patch-test tool (Seleson, Beneddine & Prudhomme 2013, force-based blending; D'Elia et al. 2021, §4):
  *     f_i = beta_i f_i^PD + (1 - beta_i) f_i^FE.
  *   Both operators give zero force under a linear displacement and the exact div sigma under a
  *   quadratic one at interior nodes, so the blend does too; it conserves neither momentum nor
  *   energy where beta varies.
- * - energy: the forces of E = sum_i beta_i W_i V_i + sum_e (1 - beta_e) W_e V_e (beta_e the mean
- *   of element e's nodes), the energy the run books in both forms: each PD point's force state
- *   and each element's forces carry their weight (§3.4). Momentum and energy are conserved by
- *   construction; under a uniform stress and a linear beta the two operators' ghost forces,
- *   +sigma grad beta V_i from PD and -sigma grad beta V_i from the elements, cancel. */
+ * - energy, the default: the forces of E = sum_i beta_i W_i V_i + sum_e (1 - beta_e) W_e V_e
+ *   (beta_e the mean of element e's nodes), the energy the run books in both forms: each PD
+ *   point's force state and each element's forces carry their weight (§3.4). Momentum and energy
+ *   are conserved by construction; under a uniform stress and a linear beta the two operators'
+ *   ghost forces, +sigma grad beta V_i from PD and -sigma grad beta V_i from the elements,
+ *   cancel, and where they do not (beta's kinks) the consistent form (the default formulation)
+ *   corrects the PD points' gradient weights once at set-up, taking the elements' part of the
+ *   uniform-stress vector (fe_vector) into its targets. */
 #include "coupling/coupling.h"
 
 #include <math.h>
@@ -35,6 +38,12 @@ struct pf_coupled_body {
 
 static double fe_distance(const void *region, const double x[3]) {
   return region ? pf_nearest_distance(region, x) : INFINITY;
+}
+
+/* The elements' part of the consistent form's targets at owned store node i (energy form). */
+static void fe_vector(const void *ctx, pf_int i, double out[3]) {
+  const pf_coupled_body *c = ctx;
+  pf_fem_body_node_blend_vector(c->fe, i - c->first, c->beta[i], out);
 }
 
 static double beta_at(const void *ctx, const double x[3]) {
@@ -91,7 +100,7 @@ static int read_coupling(pf_coupled_body *c, const pf_node *body, const pf_node 
     return pf_deck_error(c->deck, dmg, "damage", "body '%s' has no node with blending weight 1: damage acts only "
                          "in the peridynamic region, never in the transition, overlap or elements", c->name);
   pf_fem_body_set_blending(c->fe, beta_at, c);
-  const char *form = "force";
+  const char *form = "energy";
   PF_CALL(pf_deck_string(c->deck, map, "overlap", &form));
   if (strcmp(form, "force") && strcmp(form, "energy"))
     return pf_deck_error(c->deck, pf_node_get(map, "overlap"), "overlap",
@@ -195,6 +204,7 @@ static int attach_blending(pf_coupled_body *c, pf_points *pts) {
   PF_CALL(pf_points_exchange(pts, c->beta, 1));
   pf_pd_body_set_blending(c->pd, c->beta, c->energy_form);
   PF_CALL(pf_fem_body_set_blending_field(c->fe, c->beta));
+  pf_pd_body_set_fe_vector(c->pd, fe_vector, c);
   for (pf_int i = c->first; i < c->first + c->n; i++) pts->m[i] = c->rho * pts->vol[i]; /* all nodes */
   free(c->fsave);
   PF_MALLOC(c->fsave, 3 * (size_t)c->n + 1);

@@ -168,6 +168,15 @@ void pf_fem_body_node_force(const pf_fem_body *b, pf_int i, int weighted, double
   }
 }
 
+void pf_fem_body_node_blend_vector(const pf_fem_body *b, pf_int i, double beta_i, double g[3]) {
+  g[0] = g[1] = g[2] = 0;
+  for (int64_t q = b->node_off[i]; q < b->node_off[i + 1] && b->share; q++) {
+    const pf_int k = b->node_item[q], e = k / 8;
+    const double *ref = &b->ref[25 * (size_t)e], w = (b->share[e] - (1.0 - beta_i)) * ref[24];
+    for (int a = 0; a < 3; a++) g[a] += w * ref[3 * (k % 8) + a];
+  }
+}
+
 int pf_fem_body_evaluate(pf_fem_body *b, pf_points *pts, double dt, double t, long step) {
   b->t = t, b->step = step;
   return pf_fem_elements_evaluate(b, pts, dt);

@@ -82,6 +82,12 @@ int pf_fem_body_evaluate(pf_fem_body *b, pf_points *pts, double dt, double t, lo
  * element's share weighted by 1 - its nodes' mean beta, the weight its energies carry — the
  * forces of sum_e (1 - beta_e) W_e (the energy form). */
 void pf_fem_body_node_force(const pf_fem_body *b, pf_int i, int weighted, double f[3]);
+/* Blended, after pf_fem_body_set_blending_field: sum_e (beta_i - beta_e) V_e B_ei over the
+ * elements of owned node i (local index), with the reference volume V_e, the reference mean
+ * gradient B_ei and beta_e = 1 - the element's share: how much the weighted elements' force under
+ * a uniform stress P, -P sum_e (1 - beta_e) V_e B_ei, differs from that of elements all weighted
+ * 1 - beta_i (docs/theory/coupling.md §3.4). Summed in ascending global element order. */
+void pf_fem_body_node_blend_vector(const pf_fem_body *b, pf_int i, double beta_i, double g[3]);
 /* Lumped volume of each mesh node [nnodes], m^3. */
 const double *pf_fem_body_node_volumes(const pf_fem_body *b);
 

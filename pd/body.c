@@ -42,7 +42,7 @@ const pf_key pf_pd_body_keys[] = {
     {"horizon", PF_KEY_EXPR, 1, NULL, "m",
      "horizon delta (bonds with |xi| <= delta): a number, or an expression in x, y, z (a variable "
      "horizon; lps and correspondence materials)", NULL},
-    {"formulation", PF_KEY_STRING, 0, "auto", "",
+    {"formulation", PF_KEY_STRING, 0, "consistent (correspondence), standard (lps)", "",
      "auto (partial stress at interior points whose family reaches another horizon, standard elsewhere) | "
      "standard | partial_stress (lps and correspondence materials) | corrected (the standard force less "
      "its uniform-stress ghost force where the horizon varies; correspondence) | consistent (the "
@@ -200,8 +200,14 @@ static int read_horizon(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
   return pf_expr_create_vars(text, d, h, "horizon", vars, 1, &b->hz_expr);
 }
 
+/* The default is a form for dynamics: the consistent form when the material has a deformation
+ * gradient (correspondence), the standard form otherwise (lps: the gradient of its energy,
+ * stable and conservative, with the ghost forces of a varying horizon; the partial stress of
+ * auto is a strong form that conserves nothing and grows unstable in long runs,
+ * docs/theory/coupling.md §2.4). After the material is read. */
 static int read_formulation(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
-  const char *name = "auto", *names[] = {"auto", "standard", "partial_stress", "corrected", "consistent"};
+  const char *names[] = {"auto", "standard", "partial_stress", "corrected", "consistent"};
+  const char *name = b->ops->gradient_forms ? "consistent" : "standard";
   PF_CALL(pf_deck_string(d, body, "formulation", &name));
   for (int k = 0; k < 5; k++)
     if (!strcmp(name, names[k])) {
@@ -251,9 +257,9 @@ static int body_read(const pf_deck *d, const pf_node *owner, const pf_node *body
   PF_CALL(pf_deck_string(d, owner, "name", &name));
   snprintf(b->name, sizeof b->name, "%s", name);
   PF_CALL(read_horizon(d, body, b));
-  PF_CALL(read_formulation(d, body, b));
   const pf_node *mat = NULL;
   PF_CALL(read_material(d, owner, materials, b, &mat));
+  PF_CALL(read_formulation(d, body, b));
   PF_CALL(read_influence(d, body, b));
   const char *corr_keys[] = {"hourglass", "critical_damage", "bond_loss"};
   for (int k = 0; k < 3; k++)
@@ -306,10 +312,13 @@ const pf_key pf_pd_coupled_keys[] = {
      "where the elements act, blending < 1)", NULL},
     {"blending", PF_KEY_EXPR, 1, NULL, "",
      "blending weight beta(x, y, z) in [0, 1]: 1 peridynamics only, 0 elements only", NULL},
-    {"overlap", PF_KEY_STRING, 0, "force", "",
-     "force (f = beta f_PD + (1 - beta) f_FE at each node) | energy (the forces of beta W_PD + (1 - beta) W_FE: "
-     "conserves momentum and energy; docs/theory/coupling.md §3.4)", NULL},
-    {"formulation", PF_KEY_STRING, 0, "auto", "", "auto | standard | partial_stress | corrected | consistent", NULL},
+    {"overlap", PF_KEY_STRING, 0, "energy", "",
+     "energy (the forces of beta W_PD + (1 - beta) W_FE: conserves momentum and energy; with the consistent "
+     "formulation free of ghost forces; docs/theory/coupling.md §3.4) | force (f = beta f_PD + (1 - beta) f_FE "
+     "at each node: a statics tool, conserves neither)", NULL},
+    {"formulation", PF_KEY_STRING, 0, "consistent", "",
+     "consistent (for dynamics) | auto | partial_stress | corrected (statics and patch-test tools) | "
+     "standard (no correction; docs/theory/coupling.md §2.2)", NULL},
     {"influence", PF_KEY_STRING, 0, "constant", "", "constant | inverse_distance", NULL},
     {"hourglass", PF_KEY_MAP, 0, "type: stiffness, coefficient: 0.05", "", "zero-energy-mode control",
      pf_pd_hourglass_keys},
@@ -335,6 +344,10 @@ void pf_pd_body_set_fe_distance(pf_pd_body *b, pf_pd_distance_fn distance, const
 }
 
 int pf_pd_body_uses_fe_distance(const pf_pd_body *b) { return b->uses_dfe; }
+
+void pf_pd_body_set_fe_vector(pf_pd_body *b, pf_pd_fe_vector_fn vector, const void *ctx) {
+  b->fe_vector = vector, b->fe_vector_ctx = ctx;
+}
 
 int pf_pd_body_find_bonds(pf_pd_body *b, const pf_pd_cloud *cloud, const pf_points *pts,
                           pf_int first, pf_int n, pf_bond_rows *rows) {
@@ -373,16 +386,20 @@ int pf_pd_family_complete(const pf_pd_body *b, const pf_points *pts, pf_int i, d
   return sqrt(m1[0] * m1[0] + m1[1] * m1[1] + m1[2] * m1[2]) <= 0.01 * m0;
 }
 
-/* Coupled in the energy form: the transition forms (partial stress, corrected, consistent) are
- * written for unweighted force states, so a point whose row reaches beta < 1 takes the standard
- * form, whose force states carry the weights (docs/theory/coupling.md §3.4). */
+/* Coupled in the energy form: the partial-stress and corrected forms are written for unweighted
+ * force states, so a point whose row reaches beta < 1 takes the standard form, whose force states
+ * carry the weights. The consistent form takes the weights into its corrections instead
+ * (docs/theory/coupling.md §3.4): a point with beta > 0 whose row reaches another beta (the
+ * overlap and its kinks) or another horizon gets corrected gradient weights (bit 8). */
 static void standard_in_overlap(const pf_pd_body *b) {
   const pf_family *fam = &b->fam;
   for (pf_int i = b->first; i < b->first + b->n && b->blend && b->blend_states; i++) {
-    int inside = b->blend[i] == 1;
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1] && inside; k++)
-      inside = b->blend[fam->neighbor[k]] == 1;
-    if (!inside) b->region[i] = 2 * (b->blend[i] < 1);
+    int inside = b->blend[i] == 1, same = 1;
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++)
+      inside &= b->blend[fam->neighbor[k]] == 1, same &= b->blend[fam->neighbor[k]] == b->blend[i];
+    if (inside) continue;
+    const int corrected = b->form == PF_PD_CONSISTENT && b->blend[i] > 0 && (!same || ((int)b->region[i] & 8));
+    b->region[i] = 2 * (b->blend[i] < 1) + 8 * corrected;
   }
 }
 
@@ -515,18 +532,39 @@ double pf_pd_body_take_damage_work(pf_pd_body *b) {
   return w;
 }
 
+/* The row (owned point, from 0) that holds bond k: the last li with offset[li] <= k. */
+static pf_int row_of_bond(const int64_t *offset, pf_int n, int64_t k) {
+  pf_int lo = 0, hi = n; /* offset[lo] <= k < offset[hi] */
+  while (hi - lo > 1) {
+    pf_int mid = lo + (hi - lo) / 2;
+    if (offset[mid] <= k) lo = mid;
+    else hi = mid;
+  }
+  return lo;
+}
+
+/* Each bond that broke since the last call takes its current length as its rest length. Called
+ * every step when the body is in self-contact, so the scan reads the broken flags eight at a
+ * time and skips a word of intact bonds at once (PF_FAMILY_SLACK zeros end the array): before,
+ * testing every bond cost 15 % of a PMB step in which nothing broke. */
 void pf_pd_body_record_breaks(pf_pd_body *b, const pf_points *pts) {
   pf_family *fam = &b->fam;
+  const int64_t nbonds = fam->offset[b->n], nwords = (nbonds + 7) / 8;
 #pragma omp parallel for schedule(static)
-  for (pf_int i = b->first; i < b->first + b->n; i++)
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+  for (int64_t w = 0; w < nwords; w++) {
+    uint64_t word;
+    memcpy(&word, &fam->broken[8 * w], sizeof word);
+    if (!word) continue;
+    for (int64_t k = 8 * w; k < 8 * w + 8 && k < nbonds; k++) {
       if (!fam->broken[k] || fam->rest[k] > 0) continue;
+      const pf_int i = b->first + row_of_bond(fam->offset, b->n, k);
       const double *yi = &pts->y[3 * i], *yj = &pts->y[3 * fam->neighbor[k]];
       const double d0 = yj[0] - yi[0], d1 = yj[1] - yi[1], d2 = yj[2] - yi[2], r = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
       float rest = (float)r;
       if ((double)rest > r) rest = nextafterf(rest, 0.0f); /* never above: no force at the break */
       fam->rest[k] = fmaxf(rest, FLT_MIN);                 /* (0 means not recorded) */
     }
+  }
 }
 
 int64_t pf_pd_body_damage(const pf_pd_body *b, pf_points *pts) {

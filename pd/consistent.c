@@ -3,15 +3,18 @@
  * by the smallest h_ik (in sum |h_ik|^2 / (w V_k)) such that
  *   (B) sum_k h_ik (x) xi_ik = 0               at every transition point i (Fbar exact for a
  *                                               linear motion: sum_k xi (x) g_ik = I stays),
- *   (C) sum_j (V_j h_jn - V_n h_nj) = V_n d_n   at every point n a correction reaches,
- * where d_n is the uniform-stress ghost vector of the standard form (§2.5) at a transition point
- * and 0 elsewhere. (C) makes the energy's force under a uniform stress P,
+ *   (C) sum_j (V_j h_jn - V_n h_nj) = t_n      at every point n a correction reaches,
+ * where t_n = V_n d_n, d_n the uniform-stress ghost vector of the standard form (§2.5) at a
+ * transition point and 0 elsewhere. (C) makes the energy's force under a uniform stress P,
  * f_n = -P sum_j (V_j g_jn - V_n g_nj), the one a constant horizon gives: zero at an interior
- * point. At a free-surface point (an incomplete family, first moment S) only the components of
+ * point. Coupled to elements in the energy form (§3.4) each V of (C) and of h's owner is the
+ * weight of the point's energy, beta V, and t_n also holds the blending's part of the
+ * uniform-stress vector (PD one-sided sums and the elements' sum, pd/material_correspondence.c),
+ * so that the overlap's kinks are free of ghost forces too. At a free-surface point (an incomplete family, first moment S) only the components of
  * (C) across S are kept, those a traction-free surface leaves to the model; the surface-normal
  * component balances the rest (the sum of (C) over all points vanishes for any weights).
  *
- * Lagrange's conditions give h_ik = w V_k (Lambda_i xi + V_i (mu_k - mu_i)) with mu already
+ * Lagrange's conditions give h_ik = w V_k (Lambda_i xi + beta_i V_i (mu_k - mu_i)) with mu already
  * projected at surface points; the multipliers solve the normal equations A W A^T lambda = r
  * (the surface rows made slightly soft, diagonal_blocks) by
  * conjugate gradients with a block-Jacobi preconditioner (Lambda_i: the 3x3 moment
@@ -23,9 +26,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A gathered constrained point: global id, position, volume, transition flag, target V d,
- * surface direction S/|S| (0 at an interior point). */
-enum { R_GID = 0, R_X = 1, R_V = 4, R_ZONE = 5, R_T = 6, R_S = 9, RN = 12 };
+/* A gathered constrained point: global id, position, volume, transition flag, target t,
+ * surface direction S/|S| (0 at an interior point), its energy's weight beta V (V uncoupled). */
+enum { R_GID = 0, R_X = 1, R_V = 4, R_ZONE = 5, R_T = 6, R_S = 9, R_BV = 12, RN = 13 };
 
 typedef struct {
   pf_int np;           /* constrained points, ascending global id */
@@ -81,7 +84,7 @@ static int allgather(const void *mine, int n, int width, MPI_Datatype t, size_t 
 }
 
 /* This rank's records (its owned constrained points) and the bonds of its transition points. */
-static int local_parts(const pf_pd_body *b, const pf_points *pts, const double *d, double **rec, int *nrec,
+static int local_parts(const pf_pd_body *b, const pf_points *pts, const double *t, double **rec, int *nrec,
                        int64_t **pairs, int *npairs) {
   const pf_family *fam = &b->fam;
   int64_t nbond = 0;
@@ -97,9 +100,10 @@ static int local_parts(const pf_pd_body *b, const pf_points *pts, const double *
     const int complete = pf_pd_family_complete(b, pts, i, S);
     const double s = complete ? 0.0 : sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
     r[R_GID] = (double)pts->gid[i], r[R_V] = pts->vol[i], r[R_ZONE] = zone;
+    r[R_BV] = pf_pd_energy_weight(b, i) * pts->vol[i];
     for (int a = 0; a < 3; a++) {
       r[R_X + a] = pts->X[3 * i + a];
-      r[R_T + a] = zone ? pts->vol[i] * d[3 * (i - b->first) + a] : 0.0;
+      r[R_T + a] = t[3 * (i - b->first) + a];
       r[R_S + a] = s > 0 ? S[a] / s : 0.0;
     }
   }
@@ -139,7 +143,7 @@ static void apply(const problem *q, const double *lam, double *out) {
       mt[3 * p + a] = P[0] * mu[3 * p] + P[1] * mu[3 * p + 1] + P[2] * mu[3 * p + 2];
     }
   for (pf_int p = 0; p < np; p++) {
-    const double Vp = q->rec[RN * p + R_V];
+    const double Vp = q->rec[RN * p + R_BV];
     for (int64_t k = q->off[p]; k < q->off[p + 1]; k++) {
       const pf_int n = q->nb[k];
       double xi[3], h[3];
@@ -186,7 +190,7 @@ static void diagonal_blocks(problem *q) {
   const pf_int np = q->np;
   double *s = calloc((size_t)np + 1, sizeof(double));
   for (pf_int p = 0; p < np; p++) {
-    const double Vp = q->rec[RN * p + R_V];
+    const double Vp = q->rec[RN * p + R_BV];
     double M[3][3] = {{0}}, Mi[3][3];
     for (int64_t k = q->off[p]; k < q->off[p + 1]; k++) {
       double xi[3];
@@ -279,12 +283,12 @@ static int assemble(problem *q, double *rec, int nrec, int64_t *pairs, int npair
   return 0;
 }
 
-int pf_pd_consistent_solve(const pf_pd_body *b, const pf_points *pts, const double *d, double *lm) {
+int pf_pd_consistent_solve(const pf_pd_body *b, const pf_points *pts, const double *t, double *lm) {
   double *mine, *rec;
   int64_t *mypairs, *pairs;
   int nmine = 0, nmypairs = 0, nrec = 0, npairs = 0, it = 0;
   for (pf_int i = b->first; i < b->first + b->n; i++) memset(&lm[PF_CONSISTENT_NLM * i], 0, sizeof(double) * PF_CONSISTENT_NLM);
-  PF_CALL(local_parts(b, pts, d, &mine, &nmine, &mypairs, &nmypairs));
+  PF_CALL(local_parts(b, pts, t, &mine, &nmine, &mypairs, &nmypairs));
   PF_CALL(allgather(mine, nmine, RN, MPI_DOUBLE, sizeof(double), (void **)&rec, &nrec));
   PF_CALL(allgather(mypairs, nmypairs, 2, MPI_INT64_T, sizeof(int64_t), (void **)&pairs, &npairs));
   free(mine), free(mypairs);
@@ -297,8 +301,8 @@ int pf_pd_consistent_solve(const pf_pd_body *b, const pf_points *pts, const doub
   memset(rhs, 0, 9 * (size_t)q.np * sizeof(double));
   for (pf_int p = 0; p < q.np; p++)
     for (int a = 0; a < 3; a++) {
-      const double *P = &q.P[9 * p + 3 * a], *t = &rec[RN * p + R_T];
-      rhs[9 * (size_t)q.np + 3 * p + a] = P[0] * t[0] + P[1] * t[1] + P[2] * t[2];
+      const double *P = &q.P[9 * p + 3 * a], *tp = &rec[RN * p + R_T];
+      rhs[9 * (size_t)q.np + 3 * p + a] = P[0] * tp[0] + P[1] * tp[1] + P[2] * tp[2];
     }
   PF_CALL(solve(&q, rhs, lam, &it, &rel));
   pf_log("body '%s': consistent form, %lld transition bonds of %lld points solved in %d iterations "

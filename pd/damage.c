@@ -101,3 +101,9 @@ int pf_pd_damage_setup(pf_pd_body *b, pf_points *pts, int fresh) {
 int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts) {
   return b->damage->post_step ? b->damage->post_step(b, pts) : 0;
 }
+
+double pf_pd_body_take_damage_redistribution(pf_pd_body *b) {
+  const double r = b->damage_redistribution;
+  b->damage_redistribution = 0;
+  return r;
+}

@@ -258,6 +258,50 @@ static int ghost_vectors(pf_pd_body *b, pf_points *pts) {
   return b->fresh ? ghost_vector(b, pts, 4, &p->ghost[3 * b->first]) : 0;
 }
 
+/* Does point i's row reach a point of another horizon? */
+static int horizon_varies(const pf_pd_body *b, pf_int i) {
+  const pf_family *fam = &b->fam;
+  for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++)
+    if (b->hz[fam->neighbor[k]] != b->hz[i]) return 1;
+  return 0;
+}
+
+/* The targets t_n of the consistent form's condition (C), sum_j (beta_j V_j h_jn - beta_n V_n h_nj)
+ * = t_n (docs/theory/coupling.md §2.6, §3.4): the change of the uniform-stress vector
+ * C_n = sum_j (beta_j V_j g_jn - beta_n V_n g_nj) + sum_e (1 - beta_e) V_e B_en that takes it to
+ * its value in one model of constant horizon. With d_n the standard form's ghost vector
+ * (ghost_vector, at the points whose row reaches another horizon) and, coupled in the energy
+ * form, the blending's part,
+ *   t_n = beta_n V_n d_n + V_n sum_j (beta_j - beta_n) w V_j [n in H_j] K_j^-1 xi_nj
+ *         - sum_e (beta_n - beta_e) V_e B_en,
+ * the last sum given by the elements (pf_pd_body_set_fe_vector). Uncoupled, t_n = V_n d_n. Into
+ * t[3 (n - first)] for every owned point; K^-1 comes in the ghosted field ghost_vector filled. */
+static int consistent_targets(pf_pd_body *b, pf_points *pts, double *t) {
+  PF_CALL(ghost_vector(b, pts, 8, t));
+  const double *kinv = pf_points_field_get(pts, "shape_tensor_inverse");
+  const pf_family *fam = &b->fam;
+  const int blended = b->blend && b->blend_states;
+  for (pf_int i = b->first; i < b->first + b->n; i++) {
+    double *ti = &t[3 * (i - b->first)], s[3] = {0, 0, 0}, fe[3] = {0, 0, 0};
+    const double bi = pf_pd_energy_weight(b, i), V = pts->vol[i];
+    const int varies = pf_pd_consistent_at(b, i) && horizon_varies(b, i);
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1] && blended; k++) {
+      const pf_int j = fam->neighbor[k];
+      if (b->blend[j] == b->blend[i]) continue;
+      double xi[3], r02 = 0;
+      for (int a = 0; a < 3; a++) xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a], r02 += xi[a] * xi[a];
+      const double r0 = sqrt(r02);
+      if (!pf_pd_in_family(b, j, r0)) continue;
+      const double w = (b->blend[j] - b->blend[i]) * pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+      for (int a = 0; a < 3; a++)
+        for (int c = 0; c < 3; c++) s[a] += w * kinv[9 * j + 3 * a + c] * xi[c];
+    }
+    if (blended && b->fe_vector) b->fe_vector(b->fe_vector_ctx, i, fe);
+    for (int a = 0; a < 3; a++) ti[a] = (varies ? bi * V * ti[a] : 0.0) + V * s[a] - fe[a];
+  }
+  return 0;
+}
+
 /* The consistent form (§2.6): the multipliers of its weight corrections, solved for at t = 0
  * (pd/consistent.c) and kept as a ghosted point field that migrates and is checkpointed. */
 static int consistent_weights(pf_pd_body *b, pf_points *pts) {
@@ -267,11 +311,11 @@ static int consistent_weights(pf_pd_body *b, pf_points *pts) {
   PF_CALL(pf_points_field_register(pts, "consistent_weights", PF_CONSISTENT_NLM, PF_FIELD_GHOST | PF_FIELD_RESTART, &idx));
   p->lm = pts->fields[idx].data;
   if (b->fresh) {
-    double *d;
-    PF_MALLOC(d, 3 * (size_t)b->n + 1);
-    int ierr = ghost_vector(b, pts, 8, d);
-    if (!ierr) ierr = pf_pd_consistent_solve(b, pts, d, p->lm);
-    free(d);
+    double *t;
+    PF_MALLOC(t, 3 * (size_t)b->n + 1);
+    int ierr = consistent_targets(b, pts, t);
+    if (!ierr) ierr = pf_pd_consistent_solve(b, pts, t, p->lm);
+    free(t);
     PF_CALL(ierr);
   }
   return pf_points_exchange(pts, p->lm, PF_CONSISTENT_NLM);
@@ -390,7 +434,8 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
     const double w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
     if (consistent) {
       double h[3];
-      pf_pd_consistent_h(&p->lm[PF_CONSISTENT_NLM * i], &p->lm[PF_CONSISTENT_NLM * j], w, pts->vol[i], xi, h);
+      pf_pd_consistent_h(&p->lm[PF_CONSISTENT_NLM * i], &p->lm[PF_CONSISTENT_NLM * j], w,
+                         pf_pd_energy_weight(b, i) * pts->vol[i], xi, h);
       for (int r = 0; r < 3; r++)
         for (int c = 0; c < 3; c++) H[r][c] += Y[r] * h[c], Hd[r][c] += Yd[r] * h[c];
     }
@@ -589,8 +634,9 @@ static int corr_pass1(pf_pd_body *b, pf_points *pts) {
   return pf_points_exchange(pts, p->gx, GX);
 }
 
-/* The consistent form's part of the pair force on i (before the factor V_i): P_i h_ij - (V_j / V_i)
- * P_j h_ji, for the ends that are its points (docs/theory/coupling.md §2.6); om = omega(|xi|). */
+/* The consistent form's part of the pair force on i (before the factor V_i): beta_i P_i h_ij -
+ * (beta_j V_j / V_i) P_j h_ji, for the ends that are its points (docs/theory/coupling.md §2.6,
+ * §3.4; beta = 1 but coupled in the energy form); om = omega(|xi|). */
 static void consistent_pair(const pf_pd_body *b, const pf_points *pts, pf_int i, pf_int j, double om,
                             const double xi[3], double f[3]) {
   const corr *p = b->mat;
@@ -598,14 +644,15 @@ static void consistent_pair(const pf_pd_body *b, const pf_points *pts, pf_int i,
   if (!zi && !zj) return;
   const double *li = &p->lm[PF_CONSISTENT_NLM * i], *lj = &p->lm[PF_CONSISTENT_NLM * j];
   const double *Pi = &p->gx[GX * i + G_NU], *Pj = &p->gx[GX * j + G_NU], Vi = pts->vol[i], Vj = pts->vol[j];
+  const double bi = pf_pd_energy_weight(b, i), bj = pf_pd_energy_weight(b, j);
   double h[3];
   if (zi) {
-    pf_pd_consistent_h(li, lj, om * Vj, Vi, xi, h);
-    for (int a = 0; a < 3; a++) f[a] += Pi[3 * a] * h[0] + Pi[3 * a + 1] * h[1] + Pi[3 * a + 2] * h[2];
+    pf_pd_consistent_h(li, lj, om * Vj, bi * Vi, xi, h);
+    for (int a = 0; a < 3; a++) f[a] += bi * (Pi[3 * a] * h[0] + Pi[3 * a + 1] * h[1] + Pi[3 * a + 2] * h[2]);
   }
   if (zj) {
-    const double xr[3] = {-xi[0], -xi[1], -xi[2]}, s = Vj / Vi;
-    pf_pd_consistent_h(lj, li, om * Vi, Vj, xr, h);
+    const double xr[3] = {-xi[0], -xi[1], -xi[2]}, s = bj * Vj / Vi;
+    pf_pd_consistent_h(lj, li, om * Vi, bj * Vj, xr, h);
     for (int a = 0; a < 3; a++) f[a] -= s * (Pj[3 * a] * h[0] + Pj[3 * a + 1] * h[1] + Pj[3 * a + 2] * h[2]);
   }
 }
@@ -619,7 +666,8 @@ static void consistent_pair(const pf_pd_body *b, const pf_points *pts, pf_int i,
  * forces, zero under any affine motion, are the same in both forms. Coupled in the energy form
  * (pf_pd_body_set_blending), each end's force state carries its own blending weight,
  * beta_i P_i K_i^-1 and beta_j P_j K_j^-1, and so does each end's hourglass stiffness: the
- * forces of sum_i beta_i W_i V_i (docs/theory/coupling.md §3.4). */
+ * forces of sum_i beta_i W_i V_i (docs/theory/coupling.md §3.4); so do the consistent form's
+ * corrections (consistent_pair). */
 static int corr_force(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   PF_CALL(corr_pass1(b, pts));

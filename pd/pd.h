@@ -125,6 +125,12 @@ void pf_pd_body_set_blending(pf_pd_body *b, const double *beta, int weight_state
 typedef double (*pf_pd_distance_fn)(const void *ctx, const double x[3]);
 void pf_pd_body_set_fe_distance(pf_pd_body *b, pf_pd_distance_fn distance, const void *ctx);
 int pf_pd_body_uses_fe_distance(const pf_pd_body *b);
+/* Coupled in the energy form: the elements' part of the uniform-stress vector at owned store
+ * point i, sum_e (beta_i - beta_e) V_e B_ei over its elements (reference volume and mean gradient,
+ * beta_e the mean of the element's nodes), into out; the consistent form takes it into the
+ * targets of its weight corrections at the overlap's kinks (docs/theory/coupling.md §3.4). */
+typedef void (*pf_pd_fe_vector_fn)(const void *ctx, pf_int i, double out[3]);
+void pf_pd_body_set_fe_vector(pf_pd_body *b, pf_pd_fe_vector_fn vector, const void *ctx);
 /* Append to rows the bonds of store points [first, first+n), points of this body, found in
  * the body's whole cloud (with a variable horizon, each point's own horizon: rows hold the
  * pairs either end's family has). */
@@ -156,10 +162,12 @@ int pf_pd_body_uses_velocity(const pf_pd_body *b);
 int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts);
 /* Stored elastic energy (J) of the body's owned points. */
 double pf_pd_body_energy(const pf_pd_body *b, const pf_points *pts);
-/* The energy (J) the body's owned points lost with the bonds that failed since the last call
- * (the damage dissipation of the energy balance; correspondence bodies, whose energy is the
- * stress work, release none), and restart the count. */
+/* The change of stored energy (J) of the body's owned points when bonds failed since the last
+ * call (the energy with them less without, at the same positions), and restart the count. Of it,
+ * _redistribution (pd/damage.c) is the part that is not released but moved (<= 0: the LPS
+ * dilatation's cross term; docs/theory/pd.md §5.1); the rest, the damage dissipation, is >= 0. */
 double pf_pd_body_take_damage_work(pf_pd_body *b);
+double pf_pd_body_take_damage_redistribution(pf_pd_body *b);
 /* Give each bond of the owned rows that broke since the last call its rest length: its length
  * at the current positions, rounded down to a float. Below it the bond's two points are in
  * contact (short-range self-contact, contact/pairs.c), so a bond that breaks in compression sets

@@ -34,6 +34,8 @@ struct pf_pd_body {
   int uses_dfe;            /* coupled: the horizon expression names d_fe */
   pf_pd_distance_fn fe_distance; /* coupled: d_fe, the distance to where the elements act */
   const void *fe_ctx;
+  pf_pd_fe_vector_fn fe_vector; /* coupled, energy form: the elements' uniform-stress vector */
+  const void *fe_vector_ctx;
   pf_pd_formulation form;
   double *hz;              /* field "horizon" [store]: each point's own horizon, ghosts too */
   double *region;          /* field "region" [store]: bit 0 (1) the partial-stress force, bit 1
@@ -63,8 +65,12 @@ struct pf_pd_body {
   double *smin;      /* [n] smallest stretch of each point's intact bonds this step */
   uint8_t *lost;     /* [n] scratch of the threaded bond loops: 1 where the point's row has
                         PF_BOND_FRESH bonds, whose energy a serial pass then books */
-  double damage_work; /* energy released by the bonds this rank's points lost since it was last
+  double damage_work; /* change of the stored energy when this rank's points lost bonds (the
+                         energy with them less without, at the same positions) since it was last
                          taken (pf_pd_body_take_damage_work), J */
+  double damage_redistribution; /* the part of damage_work that is not released but moved: the
+                                   LPS dilatation's cross term where negative (docs/theory/pd.md
+                                   §5.1), J, <= 0; taken by pf_pd_body_take_damage_redistribution */
 };
 
 /* A bond a force kernel fails is first marked PF_BOND_FRESH, so that the kernel can book the
@@ -171,6 +177,12 @@ static inline int pf_pd_may_fail(const pf_pd_body *b, pf_int i, pf_int j) {
   return b->region[i] == 0 && b->region[j] == 0;
 }
 
+/* The weight of point i's energy: its blending weight beta_i when coupled in the energy form
+ * (docs/theory/coupling.md §3.4), else 1. */
+static inline double pf_pd_energy_weight(const pf_pd_body *b, pf_int i) {
+  return b->blend && b->blend_states ? b->blend[i] : 1.0;
+}
+
 /* omega(r), inlined in the bond loops. */
 static inline double pf_pd_omega(const pf_influence *w, double r) {
   switch (w->kind) {
@@ -189,10 +201,11 @@ double pf_pd_lps_critical_stretch(const pf_pd_body *b, double G0);
  * with the deviatoric extensions less ep[stride k] when ep is given (elastic_plastic). */
 double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_int i, double theta, double m,
                                 const double *ep, int stride);
-/* The energy (J) released by the PF_BOND_FRESH bonds of point i, V_i (W_i - W_i'), W_i' the LPS
- * energy (with ep, as above) without them and with the dilatation they no longer carry; marks
- * them PF_BOND_BROKEN. */
-double pf_pd_lps_release(const pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
+/* The change of stored energy (J) when point i loses its PF_BOND_FRESH bonds, V_i (W_i - W_i'),
+ * W_i' the LPS energy (with ep, as above) without them and with the dilatation they no longer
+ * carry; its negative cross term (docs/theory/pd.md §5.1) is also added to
+ * b->damage_redistribution. Marks them PF_BOND_BROKEN. */
+double pf_pd_lps_release(pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
                          int stride);
 
 /* The batched LPS loops (pd/lps_batched.c), for a body of one horizon whose points all take
@@ -224,15 +237,17 @@ int pf_pd_family_complete(const pf_pd_body *b, const pf_points *pts, pf_int i, d
 
 /* The consistent form (pd/consistent.c; docs/theory/coupling.md §2.6). A transition point i (region
  * bit 8) forms Fbar_i = sum_k (y_k - y_i) (x) g_ik over its whole row, with
- *   g_ik = w V_k K_i^-1 xi [k in H_i] + h_ik,   h_ik = w V_k (Lambda_i xi + V_i (mu_k - mu_i)),
- * w = omega(|xi|), and the force is the energy's: f_i += V_i P_i g_ij - V_j P_j g_ji. The multipliers
+ *   g_ik = w V_k K_i^-1 xi [k in H_i] + h_ik,   h_ik = w V_k (Lambda_i xi + b_i V_i (mu_k - mu_i)),
+ * w = omega(|xi|), and the force is the energy's: f_i += b_i V_i P_i g_ij - b_j V_j P_j g_ji, with b
+ * the energy's weight (pf_pd_energy_weight: beta coupled in the energy form, else 1; the call's
+ * Vi is b_i V_i). The multipliers
  * (PF_CONSISTENT_NLM reals per point: Lambda row-major, then mu) are a ghosted point field,
  * solved for once at t = 0 so that sum_k xi (x) h_ik = 0 at every transition point (Fbar stays
  * exact for a linear motion) and a uniform stress gives the force of a constant horizon
- * (pf_pd_consistent_solve; collective). d: each owned point's uniform-stress ghost vector
- * (the corrected form's d_i, §2.5). */
+ * (pf_pd_consistent_solve; collective). t: each owned point's target of (C) (V_i d_i with d_i
+ * the corrected form's ghost vector, §2.5, plus the blending's part in the energy form, §3.4). */
 enum { PF_CONSISTENT_NLM = 12 };
-int pf_pd_consistent_solve(const pf_pd_body *b, const pf_points *pts, const double *d, double *lm);
+int pf_pd_consistent_solve(const pf_pd_body *b, const pf_points *pts, const double *t, double *lm);
 static inline void pf_pd_consistent_h(const double *restrict lmi, const double *restrict lmk, double w,
                                       double Vi, const double xi[3], double h[3]) {
   for (int a = 0; a < 3; a++)

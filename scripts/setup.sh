@@ -3,7 +3,9 @@
 # missing), configure and build, then run the main example (--example) or the tests (--test).
 #   bash scripts/setup.sh --example   # install, build, run inputs/panel_impact.yaml on every core
 #   bash scripts/setup.sh --test      # install, build (warnings as errors), run ctest
-#   bash scripts/setup.sh             # install and build only
+#   bash scripts/setup.sh             # install, build and install perifem (PERIFEM_PREFIX, default
+#                                     # /usr/local: the library, its header and pkg-config file, the
+#                                     # executable and the Python package)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -12,16 +14,16 @@ PACKAGES=(build-essential cmake pkg-config
   libtrilinos-zoltan-dev libmetis-dev
   libexodusii-dev libnetcdf-mpi-dev libhdf5-openmpi-dev
   libgmsh-dev libtrilinos-pamgen-dev libyaml-dev libmuparser-dev calculix-ccx
-  python3 python3-numpy python3-h5py python3-netcdf4 python3-matplotlib netcdf-bin)
+  python3 python3-numpy python3-h5py python3-netcdf4 python3-matplotlib python3-mpi4py netcdf-bin)
 
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO=sudo
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if [ ${#missing[@]} -gt 0 ]; then
   echo "setup: installing ${missing[*]}"
-  SUDO=""
-  [ "$(id -u)" -eq 0 ] || SUDO=sudo
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
@@ -35,6 +37,11 @@ werror=OFF
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPERIFEM_WERROR=$werror >/dev/null
 cmake --build build -j"$(nproc)" 2>&1 | grep -v "^\[" || true
 test -x build/perifem || { echo "setup: build failed" >&2; exit 1; }
+# Install the executable, libperifem.so.0, perifem.h, perifem.pc and the Python package (import
+# perifem with /usr/bin/python3) under PERIFEM_PREFIX (default /usr/local).
+prefix=${PERIFEM_PREFIX:-/usr/local}
+$SUDO cmake --install build --prefix "$prefix" >/dev/null
+case "$prefix" in /usr | /usr/local) $SUDO ldconfig ;; esac
 
 case "$mode" in
   --example)

@@ -54,8 +54,10 @@ typedef struct {
   int (*uses_velocity)(const void *data);
   /* Optional: after the step (damage-law state; NULL: nothing). */
   int (*post_step)(void *data, pf_points *pts);
-  /* Optional: energy released by bonds failed since the last call, J (NULL: none). */
-  double (*take_damage_work)(void *data);
+  /* Optional: the change of stored energy when bonds failed since the last call into w[0], and
+   * the part of it that is moved, not released, into w[1] (<= 0; docs/theory/pd.md §5.1), J
+   * (NULL: none). */
+  void (*take_damage_work)(void *data, double w[2]);
   /* Required: energies and bond counts; may write the "damage" field. */
   void (*energies)(const void *data, pf_points *pts, pf_body_energies *e);
   /* Optional: the bonds (NULL: none); their memory per directed bond, bytes. */

@@ -43,7 +43,7 @@ static int force(void *data, pf_points *pts, double dt, double t, long step, int
 
 static double stable_dt(const void *data, const pf_points *pts) { return fe->stable_dt(fem_of(data), pts); }
 static int post_step(void *data, pf_points *pts) { return pd->post_step(pd_of(data), pts); }
-static double take_damage_work(void *data) { return pd->take_damage_work(pd_of(data)); }
+static void take_damage_work(void *data, double w[2]) { pd->take_damage_work(pd_of(data), w); }
 
 /* The elements' energies, each weighted by its share 1 - beta, and the PD operator's blended
  * share. */

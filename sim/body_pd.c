@@ -120,7 +120,9 @@ static double stable_dt(const void *data, const pf_points *pts) { return pf_pd_b
 static int step_varies(const void *data) { return pf_pd_body_step_varies(data); }
 static int uses_velocity(const void *data) { return pf_pd_body_uses_velocity(data); }
 static int post_step(void *data, pf_points *pts) { return pf_pd_body_post_step(data, pts); }
-static double take_damage_work(void *data) { return pf_pd_body_take_damage_work(data); }
+static void take_damage_work(void *data, double w[2]) {
+  w[0] = pf_pd_body_take_damage_work(data), w[1] = pf_pd_body_take_damage_redistribution(data);
+}
 
 static void energies(const void *data, pf_points *pts, pf_body_energies *e) {
   *e = (pf_body_energies){0};

@@ -242,11 +242,11 @@ static int build_bcs(pf_sim *sim, const pf_node *root) {
   sim->nbcs = pf_node_count(bcs);
   PF_MALLOC(sim->bcs, sim->nbcs);
   for (int k = 0; k < sim->nbcs; k++) {
-    PF_CALL(pf_bc_create(sim->deck, pf_node_item(bcs, k), sim->pts, sim->nbodies, sim->body_name, &sim->sets,
+    PF_CALL(pf_bc_create(sim->deck, pf_node_item(bcs, k), sim->pts, sim->nbodies, sim->body_name, &sim->sets, k,
                          &sim->bcs[k]));
     char where[512];
     pf_node_where(sim->deck, pf_node_item(bcs, k), where, sizeof where);
-    pf_log("boundary condition %d (%s): %" PF_GID_FMT " points\n", k + 1, where,
+    pf_log("boundary condition '%s' (%s): %" PF_GID_FMT " points\n", pf_bc_name(sim->bcs[k]), where,
            (pf_gid)pf_sum_all(pf_bc_npoints(sim->bcs[k])));
   }
   return 0;
@@ -257,6 +257,9 @@ static int build_walls(pf_sim *sim, const pf_node *root) {
   sim->nwalls = pf_node_count(walls);
   PF_MALLOC(sim->walls, sim->nwalls);
   PF_MALLOC(sim->wall_reaction, sim->nwalls);
+  PF_MALLOC(sim->wall_impulse, sim->nwalls);
+  PF_MALLOC(sim->rigid_work, sim->nrigid); /* (the rigid surfaces are built with the bodies) */
+  PF_MALLOC(sim->rigid_impulse, sim->nrigid);
   for (int k = 0; k < sim->nwalls; k++)
     PF_CALL(pf_wall_create(sim->deck, pf_node_item(walls, k), sim->nbodies, sim->body_name, &sim->walls[k]));
   return 0;
@@ -272,9 +275,11 @@ static int check_units(const pf_sim *sim, const pf_node *root) {
 }
 
 static int sim_build(pf_sim *sim, const char *deck_path) {
-  pf_sim_catch_signals(); /* a SIGTERM during the set-up ends the process at once */
+  if (!sim->opt.keep_signals) pf_sim_catch_signals(); /* a SIGTERM during the set-up ends the process at once */
   sim->rss0 = pf_memory_peak();
-  PF_CALL(pf_deck_load_with(deck_path, sim->opt.sets, sim->opt.nsets, &sim->deck));
+  if (sim->opt.deck_text)
+    PF_CALL(pf_deck_load_text(deck_path, sim->opt.deck_text, sim->opt.sets, sim->opt.nsets, &sim->deck));
+  else PF_CALL(pf_deck_load_with(deck_path, sim->opt.sets, sim->opt.nsets, &sim->deck));
   const pf_node *root = pf_deck_root(sim->deck);
   PF_CALL(pf_deck_validate(sim->deck, root, pf_deck_keys, "the deck"));
   PF_CALL(check_units(sim, root));
@@ -321,6 +326,7 @@ int pf_sim_destroy(pf_sim **s) {
     if (sim->body[b].ops) sim->body[b].ops->destroy(&sim->body[b].data);
   for (int k = 0; k < sim->nwalls && sim->walls; k++) pf_wall_destroy(&sim->walls[k]);
   free(sim->walls), free(sim->wall_reaction), free(sim->sums);
+  free(sim->wall_impulse), free(sim->rigid_work), free(sim->rigid_impulse), free(sim->row_sums);
   for (int k = 0; k < sim->nrigid && sim->rigid; k++) pf_rigid_destroy(&sim->rigid[k]);
   pf_contact_destroy(&sim->contact);
   for (int k = 0; k < sim->nbcs && sim->bcs; k++) pf_bc_destroy(&sim->bcs[k]);
@@ -333,6 +339,7 @@ int pf_sim_destroy(pf_sim **s) {
   pf_point_sets_free(&sim->sets);
   pf_sim_restart_free(sim);
   pf_sim_guard_free(sim);
+  pf_sim_run_free(sim);
   pf_deck_destroy(&sim->deck);
   PF_FREE(*s);
   return 0;

@@ -1,6 +1,8 @@
-/* perifem DECK.yaml — the command line. Exit status: 0 success, 1 run failure, 2 bad input,
- * 128 + N stopped by signal N during the set-up (sim/restart.c). */
-#include "sim/sim.h"
+/* perifem DECK.yaml — the command line, a user of the public C API (include/perifem.h). Exit
+ * status: 0 success, 1 run failure, 2 bad input, 128 + N stopped by signal N during the set-up
+ * (sim/restart.c). */
+#include "include/perifem.h"
+#include "sim/sim.h" /* (the library versions, the deck keys, the abort after a failed close) */
 
 #include <errno.h>
 #include <exodusII.h>
@@ -48,7 +50,7 @@ static void version(void) {
   if (nl) *nl = '\0';
   char more[256];
   pf_library_versions(more, sizeof more);
-  printf("perifem %s\n  libyaml %s, Exodus II %.2f, HDF5 %u.%u.%u, %s\n  %s\n", PERIFEM_VERSION,
+  printf("perifem %s\n  libyaml %s, Exodus II %.2f, HDF5 %u.%u.%u, %s\n  %s\n", perifem_version(),
          yaml_get_version_string(), (double)EX_API_VERS, maj, min, rel, mpi, more);
 #if defined(_OPENMP)
   printf("  OpenMP %d: %d threads per rank (OMP_NUM_THREADS)\n", _OPENMP, omp_get_max_threads());
@@ -61,7 +63,7 @@ enum { MAX_SETS = 256 };
 
 typedef struct {
   const char *deck, *output_dir, *restart;
-  int check, quiet, strict;
+  int check, quiet, strict, progress;
   const char *sets[MAX_SETS];
   int nsets;
   char command[8192];
@@ -83,7 +85,7 @@ static int parse_args(int argc, char **argv, cli *c) {
         fprintf(stderr, "perifem error: --progress needs auto, plain or line (got '%s')\n", m);
         return PF_ERR_INPUT;
       }
-      pf_log_set_status(!strcmp(m, "auto") ? -1 : !strcmp(m, "line"));
+      c->progress = !strcmp(m, "auto") ? 0 : !strcmp(m, "plain") ? 1 : 2;
     } else if (!strcmp(a, "--set")) {
       if (i + 1 >= argc || c->nsets == MAX_SETS) {
         fprintf(stderr, "perifem error: --set needs KEY.PATH=VALUE%s\n", i + 1 < argc ? " (at most 256 of them)" : "");
@@ -147,27 +149,35 @@ static void command_line(int argc, char **argv, char *out, size_t len) {
   }
 }
 
+static int exit_status(int ierr) { return ierr ? (ierr == PERIFEM_ERR_INPUT ? 2 : 1) : 0; }
+
 static int run(const cli *c) {
-  pf_sim_options opt = {.output_dir = c->output_dir, .restart_from = c->restart, .sets = c->sets, .nsets = c->nsets,
-                        .command_line = c->command, .strict = c->strict};
-  pf_sim *sim = NULL;
-  int ierr = pf_sim_create(c->deck, &opt, &sim);
-  if (ierr) return ierr == PF_ERR_INPUT ? 2 : 1;
+  const perifem_options opt = {.overrides = c->sets, .noverrides = c->nsets, .output_dir = c->output_dir,
+                               .restart_from = c->restart, .quiet = c->quiet, .strict = c->strict,
+                               .progress = c->progress, .catch_signals = 1, .command_line = c->command};
+  perifem_sim *sim = NULL;
+  int ierr = perifem_create(c->deck, &opt, &sim);
+  if (ierr) return exit_status(ierr);
   if (c->check) {
-    ierr = pf_sim_check_report(sim);
-    pf_sim_destroy(&sim);
+    ierr = perifem_print_check(sim);
+    perifem_destroy(&sim);
     return ierr ? 1 : 0;
   }
   const int err = c->output_dir ? make_dir(c->output_dir) : 0;
   if (err) {
     if (pf_comm_rank() == 0)
       fprintf(stderr, "perifem error: --output-dir %s: cannot create the folder: %s\n", c->output_dir, strerror(err));
-    pf_sim_destroy(&sim);
+    perifem_destroy(&sim);
     return 2;
   }
-  ierr = pf_sim_run(sim);
-  pf_sim_destroy(&sim);
-  return ierr ? (ierr == PF_ERR_INPUT ? 2 : 1) : 0;
+  ierr = perifem_run(sim);
+  uint64_t digest;
+  if (!ierr && perifem_finished(sim)) { /* (not after a signal stopped the run) */
+    ierr = perifem_digest(sim, &digest);
+    if (!ierr && pf_comm_rank() == 0) printf("state digest: %016" PRIx64 "\n", digest); /* even with --quiet */
+  }
+  perifem_destroy(&sim);
+  return exit_status(ierr);
 }
 
 int main(int argc, char **argv) {

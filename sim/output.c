@@ -16,11 +16,74 @@ static const char *const fixed_names[G_FIXED] = {
 static const char *const fixed_units[G_FIXED] = {"J", "J", "J", "J", "J", "kg m/s", "kg m/s", "kg m/s", "",
                                                  "J", "J", "J", "J", "J", "J"};
 
+/* The columns appended after the probes' (sim_impl.h gives their order): */
+static const char *const body_names[PF_BODY_SUMS] = {
+    "kinetic_energy", "internal_energy", "hourglass_energy", "viscous_work", "damage_dissipation",
+    "damage_redistribution", "external_work", "momentum_x", "momentum_y", "momentum_z"};
+static const char *const body_units[PF_BODY_SUMS] = {"J", "J", "J", "J", "J", "J", "J", "kg m/s", "kg m/s", "kg m/s"};
+enum { PF_BC_COLUMNS = 6, PF_RIGID_COLUMNS = 4, PF_WALL_COLUMNS = 3 };
+
+/* Name column j (after time and step) name_suffix, with units. */
+static void column(pf_sim_history_row *g, int j, const char *name, const char *suffix, const char *units) {
+  char buf[192];
+  snprintf(buf, sizeof buf, "%s_%s", name, suffix);
+  g->names[2 + j] = strdup(buf);
+  g->units[2 + j] = units;
+}
+
+/* The appended columns: damage_redistribution; per body its energies, work and momentum; per
+ * prescribed condition its reaction (N) and impulse (N s); per rigid surface its impulse on the
+ * points and the work of its prescribed motion; per wall its impulse on the points. */
+static void appended_columns(const pf_sim *sim, pf_sim_history_row *g) {
+  int j = g->extra0;
+  g->names[2 + j] = strdup("damage_redistribution"), g->units[2 + j++] = "J";
+  for (int b = 0; b < sim->nbodies; b++)
+    for (int q = 0; q < PF_BODY_SUMS; q++) column(g, j++, sim->body_name[b], body_names[q], body_units[q]);
+  for (int k = 0; k < sim->nbcs; k++) {
+    const char *q[PF_BC_COLUMNS] = {"reaction_x", "reaction_y", "reaction_z", "impulse_x", "impulse_y", "impulse_z"};
+    for (int c = 0; c < PF_BC_COLUMNS; c++) column(g, j++, pf_bc_name(sim->bcs[k]), q[c], c < 3 ? "N" : "N s");
+  }
+  for (int k = 0; k < sim->nrigid; k++) {
+    const char *q[PF_RIGID_COLUMNS] = {"impulse_x", "impulse_y", "impulse_z", "work"};
+    for (int c = 0; c < PF_RIGID_COLUMNS; c++) column(g, j++, pf_rigid_name(sim->rigid[k]), q[c], c < 3 ? "N s" : "J");
+  }
+  for (int k = 0; k < sim->nwalls; k++) {
+    const char *q[PF_WALL_COLUMNS] = {"impulse_x", "impulse_y", "impulse_z"};
+    for (int c = 0; c < PF_WALL_COLUMNS; c++) column(g, j++, pf_wall_name(sim->walls[k]), q[c], "N s");
+  }
+}
+
+static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+/* Two columns of one name (a body, condition, surface or wall named so that its column takes
+ * another's name, e.g. a body "fe" and fe_internal_energy) would make the history unwritable:
+ * refuse at set-up, naming the column. */
+static int unique_columns(const pf_sim *sim, const pf_sim_history_row *g) {
+  char **sorted;
+  PF_MALLOC(sorted, g->n + 2);
+  memcpy(sorted, g->names, sizeof *sorted * (size_t)(g->n + 2));
+  qsort(sorted, (size_t)g->n + 2, sizeof *sorted, by_name);
+  const char *twice = NULL;
+  for (int k = 1; k < g->n + 2 && !twice; k++)
+    if (!strcmp(sorted[k - 1], sorted[k])) twice = sorted[k];
+  char name[192] = "";
+  if (twice) snprintf(name, sizeof name, "%s", twice);
+  free(sorted);
+  PF_CHECK(!twice, PF_ERR_INPUT,
+           "%s: the history would have two columns named '%s' (a body's, condition's, rigid surface's or "
+           "wall's columns are its name followed by _<quantity>, e.g. <body>_internal_energy): rename the body, "
+           "condition (name:), surface or wall",
+           pf_deck_path(sim->deck), name);
+  return 0;
+}
+
 int pf_sim_globals_init(const pf_sim *sim, pf_sim_history_row *g) {
   int npairs = pf_contact_npairs(sim->contact);
   const int body0 = g->body0 = G_FIXED + 3 * (sim->nrigid + sim->nwalls + npairs);
   const int probe0 = g->probe0 = body0 + 6 * sim->nbodies;
-  g->n = probe0 + pf_sim_probe_columns(sim);
+  const int extra0 = g->extra0 = probe0 + pf_sim_probe_columns(sim);
+  g->n = extra0 + 1 + PF_BODY_SUMS * sim->nbodies + PF_BC_COLUMNS * sim->nbcs + PF_RIGID_COLUMNS * sim->nrigid +
+         PF_WALL_COLUMNS * sim->nwalls;
   PF_MALLOC(g->names, g->n + 2);
   PF_MALLOC(g->units, g->n + 2);
   PF_MALLOC(g->values, g->n + 2);
@@ -59,13 +122,14 @@ int pf_sim_globals_init(const pf_sim *sim, pf_sim_history_row *g) {
       g->names[j] = strdup(buf);
       g->units[j] = q < 3 ? "m" : "m/s";
     }
-  for (int k = 0; k < g->n - probe0; k++) {
+  for (int k = 0; k < extra0 - probe0; k++) {
     char buf[160];
     pf_sim_probe_column(sim, k, buf, sizeof buf, &g->units[2 + probe0 + k]);
     g->names[2 + probe0 + k] = strdup(buf);
   }
+  appended_columns(sim, g);
   for (int k = 0; k < g->n + 2; k++) PF_CHECK(g->names[k], PF_ERR_MEMORY, "out of memory");
-  return 0;
+  return unique_columns(sim, g);
 }
 
 /* Each body's centre of mass (current positions) and mass-averaged velocity into v[6 b ..]:
@@ -90,12 +154,28 @@ void pf_sim_globals_free(pf_sim_history_row *g) {
   PF_FREE(g->values);
 }
 
+/* The appended columns' values (appended_columns), from the last pf_sim_globals_get. */
+static void appended_values(const pf_sim *sim, const pf_sim_globals *s, double *v) {
+  const double *x = pf_sim_row_sums(sim);
+  *v++ = s->damage_redistribution;
+  for (int q = 0; q < PF_BODY_SUMS * sim->nbodies; q++) *v++ = *x++;
+  for (int k = 0; k < sim->nbcs; k++, x += 6, v += PF_BC_COLUMNS)
+    for (int a = 0; a < 3; a++) v[a] = sim->step > 0 ? x[a] / sim->dt : 0.0, v[3 + a] = x[3 + a];
+  for (int k = 0; k < sim->nrigid; k++, x += 3, v += PF_RIGID_COLUMNS) {
+    for (int a = 0; a < 3; a++) v[a] = x[a];
+    v[3] = sim->rigid_work[k];
+  }
+  for (int k = 0; k < sim->nwalls; k++, x += 3, v += PF_WALL_COLUMNS)
+    for (int a = 0; a < 3; a++) v[a] = x[a];
+}
+
 /* Fill values[0..n+1]: time, step, globals. */
 int pf_sim_globals_eval(pf_sim *sim, pf_sim_history_row *g, int first) {
   pf_sim_globals s;
   PF_CALL(pf_sim_globals_get(sim, &s));
   double total = s.kinetic_centred + s.elastic + s.contact - s.external_work + s.fe_internal + s.hourglass +
-                 s.bulk_viscosity + s.wall_loss + s.contact_dissipation + s.damage_dissipation;
+                 s.bulk_viscosity + s.wall_loss + s.contact_dissipation + s.damage_dissipation +
+                 s.damage_redistribution;
   if (first && !sim->have_e0) sim->e0 = total, sim->have_e0 = 1;
   g->e0 = sim->e0;
   double *v = g->values + 2;
@@ -114,7 +194,9 @@ int pf_sim_globals_eval(pf_sim *sim, pf_sim_history_row *g, int first) {
   for (int k = 0; k < pf_contact_npairs(sim->contact); k++)
     pf_contact_pair_force(sim->contact, k, &v[G_FIXED + 3 * (sim->nrigid + sim->nwalls + k)]);
   body_motion(sim, &v[g->body0]);
-  return pf_sim_probes_eval(sim, &v[g->probe0]);
+  PF_CALL(pf_sim_probes_eval(sim, &v[g->probe0]));
+  appended_values(sim, &s, &v[g->extra0]);
+  return 0;
 }
 
 int pf_sim_spread_output(const pf_sim *sim) { return sim->spread_output && pf_comm_size() > 1; }

@@ -42,6 +42,19 @@ static int add_file(pf_sim *sim, const char *what, const char *path) {
   return ierr;
 }
 
+/* A deck given as text (the library): its lines under the name it stands for. */
+static int add_text(pf_sim *sim, const char *what, const char *path, const char *text) {
+  PF_CALL(add_format(sim, "---- %s %s ----", what, path));
+  for (const char *line = text; *line;) {
+    size_t len = strcspn(line, "\r\n");
+    PF_CALL(add_line(sim, line, len));
+    line += len;
+    if (*line == '\r') line++;
+    if (*line == '\n') line++;
+  }
+  return 0;
+}
+
 int pf_sim_provenance(pf_sim *sim) {
   const char *title = NULL;
   PF_CALL(pf_deck_string(sim->deck, pf_deck_root(sim->deck), "title", &title));
@@ -56,7 +69,8 @@ int pf_sim_provenance(pf_sim *sim) {
   PF_CALL(add_format(sim, "perifem %s, git %s", PERIFEM_VERSION, PERIFEM_GIT));
   PF_CALL(add_format(sim, "run %s on %s MPI ranks", when, ranks));
   PF_CALL(add_format(sim, "command: %s%s", sim->opt.command_line ? sim->opt.command_line : "(not given)", ""));
-  PF_CALL(add_file(sim, "deck", pf_deck_path(sim->deck)));
+  if (sim->opt.deck_text) PF_CALL(add_text(sim, "deck (text)", pf_deck_path(sim->deck), sim->opt.deck_text));
+  else PF_CALL(add_file(sim, "deck", pf_deck_path(sim->deck)));
   for (int k = 0; pf_deck_included(sim->deck, k); k++) PF_CALL(add_file(sim, "included", pf_deck_included(sim->deck, k)));
   sim->prov.lines = (const char *const *)sim->prov_lines;
   return 0;

@@ -48,16 +48,90 @@ static int at_stable(const pf_sim *sim) { return at_rigid() + 6 * sim->nrigid; }
 static int at_geometry(const pf_sim *sim) { return at_stable(sim) + sim->nbodies; }
 static int at_walls(const pf_sim *sim) { return at_geometry(sim) + PF_GEOMETRY_SCALARS * sim->nbodies; }
 static int at_pairs(const pf_sim *sim) { return at_walls(sim) + 3 * deck_walls(sim); }
+static int at_sums(const pf_sim *sim) { return at_pairs(sim) + 3 * deck_pairs(sim); } /* (format 3 on) */
+static int deck_bcs(const pf_sim *sim) {
+  return pf_node_count(pf_node_get(pf_deck_root(sim->deck), "boundary_conditions"));
+}
+
+/* The history's running sums (format 3): damage_redistribution; per body its damage
+ * dissipation, redistribution and prescribed work; per condition its last step's and total
+ * impulse; per rigid surface its impulse and work; per wall its impulse. */
+enum { SUMS_BODY = 3, SUMS_BC = 6, SUMS_RIGID = 4, SUMS_WALL = 3 };
+static int nsums(const pf_sim *sim) {
+  return 1 + SUMS_BODY * sim->nbodies + SUMS_BC * deck_bcs(sim) + SUMS_RIGID * sim->nrigid + SUMS_WALL * deck_walls(sim);
+}
+
+static void sums_names(const pf_sim *sim, pf_sim_scalars *s) {
+  char (*name)[96] = &s->name[at_sums(sim)];
+  const char *body[SUMS_BODY] = {"damage", "redistribution", "bc_work"};
+  snprintf(*name++, 96, "damage_redistribution");
+  for (int b = 0; b < sim->nbodies; b++)
+    for (int q = 0; q < SUMS_BODY; q++) snprintf(*name++, 96, "body_%d_%s_%s", b, sim->body_name[b], body[q]);
+  for (int k = 0; k < deck_bcs(sim); k++)
+    for (int q = 0; q < SUMS_BC; q++) snprintf(*name++, 96, "bc_%d_%s_%c", k, q < 3 ? "step_impulse" : "impulse", 'x' + q % 3);
+  for (int k = 0; k < sim->nrigid; k++) {
+    for (int a = 0; a < 3; a++) snprintf(*name++, 96, "indenter_%d_%s_impulse_%c", k, pf_rigid_name(sim->rigid[k]), 'x' + a);
+    snprintf(*name++, 96, "indenter_%d_%s_work", k, pf_rigid_name(sim->rigid[k]));
+  }
+  for (int k = 0; k < deck_walls(sim); k++)
+    for (int a = 0; a < 3; a++) snprintf(*name++, 96, "wall_%d_impulse_%c", k, 'x' + a);
+}
+
+/* Their values: sums over the ranks (collective), the rigid surfaces' work as it is (the same on
+ * every rank). */
+static void sums_fill(const pf_sim *sim, double *v) {
+  *v++ = pf_sum_all(sim->damage_redistribution);
+  for (int b = 0; b < sim->nbodies; b++) {
+    *v++ = pf_sum_all(sim->body_damage[b]);
+    *v++ = pf_sum_all(sim->body_redistribution[b]);
+    *v++ = pf_sum_all(sim->body_bc_work[b]);
+  }
+  for (int k = 0; k < deck_bcs(sim); k++) {
+    double step[3] = {0, 0, 0}, total[3] = {0, 0, 0};
+    if (k < sim->nbcs) pf_bc_impulse(sim->bcs[k], step, total); /* (none before they are built) */
+    for (int a = 0; a < 3; a++) *v++ = pf_sum_all(step[a]);
+    for (int a = 0; a < 3; a++) *v++ = pf_sum_all(total[a]);
+  }
+  for (int k = 0; k < sim->nrigid; k++) {
+    for (int a = 0; a < 3; a++) *v++ = pf_sum_all(sim->rigid_impulse[k][a]);
+    *v++ = sim->rigid_work[k];
+  }
+  for (int k = 0; k < deck_walls(sim); k++)
+    for (int a = 0; a < 3; a++) *v++ = k < sim->nwalls ? pf_sum_all(sim->wall_impulse[k][a]) : 0;
+}
+
+/* Take them back: rank 0 carries each sum over the ranks, the others start from 0. */
+static void sums_restore(pf_sim *sim, const double *v) {
+  const double root = pf_comm_rank() == 0;
+  sim->damage_redistribution = root * *v++;
+  for (int b = 0; b < sim->nbodies; b++) {
+    sim->body_damage[b] = root * *v++;
+    sim->body_redistribution[b] = root * *v++;
+    sim->body_bc_work[b] = root * *v++;
+  }
+  for (int k = 0; k < sim->nbcs; k++, v += SUMS_BC) {
+    double step[3], total[3];
+    for (int a = 0; a < 3; a++) step[a] = root * v[a], total[a] = root * v[3 + a];
+    pf_bc_impulse_set(sim->bcs[k], step, total);
+  }
+  for (int k = 0; k < sim->nrigid; k++, v += SUMS_RIGID) {
+    for (int a = 0; a < 3; a++) sim->rigid_impulse[k][a] = root * v[a];
+    sim->rigid_work[k] = v[3];
+  }
+  for (int k = 0; k < sim->nwalls; k++, v += SUMS_WALL)
+    for (int a = 0; a < 3; a++) sim->wall_impulse[k][a] = root * v[a];
+}
 
 /* Scalar names and values: time, step, dt, contact_energy, external_work, initial_energy,
  * wall_loss, bc_work, contact_dissipation and damage_dissipation (sums over the ranks), the
  * deck-part hashes (two 32-bit halves each), per rigid surface its position and reaction, per
  * body the carried stable step of the last force evaluation (FE and coupled bodies; 0 for the
  * others), per body its geometry (points, elements, hash halves: sim/restart_geometry.c), and
- * the last forces on each wall and contact pair (the history row of the restarted step). */
+ * the last forces on each wall and contact pair (the history row of the restarted step), and
+ * the history's running sums (sums_names). */
 static int scalars_make(const pf_sim *sim, pf_sim_scalars *s) {
   const int nw = deck_walls(sim), np = deck_pairs(sim);
-  s->n = at_pairs(sim) + 3 * np;
+  s->n = at_sums(sim) + nsums(sim);
   PF_MALLOC(s->name, s->n);
   PF_MALLOC(s->names, s->n);
   PF_MALLOC(s->value, s->n);
@@ -85,6 +159,7 @@ static int scalars_make(const pf_sim *sim, pf_sim_scalars *s) {
     for (int a = 0; a < 3; a++) snprintf(s->name[at_walls(sim) + 3 * q + a], 96, "wall_%d_force_%c", q, 'x' + a);
   for (int q = 0; q < np; q++)
     for (int a = 0; a < 3; a++) snprintf(s->name[at_pairs(sim) + 3 * q + a], 96, "contact_pair_%d_force_%c", q, 'x' + a);
+  sums_names(sim, s);
   for (int q = 0; q < s->n; q++) s->names[q] = s->name[q];
   return 0;
 }
@@ -122,6 +197,7 @@ static void scalars_fill(const pf_sim *sim, pf_sim_scalars *s) {
     if (sim->contact) pf_contact_pair_force(sim->contact, q, f);
     for (int a = 0; a < 3; a++) v[at_pairs(sim) + 3 * q + a] = f[a];
   }
+  sums_fill(sim, &v[at_sums(sim)]);
 }
 
 int pf_sim_setup_restart(pf_sim *sim) {
@@ -190,7 +266,8 @@ int pf_sim_restore_points(pf_sim *sim) {
   PF_CALL(scalars_make(sim, &sim->restart_scalars));
   pf_sim_scalars *s = &sim->restart_scalars;
   int ierr = pf_sim_bond_fields(sim, &rows);
-  if (!ierr) ierr = pf_checkpoint_read(sim->opt.restart_from, &sim->pts, &rows, s->n, s->names, s->value);
+  if (!ierr) ierr = pf_checkpoint_read(sim->opt.restart_from, &sim->pts, &rows, s->n, s->names, s->value, at_sums(sim),
+                                       &sim->restart_format);
   if (!ierr) ierr = pf_sim_check_restart_geometry(sim, &s->value[at_geometry(sim)]);
   if (!ierr) ierr = pf_sim_check_restart_scalars(sim, s->value, &s->value[at_stable(sim)]);
   if (!ierr) ierr = pf_sim_check_restart_bodies(sim);
@@ -247,6 +324,11 @@ int pf_sim_restore_state(pf_sim *sim) {
   for (int q = 0; q < sim->nwalls; q++)
     for (int a = 0; a < 3; a++) sim->wall_reaction[q][a] = v[at_walls(sim) + 3 * q + a];
   for (int q = 0; q < deck_pairs(sim) && sim->contact; q++) pf_contact_pair_force_set(sim->contact, q, &v[at_pairs(sim) + 3 * q]);
+  if (sim->restart_format >= 3) sums_restore(sim, &v[at_sums(sim)]);
+  else
+    pf_log("note: %s is a checkpoint of format %d, without the history's running sums per body, condition, "
+           "rigid surface and wall: those columns start again from 0 (the global ones continue)\n",
+           sim->opt.restart_from, sim->restart_format);
   rename_output(sim->exodus_path, sizeof sim->exodus_path, sim->step);
   rename_output(sim->history_path, sizeof sim->history_path, sim->step);
   pf_log("restarted from %s at step %ld, t = %.6e s\n", sim->opt.restart_from, sim->step, sim->t);

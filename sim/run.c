@@ -101,14 +101,31 @@ static int checkpoints(pf_sim *sim, int *stop) {
   return 0;
 }
 
-static int run_loop(pf_sim *sim, pf_sim_history_row *g, double wall0) {
+/* The time loop between calls: its state, the history columns, the wall clock at the start,
+ * and the progress lines shown so far. */
+enum { RUN_GOING, RUN_ENDED, RUN_FAILED };
+typedef struct pf_sim_run {
+  int state;
+  pf_sim_history_row row;
+  double wall0, shown; /* the run's start; the last status line */
+  int twentieths;      /* plain lines: one at each twentieth of the run */
+} pf_sim_run_state;
+
+static int run_failed(void) {
+  return pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__, "the run stopped on an error; it cannot go on");
+}
+
+/* Up to n steps of the time loop (n < 0: to the end), with output, history, checkpoints and the
+ * health check at their intervals; the progress lines and the loop's wall time carry over from
+ * one call to the next. */
+static int run_loop(pf_sim *sim, long n) {
+  pf_sim_history_row *g = &sim->run->row;
   const int status = pf_log_terminal();
-  int twentieths = 0; /* plain lines: one at each twentieth of the run */
-  double loop0 = pf_wtime(), shown = loop0;
-  while (!pf_sim_finished(sim) && !sim->stopped) {
+  double loop0 = pf_wtime();
+  for (long s = 0; (n < 0 || s < n) && !pf_sim_finished(sim) && !sim->stopped; s++) {
     int ierr = pf_sim_step(sim, 1);
-    if (ierr && sim->last_good) return pf_sim_write_last_good(sim, g, ierr);
-    if (ierr) return ierr;
+    if (ierr && sim->last_good) ierr = pf_sim_write_last_good(sim, g, ierr);
+    if (ierr) return sim->wall_loop += pf_wtime() - loop0, ierr;
     PF_CALL(checkpoints(sim, &sim->stopped));
     int last = pf_sim_finished(sim) || sim->stopped;
     int exo = last || (sim->output_interval > 0 && sim->step % sim->output_interval == 0);
@@ -122,28 +139,62 @@ static int run_loop(pf_sim *sim, pf_sim_history_row *g, double wall0) {
       loop0 += pf_wtime() - t0; /* output is not part of the step rate */
     }
     if (last) continue;
-    if (status && pf_wtime() - shown > 0.25) progress(sim, g, wall0, 1), shown = pf_wtime();
-    else if (!status && (int)(20 * run_fraction(sim)) > twentieths)
-      twentieths = (int)(20 * run_fraction(sim)), progress(sim, g, wall0, 0);
+    if (status && pf_wtime() - sim->run->shown > 0.25) progress(sim, g, sim->run->wall0, 1), sim->run->shown = pf_wtime();
+    else if (!status && (int)(20 * run_fraction(sim)) > sim->run->twentieths)
+      sim->run->twentieths = (int)(20 * run_fraction(sim)), progress(sim, g, sim->run->wall0, 0);
   }
-  sim->wall_loop = pf_wtime() - loop0;
+  sim->wall_loop += pf_wtime() - loop0;
   return 0;
 }
 
-int pf_sim_run(pf_sim *sim) {
-  double wall0 = pf_wtime();
-  pf_sim_history_row g = {0};
-  int ierr = pf_sim_globals_init(sim, &g);
-  if (!ierr) ierr = pf_sim_step(sim, 0); /* forces at t = 0 */
-  if (!ierr) ierr = pf_sim_globals_eval(sim, &g, 1);
-  if (!ierr) ierr = pf_sim_open_output(sim, &g);
-  if (!ierr) ierr = pf_sim_write_output(sim, &g, 1, 1, 0);
-  if (!ierr) ierr = pf_sim_health_check(sim, &g);
-  if (!ierr) ierr = run_loop(sim, &g, wall0);
-  if (!ierr) summary(sim, &g, pf_wtime() - wall0);
-  pf_sim_globals_free(&g);
+/* The outputs closed: the run is over (RUN_ENDED) or failed (the history columns stay, with
+ * their last values, until pf_sim_destroy). */
+static void run_close(pf_sim *sim, int state) {
   pf_exodus_destroy(&sim->exo);
   pf_history_destroy(&sim->hist);
+  sim->run->state = state;
+}
+
+int pf_sim_run_begin(pf_sim *sim) {
+  if (sim->run) return sim->run->state == RUN_FAILED ? run_failed() : 0;
+  PF_MALLOC(sim->run, 1);
+  pf_sim_run_state *r = sim->run;
+  r->wall0 = pf_wtime();
+  int ierr = pf_sim_globals_init(sim, &r->row);
+  if (!ierr) ierr = pf_sim_step(sim, 0); /* forces at t = 0 */
+  if (!ierr) ierr = pf_sim_globals_eval(sim, &r->row, 1);
+  if (!ierr) ierr = pf_sim_open_output(sim, &r->row);
+  if (!ierr) ierr = pf_sim_write_output(sim, &r->row, 1, 1, 0);
+  if (!ierr) ierr = pf_sim_health_check(sim, &r->row);
+  if (ierr) run_close(sim, RUN_FAILED);
+  r->shown = pf_wtime();
+  return ierr;
+}
+
+int pf_sim_run_advance(pf_sim *sim, long n) {
+  PF_CALL(pf_sim_run_begin(sim));
+  if (sim->run->state == RUN_ENDED) return 0;
+  int ierr = run_loop(sim, n);
+  if (ierr) run_close(sim, RUN_FAILED);
+  else if (pf_sim_finished(sim) || sim->stopped) {
+    summary(sim, &sim->run->row, pf_wtime() - sim->run->wall0);
+    run_close(sim, RUN_ENDED);
+  }
+  return ierr;
+}
+
+pf_sim_history_row *pf_sim_history(pf_sim *sim) {
+  return sim->run && sim->run->state != RUN_FAILED ? &sim->run->row : NULL;
+}
+
+void pf_sim_run_free(pf_sim *sim) {
+  if (!sim->run) return;
+  pf_sim_globals_free(&sim->run->row);
+  PF_FREE(sim->run);
+}
+
+int pf_sim_run(pf_sim *sim) {
+  int ierr = pf_sim_run_advance(sim, -1);
   if (ierr || sim->stopped) return ierr;
   uint64_t h;
   PF_CALL(pf_state_digest(sim->pts, &h));

@@ -20,12 +20,23 @@ typedef struct {
   int nsets;
   const char *command_line; /* recorded in the outputs, or NULL */
   int strict;             /* 1: a run-health warning stops the run as an error (--strict) */
+  const char *deck_text;  /* the deck's YAML text, read instead of the file deck_path (which still
+                             names the deck: files in it are relative to its folder, outputs are
+                             named after it), or NULL */
+  int keep_signals;       /* 1: leave SIGTERM/SIGINT to the caller (the library; see sim/restart.c) */
 } pf_sim_options;
 
 /* Load and validate the deck and build everything; writes no file. */
 int pf_sim_create(const char *deck_path, const pf_sim_options *opt, pf_sim **sim);
 /* Run to the final time; writes output, prints the summary and the state digest. */
 int pf_sim_run(pf_sim *sim);
+/* The same run in parts: _begin computes the forces at t = 0 and writes the first output and
+ * history row (once; later calls do nothing); _advance takes up to n more steps (n < 0: to the
+ * end) with output, history, checkpoints and health checks at their intervals, and at the end
+ * prints the summary and closes the outputs (it prints no digest). A run that failed refuses to
+ * go on. Collective. */
+int pf_sim_run_begin(pf_sim *sim);
+int pf_sim_run_advance(pf_sim *sim, long n);
 int pf_sim_destroy(pf_sim **sim);
 
 pf_points *pf_sim_points(pf_sim *sim);
@@ -58,7 +69,10 @@ typedef struct {
    * the kinetic energy rigid walls removed, J */
   double fe_internal, hourglass, bulk_viscosity, wall_loss;
   double contact_dissipation; /* friction work of contacts and rigid surfaces, J */
-  double damage_dissipation;  /* energy released by failed bonds (PMB, LPS, elastic_plastic), J */
+  double damage_dissipation;  /* energy released by failed bonds (PMB, LPS, elastic_plastic), J, >= 0 */
+  /* the stored energy failed bonds moved rather than released (LPS: the dilatation's cross term
+   * where negative; docs/theory/pd.md §5.1), J, <= 0; the balance books both */
+  double damage_redistribution;
 } pf_sim_globals;
 int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g);
 /* 1 when the run has reached its final time (or step count). */

@@ -84,6 +84,16 @@ struct pf_sim {
   double contact_dissipation; /* friction work of this rank's contacts (summed in the globals) */
   double damage_dissipation;  /* energy released by this rank's failed bonds (summed likewise) */
   double bc_work; /* work of the prescribed motions on this rank's points (summed in the globals) */
+  double damage_redistribution; /* the stored energy bond failures moved rather than released
+                                   (<= 0; docs/theory/pd.md §5.1), this rank's points */
+  /* the same per body, this rank's points: prescribed motions' work, damage dissipation and
+   * redistribution, J (the history's per-body columns) */
+  double body_bc_work[PF_MAX_BODIES], body_damage[PF_MAX_BODIES], body_redistribution[PF_MAX_BODIES];
+  int restart_format;           /* the format of the checkpoint restarted from */
+  double *row_sums;            /* the last pf_sim_globals_get's sums over the ranks (sim/step.c) */
+  double *rigid_work;          /* [nrigid] work of each rigid surface's prescribed motion, J */
+  double (*rigid_impulse)[3];  /* [nrigid] impulse of each surface on the points, N s (rank 0 keeps it) */
+  double (*wall_impulse)[3];   /* [nwalls] impulse of each wall on this rank's points, N s */
   double e0;   /* total energy at the start of the run (kept across restarts) */
   int have_e0;
   /* checkpoints */
@@ -117,6 +127,7 @@ struct pf_sim {
   double good_t;
   long good_step;
   pf_sim_health health; /* run-health monitor (sim/health.c) */
+  struct pf_sim_run *run; /* the time loop between calls (sim/run.c); NULL until it starts */
 };
 
 extern const pf_key pf_parallel_keys[];
@@ -183,11 +194,28 @@ typedef struct {
   double *values;
   double e0; /* initial total energy */
   int body0, probe0; /* the columns (after time and step) where the bodies' and the probes' start */
+  int extra0;        /* where the appended ones start (damage_redistribution, then per body ...) */
 } pf_sim_history_row;
+/* The history's per-body quantities (sim/step.c), in this order per body: kinetic energy, internal
+ * energy (PD stored energy and element stress work), hourglass energy, viscous work (bulk
+ * viscosity), damage dissipation (>= 0), damage redistribution (<= 0), external work (the
+ * prescribed motions' on its points), momentum x, y, z. */
+enum { PF_BODY_KE, PF_BODY_INTERNAL, PF_BODY_HG, PF_BODY_VISCOUS, PF_BODY_DAMAGE, PF_BODY_REDIST, PF_BODY_WEXT,
+       PF_BODY_PX, PF_BODY_SUMS = PF_BODY_PX + 3 };
+/* The number of sums pf_sim_globals_get reduces, and after it the summed values past the global
+ * ones: PF_BODY_SUMS per body, then per prescribed condition its last step's impulse (3) and its
+ * impulse since the start (3), then the impulse of each rigid surface (3) and wall (3), N s. */
+int pf_sim_sums_count(const pf_sim *sim);
+const double *pf_sim_row_sums(const pf_sim *sim);
 int pf_sim_globals_init(const pf_sim *sim, pf_sim_history_row *g);
 /* Fill values[0..n+1]: time, step, the columns; first: the initial energy too. */
 int pf_sim_globals_eval(pf_sim *sim, pf_sim_history_row *g, int first);
 void pf_sim_globals_free(pf_sim_history_row *g);
+/* sim/run.c: the history columns as last evaluated (at the start of the run and at each history
+ * row; sim/api.c evaluates them again at the end of each call), or NULL before the run starts or
+ * after it failed. */
+pf_sim_history_row *pf_sim_history(pf_sim *sim);
+void pf_sim_run_free(pf_sim *sim);
 int pf_sim_open_output(pf_sim *sim, pf_sim_history_row *g);
 int pf_sim_write_output(pf_sim *sim, pf_sim_history_row *g, int exodus, int history, int last);
 int pf_sim_write_last_good(pf_sim *sim, pf_sim_history_row *g, int ierr);

@@ -152,10 +152,54 @@ static int compute_forces(pf_sim *sim, double dt) {
   memset(p->f, 0, sizeof(double) * 3 * (size_t)p->n_owned);
   for (int b = 0; b < sim->nbodies; b++) /* an inverted element trips the guard: the step's end decides */
     PF_CALL(sim->body[b].ops->force(sim->body[b].data, p, dt, sim->t, sim->step, &sim->guard_tripped));
-  for (int b = 0; b < sim->nbodies; b++)
-    if (sim->body[b].ops->take_damage_work) sim->damage_dissipation += sim->body[b].ops->take_damage_work(sim->body[b].data);
+  for (int b = 0; b < sim->nbodies; b++) { /* the stored energy failed bonds took: total, moved part */
+    double w[2] = {0, 0};
+    if (sim->body[b].ops->take_damage_work) sim->body[b].ops->take_damage_work(sim->body[b].data, w);
+    sim->damage_dissipation += w[0], sim->body_damage[b] += w[0];
+    sim->damage_redistribution += w[1], sim->body_redistribution[b] += w[1];
+  }
   PF_CALL(pf_sim_contact_forces(sim, dt)); /* rigid surfaces, pairs and walls */
   return 0;
+}
+
+/* Each prescribed condition's reaction work on this rank's points, per body (body_bc_work) and
+ * in all (bc_work); after_mid: the mid-step hook, else the end-of-step one. */
+static void apply_bcs(pf_sim *sim, double dt, int after_mid) {
+  double w[PF_MAX_BODIES] = {0};
+  for (int k = 0; k < sim->nbcs; k++)
+    if (after_mid) pf_bc_apply_midstep(sim->bcs[k], sim->pts, sim->t, dt, w);
+    else pf_bc_apply_endstep(sim->bcs[k], sim->pts, sim->t, dt, w);
+  for (int b = 0; b < sim->nbodies && sim->nbcs; b++) sim->bc_work += w[b], sim->body_bc_work[b] += w[b];
+}
+
+/* This rank's momentum sum m v (the walls' impulse is the change their position step makes). */
+static void momentum(const pf_points *p, double mv[3]) {
+  mv[0] = mv[1] = mv[2] = 0;
+  for (pf_int i = 0; i < p->n_owned; i++)
+    for (int a = 0; a < 3; a++) mv[a] += p->m[i] * p->v[3 * i + a];
+}
+
+/* The walls put the points back on their plane and take their normal velocity (an impulse on
+ * this rank's points, measured); they also take the normal part of the points' force (the
+ * reaction: surface_impulses). */
+static void enforce_walls(pf_sim *sim) {
+  for (int k = 0; k < sim->nwalls; k++) {
+    double before[3], after[3];
+    momentum(sim->pts, before);
+    pf_wall_enforce_position(sim->walls[k], sim->pts, &sim->wall_loss);
+    momentum(sim->pts, after);
+    for (int a = 0; a < 3; a++) sim->wall_impulse[k][a] += after[a] - before[a];
+  }
+}
+
+/* The impulse the rigid surfaces and walls give the points in a half kick of dt/2, -(dt/2) R with
+ * R their force on the surface or wall now (the same on every rank: rank 0 books it). */
+static void surface_impulses(pf_sim *sim, double dt) {
+  if (pf_comm_rank() != 0) return;
+  for (int k = 0; k < sim->nrigid; k++)
+    for (int a = 0; a < 3; a++) sim->rigid_impulse[k][a] -= 0.5 * dt * sim->reaction[k][a];
+  for (int k = 0; k < sim->nwalls; k++)
+    for (int a = 0; a < 3; a++) sim->wall_impulse[k][a] -= 0.5 * dt * sim->wall_reaction[k][a];
 }
 
 static int one_step(pf_sim *sim) {
@@ -164,17 +208,22 @@ static int one_step(pf_sim *sim) {
   const double dt = sim->dt;
   PF_CALL(pf_sim_guard_save(sim));
   half_kick(p, dt);
-  for (int k = 0; k < sim->nbcs; k++) pf_bc_apply_midstep(sim->bcs[k], p, sim->t, dt, &sim->bc_work);
+  surface_impulses(sim, dt);
+  apply_bcs(sim, dt, 1);
   drift(p, dt);
   pf_sim_guard_motion(sim, dt);
-  for (int k = 0; k < sim->nwalls; k++) pf_wall_enforce_position(sim->walls[k], p, &sim->wall_loss);
-  for (int k = 0; k < sim->nrigid; k++)
-    pf_rigid_advance(sim->rigid[k], sim->t, dt, sim->reaction[k], &sim->external_work);
+  enforce_walls(sim);
+  for (int k = 0; k < sim->nrigid; k++) {
+    double w = 0;
+    pf_rigid_advance(sim->rigid[k], sim->t, dt, sim->reaction[k], &w);
+    sim->external_work += w, sim->rigid_work[k] += w;
+  }
   sim->t += dt;
   sim->step++;
   PF_CALL(compute_forces(sim, dt));
   half_kick(p, dt);
-  for (int k = 0; k < sim->nbcs; k++) pf_bc_apply_endstep(sim->bcs[k], p, sim->t, dt, &sim->bc_work);
+  surface_impulses(sim, dt);
+  apply_bcs(sim, dt, 0);
   PF_CALL(pf_sim_guard_check(sim)); /* collective: every rank stops, back at the last good state */
   for (int b = 0; b < sim->nbodies; b++)
     if (sim->body[b].ops->post_step) PF_CALL(sim->body[b].ops->post_step(sim->body[b].data, p));
@@ -187,48 +236,86 @@ int pf_sim_step(pf_sim *sim, long n) {
   return 0;
 }
 
+/* The sums of pf_sim_globals_get, this rank's then all ranks': the global ones (S_*), then
+ * PF_BODY_SUMS per body, 6 per prescribed condition (its last step's impulse, its impulse since
+ * the start), 3 per rigid surface and 3 per wall (their impulses). One reduction for all. */
+enum { S_KE, S_KC, S_EL, S_FEINT, S_HG, S_BV, S_WALL, S_CDISS, S_DAMAGE, S_REDIST, S_BCW, S_PX, S_PY, S_PZ,
+       S_BONDS, S_BROKEN, S_N };
+
+int pf_sim_sums_count(const pf_sim *sim) {
+  return S_N + PF_BODY_SUMS * sim->nbodies + 6 * sim->nbcs + 3 * (sim->nrigid + sim->nwalls);
+}
+
+/* Body b's kinetic energy and momentum into x[PF_BODY_KE] and x[PF_BODY_PX ..], and its part of
+ * the centred kinetic energy into *kc (a prescribed component's force, marked in fixed, is a
+ * reaction, not an acceleration: it does not enter the centred kinetic energy). */
+static void body_motion_sums(const pf_sim *sim, int b, const uint8_t *fixed, double *x, double *kc) {
+  const pf_points *p = sim->pts;
+  const double h = 0.5 * sim->dt;
+  for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++)
+    for (int a = 0; a < 3; a++) {
+      double v = p->v[3 * i + a], acc = fixed[3 * i + a] ? 0 : p->f[3 * i + a] / p->m[i];
+      x[PF_BODY_KE] += 0.5 * p->m[i] * v * v;
+      *kc += 0.5 * p->m[i] * (v * v - h * h * acc * acc);
+      x[PF_BODY_PX + a] += p->m[i] * v;
+    }
+}
+
 int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g) {
   memset(g, 0, sizeof *g);
   const pf_points *p = sim->pts;
-  /* a prescribed component's force is a reaction, not an acceleration: it does not enter the
-   * centred kinetic energy */
+  const int n = pf_sim_sums_count(sim);
+  double *s;
+  PF_MALLOC(s, n);
   uint8_t *fixed = calloc(3 * (size_t)p->n_owned + 1, 1);
+  if (!fixed) free(s);
   PF_CHECK(fixed, PF_ERR_MEMORY, "out of memory");
   for (int k = 0; k < sim->nbcs; k++) pf_bc_mark(sim->bcs[k], fixed);
-  double ke = 0, kc = 0, mom[3] = {0, 0, 0}, h = 0.5 * sim->dt;
-  for (pf_int i = 0; i < p->n_owned; i++)
-    for (int a = 0; a < 3; a++) {
-      double v = p->v[3 * i + a], acc = fixed[3 * i + a] ? 0 : p->f[3 * i + a] / p->m[i];
-      ke += 0.5 * p->m[i] * v * v;
-      kc += 0.5 * p->m[i] * (v * v - h * h * acc * acc);
-      mom[a] += p->m[i] * v;
-    }
-  free(fixed);
-  double el = 0, nb = 0, nbroken = 0, fe[3] = {0, 0, 0};
   for (int b = 0; b < sim->nbodies; b++) {
+    double *x = &s[S_N + PF_BODY_SUMS * b];
     pf_body_energies e;
     sim->body[b].ops->energies(sim->body[b].data, sim->pts, &e);
     sim->health.local[b] = e; /* the run-health monitor's per-body figures */
-    el += e.elastic, nb += e.bonds, nbroken += e.broken;
-    for (int c = 0; c < 3; c++) fe[c] += e.fe[c];
+    body_motion_sums(sim, b, fixed, x, &s[S_KC]);
+    x[PF_BODY_INTERNAL] = e.elastic + e.fe[0], x[PF_BODY_HG] = e.fe[1], x[PF_BODY_VISCOUS] = e.fe[2];
+    x[PF_BODY_DAMAGE] = sim->body_damage[b] - sim->body_redistribution[b];
+    x[PF_BODY_REDIST] = sim->body_redistribution[b];
+    x[PF_BODY_WEXT] = sim->body_bc_work[b];
+    s[S_KE] += x[PF_BODY_KE], s[S_EL] += e.elastic, s[S_FEINT] += e.fe[0], s[S_HG] += e.fe[1], s[S_BV] += e.fe[2];
+    for (int a = 0; a < 3; a++) s[S_PX + a] += x[PF_BODY_PX + a];
+    s[S_BONDS] += e.bonds, s[S_BROKEN] += e.broken;
   }
+  free(fixed);
+  s[S_WALL] = sim->wall_loss, s[S_CDISS] = sim->contact_dissipation;
+  s[S_DAMAGE] = sim->damage_dissipation - sim->damage_redistribution, s[S_REDIST] = sim->damage_redistribution;
+  s[S_BCW] = sim->bc_work;
+  double *x = &s[S_N + PF_BODY_SUMS * sim->nbodies];
+  for (int k = 0; k < sim->nbcs; k++, x += 6) pf_bc_impulse(sim->bcs[k], x, x + 3);
+  for (int k = 0; k < sim->nrigid; k++, x += 3) memcpy(x, sim->rigid_impulse[k], sizeof(double[3]));
+  for (int k = 0; k < sim->nwalls; k++, x += 3) memcpy(x, sim->wall_impulse[k], sizeof(double[3]));
+  free(sim->row_sums);
+  sim->row_sums = s;
+  PF_CHECK(MPI_Allreduce(MPI_IN_PLACE, s, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) == MPI_SUCCESS, PF_ERR_LIB,
+           "MPI_Allreduce failed summing the history's quantities");
   g->time = sim->t;
-  g->kinetic = pf_sum_all(ke);
-  g->kinetic_centred = pf_sum_all(kc);
-  g->elastic = pf_sum_all(el);
-  g->fe_internal = pf_sum_all(fe[0]);
-  g->hourglass = pf_sum_all(fe[1]);
-  g->bulk_viscosity = pf_sum_all(fe[2]);
-  g->wall_loss = pf_sum_all(sim->wall_loss);
+  g->kinetic = s[S_KE];
+  g->kinetic_centred = s[S_KC];
+  g->elastic = s[S_EL];
+  g->fe_internal = s[S_FEINT];
+  g->hourglass = s[S_HG];
+  g->bulk_viscosity = s[S_BV];
+  g->wall_loss = s[S_WALL];
   g->contact = sim->contact_energy;
-  g->contact_dissipation = pf_sum_all(sim->contact_dissipation);
-  g->damage_dissipation = pf_sum_all(sim->damage_dissipation);
-  g->external_work = sim->external_work + pf_sum_all(sim->bc_work);
-  for (int a = 0; a < 3; a++) g->momentum[a] = pf_sum_all(mom[a]);
-  nb = pf_sum_all(nb);
-  g->damage_fraction = nb > 0 ? pf_sum_all(nbroken) / nb : 0;
+  g->contact_dissipation = s[S_CDISS];
+  g->damage_dissipation = s[S_DAMAGE];
+  g->damage_redistribution = s[S_REDIST];
+  g->external_work = sim->external_work + s[S_BCW];
+  for (int a = 0; a < 3; a++) g->momentum[a] = s[S_PX + a];
+  g->damage_fraction = s[S_BONDS] > 0 ? s[S_BROKEN] / s[S_BONDS] : 0;
   return 0;
 }
+
+const double *pf_sim_row_sums(const pf_sim *sim) { return sim->row_sums ? sim->row_sums + S_N : NULL; }
 
 uint64_t pf_sim_digest(pf_sim *sim) {
   uint64_t h = 0;

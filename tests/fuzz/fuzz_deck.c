@@ -2,7 +2,8 @@
  * against the top-level key table and each material and body against the table of its model
  * or type (as pf_sim_create does), and every scalar read back typed. Nothing may crash, leak
  * or hit undefined behaviour; bad input only returns an error. Built by scripts/fuzz.sh (clang,
- * -fsanitize=fuzzer,address,undefined); not part of the ctest run. */
+ * -fsanitize=fuzzer,address,undefined); not part of the ctest run. The
+ * first line "#set KEY=VALUE" of an input is also passed as a --set override. */
 #include "sim/sim.h"
 #include "fem/fem.h"
 #include "pd/pd.h"
@@ -19,6 +20,12 @@ int LLVMFuzzerInitialize(int *argc, char ***argv) {
   pf_error_set_quiet(1);
   pf_log_set_quiet(1);
   snprintf(path, sizeof path, "/tmp/pf_fuzz_deck_%d.yaml", (int)getpid());
+  /* the part the seeds 43 and 44 include (deck composition: include:, parameters:, ${...}) */
+  FILE *part = fopen("/tmp/pf_fuzz_part.yaml", "w");
+  if (part) {
+    fputs("materials:\n  glass:\n    model: pmb\n    density: ${rho}\n    bulk_modulus: ${K}\n", part);
+    fclose(part);
+  }
   return 0;
 }
 
@@ -62,8 +69,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   if (!f) return 0;
   fwrite(data, 1, size, f);
   fclose(f);
+  /* a first line "#set KEY.PATH=VALUE" is also given as a --set override (a YAML comment) */
+  char set[256] = "";
+  const char *sets[1] = {set};
+  if (size > 5 && !memcmp(data, "#set ", 5)) {
+    size_t n = 0;
+    while (5 + n < size && n + 1 < sizeof set && data[5 + n] != '\n') n++;
+    memcpy(set, data + 5, n), set[n] = 0;
+  }
   pf_deck *d = NULL;
-  if (pf_deck_load(path, &d) == 0) {
+  if (pf_deck_load_with(path, sets, set[0] ? 1 : 0, &d) == 0) {
     const pf_node *root = pf_deck_root(d);
     if (pf_deck_validate(d, root, pf_deck_keys, "the deck") == 0) check_parts(d, root);
     read_all(d, root);

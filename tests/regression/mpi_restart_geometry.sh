@@ -16,7 +16,9 @@
 #     restarted on 2: one coordinate of the file moved by 1 um, or a point dropped: refused naming
 #     the point file.
 #  3. A checkpoint without the format attribute (as perifem wrote them before it recorded the
-#     geometry) or of a newer format: refused naming both formats.
+#     geometry) or of a newer format: refused naming both formats. One of format 2 (without the
+#     history's running sums per body, condition, surface and wall) restarts to the same digest
+#     with a note; one of format 3 missing one of those sums is refused naming the attribute.
 # usage: mpi_restart_geometry.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
@@ -87,7 +89,7 @@ refused pts.yaml ckp.h5 2 "point dropped" "body 'block'" "point file 'pts.txt' g
 cp pts_orig.txt pts.txt
 
 # 3. the format
-for f in 0 3; do
+for f in 0 4; do
   cp ckp.h5 ckp$f.h5
   "$PY" -c "
 import h5py, sys
@@ -96,6 +98,23 @@ with h5py.File('ckp$f.h5', 'r+') as h:
     else: del h.attrs['format']
 " || { echo "h5py could not edit the checkpoint"; fail=1; }
 done
-refused pts.yaml ckp0.h5 1 "no format attribute" "ckp0.h5 is of format 1, this perifem reads format 2 only" "older perifem"
-refused pts.yaml ckp3.h5 1 "format 3" "ckp3.h5 is of format 3" "newer perifem"
+refused pts.yaml ckp0.h5 1 "no format attribute" "ckp0.h5 is of format 1, this perifem reads formats 2 to 3 only" "older perifem"
+refused pts.yaml ckp4.h5 1 "format 4" "ckp4.h5 is of format 4" "newer perifem"
+# a format-2 checkpoint (before the history's running sums were kept: format 3 without them)
+# restarts to the same digest with a note; a format-3 one without one of them is refused
+"$PY" -c "
+import h5py, shutil
+for name, fmt in (('ckp2.h5', 2), ('ckp3.h5', 3)):
+    shutil.copy('ckp.h5', name)
+    with h5py.File(name, 'r+') as h:
+        sums = [a for a in h.attrs if a == 'damage_redistribution' or a.startswith('body_0_block_') and
+                a.endswith(('_damage', '_redistribution', '_bc_work'))]
+        assert len(sums) == 4, sums
+        for a in (sums if fmt == 2 else sums[:1]): del h.attrs[a]
+        h.attrs.modify('format', fmt)
+" || { echo "h5py could not edit the checkpoint"; fail=1; }
+out=$(run 1 "$exe" --restart ckp2.h5 pts.yaml 2>&1)
+[ "$(digest_of "$out")" = "$ref" ] && echo "$out" | grep -q "ckp2.h5 is a checkpoint of format 2" ||
+  { echo "format 2: expected the uninterrupted digest $ref and a note:"; echo "$out" | tail -5; fail=1; }
+refused pts.yaml ckp3.h5 1 "format 3 without a running sum" "ckp3.h5 has no attribute"
 exit $fail

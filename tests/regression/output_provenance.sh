@@ -9,7 +9,9 @@
 #    ranks, the command line as given, and the deck's and the included file's text line by line;
 #  - the history's "columns" attribute lists every column dataset, time and step first;
 #  - the stress is written as stress_xx, _yy, _zz, _xy, _yz, _zx, in that order (the names and
-#    order by which ParaView joins six variables into one symmetric tensor).
+#    order by which ParaView joins six variables into one symmetric tensor);
+#  - a body named fe, whose column fe_internal_energy would take the global column's name, is
+#    refused at set-up (exit 2, the column named, no output file).
 # usage: output_provenance.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
@@ -25,10 +27,16 @@ cat > prov.yaml <<EOF
 title: two hexahedra, pulled
 include: [steel.yaml]
 bodies:
-  - {name: fe, type: finite_element, material: steel, mesh: {file: $mesh}, initial_velocity: ["x", "0", "0"]}
+  - {name: bar, type: finite_element, material: steel, mesh: {file: $mesh}, initial_velocity: ["x", "0", "0"]}
 time: {steps: 3}
 output: {interval: 1, history_interval: 1}
 EOF
+# a body named so that one of its columns takes a global column's name is refused, nothing written
+sed 's/name: bar,/name: fe,/' prov.yaml > fe.yaml
+out=$(run 1 "$exe" --quiet fe.yaml 2>&1); status=$?
+if [ $status -ne 2 ] || ! echo "$out" | grep -q "two columns named 'fe_internal_energy'" || ls fe.h5 fe.e > /dev/null 2>&1; then
+  echo "FAIL: a body named fe: exit $status (expected 2, the column named, nothing written):"; echo "$out" | head -5; exit 1
+fi
 run 2 "$exe" --quiet prov.yaml --set time.steps=4 > run.log 2>&1 || { echo "FAIL: the run failed"; cat run.log; exit 1; }
 version=$("$exe" --version | sed -n 's/^perifem \([^ ]*\).*/\1/p')
 git=$(git -C "$src" describe --always --dirty --abbrev=12 2>/dev/null || echo unknown)

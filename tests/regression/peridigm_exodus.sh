@@ -46,7 +46,7 @@ output: {interval: 10}
 DECK
 }
 points_of() { "$exe" --check "$1" 2>&1 | sed -n 's/.*deck is valid (\([0-9]*\) points.*/\1/p'; }
-bc_points() { "$exe" --check "$1" 2>&1 | sed -n 's/^boundary condition 1 .*: \([0-9]*\) points$/\1/p'; }
+bc_points() { "$exe" --check "$1" 2>&1 | sed -n "s/^boundary condition 'bc0' .*: \([0-9]*\) points$/\1/p"; }
 
 # counts: the whole file, and each block by name and by id
 n=$(val 'e["points"]') n1=$(val 'e["blocks"]["1"]') n2=$(val 'e["blocks"]["2"]')
@@ -65,7 +65,7 @@ for s in bottom top inner_wall all; do
   [ "$got" = "$want" ] && ok "node set $s selects $got points" || bad "node set $s selects '$got' points, the file's set has $want"
 done
 # with the upper block alone, the top layer (all in it) is still whole
-got=$("$exe" --check upper.yaml 2>&1 | sed -n 's/^boundary condition 1 .*: \([0-9]*\) points$/\1/p')
+got=$(bc_points upper.yaml)
 [ "$got" = "$(val 'e["sets"]["top"]')" ] && ok "upper block: node set top selects $got points" || bad "upper block: top selects '$got'"
 
 # volumes: the kinetic energy of a uniform 10 m/s at t = 0
@@ -133,7 +133,7 @@ DECK
 }
 brick "{shape: node_set, set: nodeset_1}" "{shape: side_set, set: sideset_2}" > brick_sets.yaml
 brick "{shape: box, lo: [-1, -1, -1], hi: [0, 1, 1]}" "{shape: box, lo: [0.3, -1, -1], hi: [1, 1, 1]}" > brick_boxes.yaml
-got=$("$exe" --check brick_sets.yaml 2>&1 | sed -n 's/^boundary condition [12] .*: \([0-9]*\) points$/\1/p' | tr '\n' ' ')
+got=$("$exe" --check brick_sets.yaml 2>&1 | sed -n "s/^boundary condition 'bc[01]' .*: \([0-9]*\) points$/\1/p" | tr '\n' ' ')
 [ "$got" = "30 30 " ] && ok "pamgen node set and side set: $got points" || bad "pamgen sets select '$got' points, want 30 and 30"
 ref=$(digest_of "$(run 1 "$exe" --quiet brick_boxes.yaml --output-dir o_bb 2>&1)")
 for np in 1 3; do

@@ -141,7 +141,8 @@ static int read_back(const char *path, int pair_comps, pf_points **pts, pf_bond_
   register_fields(rows, pf_comm_rank(), 1);
   if (pair_comps != 2)
     PF_TEST_OK(pf_bond_rows_field_register(rows, "test_pair", PF_BOND_DOUBLE, pair_comps, PF_FIELD_RESTART, -1));
-  return pf_checkpoint_read(path, pts, rows, 1, names, t);
+  int format;
+  return pf_checkpoint_read(path, pts, rows, 1, names, t, 1, &format);
 }
 
 /* A read of path that must be refused naming the field. */

@@ -19,10 +19,12 @@
  *   one meshed body whose nodes carry the PD operator: beta = 1 everywhere (all PD); beta falling
  *     over [100, 120] mm (the overlap); beta = 0 (all FE); the horizon tapering over [80, 100] mm
  *     before the overlap, in the standard, auto (partial stress), corrected and consistent forms
- *     (the second run).
+ *     (the second run), these with force blending (overlap: force),
+ * and the same with the energy overlap (the defaults: consistent form, energy overlap).
  * Asserted below 1 %: the overlap's, the consistent form's (both runs) and the FE bar's
- * reflection; and the standard form's above the consistent form's (the measure tells them
- * apart). Printed: the others (auto is unstable, docs/theory/coupling.md §2.4), and each run's
+ * reflection, the defaults' below 0.05 %; the standard form's above the consistent form's (the
+ * measure tells them apart); every run finite (a NaN fails the test) but auto's, which is
+ * unstable here (docs/theory/coupling.md §2.4) and printed. Printed: the others, and each run's
  * kinetic energy at the end over the initial. Then the PD taper in the consistent form runs on
  * to 100 us: its energy balance must close to 1e-5 of the pulse's energy (coupling.md §2.6; the
  * corrected form had gained 4.4 % by 24 us). Label slow: about two minutes. */
@@ -90,7 +92,7 @@ static double reflected(const char *tag, const char *deck) {
   return r;
 }
 
-static double coupled(const char *tag, const char *horizon, const char *beta, const char *form) {
+static double coupled(const char *tag, const char *horizon, const char *beta, const char *form, const char *overlap) {
   char deck[4096];
   snprintf(deck, sizeof deck,
            "%sbodies:\n"
@@ -99,10 +101,10 @@ static double coupled(const char *tag, const char *horizon, const char *beta, co
            "    material: steel\n"
            "    hourglass: {type: stiffness, coefficient: 0.05}\n"
            "    bulk_viscosity: {linear: 0, quadratic: 0}\n%s"
-           "    peridynamic: {horizon: %s, blending: %s, formulation: %s, hourglass: {type: none}}\n"
+           "    peridynamic: {horizon: %s, blending: %s, formulation: %s, overlap: %s, hourglass: {type: none}}\n"
            "%s"
            "time: {final_time: 24.0e-6, safety_factor: 0.8}\n",
-           STEEL, PULSE, horizon, beta, form,
+           STEEL, PULSE, horizon, beta, form, overlap,
            pf_test_pamgen_box(240, 8, 8, (const double[3]){0, 0, 0}, (const double[3]){0.240, 0.008, 0.008}));
   return reflected(tag, deck);
 }
@@ -147,22 +149,26 @@ int main(int argc, char **argv) {
   const double pd_const = pd_body("pd_constant", CONSTANT, "standard");
   const double pd_std = pd_body("pd_taper_standard", TAPER_PD, "standard");
   const double pd_cons = pd_body("pd_taper_consistent", TAPER_PD, "consistent");
-  const double ref = coupled("all_pd", CONSTANT, "1", "auto");
-  const double blend = coupled("blended", CONSTANT, BLEND, "auto");
-  const double fe = coupled("all_fe", CONSTANT, "0", "auto");
-  const double taper_std = coupled("taper_standard", TAPER, BLEND, "standard");
-  const double taper_auto = coupled("taper_auto", TAPER, BLEND, "auto");
-  const double taper_corr = coupled("taper_corrected", TAPER, BLEND, "corrected");
-  const double taper_cons = coupled("taper_consistent", TAPER, BLEND, "consistent");
+  const double ref = coupled("all_pd", CONSTANT, "1", "auto", "force");
+  const double blend = coupled("blended", CONSTANT, BLEND, "auto", "force");
+  const double fe = coupled("all_fe", CONSTANT, "0", "auto", "force");
+  const double taper_std = coupled("taper_standard", TAPER, BLEND, "standard", "force");
+  const double taper_auto = coupled("taper_auto", TAPER, BLEND, "auto", "force");
+  const double taper_corr = coupled("taper_corrected", TAPER, BLEND, "corrected", "force");
+  const double taper_cons = coupled("taper_consistent", TAPER, BLEND, "consistent", "force");
+  const double taper_default = coupled("taper_default", TAPER, BLEND, "consistent", "energy"); /* the defaults */
   const double balance = consistent_balance();
   if (pf_comm_rank() == 0) {
     printf("reflected energy, of the incident pulse: PD body, horizon 3.01 -> 1.01 mm: constant horizon %.2e, "
            "standard %.2e, consistent %.2e\n", pd_const, pd_std, pd_cons);
     printf("PD -> FE: all PD %.2e, through the overlap %.2e, all FE %.2e; horizon taper, then the overlap: "
-           "standard %.2e, auto %.2e (nan: unstable), corrected %.2e, consistent %.2e\n",
-           ref, blend, fe, taper_std, taper_auto, taper_corr, taper_cons);
+           "standard %.2e, auto %.2e (nan: unstable), corrected %.2e, consistent %.2e; consistent with the energy "
+           "overlap (the defaults) %.2e\n", ref, blend, fe, taper_std, taper_auto, taper_corr, taper_cons, taper_default);
     printf("consistent form, PD taper, 100 us: energy balance %.2e of the pulse's energy\n", balance);
   }
+  /* every run but auto's (the strong form, a statics tool: coupling.md §2.4) must stay finite */
+  PF_TEST_TRUE(isfinite(pd_const) && isfinite(pd_std) && isfinite(ref) && isfinite(taper_corr));
+  PF_TEST_TRUE(fabs(taper_default) < 5e-4);
   PF_TEST_TRUE(fabs(pd_cons) < 0.01);
   PF_TEST_TRUE(pd_std > pd_cons);
   PF_TEST_TRUE(fabs(blend) < 0.01);

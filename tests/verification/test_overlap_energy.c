@@ -27,7 +27,7 @@
 
 static const double h = 1e-3, E = 200e9, RHO = 7800, EPS = 1e-6, DT = 1e-7;
 
-static pf_sim *bar(const char *form, const char *beta) {
+static pf_sim *bar(const char *form, const char *beta, const char *formulation) {
   char deck[4096];
   snprintf(deck, sizeof deck,
            "materials: {steel: {model: elastic, density: 7800, youngs_modulus: 200e9, poissons_ratio: 0.3}}\n"
@@ -39,11 +39,11 @@ static pf_sim *bar(const char *form, const char *beta) {
            "    peridynamic:\n"
            "      horizon: 3.01e-3\n"
            "      blending: \"%s\"\n"
-           "      formulation: standard\n"
+           "      formulation: %s\n"
            "      overlap: %s\n"
            "%s"
            "time: {steps: 150}\n",
-           beta, form, pf_test_pamgen_box(30, 8, 8, (const double[3]){0, 0, 0}, (const double[3]){0.030, 0.008, 0.008}));
+           beta, formulation, form, pf_test_pamgen_box(30, 8, 8, (const double[3]){0, 0, 0}, (const double[3]){0.030, 0.008, 0.008}));
   return pf_test_sim("overlap_bar", deck);
 }
 
@@ -52,8 +52,8 @@ static double stored(const pf_sim_globals *g) {
 }
 
 /* Largest momentum change over |p0| and energy change over KE0 in any step. */
-static void conservation(const char *form, const char *beta, double *dp, double *de) {
-  pf_sim *sim = bar(form, beta);
+static void conservation(const char *form, const char *beta, const char *formulation, double *dp, double *de) {
+  pf_sim *sim = bar(form, beta, formulation);
   pf_sim_globals g0, g;
   PF_TEST_OK(pf_sim_step(sim, 1));
   PF_TEST_OK(pf_sim_globals_get(sim, &g0));
@@ -73,7 +73,7 @@ static void conservation(const char *form, const char *beta, double *dp, double 
 enum { NX = 40, NY = 14 };
 static const double X0 = 0.012, X1 = 0.028; /* the overlap */
 
-static pf_sim *block(const char *form) {
+static pf_sim *block(const char *form, const char *formulation) {
   char deck[4096];
   snprintf(deck, sizeof deck,
            "materials: {steel: {model: elastic, density: 7800, youngs_modulus: 200e9, poissons_ratio: 0}}\n"
@@ -86,12 +86,12 @@ static pf_sim *block(const char *form) {
            "    peridynamic:\n"
            "      horizon: 3.01e-3\n"
            "      blending: \"1 - min(max((x - %g) / %g, 0), 1)\"\n"
-           "      formulation: standard\n"
+           "      formulation: %s\n"
            "      overlap: %s\n"
            "      hourglass: {type: none}\n"
            "%s"
            "time: {steps: 0, dt: 1e-9}\n",
-           X0, X1 - X0, form,
+           X0, X1 - X0, formulation, form,
            pf_test_pamgen_box(NX, NY, NY, (const double[3]){0, 0, 0}, (const double[3]){NX * h, NY * h, NY * h}));
   return pf_test_sim("overlap_block", deck);
 }
@@ -105,9 +105,9 @@ static int interior(const double X[3]) {
 
 /* Largest |a| over interior nodes: [0] where beta is linear over the whole horizon, [1] where the
  * horizon reaches one of beta's kinks, [2] elsewhere (PD and FE regions). */
-static void ghost(const char *form, double worst[3]) {
+static void ghost(const char *form, const char *formulation, double worst[3]) {
   static const double G[3][3] = {{1.0, 0.4, -0.3}, {0.2, -0.7, 0.5}, {-0.6, 0.3, 0.8}};
-  pf_sim *sim = block(form);
+  pf_sim *sim = block(form, formulation);
   pf_points *p = pf_sim_points(sim);
   for (pf_int i = 0; i < p->n_total; i++) /* owned and ghost nodes: the kernels read both */
     for (int a = 0; a < 3; a++) {
@@ -133,25 +133,33 @@ static void ghost(const char *form, double worst[3]) {
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
   const char *overlap = "1 - min(max((x - 0.014) / 0.006, 0), 1)";
-  double dp_e, de_e, dp_f, de_f, dp_pd, de_pd;
-  conservation("energy", overlap, &dp_e, &de_e);
-  conservation("force", overlap, &dp_f, &de_f);
-  conservation("energy", "1", &dp_pd, &de_pd); /* the same bar all peridynamic */
-  double ge[3], gf[3];
-  ghost("energy", ge);
-  ghost("force", gf);
+  double dp_e, de_e, dp_c, de_c, dp_f, de_f, dp_pd, de_pd;
+  conservation("energy", overlap, "standard", &dp_e, &de_e);
+  conservation("energy", overlap, "consistent", &dp_c, &de_c); /* the kinks' weights corrected */
+  conservation("force", overlap, "standard", &dp_f, &de_f);
+  conservation("energy", "1", "standard", &dp_pd, &de_pd); /* the same bar all peridynamic */
+  double ge[3], gc[3], gf[3];
+  ghost("energy", "standard", ge);
+  ghost("energy", "consistent", gc);
+  ghost("force", "standard", gf);
   if (pf_comm_rank() == 0) {
-    printf("conservation over 150 steps: energy form momentum %.2e of |p0|, energy %.2e of KE0; "
-           "force form %.2e, %.2e; all PD %.2e, %.2e\n", dp_e, de_e, dp_f, de_f, dp_pd, de_pd);
+    printf("conservation over 150 steps: energy form momentum %.2e of |p0|, energy %.2e of KE0; corrected "
+           "kinks %.2e, %.2e; force form %.2e, %.2e; all PD %.2e, %.2e\n", dp_e, de_e, dp_c, de_c, dp_f, de_f,
+           dp_pd, de_pd);
     printf("ghost accelerations / (E eps / rho h): energy form overlap interior %.2e, near beta's kinks "
-           "%.2e, PD and FE regions %.2e; force form %.2e, %.2e, %.2e\n", ge[0], ge[1], ge[2], gf[0], gf[1], gf[2]);
+           "%.2e, PD and FE regions %.2e; corrected kinks (consistent) %.2e, %.2e, %.2e; force form %.2e, "
+           "%.2e, %.2e\n", ge[0], ge[1], ge[2], gc[0], gc[1], gc[2], gf[0], gf[1], gf[2]);
   }
   PF_TEST_TRUE(dp_e < 1e-12);
   PF_TEST_TRUE(de_e < 1.5 * de_pd && de_pd < 5e-3);
+  PF_TEST_TRUE(dp_c < 1e-12);
+  PF_TEST_TRUE(de_c < 1.5 * de_pd);
   PF_TEST_TRUE(dp_f > 1e-3);
   PF_TEST_TRUE(de_f > 1e-3);
   PF_TEST_TRUE(ge[0] < 1e-9);
+  PF_TEST_TRUE(ge[1] > 1e-3); /* the uncorrected kinks: the test discriminates */
   PF_TEST_TRUE(ge[2] < 1e-9);
+  PF_TEST_TRUE(gc[0] < 1e-9 && gc[1] < 1e-9 && gc[2] < 1e-9);
   PF_TEST_TRUE(gf[0] < 1e-9 && gf[1] < 1e-9 && gf[2] < 1e-9);
   return pf_test_finish();
 }
