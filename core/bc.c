@@ -1,4 +1,5 @@
-/* Prescribed velocities and displacements on point sets chosen by region and body. In the
+/* Prescribed velocities and displacements on point sets chosen by region (a shape, or a named
+ * node set or side set) and body. In the
  * velocity-Verlet step the mid-step velocity is what moves the points, so a prescribed
  * velocity v(t) sets it to v(t + dt/2) and a prescribed displacement g(t) sets it to
  * (g(t + dt) - g(t)) / dt, which lands the point exactly on g(t + dt). */
@@ -43,18 +44,19 @@ int pf_bc_select(pf_bc *bc, const pf_points *pts) {
   bc->n = 0;
   PF_MALLOC(bc->points, pts->n_owned);
   for (pf_int i = 0; i < pts->n_owned; i++)
-    if ((bc->body < 0 || pts->body[i] == bc->body) && pf_region_contains(&bc->region, &pts->X[3 * i]))
+    if ((bc->body < 0 || pts->body[i] == bc->body) && pf_region_selects(&bc->region, pts, i))
       bc->points[bc->n++] = i;
   return 0;
 }
 
 static int select_points(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
-                         const char *const *body_names, pf_bc *bc) {
+                         const char *const *body_names, const pf_point_sets *sets, pf_bc *bc) {
   bc->region.kind = PF_REGION_ALL;
-  if (pf_node_get(map, "region")) PF_CALL(pf_region_from_deck(d, pf_node_get(map, "region"), &bc->region));
   bc->body = -1;
   if (pf_node_get(map, "body"))
     PF_CALL(pf_deck_body_index(d, pf_node_get(map, "body"), "body", nbodies, body_names, &bc->body));
+  if (pf_node_get(map, "region"))
+    PF_CALL(pf_region_from_deck(d, pf_node_get(map, "region"), sets, bc->body, &bc->region));
   PF_CALL(pf_bc_select(bc, pts));
   if (pf_sum_all(bc->n) == 0)
     return pf_deck_error(d, map, "region", "the boundary condition selects no point");
@@ -62,7 +64,7 @@ static int select_points(const pf_deck *d, const pf_node *map, const pf_points *
 }
 
 static int bc_setup(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
-                    const char *const *body_names, pf_bc *bc) {
+                    const char *const *body_names, const pf_point_sets *sets, pf_bc *bc) {
   const char *name = NULL;
   PF_CALL(pf_deck_string(d, map, "name", &name));
   if (name) {
@@ -75,16 +77,16 @@ static int bc_setup(const pf_deck *d, const pf_node *map, const pf_points *pts, 
   if (hv == hd) return pf_deck_error(d, map, "velocity", "give exactly one of 'velocity' and 'displacement'");
   bc->is_velocity = hv;
   PF_CALL(read_exprs(d, map, hv ? "velocity" : "displacement", bc));
-  return select_points(d, map, pts, nbodies, body_names, bc);
+  return select_points(d, map, pts, nbodies, body_names, sets, bc);
 }
 
 int pf_bc_create(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
-                 const char *const *body_names, int index, pf_bc **out) {
+                 const char *const *body_names, const pf_point_sets *sets, int index, pf_bc **out) {
   *out = NULL;
   pf_bc *bc;
   PF_MALLOC(bc, 1);
   snprintf(bc->name, sizeof bc->name, "bc%d", index);
-  int ierr = bc_setup(d, map, pts, nbodies, body_names, bc);
+  int ierr = bc_setup(d, map, pts, nbodies, body_names, sets, bc);
   if (ierr) {
     pf_bc_destroy(&bc);
     return ierr;

@@ -265,18 +265,58 @@ int pf_nearest_create(const double *X, pf_int n, pf_nearest **q); /* X [3n], cop
 double pf_nearest_distance(const pf_nearest *q, const double x[3]);
 void pf_nearest_destroy(pf_nearest **q);
 
-/* ---- regions (point sets by geometry) ---------------------------------------- */
-typedef enum { PF_REGION_ALL, PF_REGION_BOX, PF_REGION_CYLINDER, PF_REGION_SPHERE } pf_region_kind;
+/* ---- named point sets of the bodies (core/point_sets.c) ---------------------------
+ * A mesh's node set, the nodes of a side set's faces, or an Exodus SPHERE file's node set, as
+ * the global ids of the points it holds (global ids are the generation order, so a set does not
+ * depend on the ranks and follows its points through migration and restart). */
+typedef struct {
+  char name[64];
+  int body;     /* the body's index; -1 while the set belongs to a cloud not yet numbered */
+  int side;     /* 0: node set, 1: side set */
+  pf_gid n;
+  pf_gid *gid;  /* [n] ascending, no repeats (in a cloud: indices into the cloud) */
+} pf_point_set;
+typedef struct {
+  int n;
+  pf_point_set *set;
+  const char *const *body_name; /* [bodies] names for messages (borrowed) */
+} pf_point_sets;
+/* Append a set of n ids (copied, then sorted and made unique) to the table. */
+int pf_point_sets_add(pf_point_sets *t, const char *name, int body, int side, const pf_gid *id, pf_gid n);
+void pf_point_sets_free(pf_point_sets *t);
+/* The set of the given kind named name, of body (or of any body when body < 0). Errors name
+ * the deck key; an unknown name lists the known sets of that kind. */
+int pf_point_sets_find(const pf_point_sets *t, const pf_deck *d, const pf_node *key_node, const char *key,
+                       const char *name, int side, int body, const pf_point_set **out);
+int pf_point_set_has(const pf_point_set *s, pf_gid gid);
+
+/* ---- regions (point sets by geometry, or a named set of a body) ---------------------- */
+typedef enum {
+  PF_REGION_ALL,
+  PF_REGION_BOX,
+  PF_REGION_CYLINDER,
+  PF_REGION_SPHERE,
+  PF_REGION_SET /* a node set or side set (pf_point_set) */
+} pf_region_kind;
 typedef struct {
   pf_region_kind kind;
   double lo[3], hi[3]; /* box */
   double center[3];    /* cylinder (base centre) / sphere */
   int axis;            /* cylinder axis 0,1,2 */
   double radius, inner_radius, height;
+  const pf_point_set *set; /* set: borrowed from the table it was found in */
 } pf_region;
 extern const pf_key pf_region_keys[];
-int pf_region_from_deck(const pf_deck *d, const pf_node *map, pf_region *r);
+/* A region from its deck mapping. sets: the named sets a `shape: node_set | side_set` may name
+ * (NULL where no set can be named, e.g. a body's geometry); body: the body the caller restricts
+ * to (-1: any), used to tell apart sets of the same name in two bodies. */
+int pf_region_from_deck(const pf_deck *d, const pf_node *map, const pf_point_sets *sets, int body,
+                        pf_region *r);
+/* Geometric regions: is x inside (boundary inclusive)? A set region holds no position: 0. */
 int pf_region_contains(const pf_region *r, const double x[3]);
+/* Does the region select point i of the store (its reference position, or for a set its body
+ * and global id)? */
+int pf_region_selects(const pf_region *r, const pf_points *pts, pf_int i);
 
 /* ---- point generation: lattices and point files -------------------------------- */
 typedef struct {
@@ -285,6 +325,8 @@ typedef struct {
   double *cell;  /* [n] edge of the cube cell of each point */
   int32_t *block; /* [n] block id from a point file (0 for lattices) */
   pf_int n;
+  int nsets;          /* named sets of the cloud's points (an Exodus SPHERE file's node sets) */
+  pf_point_set *sets; /* [nsets] ids are indices into the cloud; body -1 */
 } pf_point_cloud;
 extern const pf_key pf_geometry_keys[];
 /* Points of a body from its `geometry:` mapping: a lattice inside a shape, or a point file. */
@@ -301,6 +343,8 @@ int pf_lattice_fill(const pf_region *r, double h, const double origin[3], pf_poi
  * of edge about h tiling the shape, a point at each cell's centre with the cell's volume. */
 int pf_polar_fill(const pf_region *r, double h, pf_point_cloud *pc);
 int pf_point_file_read(const char *path, int peridigm, pf_point_cloud *pc);
+/* Refuse two points of a cloud at one position (a bond of zero length), naming label. */
+int pf_point_cloud_check_distinct(const char *label, const pf_point_cloud *pc);
 /* Permutation that orders points along a Morton (Z-order) curve. */
 int pf_morton_order(pf_int n, const double *X, pf_int *perm);
 
@@ -435,10 +479,11 @@ void pf_exchange_destroy(pf_exchange **x);
 typedef struct pf_bc pf_bc;
 extern const pf_key pf_bc_keys[];
 /* A prescribed velocity or displacement, component by component ("free" leaves a component
- * alone), on the points of a region (optionally of one body, by index into body_names); index:
- * its place in the deck's list, which names it "bc<index>" unless the deck gives `name:`. */
+ * alone), on the points of a region (optionally of one body, by index into body_names); sets:
+ * the named sets a region may select (NULL: none); index: its place in the deck's list, which
+ * names it "bc<index>" unless the deck gives `name:`. */
 int pf_bc_create(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
-                 const char *const *body_names, int index, pf_bc **bc);
+                 const char *const *body_names, const pf_point_sets *sets, int index, pf_bc **bc);
 int pf_bc_destroy(pf_bc **bc);
 /* (Re)select the owned points of the condition's region and body (after a re-partition). */
 int pf_bc_select(pf_bc *bc, const pf_points *pts);

@@ -1,6 +1,8 @@
 /* Point generation for a body: a simple cubic lattice inside a shape (with an optional
  * seeded random perturbation, as Peridigm's and Ruestes et al.'s decks do), or a plain-text
- * point file "x y z volume block" like Peridigm's text discretization. */
+ * point file "x y z volume block" like Peridigm's text discretization. (Peridigm's Exodus
+ * discretization, shape: exodus, is read by mesh/exodus_spheres.c; its keys are listed here
+ * with the others of `geometry:`.) */
 #include "core/core.h"
 
 #include <errno.h>
@@ -9,7 +11,9 @@
 #include <string.h>
 
 const pf_key pf_geometry_keys[] = {
-    {"shape", PF_KEY_STRING, 1, NULL, "", "box | cylinder | sphere | points_file", NULL},
+    {"shape", PF_KEY_STRING, 1, NULL, "",
+     "box | cylinder | sphere | points_file | exodus (Peridigm's Exodus discretization: SPHERE "
+     "elements, one point each)", NULL},
     {"lo", PF_KEY_VEC3, 0, NULL, "m", "box: lower corner", NULL},
     {"hi", PF_KEY_VEC3, 0, NULL, "m", "box: upper corner", NULL},
     {"center", PF_KEY_VEC3, 0, "[0, 0, 0]", "m", "cylinder: centre of the base; sphere: centre",
@@ -28,13 +32,18 @@ const pf_key pf_geometry_keys[] = {
      "random offset of each point, uniform in [-a h, a h] per component", NULL},
     {"seed", PF_KEY_INT, 0, "1", "", "seed of the perturbation", NULL},
     {"file", PF_KEY_STRING, 0, NULL, "",
-     "points_file: text file, one point a line (relative to the deck; '#' starts a comment)", NULL},
+     "points_file: text file, one point a line (relative to the deck; '#' starts a comment); "
+     "exodus: the Exodus II file (.g .e .exo)", NULL},
     {"columns", PF_KEY_STRING, 0, "perifem", "",
      "points_file: perifem (x y z volume [block]) | peridigm (x y z block_id volume, Peridigm's text "
      "discretization)", NULL},
     {"scale", PF_KEY_REAL, 0, "1", "",
-     "points_file: the file's length unit in metres (x, y, z times scale, volume times scale^3)", NULL},
+     "points_file, exodus: the file's length unit in metres (x, y, z times scale, volume times "
+     "scale^3)", NULL},
     {"block", PF_KEY_INT, 0, NULL, "", "points_file: take only the points of this block", NULL},
+    {"blocks", PF_KEY_STRLIST, 0, NULL, "",
+     "exodus: take only these element blocks, by name or id (default: every block); each must hold "
+     "SPHERE elements with a 'volume' attribute", NULL},
     PF_KEY_END};
 
 static int cloud_grow(pf_point_cloud *pc, pf_int *cap) {
@@ -64,6 +73,9 @@ static int cloud_push(pf_point_cloud *pc, pf_int *cap, const double x[3], double
 }
 
 int pf_point_cloud_free(pf_point_cloud *pc) {
+  for (int k = 0; pc->sets && k < pc->nsets; k++) free(pc->sets[k].gid);
+  PF_FREE(pc->sets);
+  pc->nsets = 0;
   PF_FREE(pc->X);
   PF_FREE(pc->vol);
   PF_FREE(pc->cell);
@@ -211,7 +223,7 @@ static int by_position(const void *a, const void *b) {
 }
 
 /* Two points at one position would make a bond of zero length. */
-static int check_distinct(const char *path, const pf_point_cloud *pc) {
+int pf_point_cloud_check_distinct(const char *path, const pf_point_cloud *pc) {
   pf_int *order;
   PF_MALLOC(order, pc->n);
   for (pf_int i = 0; i < pc->n; i++) order[i] = i;
@@ -253,7 +265,7 @@ static int cloud_from_file(const pf_deck *d, const pf_node *g, pf_point_cloud *p
     pc->vol[i] *= scale * scale * scale;
     pc->cell[i] *= scale;
   }
-  PF_CALL(check_distinct(path, pc));
+  PF_CALL(pf_point_cloud_check_distinct(path, pc));
   long block = -1;
   PF_CALL(pf_deck_int(d, g, "block", &block));
   if (block < 0) return 0;
@@ -334,8 +346,11 @@ int pf_point_cloud_from_deck(const pf_deck *d, const pf_node *g, pf_point_cloud 
   const char *shape = NULL;
   PF_CALL(pf_deck_string(d, g, "shape", &shape));
   if (shape && !strcmp(shape, "points_file")) return cloud_from_file(d, g, pc);
+  if (shape && !strcmp(shape, "exodus"))
+    return pf_deck_error(d, pf_node_get(g, "shape"), "shape", "an Exodus discretization is read by the mesh "
+                         "module (a peridynamic body's points); it is not a lattice");
   pf_region r;
-  PF_CALL(pf_region_from_deck(d, g, &r));
+  PF_CALL(pf_region_from_deck(d, g, NULL, -1, &r));
   if (r.kind == PF_REGION_ALL) return pf_deck_error(d, g, "shape", "a body needs a bounded shape");
   double h = 0, origin[3] = {0, 0, 0}, amp = 0;
   long seed = 1;
@@ -385,8 +400,8 @@ int pf_point_cloud_estimate(const pf_deck *d, const pf_node *g, double *points, 
   pf_region r;
   *points = 0, *spacing = 0;
   PF_CALL(pf_deck_string(d, g, "shape", &shape));
-  if (shape && !strcmp(shape, "points_file")) return 0;
-  PF_CALL(pf_region_from_deck(d, g, &r));
+  if (shape && (!strcmp(shape, "points_file") || !strcmp(shape, "exodus"))) return 0;
+  PF_CALL(pf_region_from_deck(d, g, NULL, -1, &r));
   if (r.kind == PF_REGION_ALL || !pf_node_get(g, "spacing")) return 0;
   PF_CALL(pf_deck_real(d, g, "spacing", &h));
   if (!(h > 0)) return 0;

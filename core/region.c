@@ -1,12 +1,16 @@
-/* Regions: point sets chosen by geometry (box, cylinder or tube, sphere), used for lattice
- * generation, prescribed boundary conditions and selections. */
+/* Regions: point sets chosen by geometry (box, cylinder or tube, sphere) or by name (a node
+ * set or side set of a body's mesh, core/point_sets.c), used for lattice generation (geometry
+ * only), prescribed boundary conditions and probes. */
 #include "core/core.h"
 
 #include <math.h>
 #include <string.h>
 
 const pf_key pf_region_keys[] = {
-    {"shape", PF_KEY_STRING, 1, NULL, "", "box | cylinder | sphere | all", NULL},
+    {"shape", PF_KEY_STRING, 1, NULL, "",
+     "box | cylinder | sphere | all | node_set | side_set (a named set of a body's mesh or Exodus "
+     "SPHERE file; a side set selects the nodes of its faces)", NULL},
+    {"set", PF_KEY_STRING, 0, NULL, "", "node_set or side_set: the set's name", NULL},
     {"lo", PF_KEY_VEC3, 0, NULL, "m", "box: lower corner", NULL},
     {"hi", PF_KEY_VEC3, 0, NULL, "m", "box: upper corner", NULL},
     {"center", PF_KEY_VEC3, 0, "[0, 0, 0]", "m", "cylinder: centre of the base; sphere: centre",
@@ -28,13 +32,34 @@ static int positive(const pf_deck *d, const pf_node *map, const char *key, doubl
                        allow0 ? "zero or positive" : "positive", v);
 }
 
-int pf_region_from_deck(const pf_deck *d, const pf_node *map, pf_region *r) {
+/* shape: node_set | side_set, set: NAME. */
+static int set_from_deck(const pf_deck *d, const pf_node *map, const char *shape, const pf_point_sets *sets,
+                         int body, pf_region *r) {
+  if (!sets)
+    return pf_deck_error(d, pf_node_get(map, "shape"), "shape",
+                         "a %s selects points of a body that exists; it cannot make a body's points "
+                         "(a geometry's shapes: box, cylinder, sphere, points_file, exodus)", shape);
+  const char *name = NULL;
+  PF_CALL(need(d, map, "set", shape));
+  PF_CALL(pf_deck_string(d, map, "set", &name));
+  r->kind = PF_REGION_SET;
+  return pf_point_sets_find(sets, d, pf_node_get(map, "set"), "set", name, !strcmp(shape, "side_set"), body,
+                            &r->set);
+}
+
+int pf_region_from_deck(const pf_deck *d, const pf_node *map, const pf_point_sets *sets, int body,
+                        pf_region *r) {
   memset(r, 0, sizeof *r);
   r->axis = 2;
   const char *shape = "all", *axis = "z";
   PF_CALL(pf_deck_string(d, map, "shape", &shape));
   PF_CALL(pf_deck_vec3(d, map, "center", r->center));
-  if (!strcmp(shape, "all")) {
+  if (strcmp(shape, "node_set") && strcmp(shape, "side_set") && pf_node_get(map, "set"))
+    return pf_deck_error(d, pf_node_get(map, "set"), "set", "'set' goes with shape node_set or side_set (got "
+                         "shape '%s')", shape);
+  if (!strcmp(shape, "node_set") || !strcmp(shape, "side_set")) {
+    PF_CALL(set_from_deck(d, map, shape, sets, body, r));
+  } else if (!strcmp(shape, "all")) {
     r->kind = PF_REGION_ALL;
   } else if (!strcmp(shape, "box")) {
     r->kind = PF_REGION_BOX;
@@ -68,7 +93,8 @@ int pf_region_from_deck(const pf_deck *d, const pf_node *map, pf_region *r) {
     PF_CALL(positive(d, map, "radius", r->radius, 0));
   } else {
     return pf_deck_error(d, pf_node_get(map, "shape"), "shape",
-                         "unknown shape '%s' (known: all, box, cylinder, sphere)", shape);
+                         "unknown shape '%s' (known: all, box, cylinder, sphere%s)", shape,
+                         sets ? ", node_set, side_set" : "");
   }
   return 0;
 }
@@ -94,6 +120,12 @@ int pf_region_contains(const pf_region *r, const double x[3]) {
     for (int c = 0; c < 3; c++) s += (x[c] - r->center[c]) * (x[c] - r->center[c]);
     return s <= r->radius * r->radius;
   }
+  case PF_REGION_SET: return 0;
   }
   return 0;
+}
+
+int pf_region_selects(const pf_region *r, const pf_points *pts, pf_int i) {
+  if (r->kind != PF_REGION_SET) return pf_region_contains(r, &pts->X[3 * i]);
+  return pts->body[i] == r->set->body && pf_point_set_has(r->set, pts->gid[i]);
 }

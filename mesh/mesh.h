@@ -42,6 +42,11 @@ int pf_mesh_read(const pf_deck *d, const pf_node *mesh, pf_mesh *m);
 int pf_mesh_free(pf_mesh *m);
 /* Volume of hexahedron e (exact for trilinear hexahedra: 2x2x2 Gauss of det J). */
 double pf_mesh_hex_volume(const double x[8][3]);
+/* Peridigm's Exodus discretization (mesh/exodus_spheres.c): a peridynamic body's points from the
+ * SPHERE element blocks of the Exodus file its `geometry: {shape: exodus}` mapping names (one
+ * point per element, the `volume` attribute its volume), with the file's node sets as sets of the
+ * cloud. Errors name the deck key and the file. */
+int pf_mesh_spheres_from_deck(const pf_deck *d, const pf_node *geometry, pf_point_cloud *pc);
 /* Write a mesh as an Exodus II file (blocks, node sets, side sets): tests and conversions. */
 int pf_mesh_write_exodus(const char *path, const pf_mesh *m);
 

@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <string.h>
 
 static const pf_key *keys(void) { return pf_pd_body_keys; }
 
@@ -81,9 +82,14 @@ static int check_horizon(const void *data, const pf_deck *d, const pf_node *body
   return refuse_memory(d, body, (double)pc->n, m, "the body's");
 }
 
+/* The body's points: a lattice or a point file (core/), or Peridigm's Exodus discretization
+ * (mesh/). */
 static int cloud(const void *data, const pf_deck *d, const pf_node *body, pf_point_cloud *pc) {
+  const pf_node *g = pf_node_get(body, "geometry");
+  const char *shape = pf_node_text(pf_node_get(g, "shape"));
   PF_CALL(check_estimate(data, d, body));
-  PF_CALL(pf_point_cloud_from_deck(d, pf_node_get(body, "geometry"), pc));
+  if (shape && !strcmp(shape, "exodus")) PF_CALL(pf_mesh_spheres_from_deck(d, g, pc));
+  else PF_CALL(pf_point_cloud_from_deck(d, g, pc));
   return check_horizon(data, d, body, pc);
 }
 

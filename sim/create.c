@@ -221,6 +221,7 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
   for (int b = 0; b < sim->nbodies && !ierr; b++)
     ierr = sim->body[b].ops->cloud(sim->body[b].data, sim->deck, pf_node_item(bodies, b), &pc[b]);
   if (!ierr) pf_sim_geometry_take(sim, pc); /* (checkpoints record it; a restart compares) */
+  if (!ierr) ierr = pf_sim_sets_build(sim, pc);
   if (!ierr && sim->opt.restart_from) {      /* points and velocities from the file */
     for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
     return pf_sim_restore_points(sim);
@@ -240,9 +241,14 @@ static int build_bcs(pf_sim *sim, const pf_node *root) {
   const pf_node *bcs = pf_node_get(root, "boundary_conditions");
   sim->nbcs = pf_node_count(bcs);
   PF_MALLOC(sim->bcs, sim->nbcs);
-  for (int k = 0; k < sim->nbcs; k++)
-    PF_CALL(pf_bc_create(sim->deck, pf_node_item(bcs, k), sim->pts, sim->nbodies, sim->body_name, k,
+  for (int k = 0; k < sim->nbcs; k++) {
+    PF_CALL(pf_bc_create(sim->deck, pf_node_item(bcs, k), sim->pts, sim->nbodies, sim->body_name, &sim->sets, k,
                          &sim->bcs[k]));
+    char where[512];
+    pf_node_where(sim->deck, pf_node_item(bcs, k), where, sizeof where);
+    pf_log("boundary condition '%s' (%s): %" PF_GID_FMT " points\n", pf_bc_name(sim->bcs[k]), where,
+           (pf_gid)pf_sum_all(pf_bc_npoints(sim->bcs[k])));
+  }
   return 0;
 }
 
@@ -330,6 +336,7 @@ int pf_sim_destroy(pf_sim **s) {
   free(sim->probes);
   pf_points_destroy(&sim->pts);
   pf_points_destroy(&sim->joined);
+  pf_point_sets_free(&sim->sets);
   pf_sim_restart_free(sim);
   pf_sim_guard_free(sim);
   pf_sim_run_free(sim);

@@ -3,6 +3,7 @@
  * time loop that writes them at their intervals is sim/run.c. */
 #include "sim/sim_impl.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -201,10 +202,32 @@ int pf_sim_globals_eval(pf_sim *sim, pf_sim_history_row *g, int first) {
 int pf_sim_spread_output(const pf_sim *sim) { return sim->spread_output && pf_comm_size() > 1; }
 
 /* The spread form <file>.<ranks>.<rank>, the rank zero-padded to the width of <ranks> (the
- * Nemesis convention by which ParaView's Exodus reader opens the set as one data set). */
-static void spread_name(const char *path, char *out, size_t len) {
+ * Nemesis convention by which ParaView's Exodus readers open the set as one data set). */
+static void spread_name(const char *path, int rank, char *out, size_t len) {
   int size = pf_comm_size(), width = snprintf(NULL, 0, "%d", size);
-  snprintf(out, len, "%s.%d.%0*d", path, size, width, pf_comm_rank());
+  snprintf(out, len, "%s.%d.%0*d", path, size, width, rank);
+}
+
+/* Rank 0 writes <file> itself as the list of the pieces' names, one a line, relative to its
+ * folder: the IOSS "metafile" form. ParaView's default Exodus reader (the IOSS reader, from
+ * ParaView 5.10) finds the other pieces of a piece it is given by listing the piece's folder,
+ * and a piece named without a folder ("run.e.3.0", as pvpython users type it in the run's
+ * folder) gives it no folder to list: it loads that piece alone, silently. A metafile's names
+ * are resolved against the metafile's full path, so <file> opened by any path loads every piece
+ * (docs/user_guide.md §3.1). */
+static int write_piece_list(const char *path) {
+  if (pf_comm_rank() != 0) return 0;
+  const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
+  FILE *f = fopen(path, "w");
+  PF_CHECK(f, PF_ERR_RUN, "cannot write the list of the Exodus pieces '%s': %s", path, strerror(errno));
+  for (int r = 0; r < pf_comm_size(); r++) {
+    char piece[4200];
+    spread_name(base, r, piece, sizeof piece);
+    fprintf(f, "%s\n", piece);
+  }
+  const int bad = ferror(f) | (fclose(f) != 0);
+  PF_CHECK(!bad, PF_ERR_RUN, "cannot write the list of the Exodus pieces '%s'", path);
+  return 0;
 }
 
 /* Whether name is a nodal variable the Exodus file can hold; else an error listing them. */
@@ -249,7 +272,8 @@ static int open_exodus(pf_sim *sim, pf_sim_history_row *g) {
   const char *const *names = (const char *const *)g->names + 2;
   if (pf_sim_spread_output(sim)) {
     char path[sizeof sim->exodus_path + 32];
-    spread_name(sim->exodus_path, path, sizeof path);
+    spread_name(sim->exodus_path, pf_comm_rank(), path, sizeof path);
+    PF_CALL(write_piece_list(sim->exodus_path));
     return pf_exodus_create(path, sim->pts, sim->nbodies, sim->body_name, sim->body_start, g->n, names, &sim->exo_opt, &sim->exo);
   }
   PF_CALL(pf_points_gather(sim->pts, &sim->joined));

@@ -51,7 +51,7 @@ static int read_quantities(const pf_deck *d, const pf_node *map, pf_probe *p) {
 }
 
 static int selected(const pf_points *pts, pf_int i, const pf_probe *p) {
-  return (p->body < 0 || pts->body[i] == p->body) && pf_region_contains(&p->region, &pts->X[3 * i]);
+  return (p->body < 0 || pts->body[i] == p->body) && pf_region_selects(&p->region, pts, i);
 }
 
 int pf_sim_setup_probes(pf_sim *sim) {
@@ -73,7 +73,7 @@ int pf_sim_setup_probes(pf_sim *sim) {
     p->body = -1;
     if (pf_node_get(map, "body"))
       PF_CALL(pf_deck_body_index(d, pf_node_get(map, "body"), "body", sim->nbodies, sim->body_name, &p->body));
-    PF_CALL(pf_region_from_deck(d, pf_node_get(map, "region"), &p->region));
+    PF_CALL(pf_region_from_deck(d, pf_node_get(map, "region"), &sim->sets, p->body, &p->region));
     PF_CALL(read_quantities(d, map, p));
     double n = 0;
     for (pf_int i = 0; i < sim->pts->n_owned; i++) n += selected(sim->pts, i, p);

@@ -60,6 +60,7 @@ struct pf_sim {
   pf_rigid **rigid;      /* rigid surfaces: `contact: rigid_surfaces:` and `indenters:` */
   double (*reaction)[3]; /* [nrigid] force on each rigid surface, N */
   pf_contact *contact;   /* contact between bodies (NULL: no pair) */
+  pf_point_sets sets; /* the bodies' node and side sets, for regions (sim/sets.c) */
   int nbcs;
   pf_bc **bcs;
   int nwalls;
@@ -141,6 +142,8 @@ void pf_sim_provenance_free(pf_sim *sim);
 /* Partition the bodies' points (clouds generated on every rank), keep this rank's points with
  * their families and ghosts, and attach them to the bodies. Collective. */
 int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc);
+/* sim/sets.c: the bodies' node and side sets into sim->sets, from their meshes and clouds. */
+int pf_sim_sets_build(pf_sim *sim, const pf_point_cloud *pc);
 /* The bodies' global ids, consecutive in deck order: gid0[b + 1] = gid0[b] + count[b]. */
 void pf_sim_number_bodies(pf_sim *sim, const pf_gid *count);
 /* Re-partition when the work imbalance exceeds the deck's threshold (at output steps). */
