@@ -23,6 +23,7 @@ taylor_impact 60 40 wall_force_z
 disk_impact_rigid 60 40 sphere_force_z
 disk_impact_elastic 60 40 sphere_disk_force_z
 fragmenting_cylinder 80 50 damage_fraction
+fragmenting_cylinder_exodus 80 50 damage_fraction
 expanding_tube 60 40 lexan_tube_force_z
 panel_plate 50 30 sphere_panel_force_z
 panel_impact 50 30 sphere_panel_force_z"
