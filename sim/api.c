@@ -5,7 +5,6 @@
 
 #include <errno.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "sim/sim_impl.h"
 
@@ -177,34 +176,12 @@ int perifem_finalize(void) {
 
 /* ---- running ---------------------------------------------------------------------------------- */
 
-/* mkdir -p of the output folder on rank 0, before the run opens its files; an errno or 0, on
- * every rank. */
-static int make_output_dir(const char *dir) {
-  int err = 0;
-  if (pf_comm_rank() == 0) {
-    char path[4096];
-    snprintf(path, sizeof path, "%s", dir);
-    for (char *p = path + 1; !err; p++) {
-      if (*p && *p != '/') continue;
-      const char keep = *p;
-      *p = '\0';
-      if (mkdir(path, 0777) && errno != EEXIST) err = errno;
-      *p = keep;
-      if (!keep) break;
-    }
-    struct stat st;
-    if (!err && (stat(dir, &st) || !S_ISDIR(st.st_mode))) err = ENOTDIR;
-  }
-  MPI_Bcast(&err, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  return err;
-}
-
 /* Advance n steps (n < 0: to the end); the history row evaluated again at the current step when
  * the last one is older. */
 static int advance(perifem_sim *s, long n) {
   pf_sim *sim = s->sim;
   if (!sim->run && s->output_dir && !sim->opt.no_output) {
-    const int err = make_output_dir(s->output_dir);
+    const int err = pf_sim_make_dir(s->output_dir);
     PF_CHECK(!err, PF_ERR_INPUT, "output folder %s: cannot create it: %s", s->output_dir, strerror(err));
   }
   PF_CHECK(n >= -1, PF_ERR_INPUT, "perifem_step: the number of steps is negative (%ld)", n);

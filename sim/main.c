@@ -13,7 +13,6 @@
 #if defined(_OPENMP)
 #include <omp.h>
 #endif
-#include <sys/stat.h>
 #include <yaml.h>
 
 static void usage(FILE *fp) {
@@ -116,27 +115,6 @@ static int parse_args(int argc, char **argv, cli *c) {
   return -1;
 }
 
-/* mkdir -p dir on rank 0 (the output folder of --output-dir); 0 or an errno, on every rank. */
-static int make_dir(const char *dir) {
-  int err = 0;
-  if (pf_comm_rank() == 0) {
-    char path[4096];
-    snprintf(path, sizeof path, "%s", dir);
-    for (char *p = path + 1; !err; p++) {
-      if (*p && *p != '/') continue;
-      const char keep = *p;
-      *p = '\0';
-      if (mkdir(path, 0777) && errno != EEXIST) err = errno;
-      *p = keep;
-      if (!keep) break;
-    }
-    struct stat st;
-    if (!err && (stat(dir, &st) || !S_ISDIR(st.st_mode))) err = ENOTDIR;
-  }
-  MPI_Bcast(&err, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  return err;
-}
-
 /* The command line as a shell would take it back (arguments with other than plain characters
  * in single quotes), for the outputs' provenance. */
 static void command_line(int argc, char **argv, char *out, size_t len) {
@@ -163,7 +141,7 @@ static int run(const cli *c) {
     perifem_destroy(&sim);
     return ierr ? 1 : 0;
   }
-  const int err = c->output_dir ? make_dir(c->output_dir) : 0;
+  const int err = c->output_dir ? pf_sim_make_dir(c->output_dir) : 0;
   if (err) {
     if (pf_comm_rank() == 0)
       fprintf(stderr, "perifem error: --output-dir %s: cannot create the folder: %s\n", c->output_dir, strerror(err));

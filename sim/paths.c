@@ -7,6 +7,7 @@
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "sim/sim_impl.h"
 
+#include <errno.h>
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
@@ -98,4 +99,25 @@ int pf_sim_check_paths(pf_sim *sim) {
                              out[k].what, out[k].path, out[q].what);
   }
   return 0;
+}
+
+/* mkdir -p, one level at a time (an existing folder is fine), then the whole path a folder. */
+int pf_sim_make_dir(const char *dir) {
+  int err = 0;
+  if (pf_comm_rank() == 0) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s", dir);
+    for (char *p = path + 1; !err; p++) {
+      if (*p && *p != '/') continue;
+      const char keep = *p;
+      *p = '\0';
+      if (mkdir(path, 0777) && errno != EEXIST) err = errno;
+      *p = keep;
+      if (!keep) break;
+    }
+    struct stat st;
+    if (!err && (stat(dir, &st) || !S_ISDIR(st.st_mode))) err = ENOTDIR;
+  }
+  MPI_Bcast(&err, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return err;
 }

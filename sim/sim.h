@@ -85,5 +85,8 @@ uint64_t pf_sim_digest(pf_sim *sim);
 extern const pf_key pf_deck_keys[];
 /* Every key table the loader checks, as Markdown (perifem --deck-keys; docs/deck_keys.md). */
 int pf_deck_reference(FILE *out);
+/* mkdir -p dir on rank 0 (an output folder, before a run opens its files): 0 or an errno, the
+ * same on every rank. Collective (sim/paths.c). */
+int pf_sim_make_dir(const char *dir);
 
 #endif
