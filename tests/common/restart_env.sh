@@ -92,7 +92,7 @@ PY
 # (bitwise for 1 -> 1) from step CK on, and with output.fragments the same fragments at the last
 # step. Sets fail=1 on a failure; adds the case's time to times.txt.
 restart_case() {
-  local name=$1 ck=$2 col=$3 t0 ref d v h msg w r all=""
+  local name=$1 ck=$2 col=$3 t0 ref d v h msg w r all="" spec # (local: a caller's own variable is not touched)
   shift 3
   t0=$(date +%s)
   ref=$(digest_of "$(run 1 "$exe" --quiet ${name}_ref.yaml 2>&1)")
@@ -100,8 +100,8 @@ restart_case() {
   v=$(history_at ${name}_ref.h5 $col $ck)
   [ -n "$v" ] && awk -v x="$v" 'BEGIN { exit !(x + 0 != 0) }' ||
     { echo "$name: $col is '$v' at the checkpoint's step $ck: nothing happened yet, the test would not fail"; fail=1; }
-  for runs in "$@"; do
-    set -- $runs
+  for spec in "$@"; do
+    set -- $spec
     w=$1
     shift
     rm -f ck_$name.h5

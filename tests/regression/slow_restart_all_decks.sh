@@ -36,4 +36,8 @@ while read -r name steps ck col; do
   restart_case $name $ck $col "${runs[@]}" < /dev/null # (mpirun would read the list)
 done <<< "$cases"
 cat times.txt >&2
+# every deck through every restart (a helper once let the first deck's loop overwrite the list)
+full=$(grep -c ": 1->1 1->3 2->2 2->1: " times.txt)
+[ -n "${PF_RESTART_DECKS:-}" ] || [ "$full" = "$(echo "$cases" | wc -l)" ] ||
+  { echo "only $full of $(echo "$cases" | wc -l) decks went through 1->1 1->3 2->2 2->1"; fail=1; }
 exit $fail
