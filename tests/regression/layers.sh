@@ -4,7 +4,8 @@
 #    (#error) in every other module: the layering is enforced, not only drawn; the allowed
 #    modules are read from the build's PF_DEPS_<module> lists in CMakeLists.txt;
 #  - a file of module M includes only M's own headers and the public headers of the modules
-#    M links (no other module's private *_impl.h);
+#    M links (no other module's private *_impl.h); include/perifem.h, the public C API, only
+#    in sim/, which implements it;
 #  - the driver calls bodies only through the body interface: no file of sim/ but the kinds'
 #    own (sim/body_<kind>.c) names a PD, FE or coupled body function.
 # usage: layers.sh PERIFEM SCRATCH   (from the tests/ folder)
@@ -45,6 +46,11 @@ for m in $modules; do
     while read -r inc; do
       dir=${inc%%/*}
       if [ "$dir" = "$m" ]; then continue; fi
+      # the public C API (include/perifem.h) is sim/'s outer face: sim/ alone implements it
+      if [ "$inc" = include/perifem.h ]; then
+        [ "$m" = sim ] || { echo "FAIL: ${f#$top/} includes $inc: only sim/ implements the public API"; fail=1; }
+        continue
+      fi
       if [[ " $allowed " != *" $dir "* ]]; then echo "FAIL: ${f#$top/} includes $inc: $m/ does not link $dir/"; fail=1
       elif [ "$inc" != "$(header_of "$dir")" ] && [ "$inc" != core/tensor.h ]; then
         echo "FAIL: ${f#$top/} includes $inc, a header private to $dir/"; fail=1
