@@ -55,11 +55,12 @@ printf 'parallel:\n  rebalance_threshold: 1.0\n' >> mixed_rebalance.yaml
 # PD materials with history, re-partitioned at output steps when imbalanced: the elastic-plastic tube
 # (tests/data/expanding_tube_ep.yaml: yields and breaks bonds; its per-bond plastic extensions
 # travel with the bond rows), correspondence J2 (the Taylor bar, reduced) and the modified
-# Johnson-Cook bar whose damage correspondence breaks bonds (d1 = 0: fails within 400 steps)
+# Johnson-Cook bar whose damage correspondence breaks bonds (d1 = 0: 12.5 % of the bonds broken by
+# step 200, 12.8 % by 400; 200 steps keep the default run within its time)
 cp "$OLDPWD/data/expanding_tube_ep.yaml" tube_ep.yaml
 sed -E 's/final_time: 80.0e-6, safety_factor: 0.8/steps: 60/; s/interval: 100, history_interval: 10/interval: 20, history_interval: 10/' \
   "$OLDPWD/data/taylor_correspondence.yaml" > taylor_corr.yaml
-sed -E 's/final_time: 4.5e-5/steps: 400/; s/d1: 0.1,/d1: 0.0,/; s/interval: 100/interval: 50/' "$OLDPWD/data/damage_bar.yaml" > damage_bar.yaml
+sed -E 's/final_time: 4.5e-5/steps: 200/; s/d1: 0.1,/d1: 0.0,/; s/interval: 100/interval: 50/' "$OLDPWD/data/damage_bar.yaml" > damage_bar.yaml
 printf 'parallel:\n  rebalance_threshold: 1.0\n' | tee -a taylor_corr.yaml >> damage_bar.yaml
 
 # a variable horizon (tests/data/variable_horizon_block.yaml): one-sided bonds and the partial-stress
@@ -77,10 +78,10 @@ printf 'parallel:\n  rebalance_threshold: 1.0\n' >> horizon_consistent.yaml
 cp "$OLDPWD/data/coupled_bar.yaml" coupled_bar.yaml
 cp coupled_bar.yaml coupled_rebalance.yaml
 printf 'parallel:\n  rebalance_threshold: 1.0\n' >> coupled_rebalance.yaml
-sed -E 's/^(\s*)blending:/\1formulation: consistent\n\1blending:/' coupled_bar.yaml > coupled_consistent.yaml
+# (the consistent form is the default: coupled_bar runs it; a separate variant would repeat it)
 
 rebalanced="cylinder_rebalance mixed_rebalance sphere_on_block_rebalance cylinder_contact tube_ep coupled_rebalance horizon_consistent" # (the other two split evenly on 2 ranks)
-for deck in disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar wave_variable_horizon wave_pd_to_fe cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block sphere_on_block_rebalance cylinder_contact tube_ep taylor_corr damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance coupled_consistent; do
+for deck in disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar wave_variable_horizon wave_pd_to_fe cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block sphere_on_block_rebalance cylinder_contact tube_ep taylor_corr damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance; do
   ref=""
   for np in 1 2 3; do
     mkdir -p "np$np"
