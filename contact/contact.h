@@ -59,8 +59,9 @@ int pf_wall_create(const pf_deck *d, const pf_node *map, int nbodies, const char
 int pf_wall_destroy(pf_wall **w);
 const char *pf_wall_name(const pf_wall *w);
 /* After the drift: owned points behind the plane go back onto it and lose their inward normal
- * velocity; the kinetic energy removed is added to *loss (J). */
-void pf_wall_enforce_position(const pf_wall *w, pf_points *pts, double *loss);
+ * velocity; the kinetic energy removed is added to *loss (J), the momentum given to impulse[3]
+ * (N s, this rank's points). */
+void pf_wall_enforce_position(const pf_wall *w, pf_points *pts, double *loss, double impulse[3]);
 /* After the forces: points on the plane lose the inward normal part of their force;
  * reaction[3] gets the total force on the wall over all ranks (N). Collective. */
 void pf_wall_enforce_force(const pf_wall *w, pf_points *pts, double reaction[3]);

@@ -73,7 +73,7 @@ static int acts_on(const pf_wall *w, const pf_points *p, pf_int i) {
   return p->body[i] < 64 && ((w->bodies >> p->body[i]) & 1);
 }
 
-void pf_wall_enforce_position(const pf_wall *w, pf_points *p, double *loss) {
+void pf_wall_enforce_position(const pf_wall *w, pf_points *p, double *loss, double impulse[3]) {
   for (pf_int i = 0; i < p->n_owned; i++) {
     double *y = &p->y[3 * (size_t)i], g = gap(w, y);
     if (g >= 0 || !acts_on(w, p, i)) continue;
@@ -84,7 +84,7 @@ void pf_wall_enforce_position(const pf_wall *w, pf_points *p, double *loss) {
     }
     if (vn >= 0) continue;
     *loss += 0.5 * p->m[i] * vn * vn;
-    for (int a = 0; a < 3; a++) v[a] -= vn * w->n[a];
+    for (int a = 0; a < 3; a++) v[a] -= vn * w->n[a], impulse[a] -= p->m[i] * vn * w->n[a];
   }
 }
 

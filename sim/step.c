@@ -172,24 +172,11 @@ static void apply_bcs(pf_sim *sim, double dt, int after_mid) {
   for (int b = 0; b < sim->nbodies && sim->nbcs; b++) sim->bc_work += w[b], sim->body_bc_work[b] += w[b];
 }
 
-/* This rank's momentum sum m v (the walls' impulse is the change their position step makes). */
-static void momentum(const pf_points *p, double mv[3]) {
-  mv[0] = mv[1] = mv[2] = 0;
-  for (pf_int i = 0; i < p->n_owned; i++)
-    for (int a = 0; a < 3; a++) mv[a] += p->m[i] * p->v[3 * i + a];
-}
-
 /* The walls put the points back on their plane and take their normal velocity (an impulse on
- * this rank's points, measured); they also take the normal part of the points' force (the
- * reaction: surface_impulses). */
+ * this rank's points, booked by the wall on the points it moves); they also take the normal part
+ * of the points' force (the reaction: surface_impulses). */
 static void enforce_walls(pf_sim *sim) {
-  for (int k = 0; k < sim->nwalls; k++) {
-    double before[3], after[3];
-    momentum(sim->pts, before);
-    pf_wall_enforce_position(sim->walls[k], sim->pts, &sim->wall_loss);
-    momentum(sim->pts, after);
-    for (int a = 0; a < 3; a++) sim->wall_impulse[k][a] += after[a] - before[a];
-  }
+  for (int k = 0; k < sim->nwalls; k++) pf_wall_enforce_position(sim->walls[k], sim->pts, &sim->wall_loss, sim->wall_impulse[k]);
 }
 
 /* The impulse the rigid surfaces and walls give the points in a half kick of dt/2, -(dt/2) R with

@@ -48,15 +48,18 @@ static pf_wall *plane_wall(int separation) {
 }
 
 /* A point 1 mm behind z = 0.5 moving in and sideways is put back, keeps its sideways velocity,
- * and the energy of its inward velocity is booked; one moving outward keeps all of it. */
+ * and the energy and momentum of its inward velocity are booked; one moving outward keeps all of it. */
 static void position(void) {
   pf_wall *w = must_load(PLANE_Z);
   const double y[3][3] = {{0.1, 0.2, 0.499}, {0, 0, 0.499}, {0, 0, 0.6}};
   pf_points *p = pf_test_points(3, y, 1e-9, 2.0);
   const double v0[3][3] = {{3, -4, -5}, {1, 0, 2}, {0, 0, -7}};
   memcpy(p->v, v0, sizeof v0);
-  double loss = 0.25;
-  pf_wall_enforce_position(w, p, &loss);
+  double loss = 0.25, impulse[3] = {0, 0, 0};
+  pf_wall_enforce_position(w, p, &loss, impulse);
+  /* the momentum given: the first point's inward 5 m/s of its 2 kg, along +z, nothing else */
+  PF_TEST_TRUE(impulse[0] == 0 && impulse[1] == 0);
+  PF_TEST_CLOSE(impulse[2], 2.0 * 5.0, 1e-15, 0);
   PF_TEST_CLOSE(p->y[2], 0.5, 1e-15, 0);
   PF_TEST_CLOSE(p->u[2], 1e-3, 1e-12, 0);
   PF_TEST_TRUE(p->y[0] == 0.1 && p->y[1] == 0.2);
@@ -97,13 +100,13 @@ static void slide_or_leave(int separation) {
   pf_points *p = pf_test_points(1, y, 1e-9, 1.0);
   const double dt = 1e-3;
   const int n = 10;
-  double loss = 0, reaction[3];
+  double loss = 0, reaction[3], impulse[3] = {0, 0, 0};
   for (int k = 0; k < n; k++) {
     p->f[0] = 2.0, p->f[1] = 0, p->f[2] = 4.0;
     pf_wall_enforce_force(w, p, reaction);
     for (int a = 0; a < 3; a++) p->v[a] += dt * p->f[a] / p->m[0];
     for (int a = 0; a < 3; a++) p->u[a] += dt * p->v[a], p->y[a] = p->X[a] + p->u[a];
-    pf_wall_enforce_position(w, p, &loss);
+    pf_wall_enforce_position(w, p, &loss, impulse);
   }
   const double s = 0.5 * dt * dt * n * (n + 1); /* sum over the steps of k dt^2 */
   PF_TEST_CLOSE(p->y[0], 2.0 * s, 1e-12, 0);
@@ -119,8 +122,8 @@ static void bodies(void) {
   const double y[2][3] = {{0, 0, 0.49}, {0, 0, 0.49}};
   pf_points *p = pf_test_points(2, y, 1e-9, 1.0);
   p->body[1] = 1;
-  double loss = 0;
-  pf_wall_enforce_position(w, p, &loss);
+  double loss = 0, impulse[3] = {0, 0, 0};
+  pf_wall_enforce_position(w, p, &loss, impulse);
   PF_TEST_TRUE(p->y[2] == 0.49);
   PF_TEST_CLOSE(p->y[5], 0.5, 1e-15, 0);
   pf_points_destroy(&p);
