@@ -36,7 +36,11 @@ launch() {
   while [ "$(jobs -rp | wc -l)" -ge 4 ]; do sleep 0.05; done
   local cmd=("$exe")
   [ "$1" -gt 1 ] && cmd=(mpirun --oversubscribe -np "$1" "$exe")
-  (timeout 60 "${cmd[@]}" --quiet --restart "$2" bar.yaml > "$2.$1.out" 2>&1; echo $? > "$2.$1.status") &
+  # a TMPDIR of its own: singletons side by side share Open MPI's session folder otherwise, and
+  # the first to end removes it under the others (tests/CMakeLists.txt)
+  mkdir -p "tmp.$2.$1"
+  (export TMPDIR=$PWD/tmp.$2.$1
+   timeout 60 "${cmd[@]}" --quiet --restart "$2" bar.yaml > "$2.$1.out" 2>&1; echo $? > "$2.$1.status") &
 }
 # result NP FILE: sets out and status of a finished launch
 result() { out=$(cat "$2.$1.out"); status=$(cat "$2.$1.status"); }
