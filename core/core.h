@@ -132,6 +132,11 @@ typedef struct pf_points {
   struct pf_exchange *halo; /* who sends which owned point to whom (core/halo.c); NULL: no ghosts */
 } pf_points;
 
+/* The point field of the positions at the last force evaluation [3n], owned and ghosts (ghosted,
+ * restarted): the integrator copies y into it after each evaluation (sim/step.c), so that a
+ * kernel failing a bond can book its energy at the middle of the step (docs/theory/pd.md §5.1). */
+#define PF_PREVIOUS_POSITIONS "previous_positions"
+
 int pf_points_create(pf_int n, pf_points **pts);
 /* Keep the first n_owned points and make room for n_ghost ghosts after them (every array and
  * field); new entries are zero. */

@@ -216,55 +216,68 @@ double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_in
   return energy_density(b, pts, i, theta, m, ep, stride, PF_BOND_BROKEN | PF_BOND_FRESH);
 }
 
-/* The energy point i's PF_BOND_FRESH bonds F release, at fixed positions (docs/theory/pd.md
- * §5.1). With S the bonds that stay, a = 15 G / m and ed = e - theta |xi| / 3 - ep,
+/* The change of point i's energy per reference volume when its PF_BOND_FRESH bonds F fail, at
+ * the positions y (docs/theory/pd.md §5.1). With S the bonds that stay, a = 15 G / m and
+ * ed = e - theta |xi| / 3 - ep,
  *   W(theta, B) = (K/2) theta^2 + (a/2) sum_B omega ed^2 V,   g(theta) = W(theta, S),
  *   theta_w = (3/m) sum_{S+F} omega |xi| e V  (with F),   theta_o = (3/m) sum_S ...  (without),
  * the exact change W(theta_w, S+F) - W(theta_o, S) = Q + C of a quadratic g, delta = theta_w - theta_o:
  *   Q = (a/2) sum_F omega ed(theta_w)^2 V + (1/2) g'' delta^2 >= 0,  g'' = K + (a/9) sum_S omega |xi|^2 V,
  *   C = g'(theta_o) delta,  g'(theta_o) = K theta_o - (a/3) sum_S omega |xi| ed(theta_o) V,
  * the cross term of the dilatation that stays with the one the bonds took: negative where a
- * bond in tension leaves a point in compression more compressed. Q + max(C, 0) is released
- * (returned with C's negative part: the total change), min(C, 0) is booked as redistribution. */
-double pf_pd_lps_release(pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
-                         int stride) {
-  pf_family *fam = &b->fam;
+ * bond in tension leaves a point in compression more compressed. Q into q[0], C into q[1]. */
+static void release_at(const pf_pd_body *b, const pf_points *pts, const double *y, pf_int i, double m,
+                       const double *ep, int stride, double q[2]) {
+  const pf_family *fam = &b->fam;
   const int64_t k0 = fam->offset[i - b->first], k1 = fam->offset[i - b->first + 1];
-  int64_t k = k0;
-  while (k < k1 && fam->broken[k] != PF_BOND_FRESH) k++;
-  if (k == k1) return 0.0;
   const double K = b->bulk_modulus, a = 15.0 * b->shear_modulus / m;
   double sum_s = 0, sum_f = 0, m_s = 0, e[3], r0, r;
-  for (int64_t q = k0; q < k1; q++) { /* the dilatation sums of S and F, and S's weighted volume */
-    if (fam->broken[q] == PF_BOND_BROKEN) continue;
-    const pf_int j = fam->neighbor[q];
-    pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+  for (int64_t k = k0; k < k1; k++) { /* the dilatation sums of S and F, and S's weighted volume */
+    if (fam->broken[k] == PF_BOND_BROKEN) continue;
+    const pf_int j = fam->neighbor[k];
+    pf_pd_bond_lengths(pts->X, y, i, j, &r0, &r, e);
     if (!pf_pd_in_family(b, i, r0)) continue;
-    const double wv = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, q, j);
-    if (fam->broken[q] == PF_BOND_FRESH) sum_f += wv * r0 * (r - r0);
+    const double wv = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    if (fam->broken[k] == PF_BOND_FRESH) sum_f += wv * r0 * (r - r0);
     else sum_s += wv * r0 * (r - r0), m_s += wv * r0 * r0;
   }
   const double th_o = 3.0 * sum_s / m, delta = 3.0 * sum_f / m, th_w = th_o + delta;
   double dev_f = 0, cross_s = 0;
-  for (int64_t q = k0; q < k1; q++) { /* F's deviatoric energy at theta_w, S's slope at theta_o */
-    if (fam->broken[q] == PF_BOND_BROKEN) continue;
-    const pf_int j = fam->neighbor[q];
-    pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
+  for (int64_t k = k0; k < k1; k++) { /* F's deviatoric energy at theta_w, S's slope at theta_o */
+    if (fam->broken[k] == PF_BOND_BROKEN) continue;
+    const pf_int j = fam->neighbor[k];
+    pf_pd_bond_lengths(pts->X, y, i, j, &r0, &r, e);
     if (!pf_pd_in_family(b, i, r0)) continue;
-    const double wv = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, q, j);
-    const double p = ep ? ep[stride * q] : 0.0;
-    if (fam->broken[q] == PF_BOND_FRESH) {
+    const double wv = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    const double p = ep ? ep[stride * k] : 0.0;
+    if (fam->broken[k] == PF_BOND_FRESH) {
       const double ed = (r - r0) - th_w * r0 / 3 - p;
       dev_f += wv * ed * ed;
     } else
       cross_s += wv * r0 * ((r - r0) - th_o * r0 / 3 - p);
   }
-  const double Q = 0.5 * a * dev_f + 0.5 * (K + a * m_s / 9.0) * delta * delta;
-  const double C = (K * th_o - a * cross_s / 3.0) * delta;
+  q[0] = 0.5 * a * dev_f + 0.5 * (K + a * m_s / 9.0) * delta * delta;
+  q[1] = (K * th_o - a * cross_s / 3.0) * delta;
+}
+
+/* The energy (J) point i's PF_BOND_FRESH bonds release, booked at the middle of the step: the
+ * mean of the change at this pass's positions and at the last pass's (docs/theory/pd.md §5.1,
+ * "Time step"); marks them broken. Q + max(C, 0) is released (returned with C's negative part:
+ * the total change), min(C, 0) is booked as redistribution. */
+double pf_pd_lps_release(pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
+                         int stride) {
+  pf_family *fam = &b->fam;
+  const int64_t k1 = fam->offset[i - b->first + 1];
+  int64_t k = fam->offset[i - b->first];
+  while (k < k1 && fam->broken[k] != PF_BOND_FRESH) k++;
+  if (k == k1) return 0.0;
+  double now[2], before[2];
+  release_at(b, pts, pts->y, i, m, ep, stride, now);
+  release_at(b, pts, pf_pd_previous_positions(pts), i, m, ep, stride, before);
   for (; k < k1; k++)
     if (fam->broken[k] == PF_BOND_FRESH) fam->broken[k] = PF_BOND_BROKEN;
-  b->damage_redistribution += pts->vol[i] * fmin(C, 0.0);
-  return pts->vol[i] * (Q + C);
+  b->damage_redistribution += pts->vol[i] * 0.5 * (fmin(now[1], 0.0) + fmin(before[1], 0.0));
+  return pts->vol[i] * 0.5 * (now[0] + now[1] + before[0] + before[1]);
 }
 
 static double lps_energy(const pf_pd_body *b, const pf_points *pts) {

@@ -25,29 +25,31 @@ static int pmb_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
   return 0;
 }
 
-/* The micropotential share of the directed bond k of point i, per V_i:
+/* The micropotential share of the directed bond k of point i, per V_i, at the positions y:
  * (1/4) c omega s^2 |xi| V_j (Silling & Askari 2005, eq. 6, half of the pair's to each end). */
-static double pmb_bond_energy(const pf_pd_body *b, const pf_points *pts, pf_int i, int64_t k, double c) {
+static double pmb_bond_energy(const pf_pd_body *b, const pf_points *pts, const double *y, pf_int i, int64_t k,
+                              double c) {
   const pf_family *fam = &b->fam;
-  pf_int j = fam->neighbor[k];
-  double r0 = 0, r = 0;
-  for (int a = 0; a < 3; a++) {
-    double d = pts->X[3 * j + a] - pts->X[3 * i + a], e = pts->y[3 * j + a] - pts->y[3 * i + a];
-    r0 += d * d, r += e * e;
-  }
-  r0 = sqrt(r0), r = sqrt(r);
-  double s = (r - r0) / r0;
+  const pf_int j = fam->neighbor[k];
+  double r0, r, e[3];
+  pf_pd_bond_lengths(pts->X, y, i, j, &r0, &r, e);
+  const double s = (r - r0) / r0;
   return 0.25 * c * pf_pd_omega(&b->influence, r0) * s * s * r0 * pf_pd_bond_volume(fam, pts->vol, k, j);
 }
 
-/* The energy (J) point i's bonds that failed in this pass held, at this pass's positions; marks
- * them broken. Out of line: a bond fails once. */
+/* The energy (J) point i's bonds that failed in this pass held at the middle of the step: the
+ * mean of their energies at this pass's positions and at the last pass's (docs/theory/pd.md §5.1,
+ * "Time step"); marks them broken. Out of line: a bond fails once. */
 static __attribute__((noinline)) double pmb_release(const pf_pd_body *b, const pf_points *pts, pf_int i,
                                                     double c) {
   const pf_family *fam = &b->fam;
+  const double *yp = pf_pd_previous_positions(pts);
   double w = 0;
   for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++)
-    if (fam->broken[k] == PF_BOND_FRESH) w += pmb_bond_energy(b, pts, i, k, c), fam->broken[k] = PF_BOND_BROKEN;
+    if (fam->broken[k] == PF_BOND_FRESH) {
+      w += 0.5 * (pmb_bond_energy(b, pts, pts->y, i, k, c) + pmb_bond_energy(b, pts, yp, i, k, c));
+      fam->broken[k] = PF_BOND_BROKEN;
+    }
   return w * pts->vol[i];
 }
 

@@ -254,6 +254,13 @@ static inline void pf_pd_consistent_h(const double *restrict lmi, const double *
     h[a] = w * (lmi[3 * a] * xi[0] + lmi[3 * a + 1] * xi[1] + lmi[3 * a + 2] * xi[2] + Vi * (lmk[9 + a] - lmi[9 + a]));
 }
 
+/* The positions of the last force evaluation (PF_PREVIOUS_POSITIONS), or the current ones where
+ * the integrator keeps none (a kernel driven alone, as in the unit tests). */
+static inline const double *pf_pd_previous_positions(const pf_points *pts) {
+  const double *yp = pf_points_field_get(pts, PF_PREVIOUS_POSITIONS);
+  return yp ? yp : pts->y;
+}
+
 /* Bond geometry: reference length r0, current length r, current bond vector e[3]. The same
  * operations from either end give bitwise the same r0 and r. */
 static inline void pf_pd_bond_lengths(const double *restrict X, const double *restrict Y, pf_int i,

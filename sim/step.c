@@ -138,11 +138,27 @@ static void drift(pf_points *p, double dt) {
   }
 }
 
+/* The positions of the last force evaluation (PF_PREVIOUS_POSITIONS), for the PD kernels' booking
+ * of failing bonds: registered at the first evaluation of a run, or read from its checkpoint
+ * (one written before they were kept restarts with the current positions: the end-of-step
+ * booking for its first step). */
+static int previous_positions(pf_points *p, double **yp) {
+  *yp = pf_points_field_get(p, PF_PREVIOUS_POSITIONS);
+  if (*yp) return 0;
+  int idx;
+  PF_CALL(pf_points_field_register(p, PF_PREVIOUS_POSITIONS, 3, PF_FIELD_GHOST | PF_FIELD_RESTART, &idx));
+  *yp = p->fields[idx].data;
+  memcpy(*yp, p->y, sizeof(double) * 3 * (size_t)p->n_total);
+  return 0;
+}
+
 /* Forces at the current positions; dt is the step just taken (0 for the initial forces: no
  * time has passed, so the element stresses must not advance). */
 static int compute_forces(pf_sim *sim, double dt) {
   pf_points *p = sim->pts;
+  double *yp;
   PF_CALL(pf_points_exchange_positions(p)); /* the ghosts' u and y */
+  PF_CALL(previous_positions(p, &yp));
   int rates = 0; /* element and correspondence rates of deformation need the ghosts' v */
   for (int b = 0; b < sim->nbodies; b++) {
     const pf_body *body = &sim->body[b];
@@ -152,6 +168,7 @@ static int compute_forces(pf_sim *sim, double dt) {
   memset(p->f, 0, sizeof(double) * 3 * (size_t)p->n_owned);
   for (int b = 0; b < sim->nbodies; b++) /* an inverted element trips the guard: the step's end decides */
     PF_CALL(sim->body[b].ops->force(sim->body[b].data, p, dt, sim->t, sim->step, &sim->guard_tripped));
+  memcpy(yp, p->y, sizeof(double) * 3 * (size_t)p->n_total); /* (the ghosts' as exchanged) */
   for (int b = 0; b < sim->nbodies; b++) { /* the stored energy failed bonds took: total, moved part */
     double w[2] = {0, 0};
     if (sim->body[b].ops->take_damage_work) sim->body[b].ops->take_damage_work(sim->body[b].data, w);

@@ -12,10 +12,12 @@
 #     projectile's, on 1 and 3 ranks;
 #  3. tests/data/pulled_bar.yaml with PMB, LPS and elastic_plastic: the damage dissipation is
 #     non-negative and never decreases, the redistribution is never positive, and the balance
-#     closes: |energy_error| < 0.2 of the damage booked (0.1 with dt / 2), and, as the error of
-#     a force that drops within a step is first order in dt, halving dt at least nearly halves it
-#     (ratio < 0.6) while the booked damage stays (within 15 %). Without the booking the error
-#     would be minus the dissipation (ratio 1, relative error 1).
+#     closes: |energy_error| < 0.03 of the damage booked at every row, at dt and at dt / 2, the
+#     booked damage the same within 15 %. The failures are booked at mid-step
+#     (docs/theory/pd.md §5.1), so for PMB, whose other bonds do not feel a failure, the error is
+#     second order in dt: halving dt divides it by at least 3 (ratio < 0.35). Booked at the
+#     step's end, as before, the error was 0.13 / 0.11 / 0.09 of the damage (first order: ratio
+#     0.5); without the booking it would be the whole dissipation.
 # usage: mpi_body_balance.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
@@ -80,9 +82,10 @@ for m in ('glass', 'solid', 'metal'):
     D, R, e = r['damage_dissipation'], r['damage_redistribution'], r['energy_error']
     if not (np.all(D >= 0) and np.all(np.diff(D) >= 0) and np.all(R <= 0) and D[-1] > 0):
         bad.append('%s: damage dissipation negative or decreasing, or redistribution positive' % m)
-    rel, rel_half = abs(e[-1]) / D[-1], abs(h['energy_error'][-1]) / h['damage_dissipation'][-1]
-    if not (np.max(np.abs(e)) < 0.2 * D[-1] and rel_half < 0.1 and abs(h['energy_error'][-1]) < 0.6 * abs(e[-1])
-            and abs(h['damage_dissipation'][-1] / D[-1] - 1) < 0.15):
+    eh, Dh = h['energy_error'], h['damage_dissipation']
+    second = m != 'glass' or abs(eh[-1]) < 0.35 * abs(e[-1])
+    if not (np.max(np.abs(e)) < 0.03 * D[-1] and np.max(np.abs(eh)) < 0.03 * Dh[-1] and second
+            and abs(Dh[-1] / D[-1] - 1) < 0.15):
         bad.append('%s: energy error %.3g J of %.3g J booked; with dt / 2 %.3g J of %.3g J' %
                    (m, e[-1], D[-1], h['energy_error'][-1], h['damage_dissipation'][-1]))
 for b in bad: print(b)

@@ -11,7 +11,8 @@
  *   energies) stays at its initial value. Its largest excursion over the run is the time
  *   integration's own, bounded and first order in the step: 2.1e-6 of the pulse's energy at the
  *   default step (safety factor 0.8), 1.0e-6 at half of it (run `test_coupling_chain 0.4`;
- *   docs/theory/coupling.md §3.4). Asserted: 3e-6 at the default step;
+ *   docs/theory/coupling.md §3.4). Asserted: 3e-6 at the default step, and 1e-6 in the slow
+ *   run `verification/test_coupling_chain_fine` at safety factor 0.35;
  * - linear momentum: stays at its initial value to round-off, 1e-12 of sum m |v|;
  * - reflection at the interfaces: once the pulse is in the elements (T_REFL), the left-going
  *   energy in x < X_TAPER - 5 mm (per 1 mm slab, cross-section means, w = (v + c eps) / 2,
@@ -140,7 +141,7 @@ int main(int argc, char **argv) {
            g.time * 1e6, de / e0, dp / mscale, T_REFL * 1e6, r_chain, r_fe, r_chain - r_fe);
   PF_TEST_TRUE(!ierr);
   PF_TEST_TRUE(g.time >= T_END - 1e-9);
-  PF_TEST_TRUE(de / e0 < 3e-6 * safety / 0.8);
+  PF_TEST_TRUE(de / e0 < (safety <= 0.35 ? 1e-6 : 3e-6 * safety / 0.8)); /* (1e-6: the slow _fine run) */
   PF_TEST_TRUE(dp / mscale < 1e-12);
   PF_TEST_TRUE(fabs(r_chain - r_fe) < 5e-4);
   return pf_test_finish();
