@@ -637,3 +637,11 @@ double pf_pd_body_stable_dt(const pf_pd_body *b, const pf_points *pts) {
   }
   return dt;
 }
+
+int pf_pd_lost_volume_fields(pf_pd_body *b, pf_points *pts, double **mom) {
+  int il, im;
+  PF_CALL(pf_points_field_register(pts, "lost_weighted_volume", 1, PF_FIELD_RESTART, &il));
+  PF_CALL(pf_points_field_register(pts, "dilatation_moment", 1, PF_FIELD_GHOST, &im));
+  b->lost_volume = pts->fields[il].data, *mom = pts->fields[im].data;
+  return 0;
+}

@@ -5,7 +5,8 @@
  *   pass 1: theta_i = (3 / m_i) sum_j omega |xi| e V_j            (Silling et al. 2007, eq. 90)
  *   pass 2: f_i = sum_j (t_ij + t_ji) V_j (y_j - y_i) / |y_j - y_i|                   (eq. 94)
  * with t_ij = omega [ (3 K theta_i / m_i) |xi| + (15 G / m_i) (e - theta_i |xi| / 3) ]
- *           = omega (Q_i |xi| + 15 G e) / m_i,   Q_i = (3 K - 5 G) theta_i,
+ *           = omega (Q_i |xi| + 15 G e) / m_i,   Q_i = (3 K - 5 G) theta_i (less 15 G M_i / m_i once
+ *             point i has lost bonds: pf_pd_lps_volumetric, docs/theory/materials.md §1, "Failed bonds"),
  * one expression whichever end evaluates it, so that both ends get the same bits. */
 #include "pd/bond_batch.h"
 #include "pd/pd_impl.h"

@@ -13,7 +13,10 @@
  *             d eqps = (sigma_tr - Y_n) / (3 G + H),  beta = 1 - 3 G d eqps / sigma_tr,
  *             t^d = beta t^d_tr,  e^dp_{n+1} = e^d - beta (e^d - e^dp_n)
  *             (flow rule d e^dp = d lambda t^d / w, d eqps = d lambda ||t^d||^2 / sigma)
- *   t_ij    = w (3 K theta_i / m_i) |xi| + t^d_ij,   f_i = V_i sum_j (t_ij + t_ji) M_ij V_j
+ *   t_ij    = w (3 K theta_i / m_i - alpha_i M_i / m_i) |xi| + t^d_ij,   f_i = V_i sum_j (t_ij + t_ji) M_ij V_j
+ *   M_i     = beta_i (theta_i m^lost_i / 3 - sum_j w |xi| e^dp_n V_j), m^lost_i = the weighted
+ *             volume of i's failed bonds: the term that keeps t the gradient of the energy once
+ *             bonds have failed (0 while none has; docs/theory/materials.md §1, "Failed bonds")
  * Per-bond state: each directed bond (i, j) of i's family keeps e^dp of i's end ([0]) and a
  * mirror of j's end, e^dp of bond (j, i) ([1]). j's owner updates its own copy with the same
  * operands (|y_j - y_i|, |xi|, theta_j, beta_j: ghosted per-point values), so the two copies
@@ -31,6 +34,7 @@ typedef struct {
   double *theta; /* field "dilatation" */
   double *beta;  /* field "plastic_return": t^d / t^d_tr of the step (1: elastic) */
   double *eqps;  /* field "eqps": equivalent plastic strain */
+  double *mom;   /* field "dilatation_moment": M_i (header) */
 } ep;
 
 static int ep_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
@@ -60,6 +64,7 @@ static int ep_setup(pf_pd_body *b, pf_points *pts) {
   PF_CALL(pf_points_field_register(pts, "dilatation", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT, &it));
   PF_CALL(pf_points_field_register(pts, "plastic_return", 1, PF_FIELD_GHOST, &ib));
   PF_CALL(pf_points_field_register(pts, "eqps", 1, PF_FIELD_RESTART | PF_FIELD_OUTPUT, &ie));
+  PF_CALL(pf_pd_lost_volume_fields(b, pts, &p->mom));
   p->m = pts->fields[im].data;
   p->theta = pts->fields[it].data;
   p->beta = pts->fields[ib].data;
@@ -92,13 +97,14 @@ static void ep_point(pf_pd_body *b, const pf_points *pts, pf_int i) {
   b->smin[i - b->first] = smin;
   const double m = p->m[i], th = 3.0 * sum / m, G = b->shear_modulus;
   if (fresh) b->damage_work += pf_pd_lps_release(b, pts, i, m, fam->state, NSTATE); /* (plastic work stays) */
-  double n2 = 0; /* sum_j w (e^d - e^dp_n)^2 V_j */
+  double n2 = 0, pm = 0; /* sum_j w (e^d - e^dp_n)^2 V_j, sum_j w |xi| e^dp_n V_j */
   for (int64_t k = k0; k < k1; k++) {
     if (fam->broken[k]) continue;
     pf_int j = fam->neighbor[k];
     pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
     const double tr = (r - r0) - th * r0 / 3 - fam->state[NSTATE * k];
-    n2 += pf_pd_omega(&b->influence, r0) * tr * tr * pf_pd_bond_volume(fam, pts->vol, k, j);
+    const double wv = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    n2 += wv * tr * tr, pm += wv * r0 * fam->state[NSTATE * k];
   }
   const double st = 3 * G * sqrt(5 * n2 / m), Y = p->Y0 + p->H * p->eqps[i];
   p->theta[i] = th;
@@ -108,6 +114,7 @@ static void ep_point(pf_pd_body *b, const pf_points *pts, pf_int i) {
     p->beta[i] = 1.0 - 3 * G * deq / st;
     p->eqps[i] += deq;
   }
+  p->mom[i] = pf_pd_dilatation_moment(b, i, th, pm, p->beta[i]);
 }
 
 static int ep_force(pf_pd_body *b, pf_points *pts) {
@@ -118,15 +125,16 @@ static int ep_force(pf_pd_body *b, pf_points *pts) {
   for (pf_int i = b->first; i < b->first + b->n; i++) ep_point(b, pts, i);
   PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta and beta for the force pass */
   PF_CALL(pf_points_exchange(pts, p->beta, 1));
+  PF_CALL(pf_points_exchange(pts, p->mom, 1));
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     double f[3] = {0, 0, 0}, e[3], r0, r;
-    const double ai = 3 * K * p->theta[i] / p->m[i], bi = 15 * G / p->m[i] * p->beta[i];
+    const double ai = pf_pd_lps_volumetric(K, G, p->theta[i], p->mom[i], p->m[i]), bi = 15 * G / p->m[i] * p->beta[i];
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
       if (fam->broken[k]) continue;
       pf_int j = fam->neighbor[k];
       pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
       const double ext = r - r0, w = pf_pd_omega(&b->influence, r0);
-      const double aj = 3 * K * p->theta[j] / p->m[j], bj = 15 * G / p->m[j] * p->beta[j];
+      const double aj = pf_pd_lps_volumetric(K, G, p->theta[j], p->mom[j], p->m[j]), bj = 15 * G / p->m[j] * p->beta[j];
       const double edi = ext - p->theta[i] * r0 / 3, edj = ext - p->theta[j] * r0 / 3;
       const double tij = w * (ai * r0 + bi * (edi - edp[NSTATE * k]));
       const double tji = w * (aj * r0 + bj * (edj - edp[NSTATE * k + 1]));

@@ -18,6 +18,7 @@
 typedef struct {
   double *m;     /* field "weighted_volume" */
   double *theta; /* field "dilatation" */
+  double *mom;   /* field "dilatation_moment": theta m^lost / 3 (pd_impl.h, pf_pd_lps_volumetric) */
   double *nu;    /* field "partial_stress" [9], when some point has the partial-stress form */
   double *Ki;    /* [9n] K^-1 of those points (their bonds never fail) */
   /* the batched loops (lps_force_batched), for a body of one horizon whose points all take the
@@ -45,6 +46,7 @@ static int lps_setup(pf_pd_body *b, pf_points *pts) {
   PF_CALL(pf_points_field_register(pts, "dilatation", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT, &it));
   p->m = pts->fields[im].data;
   p->theta = pts->fields[it].data;
+  PF_CALL(pf_pd_lost_volume_fields(b, pts, &p->mom));
   double nps = 0;
   for (pf_int i = b->first; i < b->first + b->n; i++) nps += pf_pd_partial_stress_at(b, i);
   free(p->Ki);
@@ -107,6 +109,15 @@ static inline double lps_t(double a, double bc, double theta, double w, double r
  * t_ji + t_ij equals end i's t_ij + t_ji bitwise and both ends fail the bond in the same step.
  * The failing evaluation gives the bond no force (the forces of the other bonds keep this
  * evaluation's theta); theta is then recomputed without it, for the energy and the output. */
+/* After pass 1: the ghosts' theta, and every point's dilatation moment M (pf_pd_lps_volumetric;
+ * 0 while it lost no bond), owned then ghosts, for the force pass. */
+static int lps_moments(pf_pd_body *b, pf_points *pts) {
+  lps *p = b->mat;
+  PF_CALL(pf_points_exchange(pts, p->theta, 1));
+  for (pf_int i = b->first; i < b->first + b->n; i++) p->mom[i] = pf_pd_dilatation_moment(b, i, p->theta[i], 0.0, 1.0);
+  return pf_points_exchange(pts, p->mom, 1);
+}
+
 /* The partial stress of every owned point, nu_i = sum_j t_ij M (x) xi V_j over its own family,
  * then the ghosts'. */
 static int lps_partial_stress(pf_pd_body *b, pf_points *pts) {
@@ -114,7 +125,8 @@ static int lps_partial_stress(pf_pd_body *b, pf_points *pts) {
   const pf_family *fam = &b->fam;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     double *nu = &p->nu[9 * i], e[3], r0, r;
-    const double thi = p->theta[i], ai = 3 * b->bulk_modulus * thi / p->m[i], bi = 15 * b->shear_modulus / p->m[i];
+    const double thi = p->theta[i], bi = 15 * b->shear_modulus / p->m[i];
+    const double ai = pf_pd_lps_volumetric(b->bulk_modulus, b->shear_modulus, thi, p->mom[i], p->m[i]);
     for (int k = 0; k < 9; k++) nu[k] = 0.0;
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
       if (fam->broken[k]) continue;
@@ -136,10 +148,11 @@ static int lps_force_batched(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
   const size_t n = (size_t)pts->n_total;
   PF_CALL(pf_batch_records_fill(&p->rec, pts, b->s0));
   pf_pd_lps_batched_dilatation(b, pts, p->rec.rec, p->m, p->theta);
-  PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta for the force pass */
+  PF_CALL(lps_moments(b, pts));
   PF_CHECK(p->rm_n == pts->n_total, PF_ERR_RUN, "LPS body '%s': the store changed since the set-up", b->name);
-  const double q = 3 * b->bulk_modulus - 5 * b->shear_modulus;
-  for (size_t j = 0; j < n; j++) p->rec.rec[PF_REC * j + REC_AUX] = q * p->theta[j];
+  const double q = 3 * b->bulk_modulus - 5 * b->shear_modulus, g15 = 15 * b->shear_modulus;
+  for (size_t j = 0; j < n; j++) /* Q = m (a - 5 G theta / m) (pf_pd_lps_volumetric) */
+    p->rec.rec[PF_REC * j + REC_AUX] = p->mom[j] == 0.0 ? q * p->theta[j] : q * p->theta[j] - g15 * p->mom[j] / p->m[j];
   *nfailed = pf_pd_lps_batched_force(b, pts, p->rec.rec, p->rm);
   return 0;
 }
@@ -151,7 +164,7 @@ static int lps_force_general(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
   const int energy = b->damage->fails_on_energy;
   const pf_family *fam = &b->fam;
   for (pf_int i = b->first; i < b->first + b->n; i++) p->theta[i] = lps_dilatation(b, pts, i, p->m[i]);
-  PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta for the force pass */
+  PF_CALL(lps_moments(b, pts));
   if (p->nu) PF_CALL(lps_partial_stress(b, pts));
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     if (pf_pd_partial_stress_at(b, i)) {
@@ -159,13 +172,13 @@ static int lps_force_general(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
       continue;
     }
     double f[3] = {0, 0, 0}, e[3], r0, r;
-    const double thi = p->theta[i], ai = 3 * K * thi / p->m[i], bi = 15 * G / p->m[i];
+    const double thi = p->theta[i], ai = pf_pd_lps_volumetric(K, G, thi, p->mom[i], p->m[i]), bi = 15 * G / p->m[i];
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
       if (fam->broken[k]) continue;
       pf_int j = fam->neighbor[k];
       pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
       const double ext = r - r0, w = pf_pd_omega(&b->influence, r0);
-      const double thj = p->theta[j], aj = 3 * K * thj / p->m[j], bj = 15 * G / p->m[j];
+      const double thj = p->theta[j], aj = pf_pd_lps_volumetric(K, G, thj, p->mom[j], p->m[j]), bj = 15 * G / p->m[j];
       const double tij = pf_pd_in_family(b, i, r0) ? lps_t(ai, bi, thi, w, r0, ext) : 0.0;
       const double tji = pf_pd_in_family(b, j, r0) ? lps_t(aj, bj, thj, w, r0, ext) : 0.0;
       if (energy && ext > 0 && 0.5 * (tij + tji) * ext > wc) {
@@ -225,20 +238,22 @@ double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_in
  *   Q = (a/2) sum_F omega ed(theta_w)^2 V + (1/2) g'' delta^2 >= 0,  g'' = K + (a/9) sum_S omega |xi|^2 V,
  *   C = g'(theta_o) delta,  g'(theta_o) = K theta_o - (a/3) sum_S omega |xi| ed(theta_o) V,
  * the cross term of the dilatation that stays with the one the bonds took: negative where a
- * bond in tension leaves a point in compression more compressed. Q into q[0], C into q[1]. */
+ * bond in tension leaves a point in compression more compressed. Q into q[0], C into q[1], the
+ * weighted volume of F, sum_F omega |xi|^2 V, into q[2]. */
 static void release_at(const pf_pd_body *b, const pf_points *pts, const double *y, pf_int i, double m,
-                       const double *ep, int stride, double q[2]) {
+                       const double *ep, int stride, double q[3]) {
   const pf_family *fam = &b->fam;
   const int64_t k0 = fam->offset[i - b->first], k1 = fam->offset[i - b->first + 1];
   const double K = b->bulk_modulus, a = 15.0 * b->shear_modulus / m;
   double sum_s = 0, sum_f = 0, m_s = 0, e[3], r0, r;
-  for (int64_t k = k0; k < k1; k++) { /* the dilatation sums of S and F, and S's weighted volume */
+  q[2] = 0.0;
+  for (int64_t k = k0; k < k1; k++) { /* the dilatation sums of S and F, their weighted volumes */
     if (fam->broken[k] == PF_BOND_BROKEN) continue;
     const pf_int j = fam->neighbor[k];
     pf_pd_bond_lengths(pts->X, y, i, j, &r0, &r, e);
     if (!pf_pd_in_family(b, i, r0)) continue;
     const double wv = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
-    if (fam->broken[k] == PF_BOND_FRESH) sum_f += wv * r0 * (r - r0);
+    if (fam->broken[k] == PF_BOND_FRESH) sum_f += wv * r0 * (r - r0), q[2] += wv * r0 * r0;
     else sum_s += wv * r0 * (r - r0), m_s += wv * r0 * r0;
   }
   const double th_o = 3.0 * sum_s / m, delta = 3.0 * sum_f / m, th_w = th_o + delta;
@@ -262,8 +277,9 @@ static void release_at(const pf_pd_body *b, const pf_points *pts, const double *
 
 /* The energy (J) point i's PF_BOND_FRESH bonds release, booked at the middle of the step: the
  * mean of the change at this pass's positions and at the last pass's (docs/theory/pd.md §5.1,
- * "Time step"); marks them broken. Q + max(C, 0) is released (returned with C's negative part:
- * the total change), min(C, 0) is booked as redistribution. */
+ * "Time step"); marks them broken, and adds their weighted volume to i's lost_volume. Q + max(C, 0)
+ * is released (returned with C's negative part: the total change), min(C, 0) is booked as
+ * redistribution. */
 double pf_pd_lps_release(pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
                          int stride) {
   pf_family *fam = &b->fam;
@@ -271,11 +287,12 @@ double pf_pd_lps_release(pf_pd_body *b, const pf_points *pts, pf_int i, double m
   int64_t k = fam->offset[i - b->first];
   while (k < k1 && fam->broken[k] != PF_BOND_FRESH) k++;
   if (k == k1) return 0.0;
-  double now[2], before[2];
+  double now[3], before[3];
   release_at(b, pts, pts->y, i, m, ep, stride, now);
   release_at(b, pts, pf_pd_previous_positions(pts), i, m, ep, stride, before);
   for (; k < k1; k++)
     if (fam->broken[k] == PF_BOND_FRESH) fam->broken[k] = PF_BOND_BROKEN;
+  b->lost_volume[i] += now[2];
   b->damage_redistribution += pts->vol[i] * 0.5 * (fmin(now[1], 0.0) + fmin(before[1], 0.0));
   return pts->vol[i] * 0.5 * (now[0] + now[1] + before[0] + before[1]);
 }

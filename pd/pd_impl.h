@@ -63,6 +63,9 @@ struct pf_pd_body {
   double critical_energy; /* a law that fails bonds on energy: w_c, J/m^6 */
   double *s0;        /* field "critical_stretch": per point, used by the force kernels */
   double *smin;      /* [n] smallest stretch of each point's intact bonds this step */
+  double *lost_volume; /* field "lost_weighted_volume" of the LPS family (lps, elastic_plastic):
+                          sum of omega |xi|^2 V_j over each point's failed bonds, added to by
+                          pf_pd_lps_release; NULL for the other materials */
   uint8_t *lost;     /* [n] scratch of the threaded bond loops: 1 where the point's row has
                         PF_BOND_FRESH bonds, whose energy a serial pass then books */
   double damage_work; /* change of the stored energy when this rank's points lost bonds (the
@@ -252,6 +255,24 @@ static inline void pf_pd_consistent_h(const double *restrict lmi, const double *
                                       double Vi, const double xi[3], double h[3]) {
   for (int a = 0; a < 3; a++)
     h[a] = w * (lmi[3 * a] * xi[0] + lmi[3 * a + 1] * xi[1] + lmi[3 * a + 2] * xi[2] + Vi * (lmk[9 + a] - lmi[9 + a]));
+}
+
+/* The volumetric coefficient of the LPS force state, t = w (a |xi| + alpha (e^d - e^dp)):
+ * a = 3 K theta / m - alpha M / m with alpha = 15 G / m and M the dilatation moment of the
+ * bonds that stay (docs/theory/materials.md §1, "Failed bonds"; 0 while a point has lost no bond, so that
+ * a = 3 K theta / m bitwise, Silling et al. 2007). */
+static inline double pf_pd_lps_volumetric(double K, double G, double theta, double M, double m) {
+  return M == 0.0 ? 3 * K * theta / m : (3 * K * theta - 15 * G * M / m) / m;
+}
+/* Register the fields "lost_weighted_volume" (restarted; into b->lost_volume) and
+ * "dilatation_moment" (ghosted; returned in *mom). */
+int pf_pd_lost_volume_fields(pf_pd_body *b, pf_points *pts, double **mom);
+/* The dilatation moment M_i = theta_i m^lost_i / 3 - sum_j w |xi| e^dp V_j of point i (the
+ * second term given as pm), times beta (docs/theory/materials.md §1, "Failed bonds"); 0 while i lost no bond. */
+static inline double pf_pd_dilatation_moment(const pf_pd_body *b, pf_int i, double theta, double pm,
+                                             double beta) {
+  const double ml = b->lost_volume[i];
+  return ml > 0 ? beta * (theta * ml / 3 - pm) : 0.0;
 }
 
 /* The positions of the last force evaluation (PF_PREVIOUS_POSITIONS), or the current ones where

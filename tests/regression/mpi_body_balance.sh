@@ -14,10 +14,12 @@
 #     non-negative and never decreases, the redistribution is never positive, and the balance
 #     closes: |energy_error| < 0.03 of the damage booked at every row, at dt and at dt / 2, the
 #     booked damage the same within 15 %. The failures are booked at mid-step
-#     (docs/theory/pd.md §5.1), so for PMB, whose other bonds do not feel a failure, the error is
-#     second order in dt: halving dt divides it by at least 3 (ratio < 0.35). Booked at the
-#     step's end, as before, the error was 0.13 / 0.11 / 0.09 of the damage (first order: ratio
-#     0.5); without the booking it would be the whole dissipation.
+#     (docs/theory/pd.md §5.1) and the LPS force is the gradient of its energy with failed bonds
+#     too (docs/theory/materials.md §1, "Failed bonds"), so the error is second order in dt:
+#     halving dt divides it by at least 3 (ratio < 0.35; measured 0.24, 0.24, 0.24). Booked at
+#     the step's end, as before, the error was 0.13 / 0.11 / 0.09 of the damage (first order:
+#     ratio 0.5); with the LPS force of a full family, LPS and elastic_plastic kept a remainder
+#     that did not shrink with dt; without the booking the error would be the whole dissipation.
 # usage: mpi_body_balance.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
@@ -83,7 +85,7 @@ for m in ('glass', 'solid', 'metal'):
     if not (np.all(D >= 0) and np.all(np.diff(D) >= 0) and np.all(R <= 0) and D[-1] > 0):
         bad.append('%s: damage dissipation negative or decreasing, or redistribution positive' % m)
     eh, Dh = h['energy_error'], h['damage_dissipation']
-    second = m != 'glass' or abs(eh[-1]) < 0.35 * abs(e[-1])
+    second = abs(eh[-1]) < 0.35 * abs(e[-1])
     if not (np.max(np.abs(e)) < 0.03 * D[-1] and np.max(np.abs(eh)) < 0.03 * Dh[-1] and second
             and abs(Dh[-1] / D[-1] - 1) < 0.15):
         bad.append('%s: energy error %.3g J of %.3g J booked; with dt / 2 %.3g J of %.3g J' %
