@@ -1,15 +1,19 @@
-/* Prescribed velocities and displacements on point sets chosen by region (a shape, or a named
- * node set or side set) and body. In the
+/* Prescribed velocities and displacements, and applied body forces, on point sets chosen by
+ * region (a shape, or a named node set or side set) and body. In the
  * velocity-Verlet step the mid-step velocity is what moves the points, so a prescribed
  * velocity v(t) sets it to v(t + dt/2) and a prescribed displacement g(t) sets it to
- * (g(t + dt) - g(t)) / dt, which lands the point exactly on g(t + dt). */
+ * (g(t + dt) - g(t)) / dt, which lands the point exactly on g(t + dt). A body force b(x, t)
+ * (force per unit mass) is no constraint: it adds m b to each selected point's force with the
+ * internal forces, so the two half kicks of a step carry it. */
 #include "core/core.h"
 
 #include <stdlib.h>
 #include <string.h>
 
+enum { BC_VELOCITY, BC_DISPLACEMENT, BC_BODY_FORCE };
+
 struct pf_bc {
-  int is_velocity;
+  int kind;         /* BC_VELOCITY, BC_DISPLACEMENT or BC_BODY_FORCE */
   pf_expr *e[3]; /* NULL: component free */
   pf_region region;
   int body;      /* -1: every body */
@@ -27,6 +31,10 @@ const pf_key pf_bc_keys[] = {
     {"body", PF_KEY_STRING, 0, NULL, "", "only the points of this body", NULL},
     {"velocity", PF_KEY_EXPR3, 0, NULL, "m/s", "expressions in x, y, z, t, or free", NULL},
     {"displacement", PF_KEY_EXPR3, 0, NULL, "m", "expressions in x, y, z, t, or free", NULL},
+    {"body_force", PF_KEY_EXPR3, 0, NULL, "N/kg",
+     "force per unit mass b in x, y, z, t added to the points' force (f += m b; a load, not a constraint; "
+     "free = 0): a traction sigma on a layer of points of depth h is b = sigma / (rho h)",
+     NULL},
     PF_KEY_END};
 
 static int read_exprs(const pf_deck *d, const pf_node *map, const char *key, pf_bc *bc) {
@@ -73,10 +81,13 @@ static int bc_setup(const pf_deck *d, const pf_node *map, const pf_points *pts, 
                            (int)sizeof bc->name - 1, name);
     snprintf(bc->name, sizeof bc->name, "%s", name);
   }
-  int hv = pf_node_get(map, "velocity") != NULL, hd = pf_node_get(map, "displacement") != NULL;
-  if (hv == hd) return pf_deck_error(d, map, "velocity", "give exactly one of 'velocity' and 'displacement'");
-  bc->is_velocity = hv;
-  PF_CALL(read_exprs(d, map, hv ? "velocity" : "displacement", bc));
+  static const char *const kinds[] = {"velocity", "displacement", "body_force"};
+  int given = 0;
+  for (int k = 0; k < 3; k++)
+    if (pf_node_get(map, kinds[k])) given++, bc->kind = k;
+  if (given != 1)
+    return pf_deck_error(d, map, "velocity", "give exactly one of 'velocity', 'displacement' and 'body_force'");
+  PF_CALL(read_exprs(d, map, kinds[bc->kind], bc));
   return select_points(d, map, pts, nbodies, body_names, sets, bc);
 }
 
@@ -132,13 +143,14 @@ static void set_velocity(pf_bc *bc, pf_points *pts, pf_int i, int c, double vnew
 }
 
 void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt, double *work) {
+  if (bc->kind == BC_BODY_FORCE) return;
   for (int c = 0; c < 3; c++) bc->step_impulse[c] = 0.0; /* a new step */
   for (pf_int k = 0; k < bc->n; k++) {
     pf_int i = bc->points[k];
     const double *x = &pts->X[3 * i];
     for (int c = 0; c < 3; c++) {
       if (!bc->e[c]) continue;
-      double v = bc->is_velocity ? pf_expr_eval(bc->e[c], x[0], x[1], x[2], t + 0.5 * dt)
+      double v = bc->kind == BC_VELOCITY ? pf_expr_eval(bc->e[c], x[0], x[1], x[2], t + 0.5 * dt)
                                  : (pf_expr_eval(bc->e[c], x[0], x[1], x[2], t + dt) - pts->u[3 * i + c]) / dt;
       set_velocity(bc, pts, i, c, v, 0.5 * dt, work);
     }
@@ -146,13 +158,14 @@ void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt, double 
 }
 
 void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t, double dt, double *work) {
+  if (bc->kind == BC_BODY_FORCE) return;
   for (pf_int k = 0; k < bc->n; k++) {
     pf_int i = bc->points[k];
     const double *x = &pts->X[3 * i];
     for (int c = 0; c < 3; c++) {
       if (!bc->e[c]) continue;
       /* a prescribed displacement keeps its mid-step velocity (the half kick is the reaction's) */
-      double v = bc->is_velocity ? pf_expr_eval(bc->e[c], x[0], x[1], x[2], t)
+      double v = bc->kind == BC_VELOCITY ? pf_expr_eval(bc->e[c], x[0], x[1], x[2], t)
                                  : pts->v[3 * i + c] - 0.5 * dt * pts->f[3 * i + c] / pts->m[i];
       set_velocity(bc, pts, i, c, v, 0.5 * dt, work);
     }
@@ -160,7 +173,32 @@ void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t, double dt, double 
 }
 
 void pf_bc_mark(const pf_bc *bc, uint8_t *mask) {
+  if (bc->kind == BC_BODY_FORCE) return; /* a load: the point's acceleration stays its own */
   for (pf_int k = 0; k < bc->n; k++)
     for (int c = 0; c < 3; c++)
       if (bc->e[c]) mask[3 * (size_t)bc->points[k] + c] = 1;
+}
+
+/* A body force F = m b(x, t) on each selected owned point, added to f at time t (dt: the step
+ * just taken, 0 for the initial forces). Velocity Verlet gives the step's two half kicks
+ * F(t - dt) and F(t), so the load's impulse over the step is (F(t - dt) + F(t)) dt / 2, and its
+ * work the trapezoidal (F(t - dt) + F(t)) . (u(t) - u(t - dt)) / 2 with u(t) - u(t - dt) = dt
+ * v(t - dt/2), the mid-step velocity the points still hold when the forces are computed: for a
+ * constant load the work summed over the steps is exactly F . u(t), the load's potential. */
+void pf_bc_apply_force(pf_bc *bc, pf_points *pts, double t, double dt, double *work) {
+  if (bc->kind != BC_BODY_FORCE) return;
+  for (int c = 0; c < 3; c++) bc->step_impulse[c] = 0.0;
+  for (pf_int k = 0; k < bc->n; k++) {
+    pf_int i = bc->points[k];
+    const double *x = &pts->X[3 * i];
+    for (int c = 0; c < 3; c++) {
+      if (!bc->e[c]) continue;
+      const double F = pts->m[i] * pf_expr_eval(bc->e[c], x[0], x[1], x[2], t);
+      pts->f[3 * i + c] += F;
+      if (dt <= 0) continue;
+      const double Fmean = 0.5 * (pts->m[i] * pf_expr_eval(bc->e[c], x[0], x[1], x[2], t - dt) + F);
+      work[pts->body[i]] += Fmean * dt * pts->v[3 * i + c];
+      bc->impulse[c] += Fmean * dt, bc->step_impulse[c] += Fmean * dt;
+    }
+  }
 }

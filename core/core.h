@@ -484,7 +484,7 @@ void pf_exchange_destroy(pf_exchange **x);
 typedef struct pf_bc pf_bc;
 extern const pf_key pf_bc_keys[];
 /* A prescribed velocity or displacement, component by component ("free" leaves a component
- * alone), on the points of a region (optionally of one body, by index into body_names); sets:
+ * alone), or an applied body force (force per unit mass), on the points of a region (optionally of one body, by index into body_names); sets:
  * the named sets a region may select (NULL: none); index: its place in the deck's list, which
  * names it "bc<index>" unless the deck gives `name:`. */
 int pf_bc_create(const pf_deck *d, const pf_node *map, const pf_points *pts, int nbodies,
@@ -505,6 +505,10 @@ void pf_bc_impulse_set(pf_bc *bc, const double step[3], const double total[3]);
  * rule), their impulse to the condition's (pf_bc_impulse). */
 void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt, double *work);
 void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t, double dt, double *work);
+/* A body-force condition adds its force m b(x, t) to the owned points' f at time t (the other
+ * kinds do nothing); dt: the step just taken (0: the initial forces). Its work over the step
+ * goes to work[pts->body[i]] and its impulse to the condition's, as the hooks above. */
+void pf_bc_apply_force(pf_bc *bc, pf_points *pts, double t, double dt, double *work);
 /* Set mask[3 i + c] = 1 for every component c of owned point i the condition prescribes. */
 void pf_bc_mark(const pf_bc *bc, uint8_t *mask);
 

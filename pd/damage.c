@@ -22,6 +22,10 @@ const pf_key pf_pd_damage_keys[] = {
      "converted to the critical bond energy w_c = 4 G0 / (pi delta^4)", NULL},
     {"s00", PF_KEY_REAL, 0, NULL, "", "silling_askari: s00 in s0 = s00 - alpha s_min", NULL},
     {"alpha", PF_KEY_REAL, 0, "0.25", "", "silling_askari: alpha in s0 = s00 - alpha s_min", NULL},
+    {"no_fail", PF_KEY_LIST, 0, NULL, "",
+     "critical_stretch: regions (reference positions, at most 8) whose points have no stretch limit (s0 = "
+     "infinity); a bond fails at the smaller s0 of its ends, so the bonds with both ends inside never fail",
+     pf_region_keys},
     PF_KEY_END};
 
 const pf_pd_damage_ops *pf_pd_damage_find(const char *name) {
@@ -84,10 +88,18 @@ int pf_pd_damage_read(const pf_deck *d, const pf_node *map, pf_pd_body *b) {
                          name, pf_pd_damage_names());
   PF_CALL(check_keys(d, map, law));
   b->damage = law;
-  return law->read(d, map, b);
+  PF_CALL(law->read(d, map, b));
+  const pf_node *nf = map ? pf_node_get(map, "no_fail") : NULL;
+  b->n_no_fail = nf ? pf_node_count(nf) : 0;
+  if (b->n_no_fail > PF_PD_MAX_NO_FAIL)
+    return pf_deck_error(d, nf, "no_fail", "at most %d regions (got %d)", PF_PD_MAX_NO_FAIL, b->n_no_fail);
+  for (int k = 0; k < b->n_no_fail; k++)
+    PF_CALL(pf_region_from_deck(d, pf_node_item(nf, k), NULL, -1, &b->no_fail[k]));
+  return 0;
 }
 
-/* The per-point s0 field: initial values when fresh; ghosts from their owners. */
+/* The per-point s0 field: initial values when fresh (INFINITY in the no-fail region); ghosts
+ * from their owners. */
 int pf_pd_damage_setup(pf_pd_body *b, pf_points *pts, int fresh) {
   int idx;
   PF_CALL(pf_points_field_register(pts, "critical_stretch", 1, PF_FIELD_GHOST | PF_FIELD_RESTART, &idx));
@@ -95,6 +107,9 @@ int pf_pd_damage_setup(pf_pd_body *b, pf_points *pts, int fresh) {
   if (b->damage->attach) PF_CALL(b->damage->attach(b, pts, fresh));
   else if (fresh)
     for (pf_int i = b->first; i < b->first + b->n; i++) b->s0[i] = b->s0_init;
+  for (int k = 0; fresh && k < b->n_no_fail; k++) /* (later, s0 comes with the points) */
+    for (pf_int i = b->first; i < b->first + b->n; i++)
+      if (pf_region_selects(&b->no_fail[k], pts, i)) b->s0[i] = INFINITY;
   return pf_points_exchange(pts, b->s0, 1);
 }
 

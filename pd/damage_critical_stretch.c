@@ -1,10 +1,12 @@
 /* Bond failure by critical stretch (Silling & Askari 2005): a bond fails for good when its
  * stretch exceeds min(s0_i, s0_j), with s0 constant: given, or from the energy release rate G0
  * through the material's closed form (e.g. PMB s0 = sqrt(5 G0 / (9 K delta)), eq. 9). The
- * evolving s0 of Silling and Askari is pd/damage_silling_askari.c. */
+ * evolving s0 of Silling and Askari is pd/damage_silling_askari.c. Points of the deck's
+ * no_fail region start with s0 = INFINITY (pd/damage.c): the no-fail zone along loaded edges
+ * of Ha & Bobaru (2010). */
 #include "pd/pd_impl.h"
 
-static const char *const keys[] = {"critical_stretch", "energy_release_rate", NULL};
+static const char *const keys[] = {"critical_stretch", "energy_release_rate", "no_fail", NULL};
 
 /* Constant s0, given or from G0 through the material's closed form. */
 static int read_critical_stretch(const pf_deck *d, const pf_node *map, pf_pd_body *b) {

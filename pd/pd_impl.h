@@ -6,6 +6,8 @@
 
 #include <math.h>
 
+enum { PF_PD_MAX_NO_FAIL = 8 }; /* regions in a body's damage.no_fail list */
+
 typedef struct pf_pd_material_ops pf_pd_material_ops;
 typedef struct pf_pd_damage_ops pf_pd_damage_ops;
 
@@ -60,6 +62,8 @@ struct pf_pd_body {
   const pf_pd_damage_ops *damage; /* the law (pd/damage_laws.h); "none" when the deck gives none */
   void *damage_data; /* the law's own parameters, or NULL (allocated by its read, freed with the body) */
   double s0_init;    /* initial critical stretch (INFINITY: none) */
+  int n_no_fail;     /* the deck's damage.no_fail: regions whose points start with s0 = INFINITY */
+  pf_region no_fail[PF_PD_MAX_NO_FAIL];
   double critical_energy; /* a law that fails bonds on energy: w_c, J/m^6 */
   double *s0;        /* field "critical_stretch": per point, used by the force kernels */
   double *smin;      /* [n] smallest stretch of each point's intact bonds this step */

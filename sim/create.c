@@ -56,7 +56,7 @@ const pf_key pf_deck_keys[] = {
     {"indenters", PF_KEY_LIST, 0, NULL, "", "rigid surfaces with prescribed motion (the same as contact.rigid_surfaces)", pf_rigid_keys},
     {"contact", PF_KEY_MAP, 0, NULL, "", "contact between bodies and rigid surfaces", pf_contact_keys},
     {"walls", PF_KEY_LIST, 0, NULL, "", "rigid frictionless planes", pf_wall_keys},
-    {"boundary_conditions", PF_KEY_LIST, 0, NULL, "", "prescribed velocities/displacements", pf_bc_keys},
+    {"boundary_conditions", PF_KEY_LIST, 0, NULL, "", "prescribed velocities/displacements and body forces", pf_bc_keys},
     {"time", PF_KEY_MAP, 1, NULL, "", "time stepping", time_keys},
     {"output", PF_KEY_MAP, 0, NULL, "", "output files and intervals", output_keys},
     {"parallel", PF_KEY_MAP, 0, NULL, "", "domain decomposition over MPI ranks", pf_parallel_keys},

@@ -176,6 +176,9 @@ static int compute_forces(pf_sim *sim, double dt) {
     sim->damage_redistribution += w[1], sim->body_redistribution[b] += w[1];
   }
   PF_CALL(pf_sim_contact_forces(sim, dt)); /* rigid surfaces, pairs and walls */
+  double w[PF_MAX_BODIES] = {0}; /* the body forces of the conditions, and their work */
+  for (int k = 0; k < sim->nbcs; k++) pf_bc_apply_force(sim->bcs[k], p, sim->t, dt, w);
+  for (int b = 0; b < sim->nbodies && sim->nbcs; b++) sim->bc_work += w[b], sim->body_bc_work[b] += w[b];
   return 0;
 }
 

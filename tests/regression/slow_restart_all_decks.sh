@@ -27,7 +27,8 @@ fragmenting_cylinder_exodus 80 50 damage_fraction
 expanding_tube 60 40 lexan_tube_force_z
 panel_plate 50 30 sphere_panel_force_z
 panel_impact 50 30 sphere_panel_force_z
-dcb 30 20 upper_reaction_y"
+dcb 30 20 upper_reaction_y
+glass_branching 60 40 top_traction_impulse_y"
 [ "$(echo "$cases" | wc -l)" = "$(ls "$SRC"/../inputs/*.yaml | wc -l)" ] ||
   { echo "inputs/ has $(ls "$SRC"/../inputs/*.yaml | wc -l) decks, this test covers $(echo "$cases" | wc -l)"; fail=1; }
 # (PF_RESTART_DECKS="name ...": only those, for a run by hand)
