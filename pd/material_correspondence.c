@@ -63,7 +63,16 @@ typedef struct {
   double *ghost;                      /* field "ghost_correction" [3]: the corrected form's d_i */
   double *lm;                         /* field "consistent_weights": the consistent form's multipliers */
   double *rate, *whg2, *cw; /* scratch [n]: beta / sigma_min(Fbar), omega_hg^2, wave speed */
-  pf_int cap;
+  /* The shape tensor of each owned point's intact own bonds, kept between steps (it depends only
+   * on the reference positions and on which bonds are intact, and bonds only ever fail): valid
+   * while the point's count of intact own bonds is kcount (-1: to compute). */
+  int *kcount;       /* [n] */
+  double *kinv;      /* [9n] K^-1 */
+  double *kshape;    /* [4n] lambda_min(K), sum_j w V_j |xi|, sum_j w V_j / |xi|, 1 if K spans */
+  uint8_t *fails;    /* [store] last step's record of each point, for the bond failures:
+                        bit 0 detached, bit 1 damage above D_c, bit 2 in the PD region */
+  uint8_t *nearz;    /* [n] the point or one in its row takes the consistent form */
+  pf_int cap, fcap;
 } corr;
 
 const pf_key pf_pd_hourglass_keys[] = {
@@ -180,13 +189,13 @@ static int register_fields(pf_pd_body *b, pf_points *pts) {
  * & Askari 2005, eq. 16, doubled: both ends' deviations act on a bond); eigenvalues of a sum add,
  * so omega^2 sums. Computes rate = gamma beta / sigma_min (0 for a point without stiffness) and
  * omega_hg^2; the step is 2 / sqrt((c rate)^2 + omega_hg^2). */
-static void step_rates(const pf_pd_body *b, pf_int i, double K[3][3], double Fb[3][3],
+static void step_rates(const pf_pd_body *b, pf_int i, double lk, double Fb[3][3],
                        const double sums[2], double *rate, double *whg2) {
   const corr *p = b->mat;
   double C[3][3];
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) C[r][c] = Fb[0][r] * Fb[0][c] + Fb[1][r] * Fb[1][c] + Fb[2][r] * Fb[2][c];
-  const double lk = pf_sym3_min_eigenvalue(K), lc = pf_sym3_min_eigenvalue(C);
+  const double lc = pf_sym3_min_eigenvalue(C); /* lk = lambda_min(K) */
   *rate = lk > 0 && lc > 0 ? p->gamma * sums[0] / (lk * sqrt(lc)) : 0.0;
   *whg2 = p->viscous ? 0.0 : 4.0 * p->hg * p->gx[GX * i + G_C] * sums[1] / b->density;
 }
@@ -204,7 +213,7 @@ static double reference_step(const pf_pd_body *b, const pf_points *pts, pf_int i
       for (int c = 0; c < 3; c++) K[r][c] += w * xi[r] * xi[c];
     sums[0] += w * r0, sums[1] += w / r0;
   }
-  step_rates(b, i, K, I, sums, &rate, &whg2);
+  step_rates(b, i, pf_sym3_min_eigenvalue(K), I, sums, &rate, &whg2);
   return 2.0 / sqrt(p->cl * p->cl * rate * rate + whg2);
 }
 
@@ -351,9 +360,15 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
   if (b->n > p->cap) {
     free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm);
     free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam), free(p->lost);
-    p->lost = NULL;
+    free(p->kcount), free(p->kinv), free(p->kshape), free(p->nearz);
+    p->lost = p->nearz = NULL;
     p->F = p->D = p->s_old = p->saved = p->Jm = p->rate = p->whg2 = p->cw = p->Ki = p->K0 = NULL;
-    p->nfam = NULL;
+    p->kinv = p->kshape = NULL;
+    p->nfam = p->kcount = NULL;
+    PF_MALLOC(p->kcount, b->n);
+    PF_MALLOC(p->kinv, 9 * (size_t)b->n);
+    PF_MALLOC(p->kshape, 4 * (size_t)b->n);
+    PF_MALLOC(p->nearz, b->n);
     PF_MALLOC(p->Ki, 9 * (size_t)b->n);
     PF_MALLOC(p->K0, 9 * (size_t)b->n);
     PF_MALLOC(p->nfam, b->n);
@@ -389,6 +404,12 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
     for (pf_int i = b->first; i < b->first + b->n; i++) p->step[i] = reference_step(b, pts, i);
   PF_CALL(ghost_vectors(b, pts));
   PF_CALL(consistent_weights(b, pts));
+  for (pf_int li = 0; li < b->n; li++) { /* (the shape tensors are formed at the first step) */
+    const pf_int i = b->first + li;
+    int z = p->lm && pf_pd_consistent_at(b, i);
+    for (int64_t k = b->fam.offset[li]; k < b->fam.offset[li + 1] && p->lm && !z; k++) z = pf_pd_consistent_at(b, b->fam.neighbor[k]);
+    p->kcount[li] = -1, p->nearz[li] = (uint8_t)z;
+  }
   return pf_points_exchange(pts, p->gx, GX);
 }
 
@@ -453,6 +474,103 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
   return nb;
 }
 
+/* Does the bond between points of failure records fi and fj fail before this step's sums
+ * (fail_bonds)? When either end was detached last step, or either end's damage exceeded D_c and
+ * both are points of the standard force (pf_pd_may_fail). */
+static inline int record_fails(uint8_t fi, uint8_t fj) {
+  return ((fi | fj) & 1) || (((fi | fj) & 2) && (fi & fj & 4));
+}
+
+/* The deformation and rate sums A = sum_j w Y (x) xi, B = sum_j w Ydot (x) xi of a point outside
+ * the consistent form over its intact own bonds, in one pass over its row that first fails the
+ * bonds fail_bonds would (last step's records, fails) and those beyond the critical stretch, as
+ * bond_sums does (the same terms in the same order; its K and the sums of the step's bound are
+ * the cached ones, shape_of). Returns the number of intact own bonds. */
+static int row_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double A[3][3], double B[3][3]) {
+  corr *p = b->mat;
+  const pf_family *fam = &b->fam;
+  const pf_int li = i - b->first;
+  const int stretch = b->damage->fails_on_stretch, one_sided = b->one_sided;
+  const pf_influence *infl = &b->influence;
+  const double *restrict X = pts->X, *restrict y = pts->y, *restrict v = pts->v, *restrict vol = pts->vol;
+  const pf_int *restrict nbr = fam->neighbor;
+  const float *restrict vfrac = fam->vfrac;
+  const uint8_t *restrict fails = p->fails;
+  uint8_t *restrict broken = fam->broken;
+  const uint8_t fi = fails[i];
+  const double xi0 = X[3 * i], xi1 = X[3 * i + 1], xi2 = X[3 * i + 2], hzi = b->hz[i];
+  const double y0 = y[3 * i], y1 = y[3 * i + 1], y2 = y[3 * i + 2];
+  const double v0 = v[3 * i], v1 = v[3 * i + 1], v2 = v[3 * i + 2];
+  double a00 = 0, a01 = 0, a02 = 0, a10 = 0, a11 = 0, a12 = 0, a20 = 0, a21 = 0, a22 = 0;
+  double b00 = 0, b01 = 0, b02 = 0, b10 = 0, b11 = 0, b12 = 0, b20 = 0, b21 = 0, b22 = 0;
+  double smin = INFINITY;
+  int nb = 0, lost = 0;
+  for (int64_t k = fam->offset[li]; k < fam->offset[li + 1]; k++) {
+    if (broken[k]) continue;
+    const pf_int j = nbr[k];
+    if (record_fails(fi, fails[j])) {
+      broken[k] = 1, lost = 1;
+      continue;
+    }
+    const double x0 = X[3 * j] - xi0, x1 = X[3 * j + 1] - xi1, x2 = X[3 * j + 2] - xi2;
+    const double Y0 = y[3 * j] - y0, Y1 = y[3 * j + 1] - y1, Y2 = y[3 * j + 2] - y2;
+    const double r0 = sqrt(x0 * x0 + x1 * x1 + x2 * x2);
+    if (stretch && (fi & fails[j] & 4)) { /* (both ends test every row bond) */
+      const double s = (sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2) - r0) / r0;
+      if (s > fmin(b->s0[i], b->s0[j])) {
+        broken[k] = 1, lost = 1;
+        continue;
+      }
+      smin = fmin(smin, s);
+    }
+    if (one_sided && !(r0 <= hzi)) continue;
+    const double w = pf_pd_omega(infl, r0) * (vfrac ? vol[j] * vfrac[k] : vol[j]);
+    const double D0 = v[3 * j] - v0, D1 = v[3 * j + 1] - v1, D2 = v[3 * j + 2] - v2;
+    const double wY0 = w * Y0, wY1 = w * Y1, wY2 = w * Y2, wD0 = w * D0, wD1 = w * D1, wD2 = w * D2;
+    a00 += wY0 * x0, a01 += wY0 * x1, a02 += wY0 * x2;
+    a10 += wY1 * x0, a11 += wY1 * x1, a12 += wY1 * x2;
+    a20 += wY2 * x0, a21 += wY2 * x1, a22 += wY2 * x2;
+    b00 += wD0 * x0, b01 += wD0 * x1, b02 += wD0 * x2;
+    b10 += wD1 * x0, b11 += wD1 * x1, b12 += wD1 * x2;
+    b20 += wD2 * x0, b21 += wD2 * x1, b22 += wD2 * x2;
+    nb++;
+  }
+  A[0][0] = a00, A[0][1] = a01, A[0][2] = a02, A[1][0] = a10, A[1][1] = a11, A[1][2] = a12;
+  A[2][0] = a20, A[2][1] = a21, A[2][2] = a22;
+  B[0][0] = b00, B[0][1] = b01, B[0][2] = b02, B[1][0] = b10, B[1][1] = b11, B[1][2] = b12;
+  B[2][0] = b20, B[2][1] = b21, B[2][2] = b22;
+  b->smin[li] = smin;
+  p->lost[li] = (uint8_t)lost;
+  return nb;
+}
+
+/* fail_bonds' test alone over the row of owned point i (a point of the consistent form, whose
+ * sums bond_sums takes, or an idle one). */
+static void fail_row(pf_pd_body *b, pf_int i) {
+  corr *p = b->mat;
+  const pf_family *fam = &b->fam;
+  const pf_int li = i - b->first;
+  p->lost[li] = 0;
+  for (int64_t k = fam->offset[li]; k < fam->offset[li + 1]; k++)
+    if (!fam->broken[k] && record_fails(p->fails[i], p->fails[fam->neighbor[k]])) fam->broken[k] = 1, p->lost[li] = 1;
+}
+
+/* Last step's record of every store point for the failure test (owned points and ghosts read the
+ * same exchanged record, so both ends of a bond decide alike). */
+static int failure_records(pf_pd_body *b, const pf_points *pts) {
+  corr *p = b->mat;
+  if (pts->n_total > p->fcap) {
+    free(p->fails);
+    p->fcap = pts->n_total + pts->n_total / 8 + 16;
+    PF_MALLOC(p->fails, p->fcap);
+  }
+  for (pf_int j = 0; j < pts->n_total; j++) {
+    const double *g = &p->gx[GX * j];
+    p->fails[j] = (uint8_t)((g[G_DETACHED] != 0) | (g[G_DAMAGE] > p->dcrit) << 1 | (b->region[j] == 0) << 2);
+  }
+  return 0;
+}
+
 /* A point whose intact bonds keep less than this fraction of its whole family's span in some
  * direction, min_n (n.K n)/(n.K0 n), is detached (docs/theory/materials.md §2, "the span test"):
  * 1 for an intact family, 1/2 on either side of a crack through the point, 0 when the bonds left
@@ -507,18 +625,49 @@ static void rereference(pf_pd_body *b, pf_int i, double Fb[3][3], double L[3][3]
   pf_material_rereference(p->cm, 1, &Fs[0][0], &Fb[0][0], &p->state[(size_t)p->nstate * i]);
 }
 
+/* K = sum_j w V_j xi (x) xi over the intact own bonds of owned point i (the order and terms of
+ * bond_sums), with what a step needs of it, into the cache: K^-1, lambda_min(K), the sums of the
+ * step's bound (step_rates) and whether K spans space (kinematics). */
+static void shape_of(pf_pd_body *b, const pf_points *pts, pf_int i) {
+  corr *p = b->mat;
+  const pf_int li = i - b->first;
+  double K[3][3] = {{0}}, Ki[3][3], sums[2] = {0, 0}, *c = &p->kshape[4 * li];
+  int nb = 0;
+  for (int64_t k = b->fam.offset[li]; k < b->fam.offset[li + 1]; k++) {
+    double xi[3], r0, w;
+    if (!pf_pd_own_bond(b, pts, i, k, xi, &r0, &w)) continue;
+    for (int r = 0; r < 3; r++)
+      for (int s = 0; s < 3; s++) K[r][s] += w * xi[r] * xi[s];
+    sums[0] += w * r0, sums[1] += w / r0;
+    nb++;
+  }
+  const double detK = pf_mat3_inverse(K, Ki), tr = (K[0][0] + K[1][1] + K[2][2]) / 3.0;
+  memcpy(&p->kinv[9 * li], Ki, sizeof Ki);
+  c[0] = pf_sym3_min_eigenvalue(K), c[1] = sums[0], c[2] = sums[1];
+  c[3] = nb >= 3 && detK > 1e-6 * tr * tr * tr && (nb == p->nfam[li] || spans(p, li, K));
+  p->kcount[li] = nb;
+}
+
 /* Kinematics of point i for the model: Fbar into F, D into D, the rotated previous stress; K^-1
  * kept in the ghost record until the stress is known. Returns 0 when the point is detached: too
  * few bonds for an invertible K, intact bonds that lost the span, or an inverted or crushed Fbar
- * (det Fbar < PF_CORR_MIN_J: a point with no continuum left around it). */
+ * (det Fbar < PF_CORR_MIN_J: a point with no continuum left around it). K is reference geometry:
+ * it is formed again only when the point's count of intact own bonds changed (shape_of). */
 static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
   corr *p = b->mat;
   const pf_int li = i - b->first;
-  double K[3][3], A[3][3], B[3][3], H[3][3], Hd[3][3], Ki[3][3], Fb[3][3], Fd[3][3], Fm[3][3], Fmi[3][3];
-  double L[3][3], R[3][3], *g = &p->gx[GX * i], *F = &p->F[9 * li], *D = &p->D[6 * li], sums[2];
-  const int nb = bond_sums(b, pts, i, K, A, B, H, Hd, sums);
-  const double detK = pf_mat3_inverse(K, Ki), tr = (K[0][0] + K[1][1] + K[2][2]) / 3.0;
-  int ok = nb >= 3 && detK > 1e-6 * tr * tr * tr && (nb == p->nfam[li] || spans(p, li, K));
+  double A[3][3], B[3][3], H[3][3] = {{0}}, Hd[3][3] = {{0}}, Ki[3][3], Fb[3][3], Fd[3][3], Fm[3][3], Fmi[3][3];
+  double L[3][3], R[3][3], *g = &p->gx[GX * i], *F = &p->F[9 * li], *D = &p->D[6 * li];
+  int nb;
+  if (pf_pd_consistent_at(b, i)) {
+    double K[3][3], sums[2];
+    fail_row(b, i);
+    nb = bond_sums(b, pts, i, K, A, B, H, Hd, sums);
+  } else nb = row_sums(b, pts, i, A, B);
+  if (nb != p->kcount[li]) shape_of(b, pts, i);
+  const double *c = &p->kshape[4 * li];
+  memcpy(Ki, &p->kinv[9 * li], sizeof Ki);
+  int ok = c[3] != 0;
   if (ok) {
     mat_mul(A, Ki, Fb), mat_mul(B, Ki, Fd);
     for (int r = 0; r < 3; r++)
@@ -527,7 +676,7 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
         Fm[r][s] = Fb[r][s] - 0.5 * b->dt * Fd[r][s];
       }
     ok = pf_mat3_det(Fb) > PF_CORR_MIN_J && (p->Jm[li] = pf_mat3_inverse(Fm, Fmi)) > 0;
-    if (ok) step_rates(b, i, K, Fb, sums, &p->rate[li], &p->whg2[li]);
+    if (ok) step_rates(b, i, c[0], Fb, &c[1], &p->rate[li], &p->whg2[li]);
   }
   if (!ok) { /* the model sees a state at rest; its result is discarded */
     at_rest(b, i, 1);
@@ -571,21 +720,8 @@ static void stress_to_force_state(pf_pd_body *b, pf_int i) {
 
 /* Bonds to a point detached last step, or whose either end's damage exceeded D_c last step, fail
  * before the sums, so that Fbar and the force of this step use the same bonds (angular
- * momentum). Both ends read the same exchanged record, so both decide alike. */
-static void fail_bonds(pf_pd_body *b) {
-  const corr *p = b->mat;
-  const pf_family *fam = &b->fam;
-  for (pf_int i = b->first; i < b->first + b->n; i++) {
-    const double *gi = &p->gx[GX * i];
-    p->lost[i - b->first] = 0;
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-      if (fam->broken[k]) continue;
-      const double *gj = &p->gx[GX * fam->neighbor[k]];
-      const int damaged = (gi[G_DAMAGE] > p->dcrit || gj[G_DAMAGE] > p->dcrit) && pf_pd_may_fail(b, i, fam->neighbor[k]);
-      if (gi[G_DETACHED] || gj[G_DETACHED] || damaged) fam->broken[k] = 1, p->lost[i - b->first] = 1;
-    }
-  }
-}
+ * momentum): failure_records, then each row's first pass (row_sums, fail_row). Both ends read the
+ * same exchanged record, so both decide alike. */
 
 /* The model over the body's points in batches, leaving out the idle ones (coupled, beta = 0 all
  * round: at rest for good, their stress stays zero; in a coupled panel most of the body). */
@@ -609,9 +745,9 @@ static int corr_pass1(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   const int ns = p->nstate;
   pf_int ndetached = 0;
-  fail_bonds(b);
+  PF_CALL(failure_records(b, pts));
   for (pf_int i = b->first; i < b->first + b->n; i++)
-    if (b->idle && b->idle[i - b->first]) at_rest(b, i, 0);
+    if (b->idle && b->idle[i - b->first]) fail_row(b, i), at_rest(b, i, 0);
     else ndetached += !kinematics(b, pts, i);
   double *state = ns ? &p->state[(size_t)ns * b->first] : NULL;
   if (ndetached && ns) memcpy(p->saved, state, sizeof(double) * ns * b->n);
@@ -668,50 +804,77 @@ static void consistent_pair(const pf_pd_body *b, const pf_points *pts, pf_int i,
  * beta_i P_i K_i^-1 and beta_j P_j K_j^-1, and so does each end's hourglass stiffness: the
  * forces of sum_i beta_i W_i V_i (docs/theory/coupling.md §3.4); so do the consistent form's
  * corrections (consistent_pair). */
+/* The pair-force sums of owned point i over its intact bonds (corr_force): f gets
+ * sum_j w ([j in H_i] b_i P_i K_i^-1 + [i in H_j] b_j P_j K_j^-1) xi when `standard`, fh the
+ * hourglass forces. One pass over the row with the point's own record in locals and the loop's
+ * invariants hoisted (the terms and their order are those of the formulas above). */
+static void pair_sums(const pf_pd_body *b, const pf_points *pts, pf_int i, int standard, double f[3], double fh[3]) {
+  const corr *p = b->mat;
+  const pf_family *fam = &b->fam;
+  const int states = b->blend && b->blend_states, one_sided = b->one_sided, viscous = p->viscous;
+  const int gdev = viscous ? G_FDOT : G_F; /* the predicted relative position or velocity */
+  const double *restrict dev = viscous ? pts->v : pts->y, *restrict X = pts->X, *restrict y = pts->y;
+  const double *restrict vol = pts->vol, *restrict gx = p->gx, *restrict hz = b->hz, *restrict blend = b->blend;
+  const float *restrict vfrac = fam->vfrac;
+  const pf_int *restrict nbr = fam->neighbor;
+  const uint8_t *restrict broken = fam->broken;
+  const pf_influence *infl = &b->influence;
+  const int consistent = p->lm && p->nearz[i - b->first];
+  const double *gi = &gx[GX * i], bi = states ? blend[i] : 1.0, hg = p->hg, hzi = hz[i];
+  const double ki = hg * gi[G_C] * (viscous ? hzi / p->cl : 1.0);
+  const double x0 = X[3 * i], x1 = X[3 * i + 1], x2 = X[3 * i + 2], y0 = y[3 * i], y1 = y[3 * i + 1], y2 = y[3 * i + 2];
+  const double z0 = dev[3 * i], z1 = dev[3 * i + 1], z2 = dev[3 * i + 2];
+  const int detached_i = gi[G_DETACHED] != 0;
+  double PKi[9], Gi[9];
+  for (int q = 0; q < 9; q++) PKi[q] = gi[G_PK + q], Gi[q] = gi[gdev + q];
+  double f0 = 0, f1 = 0, f2 = 0, h0 = 0, h1 = 0, h2 = 0;
+  for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+    if (broken[k]) continue;
+    const pf_int j = nbr[k];
+    const double *restrict gj = &gx[GX * j];
+    const double xi[3] = {X[3 * j] - x0, X[3 * j + 1] - x1, X[3 * j + 2] - x2};
+    const double Y[3] = {y[3 * j] - y0, y[3 * j + 1] - y1, y[3 * j + 2] - y2};
+    const double Z[3] = {dev[3 * j] - z0, dev[3 * j + 1] - z1, dev[3 * j + 2] - z2};
+    double r02 = 0, r2 = 0;
+    for (int a = 0; a < 3; a++) r02 += xi[a] * xi[a], r2 += Y[a] * Y[a];
+    const double r0 = sqrt(r02), r = sqrt(r2), bj = states ? blend[j] : 1.0;
+    const double hi = bi * (!one_sided || r0 <= hzi), hj = bj * (!one_sided || r0 <= hz[j]);
+    const double om = pf_pd_omega(infl, r0), w = om * (vfrac ? vol[j] * vfrac[k] : vol[j]);
+    const double kj = hg * gj[G_C] * (viscous ? hz[j] / p->cl : 1.0);
+    double gam = 0, t[3];
+    for (int a = 0; a < 3; a++) {
+      double ta = 0, pi = 0, pj = 0;
+      for (int c = 0; c < 3; c++) {
+        ta += (hi * PKi[3 * a + c] + hj * gj[G_PK + 3 * a + c]) * xi[c];
+        pi += Gi[3 * a + c] * xi[c], pj += gj[gdev + 3 * a + c] * xi[c];
+      }
+      t[a] = standard ? w * ta : 0.0;
+      gam += (hi * ki * (pi - Z[a]) + hj * kj * (pj - Z[a])) * Y[a];
+    }
+    f0 += t[0], f1 += t[1], f2 += t[2];
+    if (consistent) {
+      double fc[3] = {f0, f1, f2};
+      consistent_pair(b, pts, i, j, om, xi, fc);
+      f0 = fc[0], f1 = fc[1], f2 = fc[2];
+    }
+    if (gam != 0 && r > 0 && !detached_i && gj[G_DETACHED] == 0) {
+      const double s = -w * gam / (r0 * r * r);
+      h0 += s * Y[0], h1 += s * Y[1], h2 += s * Y[2];
+    }
+  }
+  f[0] = f0, f[1] = f1, f[2] = f2, fh[0] = h0, fh[1] = h1, fh[2] = h2;
+}
+
 static int corr_force(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   PF_CALL(corr_pass1(b, pts));
-  const pf_family *fam = &b->fam;
-  const int gdev = p->viscous ? G_FDOT : G_F; /* the predicted relative position or velocity */
-  const double *dev = p->viscous ? pts->v : pts->y;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     const int states = b->blend && b->blend_states; /* coupled, energy form */
     if (b->blend && (states ? b->idle[i - b->first] : b->blend[i] == 0)) continue; /* no PD force wanted */
-    const double *gi = &p->gx[GX * i], bi = states ? b->blend[i] : 1.0;
+    const double *gi = &p->gx[GX * i];
     const int standard = !pf_pd_partial_stress_at(b, i);
-    const double ki = p->hg * gi[G_C] * (p->viscous ? b->hz[i] / p->cl : 1.0);
-    double f[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-      if (fam->broken[k]) continue;
-      const pf_int j = fam->neighbor[k];
-      const double *gj = &p->gx[GX * j];
-      double xi[3], Y[3], Z[3], r02 = 0, r2 = 0;
-      for (int a = 0; a < 3; a++) {
-        xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a];
-        Y[a] = pts->y[3 * j + a] - pts->y[3 * i + a];
-        Z[a] = dev[3 * j + a] - dev[3 * i + a];
-        r02 += xi[a] * xi[a], r2 += Y[a] * Y[a];
-      }
-      const double r0 = sqrt(r02), r = sqrt(r2), bj = states ? b->blend[j] : 1.0;
-      const double hi = bi * pf_pd_in_family(b, i, r0), hj = bj * pf_pd_in_family(b, j, r0);
-      const double om = pf_pd_omega(&b->influence, r0), w = om * pf_pd_bond_volume(fam, pts->vol, k, j);
-      const double kj = p->hg * gj[G_C] * (p->viscous ? b->hz[j] / p->cl : 1.0);
-      double gam = 0;
-      for (int a = 0; a < 3; a++) {
-        double t = 0, pi = 0, pj = 0;
-        for (int c = 0; c < 3; c++) {
-          t += (hi * gi[G_PK + 3 * a + c] + hj * gj[G_PK + 3 * a + c]) * xi[c];
-          pi += gi[gdev + 3 * a + c] * xi[c], pj += gj[gdev + 3 * a + c] * xi[c];
-        }
-        f[a] += standard ? w * t : 0.0;
-        gam += (hi * ki * (pi - Z[a]) + hj * kj * (pj - Z[a])) * Y[a];
-      }
-      if (p->lm) consistent_pair(b, pts, i, j, om, xi, f);
-      if (gam != 0 && r > 0 && !gi[G_DETACHED] && !gj[G_DETACHED]) {
-        const double s = -w * gam / (r0 * r * r);
-        for (int a = 0; a < 3; a++) fh[a] += s * Y[a];
-      }
-    }
+    double f[3], fh[3];
+    pair_sums(b, pts, i, standard, f, fh);
     if (pf_pd_corrected_at(b, i)) { /* less the ghost force of its own uniform stress */
       const double *d = &p->ghost[3 * i];
       for (int a = 0; a < 3; a++)
@@ -755,6 +918,7 @@ static void corr_destroy(pf_pd_body *b) {
   pf_material_destroy(&p->cm);
   free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm), free(p->out);
   free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam), free(p->lost);
+  free(p->kcount), free(p->kinv), free(p->kshape), free(p->nearz), free(p->fails);
   PF_FREE(b->mat);
 }
 
