@@ -32,7 +32,19 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Ghosted per-point record, one exchange per step: P K^-1 (row-major), Fbar, Fdot, detached,
+/* Four doubles in one vector register (GCC/Clang vector extension; two SSE2 halves where the
+ * target has no AVX): a 3-vector or a column of a 3x3
+ * matrix in lanes 0-2, lane 3 unused. */
+typedef double v4d __attribute__((vector_size(4 * sizeof(double))));
+static inline v4d v4d_load(const double *q) {
+  v4d v;
+  memcpy(&v, q, sizeof v);
+  return v;
+}
+
+
+/* Ghosted per-point record, one exchange per step: P K^-1, Fbar, Fdot (each by columns: M_rc at
+ * r + 3 c, for the lane-wise products of pair_sums), detached,
  * damage, the hourglass micromodulus of the point's horizon, and P itself (the partial stress
  * nu = sum_j w P K^-1 xi (x) xi V_j = P, for the partial-stress form; docs/theory/coupling.md
  * §2). */
@@ -492,6 +504,7 @@ static int row_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double A[3][3
   const pf_int li = i - b->first;
   const int stretch = b->damage->fails_on_stretch, one_sided = b->one_sided;
   const pf_influence *infl = &b->influence;
+  const int unit_w = infl->kind == PF_INFLUENCE_CONSTANT;
   const double *restrict X = pts->X, *restrict y = pts->y, *restrict v = pts->v, *restrict vol = pts->vol;
   const pf_int *restrict nbr = fam->neighbor;
   const float *restrict vfrac = fam->vfrac;
@@ -499,10 +512,9 @@ static int row_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double A[3][3
   uint8_t *restrict broken = fam->broken;
   const uint8_t fi = fails[i];
   const double xi0 = X[3 * i], xi1 = X[3 * i + 1], xi2 = X[3 * i + 2], hzi = b->hz[i];
-  const double y0 = y[3 * i], y1 = y[3 * i + 1], y2 = y[3 * i + 2];
-  const double v0 = v[3 * i], v1 = v[3 * i + 1], v2 = v[3 * i + 2];
-  double a00 = 0, a01 = 0, a02 = 0, a10 = 0, a11 = 0, a12 = 0, a20 = 0, a21 = 0, a22 = 0;
-  double b00 = 0, b01 = 0, b02 = 0, b10 = 0, b11 = 0, b12 = 0, b20 = 0, b21 = 0, b22 = 0;
+  const v4d yi = {y[3 * i], y[3 * i + 1], y[3 * i + 2], 0}, vi = {v[3 * i], v[3 * i + 1], v[3 * i + 2], 0};
+  /* the columns of A and B: A[r][s] += (w Y_r) xi_s lane r of column s */
+  v4d a0 = {0, 0, 0, 0}, a1 = a0, a2 = a0, b0 = a0, b1 = a0, b2 = a0;
   double smin = INFINITY;
   int nb = 0, lost = 0;
   for (int64_t k = fam->offset[li]; k < fam->offset[li + 1]; k++) {
@@ -513,10 +525,10 @@ static int row_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double A[3][3
       continue;
     }
     const double x0 = X[3 * j] - xi0, x1 = X[3 * j + 1] - xi1, x2 = X[3 * j + 2] - xi2;
-    const double Y0 = y[3 * j] - y0, Y1 = y[3 * j + 1] - y1, Y2 = y[3 * j + 2] - y2;
+    const v4d Y = (v4d){y[3 * j], y[3 * j + 1], y[3 * j + 2], 0} - yi;
     const double r0 = sqrt(x0 * x0 + x1 * x1 + x2 * x2);
     if (stretch && (fi & fails[j] & 4)) { /* (both ends test every row bond) */
-      const double s = (sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2) - r0) / r0;
+      const double s = (sqrt(Y[0] * Y[0] + Y[1] * Y[1] + Y[2] * Y[2]) - r0) / r0;
       if (s > fmin(b->s0[i], b->s0[j])) {
         broken[k] = 1, lost = 1;
         continue;
@@ -524,21 +536,16 @@ static int row_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double A[3][3
       smin = fmin(smin, s);
     }
     if (one_sided && !(r0 <= hzi)) continue;
-    const double w = pf_pd_omega(infl, r0) * (vfrac ? vol[j] * vfrac[k] : vol[j]);
-    const double D0 = v[3 * j] - v0, D1 = v[3 * j + 1] - v1, D2 = v[3 * j + 2] - v2;
-    const double wY0 = w * Y0, wY1 = w * Y1, wY2 = w * Y2, wD0 = w * D0, wD1 = w * D1, wD2 = w * D2;
-    a00 += wY0 * x0, a01 += wY0 * x1, a02 += wY0 * x2;
-    a10 += wY1 * x0, a11 += wY1 * x1, a12 += wY1 * x2;
-    a20 += wY2 * x0, a21 += wY2 * x1, a22 += wY2 * x2;
-    b00 += wD0 * x0, b01 += wD0 * x1, b02 += wD0 * x2;
-    b10 += wD1 * x0, b11 += wD1 * x1, b12 += wD1 * x2;
-    b20 += wD2 * x0, b21 += wD2 * x1, b22 += wD2 * x2;
+    const double w = (unit_w ? 1.0 : pf_pd_omega(infl, r0)) * (vfrac ? vol[j] * vfrac[k] : vol[j]);
+    const v4d wY = w * Y, wD = w * ((v4d){v[3 * j], v[3 * j + 1], v[3 * j + 2], 0} - vi);
+    a0 += wY * x0, a1 += wY * x1, a2 += wY * x2;
+    b0 += wD * x0, b1 += wD * x1, b2 += wD * x2;
     nb++;
   }
-  A[0][0] = a00, A[0][1] = a01, A[0][2] = a02, A[1][0] = a10, A[1][1] = a11, A[1][2] = a12;
-  A[2][0] = a20, A[2][1] = a21, A[2][2] = a22;
-  B[0][0] = b00, B[0][1] = b01, B[0][2] = b02, B[1][0] = b10, B[1][1] = b11, B[1][2] = b12;
-  B[2][0] = b20, B[2][1] = b21, B[2][2] = b22;
+  for (int r = 0; r < 3; r++) {
+    A[r][0] = a0[r], A[r][1] = a1[r], A[r][2] = a2[r];
+    B[r][0] = b0[r], B[r][1] = b1[r], B[r][2] = b2[r];
+  }
   b->smin[li] = smin;
   p->lost[li] = (uint8_t)lost;
   return nb;
@@ -617,7 +624,7 @@ static void rereference(pf_pd_body *b, pf_int i, double Fb[3][3], double L[3][3]
   double Fn[3][3], Am[3][3], Ap[3][3], Ai[3][3], T[3][3], Fs[3][3];
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) {
-      Fn[r][c] = g[G_F + 3 * r + c];
+      Fn[r][c] = g[G_F + r + 3 * c];
       Am[r][c] = (r == c) - 0.5 * b->dt * L[r][c], Ap[r][c] = (r == c) + 0.5 * b->dt * L[r][c];
     }
   if (!p->nstate || g[G_DETACHED] || !(pf_mat3_det(Fn) > 0) || !(pf_mat3_inverse(Am, Ai) > 0)) return;
@@ -691,8 +698,8 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
   memcpy(&p->s_old[6 * li], &p->sigma[6 * i], 6 * sizeof(double));
   for (int r = 0; r < 3; r++)
     for (int s = 0; s < 3; s++) {
-      F[3 * r + s] = g[G_F + 3 * r + s] = Fb[r][s];
-      g[G_PK + 3 * r + s] = p->Ki[9 * li + 3 * r + s] = Ki[r][s], g[G_FDOT + 3 * r + s] = Fd[r][s];
+      F[3 * r + s] = g[G_F + r + 3 * s] = Fb[r][s]; /* (the record by columns) */
+      g[G_PK + r + 3 * s] = p->Ki[9 * li + 3 * r + s] = Ki[r][s], g[G_FDOT + r + 3 * s] = Fd[r][s];
     }
   return 1;
 }
@@ -705,7 +712,7 @@ static void stress_to_force_state(pf_pd_body *b, pf_int i) {
   double *g = &p->gx[GX * i], S[3][3], Fb[3][3], Fi[3][3], Ki[3][3], P[3][3], T[3][3];
   const double *s = &p->sigma[6 * i], *so = &p->s_old[6 * li], *D = &p->D[6 * li];
   for (int r = 0; r < 3; r++)
-    for (int c = 0; c < 3; c++) Fb[r][c] = g[G_F + 3 * r + c], Ki[r][c] = g[G_PK + 3 * r + c];
+    for (int c = 0; c < 3; c++) Fb[r][c] = g[G_F + r + 3 * c], Ki[r][c] = g[G_PK + r + 3 * c];
   const double J = pf_mat3_inverse(Fb, Fi);
   double power = 0;
   for (int k = 0; k < 6; k++) power += (k < 3 ? 1.0 : 2.0) * 0.5 * (s[k] + so[k]) * D[k];
@@ -715,7 +722,7 @@ static void stress_to_force_state(pf_pd_body *b, pf_int i) {
     for (int c = 0; c < 3; c++) P[r][c] = J * (S[r][0] * Fi[c][0] + S[r][1] * Fi[c][1] + S[r][2] * Fi[c][2]);
   mat_mul(P, Ki, T);
   for (int r = 0; r < 3; r++)
-    for (int c = 0; c < 3; c++) g[G_PK + 3 * r + c] = T[r][c], g[G_NU + 3 * r + c] = P[r][c];
+    for (int c = 0; c < 3; c++) g[G_PK + r + 3 * c] = T[r][c], g[G_NU + 3 * r + c] = P[r][c];
 }
 
 /* Bonds to a point detached last step, or whose either end's damage exceeded D_c last step, fail
@@ -806,8 +813,10 @@ static void consistent_pair(const pf_pd_body *b, const pf_points *pts, pf_int i,
  * corrections (consistent_pair). */
 /* The pair-force sums of owned point i over its intact bonds (corr_force): f gets
  * sum_j w ([j in H_i] b_i P_i K_i^-1 + [i in H_j] b_j P_j K_j^-1) xi when `standard`, fh the
- * hourglass forces. One pass over the row with the point's own record in locals and the loop's
- * invariants hoisted (the terms and their order are those of the formulas above). */
+ * hourglass forces. One pass over the row with the point's own record in registers; the record's
+ * matrices are stored by columns (G_PK, G_F, G_FDOT), so that M xi is three lane-wise
+ * multiply-adds of a column by a component of xi, column 0 first: each component is the sum of
+ * the formula in its order. (A column load reads one double past it, still in the record.) */
 static void pair_sums(const pf_pd_body *b, const pf_points *pts, pf_int i, int standard, double f[3], double fh[3]) {
   const corr *p = b->mat;
   const pf_family *fam = &b->fam;
@@ -819,50 +828,51 @@ static void pair_sums(const pf_pd_body *b, const pf_points *pts, pf_int i, int s
   const pf_int *restrict nbr = fam->neighbor;
   const uint8_t *restrict broken = fam->broken;
   const pf_influence *infl = &b->influence;
-  const int consistent = p->lm && p->nearz[i - b->first];
+  const int consistent = p->lm && p->nearz[i - b->first], unit_w = infl->kind == PF_INFLUENCE_CONSTANT;
   const double *gi = &gx[GX * i], bi = states ? blend[i] : 1.0, hg = p->hg, hzi = hz[i];
   const double ki = hg * gi[G_C] * (viscous ? hzi / p->cl : 1.0);
   const double x0 = X[3 * i], x1 = X[3 * i + 1], x2 = X[3 * i + 2], y0 = y[3 * i], y1 = y[3 * i + 1], y2 = y[3 * i + 2];
   const double z0 = dev[3 * i], z1 = dev[3 * i + 1], z2 = dev[3 * i + 2];
   const int detached_i = gi[G_DETACHED] != 0;
-  double PKi[9], Gi[9];
-  for (int q = 0; q < 9; q++) PKi[q] = gi[G_PK + q], Gi[q] = gi[gdev + q];
-  double f0 = 0, f1 = 0, f2 = 0, h0 = 0, h1 = 0, h2 = 0;
+  const v4d zero = {0, 0, 0, 0};
+  const v4d Pi0 = v4d_load(gi + G_PK), Pi1 = v4d_load(gi + G_PK + 3), Pi2 = v4d_load(gi + G_PK + 6);
+  const v4d Gi0 = v4d_load(gi + gdev), Gi1 = v4d_load(gi + gdev + 3), Gi2 = v4d_load(gi + gdev + 6);
+  v4d fv = zero, hv = zero;
   for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
     if (broken[k]) continue;
     const pf_int j = nbr[k];
     const double *restrict gj = &gx[GX * j];
     const double xi[3] = {X[3 * j] - x0, X[3 * j + 1] - x1, X[3 * j + 2] - x2};
-    const double Y[3] = {y[3 * j] - y0, y[3 * j + 1] - y1, y[3 * j + 2] - y2};
-    const double Z[3] = {dev[3 * j] - z0, dev[3 * j + 1] - z1, dev[3 * j + 2] - z2};
-    double r02 = 0, r2 = 0;
-    for (int a = 0; a < 3; a++) r02 += xi[a] * xi[a], r2 += Y[a] * Y[a];
-    const double r0 = sqrt(r02), r = sqrt(r2), bj = states ? blend[j] : 1.0;
+    const double Y0 = y[3 * j] - y0, Y1 = y[3 * j + 1] - y1, Y2 = y[3 * j + 2] - y2;
+    const v4d Yv = {Y0, Y1, Y2, 0};
+    const v4d Z = viscous ? (v4d){dev[3 * j] - z0, dev[3 * j + 1] - z1, dev[3 * j + 2] - z2, 0} : Yv;
+    const double r0 = sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]), r = sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2);
+    const double bj = states ? blend[j] : 1.0;
     const double hi = bi * (!one_sided || r0 <= hzi), hj = bj * (!one_sided || r0 <= hz[j]);
-    const double om = pf_pd_omega(infl, r0), w = om * (vfrac ? vol[j] * vfrac[k] : vol[j]);
+    const double om = unit_w ? 1.0 : pf_pd_omega(infl, r0), w = om * (vfrac ? vol[j] * vfrac[k] : vol[j]);
     const double kj = hg * gj[G_C] * (viscous ? hz[j] / p->cl : 1.0);
-    double gam = 0, t[3];
-    for (int a = 0; a < 3; a++) {
-      double ta = 0, pi = 0, pj = 0;
-      for (int c = 0; c < 3; c++) {
-        ta += (hi * PKi[3 * a + c] + hj * gj[G_PK + 3 * a + c]) * xi[c];
-        pi += Gi[3 * a + c] * xi[c], pj += gj[gdev + 3 * a + c] * xi[c];
-      }
-      t[a] = standard ? w * ta : 0.0;
-      gam += (hi * ki * (pi - Z[a]) + hj * kj * (pj - Z[a])) * Y[a];
-    }
-    f0 += t[0], f1 += t[1], f2 += t[2];
+    v4d t = (hi * Pi0 + hj * v4d_load(gj + G_PK)) * xi[0] + zero;
+    t = (hi * Pi1 + hj * v4d_load(gj + G_PK + 3)) * xi[1] + t;
+    t = (hi * Pi2 + hj * v4d_load(gj + G_PK + 6)) * xi[2] + t;
+    v4d pi = Gi0 * xi[0] + zero, pj = v4d_load(gj + gdev) * xi[0] + zero;
+    pi = Gi1 * xi[1] + pi, pj = v4d_load(gj + gdev + 3) * xi[1] + pj;
+    pi = Gi2 * xi[2] + pi, pj = v4d_load(gj + gdev + 6) * xi[2] + pj;
+    if (standard) fv += w * t;
+    const v4d d = hi * ki * (pi - Z) + hj * kj * (pj - Z);
+    double gam = d[0] * Y0 + 0.0;
+    gam = d[1] * Y1 + gam;
+    gam = d[2] * Y2 + gam;
     if (consistent) {
-      double fc[3] = {f0, f1, f2};
+      double fc[3] = {fv[0], fv[1], fv[2]};
       consistent_pair(b, pts, i, j, om, xi, fc);
-      f0 = fc[0], f1 = fc[1], f2 = fc[2];
+      fv[0] = fc[0], fv[1] = fc[1], fv[2] = fc[2];
     }
     if (gam != 0 && r > 0 && !detached_i && gj[G_DETACHED] == 0) {
       const double s = -w * gam / (r0 * r * r);
-      h0 += s * Y[0], h1 += s * Y[1], h2 += s * Y[2];
+      hv += s * Yv;
     }
   }
-  f[0] = f0, f[1] = f1, f[2] = f2, fh[0] = h0, fh[1] = h1, fh[2] = h2;
+  for (int a = 0; a < 3; a++) f[a] = fv[a], fh[a] = hv[a];
 }
 
 static int corr_force(pf_pd_body *b, pf_points *pts) {
