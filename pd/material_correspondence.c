@@ -498,16 +498,17 @@ static inline int record_fails(uint8_t fi, uint8_t fj) {
  * bonds fail_bonds would (last step's records, fails) and those beyond the critical stretch, as
  * bond_sums does (the same terms in the same order; its K and the sums of the step's bound are
  * the cached ones, shape_of). Returns the number of intact own bonds. */
-static int row_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double A[3][3], double B[3][3]) {
+static inline __attribute__((always_inline)) int row_kernel(pf_pd_body *b, const pf_points *pts, pf_int i,
+                                                             double A[3][3], double B[3][3], const int general) {
   corr *p = b->mat;
   const pf_family *fam = &b->fam;
   const pf_int li = i - b->first;
-  const int stretch = b->damage->fails_on_stretch, one_sided = b->one_sided;
+  const int stretch = general && b->damage->fails_on_stretch, one_sided = general && b->one_sided;
   const pf_influence *infl = &b->influence;
-  const int unit_w = infl->kind == PF_INFLUENCE_CONSTANT;
+  const int unit_w = !general || infl->kind == PF_INFLUENCE_CONSTANT;
   const double *restrict X = pts->X, *restrict y = pts->y, *restrict v = pts->v, *restrict vol = pts->vol;
   const pf_int *restrict nbr = fam->neighbor;
-  const float *restrict vfrac = fam->vfrac;
+  const float *restrict vfrac = general ? fam->vfrac : NULL;
   const uint8_t *restrict fails = p->fails;
   uint8_t *restrict broken = fam->broken;
   const uint8_t fi = fails[i];
@@ -549,6 +550,14 @@ static int row_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double A[3][3
   b->smin[li] = smin;
   p->lost[li] = (uint8_t)lost;
   return nb;
+}
+
+/* row_kernel in its general form, or with the critical stretch, the variable horizon, the
+ * influence function and the partial volumes folded away when the body has none of them. */
+static int row_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double A[3][3], double B[3][3]) {
+  if (b->damage->fails_on_stretch || b->one_sided || b->influence.kind != PF_INFLUENCE_CONSTANT || b->fam.vfrac)
+    return row_kernel(b, pts, i, A, B, 1);
+  return row_kernel(b, pts, i, A, B, 0);
 }
 
 /* fail_bonds' test alone over the row of owned point i (a point of the consistent form, whose
@@ -817,18 +826,21 @@ static void consistent_pair(const pf_pd_body *b, const pf_points *pts, pf_int i,
  * matrices are stored by columns (G_PK, G_F, G_FDOT), so that M xi is three lane-wise
  * multiply-adds of a column by a component of xi, column 0 first: each component is the sum of
  * the formula in its order. (A column load reads one double past it, still in the record.) */
-static void pair_sums(const pf_pd_body *b, const pf_points *pts, pf_int i, int standard, double f[3], double fh[3]) {
+static inline __attribute__((always_inline)) void pair_row(const pf_pd_body *b, const pf_points *pts, pf_int i,
+                                                            int standard, double f[3], double fh[3], const int general) {
   const corr *p = b->mat;
   const pf_family *fam = &b->fam;
-  const int states = b->blend && b->blend_states, one_sided = b->one_sided, viscous = p->viscous;
+  const int states = general && b->blend && b->blend_states, one_sided = general && b->one_sided;
+  const int viscous = general && p->viscous;
   const int gdev = viscous ? G_FDOT : G_F; /* the predicted relative position or velocity */
   const double *restrict dev = viscous ? pts->v : pts->y, *restrict X = pts->X, *restrict y = pts->y;
   const double *restrict vol = pts->vol, *restrict gx = p->gx, *restrict hz = b->hz, *restrict blend = b->blend;
-  const float *restrict vfrac = fam->vfrac;
+  const float *restrict vfrac = general ? fam->vfrac : NULL;
   const pf_int *restrict nbr = fam->neighbor;
   const uint8_t *restrict broken = fam->broken;
   const pf_influence *infl = &b->influence;
-  const int consistent = p->lm && p->nearz[i - b->first], unit_w = infl->kind == PF_INFLUENCE_CONSTANT;
+  const int consistent = general && p->lm && p->nearz[i - b->first];
+  const int unit_w = !general || infl->kind == PF_INFLUENCE_CONSTANT;
   const double *gi = &gx[GX * i], bi = states ? blend[i] : 1.0, hg = p->hg, hzi = hz[i];
   const double ki = hg * gi[G_C] * (viscous ? hzi / p->cl : 1.0);
   const double x0 = X[3 * i], x1 = X[3 * i + 1], x2 = X[3 * i + 2], y0 = y[3 * i], y1 = y[3 * i + 1], y2 = y[3 * i + 2];
@@ -873,6 +885,20 @@ static void pair_sums(const pf_pd_body *b, const pf_points *pts, pf_int i, int s
     }
   }
   for (int a = 0; a < 3; a++) f[a] = fv[a], fh[a] = hv[a];
+}
+
+/* Does point i need pair_row's general form (a variable horizon, blending weights in the force
+ * states, the viscous hourglass control, an influence function other than 1, partial volumes or
+ * the consistent form's corrections)? Else the common case, with those terms folded away. */
+static int needs_general(const pf_pd_body *b, pf_int i) {
+  const corr *p = b->mat;
+  return b->one_sided || (b->blend && b->blend_states) || p->viscous || b->influence.kind != PF_INFLUENCE_CONSTANT ||
+         b->fam.vfrac || (p->lm && p->nearz[i - b->first]);
+}
+
+static void pair_sums(const pf_pd_body *b, const pf_points *pts, pf_int i, int standard, double f[3], double fh[3]) {
+  if (needs_general(b, i)) pair_row(b, pts, i, standard, f, fh, 1);
+  else pair_row(b, pts, i, standard, f, fh, 0);
 }
 
 static int corr_force(pf_pd_body *b, pf_points *pts) {
