@@ -25,7 +25,13 @@
  * viscous hourglass control of hex8) penalises the deviation of the relative velocity from
  * Fdot xi instead, with c scaled by tau = delta / c_L (the wave transit of the horizon, so that
  * C_hg ~ 1 damps a mode of wavelength ~ delta critically): it damps zero-energy modes without
- * resisting the slow, non-affine flow of plastic deformation. */
+ * resisting the slow, non-affine flow of plastic deformation.
+ * Cost (bench/README.md, "Correspondence and modified Johnson-Cook"): K is reference geometry,
+ * formed again only when a point's intact own bonds change; each pass is one walk over the row
+ * (the bond failures of the step are tested in the first); the 3x3 products are lane-wise
+ * vector multiply-adds in the order of the scalar sums, so the results are those of the formulas
+ * term by term; the common case (one horizon, influence 1, no partial volumes, stiffness control,
+ * no blended or consistent terms) is a specialised copy of each loop. */
 #include "pd/pd_impl.h"
 #include "material/material.h"
 
@@ -33,8 +39,7 @@
 #include <string.h>
 
 /* Four doubles in one vector register (GCC/Clang vector extension; two SSE2 halves where the
- * target has no AVX): a 3-vector or a column of a 3x3
- * matrix in lanes 0-2, lane 3 unused. */
+ * target has no AVX): a 3-vector or a column of a 3x3 matrix in lanes 0-2, lane 3 unused. */
 typedef double v4d __attribute__((vector_size(4 * sizeof(double))));
 static inline v4d v4d_load(const double *q) {
   v4d v;
@@ -433,7 +438,8 @@ static void mat_mul(double A[3][3], double B[3][3], double C[3][3]) {
 /* The shape tensor and the deformation and rate sums of point i over its intact bonds; fails
  * bonds beyond the critical stretch. At a point of the consistent form, also the corrections'
  * sums H = sum_k Y (x) h_ik and Hd = sum_k Ydot (x) h_ik over its whole row (pd/consistent.c).
- * Returns the number of intact bonds. */
+ * Returns the number of intact bonds. Taken at the consistent form's points only (the others
+ * take row_sums); kinematics uses the cached K (shape_of), the same sums. */
 static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][3], double A[3][3],
                      double B[3][3], double H[3][3], double Hd[3][3], double sums[2]) {
   const corr *p = b->mat;
@@ -809,17 +815,6 @@ static void consistent_pair(const pf_pd_body *b, const pf_points *pts, pf_int i,
   }
 }
 
-/* Pass 2: pair forces from both ends' force states and the hourglass control. A point detached
- * in this step's pass 1 has P K^-1 = 0 and no hourglass force (its Fbar is not defined); its
- * bonds fail at the start of the next step. With a variable horizon each end contributes only to
- * the bonds of its own family (T_i<xi> for j within delta_i, T_j<-xi> for i within delta_j):
- * f_i = V_i sum_j w V_j ([j in H_i] P_i K_i^-1 + [i in H_j] P_j K_j^-1) xi. A point of the
- * partial-stress form takes V_i div nu instead (pd/partial_stress.c); the hourglass pair
- * forces, zero under any affine motion, are the same in both forms. Coupled in the energy form
- * (pf_pd_body_set_blending), each end's force state carries its own blending weight,
- * beta_i P_i K_i^-1 and beta_j P_j K_j^-1, and so does each end's hourglass stiffness: the
- * forces of sum_i beta_i W_i V_i (docs/theory/coupling.md §3.4); so do the consistent form's
- * corrections (consistent_pair). */
 /* The pair-force sums of owned point i over its intact bonds (corr_force): f gets
  * sum_j w ([j in H_i] b_i P_i K_i^-1 + [i in H_j] b_j P_j K_j^-1) xi when `standard`, fh the
  * hourglass forces. One pass over the row with the point's own record in registers; the record's
@@ -901,6 +896,17 @@ static void pair_sums(const pf_pd_body *b, const pf_points *pts, pf_int i, int s
   else pair_row(b, pts, i, standard, f, fh, 0);
 }
 
+/* Pass 2: pair forces from both ends' force states and the hourglass control. A point detached
+ * in this step's pass 1 has P K^-1 = 0 and no hourglass force (its Fbar is not defined); its
+ * bonds fail at the start of the next step. With a variable horizon each end contributes only to
+ * the bonds of its own family (T_i<xi> for j within delta_i, T_j<-xi> for i within delta_j):
+ * f_i = V_i sum_j w V_j ([j in H_i] P_i K_i^-1 + [i in H_j] P_j K_j^-1) xi. A point of the
+ * partial-stress form takes V_i div nu instead (pd/partial_stress.c); the hourglass pair
+ * forces, zero under any affine motion, are the same in both forms. Coupled in the energy form
+ * (pf_pd_body_set_blending), each end's force state carries its own blending weight,
+ * beta_i P_i K_i^-1 and beta_j P_j K_j^-1, and so does each end's hourglass stiffness: the
+ * forces of sum_i beta_i W_i V_i (docs/theory/coupling.md §3.4); so do the consistent form's
+ * corrections (consistent_pair). */
 static int corr_force(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   PF_CALL(corr_pass1(b, pts));
