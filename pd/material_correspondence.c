@@ -25,14 +25,31 @@
  * viscous hourglass control of hex8) penalises the deviation of the relative velocity from
  * Fdot xi instead, with c scaled by tau = delta / c_L (the wave transit of the horizon, so that
  * C_hg ~ 1 damps a mode of wavelength ~ delta critically): it damps zero-energy modes without
- * resisting the slow, non-affine flow of plastic deformation. */
+ * resisting the slow, non-affine flow of plastic deformation.
+ * Cost (bench/README.md, "Correspondence and modified Johnson-Cook"): K is reference geometry,
+ * formed again only when a point's intact own bonds change; each pass is one walk over the row
+ * (the bond failures of the step are tested in the first); the 3x3 products are lane-wise
+ * vector multiply-adds in the order of the scalar sums, so the results are those of the formulas
+ * term by term; the common case (one horizon, influence 1, no partial volumes, stiffness control,
+ * no blended or consistent terms) is a specialised copy of each loop. */
 #include "pd/pd_impl.h"
 #include "material/material.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-/* Ghosted per-point record, one exchange per step: P K^-1 (row-major), Fbar, Fdot, detached,
+/* Four doubles in one vector register (GCC/Clang vector extension; two SSE2 halves where the
+ * target has no AVX): a 3-vector or a column of a 3x3 matrix in lanes 0-2, lane 3 unused. */
+typedef double v4d __attribute__((vector_size(4 * sizeof(double))));
+static inline v4d v4d_load(const double *q) {
+  v4d v;
+  memcpy(&v, q, sizeof v);
+  return v;
+}
+
+
+/* Ghosted per-point record, one exchange per step: P K^-1, Fbar, Fdot (each by columns: M_rc at
+ * r + 3 c, for the lane-wise products of pair_sums), detached,
  * damage, the hourglass micromodulus of the point's horizon, and P itself (the partial stress
  * nu = sum_j w P K^-1 xi (x) xi V_j = P, for the partial-stress form; docs/theory/coupling.md
  * §2). */
@@ -63,7 +80,16 @@ typedef struct {
   double *ghost;                      /* field "ghost_correction" [3]: the corrected form's d_i */
   double *lm;                         /* field "consistent_weights": the consistent form's multipliers */
   double *rate, *whg2, *cw; /* scratch [n]: beta / sigma_min(Fbar), omega_hg^2, wave speed */
-  pf_int cap;
+  /* The shape tensor of each owned point's intact own bonds, kept between steps (it depends only
+   * on the reference positions and on which bonds are intact, and bonds only ever fail): valid
+   * while the point's count of intact own bonds is kcount (-1: to compute). */
+  int *kcount;       /* [n] */
+  double *kinv;      /* [9n] K^-1 */
+  double *kshape;    /* [4n] lambda_min(K), sum_j w V_j |xi|, sum_j w V_j / |xi|, 1 if K spans */
+  uint8_t *fails;    /* [store] last step's record of each point, for the bond failures:
+                        bit 0 detached, bit 1 damage above D_c, bit 2 in the PD region */
+  uint8_t *nearz;    /* [n] the point or one in its row takes the consistent form */
+  pf_int cap, fcap;
 } corr;
 
 const pf_key pf_pd_hourglass_keys[] = {
@@ -180,13 +206,13 @@ static int register_fields(pf_pd_body *b, pf_points *pts) {
  * & Askari 2005, eq. 16, doubled: both ends' deviations act on a bond); eigenvalues of a sum add,
  * so omega^2 sums. Computes rate = gamma beta / sigma_min (0 for a point without stiffness) and
  * omega_hg^2; the step is 2 / sqrt((c rate)^2 + omega_hg^2). */
-static void step_rates(const pf_pd_body *b, pf_int i, double K[3][3], double Fb[3][3],
+static void step_rates(const pf_pd_body *b, pf_int i, double lk, double Fb[3][3],
                        const double sums[2], double *rate, double *whg2) {
   const corr *p = b->mat;
   double C[3][3];
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) C[r][c] = Fb[0][r] * Fb[0][c] + Fb[1][r] * Fb[1][c] + Fb[2][r] * Fb[2][c];
-  const double lk = pf_sym3_min_eigenvalue(K), lc = pf_sym3_min_eigenvalue(C);
+  const double lc = pf_sym3_min_eigenvalue(C); /* lk = lambda_min(K) */
   *rate = lk > 0 && lc > 0 ? p->gamma * sums[0] / (lk * sqrt(lc)) : 0.0;
   *whg2 = p->viscous ? 0.0 : 4.0 * p->hg * p->gx[GX * i + G_C] * sums[1] / b->density;
 }
@@ -204,7 +230,7 @@ static double reference_step(const pf_pd_body *b, const pf_points *pts, pf_int i
       for (int c = 0; c < 3; c++) K[r][c] += w * xi[r] * xi[c];
     sums[0] += w * r0, sums[1] += w / r0;
   }
-  step_rates(b, i, K, I, sums, &rate, &whg2);
+  step_rates(b, i, pf_sym3_min_eigenvalue(K), I, sums, &rate, &whg2);
   return 2.0 / sqrt(p->cl * p->cl * rate * rate + whg2);
 }
 
@@ -351,9 +377,15 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
   if (b->n > p->cap) {
     free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm);
     free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam), free(p->lost);
-    p->lost = NULL;
+    free(p->kcount), free(p->kinv), free(p->kshape), free(p->nearz);
+    p->lost = p->nearz = NULL;
     p->F = p->D = p->s_old = p->saved = p->Jm = p->rate = p->whg2 = p->cw = p->Ki = p->K0 = NULL;
-    p->nfam = NULL;
+    p->kinv = p->kshape = NULL;
+    p->nfam = p->kcount = NULL;
+    PF_MALLOC(p->kcount, b->n);
+    PF_MALLOC(p->kinv, 9 * (size_t)b->n);
+    PF_MALLOC(p->kshape, 4 * (size_t)b->n);
+    PF_MALLOC(p->nearz, b->n);
     PF_MALLOC(p->Ki, 9 * (size_t)b->n);
     PF_MALLOC(p->K0, 9 * (size_t)b->n);
     PF_MALLOC(p->nfam, b->n);
@@ -389,6 +421,12 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
     for (pf_int i = b->first; i < b->first + b->n; i++) p->step[i] = reference_step(b, pts, i);
   PF_CALL(ghost_vectors(b, pts));
   PF_CALL(consistent_weights(b, pts));
+  for (pf_int li = 0; li < b->n; li++) { /* (the shape tensors are formed at the first step) */
+    const pf_int i = b->first + li;
+    int z = p->lm && pf_pd_consistent_at(b, i);
+    for (int64_t k = b->fam.offset[li]; k < b->fam.offset[li + 1] && p->lm && !z; k++) z = pf_pd_consistent_at(b, b->fam.neighbor[k]);
+    p->kcount[li] = -1, p->nearz[li] = (uint8_t)z;
+  }
   return pf_points_exchange(pts, p->gx, GX);
 }
 
@@ -400,7 +438,8 @@ static void mat_mul(double A[3][3], double B[3][3], double C[3][3]) {
 /* The shape tensor and the deformation and rate sums of point i over its intact bonds; fails
  * bonds beyond the critical stretch. At a point of the consistent form, also the corrections'
  * sums H = sum_k Y (x) h_ik and Hd = sum_k Ydot (x) h_ik over its whole row (pd/consistent.c).
- * Returns the number of intact bonds. */
+ * Returns the number of intact bonds. Taken at the consistent form's points only (the others
+ * take row_sums); kinematics uses the cached K (shape_of), the same sums. */
 static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][3], double A[3][3],
                      double B[3][3], double H[3][3], double Hd[3][3], double sums[2]) {
   const corr *p = b->mat;
@@ -453,6 +492,107 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
   return nb;
 }
 
+/* Does the bond between points of failure records fi and fj fail before this step's sums
+ * (fail_bonds)? When either end was detached last step, or either end's damage exceeded D_c and
+ * both are points of the standard force (pf_pd_may_fail). */
+static inline int record_fails(uint8_t fi, uint8_t fj) {
+  return ((fi | fj) & 1) || (((fi | fj) & 2) && (fi & fj & 4));
+}
+
+/* The deformation and rate sums A = sum_j w Y (x) xi, B = sum_j w Ydot (x) xi of a point outside
+ * the consistent form over its intact own bonds, in one pass over its row that first fails the
+ * bonds fail_bonds would (last step's records, fails) and those beyond the critical stretch, as
+ * bond_sums does (the same terms in the same order; its K and the sums of the step's bound are
+ * the cached ones, shape_of). Returns the number of intact own bonds. */
+static inline __attribute__((always_inline)) int row_kernel(pf_pd_body *b, const pf_points *pts, pf_int i,
+                                                             double A[3][3], double B[3][3], const int general) {
+  corr *p = b->mat;
+  const pf_family *fam = &b->fam;
+  const pf_int li = i - b->first;
+  const int stretch = general && b->damage->fails_on_stretch, one_sided = general && b->one_sided;
+  const pf_influence *infl = &b->influence;
+  const int unit_w = !general || infl->kind == PF_INFLUENCE_CONSTANT;
+  const double *restrict X = pts->X, *restrict y = pts->y, *restrict v = pts->v, *restrict vol = pts->vol;
+  const pf_int *restrict nbr = fam->neighbor;
+  const float *restrict vfrac = general ? fam->vfrac : NULL;
+  const uint8_t *restrict fails = p->fails;
+  uint8_t *restrict broken = fam->broken;
+  const uint8_t fi = fails[i];
+  const double xi0 = X[3 * i], xi1 = X[3 * i + 1], xi2 = X[3 * i + 2], hzi = b->hz[i];
+  const v4d yi = {y[3 * i], y[3 * i + 1], y[3 * i + 2], 0}, vi = {v[3 * i], v[3 * i + 1], v[3 * i + 2], 0};
+  /* the columns of A and B: A[r][s] += (w Y_r) xi_s lane r of column s */
+  v4d a0 = {0, 0, 0, 0}, a1 = a0, a2 = a0, b0 = a0, b1 = a0, b2 = a0;
+  double smin = INFINITY;
+  int nb = 0, lost = 0;
+  for (int64_t k = fam->offset[li]; k < fam->offset[li + 1]; k++) {
+    if (broken[k]) continue;
+    const pf_int j = nbr[k];
+    if (record_fails(fi, fails[j])) {
+      broken[k] = 1, lost = 1;
+      continue;
+    }
+    const double x0 = X[3 * j] - xi0, x1 = X[3 * j + 1] - xi1, x2 = X[3 * j + 2] - xi2;
+    const v4d Y = (v4d){y[3 * j], y[3 * j + 1], y[3 * j + 2], 0} - yi;
+    const double r0 = sqrt(x0 * x0 + x1 * x1 + x2 * x2);
+    if (stretch && (fi & fails[j] & 4)) { /* (both ends test every row bond) */
+      const double s = (sqrt(Y[0] * Y[0] + Y[1] * Y[1] + Y[2] * Y[2]) - r0) / r0;
+      if (s > fmin(b->s0[i], b->s0[j])) {
+        broken[k] = 1, lost = 1;
+        continue;
+      }
+      smin = fmin(smin, s);
+    }
+    if (one_sided && !(r0 <= hzi)) continue;
+    const double w = (unit_w ? 1.0 : pf_pd_omega(infl, r0)) * (vfrac ? vol[j] * vfrac[k] : vol[j]);
+    const v4d wY = w * Y, wD = w * ((v4d){v[3 * j], v[3 * j + 1], v[3 * j + 2], 0} - vi);
+    a0 += wY * x0, a1 += wY * x1, a2 += wY * x2;
+    b0 += wD * x0, b1 += wD * x1, b2 += wD * x2;
+    nb++;
+  }
+  for (int r = 0; r < 3; r++) {
+    A[r][0] = a0[r], A[r][1] = a1[r], A[r][2] = a2[r];
+    B[r][0] = b0[r], B[r][1] = b1[r], B[r][2] = b2[r];
+  }
+  b->smin[li] = smin;
+  p->lost[li] = (uint8_t)lost;
+  return nb;
+}
+
+/* row_kernel in its general form, or with the critical stretch, the variable horizon, the
+ * influence function and the partial volumes folded away when the body has none of them. */
+static int row_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double A[3][3], double B[3][3]) {
+  if (b->damage->fails_on_stretch || b->one_sided || b->influence.kind != PF_INFLUENCE_CONSTANT || b->fam.vfrac)
+    return row_kernel(b, pts, i, A, B, 1);
+  return row_kernel(b, pts, i, A, B, 0);
+}
+
+/* fail_bonds' test alone over the row of owned point i (a point of the consistent form, whose
+ * sums bond_sums takes, or an idle one). */
+static void fail_row(pf_pd_body *b, pf_int i) {
+  corr *p = b->mat;
+  const pf_family *fam = &b->fam;
+  const pf_int li = i - b->first;
+  p->lost[li] = 0;
+  for (int64_t k = fam->offset[li]; k < fam->offset[li + 1]; k++)
+    if (!fam->broken[k] && record_fails(p->fails[i], p->fails[fam->neighbor[k]])) fam->broken[k] = 1, p->lost[li] = 1;
+}
+
+/* Last step's record of every store point for the failure test (owned points and ghosts read the
+ * same exchanged record, so both ends of a bond decide alike). */
+static int failure_records(pf_pd_body *b, const pf_points *pts) {
+  corr *p = b->mat;
+  if (pts->n_total > p->fcap) {
+    free(p->fails);
+    p->fcap = pts->n_total + pts->n_total / 8 + 16;
+    PF_MALLOC(p->fails, p->fcap);
+  }
+  for (pf_int j = 0; j < pts->n_total; j++) {
+    const double *g = &p->gx[GX * j];
+    p->fails[j] = (uint8_t)((g[G_DETACHED] != 0) | (g[G_DAMAGE] > p->dcrit) << 1 | (b->region[j] == 0) << 2);
+  }
+  return 0;
+}
+
 /* A point whose intact bonds keep less than this fraction of its whole family's span in some
  * direction, min_n (n.K n)/(n.K0 n), is detached (docs/theory/materials.md §2, "the span test"):
  * 1 for an intact family, 1/2 on either side of a crack through the point, 0 when the bonds left
@@ -499,7 +639,7 @@ static void rereference(pf_pd_body *b, pf_int i, double Fb[3][3], double L[3][3]
   double Fn[3][3], Am[3][3], Ap[3][3], Ai[3][3], T[3][3], Fs[3][3];
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) {
-      Fn[r][c] = g[G_F + 3 * r + c];
+      Fn[r][c] = g[G_F + r + 3 * c];
       Am[r][c] = (r == c) - 0.5 * b->dt * L[r][c], Ap[r][c] = (r == c) + 0.5 * b->dt * L[r][c];
     }
   if (!p->nstate || g[G_DETACHED] || !(pf_mat3_det(Fn) > 0) || !(pf_mat3_inverse(Am, Ai) > 0)) return;
@@ -507,18 +647,49 @@ static void rereference(pf_pd_body *b, pf_int i, double Fb[3][3], double L[3][3]
   pf_material_rereference(p->cm, 1, &Fs[0][0], &Fb[0][0], &p->state[(size_t)p->nstate * i]);
 }
 
+/* K = sum_j w V_j xi (x) xi over the intact own bonds of owned point i (the order and terms of
+ * bond_sums), with what a step needs of it, into the cache: K^-1, lambda_min(K), the sums of the
+ * step's bound (step_rates) and whether K spans space (kinematics). */
+static void shape_of(pf_pd_body *b, const pf_points *pts, pf_int i) {
+  corr *p = b->mat;
+  const pf_int li = i - b->first;
+  double K[3][3] = {{0}}, Ki[3][3], sums[2] = {0, 0}, *c = &p->kshape[4 * li];
+  int nb = 0;
+  for (int64_t k = b->fam.offset[li]; k < b->fam.offset[li + 1]; k++) {
+    double xi[3], r0, w;
+    if (!pf_pd_own_bond(b, pts, i, k, xi, &r0, &w)) continue;
+    for (int r = 0; r < 3; r++)
+      for (int s = 0; s < 3; s++) K[r][s] += w * xi[r] * xi[s];
+    sums[0] += w * r0, sums[1] += w / r0;
+    nb++;
+  }
+  const double detK = pf_mat3_inverse(K, Ki), tr = (K[0][0] + K[1][1] + K[2][2]) / 3.0;
+  memcpy(&p->kinv[9 * li], Ki, sizeof Ki);
+  c[0] = pf_sym3_min_eigenvalue(K), c[1] = sums[0], c[2] = sums[1];
+  c[3] = nb >= 3 && detK > 1e-6 * tr * tr * tr && (nb == p->nfam[li] || spans(p, li, K));
+  p->kcount[li] = nb;
+}
+
 /* Kinematics of point i for the model: Fbar into F, D into D, the rotated previous stress; K^-1
  * kept in the ghost record until the stress is known. Returns 0 when the point is detached: too
  * few bonds for an invertible K, intact bonds that lost the span, or an inverted or crushed Fbar
- * (det Fbar < PF_CORR_MIN_J: a point with no continuum left around it). */
+ * (det Fbar < PF_CORR_MIN_J: a point with no continuum left around it). K is reference geometry:
+ * it is formed again only when the point's count of intact own bonds changed (shape_of). */
 static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
   corr *p = b->mat;
   const pf_int li = i - b->first;
-  double K[3][3], A[3][3], B[3][3], H[3][3], Hd[3][3], Ki[3][3], Fb[3][3], Fd[3][3], Fm[3][3], Fmi[3][3];
-  double L[3][3], R[3][3], *g = &p->gx[GX * i], *F = &p->F[9 * li], *D = &p->D[6 * li], sums[2];
-  const int nb = bond_sums(b, pts, i, K, A, B, H, Hd, sums);
-  const double detK = pf_mat3_inverse(K, Ki), tr = (K[0][0] + K[1][1] + K[2][2]) / 3.0;
-  int ok = nb >= 3 && detK > 1e-6 * tr * tr * tr && (nb == p->nfam[li] || spans(p, li, K));
+  double A[3][3], B[3][3], H[3][3] = {{0}}, Hd[3][3] = {{0}}, Ki[3][3], Fb[3][3], Fd[3][3], Fm[3][3], Fmi[3][3];
+  double L[3][3], R[3][3], *g = &p->gx[GX * i], *F = &p->F[9 * li], *D = &p->D[6 * li];
+  int nb;
+  if (pf_pd_consistent_at(b, i)) {
+    double K[3][3], sums[2];
+    fail_row(b, i);
+    nb = bond_sums(b, pts, i, K, A, B, H, Hd, sums);
+  } else nb = row_sums(b, pts, i, A, B);
+  if (nb != p->kcount[li]) shape_of(b, pts, i);
+  const double *c = &p->kshape[4 * li];
+  memcpy(Ki, &p->kinv[9 * li], sizeof Ki);
+  int ok = c[3] != 0;
   if (ok) {
     mat_mul(A, Ki, Fb), mat_mul(B, Ki, Fd);
     for (int r = 0; r < 3; r++)
@@ -527,7 +698,7 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
         Fm[r][s] = Fb[r][s] - 0.5 * b->dt * Fd[r][s];
       }
     ok = pf_mat3_det(Fb) > PF_CORR_MIN_J && (p->Jm[li] = pf_mat3_inverse(Fm, Fmi)) > 0;
-    if (ok) step_rates(b, i, K, Fb, sums, &p->rate[li], &p->whg2[li]);
+    if (ok) step_rates(b, i, c[0], Fb, &c[1], &p->rate[li], &p->whg2[li]);
   }
   if (!ok) { /* the model sees a state at rest; its result is discarded */
     at_rest(b, i, 1);
@@ -542,8 +713,8 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
   memcpy(&p->s_old[6 * li], &p->sigma[6 * i], 6 * sizeof(double));
   for (int r = 0; r < 3; r++)
     for (int s = 0; s < 3; s++) {
-      F[3 * r + s] = g[G_F + 3 * r + s] = Fb[r][s];
-      g[G_PK + 3 * r + s] = p->Ki[9 * li + 3 * r + s] = Ki[r][s], g[G_FDOT + 3 * r + s] = Fd[r][s];
+      F[3 * r + s] = g[G_F + r + 3 * s] = Fb[r][s]; /* (the record by columns) */
+      g[G_PK + r + 3 * s] = p->Ki[9 * li + 3 * r + s] = Ki[r][s], g[G_FDOT + r + 3 * s] = Fd[r][s];
     }
   return 1;
 }
@@ -556,7 +727,7 @@ static void stress_to_force_state(pf_pd_body *b, pf_int i) {
   double *g = &p->gx[GX * i], S[3][3], Fb[3][3], Fi[3][3], Ki[3][3], P[3][3], T[3][3];
   const double *s = &p->sigma[6 * i], *so = &p->s_old[6 * li], *D = &p->D[6 * li];
   for (int r = 0; r < 3; r++)
-    for (int c = 0; c < 3; c++) Fb[r][c] = g[G_F + 3 * r + c], Ki[r][c] = g[G_PK + 3 * r + c];
+    for (int c = 0; c < 3; c++) Fb[r][c] = g[G_F + r + 3 * c], Ki[r][c] = g[G_PK + r + 3 * c];
   const double J = pf_mat3_inverse(Fb, Fi);
   double power = 0;
   for (int k = 0; k < 6; k++) power += (k < 3 ? 1.0 : 2.0) * 0.5 * (s[k] + so[k]) * D[k];
@@ -566,26 +737,13 @@ static void stress_to_force_state(pf_pd_body *b, pf_int i) {
     for (int c = 0; c < 3; c++) P[r][c] = J * (S[r][0] * Fi[c][0] + S[r][1] * Fi[c][1] + S[r][2] * Fi[c][2]);
   mat_mul(P, Ki, T);
   for (int r = 0; r < 3; r++)
-    for (int c = 0; c < 3; c++) g[G_PK + 3 * r + c] = T[r][c], g[G_NU + 3 * r + c] = P[r][c];
+    for (int c = 0; c < 3; c++) g[G_PK + r + 3 * c] = T[r][c], g[G_NU + 3 * r + c] = P[r][c];
 }
 
 /* Bonds to a point detached last step, or whose either end's damage exceeded D_c last step, fail
  * before the sums, so that Fbar and the force of this step use the same bonds (angular
- * momentum). Both ends read the same exchanged record, so both decide alike. */
-static void fail_bonds(pf_pd_body *b) {
-  const corr *p = b->mat;
-  const pf_family *fam = &b->fam;
-  for (pf_int i = b->first; i < b->first + b->n; i++) {
-    const double *gi = &p->gx[GX * i];
-    p->lost[i - b->first] = 0;
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-      if (fam->broken[k]) continue;
-      const double *gj = &p->gx[GX * fam->neighbor[k]];
-      const int damaged = (gi[G_DAMAGE] > p->dcrit || gj[G_DAMAGE] > p->dcrit) && pf_pd_may_fail(b, i, fam->neighbor[k]);
-      if (gi[G_DETACHED] || gj[G_DETACHED] || damaged) fam->broken[k] = 1, p->lost[i - b->first] = 1;
-    }
-  }
-}
+ * momentum): failure_records, then each row's first pass (row_sums, fail_row). Both ends read the
+ * same exchanged record, so both decide alike. */
 
 /* The model over the body's points in batches, leaving out the idle ones (coupled, beta = 0 all
  * round: at rest for good, their stress stays zero; in a coupled panel most of the body). */
@@ -609,9 +767,9 @@ static int corr_pass1(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   const int ns = p->nstate;
   pf_int ndetached = 0;
-  fail_bonds(b);
+  PF_CALL(failure_records(b, pts));
   for (pf_int i = b->first; i < b->first + b->n; i++)
-    if (b->idle && b->idle[i - b->first]) at_rest(b, i, 0);
+    if (b->idle && b->idle[i - b->first]) fail_row(b, i), at_rest(b, i, 0);
     else ndetached += !kinematics(b, pts, i);
   double *state = ns ? &p->state[(size_t)ns * b->first] : NULL;
   if (ndetached && ns) memcpy(p->saved, state, sizeof(double) * ns * b->n);
@@ -657,6 +815,87 @@ static void consistent_pair(const pf_pd_body *b, const pf_points *pts, pf_int i,
   }
 }
 
+/* The pair-force sums of owned point i over its intact bonds (corr_force): f gets
+ * sum_j w ([j in H_i] b_i P_i K_i^-1 + [i in H_j] b_j P_j K_j^-1) xi when `standard`, fh the
+ * hourglass forces. One pass over the row with the point's own record in registers; the record's
+ * matrices are stored by columns (G_PK, G_F, G_FDOT), so that M xi is three lane-wise
+ * multiply-adds of a column by a component of xi, column 0 first: each component is the sum of
+ * the formula in its order. (A column load reads one double past it, still in the record.) */
+static inline __attribute__((always_inline)) void pair_row(const pf_pd_body *b, const pf_points *pts, pf_int i,
+                                                            int standard, double f[3], double fh[3], const int general) {
+  const corr *p = b->mat;
+  const pf_family *fam = &b->fam;
+  const int states = general && b->blend && b->blend_states, one_sided = general && b->one_sided;
+  const int viscous = general && p->viscous;
+  const int gdev = viscous ? G_FDOT : G_F; /* the predicted relative position or velocity */
+  const double *restrict dev = viscous ? pts->v : pts->y, *restrict X = pts->X, *restrict y = pts->y;
+  const double *restrict vol = pts->vol, *restrict gx = p->gx, *restrict hz = b->hz, *restrict blend = b->blend;
+  const float *restrict vfrac = general ? fam->vfrac : NULL;
+  const pf_int *restrict nbr = fam->neighbor;
+  const uint8_t *restrict broken = fam->broken;
+  const pf_influence *infl = &b->influence;
+  const int consistent = general && p->lm && p->nearz[i - b->first];
+  const int unit_w = !general || infl->kind == PF_INFLUENCE_CONSTANT;
+  const double *gi = &gx[GX * i], bi = states ? blend[i] : 1.0, hg = p->hg, hzi = hz[i];
+  const double ki = hg * gi[G_C] * (viscous ? hzi / p->cl : 1.0);
+  const double x0 = X[3 * i], x1 = X[3 * i + 1], x2 = X[3 * i + 2], y0 = y[3 * i], y1 = y[3 * i + 1], y2 = y[3 * i + 2];
+  const double z0 = dev[3 * i], z1 = dev[3 * i + 1], z2 = dev[3 * i + 2];
+  const int detached_i = gi[G_DETACHED] != 0;
+  const v4d zero = {0, 0, 0, 0};
+  const v4d Pi0 = v4d_load(gi + G_PK), Pi1 = v4d_load(gi + G_PK + 3), Pi2 = v4d_load(gi + G_PK + 6);
+  const v4d Gi0 = v4d_load(gi + gdev), Gi1 = v4d_load(gi + gdev + 3), Gi2 = v4d_load(gi + gdev + 6);
+  v4d fv = zero, hv = zero;
+  for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
+    if (broken[k]) continue;
+    const pf_int j = nbr[k];
+    const double *restrict gj = &gx[GX * j];
+    const double xi[3] = {X[3 * j] - x0, X[3 * j + 1] - x1, X[3 * j + 2] - x2};
+    const double Y0 = y[3 * j] - y0, Y1 = y[3 * j + 1] - y1, Y2 = y[3 * j + 2] - y2;
+    const v4d Yv = {Y0, Y1, Y2, 0};
+    const v4d Z = viscous ? (v4d){dev[3 * j] - z0, dev[3 * j + 1] - z1, dev[3 * j + 2] - z2, 0} : Yv;
+    const double r0 = sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]), r = sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2);
+    const double bj = states ? blend[j] : 1.0;
+    const double hi = bi * (!one_sided || r0 <= hzi), hj = bj * (!one_sided || r0 <= hz[j]);
+    const double om = unit_w ? 1.0 : pf_pd_omega(infl, r0), w = om * (vfrac ? vol[j] * vfrac[k] : vol[j]);
+    const double kj = hg * gj[G_C] * (viscous ? hz[j] / p->cl : 1.0);
+    v4d t = (hi * Pi0 + hj * v4d_load(gj + G_PK)) * xi[0] + zero;
+    t = (hi * Pi1 + hj * v4d_load(gj + G_PK + 3)) * xi[1] + t;
+    t = (hi * Pi2 + hj * v4d_load(gj + G_PK + 6)) * xi[2] + t;
+    v4d pi = Gi0 * xi[0] + zero, pj = v4d_load(gj + gdev) * xi[0] + zero;
+    pi = Gi1 * xi[1] + pi, pj = v4d_load(gj + gdev + 3) * xi[1] + pj;
+    pi = Gi2 * xi[2] + pi, pj = v4d_load(gj + gdev + 6) * xi[2] + pj;
+    if (standard) fv += w * t;
+    const v4d d = hi * ki * (pi - Z) + hj * kj * (pj - Z);
+    double gam = d[0] * Y0 + 0.0;
+    gam = d[1] * Y1 + gam;
+    gam = d[2] * Y2 + gam;
+    if (consistent) {
+      double fc[3] = {fv[0], fv[1], fv[2]};
+      consistent_pair(b, pts, i, j, om, xi, fc);
+      fv[0] = fc[0], fv[1] = fc[1], fv[2] = fc[2];
+    }
+    if (gam != 0 && r > 0 && !detached_i && gj[G_DETACHED] == 0) {
+      const double s = -w * gam / (r0 * r * r);
+      hv += s * Yv;
+    }
+  }
+  for (int a = 0; a < 3; a++) f[a] = fv[a], fh[a] = hv[a];
+}
+
+/* Does point i need pair_row's general form (a variable horizon, blending weights in the force
+ * states, the viscous hourglass control, an influence function other than 1, partial volumes or
+ * the consistent form's corrections)? Else the common case, with those terms folded away. */
+static int needs_general(const pf_pd_body *b, pf_int i) {
+  const corr *p = b->mat;
+  return b->one_sided || (b->blend && b->blend_states) || p->viscous || b->influence.kind != PF_INFLUENCE_CONSTANT ||
+         b->fam.vfrac || (p->lm && p->nearz[i - b->first]);
+}
+
+static void pair_sums(const pf_pd_body *b, const pf_points *pts, pf_int i, int standard, double f[3], double fh[3]) {
+  if (needs_general(b, i)) pair_row(b, pts, i, standard, f, fh, 1);
+  else pair_row(b, pts, i, standard, f, fh, 0);
+}
+
 /* Pass 2: pair forces from both ends' force states and the hourglass control. A point detached
  * in this step's pass 1 has P K^-1 = 0 and no hourglass force (its Fbar is not defined); its
  * bonds fail at the start of the next step. With a variable horizon each end contributes only to
@@ -671,47 +910,13 @@ static void consistent_pair(const pf_pd_body *b, const pf_points *pts, pf_int i,
 static int corr_force(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   PF_CALL(corr_pass1(b, pts));
-  const pf_family *fam = &b->fam;
-  const int gdev = p->viscous ? G_FDOT : G_F; /* the predicted relative position or velocity */
-  const double *dev = p->viscous ? pts->v : pts->y;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     const int states = b->blend && b->blend_states; /* coupled, energy form */
     if (b->blend && (states ? b->idle[i - b->first] : b->blend[i] == 0)) continue; /* no PD force wanted */
-    const double *gi = &p->gx[GX * i], bi = states ? b->blend[i] : 1.0;
+    const double *gi = &p->gx[GX * i];
     const int standard = !pf_pd_partial_stress_at(b, i);
-    const double ki = p->hg * gi[G_C] * (p->viscous ? b->hz[i] / p->cl : 1.0);
-    double f[3] = {0, 0, 0}, fh[3] = {0, 0, 0};
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-      if (fam->broken[k]) continue;
-      const pf_int j = fam->neighbor[k];
-      const double *gj = &p->gx[GX * j];
-      double xi[3], Y[3], Z[3], r02 = 0, r2 = 0;
-      for (int a = 0; a < 3; a++) {
-        xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a];
-        Y[a] = pts->y[3 * j + a] - pts->y[3 * i + a];
-        Z[a] = dev[3 * j + a] - dev[3 * i + a];
-        r02 += xi[a] * xi[a], r2 += Y[a] * Y[a];
-      }
-      const double r0 = sqrt(r02), r = sqrt(r2), bj = states ? b->blend[j] : 1.0;
-      const double hi = bi * pf_pd_in_family(b, i, r0), hj = bj * pf_pd_in_family(b, j, r0);
-      const double om = pf_pd_omega(&b->influence, r0), w = om * pf_pd_bond_volume(fam, pts->vol, k, j);
-      const double kj = p->hg * gj[G_C] * (p->viscous ? b->hz[j] / p->cl : 1.0);
-      double gam = 0;
-      for (int a = 0; a < 3; a++) {
-        double t = 0, pi = 0, pj = 0;
-        for (int c = 0; c < 3; c++) {
-          t += (hi * gi[G_PK + 3 * a + c] + hj * gj[G_PK + 3 * a + c]) * xi[c];
-          pi += gi[gdev + 3 * a + c] * xi[c], pj += gj[gdev + 3 * a + c] * xi[c];
-        }
-        f[a] += standard ? w * t : 0.0;
-        gam += (hi * ki * (pi - Z[a]) + hj * kj * (pj - Z[a])) * Y[a];
-      }
-      if (p->lm) consistent_pair(b, pts, i, j, om, xi, f);
-      if (gam != 0 && r > 0 && !gi[G_DETACHED] && !gj[G_DETACHED]) {
-        const double s = -w * gam / (r0 * r * r);
-        for (int a = 0; a < 3; a++) fh[a] += s * Y[a];
-      }
-    }
+    double f[3], fh[3];
+    pair_sums(b, pts, i, standard, f, fh);
     if (pf_pd_corrected_at(b, i)) { /* less the ghost force of its own uniform stress */
       const double *d = &p->ghost[3 * i];
       for (int a = 0; a < 3; a++)
@@ -755,6 +960,7 @@ static void corr_destroy(pf_pd_body *b) {
   pf_material_destroy(&p->cm);
   free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm), free(p->out);
   free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam), free(p->lost);
+  free(p->kcount), free(p->kinv), free(p->kshape), free(p->nearz), free(p->fails);
   PF_FREE(b->mat);
 }
 

@@ -11,7 +11,7 @@
  *     (round-off of the 1 % strain force scale 0.01 K h^2); and objectivity: rotating a strained
  *     state, y2 = Q y1 + c, rotates every force, f2 = Q f1;
  *  3. correspondence: y = F X + c, F non-symmetric, det F > 0: the shape-tensor deformation
- *     gradient Fbar (field "correspondence", components 9..17, row-major) equals F to 1e-12 at
+ *     gradient Fbar (field "correspondence", components 9..17, by columns) equals F to 1e-12 at
  *     every point, boundary included (Fbar = [sum w Y (x) xi] K^-1 = F K K^-1 for affine Y = F xi),
  *     and its rate Fdot (components 18..26) equals (F - I) / dt;
  *  4. linear and angular momentum: sum_i f_i = 0 and sum_i y_i x f_i = 0 to round-off of
@@ -394,14 +394,14 @@ static void check_fbar(const mat_case *mc) {
   impose(&t, t.y, DT);
   int nc = 0;
   const double *g = corr_field(&t, &nc);
-  EXPECT(g && nc >= 27, "field 'correspondence' with Fbar at 9..17 and Fdot at 18..26");
+  EXPECT(g && nc >= 27, "field 'correspondence' with Fbar at 9..17 and Fdot at 18..26, by columns");
   if (g && nc >= 27) {
     double eF = 0, eFd = 0;
     for (pf_int i = 0; i < t.n; i++)
       for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++) {
-          eF = fmax(eF, fabs(g[nc * i + 9 + 3 * a + b] - F[a][b]));
-          eFd = fmax(eFd, fabs(g[nc * i + 18 + 3 * a + b] - (F[a][b] - I3[a][b]) / DT));
+          eF = fmax(eF, fabs(g[nc * i + 9 + a + 3 * b] - F[a][b]));
+          eFd = fmax(eFd, fabs(g[nc * i + 18 + a + 3 * b] - (F[a][b] - I3[a][b]) / DT));
         }
     WITHIN(eF, 1e-12, "affine motion: max |Fbar - F| over all points");
     WITHIN(eFd * DT, 1e-12, "affine motion: max |Fdot - (F - I)/dt| dt over all points");
@@ -555,7 +555,7 @@ static void check_energy_fd(const mat_case *mc, int corr) {
     double e = 0, Fb[3][3];
     for (pf_int i = 0; g && i < t.n; i++) {
       fbar_minus_I(&t, ybase, i, Fb);
-      for (int k = 0; k < 9; k++) e = fmax(e, fabs(g[nc * i + 9 + k] - (k % 4 == 0) - Fb[k / 3][k % 3]));
+      for (int k = 0; k < 9; k++) e = fmax(e, fabs(g[nc * i + 9 + k] - (k % 4 == 0) - Fb[k % 3][k / 3]));
     }
     EXPECT(g != NULL, "field 'correspondence'");
     WITHIN(e, 1e-13, "the test's Fbar against the library's");
