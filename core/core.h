@@ -531,8 +531,10 @@ int pf_table_allgather(const pf_table *t, double *full);
  * files without it are format 1). 2: the bodies' geometry (point and element counts, a hash of
  * the reference positions and connectivity), the walls' and contact pairs' forces. 3: the
  * history's running sums per body, per condition, per rigid surface and per wall (appended
- * scalars). Formats PF_CHECKPOINT_FORMAT_OLDEST to PF_CHECKPOINT_FORMAT are read. */
-#define PF_CHECKPOINT_FORMAT 3
+ * scalars). 4: the point fields previous_positions and lost_weighted_volume, and the
+ * correspondence record's three matrices by columns (by rows before: pf_pd_correspondence_upgrade).
+ * Formats PF_CHECKPOINT_FORMAT_OLDEST to PF_CHECKPOINT_FORMAT are read. */
+#define PF_CHECKPOINT_FORMAT 4
 #define PF_CHECKPOINT_FORMAT_OLDEST 2
 /* Write the owned points (every array and field) and their bond rows (each bond field flagged
  * PF_FIELD_RESTART under /bonds/<name>, after pf_bond_rows_fields_agree), plus named scalars and

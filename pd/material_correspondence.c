@@ -980,3 +980,14 @@ const pf_pd_material_ops pf_pd_material_correspondence = {
     .uses_velocity = 1,
     .body_keys = body_keys,
 };
+
+void pf_pd_correspondence_upgrade(pf_points *pts) {
+  double *g = pf_points_field_get(pts, "correspondence");
+  for (pf_int i = 0; g && i < pts->n_owned; i++)
+    for (int m = G_PK; m <= G_FDOT; m += 9)
+      for (int r = 0; r < 3; r++)
+        for (int c = r + 1; c < 3; c++) {
+          double *a = &g[GX * i + m + 3 * r + c], *b = &g[GX * i + m + 3 * c + r], t = *a;
+          *a = *b, *b = t;
+        }
+}

@@ -51,6 +51,9 @@ typedef struct {
 /* Register in rows the bond fields a family keeps (core/ carries them through migration and
  * checkpoints): "broken" (uint8, 1 once failed), "rest" (float, m), with partial volumes
  * "vfrac" (float, init 1), and with nstate > 0 "state" (nstate doubles). */
+/* A checkpoint of format 3 or older kept the correspondence record's matrices (P K^-1, Fbar,
+ * Fbar dot) by rows: transpose them into this version's columns (no-op without the field). */
+void pf_pd_correspondence_upgrade(pf_points *pts);
 int pf_pd_family_register_fields(pf_bond_rows *rows, int partial_volumes, int nstate);
 /* Append to rows the bonds of points [first, first+n) of pts (which are points of the cloud)
  * to every cloud point within `horizon` (|xi| <= horizon), each row ascending in global id.

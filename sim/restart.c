@@ -324,6 +324,7 @@ int pf_sim_restore_state(pf_sim *sim) {
   for (int q = 0; q < sim->nwalls; q++)
     for (int a = 0; a < 3; a++) sim->wall_reaction[q][a] = v[at_walls(sim) + 3 * q + a];
   for (int q = 0; q < deck_pairs(sim) && sim->contact; q++) pf_contact_pair_force_set(sim->contact, q, &v[at_pairs(sim) + 3 * q]);
+  if (sim->restart_format < 4) pf_pd_correspondence_upgrade(sim->pts);
   if (sim->restart_format >= 3) sums_restore(sim, &v[at_sums(sim)]);
   else
     pf_log("note: %s is a checkpoint of format %d, without the history's running sums per body, condition, "
