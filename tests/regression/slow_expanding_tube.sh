@@ -9,7 +9,11 @@
 #    lattice's, 0.75 mm cells of 3.3 mg, not recovered pieces);
 #  - the fragments hold the tube's mass (pi (9.35^2 - 6.35^2) mm^2 x 50.8 mm x 7870 kg/m^3 =
 #    59.2 g, to 1e-6: the polar lattice tiles the wall);
-#  - the outer surface moves outwards at each probe ring (peak radial velocity above 100 m/s).
+#  - the outer surface moves outwards at each probe ring (peak radial velocity above 100 m/s);
+#  - conservation (issue 32): with no support and no wall, the linear momentum stays that of the
+#    projectile to 1e-6 of it (measured 1.3e-14), and the energy balance closes to 0.5 % of the
+#    projectile's kinetic energy at every history row (measured -1.4 J of 6845 J, 0.02 %; 1.1 %
+#    before the LPS force kept its energy's gradient after failures, theory/materials.md §1).
 # About 1 minute on 2 ranks and 2 on 1 rank, hence label slow.
 # usage: slow_expanding_tube.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
@@ -40,5 +44,17 @@ check(0.3 <= s["largest_fraction"] <= 0.7, "largest fragment %.2f of the tube (a
 check(5 <= s["heavier_than_1g"] <= 30, "%d fragments over 1 g (Vogler et al.: 14)" % s["heavier_than_1g"])
 for name, r in s["rings"].items():
     check(r["peak_radial_velocity"] > 100, "ring %s: peak radial velocity %g m/s" % (name, r["peak_radial_velocity"]))
+sys.exit(0 if ok else 1)
+PYEOF
+[ $? = 0 ] || exit 1
+"$PY" - "$scratch/np2/expanding_tube.h5" <<'PYEOF'
+import h5py, numpy as np, sys
+h = h5py.File(sys.argv[1], "r")
+e0, p0 = h["kinetic_energy"][0], h["momentum_z"][0]
+drift = max(np.max(np.abs(h["momentum_" + a][:] - h["momentum_" + a][0])) for a in "xyz")
+err = np.max(np.abs(h["energy_error"][:]))
+print("momentum drift %.2e of the projectile's; largest energy error %.3g J, %.4f of %.4g J" % (drift / p0, err, err / e0, e0))
+ok = drift < 1e-6 * p0 and err < 5e-3 * e0
+if not ok: print("FAIL: momentum or energy not conserved to the bounds")
 sys.exit(0 if ok else 1)
 PYEOF
