@@ -12,13 +12,13 @@
 #    equals the kinetic energy summed here from the Exodus velocities (rho h^3 a point) plus the
 #    elastic and contact energies and the dissipation, to 1 % of the work (measured 0.17 %); and
 #    that integral equals the booked sphere_work to 1e-3 (rows every 10 steps);
-#  - the run ends with the same state digest on 1 and 2 ranks, fragments in contact included.
-# About 15 s of CPU (four runs), a minute of wall time on loaded cores, hence label slow.
+#  - the run ends with the same state digest on 1, 2 and 3 ranks, fragments in contact included.
+# About 25 s of CPU (five runs), a minute or two of wall time on loaded cores, hence label slow.
 # usage: slow_disk_contact.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2
 source common/mpi_env.sh
-rm -rf "$scratch" && mkdir -p "$scratch"/{np1,np2,none}
+rm -rf "$scratch" && mkdir -p "$scratch"/{np1,np2,np3,none}
 deck=../inputs/disk_impact_rigid.yaml
 reduce='s/radius: 0.037/radius: 0.012/; s/^(\s*)final_time:.*/\1steps: 450/; s/^output:/output:\n  fragments: true/; s/^(\s*)interval: 100/\1interval: 450/'
 sed -E "$reduce" $deck > "$scratch/disk.yaml"
@@ -26,11 +26,14 @@ sed -E "$reduce" $deck > "$scratch/disk.yaml"
 sed -E '/^contact:/,/^time:/{/^time:/!d}' "$scratch/disk.yaml" > "$scratch/none.yaml"
 grep -q '^contact:' "$scratch/disk.yaml" && ! grep -q '^contact:' "$scratch/none.yaml" ||
   { echo "FAIL: the shipped deck has no contact section to remove"; exit 1; }
+out3=$(run 3 "$exe" --quiet --output-dir "$scratch/np3" "$scratch/disk.yaml" 2>&1) || { echo "FAIL: 3 ranks: $out3"; exit 1; }
 out2=$(run 2 "$exe" --quiet --output-dir "$scratch/np2" "$scratch/disk.yaml" 2>&1) || { echo "FAIL: 2 ranks: $out2"; exit 1; }
 out1=$("$exe" --quiet --output-dir "$scratch/np1" "$scratch/disk.yaml" 2>&1) || { echo "FAIL: 1 rank: $out1"; exit 1; }
 outn=$("$exe" --quiet --output-dir "$scratch/none" "$scratch/none.yaml" 2>&1) || { echo "FAIL: no contact: $outn"; exit 1; }
-d1=$(digest_of "$out1") d2=$(digest_of "$out2")
-[ -n "$d1" ] && [ "$d1" = "$d2" ] || { echo "FAIL: digests on 1 rank '$d1' and 2 ranks '$d2' differ"; exit 1; }
+d1=$(digest_of "$out1") d2=$(digest_of "$out2") d3=$(digest_of "$out3")
+[ -n "$d1" ] && [ "$d1" = "$d2" ] && [ "$d1" = "$d3" ] ||
+  { echo "FAIL: digests on 1, 2 and 3 ranks differ: '$d1' '$d2' '$d3'"; exit 1; }
+echo "ok:   state digest $d1 on 1, 2 and 3 ranks"
 "$PY" - "$deck" "$scratch" <<'PYEOF'
 import math, re, sys
 import numpy as np
