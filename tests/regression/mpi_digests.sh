@@ -26,8 +26,9 @@ printf 'parallel:\n  decomposition: metis\n' >> cylinder_lps_metis.yaml
 cp fragmenting_cylinder.yaml cylinder_rebalance.yaml
 printf 'parallel:\n  rebalance_threshold: 1.0\n' >> cylinder_rebalance.yaml
 sed -E 's/^output:/output:\n  layout: spread/' wave_in_bar.yaml > wave_spread.yaml
-# the foundation's indenter written as a rigid surface of the contact section: the same run
-sed -E 's/^indenters:/contact:\n  rigid_surfaces:/' disk_impact_rigid.yaml > disk_rigid_surface.yaml
+# the foundation's indenter written as a rigid surface of the contact section (which keeps the
+# deck's self-contact pair): the same run
+sed -E 's/^indenters:/contact:\n  rigid_surfaces:/; /^contact:$/d' disk_impact_rigid.yaml > disk_rigid_surface.yaml
 # FE <-> PD contact with friction and PD self-contact (tests/data/sphere_on_block.yaml); PD
 # self-contact between every pair of neighbours of the cylinder (all points, radius above the
 # spacing: active from the first step) with re-partitioning at every output step
