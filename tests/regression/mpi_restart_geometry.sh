@@ -89,7 +89,7 @@ refused pts.yaml ckp.h5 2 "point dropped" "body 'block'" "point file 'pts.txt' g
 cp pts_orig.txt pts.txt
 
 # 3. the format
-for f in 0 4; do
+for f in 0 5; do
   cp ckp.h5 ckp$f.h5
   "$PY" -c "
 import h5py, sys
@@ -98,10 +98,12 @@ with h5py.File('ckp$f.h5', 'r+') as h:
     else: del h.attrs['format']
 " || { echo "h5py could not edit the checkpoint"; fail=1; }
 done
-refused pts.yaml ckp0.h5 1 "no format attribute" "ckp0.h5 is of format 1, this perifem reads formats 2 to 3 only" "older perifem"
-refused pts.yaml ckp4.h5 1 "format 4" "ckp4.h5 is of format 4" "newer perifem"
-# a format-2 checkpoint (before the history's running sums were kept: format 3 without them)
-# restarts to the same digest with a note; a format-3 one without one of them is refused
+refused pts.yaml ckp0.h5 1 "no format attribute" "ckp0.h5 is of format 1, this perifem reads formats 2 to 4 only" "older perifem"
+refused pts.yaml ckp5.h5 1 "format 5" "ckp5.h5 is of format 5" "newer perifem"
+# a format-2 checkpoint (before the history's running sums were kept: format 3 without them; and
+# before format 4's point fields previous_positions and lost_weighted_volume, which this deck's
+# unbroken bonds do not need) restarts to the same digest with a note; a format-3 one without one
+# of the sums is refused
 "$PY" -c "
 import h5py, shutil
 for name, fmt in (('ckp2.h5', 2), ('ckp3.h5', 3)):
@@ -111,6 +113,10 @@ for name, fmt in (('ckp2.h5', 2), ('ckp3.h5', 3)):
                 a.endswith(('_damage', '_redistribution', '_bc_work'))]
         assert len(sums) == 4, sums
         for a in (sums if fmt == 2 else sums[:1]): del h.attrs[a]
+        if fmt == 2:
+            for f in ('previous_positions', 'lost_weighted_volume'):
+                if 'fields/' + f in h: del h['fields/' + f]
+            assert 'fields/previous_positions' not in h
         h.attrs.modify('format', fmt)
 " || { echo "h5py could not edit the checkpoint"; fail=1; }
 out=$(run 1 "$exe" --restart ckp2.h5 pts.yaml 2>&1)
