@@ -351,6 +351,7 @@ pf_pd_body *pf_sim_body(pf_sim *sim, int b) {
   const pf_body *body = &sim->body[b];
   return body->ops->as_pd ? body->ops->as_pd(body->data) : NULL;
 }
+pf_contact *pf_sim_contact(pf_sim *sim) { return sim->contact; }
 pf_fem_body *pf_sim_fem_body(pf_sim *sim, int b) {
   const pf_body *body = &sim->body[b];
   return body->ops->as_fem ? body->ops->as_fem(body->data) : NULL;
