@@ -297,6 +297,7 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   if (sim->opt.restart_from) PF_CALL(pf_sim_restore_state(sim)); /* (renames the outputs) */
   pf_sim_fragments_name(sim);
   PF_CALL(pf_sim_check_paths(sim));
+  sim->rss_setup = pf_memory_peak();
   return 0;
 }
 
