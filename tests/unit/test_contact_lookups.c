@@ -3,8 +3,8 @@
  * within reach, so no pair asks whether it is bonded; on a lattice whose points are moved by up
  * to 0.1 h per component about one pair in eight of the nearest neighbours comes within 0.9 h,
  * and each of those must be found bonded (and intact) to be skipped. A binary search of the
- * family every step for each such pair (about 7 family entries read, each a random access) took
- * the contact from 8 % to 31 % of the loop on the bench cylinder. The bonds are now resolved
+ * family every step for each such pair (about 5 family entries read, each a random access) took
+ * the contact from 15 % to 32 % of the loop on the bench cylinder. The bonds are now resolved
  * once per search build, and a step reads one broken flag per close pair.
  *
  * Checked from the contact module's work counters (pf_contact_counts) on an n^3 PMB box at rest
