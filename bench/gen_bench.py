@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """Inputs of the perifem-vs-LAMMPS performance benchmark (standard library only).
 
-    gen_bench.py generate WORKDIR [--skin S] [--steps N]
+    gen_bench.py generate WORKDIR [--skin S] [--steps N] [--jitter A]
         writes into WORKDIR: points.txt (perifem point file), points.data (LAMMPS data file,
         atom_style peri), pmb.yaml, lps.yaml (omega = 1/|xi|), lps_w1.yaml (omega = 1, perifem
-        only) (perifem decks), in.pmb, in.lps (LAMMPS inputs).
+        only) (perifem decks), in.pmb, in.lps (LAMMPS inputs). --jitter A moves each coordinate
+        of each point by a uniform random offset in [-A h, A h] (seeded, the same file on every
+        run; A < 0.5), a lattice that is no longer regular, as core/lattice.c's `perturbation`.
     gen_bench.py count POINTFILE DELTA
         counts directed bonds (ordered pairs i != j with |x_j - x_i| <= DELTA) of a point file,
         independently of both codes, and prints the number.
@@ -16,6 +18,7 @@ h = 0.5 mm, boundary included (the cylinder is taken 1e-7 m larger, as 0.0050001
 that points on the boundary are in). Each point stands for an h^3 cell.
 """
 import math
+import random
 import sys
 
 H = 0.0005                 # lattice spacing, m
@@ -52,9 +55,18 @@ def lattice_points():
     return pts
 
 
-def coord(i):
+def coord(x):
     # The same decimal text in both files, so both codes read bit-identical doubles.
-    return "%.10g" % (i * H)
+    return "%.10g" % x
+
+
+def positions(pts, jitter, seed=1):
+    """Coordinates (m) of the lattice points (i, j, k) * H, each coordinate moved by a uniform
+    offset in [-jitter H, jitter H] when jitter > 0 (random.Random(seed): reproducible)."""
+    if jitter <= 0:
+        return [(i * H, j * H, k * H) for (i, j, k) in pts]
+    rng = random.Random(seed)
+    return [tuple(q * H + jitter * H * (2 * rng.random() - 1) for q in p) for p in pts]
 
 
 def pmb_micromodulus(k, delta):
@@ -63,14 +75,15 @@ def pmb_micromodulus(k, delta):
 
 
 def write_points(workdir, pts):
+    """pts: coordinates (m) of the points, in order."""
     with open(f"{workdir}/points.txt", "w") as f:
         f.write("# LAMMPS examples/peri target x3: cylinder r = 15 mm, y in [-15, 0] mm, "
                 "h = 0.5 mm\n# x y z volume block\n")
-        for (i, j, k) in pts:
-            f.write(f"{coord(i)} {coord(j)} {coord(k)} {VOLUME:.6g} 1\n")
-    xs = [p[0] * H for p in pts]
-    ys = [p[1] * H for p in pts]
-    zs = [p[2] * H for p in pts]
+        for (x, y, z) in pts:
+            f.write(f"{coord(x)} {coord(y)} {coord(z)} {VOLUME:.6g} 1\n")
+    xs = [p[0] for p in pts]
+    ys = [p[1] for p in pts]
+    zs = [p[2] for p in pts]
     pad = H
     with open(f"{workdir}/points.data", "w") as f:
         f.write("LAMMPS data file: examples/peri target x3 (perifem bench), atom_style peri\n\n")
@@ -80,8 +93,8 @@ def write_points(workdir, pts):
         f.write(f"{min(zs) - pad:.10g} {max(zs) + pad:.10g} zlo zhi\n\n")
         f.write("Atoms # peri\n\n")
         # atom-ID atom-type volume density x y z
-        for n, (i, j, k) in enumerate(pts, 1):
-            f.write(f"{n} 1 {VOLUME:.6g} {DENSITY:.6g} {coord(i)} {coord(j)} {coord(k)}\n")
+        for n, (x, y, z) in enumerate(pts, 1):
+            f.write(f"{n} 1 {VOLUME:.6g} {DENSITY:.6g} {coord(x)} {coord(y)} {coord(z)}\n")
 
 
 DECK = """\
@@ -261,16 +274,20 @@ def count_bonds(path, delta):
 def main(argv):
     if len(argv) >= 3 and argv[1] == "generate":
         workdir = argv[2]
-        skin, steps = "0.0001", 150
+        skin, steps, jitter = "0.0001", 150, 0.0
         rest = argv[3:]
         while rest:
             if rest[0] == "--skin" and len(rest) > 1:
                 skin, rest = rest[1], rest[2:]
             elif rest[0] == "--steps" and len(rest) > 1:
                 steps, rest = int(rest[1]), rest[2:]
+            elif rest[0] == "--jitter" and len(rest) > 1:
+                jitter, rest = float(rest[1]), rest[2:]
+                if not 0 <= jitter < 0.5:
+                    sys.exit(f"gen_bench.py: --jitter must be in [0, 0.5) of the spacing (got {jitter})")
             else:
                 sys.exit(f"gen_bench.py: unknown argument '{rest[0]}'")
-        pts = lattice_points()
+        pts = positions(lattice_points(), jitter)
         write_points(workdir, pts)
         write_inputs(workdir, skin, steps)
         print(f"points {len(pts)}")

@@ -18,9 +18,11 @@
 #
 # Environment: SHARE_STEPS (default 150), SHARE_MODELS (default "pmb lps"),
 #   SHARE_ELEMENT (sphere element size in m, default 1e-3), SHARE_REPEAT (runs of each deck,
-#   the fastest counts; default 1), SHARE_SPLIT=1 also runs each pair alone (the FE <-> PD pair
-#   only, the self-contact only) to split the contact seconds, SHARE_KEEP=1 keeps the work
-#   directory.
+#   the fastest counts; default 1), SHARE_JITTER (gen_bench.py --jitter: each coordinate of each
+#   point moved by up to this fraction of the spacing; default 0, the regular lattice; the table
+#   then goes to bench/results/contact_share_jitter.txt), SHARE_SPLIT=1 also runs each pair
+#   alone (the FE <-> PD pair only, the self-contact only) to split the contact seconds,
+#   SHARE_KEEP=1 keeps the work directory.
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -30,6 +32,7 @@ steps=${SHARE_STEPS:-150}
 models=${SHARE_MODELS:-pmb lps}
 esize=${SHARE_ELEMENT:-1e-3}
 repeat=${SHARE_REPEAT:-1}
+jitter=${SHARE_JITTER:-0}
 
 die() { echo "run_contact_share.sh: error: $*" >&2; exit 1; }
 
@@ -45,7 +48,7 @@ trap cleanup EXIT
 
 # --- inputs: gen_bench.py's point file and decks, the rigid indenter replaced ----------------
 echo "== generating the bench cylinder in $work" >&2
-"$py" "$here/gen_bench.py" generate "$work" --steps "$steps" >"$work/gen.log" || { cat "$work/gen.log" >&2; die "gen_bench.py failed"; }
+"$py" "$here/gen_bench.py" generate "$work" --steps "$steps" --jitter "$jitter" >"$work/gen.log" || { cat "$work/gen.log" >&2; die "gen_bench.py failed"; }
 npoints=$(sed -n 's/^points //p' "$work/gen.log")
 
 for m in $models; do
@@ -159,11 +162,12 @@ table=$work/table.txt
   echo "machine:  ${cpu:-unknown CPU}, nproc $(nproc), load average at start $load_start"
   echo "perifem:  $pf_version, $perifem ($src_desc)"
   echo "problem:  bench/gen_bench.py cylinder (axis y, r = 15 mm, y in [-15, 0] mm, h = 0.5 mm, $npoints points,"
+  [[ $jitter == 0 ]] || echo "          each coordinate moved by a uniform offset in [-$jitter h, $jitter h] (gen_bench.py --jitter $jitter),"
   echo "          horizon 0.0015001 m) hit by an elastic FE steel sphere (R = 5 mm, ${nel:-?} hexahedra of"
   echo "          ~$esize m, lowest point 0.2 mm above the top face, -100 m/s), $steps steps of the stable step;"
   echo "          contact: pair sphere <-> target (surface method, radius h/2, k = K h) and the"
   echo "          target's short-range self-contact (radius 0.9 h, bonded points excluded); default skin"
-  echo "command:  SHARE_SPLIT=${SHARE_SPLIT:-0} bash bench/run_contact_share.sh ${1:-build/perifem}   (SHARE_REPEAT=$repeat: fastest of $repeat run(s))"
+  echo "command:  SHARE_JITTER=$jitter SHARE_SPLIT=${SHARE_SPLIT:-0} bash bench/run_contact_share.sh ${1:-build/perifem}   (SHARE_REPEAT=$repeat: fastest of $repeat run(s))"
   echo
   printf '%-5s %10s %10s %11s %10s %9s %10s %11s %9s %9s\n' model "dt [s]" "loop [s]" "no-cont [s]" "contact[s]" rebuilds "share sum." "share diff." "damage" "F_y [N]"
   for m in $models; do
@@ -195,5 +199,7 @@ table=$work/table.txt
 } >"$table"
 
 cat "$table"
-cp "$table" "$here/results/contact_share.txt"
-echo "(saved to $here/results/contact_share.txt)" >&2
+saved=$here/results/contact_share.txt
+[[ $jitter == 0 ]] || saved=$here/results/contact_share_jitter.txt
+cp "$table" "$saved"
+echo "(saved to $saved)" >&2

@@ -350,7 +350,7 @@ int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, dou
   PF_CALL(pf_contact_exchange(c, pts));
   PF_CALL(pf_contact_search(c, pts));
   double U = 0;
-  PF_CALL(pf_contact_pairs_evaluate(c, pts, dt, &U, dissipation));
+  PF_CALL(pf_contact_pairs_evaluate(c, dt, &U, dissipation));
   PF_CALL(add_forces(c, pts));
   for (int k = 0; k < c->npairs; k++) memcpy(&sums[3 * k], c->pair[k].force, sizeof c->pair[k].force);
   sums[3 * c->npairs] = U;
@@ -400,6 +400,11 @@ double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts) {
 void pf_contact_stats(const pf_contact *c, long *rebuilds, double *seconds) {
   *rebuilds = c->rebuilds;
   *seconds = c->seconds;
+}
+
+void pf_contact_counts(const pf_contact *c, int64_t *pairs_tested, int64_t *family_reads) {
+  *pairs_tested = c->pairs_tested;
+  *family_reads = c->family_reads;
 }
 
 int pf_contact_self_pair(const pf_contact *c, int b) {

@@ -138,6 +138,10 @@ double pf_contact_pair_gap(const pf_contact *c, int k, pf_contact_gap *info);
 void pf_contact_pair_force_set(pf_contact *c, int k, const double f[3]);
 /* Search statistics: rebuilds so far, and the contact share of the time (seconds spent). */
 void pf_contact_stats(const pf_contact *c, long *rebuilds, double *seconds);
+/* Work done so far on this rank: short-range candidate pairs tested at the force evaluations,
+ * and family entries read to tell bonded pairs from unbonded ones (at the search builds, and the
+ * broken flags read at the evaluations). Deterministic, for tests of the contact's cost. */
+void pf_contact_counts(const pf_contact *c, int64_t *pairs_tested, int64_t *family_reads);
 
 /* ---- geometry of FE surfaces (contact/surface.c) ----------------------------------------- */
 /* A boundary face of a hexahedral mesh: its 4 mesh nodes ordered so that the right-hand rule

@@ -51,11 +51,18 @@ typedef struct {
   pf_int *item;  /* [n] */
 } pf_grid;
 
-/* Per owned entity: the candidates found at the last build, sorted by (pair, partner gid). */
+/* Per owned entity: the candidates found at the last build, sorted by (pair, partner gid). The
+ * sort key is needed only while the list is built and sorted; then a short-range candidate holds
+ * in its place the bond that joins the two points, resolved once a build (search.c), so that the
+ * force evaluation of each step reads the bond's broken flag instead of searching the family. */
 typedef struct {
   int32_t pair;
-  pf_int j;      /* view index (short range, nodes) or face index of the pair (surface) */
-  pf_gid key;    /* partner gid (short range, nodes) or face index (surface) */
+  pf_int j;        /* view index (short range, nodes) or face index of the pair (surface) */
+  union {
+    pf_gid key;    /* during the build: partner gid (short range, nodes) or face index (surface) */
+    int64_t bond;  /* after it, short range: the bond of the owned particle's family to the
+                    * partner (-1: another body, or never bonded) */
+  };
 } pf_candidate;
 
 struct pf_contact {
@@ -92,6 +99,9 @@ struct pf_contact {
   pf_candidate *cand;
   int64_t cand_cap;
   int built;
+  /* work counters (pf_contact_counts): candidate pairs tested at the force evaluations, and
+   * family entries read to tell whether a pair is bonded (at the builds and the evaluations) */
+  int64_t pairs_tested, family_reads;
   /* results */
   double *force;          /* [3 nown] contact force of the last evaluation */
   long rebuilds;
@@ -118,7 +128,6 @@ int pf_contact_collect_owned(pf_contact *c, const pf_points *pts);
  * dissipated over dt, |F_t| |v_t| dt. Used by the pairs and the rigid surfaces. */
 double pf_contact_friction(double mu, double Fn, const double n[3], const double vrel[3], double m, double dt,
                            double ft[3]);
-int pf_contact_pairs_evaluate(pf_contact *c, const pf_points *pts, double dt, double *energy,
-                              double *dissipation);
+int pf_contact_pairs_evaluate(pf_contact *c, double dt, double *energy, double *dissipation);
 
 #endif

@@ -58,20 +58,6 @@ double pf_contact_friction(double mu, double Fn, const double n[3], const double
   return F * s * dt;
 }
 
-/* The bond of owned particle i (store index) to global id g: its index in the family, or -1 when
- * they were never bonded. */
-static int64_t find_bond(const pf_family *fam, const pf_points *pts, pf_int i, pf_gid g) {
-  int64_t lo = fam->offset[i - fam->first], hi = fam->offset[i - fam->first + 1] - 1;
-  while (lo <= hi) {
-    int64_t mid = (lo + hi) / 2;
-    pf_gid x = pts->gid[fam->neighbor[mid]];
-    if (x == g) return mid;
-    if (x < g) lo = mid + 1;
-    else hi = mid - 1;
-  }
-  return -1;
-}
-
 /* A chunk's sums: sums[SUM_ENERGY], sums[SUM_DISSIPATION], pair k's force at
  * sums[SUM_FORCE + 3 k], and after the forces pair k's smallest gap over the contact radius
  * (a minimum, not a sum; read by the run-health monitor). */
@@ -239,8 +225,8 @@ static int node(pf_contact *c, int k, pf_int e, pf_int j, double dt, share_list 
 
 /* The interactions of the owned particles [e0, e1): their forces (cleared first), the nodes'
  * shares into l, the energy, dissipation and pairs' forces into sums. */
-static int particle_range(pf_contact *c, const pf_points *pts, pf_int e0, pf_int e1, double dt, share_list *l,
-                          double *sums) {
+static int particle_range(pf_contact *c, pf_int e0, pf_int e1, double dt, share_list *l, double *sums) {
+  int64_t tested = 0, reads = 0;
   memset(&c->force[3 * e0], 0, sizeof(double) * 3 * (size_t)(e1 - e0));
   for (pf_int e = e0; e < e1; e++) {
     for (int64_t q = c->cand_off[e]; q < c->cand_off[e + 1];) {
@@ -253,19 +239,29 @@ static int particle_range(pf_contact *c, const pf_points *pts, pf_int e0, pf_int
         for (int64_t s = q; s < t; s++) PF_CALL(node(c, k, e, c->cand[s].j, dt, l, sums));
       if (p->kind == PF_PAIR_SHORT_RANGE) { /* most candidates are out of reach: test that first */
         const double ye[3] = {c->y[3 * e], c->y[3 * e + 1], c->y[3 * e + 2]}, r2 = p->radius * p->radius;
+        const uint8_t *broken = c->body[c->vbody[e]].fam->broken;
+        tested += t - q;
         for (int64_t s = q; s < t; s++) {
           const pf_int j = c->cand[s].j;
           const double *yj = &c->y[3 * j];
           const double d0 = ye[0] - yj[0], d1 = ye[1] - yj[1], d2 = ye[2] - yj[2];
           if (d0 * d0 + d1 * d1 + d2 * d2 >= r2) continue;
-          const pf_family *fam = c->body[c->vbody[e]].fam;
-          const int64_t b = c->vbody[j] == c->vbody[e] ? find_bond(fam, pts, c->local[e], c->gid[j]) : -1;
-          if (p->all_points || b < 0 || fam->broken[b]) short_range(c, k, e, j, b, dt, sums);
+          const int64_t b = c->cand[s].bond; /* (resolved at the build) */
+          reads += b >= 0 && !p->all_points;
+          if (p->all_points || b < 0 || broken[b]) short_range(c, k, e, j, b, dt, sums);
         }
       }
       q = t;
     }
   }
+#if defined(_OPENMP)
+#pragma omp atomic
+#endif
+  c->pairs_tested += tested;
+#if defined(_OPENMP)
+#pragma omp atomic
+#endif
+  c->family_reads += reads;
   return 0;
 }
 
@@ -273,7 +269,7 @@ static int particle_range(pf_contact *c, const pf_points *pts, pf_int e0, pf_int
  * fixed chunks of particles, each with its own share list (the shares are sorted before they
  * are summed) and its own sums, added in chunk order: the bits do not depend on the thread
  * count. Sets the pairs' forces; adds to *U and *diss. */
-static int particle_forces(pf_contact *c, const pf_points *pts, double dt, share_list *l, double *U, double *diss) {
+static int particle_forces(pf_contact *c, double dt, share_list *l, double *U, double *diss) {
   enum { CHUNK = 2048 };
   const int ns = SUM_FORCE + 4 * c->npairs;
   const int64_t nchunk = (c->nown + CHUNK - 1) / CHUNK;
@@ -294,7 +290,7 @@ static int particle_forces(pf_contact *c, const pf_points *pts, double dt, share
     t = omp_get_thread_num();
 #endif
     const pf_int e0 = (pf_int)(q * CHUNK), e1 = (pf_int)(q + 1 < nchunk ? (q + 1) * CHUNK : c->nown);
-    const int err = particle_range(c, pts, e0, e1, dt, &tl[t], &sums[q * ns]);
+    const int err = particle_range(c, e0, e1, dt, &tl[t], &sums[q * ns]);
     ierr = err > ierr ? err : ierr; /* (the reduction's private copy starts at INT_MIN) */
   }
   for (int k = 0; k < c->npairs; k++) memset(c->pair[k].force, 0, sizeof c->pair[k].force), c->pair[k].gap = INFINITY;
@@ -365,9 +361,9 @@ static void sum_shares(pf_contact *c, share_list *mine) {
   }
 }
 
-int pf_contact_pairs_evaluate(pf_contact *c, const pf_points *pts, double dt, double *energy, double *dissipation) {
+int pf_contact_pairs_evaluate(pf_contact *c, double dt, double *energy, double *dissipation) {
   share_list l = {NULL, 0, 0}, mine = {NULL, 0, 0};
-  int ierr = particle_forces(c, pts, dt, &l, energy, dissipation);
+  int ierr = particle_forces(c, dt, &l, energy, dissipation);
   if (!ierr && c->has_fe) ierr = route_shares(c, &l, &mine);
   if (!ierr) sum_shares(c, &mine);
   free(l.s), free(mine.s);

@@ -282,7 +282,7 @@ static int cand_push(pf_contact *c, int64_t *n, int32_t pair, pf_int j, pf_gid k
     PF_CHECK(q, PF_ERR_MEMORY, "out of memory for contact candidates");
     c->cand = q, c->cand_cap = cap;
   }
-  c->cand[(*n)++] = (pf_candidate){pair, j, key};
+  c->cand[(*n)++] = (pf_candidate){.pair = pair, .j = j, .key = key};
   return 0;
 }
 
@@ -386,7 +386,32 @@ static int entity_candidates(pf_contact *c, const pf_grid *g, face_set (*fs)[2],
   return 0;
 }
 
-static int build_candidates(pf_contact *c) {
+/* The candidates [s, t) of owned particle e, sorted by (pair, partner gid): each short-range
+ * candidate of e's own body gets the bond of e's family to it (-1: never bonded), found by
+ * merging the pair's candidates with e's family row, both sorted by global id (pd/family.c);
+ * every other candidate gets -1. Each family entry read is counted. */
+static void resolve_bonds(pf_contact *c, const pf_points *pts, pf_int e, int64_t s, int64_t t) {
+  const pf_family *fam = c->body[c->vbody[e]].fam;
+  const int64_t row0 = fam ? fam->offset[c->local[e] - fam->first] : 0;
+  const int64_t row1 = fam ? fam->offset[c->local[e] - fam->first + 1] : 0;
+  int64_t reads = 0;
+  for (int64_t q = s; q < t;) {
+    const int32_t k = c->cand[q].pair;
+    const int mine = c->pair[k].kind == PF_PAIR_SHORT_RANGE && fam;
+    int64_t b = row0;
+    for (; q < t && c->cand[q].pair == k; q++) {
+      pf_candidate *cd = &c->cand[q];
+      const pf_gid g = cd->key;
+      cd->bond = -1;
+      if (!mine || c->vbody[cd->j] != c->vbody[e]) continue;
+      while (b < row1 && (reads++, pts->gid[fam->neighbor[b]] < g)) b++;
+      if (b < row1 && pts->gid[fam->neighbor[b]] == g) cd->bond = b;
+    }
+  }
+  c->family_reads += reads;
+}
+
+static int build_candidates(pf_contact *c, const pf_points *pts) {
   double cell = 0;
   for (int k = 0; k < c->npairs; k++) cell = fmax(cell, c->pair[k].radius + c->skin);
   pf_grid g;
@@ -405,8 +430,10 @@ static int build_candidates(pf_contact *c) {
   for (pf_int e = 0; e < c->nown && !ierr; e++) {
     c->cand_off[e] = n;
     ierr = entity_candidates(c, &g, fs, e, &n);
-    if (!ierr && n > c->cand_off[e]) /* (none yet: c->cand may still be NULL, which qsort must not get) */
+    if (!ierr && n > c->cand_off[e]) { /* (none yet: c->cand may still be NULL, which qsort must not get) */
       qsort(&c->cand[c->cand_off[e]], (size_t)(n - c->cand_off[e]), sizeof *c->cand, cand_cmp);
+      resolve_bonds(c, pts, e, c->cand_off[e], n);
+    }
   }
   if (c->cand_off) c->cand_off[c->nown] = n;
   for (int k = 0; k < c->npairs; k++)
@@ -440,7 +467,7 @@ int pf_contact_search(pf_contact *c, const pf_points *pts) {
   PF_CALL(send_lists(c));
   PF_CALL(send_ghosts(c));
   map_nodes(c);
-  PF_CALL(build_candidates(c));
+  PF_CALL(build_candidates(c, pts));
   memcpy(c->y_build, c->y, sizeof(double) * 3 * (size_t)c->nown);
   c->built = 1;
   c->rebuilds++;

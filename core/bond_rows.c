@@ -27,10 +27,9 @@ void pf_bond_rows_clear(pf_bond_rows *r) {
   if (r->offset) r->offset[0] = 0;
 }
 
-/* Room for need bonds in gid and every field. */
-static int grow(pf_bond_rows *r, int64_t need) {
-  if (need <= r->cap) return 0;
-  const int64_t cap = need + need / 2 + 1024;
+/* Room for exactly cap bonds in gid and every field (when there is less). */
+static int grow_exact(pf_bond_rows *r, int64_t cap) {
+  if (cap <= r->cap) return 0;
   pf_gid *g = realloc(r->gid, sizeof(pf_gid) * (size_t)cap);
   PF_CHECK(g, PF_ERR_MEMORY, "out of memory for %" PRId64 " bonds", cap);
   r->gid = g;
@@ -41,6 +40,35 @@ static int grow(pf_bond_rows *r, int64_t need) {
     f->data = d;
   }
   r->cap = cap;
+  return 0;
+}
+
+/* Room for need bonds, with room to spare for the next rows. */
+static int grow(pf_bond_rows *r, int64_t need) {
+  return need <= r->cap ? 0 : grow_exact(r, need + need / 2 + 1024);
+}
+
+int pf_bond_rows_reserve(pf_bond_rows *r, pf_int nrows, int64_t nbonds) {
+  if (nrows >= r->row_cap) {
+    int64_t *o = realloc(r->offset, sizeof(int64_t) * ((size_t)nrows + 2));
+    PF_CHECK(o, PF_ERR_MEMORY, "out of memory for %" PF_INT_FMT " bond rows", nrows);
+    r->offset = o;
+    r->row_cap = nrows + 1;
+  }
+  return grow_exact(r, r->offset[r->n] + nbonds);
+}
+
+int pf_bond_rows_release(pf_bond_rows *r) {
+  pf_bond_rows_clear(r);
+  PF_FREE(r->gid);
+  r->cap = 0;
+  PF_MALLOC(r->gid, 1); /* never NULL (pf_bond_rows_init) */
+  for (int k = 0; k < r->nfields; k++) {
+    pf_bond_field *f = &r->field[k];
+    free(f->data);
+    f->data = calloc((size_t)f->ncomp, pf_bond_type_size(f->type)); /* room for one bond, as registered */
+    PF_CHECK(f->data, PF_ERR_MEMORY, "out of memory for the bond field '%s'", f->name);
+  }
   return 0;
 }
 

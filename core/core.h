@@ -366,6 +366,12 @@ int pf_comm_size(void);
 double pf_memory_limit(void);
 /* The largest resident memory of this process so far (getrusage ru_maxrss), bytes. */
 double pf_memory_peak(void);
+/* The resident memory of this process now (/proc/self/statm), bytes; 0 where unknown. */
+double pf_memory_resident(void);
+/* Give the heap's free memory back to the system (glibc's malloc_trim; elsewhere nothing): after
+ * the set-up frees its temporaries, which freed blocks below the heap's top would otherwise keep
+ * resident through the run. */
+void pf_memory_trim(void);
 
 /* ---- MPI domain decomposition (core/partition.c, migrate.c, halo.c) -------------- */
 /* Bond lists in transit between ranks: one row per owned point, neighbours by global id, each
@@ -401,6 +407,12 @@ int pf_bond_rows_init(pf_bond_rows *r);
 int pf_bond_rows_free(pf_bond_rows *r);
 /* Drop every row, keeping the fields registered. */
 void pf_bond_rows_clear(pf_bond_rows *r);
+/* Room for nrows rows (in all) and nbonds more bonds, allocated exactly: appends within it do
+ * not reallocate (a realloc may hold the old and the new block at once). */
+int pf_bond_rows_reserve(pf_bond_rows *r, pf_int nrows, int64_t nbonds);
+/* Drop every row as pf_bond_rows_clear, and give the bonds' memory (neighbours and fields)
+ * back: for rows whose bonds are held elsewhere for a while (migration's packed records). */
+int pf_bond_rows_release(pf_bond_rows *r);
 
 /* Register a per-bond field of ncomp components of type, flags PF_FIELD_RESTART or 0, init the
  * value of a bond appended without one. The bonds already in the rows take init. Registering

@@ -4,6 +4,9 @@
 #include "core/core.h"
 
 #include <limits.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -131,4 +134,19 @@ double pf_memory_limit(void) {
 double pf_memory_peak(void) {
   struct rusage ru;
   return getrusage(RUSAGE_SELF, &ru) ? 0 : (double)ru.ru_maxrss * 1024.0; /* (KB on Linux) */
+}
+
+double pf_memory_resident(void) {
+  const long page = sysconf(_SC_PAGE_SIZE);
+  unsigned long size = 0, resident = 0;
+  FILE *fp = fopen("/proc/self/statm", "r");
+  const int got = fp ? fscanf(fp, "%lu %lu", &size, &resident) : 0;
+  if (fp) fclose(fp);
+  return got == 2 && page > 0 ? (double)resident * (double)page : 0.0;
+}
+
+void pf_memory_trim(void) {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
 }

@@ -57,13 +57,12 @@ static char *pack(const pf_points *pts, const pf_bond_rows *rows, pf_int i, char
   return p;
 }
 
-/* Unpack one record into point k of pts and append its row; returns the next record. */
-static const char *unpack(const char *p, pf_points *pts, pf_bond_rows *rows, pf_int k, int nreal,
-                          double *real, int *ierr) {
-  int32_t nb;
+/* Unpack the point of one record into point k of pts; *nb gets its bond count. Returns the
+ * record's bonds. */
+static const char *unpack_point(const char *p, pf_points *pts, pf_int k, int nreal, double *real, int32_t *nb) {
   memcpy(&pts->gid[k], p, sizeof(pf_gid)), p += sizeof(pf_gid);
   memcpy(&pts->body[k], p, sizeof(int32_t)), p += sizeof(int32_t);
-  memcpy(&nb, p, sizeof(int32_t)), p += sizeof(int32_t);
+  memcpy(nb, p, sizeof(int32_t)), p += sizeof(int32_t);
   memcpy(real, p, sizeof(double) * (size_t)nreal), p += sizeof(double) * (size_t)nreal;
   const double *r = real;
   for (int a = 0; a < 3; a++) {
@@ -78,15 +77,19 @@ static const char *unpack(const char *p, pf_points *pts, pf_bond_rows *rows, pf_
     memcpy(&fl->data[(size_t)k * fl->ncomp], r, sizeof(double) * fl->ncomp);
     r += fl->ncomp;
   }
-  *ierr = pf_bond_rows_append(rows, nb, NULL, 0, NULL); /* then the bonds' bytes over it */
-  if (*ierr) return p;
+  return p;
+}
+
+/* Append the row of nb bonds packed at p (neighbours, then each field). */
+static int unpack_row(const char *p, int32_t nb, pf_bond_rows *rows) {
+  PF_CALL(pf_bond_rows_append(rows, nb, NULL, 0, NULL)); /* then the bonds' bytes over it */
   const int64_t at = rows->offset[rows->n - 1];
   memcpy(rows->gid + at, p, sizeof(pf_gid) * (size_t)nb), p += sizeof(pf_gid) * (size_t)nb;
   for (int q = 0; q < rows->nfields; q++) {
     const pf_bond_field *f = &rows->field[q];
     memcpy((char *)f->data + field_bytes(f, at), p, field_bytes(f, nb)), p += field_bytes(f, nb);
   }
-  return p;
+  return 0;
 }
 
 /* Pack the owned points by destination rank: buffer, byte counts and displacements. */
@@ -150,20 +153,10 @@ static int order_by_body(const pf_points *pts, int nbodies, pf_int *body_start, 
   return 0;
 }
 
-static int permute_rows(pf_bond_rows *rows, const pf_int *perm) {
-  pf_bond_rows out;
-  PF_CALL(pf_bond_rows_init(&out));
-  int ierr = pf_bond_rows_fields_copy(&out, rows);
-  for (pf_int k = 0; k < rows->n && !ierr; k++) ierr = pf_bond_rows_append_row(&out, rows, perm[k]);
-  if (ierr) {
-    pf_bond_rows_free(&out);
-    return ierr;
-  }
-  pf_bond_rows_free(rows);
-  *rows = out;
-  return 0;
-}
-
+/* The records are packed, the rows' own copy of the bonds is given back before the exchange
+ * (on one rank the packed buffer is the received one), and the rows are rebuilt from the
+ * received records directly in the points' final order: at most two copies of this rank's
+ * bonds exist at any time (the rows and the packed buffer, or the send and receive buffers). */
 int pf_points_migrate(pf_points *pts, pf_bond_rows *rows, const int *dest, int nbodies, pf_int *body_start) {
   int size = pf_comm_size(), nreal = NFIXED + field_width(pts);
   PF_CALL(pf_bond_rows_fields_agree(rows)); /* every record carries the same bond fields */
@@ -174,31 +167,43 @@ int pf_points_migrate(pf_points *pts, pf_bond_rows *rows, const int *dest, int n
   PF_MALLOC(rdispl, size + 1);
   char *sbuf = NULL, *rbuf = NULL;
   PF_CALL(pack_all(pts, rows, dest, nreal, &sbuf, scount, sdispl));
+  PF_CALL(pf_bond_rows_release(rows)); /* (its bonds are in sbuf) */
   MPI_Alltoall(scount, 1, MPI_INT, rcount, 1, MPI_INT, MPI_COMM_WORLD);
   for (int r = 0; r < size; r++) {
     PF_CHECK((size_t)rdispl[r] + (size_t)rcount[r] < INT_MAX, PF_ERR_RUN,
              "migration of more than 2 GB into one rank; use more ranks");
     rdispl[r + 1] = rdispl[r] + rcount[r];
   }
-  PF_MALLOC(rbuf, rdispl[size]);
-  MPI_Alltoallv(sbuf, scount, sdispl, MPI_BYTE, rbuf, rcount, rdispl, MPI_BYTE, MPI_COMM_WORLD);
+  if (size == 1) rbuf = sbuf, sbuf = NULL; /* (everything stays) */
+  else {
+    PF_MALLOC(rbuf, rdispl[size]);
+    MPI_Alltoallv(sbuf, scount, sdispl, MPI_BYTE, rbuf, rcount, rdispl, MPI_BYTE, MPI_COMM_WORLD);
+  }
   free(sbuf), free(scount), free(sdispl), free(rcount);
   pf_exchange_destroy(&pts->halo);
-  pf_int n = count_records(rbuf, (size_t)rdispl[size], nreal, bond_size(rows));
+  const size_t bond_bytes = bond_size(rows);
+  pf_int n = count_records(rbuf, (size_t)rdispl[size], nreal, bond_bytes);
   PF_CALL(pf_points_resize(pts, n, 0));
-  pf_bond_rows_clear(rows);
   double *real;
-  PF_MALLOC(real, nreal);
-  const char *p = rbuf;
-  int ierr = 0;
-  for (pf_int k = 0; k < n && !ierr; k++) p = unpack(p, pts, rows, k, nreal, real, &ierr);
-  free(real), free(rbuf), free(rdispl);
-  if (ierr) return ierr;
+  const char **bonds; /* [n] each record's bonds */
+  int32_t *nb;
   pf_int *perm;
+  PF_MALLOC(real, nreal);
+  PF_MALLOC(bonds, n);
+  PF_MALLOC(nb, n);
   PF_MALLOC(perm, n);
-  ierr = order_by_body(pts, nbodies, body_start, perm);
+  const char *p = rbuf;
+  for (pf_int k = 0; k < n; k++) {
+    bonds[k] = unpack_point(p, pts, k, nreal, real, &nb[k]);
+    p = bonds[k] + (size_t)nb[k] * bond_bytes;
+  }
+  int64_t nbonds = 0;
+  for (pf_int k = 0; k < n; k++) nbonds += nb[k];
+  int ierr = pf_bond_rows_reserve(rows, n, nbonds);
+  if (!ierr) ierr = order_by_body(pts, nbodies, body_start, perm);
   if (!ierr) ierr = pf_points_permute(pts, perm);
-  if (!ierr) ierr = permute_rows(rows, perm);
-  free(perm);
+  for (pf_int k = 0; k < n && !ierr; k++) ierr = unpack_row(bonds[perm[k]], nb[perm[k]], rows);
+  free(real), free(bonds), free(nb), free(perm), free(rbuf), free(rdispl);
+  pf_memory_trim();
   return ierr;
 }

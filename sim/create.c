@@ -297,6 +297,7 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   if (sim->opt.restart_from) PF_CALL(pf_sim_restore_state(sim)); /* (renames the outputs) */
   pf_sim_fragments_name(sim);
   PF_CALL(pf_sim_check_paths(sim));
+  sim->rss_setup = pf_memory_peak();
   return 0;
 }
 
@@ -351,6 +352,7 @@ pf_pd_body *pf_sim_body(pf_sim *sim, int b) {
   const pf_body *body = &sim->body[b];
   return body->ops->as_pd ? body->ops->as_pd(body->data) : NULL;
 }
+pf_contact *pf_sim_contact(pf_sim *sim) { return sim->contact; }
 pf_fem_body *pf_sim_fem_body(pf_sim *sim, int b) {
   const pf_body *body = &sim->body[b];
   return body->ops->as_fem ? body->ops->as_fem(body->data) : NULL;

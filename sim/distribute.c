@@ -83,6 +83,8 @@ int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh) {
     ierr = sim->body[b].ops->attach(sim->body[b].data, sim->pts, &s, rows, local, fresh);
   }
   free(owner_of), free(local);
+  pf_bond_rows_release(rows); /* (the bodies hold their bonds now) */
+  pf_memory_trim();
   if (!ierr) ierr = pf_sim_contact_attach(sim);
   return ierr;
 }

@@ -88,6 +88,12 @@ static void summary(const pf_sim *sim, const pf_sim_history_row *g, double wall)
     pf_log("  contact: %ld search rebuilds, %.3g s (%.1f %% of the time loop), dissipation %.3g J\n", rebuilds, sec,
            sim->wall_loop > 0 ? 100 * sec / sim->wall_loop : 0.0, v[G_CDISS]);
   }
+  /* the set-up's peak resident memory, and the run's: resident at the end of the time loop, or
+   * the process's peak when the run raised it above the set-up's */
+  const double peak = pf_memory_peak(), setup = pf_max_all(sim->rss_setup), before = pf_max_all(sim->rss0);
+  const double run = pf_max_all(peak > sim->rss_setup ? peak : pf_memory_resident());
+  pf_log("  memory: set-up peak %.1f MB, run %.1f MB (%.2f x), before the set-up %.1f MB (resident, the largest"
+         " over the ranks)\n", setup / 1e6, run / 1e6, run > 0 ? setup / run : 0.0, before / 1e6);
   pf_log("  final damage fraction %.6g, energy balance error %.3g J (relative %.3g; damage dissipated %.3g J)\n",
          v[G_DAMAGE], v[G_EERR], pf_sim_energy_error(g), v[G_DDISS]);
   if (!sim->opt.no_output)

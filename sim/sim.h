@@ -45,6 +45,8 @@ int pf_sim_nbodies(const pf_sim *sim);
  * bodies, coupled ones included; NULL for the other kinds): for tests and tools. */
 pf_pd_body *pf_sim_body(pf_sim *sim, int b);
 struct pf_fem_body *pf_sim_fem_body(pf_sim *sim, int b);
+/* The contact between bodies (NULL: the deck has no pair): for tests. */
+struct pf_contact *pf_sim_contact(pf_sim *sim);
 /* Add body b's internal forces at the current positions to the points' f (dt: the step they
  * advance the material over); an element failure is an error. For tests. */
 int pf_sim_body_force(pf_sim *sim, int b, double dt);

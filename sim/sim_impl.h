@@ -121,6 +121,7 @@ struct pf_sim {
   double wall_output; /* seconds of the time loop's output, history and rebalancing */
   long loop_steps;    /* steps this run took (after a restart: since the checkpoint) */
   double rss0; /* the process's peak resident memory before the set-up, bytes (--check) */
+  double rss_setup; /* the same at the end of the set-up (the run summary) */
   /* instability guards (sim/guard.c) */
   int guard_tripped;    /* this rank found a NaN, a runaway point or an inverted element */
   int last_good;        /* the run stopped and the points hold the last good state */
@@ -149,7 +150,8 @@ void pf_sim_number_bodies(pf_sim *sim, const pf_gid *count);
 /* Re-partition when the work imbalance exceeds the deck's threshold (at output steps). */
 int pf_sim_rebalance(pf_sim *sim);
 int pf_sim_setup_time(pf_sim *sim);
-/* Partition, migrate, add ghosts and attach the bodies; fresh: initial state (set-up). */
+/* Partition, migrate, add ghosts and attach the bodies; fresh: initial state (set-up). The rows'
+ * bonds are given back at the end (the bodies hold them then); the caller frees the rows. */
 int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh);
 /* Output file name: the deck's `given` or <deck name><ext>, under --output-dir. */
 void pf_sim_output_name(const pf_sim *sim, const char *given, const char *ext, char *out, size_t len);
