@@ -102,13 +102,6 @@ static inline double lps_t(double a, double bc, double theta, double w, double r
   return w * (a * r0 + bc * (ext - theta * r0 / 3));
 }
 
-/* Pass 2: forces. With the critical-energy law (Foster et al. 2011) a bond in tension fails
- * when its energy per V_i V_j, w = (1/2) (t_ij + t_ji) e, exceeds w_c: by Euler's theorem for
- * the quadratic LPS energy, W_i = sum_j (1/2) t_ij e V_j exactly (lps_energy), so w is the
- * bond's share of the energy of both ends. Floating-point addition commutes, so end j's
- * t_ji + t_ij equals end i's t_ij + t_ji bitwise and both ends fail the bond in the same step.
- * The failing evaluation gives the bond no force (the forces of the other bonds keep this
- * evaluation's theta); theta is then recomputed without it, for the energy and the output. */
 /* After pass 1: the ghosts' theta, and every point's dilatation moment M (pf_pd_lps_volumetric;
  * 0 while it lost no bond), owned then ghosts, for the force pass. */
 static int lps_moments(pf_pd_body *b, pf_points *pts) {
@@ -118,6 +111,13 @@ static int lps_moments(pf_pd_body *b, pf_points *pts) {
   return pf_points_exchange(pts, p->mom, 1);
 }
 
+/* Pass 2: forces. With the critical-energy law (Foster et al. 2011) a bond in tension fails
+ * when its energy per V_i V_j, w = (1/2) (t_ij + t_ji) e, exceeds w_c: by Euler's theorem for
+ * the quadratic LPS energy, W_i = sum_j (1/2) t_ij e V_j exactly (lps_energy), so w is the
+ * bond's share of the energy of both ends. Floating-point addition commutes, so end j's
+ * t_ji + t_ij equals end i's t_ij + t_ji bitwise and both ends fail the bond in the same step.
+ * The failing evaluation gives the bond no force (the forces of the other bonds keep this
+ * evaluation's theta); theta is then recomputed without it, for the energy and the output. */
 /* The partial stress of every owned point, nu_i = sum_j t_ij M (x) xi V_j over its own family,
  * then the ghosts'. */
 static int lps_partial_stress(pf_pd_body *b, pf_points *pts) {
