@@ -77,6 +77,23 @@ static inline __attribute__((always_inline)) __m512d pf_batch_rsqrt_v(__m512d x)
   return y;
 }
 
+/* exp(x) lane-wise for -708 < x < 709, to about one unit in the last place: x = n ln 2 + r with
+ * n = round(x / ln 2) and ln 2 split in two (Cody & Waite 1980), so |r| <= ln 2 / 2 exactly;
+ * e^r by its Taylor series to r^13 / 13! (the first term left out, r^14 / 14! < 5e-18, is below
+ * half an ulp); times 2^n by scalef. Deterministic: the same x gives the same bits. */
+static inline __attribute__((always_inline)) __m512d pf_batch_exp_v(__m512d x) {
+  const __m512d n = _mm512_roundscale_pd(_mm512_mul_pd(x, _mm512_set1_pd(1.4426950408889634)),
+                                         _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+  __m512d r = _mm512_fnmadd_pd(n, _mm512_set1_pd(6.93147180369123816490e-01), x);
+  r = _mm512_fnmadd_pd(n, _mm512_set1_pd(1.90821492927058770002e-10), r);
+  static const double inv_factorial[14] = {1.0, 1.0, 0.5, 0.16666666666666666,
+      0.041666666666666664, 0.008333333333333333, 0.001388888888888889, 0.0001984126984126984,
+      2.48015873015873e-05, 2.7557319223985893e-06, 2.755731922398589e-07, 2.505210838544172e-08,
+      2.08767569878681e-09, 1.6059043836821613e-10};
+  __m512d p = _mm512_set1_pd(inv_factorial[13]);
+  for (int k = 12; k >= 0; k--) p = _mm512_fmadd_pd(p, r, _mm512_set1_pd(inv_factorial[k]));
+  return _mm512_scalef_pd(p, n);
+}
 #if defined(__AVX512BW__) && defined(__AVX512VL__)
 #define PF_BATCH_AVX512 1
 /* The live lanes of a batch: l < n and broken[l] == 0. */

@@ -103,12 +103,23 @@ force_point(const pf_pd_body *restrict b, const double *restrict rec, const doub
 }
 
 #if defined(PF_BATCH_AVX512)
-/* dilatation_point for omega = 1 in AVX-512 registers (pf_batch_geom_v: the squared lengths
- * with fused multiply-adds, so the last bits differ from dilatation_point's). */
+/* omega(|xi|) of a batch for the influence function `kind` (pd/influence.c), in registers: 1,
+ * the 1 / |xi| the geometry already holds, or exp(-|xi|^2 / sigma^2) (pf_batch_exp_v; nis2 =
+ * -1 / sigma^2). Both ends of a bond compute it from the same |xi| bits, so they agree. */
+static inline __attribute__((always_inline)) __m512d omega_v(const pf_batch_geom *g, const int kind, double nis2) {
+  if (kind == PF_INFLUENCE_INVERSE_DISTANCE) return g->ir0;
+  if (kind == PF_INFLUENCE_GAUSSIAN) return pf_batch_exp_v(_mm512_mul_pd(_mm512_mul_pd(g->r0, g->r0), _mm512_set1_pd(nis2)));
+  return _mm512_set1_pd(1.0);
+}
+
+/* dilatation_point in AVX-512 registers (pf_batch_geom_v: the squared lengths with fused
+ * multiply-adds, so the last bits differ from dilatation_point's). */
 static inline __attribute__((always_inline)) double dilatation_point_avx512(const pf_pd_body *restrict b,
                                                                             const double *restrict rec,
-                                                                            pf_int i, const int partial,
-                                                                            double *smin, int *fresh) {
+                                                                            pf_int i, const int kind,
+                                                                            const int partial, double *smin,
+                                                                            int *fresh) {
+  const double nis2 = -1.0 / (b->influence.length * b->influence.length);
   const pf_family *fam = &b->fam;
   uint8_t *restrict broken = fam->broken;
   const double *ri = rec + (size_t)PF_REC * (size_t)i;
@@ -122,18 +133,21 @@ static inline __attribute__((always_inline)) double dilatation_point_avx512(cons
     pf_batch_stretch t;
     pf_batch_load_v(fam, rec, ri, k0, end, s0i, partial, a, &g, &SM, &t);
     const __m512d ext = _mm512_sub_pd(g.r, g.r0);
-    SUM = _mm512_add_pd(SUM, _mm512_maskz_mov_pd(t.alive, _mm512_mul_pd(_mm512_mul_pd(g.r0, ext), t.vj)));
+    const __m512d wr0 = kind == PF_INFLUENCE_CONSTANT ? g.r0 : _mm512_mul_pd(omega_v(&g, kind, nis2), g.r0);
+    SUM = _mm512_add_pd(SUM, _mm512_maskz_mov_pd(t.alive, _mm512_mul_pd(_mm512_mul_pd(wr0, ext), t.vj)));
     *fresh += pf_batch_mark_fresh(broken + k0, t.fail);
   }
   *smin = pf_batch_min_v(SM);
   return pf_batch_sum_v(SUM);
 }
 
-/* force_point for omega = 1 and a stretch law in AVX-512 registers. */
+/* force_point for a stretch law in AVX-512 registers. */
 static inline __attribute__((always_inline)) void force_point_avx512(const pf_pd_body *restrict b,
                                                                      const double *restrict rec,
                                                                      const double *restrict rm, pf_int i,
-                                                                     double g15, const int partial, double f[3]) {
+                                                                     double g15, const int kind,
+                                                                     const int partial, double f[3]) {
+  const double nis2 = -1.0 / (b->influence.length * b->influence.length);
   const pf_family *fam = &b->fam;
   const double *ri = rec + (size_t)PF_REC * (size_t)i;
   const __m512d qi = _mm512_set1_pd(ri[REC_AUX]), rmi = _mm512_set1_pd(rm[i]), G = _mm512_set1_pd(g15);
@@ -150,8 +164,13 @@ static inline __attribute__((always_inline)) void force_point_avx512(const pf_pd
     const __mmask8 live = pf_batch_live_m(fam->broken + k0, n);
     pf_batch_geom_v(a, ri, &g);
     const __m512d ext = _mm512_sub_pd(g.r, g.r0), gext = _mm512_mul_pd(G, ext);
-    const __m512d tij = _mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(qi, g.r0), gext), rmi);
-    const __m512d tji = _mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(a[REC_AUX], g.r0), gext), rmj);
+    __m512d tij = _mm512_add_pd(_mm512_mul_pd(qi, g.r0), gext);
+    __m512d tji = _mm512_add_pd(_mm512_mul_pd(a[REC_AUX], g.r0), gext);
+    if (kind != PF_INFLUENCE_CONSTANT) {
+      const __m512d om = omega_v(&g, kind, nis2);
+      tij = _mm512_mul_pd(om, tij), tji = _mm512_mul_pd(om, tji);
+    }
+    tij = _mm512_mul_pd(tij, rmi), tji = _mm512_mul_pd(tji, rmj);
     __m512d vj = a[REC_V];
     if (partial) vj = _mm512_mul_pd(vj, _mm512_cvtps_pd(_mm256_loadu_ps(fam->vfrac + k0)));
     const __m512d fs = _mm512_maskz_mov_pd(live, _mm512_mul_pd(_mm512_mul_pd(_mm512_add_pd(tij, tji), vj), g.ir));
@@ -164,15 +183,15 @@ static inline __attribute__((always_inline)) void force_point_avx512(const pf_pd
 /* Pass 1 over the points [lo, hi); returns 1 when some point lost bonds (its lost flag set). */
 static inline __attribute__((always_inline)) int dilatations(pf_pd_body *b, const double *rec, const double *m,
                                                              double *theta, pf_int lo, pf_int hi,
-                                                             const int weighted, const int partial) {
+                                                             const int kind, const int partial) {
   int any = 0;
   for (pf_int i = lo; i < hi; i++) {
     int fresh;
 #if defined(PF_BATCH_AVX512)
-    const double sum = !weighted ? dilatation_point_avx512(b, rec, i, partial, &b->smin[i - b->first], &fresh)
-                                 : dilatation_point(b, rec, i, weighted, partial, &b->smin[i - b->first], &fresh);
+    const double sum = dilatation_point_avx512(b, rec, i, kind, partial, &b->smin[i - b->first], &fresh);
 #else
-    const double sum = dilatation_point(b, rec, i, weighted, partial, &b->smin[i - b->first], &fresh);
+    const double sum = dilatation_point(b, rec, i, kind != PF_INFLUENCE_CONSTANT, partial, &b->smin[i - b->first],
+                                        &fresh);
 #endif
     b->lost[i - b->first] = fresh > 0;
     any |= fresh > 0;
@@ -186,16 +205,19 @@ static inline __attribute__((always_inline)) int dilatations(pf_pd_body *b, cons
  * order, so the bits do not depend on the thread count. */
 void pf_pd_lps_batched_dilatation(pf_pd_body *b, const pf_points *pts, const double *rec, const double *m,
                                   double *theta) {
-  const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = b->fam.vfrac != NULL;
+  const pf_influence_kind kind = b->influence.kind;
+  const int partial = b->fam.vfrac != NULL;
   int any = 0;
 #pragma omp parallel reduction(| : any)
   {
     pf_int lo, hi;
     pf_thread_range(b->first, b->n, &lo, &hi);
-    if (!weighted && !partial) any = dilatations(b, rec, m, theta, lo, hi, 0, 0);
-    else if (!weighted) any = dilatations(b, rec, m, theta, lo, hi, 0, 1);
-    else if (!partial) any = dilatations(b, rec, m, theta, lo, hi, 1, 0);
-    else any = dilatations(b, rec, m, theta, lo, hi, 1, 1);
+#define PF_DILATATIONS(K)                                                                          \
+  any = partial ? dilatations(b, rec, m, theta, lo, hi, K, 1) : dilatations(b, rec, m, theta, lo, hi, K, 0)
+    if (kind == PF_INFLUENCE_CONSTANT) PF_DILATATIONS(PF_INFLUENCE_CONSTANT);
+    else if (kind == PF_INFLUENCE_INVERSE_DISTANCE) PF_DILATATIONS(PF_INFLUENCE_INVERSE_DISTANCE);
+    else PF_DILATATIONS(PF_INFLUENCE_GAUSSIAN);
+#undef PF_DILATATIONS
   }
   for (pf_int i = b->first; any && i < b->first + b->n; i++)
     if (b->lost[i - b->first]) b->damage_work += pf_pd_lps_release(b, pts, i, m[i], NULL, 0);
@@ -204,14 +226,15 @@ void pf_pd_lps_batched_dilatation(pf_pd_body *b, const pf_points *pts, const dou
 /* Pass 2 over the points [lo, hi); returns the number of bonds failed. */
 static inline __attribute__((always_inline)) int64_t forces(pf_pd_body *b, pf_points *pts, const double *rec,
                                                             const double *rm, pf_int lo, pf_int hi,
-                                                            const int weighted, const int partial,
+                                                            const int kind, const int partial,
                                                             const int energy) {
   const double g15 = 15.0 * b->shear_modulus, wc = b->critical_energy;
+  const int weighted = kind != PF_INFLUENCE_CONSTANT;
   int64_t failed = 0;
   for (pf_int i = lo; i < hi; i++) {
     double f[3];
 #if defined(PF_BATCH_AVX512)
-    if (!weighted && !energy) force_point_avx512(b, rec, rm, i, g15, partial, f);
+    if (!energy) force_point_avx512(b, rec, rm, i, g15, kind, partial, f);
     else
 #endif
       failed += force_point(b, rec, rm, i, g15, wc, weighted, partial, energy, f);
@@ -221,18 +244,20 @@ static inline __attribute__((always_inline)) int64_t forces(pf_pd_body *b, pf_po
 }
 
 int64_t pf_pd_lps_batched_force(pf_pd_body *b, pf_points *pts, const double *rec, const double *rm) {
-  const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = b->fam.vfrac != NULL;
-  const int energy = b->damage->fails_on_energy;
+  const pf_influence_kind kind = b->influence.kind;
+  const int partial = b->fam.vfrac != NULL, energy = b->damage->fails_on_energy;
   int64_t failed = 0;
 #pragma omp parallel reduction(+ : failed)
   {
     pf_int lo, hi;
     pf_thread_range(b->first, b->n, &lo, &hi);
-    if (energy) failed = forces(b, pts, rec, rm, lo, hi, weighted, partial, 1);
-    else if (!weighted && !partial) failed = forces(b, pts, rec, rm, lo, hi, 0, 0, 0);
-    else if (!weighted) failed = forces(b, pts, rec, rm, lo, hi, 0, 1, 0);
-    else if (!partial) failed = forces(b, pts, rec, rm, lo, hi, 1, 0, 0);
-    else failed = forces(b, pts, rec, rm, lo, hi, 1, 1, 0);
+#define PF_FORCES(K)                                                                               \
+  failed = partial ? forces(b, pts, rec, rm, lo, hi, K, 1, 0) : forces(b, pts, rec, rm, lo, hi, K, 0, 0)
+    if (energy) failed = forces(b, pts, rec, rm, lo, hi, kind, partial, 1);
+    else if (kind == PF_INFLUENCE_CONSTANT) PF_FORCES(PF_INFLUENCE_CONSTANT);
+    else if (kind == PF_INFLUENCE_INVERSE_DISTANCE) PF_FORCES(PF_INFLUENCE_INVERSE_DISTANCE);
+    else PF_FORCES(PF_INFLUENCE_GAUSSIAN);
+#undef PF_FORCES
   }
   return failed;
 }

@@ -6,13 +6,18 @@
  *   modulo a batch of 8 among them), with a random displacement field and some bonds broken,
  *   the PMB and LPS forces, and the LPS
  *   dilatations, equal direct sums of the textbook formulas (Silling & Askari 2005, eq. 7;
- *   Silling et al. 2007, eqs. 90-94) written here with sqrt and division, to 1e-12 relative.
+ *   Silling et al. 2007, eqs. 90-94) written here with sqrt and division, to 1e-12 relative;
+ *   the LPS for each influence function the deck offers (1, 1 / |xi|, exp(-|xi|^2 / sigma^2)),
+ *   omega written here with division and the C library's exp;
+ * - with AVX-512, the kernels' vector exp within 2 units in the last place of exp over
+ *   [-20, 20] (the Gaussian's argument lies in [-4, 0]).
  */
 #include "test_common.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "pd/bond_batch.h"
 
@@ -45,6 +50,14 @@ static void check_kernels(void) {
     pf_batch_rsqrt(y);
     for (int l = 0; l < PF_BATCH; l++) PF_TEST_CLOSE(y[l], 1.0 / sqrt(x[l]), 4.5e-16, 0);
   }
+#if defined(PF_BATCH_AVX512)
+  for (int trial = 0; trial < 2000; trial++) {
+    double x[PF_BATCH], y[PF_BATCH];
+    for (int l = 0; l < PF_BATCH; l++) x[l] = trial < 1000 ? 40 * urand(&seed) - 20 : -4 * urand(&seed);
+    _mm512_storeu_pd(y, pf_batch_exp_v(_mm512_loadu_pd(x)));
+    for (int l = 0; l < PF_BATCH; l++) PF_TEST_CLOSE(y[l], exp(x[l]), 4.5e-16, 0);
+  }
+#endif
   for (int n = 0; n <= PF_BATCH; n++)
     for (int trial = 0; trial < 20; trial++) {
       uint8_t br[PF_BATCH];
@@ -56,14 +69,14 @@ static void check_kernels(void) {
 }
 
 /* A lattice body of the model (with its keys), displaced at random, some bonds broken. */
-static pf_sim *lattice(const char *model) {
+static pf_sim *lattice(const char *model, const char *influence) {
   char deck[1024];
   snprintf(deck, sizeof deck,
            "materials: {m: {model: %s, density: 1000, bulk_modulus: 1.0e9, shear_modulus: 0.6e9}}\n"
-           "bodies:\n  - {name: b, material: m, horizon: 3.0001e-3,\n"
+           "bodies:\n  - {name: b, material: m, horizon: 3.0001e-3, influence: %s,\n"
            "     geometry: {shape: box, lo: [0, 0, 0], hi: [6e-3, 5e-3, 4e-3], spacing: 1e-3}}\n"
            "time: {steps: 0, dt: 1e-9}\n",
-           model);
+           model, influence);
   pf_sim *sim = pf_test_sim("bond_batch", deck);
   pf_points *p = pf_sim_points(sim);
   unsigned seed = 11;
@@ -104,7 +117,7 @@ static void symmetrize(pf_family *fam) {
 }
 
 static void check_pmb(void) {
-  pf_sim *sim = lattice("pmb");
+  pf_sim *sim = lattice("pmb", "constant");
   pf_points *p = pf_sim_points(sim);
   pf_pd_body *b = pf_sim_body(sim, 0);
   pf_family *fam = (pf_family *)pf_pd_body_family(b);
@@ -125,8 +138,16 @@ static void check_pmb(void) {
   pf_sim_destroy(&sim);
 }
 
-static void check_lps(void) {
-  pf_sim *sim = lattice("lps");
+/* omega(r) of the deck's influence function, written out (sigma = horizon / 2, the default). */
+static double omega(const char *influence, double r) {
+  const double sigma = 0.5 * 3.0001e-3;
+  if (!strcmp(influence, "inverse_distance")) return 1.0 / r;
+  if (!strcmp(influence, "gaussian")) return exp(-r * r / (sigma * sigma));
+  return 1.0;
+}
+
+static void check_lps(const char *influence) {
+  pf_sim *sim = lattice("lps", influence);
   pf_points *p = pf_sim_points(sim);
   pf_pd_body *b = pf_sim_body(sim, 0);
   pf_family *fam = (pf_family *)pf_pd_body_family(b);
@@ -137,8 +158,9 @@ static void check_lps(void) {
   for (pf_int i = 0; i < n; i++) { /* m over every bond (reference), theta over the intact */
     for (int64_t k = fam->offset[i]; k < fam->offset[i + 1]; k++) {
       bond(p, i, fam->neighbor[k], &r0, &r, e);
-      m[i] += r0 * r0 * p->vol[fam->neighbor[k]];
-      if (!fam->broken[k]) th[i] += r0 * (r - r0) * p->vol[fam->neighbor[k]];
+      const double w = omega(influence, r0);
+      m[i] += w * r0 * r0 * p->vol[fam->neighbor[k]];
+      if (!fam->broken[k]) th[i] += w * r0 * (r - r0) * p->vol[fam->neighbor[k]];
     }
   }
   for (pf_int i = 0; i < n; i++) th[i] *= 3 / m[i];
@@ -151,9 +173,9 @@ static void check_lps(void) {
       if (fam->broken[k]) continue;
       pf_int j = fam->neighbor[k];
       bond(p, i, j, &r0, &r, e);
-      const double ext = r - r0;
-      const double tij = 3 * K * th[i] / m[i] * r0 + 15 * G / m[i] * (ext - th[i] * r0 / 3);
-      const double tji = 3 * K * th[j] / m[j] * r0 + 15 * G / m[j] * (ext - th[j] * r0 / 3);
+      const double ext = r - r0, w = omega(influence, r0);
+      const double tij = w * (3 * K * th[i] / m[i] * r0 + 15 * G / m[i] * (ext - th[i] * r0 / 3));
+      const double tji = w * (3 * K * th[j] / m[j] * r0 + 15 * G / m[j] * (ext - th[j] * r0 / 3));
       for (int a = 0; a < 3; a++) want[a] += (tij + tji) * p->vol[j] * p->vol[i] * e[a] / r;
       mag += (fabs(tij) + fabs(tji)) * p->vol[j] * p->vol[i];
     }
@@ -167,6 +189,8 @@ int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
   check_kernels();
   check_pmb();
-  check_lps();
+  check_lps("constant");
+  check_lps("inverse_distance");
+  check_lps("gaussian");
   return pf_test_finish();
 }
