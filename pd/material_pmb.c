@@ -117,13 +117,15 @@ pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, do
 }
 
 #if defined(PF_BATCH_AVX512)
-/* pmb_point for omega = 1 and a stretch law, in AVX-512 registers: pmb_point's operations, but
- * the squared lengths and the force sums with fused multiply-adds, so the last bits differ
- * from pmb_point's; the lanes are summed in the same order. */
+/* pmb_point for a stretch law, in AVX-512 registers: pmb_point's operations, but the squared
+ * lengths and the force sums with fused multiply-adds, so the last bits differ from
+ * pmb_point's; the lanes are summed in the same order. omega (influence `kind`) is 1, the
+ * 1 / |xi| the geometry holds, or exp(-|xi|^2 / sigma^2) by pf_batch_exp_v. */
 static inline __attribute__((always_inline)) double pmb_point_avx512(const pf_pd_body *restrict b,
                                                                      const double *restrict rec, pf_int i,
-                                                                     double c, const int partial, double f[3],
-                                                                     int *nfresh) {
+                                                                     double c, const int kind, const int partial,
+                                                                     double f[3], int *nfresh) {
+  const __m512d nis2 = _mm512_set1_pd(-1.0 / (b->influence.length * b->influence.length));
   const pf_family *fam = &b->fam;
   uint8_t *restrict broken = fam->broken;
   const double *ri = rec + (size_t)PF_REC * (size_t)i;
@@ -137,7 +139,10 @@ static inline __attribute__((always_inline)) double pmb_point_avx512(const pf_pd
     pf_batch_geom g;
     pf_batch_stretch t;
     pf_batch_load_v(fam, rec, ri, k0, end, s0i, partial, a, &g, &SM, &t);
-    const __m512d fs = _mm512_maskz_mov_pd(t.alive, _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(cc, t.s), g.ir), t.vj));
+    __m512d fs = _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(cc, t.s), g.ir), t.vj);
+    if (kind == PF_INFLUENCE_INVERSE_DISTANCE) fs = _mm512_mul_pd(fs, g.ir0);
+    if (kind == PF_INFLUENCE_GAUSSIAN) fs = _mm512_mul_pd(fs, pf_batch_exp_v(_mm512_mul_pd(_mm512_mul_pd(g.r0, g.r0), nis2)));
+    fs = _mm512_maskz_mov_pd(t.alive, fs);
     for (int q = 0; q < 3; q++) F[q] = _mm512_fmadd_pd(fs, g.e[q], F[q]);
     fresh += pf_batch_mark_fresh(broken + k0, t.fail);
   }
@@ -151,8 +156,9 @@ static inline __attribute__((always_inline)) double pmb_point_avx512(const pf_pd
 /* The points [lo, hi) of the body for one combination of the compile-time switches; returns 1
  * when some point lost bonds (its lost flag is set). */
 static inline __attribute__((always_inline)) int pmb_loop(pf_pd_body *b, pf_points *pts, double c, pf_int lo,
-                                                          pf_int hi, const int weighted, const int partial,
+                                                          pf_int hi, const int kind, const int partial,
                                                           const int energy) {
+  const int weighted = kind != PF_INFLUENCE_CONSTANT;
   double *restrict F = pts->f;
   const double *restrict vol = pts->vol;
   const double *rec = ((const pmb *)b->mat)->rec.rec;
@@ -162,7 +168,7 @@ static inline __attribute__((always_inline)) int pmb_loop(pf_pd_body *b, pf_poin
     double f[3];
     int fresh;
 #if defined(PF_BATCH_AVX512)
-    if (!weighted && !energy) b->smin[i - b->first] = pmb_point_avx512(b, rec, i, c, partial, f, &fresh);
+    if (!energy) b->smin[i - b->first] = pmb_point_avx512(b, rec, i, c, kind, partial, f, &fresh);
     else
 #endif
       b->smin[i - b->first] = pmb_point(b, rec, i, c, wlim, weighted, partial, energy, f, &fresh);
@@ -178,11 +184,13 @@ static inline __attribute__((always_inline)) int pmb_loop(pf_pd_body *b, pf_poin
 /* The critical-energy loops, out of line so that the stretch-law loops of pmb_force keep
  * their code and layout. */
 static __attribute__((noinline)) int pmb_force_energy(pf_pd_body *b, pf_points *pts, double c, pf_int lo,
-                                                      pf_int hi, int weighted, int partial) {
-  if (!weighted && !partial) return pmb_loop(b, pts, c, lo, hi, 0, 0, 1);
-  if (!weighted) return pmb_loop(b, pts, c, lo, hi, 0, 1, 1);
-  if (!partial) return pmb_loop(b, pts, c, lo, hi, 1, 0, 1);
-  return pmb_loop(b, pts, c, lo, hi, 1, 1, 1);
+                                                      pf_int hi, int partial) {
+  const pf_influence_kind kind = b->influence.kind;
+#define PF_PMB_LOOP(K) return partial ? pmb_loop(b, pts, c, lo, hi, K, 1, 1) : pmb_loop(b, pts, c, lo, hi, K, 0, 1)
+  if (kind == PF_INFLUENCE_CONSTANT) PF_PMB_LOOP(PF_INFLUENCE_CONSTANT);
+  if (kind == PF_INFLUENCE_INVERSE_DISTANCE) PF_PMB_LOOP(PF_INFLUENCE_INVERSE_DISTANCE);
+  PF_PMB_LOOP(PF_INFLUENCE_GAUSSIAN);
+#undef PF_PMB_LOOP
 }
 
 /* Owner computes: a point writes only its own force, smin and row, so the threads (each a
@@ -191,18 +199,19 @@ static __attribute__((noinline)) int pmb_force_energy(pf_pd_body *b, pf_points *
 static int pmb_force(pf_pd_body *b, pf_points *pts) {
   const double c = ((const pmb *)b->mat)->c;
   PF_CALL(pf_batch_records_fill(&((pmb *)b->mat)->rec, pts, b->s0));
-  const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = b->fam.vfrac != NULL;
-  const int energy = b->damage->fails_on_energy;
+  const pf_influence_kind kind = b->influence.kind;
+  const int partial = b->fam.vfrac != NULL, energy = b->damage->fails_on_energy;
   int any = 0;
 #pragma omp parallel reduction(| : any)
   {
     pf_int lo, hi;
     pf_thread_range(b->first, b->n, &lo, &hi);
-    if (energy) any = pmb_force_energy(b, pts, c, lo, hi, weighted, partial);
-    else if (!weighted && !partial) any = pmb_loop(b, pts, c, lo, hi, 0, 0, 0);
-    else if (!weighted) any = pmb_loop(b, pts, c, lo, hi, 0, 1, 0);
-    else if (!partial) any = pmb_loop(b, pts, c, lo, hi, 1, 0, 0);
-    else any = pmb_loop(b, pts, c, lo, hi, 1, 1, 0);
+#define PF_PMB_LOOP(K) any = partial ? pmb_loop(b, pts, c, lo, hi, K, 1, 0) : pmb_loop(b, pts, c, lo, hi, K, 0, 0)
+    if (energy) any = pmb_force_energy(b, pts, c, lo, hi, partial);
+    else if (kind == PF_INFLUENCE_CONSTANT) PF_PMB_LOOP(PF_INFLUENCE_CONSTANT);
+    else if (kind == PF_INFLUENCE_INVERSE_DISTANCE) PF_PMB_LOOP(PF_INFLUENCE_INVERSE_DISTANCE);
+    else PF_PMB_LOOP(PF_INFLUENCE_GAUSSIAN);
+#undef PF_PMB_LOOP
   }
   for (pf_int i = b->first; any && i < b->first + b->n; i++)
     if (b->lost[i - b->first]) b->damage_work += pmb_release(b, pts, i, c);

@@ -7,8 +7,9 @@
  *   the PMB and LPS forces, and the LPS
  *   dilatations, equal direct sums of the textbook formulas (Silling & Askari 2005, eq. 7;
  *   Silling et al. 2007, eqs. 90-94) written here with sqrt and division, to 1e-12 relative;
- *   the LPS for each influence function the deck offers (1, 1 / |xi|, exp(-|xi|^2 / sigma^2)),
- *   omega written here with division and the C library's exp;
+ *   both for each influence function the deck offers (1, 1 / |xi|, exp(-|xi|^2 / sigma^2)),
+ *   omega written here with division and the C library's exp, the PMB micromodulus
+ *   18 K / (4 pi int omega r^3 dr) in closed form;
  * - with AVX-512, the kernels' vector exp within 2 units in the last place of exp over
  *   [-20, 20] (the Gaussian's argument lies in [-4, 0]).
  */
@@ -116,13 +117,31 @@ static void symmetrize(pf_family *fam) {
   free(keep);
 }
 
-static void check_pmb(void) {
-  pf_sim *sim = lattice("pmb", "constant");
+/* omega(r) of the deck's influence function, written out (sigma = horizon / 2, the default). */
+static double omega(const char *influence, double r) {
+  const double sigma = 0.5 * 3.0001e-3;
+  if (!strcmp(influence, "inverse_distance")) return 1.0 / r;
+  if (!strcmp(influence, "gaussian")) return exp(-r * r / (sigma * sigma));
+  return 1.0;
+}
+
+/* PMB micromodulus c = 18 K / (4 pi int_0^delta omega r^3 dr) in closed form: int r^3 = delta^4
+ * / 4; int r^2 = delta^3 / 3; int exp(-r^2 / sigma^2) r^3 = (sigma^4 / 2) (1 - (1 + delta^2 /
+ * sigma^2) exp(-delta^2 / sigma^2)). */
+static double micromodulus(const char *influence, double K, double delta) {
+  const double pi = acos(-1.0), sigma = delta / 2, x = delta * delta / (sigma * sigma);
+  if (!strcmp(influence, "inverse_distance")) return 18 * K / (4 * pi * pow(delta, 3) / 3);
+  if (!strcmp(influence, "gaussian")) return 18 * K / (4 * pi * pow(sigma, 4) / 2 * (1 - (1 + x) * exp(-x)));
+  return 18 * K / (pi * pow(delta, 4));
+}
+
+static void check_pmb(const char *influence) {
+  pf_sim *sim = lattice("pmb", influence);
   pf_points *p = pf_sim_points(sim);
   pf_pd_body *b = pf_sim_body(sim, 0);
   pf_family *fam = (pf_family *)pf_pd_body_family(b);
   symmetrize(fam);
-  const double c = 18 * 1.0e9 / (acos(-1.0) * pow(3.0001e-3, 4));
+  const double c = micromodulus(influence, 1.0e9, 3.0001e-3);
   PF_TEST_OK(pf_pd_body_force(b, p, 0.0));
   for (pf_int i = 0; i < p->n_owned; i++) {
     double want[3] = {0, 0, 0}, e[3], r0, r, mag = 0;
@@ -130,20 +149,13 @@ static void check_pmb(void) {
       if (fam->broken[k]) continue;
       pf_int j = fam->neighbor[k];
       bond(p, i, j, &r0, &r, e);
-      for (int a = 0; a < 3; a++) want[a] += c * (r - r0) / r0 * p->vol[j] * p->vol[i] * e[a] / r;
-      mag += c * fabs(r - r0) / r0 * p->vol[j] * p->vol[i];
+      const double cw = c * omega(influence, r0);
+      for (int a = 0; a < 3; a++) want[a] += cw * (r - r0) / r0 * p->vol[j] * p->vol[i] * e[a] / r;
+      mag += cw * fabs(r - r0) / r0 * p->vol[j] * p->vol[i];
     }
     for (int a = 0; a < 3; a++) PF_TEST_CLOSE(p->f[3 * i + a], want[a], 0, 1e-12 * mag);
   }
   pf_sim_destroy(&sim);
-}
-
-/* omega(r) of the deck's influence function, written out (sigma = horizon / 2, the default). */
-static double omega(const char *influence, double r) {
-  const double sigma = 0.5 * 3.0001e-3;
-  if (!strcmp(influence, "inverse_distance")) return 1.0 / r;
-  if (!strcmp(influence, "gaussian")) return exp(-r * r / (sigma * sigma));
-  return 1.0;
 }
 
 static void check_lps(const char *influence) {
@@ -188,7 +200,9 @@ static void check_lps(const char *influence) {
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
   check_kernels();
-  check_pmb();
+  check_pmb("constant");
+  check_pmb("inverse_distance");
+  check_pmb("gaussian");
   check_lps("constant");
   check_lps("inverse_distance");
   check_lps("gaussian");
