@@ -12,9 +12,17 @@
 # wall seconds (with output), bond evaluations per second (directed bonds x steps / time loop)
 # and the final damage fraction. The table goes to stdout and bench/results/fragmenting.txt.
 #
+# Then, when LAMMPS is installed (`LMP`, default `lmp`; FRAG_LAMMPS=0 skips it), the same model in
+# both codes, side by side: LAMMPS's peri/pmb on perifem's own points and initial velocities
+# (bench/frag_lammps.py writes them from the first frame of the perifem run), the same
+# micromodulus, horizon, constant critical stretch and step, for the same number of steps; and
+# perifem's deck with the cylinder's self-contact added (radius 0.9 h, bonded points excluded),
+# since LAMMPS's peri pair styles always compute a short-range contact force. Both use the
+# neighbour/search skin FRAG_SKIN (default 5e-4 m: the cylinder moves 40 um a step).
+#
 # Environment: FRAG_FINAL_TIME (s; e.g. 2e-6 for a 10-step check), FRAG_RANKS (default "1 2"),
 #   FRAG_REPEAT (runs of each case, the fastest counts; default 1), FRAG_KEEP=1 keeps the work
-#   directory.
+#   directory, FRAG_LAMMPS, FRAG_SKIN, LMP.
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -62,6 +70,35 @@ for np in $ranks; do
   done
 done
 
+# The same model in both codes (see the header).
+lmp=${LMP:-lmp}
+skin=${FRAG_SKIN:-5e-4}
+declare -A cloop lloop lbonds ldamage cdamage
+if [[ ${FRAG_LAMMPS:-1} != 0 ]] && command -v "$lmp" >/dev/null; then
+  first=${ranks%% *}
+  exo=$work/out$first/fragmenting_cylinder.e
+  dt=$(grab 's/^perifem: [0-9]* steps of \([0-9.eE+-]*\) s.*/\1/p' "$work/frag$first.log" "step")
+  /usr/bin/python3 "$here/frag_lammps.py" "$exo" "$work" "$dt" "${steps[$first]}" "$skin" >&2
+  for np in $ranks; do
+    for rep in $(seq "$repeat"); do
+      echo "== same model, $np rank(s), run $rep of $repeat: perifem with self-contact, then LAMMPS" >&2
+      log=$work/fragc$np.log
+      launch "$np" "$perifem" --progress plain --output-dir "$work/outc$np" --set "time.final_time=$final" \
+        --set output.interval=0 --set "contact={skin: $skin, pairs: [{bodies: [cylinder, cylinder]}]}" "$deck" \
+        >"$log" 2>&1 || { tail -30 "$log" >&2; die "perifem with contact failed on $np rank(s)"; }
+      t=$(grab 's/.*(time loop \([0-9.eE+-]*\) s[,)].*/\1/p' "$log" "time loop")
+      if [[ -z ${cloop[$np]:-} ]] || awk -v a="$t" -v b="${cloop[$np]}" 'BEGIN { exit !(a < b) }'; then cloop[$np]=$t; fi
+      llog=$work/lammps$np.log
+      (cd "$work" && launch "$np" "$lmp" -in in.frag -log "$llog" >/dev/null 2>&1) || { tail -30 "$llog" >&2; die "LAMMPS failed on $np rank(s)"; }
+      t=$(grab 's/^Loop time of \([0-9.eE+-]*\) on.*/\1/p' "$llog" "Loop time")
+      if [[ -z ${lloop[$np]:-} ]] || awk -v a="$t" -v b="${lloop[$np]}" 'BEGIN { exit !(a < b) }'; then lloop[$np]=$t; fi
+      lbonds[$np]=$(grab 's/.*total # of bonds = \([0-9]*\).*/\1/p' "$llog" "total # of bonds")
+      ldamage[$np]=$(awk '/^ *Step/ { h = 1; next } h && NF == 3 { d = $3 } /^Loop time/ { h = 0 } END { print d }' "$llog")
+      cdamage[$np]=$(grab 's/.*final damage fraction \([0-9.eE+-]*\).*/\1/p' "$log" "final damage fraction")
+    done
+  done
+fi
+
 cpu=$(sed -n 's/^model name[[:space:]]*:[[:space:]]*//p' /proc/cpuinfo 2>/dev/null | head -1)
 commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
 mkdir -p "$here/results"
@@ -78,4 +115,18 @@ mkdir -p "$here/results"
   echo
   echo "bond ev./s: directed bonds x steps / time-loop seconds (perifem's summary); wall: the run from the"
   echo "first forces to the output files closed (set-up excluded)."
+  if [[ ${#lloop[@]} -gt 0 ]]; then
+    echo
+    echo "the same model side by side ($lmp: $("$lmp" -h 2>/dev/null | sed -n 's/^Large-scale Atomic\/Molecular Massively Parallel Simulator - //p' | head -1)):"
+    echo "LAMMPS peri/pmb on perifem's points and velocities, perifem with the cylinder's self-contact, skin $skin m"
+    printf '%5s %12s %12s %14s %14s %16s %16s %10s\n' ranks "pf bonds" "LMP bonds" "perifem [s]" "LAMMPS [s]" "perifem ev./s" "LAMMPS ev./s" "pf/LAMMPS"
+    for np in $ranks; do
+      awk -v np="$np" -v b="${bonds[$np]}" -v lb="${lbonds[$np]}" -v s="${steps[$np]}" -v p="${cloop[$np]}" -v l="${lloop[$np]}" \
+        'BEGIN { printf "%5s %12s %12s %14s %14s %16.4g %16.4g %10.2f\n", np, b, lb, p, l, b * s / p, lb * s / l, l / p }'
+    done
+    echo "times: perifem 'time loop', LAMMPS 'Loop time'; the same steps and step size; fastest of $repeat."
+    for np in $ranks; do
+      echo "damage at the end, $np rank(s): perifem (damaged volume share) ${cdamage[$np]}, LAMMPS (mean damage/atom) ${ldamage[$np]}"
+    done
+  fi
 } | tee "$here/results/fragmenting.txt"
