@@ -114,8 +114,9 @@ def format_value(value, opts):
         sign = "-" if text.startswith("-") else ""
         whole, _, frac = text.lstrip("-").partition(".")
         text = sign + f"{int(whole):,}" + ("." + frac if frac else "")
-    if opts["u"]:
-        text = text.replace("-", MINUS)
+    text = re.sub(r"e([+-])0*(\d)", lambda m: "e" + m.group(1).replace("+", "") + m.group(2), text)  # 1e-4, 2e22
+    if opts["u"] and text.startswith("-"):
+        text = MINUS + text[1:]
     return text
 
 
@@ -216,6 +217,8 @@ def main():
     def replace(m):
         nonlocal changed
         key, spec, printed = m.group(1), m.group(2), m.group(3)
+        if m.start() > 0 and doc[m.start() - 1] == "`":
+            return m.group(0)  # an example in inline code, not a marker
         line = doc.count("\n", 0, m.start()) + 1
         try:
             opts = parse_options(spec)
