@@ -109,7 +109,7 @@ def format_value(value, opts):
     fmt = fmt.replace("'", "")
     if fmt.endswith("d"):
         value = int(round(value))
-    text = fmt % value
+    text = "0" if value == 0 and fmt[-1] in "eEgG" else fmt % value  # an exact zero as 0
     if grouped:
         sign = "-" if text.startswith("-") else ""
         whole, _, frac = text.lstrip("-").partition(".")
