@@ -11,12 +11,38 @@
 
 int pf_test_failures = 0;
 
+/* $PF_MEASURE_DIR/<test>.tsv, or "" when measurements are not recorded. */
+static char measure_path[1024];
+
+/* Both variables must be set: a shell test that runs test programs (mpi_verify on 2 and 3 ranks)
+ * passes on PF_MEASURE_DIR alone, and those runs must not overwrite the 1-rank measurements. */
+static void measure_file_start(void) {
+  const char *dir = getenv("PF_MEASURE_DIR"), *test = getenv("PF_MEASURE_TEST");
+  if (!dir || !*dir || !test || !*test) return;
+  snprintf(measure_path, sizeof measure_path, "%s/%s.tsv", dir, test);
+  FILE *f = pf_comm_rank() == 0 ? fopen(measure_path, "w") : NULL; /* emptied: this run's only */
+  if (f) fclose(f);
+}
+
 void pf_test_init(int *argc, char ***argv) {
   MPI_Init(argc, argv);
   pf_log_set_quiet(1);
   const char *path = getenv("PF_TEST_DIGEST_FILE"); /* emptied here, appended to below */
   FILE *f = path && pf_comm_rank() == 0 ? fopen(path, "w") : NULL;
   if (f) fclose(f);
+  measure_file_start();
+}
+
+void pf_test_measure(const char *key, double value, const char *unit) {
+  if (!measure_path[0] || pf_comm_rank() != 0) return;
+  FILE *f = fopen(measure_path, "a");
+  if (!f) {
+    fprintf(stderr, "cannot append to %s\n", measure_path);
+    pf_test_failures++;
+    return;
+  }
+  fprintf(f, "%s\t%.17g\t%s\n", key, value, unit ? unit : "");
+  fclose(f);
 }
 
 int pf_test_finish(void) {

@@ -81,4 +81,10 @@ long pf_test_run_to_end(pf_sim *sim, pf_sim_globals *g0, pf_sim_globals *g);
  * file, which pf_test_init empties (ctest sets it for the verification tests: mpi_verify takes
  * their 1-rank digests from there instead of running them again). Collective. */
 void pf_test_print_digest(const char *tag, struct pf_sim *sim);
+/* Record a measured value for docs/verification.md (scripts/verification_report.py): with
+ * PF_MEASURE_DIR and PF_MEASURE_TEST set (ctest sets them: the test's name, e.g. test_wave),
+ * rank 0 appends "key<TAB>value<TAB>unit" to $PF_MEASURE_DIR/$PF_MEASURE_TEST.tsv, which
+ * pf_test_init empties. Nothing happens without both variables. The document
+ * quotes the value as <!--m <test>.<key> FORMAT-->value<!--/m-->. */
+void pf_test_measure(const char *key, double value, const char *unit);
 #endif

@@ -9,8 +9,10 @@
 set -u
 exe=$1 scratch=$2
 py=${PY:-/usr/bin/python3}
+source common/measure.sh
 out=$(bash ../bench/calculix/run_calculix_compare.sh --quick --no-perf --work "$scratch" "$exe" 2>&1) \
   || { echo "$out"; exit 1; }
+pf_measure worst_difference "$(echo "$out" | sed -n 's/^worst relative difference \([0-9.]*\)%.*/\1/p' | head -1)" "%"
 "$py" ../bench/calculix/ccx_compare.py deck "$scratch/bar_default.yaml" \
   || { echo "ccx_compare.py deck failed"; exit 1; }
 cmp -s "$scratch/bar_default.yaml" ../bench/calculix/bar.yaml \

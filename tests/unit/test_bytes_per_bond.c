@@ -48,6 +48,7 @@ static void check(const char *tag, const char *material, const char *body_extra,
   const int64_t nb = pf_pd_body_nbonds(b);
   PF_TEST_TRUE(nb > 0);
   const double counted = counted_bytes(f, nb, tag), summary = pf_pd_body_bytes_per_bond(b) * (double)nb;
+  pf_test_measure(tag, pf_pd_body_bytes_per_bond(b), "bytes");
   if (summary != counted || counted != want_per_bond * (double)nb) {
     printf("%s: summary %.0f bytes, counted %.0f (%.3g a bond), expected %.3g a bond\n", tag, summary, counted,
            counted / (double)nb, want_per_bond);

@@ -54,19 +54,24 @@ int main(int argc, char **argv) {
   pf_influence one = {PF_INFLUENCE_CONSTANT, 0}, inv = {PF_INFLUENCE_INVERSE_DISTANCE, 0};
   /* c = 18 K / (pi delta^4) = 1.68634e22 (LAMMPS Howto_peri). */
   PF_TEST_CLOSE(pf_pd_pmb_micromodulus(K, &one, delta), 1.68634e22, 1e-5, 0);
+  pf_test_measure("c_pmb", pf_pd_pmb_micromodulus(K, &one, delta), "N/m^6");
   PF_TEST_CLOSE(pf_pd_pmb_micromodulus(K, &one, delta), 18 * K / (PF_PI * pow(delta, 4)), 1e-13, 0);
   /* omega = 1/r: c = 18 K / (4 pi delta^3 / 3) */
   PF_TEST_CLOSE(pf_pd_pmb_micromodulus(K, &inv, delta), 18 * K / (4 * PF_PI * pow(delta, 3) / 3), 1e-13, 0);
+  pf_test_measure("c_inverse_distance", pf_pd_pmb_micromodulus(K, &inv, delta), "N/m^5");
   /* s0 = sqrt(5 G0 / (9 K delta)); G0 = 9 K delta s00^2 / 5 = 10.0575 J/m^2 for s00 = 5e-4. */
   double G0 = 9 * K * delta * 5e-4 * 5e-4 / 5;
   PF_TEST_CLOSE(G0, 10.0575, 1e-12, 0);
   PF_TEST_CLOSE(pf_pd_pmb_critical_stretch(G0, K, delta), 5e-4, 1e-13, 0);
+  pf_test_measure("G0", G0, "J/m^2");
+  pf_test_measure("s0", pf_pd_pmb_critical_stretch(G0, K, delta), "1");
   /* Gaussian moment: 4 pi int_0^d exp(-r^2/s^2) r^2 dr = pi^(3/2) s^3 erf(d/s)
    *  - 2 pi s^2 d exp(-d^2/s^2) (integration by parts). */
   double s = 0.5 * delta;
   pf_influence gau = {PF_INFLUENCE_GAUSSIAN, s};
   double exact = pow(PF_PI, 1.5) * pow(s, 3) * erf(delta / s) - 2 * PF_PI * s * s * delta * exp(-delta * delta / (s * s));
   PF_TEST_CLOSE(pf_pd_influence_moment(&gau, delta, 2), exact, 1e-12, 0);
+  pf_test_measure("gaussian_moment_error", pf_pd_influence_moment(&gau, delta, 2) / exact - 1, "1");
 
   /* s0 from energy_release_rate through the deck, G0 = 10.0575 (s0 = 5e-4 for PMB):
    * LPS omega = 1: 8 G0 / (15 K delta) = (8 / 15) (9 / 5) s00^2 = 0.96 s00^2. */

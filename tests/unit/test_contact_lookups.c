@@ -95,6 +95,11 @@ int main(int argc, char **argv) {
     pf_test_failures++;
   }
   const double w0 = reg.tested + reg.reads, w1 = jit.tested + jit.reads;
+  pf_test_measure("regular_tested", reg.tested, "pairs");
+  pf_test_measure("regular_reads", reg.reads, "reads");
+  pf_test_measure("jittered_close", jit.close, "pairs");
+  pf_test_measure("jittered_reads", jit.reads, "reads");
+  pf_test_measure("work_ratio", w1 / w0, "1");
   if (pf_comm_rank() == 0 && (getenv("PF_TEST_VERBOSE") || !(w1 <= 1.10 * w0)))
     printf("contact work over %ld steps: regular %.0f pairs tested + %.0f family reads, jittered %.0f + %.0f"
            " (%.0f close pairs; %.3f x)\n",

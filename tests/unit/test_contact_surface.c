@@ -394,6 +394,10 @@ int main(int argc, char **argv) {
   check_closest_hand();
   check_closest_brute();
   check_gradient();
+  pf_test_measure("closest_point_hand", worst_hand, "m");
+  pf_test_measure("closest_point_brute", worst_brute, "m");
+  pf_test_measure("weights", worst_wsum, "1");
+  pf_test_measure("gradient", worst_fd, "1");
   if (getenv("PF_TEST_VERBOSE"))
     printf("worst errors: hand %.3g, brute (|p-c| - min sample) %.3g, weights %.3g, gradient %.3g\n",
            worst_hand, worst_brute, worst_wsum, worst_fd);

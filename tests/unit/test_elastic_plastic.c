@@ -59,6 +59,9 @@ static void displace(pf_points *p, double scale) {
   }
 }
 
+/* The largest over the cases: |f_ep - f_lps| / max |f_lps| below yield; |energy / work - 1|. */
+static double worst_lps, worst_balance;
+
 static void below_yield_is_lps(void) {
   const char *bodies[3] = {"", "influence: inverse_distance, partial_volumes: true,", "influence: gaussian,"};
   char ep[256], lps[256];
@@ -81,6 +84,7 @@ static void below_yield_is_lps(void) {
     }
     PF_TEST_TRUE(fbig > 0);
     PF_TEST_TRUE(diff <= 3e-12 * fbig);
+    worst_lps = fmax(worst_lps, diff / fbig);
     if (!(diff <= 3e-12 * fbig) || getenv("PF_TEST_VERBOSE"))
       fprintf(stderr, "case %d: max |f_ep - f_lps| = %g of %g N\n", c, diff, fbig);
     double e1 = pf_pd_body_energy(pf_sim_body(s1, 0), p1), e2 = pf_pd_body_energy(pf_sim_body(s2, 0), p2);
@@ -171,6 +175,7 @@ static void energy_balance(void) {
     PF_TEST_CLOSE(E - D, Wel, 1e-9, 0);
     PF_TEST_TRUE(edpmax > 0);
     PF_TEST_TRUE(mirrors);
+    worst_balance = fmax(worst_balance, fabs(E / W - 1));
     if (!(fabs(E / W - 1) <= 1e-6) || getenv("PF_TEST_VERBOSE"))
       fprintf(stderr, "case %d: work %.10g J, energy op %.10g J (rel %.2e), plastic work %.6g J, residual elastic "
               "%.6g J, max eqps %.3g, max |e^dp| %.3g m\n", c, W, E, E / W - 1, D, Wel, eqmax, edpmax);
@@ -182,5 +187,7 @@ int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
   below_yield_is_lps();
   energy_balance();
+  pf_test_measure("below_yield_lps_difference", worst_lps, "1");
+  pf_test_measure("work_energy_balance", worst_balance, "1");
   return pf_test_finish();
 }

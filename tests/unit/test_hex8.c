@@ -51,6 +51,8 @@ static void test_mean_gradient(void) {
   distorted(x);
   double V = pf_hex8_mean_gradient(x, B), ref = volume_gl6(x);
   PF_TEST_CLOSE(V, ref, 1e-13, 0);
+  pf_test_measure("volume_error", fabs(V / ref - 1), "1");
+  double worst = 0; /* the largest error of sum_I x_jI B_iI = delta_ij */
   for (int i = 0; i < 3; i++) {
     double s = 0;
     for (int I = 0; I < 8; I++) s += B[I][i];
@@ -59,8 +61,10 @@ static void test_mean_gradient(void) {
       double t = 0;
       for (int I = 0; I < 8; I++) t += x[I][j] * B[I][i];
       PF_TEST_CLOSE(t, i == j ? 1.0 : 0.0, 0, 1e-13);
+      worst = fmax(worst, fabs(t - (i == j ? 1.0 : 0.0)));
     }
   }
+  pf_test_measure("identity_error", worst, "1");
   /* a parallelepiped: V = |det(edges)| */
   double e[3][3] = {{2e-3, 0.3e-3, 0}, {0.1e-3, 1e-3, 0.2e-3}, {0, -0.4e-3, 1.5e-3}}, p[8][3];
   for (int I = 0; I < 8; I++)

@@ -36,13 +36,20 @@ int main(int argc, char **argv) {
   for (pf_int i = 0; i < 2; i++) p->u[3 * i] = p->X[3 * i]; /* x -> 2x: length 1 -> 2 */
   forces(sim);
   const double *m = pf_points_field_get(p, "weighted_volume"), *th = pf_points_field_get(p, "dilatation");
+  double err_m = 0, err_th = 0, err_f = 0, err_fy = 0; /* the largest errors over the points */
   for (pf_int i = 0; i < 2; i++) {
     PF_TEST_CLOSE(m[i], 1.0, 1e-15, 0);
     PF_TEST_CLOSE(th[i], 3.0, 1e-15, 0);
     double sign = p->X[3 * i] > 0.5 ? -1 : 1; /* the bond pulls the points together */
     PF_TEST_CLOSE(p->f[3 * i], sign * 2.34e12, 1e-14, 0);
     PF_TEST_CLOSE(p->f[3 * i + 1], 0, 0, 1e-3);
+    err_m = fmax(err_m, fabs(m[i] - 1.0)), err_th = fmax(err_th, fabs(th[i] / 3.0 - 1));
+    err_f = fmax(err_f, fabs(p->f[3 * i] / (sign * 2.34e12) - 1)), err_fy = fmax(err_fy, fabs(p->f[3 * i + 1]));
   }
+  pf_test_measure("pair_m_error", err_m, "1");
+  pf_test_measure("pair_theta_error", err_th, "1");
+  pf_test_measure("pair_fx_error", err_f, "1");
+  pf_test_measure("pair_fy", err_fy, "N");
   pf_sim_destroy(&sim);
 
   sim = make("0 0 0 1\n1 0 0 1\n0 1 0 1\n1 1 0 1\n0 0 1 1\n1 0 1 1\n0 1 1 1\n1 1 1 1\n");
@@ -53,10 +60,14 @@ int main(int argc, char **argv) {
   th = pf_points_field_get(p, "dilatation");
   double exact = 0.25 * (-0.02 + 2 * sqrt(2) * (sqrt(1.9604) - sqrt(2)) + sqrt(3) * (sqrt(2.9604) - sqrt(3)));
   PF_TEST_CLOSE(exact, -0.01991593994643333, 1e-14, 0);
+  err_m = 0, err_th = 0;
   for (pf_int i = 0; i < 8; i++) {
     PF_TEST_CLOSE(m[i], 12.0, 1e-15, 0);
     PF_TEST_CLOSE(th[i], -0.01991593994643333, 0, 1e-12);
+    err_m = fmax(err_m, fabs(m[i] / 12.0 - 1)), err_th = fmax(err_th, fabs(th[i] + 0.01991593994643333));
   }
+  pf_test_measure("cube_m_error", err_m, "1");
+  pf_test_measure("cube_theta_error", err_th, "1");
   pf_sim_destroy(&sim);
   return pf_test_finish();
 }

@@ -75,6 +75,7 @@ static void distance_horizon(void) {
   worst = pf_max_all(worst);
   if (pf_comm_rank() == 0) printf("d_fe horizon against the explicit taper: largest relative difference %.2e\n", worst);
   PF_TEST_TRUE(worst < 1e-12);
+  pf_test_measure("d_fe_horizon_difference", worst, "1");
   pf_sim_destroy(&a);
   pf_sim_destroy(&b);
 }

@@ -38,6 +38,8 @@ int main(int argc, char **argv) {
   if (ncross == 2) {
     PF_TEST_CLOSE(cross[0], T / 4, 1e-4, 0);
     PF_TEST_CLOSE(cross[1] - cross[0], T / 2, 1e-4, 0);
+    pf_test_measure("first_crossing_error", cross[0] / (T / 4) - 1, "1");
+    pf_test_measure("spacing_error", (cross[1] - cross[0]) / (T / 2) - 1, "1");
   }
   pf_sim_destroy(&sim);
   return pf_test_finish();

@@ -62,11 +62,21 @@ int main(int argc, char **argv) {
     PF_TEST_TRUE(fin < 1e-10 * scale);
     PF_TEST_TRUE(fsurf > 1e-2 * scale); /* the surface is loaded: the test can fail */
     if (!(fin < 1e-10 * scale)) fprintf(stderr, "%s: interior |f| = %g N, scale %g N\n", models[k], fin, scale);
+    char key[48];
+    snprintf(key, sizeof key, "%s_interior_force", models[k]);
+    pf_test_measure(key, fin / scale, "K eps h^2");
+    snprintf(key, sizeof key, "%s_surface_force", models[k]);
+    pf_test_measure(key, fsurf / scale, "K eps h^2");
     if (k == 1) {
       const double iso[3][3] = {{eps, 0, 0}, {0, eps, 0}, {0, 0, eps}};
       apply(sim, iso);
       const double *th = pf_points_field_get(p, "dilatation");
-      for (pf_int i = 0; i < p->n_owned; i++) PF_TEST_CLOSE(th[i], 3 * eps, 1e-12, 0);
+      double worst = 0;
+      for (pf_int i = 0; i < p->n_owned; i++) {
+        PF_TEST_CLOSE(th[i], 3 * eps, 1e-12, 0);
+        worst = fmax(worst, fabs(th[i] / (3 * eps) - 1));
+      }
+      pf_test_measure("lps_theta_error", worst, "1");
     }
     pf_sim_destroy(&sim);
   }

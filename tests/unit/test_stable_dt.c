@@ -120,6 +120,9 @@ int main(int argc, char **argv) {
              r * h * (1 + 1e-9), 12 * h, 12 * h, 12 * h, h);
     pf_sim *sim = pf_test_sim("stable_dt", deck);
     PF_TEST_CLOSE(pf_sim_dt(sim), want[r - 2], 5e-4, 0);
+    char key[32];
+    snprintf(key, sizeof key, "dt_delta_%dh", r);
+    pf_test_measure(key, pf_sim_dt(sim), "s");
     pf_sim_destroy(&sim);
   }
   check_min_eigenvalue(3, 1, 2);

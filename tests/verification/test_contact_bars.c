@@ -104,6 +104,13 @@ int main(int argc, char **argv) {
   PF_TEST_CLOSE(dp, 0.0, 0, 1e-12 * p0);
   PF_TEST_TRUE(overlap < 0.01 * h);
   PF_TEST_CLOSE(g.kinetic, g0.kinetic, 0.03, 0);
+  pf_test_measure("duration_error", (t_off - t_on) / T - 1, "1");
+  pf_test_measure("mean_force_error", mean / F0 - 1, "1");
+  pf_test_measure("v_striker", v_striker, "m/s");
+  pf_test_measure("v_struck", v_struck, "m/s");
+  pf_test_measure("overlap", overlap / h, "h");
+  pf_test_measure("momentum_error", dp / p0, "1");
+  pf_test_measure("ke_change", g.kinetic / g0.kinetic - 1, "1");
   if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
     printf("contact bars: contact %.4g s (2L/c %.4g s, %+.2f %%), mean force %.5g N (F0 %.5g N, %+.2f %%), "
            "velocities %.3f / %.3f m/s, overlap %.3g h, momentum %.3g of m v0, KE %+.3f %%\n",

@@ -129,6 +129,11 @@ int main(int argc, char **argv) {
   PF_TEST_CLOSE(vx[1], V0, 1e-6, 0);
   PF_TEST_CLOSE(g.kinetic, g0.kinetic, 1e-6, 0);
   PF_TEST_CLOSE(rest - rmin, 2 * V0 / omega, 1e-3, 0);
+  pf_test_measure("ke_never_bonded", ke_unbonded, "J");
+  pf_test_measure("ke_broken", ke_broken, "J");
+  pf_test_measure("dt_off", (duration - half) / dt, "1");
+  pf_test_measure("overlap", rest - rmin, "m");
+  pf_test_measure("overlap_closed_form", 2 * V0 / omega, "m");
   if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
     printf("contact_break: KE at rest %.3e J (never bonded), %.3e J (broken at 0.7 mm); bounce %.12e s "
            "(closed form %.12e, %.2f dt off), v %.12f %.12f, overlap %.6e m (closed form %.6e)\n",

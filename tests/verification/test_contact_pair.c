@@ -93,6 +93,11 @@ int main(int argc, char **argv) {
   PF_TEST_CLOSE(g.contact, 0, 0, 0);
   PF_TEST_CLOSE(pmax, 0, 0, 1e-12);
   PF_TEST_CLOSE(rc - ymin, 2 * v0 / sqrt(2 * k / m), 1e-3, 0); /* largest overlap 2 v0 / omega */
+  pf_test_measure("steps_in_contact", (double)in_contact, "1");
+  pf_test_measure("dt_off", (duration - half) / dt, "1");
+  pf_test_measure("ke_error", fabs(g.kinetic - g0.kinetic) / g0.kinetic, "1");
+  pf_test_measure("velocity_error", fmax(fabs(fabs(vx[0]) - v0), fabs(fabs(vx[1]) - v0)), "m/s");
+  pf_test_measure("momentum_max", pmax, "kg m/s");
   if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
     printf("contact_pair: half period %.12e s (Peridigm 4.150386640644e-8), in contact %ld steps = %.12e s "
            "(%.2f dt off), v %.12f %.12f, KE error %.3e rel, |p| max %.3e, overlap %.6e m\n",

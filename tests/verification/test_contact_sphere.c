@@ -242,6 +242,7 @@ typedef struct {
   double dp;       /* largest |p_a(t) - p_a(0)| / |p(0)| */
   double depth;    /* deepest particle in the sphere, m */
   double inside;   /* the most particles inside the sphere at a check */
+  double inside_end; /* particles inside the sphere at the last check */
   double vz0, vz;  /* the sphere's mean velocity along z at the start and the end, m/s */
   double travel;   /* distance the sphere's centre moved along -z, m */
   double t;        /* final time, s */
@@ -282,7 +283,7 @@ static result run(const char *tag, const char *deck, int every, double travel) {
       r.vz = sphere_update(&s, sim, c);
       r.travel = c0[2] - c[2];
       r.depth = fmax(r.depth, deepest(&s, sim, &cnt));
-      r.inside = fmax(r.inside, cnt);
+      r.inside = fmax(r.inside, cnt), r.inside_end = cnt;
       r.checks++;
       if (verbose > 1 && pf_comm_rank() == 0)
         printf("%s: step %ld t %.4e travel %.4e vz %.2f inside %.0f deepest so far %.4e\n", tag, r.steps, g.time,
@@ -345,6 +346,9 @@ int main(int argc, char **argv) {
            common, h, cwd);
   result a = run("contact_sphere_a", deck, 20, 0);
   report("contact_sphere (a) 100 m/s", &a, h);
+  pf_test_measure("a_momentum_error", a.dp, "1");
+  pf_test_measure("a_inside_most", a.inside, "1");
+  pf_test_measure("a_sphere_vz", a.vz, "m/s");
   PF_TEST_CLOSE(a.dp, 0, 0, 1e-10);
   PF_TEST_CLOSE(a.vz0, -100, 1e-12, 0);
   PF_TEST_TRUE(a.vz > 0); /* it rebounds */
@@ -371,6 +375,9 @@ int main(int argc, char **argv) {
            common, h, cwd);
   result b = run("contact_sphere_b", deck, 1, 6e-3);
   report("contact_sphere (b) 2 km/s", &b, h);
+  pf_test_measure("b_momentum_error", b.dp, "1");
+  pf_test_measure("b_deepest", b.depth / h, "h");
+  pf_test_measure("b_inside_at_end", b.inside_end, "1");
   PF_TEST_CLOSE(b.dp, 0, 0, 1e-10);
   PF_TEST_CLOSE(b.depth, 0, 0, 0.25 * h);
   PF_TEST_TRUE(b.travel >= 6e-3 || b.t >= 4e-6 * (1 - 1e-12));

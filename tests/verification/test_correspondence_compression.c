@@ -105,6 +105,8 @@ int main(int argc, char **argv) {
       for (pf_int i = 0; i < p->n_owned; i += 97)
         printf("X %g %g %g  s %g %g %g %g %g %g\n", p->X[3*i], p->X[3*i+1], p->X[3*i+2], s[6*i], s[6*i+1], s[6*i+2], s[6*i+3], s[6*i+4], s[6*i+5]);
     }
+    pf_test_measure(hydro ? "hydrostatic_vs_fe" : "uniaxial_vs_fe", worst, "1");
+    pf_test_measure(hydro ? "hydrostatic_vs_closed_form" : "uniaxial_vs_closed_form", worst_ref, "1");
     if (pf_comm_rank() == 0 && getenv("PF_TEST_VERBOSE"))
       printf("%s: |PD/FE - 1| <= %.4f, |PD/closed form - 1| <= %.4f\n", hydro ? "hydrostatic" : "uniaxial", worst, worst_ref);
     pf_test_print_digest(hydro ? "compression_hydro" : "compression_uniaxial", sim);

@@ -135,6 +135,11 @@ int main(int argc, char **argv) {
   PF_TEST_OK(pf_sim_globals_get(sim, &g));
   if (!ierr) pf_test_print_digest("chain", sim);
   pf_sim_destroy(&sim);
+  pf_test_measure("energy_excursion", de / e0, "1");
+  pf_test_measure("momentum_error", dp / mscale, "1");
+  pf_test_measure("reflection_chain", r_chain, "1");
+  pf_test_measure("reflection_fe", r_fe, "1");
+  pf_test_measure("reflection_difference", r_chain - r_fe, "1");
   if (pf_comm_rank() == 0)
     printf("chain PD -> taper -> overlap -> FE, defaults, to %.1f us: energy %.2e of the pulse's (largest excursion), "
            "momentum %.2e of sum m|v|; reflected at %.0f us %.2e of the pulse (all-FE bar %.2e, difference %.2e)\n",

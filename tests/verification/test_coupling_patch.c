@@ -132,6 +132,22 @@ int main(int argc, char **argv) {
   const double quad_en = run("consistent", "energy", &quad, want, reg) / amag;
   if (pf_comm_rank() == 0) printf("quadratic, consistent + energy: %.2e (PD %.1e, transition %.1e, overlap %.1e, FE %.1e); standard + force %.2e\n",
          quad_en, reg[0] / amag, reg[1] / amag, reg[2] / amag, reg[3] / amag, quad_std);
+  const char *regions[4] = {"pd", "transition", "overlap", "fe"};
+  char key[64];
+  for (int r = 0; r < 4; r++) {
+    snprintf(key, sizeof key, "quadratic_default_%s", regions[r]);
+    pf_test_measure(key, reg[r] / amag, "1");
+  }
+  pf_test_measure("linear_default", lin_en, "1");
+  pf_test_measure("quadratic_default", quad_en, "1");
+  pf_test_measure("linear_auto", lin_auto, "1");
+  pf_test_measure("quadratic_auto", quad_auto, "1");
+  pf_test_measure("linear_consistent_force", lin_cons, "1");
+  pf_test_measure("quadratic_consistent_force", quad_cons, "1");
+  pf_test_measure("linear_corrected_force", lin_corr, "1");
+  pf_test_measure("quadratic_corrected_force", quad_corr, "1");
+  pf_test_measure("linear_standard", lin_std, "1");
+  pf_test_measure("quadratic_standard", quad_std, "1");
   PF_TEST_TRUE(lin_corr < 1e-9);
   PF_TEST_TRUE(lin_cons < 1e-9);
   PF_TEST_TRUE(quad_cons < 0.5 * quad_std);

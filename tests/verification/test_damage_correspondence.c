@@ -91,6 +91,11 @@ int main(int argc, char **argv) {
     for (pf_int i = 0; i < p->n_owned; i++)
       if (phi[i] > 0.5) zlo = fmin(zlo, p->X[3 * i + 2]), zhi = fmax(zhi, p->X[3 * i + 2]);
     zlo = pf_min_all(zlo), zhi = pf_max_all(zhi);
+    if (damage) {
+      pf_test_measure("eqps_at_failure", eqps_sep, "1");
+      pf_test_measure("band_lo", zlo * 1e3, "mm");
+      pf_test_measure("band_hi", zhi * 1e3, "mm");
+    }
     if (pf_comm_rank() == 0 && getenv("PF_TEST_VERBOSE"))
       printf("damage %d: max grip force %.4g N, final %.4g N, eqps at first failure %.4f (eps_f Dc %.4f), damaged band z %.3g..%.3g mm, fewest crossing bonds %g\n",
              damage, fpeak, f_end, eqps_sep, eps_f * dc, zlo * 1e3, zhi * 1e3, crossing);

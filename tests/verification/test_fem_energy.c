@@ -38,6 +38,7 @@ static void run(const char *mesh, const char *name, const char *options, int vis
     double e = g.kinetic_centred + g.fe_internal + g.hourglass + g.bulk_viscosity;
     worst = fmax(worst, fabs(e - g0.kinetic_centred));
   }
+  pf_test_measure(name, worst / g0.kinetic_centred, "1");
   if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
     printf("%s: largest imbalance %.3g of KE0; hourglass %.3g J, bulk viscosity %.3g J, internal %.3g J\n", name,
            worst / g0.kinetic_centred, g.hourglass, g.bulk_viscosity, g.fe_internal);

@@ -138,6 +138,15 @@ int main(int argc, char **argv) {
   PF_TEST_TRUE(worst < 0.1 * h_plate);
   PF_TEST_TRUE(pf_sim_finished(sim));
   PF_TEST_TRUE(vz < 0 && vz > -800);
+  pf_test_measure("deleted", (double)n_eroded, "1");
+  pf_test_measure("elements", (double)pf_fem_body_mesh(plate)->nelem, "1");
+  pf_test_measure("misjudged", (double)wrong, "1");
+  pf_test_measure("momentum_error", dp / p0, "1");
+  pf_test_measure("deepest", worst / h_plate, "h");
+  pf_test_measure("sphere_vz", vz, "m/s");
+  pf_test_measure("steps", (double)steps, "1");
+  pf_test_measure("energy_error", (g.kinetic + g.fe_internal + g.hourglass + g.bulk_viscosity + g.contact - g0.kinetic) /
+                                      g0.kinetic, "1");
   if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
     printf("fem erosion: %ld of %d elements deleted, %d misjudged, %d forces of deleted elements, momentum %.3g of p0, "
            "deepest sphere node in a live element %.3g h, sphere vz %.1f m/s, %ld steps, energy error %.3g of KE0\n",

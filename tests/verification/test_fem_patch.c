@@ -115,13 +115,22 @@ static void run(const char *mesh, const char *element) {
   double tr = A[0][0] + A[1][1] + A[2][2];
   double ref[6] = {lam * tr + 2 * G * A[0][0], lam * tr + 2 * G * A[1][1], lam * tr + 2 * G * A[2][2],
                    G * (A[1][2] + A[2][1]), G * (A[0][2] + A[2][0]), G * (A[0][1] + A[1][0])};
-  double scale = 0;
+  double scale = 0, uniform = 0, first_order = 0;
   for (int c = 0; c < 6; c++) scale = fmax(scale, fabs(ref[c] * T));
   for (pf_int i = 0; i < p->n_owned; i++)
     for (int c = 0; c < 6; c++) {
       PF_TEST_CLOSE(s[6 * i + c], s[c], 0, 1e-10 * scale);          /* uniform */
       PF_TEST_CLOSE(s[6 * i + c], ref[c] * T, 0, 1e-3 * scale);     /* first order */
+      uniform = fmax(uniform, fabs(s[6 * i + c] - s[c]) / scale);
+      first_order = fmax(first_order, fabs(s[6 * i + c] - ref[c] * T) / scale);
     }
+  char key[64];
+  snprintf(key, sizeof key, "%s_interior_force", element);
+  pf_test_measure(key, fmax_interior / fmax_boundary, "1");
+  snprintf(key, sizeof key, "%s_stress_uniformity", element);
+  pf_test_measure(key, uniform, "1");
+  snprintf(key, sizeof key, "%s_stress_first_order", element);
+  pf_test_measure(key, first_order, "1");
   pf_test_print_digest(element, sim);
   pf_sim_destroy(&sim);
 }

@@ -55,6 +55,8 @@ int main(int argc, char **argv) {
   PF_TEST_CLOSE(arrival, want, 0.01, 0);
   PF_TEST_CLOSE(drift, 0.0, 0, 5e-3 * g0.kinetic);
   PF_TEST_CLOSE(g0.kinetic, 0.5 * rho * 1e-3 * 1e-6 * v0 * v0, 0.06, 0); /* nodes at x = 1 mm: +1/20 */
+  pf_test_measure("arrival_error", arrival / want - 1, "1");
+  pf_test_measure("energy_drift", drift / g0.kinetic, "1");
   if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
     printf("fem wave: arrival %.5g s (L/c %.5g s, %+.3f %%), energy drift %.3g %% of KE0\n", arrival, want,
            100 * (arrival / want - 1), 100 * drift / g0.kinetic);
@@ -77,6 +79,7 @@ int main(int argc, char **argv) {
   double gained = g.kinetic_centred + g.fe_internal + g.hourglass + g.bulk_viscosity;
   PF_TEST_TRUE(g.external_work > 0);
   PF_TEST_CLOSE(gained, g.external_work, 1e-3, 0);
+  pf_test_measure("driven_balance", gained / g.external_work - 1, "1");
   pf_test_print_digest("fem_driven", sim);
   pf_sim_destroy(&sim);
   return pf_test_finish();

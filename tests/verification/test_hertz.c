@@ -140,6 +140,9 @@ int main(int argc, char **argv) {
     if (t_first >= 0 && (t > t_last + 0.1 * tc || t > t_first + 2 * tc)) break;
   }
   const double tc_sim = t_last - t_first;
+  pf_test_measure("duration_error", tc_sim / tc - 1, "1");
+  pf_test_measure("peak_force_error", fpeak / Fmax - 1, "1");
+  pf_test_measure("rebound", vout / v, "1");
   if (verbose) {
     printf("hertz: 2I = %.7f (Beta function %.7f); m = %.5g kg, E* = %.5g Pa, delta_max = %.4g m, "
            "a_max = %.4g m = %.2f h (a/R %.3f), block radius and height %.4g m = %.1f a_max, %.0f PD points\n",

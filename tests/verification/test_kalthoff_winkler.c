@@ -58,6 +58,9 @@ static double crack_angle(const pf_points *p, const double *phi, int sign) {
   }
   const double b = (s1 * sxy - sy * sxx) / (s1 * syy - sy * sy), a = (sxx - b * sy) / s1;
   const double x_at_notch = a + b * 0.025, angle = atan2(1.0, b) * 180.0 / PF_PI;
+  pf_test_measure(sign > 0 ? "angle_upper" : "angle_lower", angle, "deg");
+  pf_test_measure(sign > 0 ? "length_upper" : "length_lower", len * 1e3, "mm");
+  pf_test_measure(sign > 0 ? "x_at_notch_upper" : "x_at_notch_lower", x_at_notch * 1e3, "mm");
   if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
     printf("kalthoff-winkler: crack %+d: %.1f mm long, angle %.2f deg, meets the notch plane at x = %.2f mm\n",
            sign, len * 1e3, angle, x_at_notch * 1e3);

@@ -52,6 +52,12 @@ int main(int argc, char **argv) {
   zmin = pf_min_all(zmin), zmax = pf_max_all(zmax), rface = pf_max_all(rface);
   rim[0] = pf_sum_all(rim[0]), rim[1] = pf_sum_all(rim[1]), rim[2] = pf_min_all(rim[2]);
   double L = (zmax - zmin) * 1e3, R = rface * 1e3;
+  pf_test_measure("length", L, "mm");
+  pf_test_measure("radius", R, "mm");
+  pf_test_measure("rim_mean", rim[0] / rim[1] * 1e3, "mm");
+  pf_test_measure("hourglass_ratio", g.hourglass / g.fe_internal, "1");
+  pf_test_measure("balance", (g.kinetic_centred + g.fe_internal + g.hourglass + g.bulk_viscosity + g.wall_loss -
+                              g0.kinetic_centred) / g0.kinetic, "1");
   if (pf_comm_rank() == 0 && getenv("PF_TEST_VERBOSE"))
     printf("taylor: final length %.3f mm, face radius %.3f mm (rim of %.0f nodes: mean %.3f, min %.3f), "
            "hourglass/internal %.4f, energy error %.3g of KE0\n",

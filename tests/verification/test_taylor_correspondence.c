@@ -61,6 +61,11 @@ int main(int argc, char **argv) {
   PF_TEST_CLOSE(top0 + 0.5 * h, L0, 1e-9, 0); /* the length measure, in the reference */
   const double L = (top + 0.5 * h) * 1e3, R = rface * 1e3;
   const double err = g.kinetic_centred + g.elastic + g.wall_loss - g0.kinetic_centred;
+  pf_test_measure("length", L, "mm");
+  pf_test_measure("radius", R, "mm");
+  pf_test_measure("max_eqps", emax, "1");
+  pf_test_measure("energy_error", err / g0.kinetic, "1");
+  pf_test_measure("steps", (double)steps, "1");
   if (pf_comm_rank() == 0 && getenv("PF_TEST_VERBOSE"))
     printf("taylor correspondence h = %.4g mm: final length %.3f mm, face radius %.3f mm (first layer %.3f mm), "
            "max eqps %.3f, %ld steps, energy error %.3g of KE0\n", h * 1e3, L, R, rfirst * 1e3, emax, steps,

@@ -38,6 +38,8 @@ static void energy_test(void) {
   PF_TEST_CLOSE(e0, 0.5 * 2200 * 1e-12 * 100 * 100 * 300, 1e-12, 0); /* 3 layers x 100 points at 100 m/s */
   PF_TEST_TRUE(worst < 1e-3);
   if (!(worst < 1e-3)) fprintf(stderr, "energy drift %g\n", worst);
+  pf_test_measure("energy_initial", e0, "J");
+  pf_test_measure("energy_drift", worst, "1");
   pf_test_print_digest("energy", sim);
   pf_sim_destroy(&sim);
 }
@@ -90,6 +92,9 @@ static void speed_test(void) {
   double w_lattice = sqrt(c * sum / rho);
   PF_TEST_CLOSE(w_measured / k, w_lattice / k, 0.02, 0);
   PF_TEST_CLOSE(w_measured / k, 0.98035 * sqrt(1.8 * K / rho), 0.03, 0);
+  pf_test_measure("phase_speed", w_measured / k, "m/s");
+  pf_test_measure("phase_speed_lattice", w_lattice / k, "m/s");
+  pf_test_measure("phase_speed_continuum", 0.98035 * sqrt(1.8 * K / rho), "m/s");
   pf_test_print_digest("speed", sim);
   if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
     printf("phase speed: measured %.2f m/s, lattice %.2f, continuum %.2f\n", w_measured / k, w_lattice / k,
