@@ -46,7 +46,7 @@ typedef struct {
   pf_batch_records rec; /* pass 1: s0 in REC_AUX; pass 2: theta */
   double *a, *bc;       /* [store points] pass 2: the volumetric coefficient a_j and 15 G beta_j / m_j */
   pf_int ab_cap;
-  double *row;          /* scratch of one row: |xi| and the extension of each bond, [2 row_cap] */
+  double *row;          /* scratch of one row: |xi|, the extension and w V_j of each bond, [3 row_cap] */
   int64_t row_cap;
 } ep;
 
@@ -107,35 +107,41 @@ static int ep_row_room(ep *p, int64_t n) {
   if (n <= p->row_cap) return 0;
   free(p->row);
   p->row_cap = n + PF_BATCH;
-  PF_MALLOC(p->row, 2 * p->row_cap);
+  PF_MALLOC(p->row, 3 * p->row_cap);
   return 0;
 }
 
 /* Pass 1 for point i (records with s0 in REC_AUX): dilatation (failing bonds beyond the
  * critical stretch, as LPS), then the trial equivalent stress
  * sigma_tr = 3 G sqrt(5 sum_j w (e^d - e^dp_n)^2 V_j / m_i) and the return: beta and the new eqps. */
-static void ep_point(pf_pd_body *b, const pf_points *pts, const double *restrict rec, pf_int i) {
+static inline __attribute__((always_inline)) void ep_point(pf_pd_body *b, const pf_points *pts,
+                                                            const double *restrict rec, pf_int i,
+                                                            const int weighted, const int partial) {
   enum { L = PF_BATCH };
   ep *p = b->mat;
   const pf_family *fam = &b->fam;
   uint8_t *restrict broken = fam->broken;
   const int64_t k0 = fam->offset[i - b->first], k1 = fam->offset[i - b->first + 1];
   const double *ri = rec + (size_t)PF_REC * (size_t)i, s0i = ri[REC_AUX];
-  double *restrict r0s = p->row, *restrict exts = p->row + p->row_cap;
+  double *restrict r0s = p->row, *restrict exts = p->row + p->row_cap, *restrict wvs = p->row + 2 * p->row_cap;
   double sum = 0, smin = INFINITY;
   int fresh = 0;
   for (int64_t kb = k0; kb < k1; kb += L) {
     const int n = k1 - kb < L ? (int)(k1 - kb) : L;
     int32_t idx[L];
-    double a[PF_REC][L], r0[L], r[L], e[3][L], s[L];
+    double a[PF_REC][L], r0[L], r[L], e[3][L], s[L], om[L], vj[L];
     for (int l = 0; l < L; l++) idx[l] = fam->neighbor[kb + l];
     pf_batch_gather(rec, idx, a);
     ep_lengths(ri, a, r0, r, e);
 #pragma omp simd
-    for (int l = 0; l < L; l++) s[l] = (r[l] - r0[l]) / r0[l];
+    for (int l = 0; l < L; l++) {
+      s[l] = (r[l] - r0[l]) / r0[l];
+      om[l] = weighted ? pf_pd_omega(&b->influence, r0[l]) : 1.0;
+      vj[l] = partial && fam->vfrac ? a[REC_V][l] * fam->vfrac[kb + l] : a[REC_V][l];
+      r0s[kb - k0 + l] = r0[l], exts[kb - k0 + l] = r[l] - r0[l], wvs[kb - k0 + l] = om[l] * vj[l];
+    }
     for (int l = 0; l < n; l++) { /* (in the row's order) */
       const int64_t k = kb + l;
-      r0s[k - k0] = r0[l], exts[k - k0] = r[l] - r0[l];
       if (broken[k]) continue;
       if (s[l] > (s0i < a[REC_AUX][l] ? s0i : a[REC_AUX][l])) { /* (?: for fmin: no NaN, no -0 here) */
         broken[k] = PF_BOND_FRESH;
@@ -143,8 +149,7 @@ static void ep_point(pf_pd_body *b, const pf_points *pts, const double *restrict
         continue;
       }
       smin = s[l] < smin ? s[l] : smin;
-      const double vj = fam->vfrac ? a[REC_V][l] * fam->vfrac[k] : a[REC_V][l];
-      sum += pf_pd_omega(&b->influence, r0[l]) * r0[l] * (r[l] - r0[l]) * vj;
+      sum += om[l] * r0[l] * (r[l] - r0[l]) * vj[l];
     }
   }
   b->smin[i - b->first] = smin;
@@ -155,7 +160,7 @@ static void ep_point(pf_pd_body *b, const pf_points *pts, const double *restrict
     if (broken[k]) continue;
     const double r0 = r0s[k - k0];
     const double tr = exts[k - k0] - th * r0 / 3 - fam->state[NSTATE * k];
-    const double wv = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, fam->neighbor[k]);
+    const double wv = wvs[k - k0];
     n2 += wv * tr * tr, pm += wv * r0 * fam->state[NSTATE * k];
   }
   const double st = 3 * G * sqrt(5 * n2 / m), Y = p->Y0 + p->H * p->eqps[i];
@@ -172,8 +177,9 @@ static void ep_point(pf_pd_body *b, const pf_points *pts, const double *restrict
 /* Pass 2 for point i (records with theta in REC_AUX): the force density sum into f[3], and
  * e^dp_{n+1} = e^d - beta (e^d - e^dp_n) at each end of each bond (untouched when elastic,
  * beta = 1). */
-static void ep_point_force(const pf_pd_body *b, const double *restrict rec, pf_int i,
-                           double f[3]) {
+static inline __attribute__((always_inline)) void ep_point_force(const pf_pd_body *b, const double *restrict rec,
+                                                                  pf_int i, const int weighted, const int partial,
+                                                                  double f[3]) {
   enum { L = PF_BATCH };
   const ep *p = b->mat;
   const pf_family *fam = &b->fam;
@@ -198,22 +204,20 @@ static void ep_point_force(const pf_pd_body *b, const double *restrict rec, pf_i
     ep_lengths(ri, a, r0, r, e);
 #pragma omp simd
     for (int l = 0; l < L; l++) {
-      const double ext = r[l] - r0[l], w = pf_pd_omega(&b->influence, r0[l]);
+      const double ext = r[l] - r0[l], w = weighted ? pf_pd_omega(&b->influence, r0[l]) : 1.0;
       const double edi = ext - thi * r0[l] / 3, edj = ext - a[REC_AUX][l] * r0[l] / 3;
       const double tij = w * (ai * r0[l] + bi * (edi - e0[l]));
       const double tji = w * (aj[l] * r0[l] + bj[l] * (edj - e1[l]));
-      const double vj = fam->vfrac ? a[REC_V][l] * fam->vfrac[kb + l] : a[REC_V][l];
+      const double vj = partial && fam->vfrac ? a[REC_V][l] * fam->vfrac[kb + l] : a[REC_V][l];
       fs[l] = (tij + tji) * vj / r[l];
-      n0[l] = edi - betai * (edi - e0[l]);
-      n1[l] = edj - betaj[l] * (edj - e1[l]);
+      const int live = !broken[kb + l]; /* (a broken bond keeps its e^dp: the same value stored back) */
+      n0[l] = live && betai != 1.0 ? edi - betai * (edi - e0[l]) : e0[l];
+      n1[l] = live && betaj[l] != 1.0 ? edj - betaj[l] * (edj - e1[l]) : e1[l];
     }
-    for (int l = 0; l < n; l++) { /* (in the row's order) */
-      const int64_t k = kb + l;
-      if (broken[k]) continue;
-      for (int c = 0; c < 3; c++) f[c] += fs[l] * e[c][l];
-      if (betai != 1.0) edp[NSTATE * k] = n0[l];
-      if (betaj[l] != 1.0) edp[NSTATE * k + 1] = n1[l];
-    }
+    for (int l = 0; l < n; l++) edp[NSTATE * (kb + l)] = n0[l], edp[NSTATE * (kb + l) + 1] = n1[l];
+    for (int l = 0; l < n; l++) /* (in the row's order) */
+      if (!broken[kb + l])
+        for (int c = 0; c < 3; c++) f[c] += fs[l] * e[c][l];
   }
 }
 
@@ -225,7 +229,11 @@ static int ep_force(pf_pd_body *b, pf_points *pts) {
   for (pf_int i = 0; i < b->n; i++) longest = fam->offset[i + 1] - fam->offset[i] > longest ? fam->offset[i + 1] - fam->offset[i] : longest;
   PF_CALL(ep_row_room(p, longest));
   PF_CALL(pf_batch_records_fill(&p->rec, pts, b->s0));
-  for (pf_int i = b->first; i < b->first + b->n; i++) ep_point(b, pts, p->rec.rec, i);
+  const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = fam->vfrac != NULL;
+  if (!weighted && !partial) /* (omega = 1 folded away: x * 1.0 is x, the same bits) */
+    for (pf_int i = b->first; i < b->first + b->n; i++) ep_point(b, pts, p->rec.rec, i, 0, 0);
+  else
+    for (pf_int i = b->first; i < b->first + b->n; i++) ep_point(b, pts, p->rec.rec, i, 1, 1);
   PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta and beta for the force pass */
   PF_CALL(pf_points_exchange(pts, p->beta, 1));
   PF_CALL(pf_points_exchange(pts, p->mom, 1));
@@ -243,7 +251,8 @@ static int ep_force(pf_pd_body *b, pf_points *pts) {
   }
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     double f[3];
-    ep_point_force(b, p->rec.rec, i, f);
+    if (!weighted && !partial) ep_point_force(b, p->rec.rec, i, 0, 0, f);
+    else ep_point_force(b, p->rec.rec, i, 1, 1, f);
     for (int a = 0; a < 3; a++) pts->f[3 * i + a] += pts->vol[i] * f[a];
   }
   return 0;
