@@ -210,14 +210,16 @@ static inline __attribute__((always_inline)) void ep_point_force(const pf_pd_bod
       const double tji = w * (aj[l] * r0[l] + bj[l] * (edj - e1[l]));
       const double vj = partial && fam->vfrac ? a[REC_V][l] * fam->vfrac[kb + l] : a[REC_V][l];
       fs[l] = (tij + tji) * vj / r[l];
-      const int live = !broken[kb + l]; /* (a broken bond keeps its e^dp: the same value stored back) */
-      n0[l] = live && betai != 1.0 ? edi - betai * (edi - e0[l]) : e0[l];
-      n1[l] = live && betaj[l] != 1.0 ? edj - betaj[l] * (edj - e1[l]) : e1[l];
+      n0[l] = edi - betai * (edi - e0[l]);
+      n1[l] = edj - betaj[l] * (edj - e1[l]);
     }
-    for (int l = 0; l < n; l++) edp[NSTATE * (kb + l)] = n0[l], edp[NSTATE * (kb + l) + 1] = n1[l];
-    for (int l = 0; l < n; l++) /* (in the row's order) */
-      if (!broken[kb + l])
-        for (int c = 0; c < 3; c++) f[c] += fs[l] * e[c][l];
+    for (int l = 0; l < n; l++) { /* (in the row's order) */
+      const int64_t k = kb + l;
+      if (broken[k]) continue;
+      for (int c = 0; c < 3; c++) f[c] += fs[l] * e[c][l];
+      if (betai != 1.0) edp[NSTATE * k] = n0[l];
+      if (betaj[l] != 1.0) edp[NSTATE * k + 1] = n1[l];
+    }
   }
 }
 
