@@ -155,6 +155,23 @@ static int face_nodes(const pf_contact *c, const pf_int *view, const pf_int nd[4
   return 1;
 }
 
+/* 1 when point y is farther than d from every point of the face of nodes x: farther from the
+ * nodes' bounding box, which holds the face (pf_contact_face_closest's closest point is a convex
+ * combination of the nodes), by more than round-off (1e-9 of d and of the box's size). A face
+ * beyond the closest one found so far cannot be chosen (surface: strictly closer wins), so it is
+ * passed over without its closest point. */
+static int beyond(const double x[4][3], const double y[3], double d) {
+  double lb2 = 0, size = 0;
+  for (int a = 0; a < 3; a++) {
+    double lo = x[0][a], hi = x[0][a];
+    for (int v = 1; v < 4; v++) lo = x[v][a] < lo ? x[v][a] : lo, hi = x[v][a] > hi ? x[v][a] : hi;
+    const double out = y[a] < lo ? lo - y[a] : y[a] > hi ? y[a] - hi : 0.0;
+    lb2 += out * out, size = hi - lo > size ? hi - lo : size;
+  }
+  const double lim = d + 1e-9 * (d + size);
+  return lb2 > lim * lim;
+}
+
 /* 1 when point y lies over the face of normal nf (face_normal) whose closest point to y is cp:
  * the offset y - cp along the face is below a tenth of the face's size (a point past the face's
  * edge is beside the face, not over it, however far it is behind the face's plane). */
@@ -198,6 +215,7 @@ static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double 
     pf_int nv[4];
     if (!face_nodes(c, view, sd->face[c->cand[q].j].node, x, nv))
       return PF_ERR_RUN; /* cannot happen: candidates have every node in the view */
+    if (best < INFINITY && beyond((const double(*)[3])x, &c->y[3 * e], best)) continue;
     face_normal((const double(*)[3])x, nf);
     const double facing = nf[0] * ne[0] + nf[1] * ne[1] + nf[2] * ne[2];
     if (facing > 0 || (p->kind == PF_PAIR_SURFACES && facing == 0)) continue;

@@ -21,7 +21,15 @@
  * mirror of j's end, e^dp of bond (j, i) ([1]). j's owner updates its own copy with the same
  * operands (|y_j - y_i|, |xi|, theta_j, beta_j: ghosted per-point values), so the two copies
  * stay bitwise equal and t_ji is computed at i without a per-bond exchange. Bonds fail in the
- * dilatation pass, as LPS. */
+ * dilatation pass, as LPS.
+ * The bond loops go in batches of PF_BATCH bonds (pd/bond_batch.h): the neighbours' records
+ * (X, V, y and s0, then theta) are transposed into lanes, and each batch's lengths, square
+ * roots and divisions are one vector pass; the per-point sums then add the batch's terms one
+ * bond after the other, in the row's order, so that every sum has the terms and the order of
+ * the bond-by-bond loop (the same bits). The dilatation pass keeps each bond's |xi| and
+ * extension in a scratch row for the trial-stress sums, so the lengths are formed twice a step,
+ * not three times. */
+#include "pd/bond_batch.h"
 #include "pd/pd_impl.h"
 
 #include <stdlib.h>
@@ -35,6 +43,11 @@ typedef struct {
   double *beta;  /* field "plastic_return": t^d / t^d_tr of the step (1: elastic) */
   double *eqps;  /* field "eqps": equivalent plastic strain */
   double *mom;   /* field "dilatation_moment": M_i (header) */
+  pf_batch_records rec; /* pass 1: s0 in REC_AUX; pass 2: theta */
+  double *a, *bc;       /* [store points] pass 2: the volumetric coefficient a_j and 15 G beta_j / m_j */
+  pf_int ab_cap;
+  double *row;          /* scratch of one row: |xi|, the extension and w V_j of each bond, [3 row_cap] */
+  int64_t row_cap;
 } ep;
 
 static int ep_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
@@ -72,38 +85,82 @@ static int ep_setup(pf_pd_body *b, pf_points *pts) {
   return pf_pd_weighted_volumes(b, pts, p->m);
 }
 
-/* Pass 1 for point i: dilatation (failing bonds beyond the critical stretch, as LPS), then the
- * trial equivalent stress sigma_tr = 3 G sqrt(5 sum_j w (e^d - e^dp_n)^2 V_j / m_i) and the
- * return: beta and the new eqps. */
-static void ep_point(pf_pd_body *b, const pf_points *pts, pf_int i) {
+/* The lengths of a batch of point i (record ri) from its neighbours' transposed records a, as
+ * pf_pd_bond_lengths computes them (r0 = |xi|, r = |y_j - y_i|, e = y_j - y_i): the same bits. */
+static inline __attribute__((always_inline)) void ep_lengths(const double *restrict ri, double a[PF_REC][PF_BATCH],
+                                                             double r0[PF_BATCH], double r[PF_BATCH],
+                                                             double e[3][PF_BATCH]) {
+#pragma omp simd
+  for (int l = 0; l < PF_BATCH; l++) {
+    double d2 = 0, e2 = 0;
+    for (int c = 0; c < 3; c++) {
+      const double d = a[REC_X + c][l] - ri[REC_X + c];
+      e[c][l] = a[REC_Y + c][l] - ri[REC_Y + c];
+      d2 += d * d, e2 += e[c][l] * e[c][l];
+    }
+    r0[l] = sqrt(d2), r[l] = sqrt(e2);
+  }
+}
+
+/* Grow the row scratch to n bonds. */
+static int ep_row_room(ep *p, int64_t n) {
+  if (n <= p->row_cap) return 0;
+  free(p->row);
+  p->row_cap = n + PF_BATCH;
+  PF_MALLOC(p->row, 3 * p->row_cap);
+  return 0;
+}
+
+/* Pass 1 for point i (records with s0 in REC_AUX): dilatation (failing bonds beyond the
+ * critical stretch, as LPS), then the trial equivalent stress
+ * sigma_tr = 3 G sqrt(5 sum_j w (e^d - e^dp_n)^2 V_j / m_i) and the return: beta and the new eqps. */
+static inline __attribute__((always_inline)) void ep_point(pf_pd_body *b, const pf_points *pts,
+                                                            const double *restrict rec, pf_int i,
+                                                            const int weighted, const int partial) {
+  enum { L = PF_BATCH };
   ep *p = b->mat;
   const pf_family *fam = &b->fam;
+  uint8_t *restrict broken = fam->broken;
   const int64_t k0 = fam->offset[i - b->first], k1 = fam->offset[i - b->first + 1];
-  double sum = 0, smin = INFINITY, e[3], r0, r;
+  const double *ri = rec + (size_t)PF_REC * (size_t)i, s0i = ri[REC_AUX];
+  double *restrict r0s = p->row, *restrict exts = p->row + p->row_cap, *restrict wvs = p->row + 2 * p->row_cap;
+  double sum = 0, smin = INFINITY;
   int fresh = 0;
-  for (int64_t k = k0; k < k1; k++) {
-    if (fam->broken[k]) continue;
-    pf_int j = fam->neighbor[k];
-    pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
-    double s = (r - r0) / r0;
-    if (s > fmin(b->s0[i], b->s0[j])) {
-      fam->broken[k] = PF_BOND_FRESH;
-      fresh++;
-      continue;
+  for (int64_t kb = k0; kb < k1; kb += L) {
+    const int n = k1 - kb < L ? (int)(k1 - kb) : L;
+    int32_t idx[L];
+    double a[PF_REC][L], r0[L], r[L], e[3][L], s[L], om[L], vj[L];
+    for (int l = 0; l < L; l++) idx[l] = fam->neighbor[kb + l];
+    pf_batch_gather(rec, idx, a);
+    ep_lengths(ri, a, r0, r, e);
+#pragma omp simd
+    for (int l = 0; l < L; l++) {
+      s[l] = (r[l] - r0[l]) / r0[l];
+      om[l] = weighted ? pf_pd_omega(&b->influence, r0[l]) : 1.0;
+      vj[l] = partial && fam->vfrac ? a[REC_V][l] * fam->vfrac[kb + l] : a[REC_V][l];
+      r0s[kb - k0 + l] = r0[l], exts[kb - k0 + l] = r[l] - r0[l], wvs[kb - k0 + l] = om[l] * vj[l];
     }
-    smin = fmin(smin, s);
-    sum += pf_pd_omega(&b->influence, r0) * r0 * (r - r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    for (int l = 0; l < n; l++) { /* (in the row's order) */
+      const int64_t k = kb + l;
+      if (broken[k]) continue;
+      if (s[l] > (s0i < a[REC_AUX][l] ? s0i : a[REC_AUX][l])) { /* (?: for fmin: no NaN, no -0 here) */
+        broken[k] = PF_BOND_FRESH;
+        fresh++;
+        continue;
+      }
+      smin = s[l] < smin ? s[l] : smin;
+      sum += om[l] * r0[l] * (r[l] - r0[l]) * vj[l];
+    }
   }
   b->smin[i - b->first] = smin;
   const double m = p->m[i], th = 3.0 * sum / m, G = b->shear_modulus;
   if (fresh) b->damage_work += pf_pd_lps_release(b, pts, i, m, fam->state, NSTATE); /* (plastic work stays) */
   double n2 = 0, pm = 0; /* sum_j w (e^d - e^dp_n)^2 V_j, sum_j w |xi| e^dp_n V_j */
   for (int64_t k = k0; k < k1; k++) {
-    if (fam->broken[k]) continue;
-    pf_int j = fam->neighbor[k];
-    pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
-    const double tr = (r - r0) - th * r0 / 3 - fam->state[NSTATE * k];
-    const double wv = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    if (broken[k]) continue;
+    const double r0 = r0s[k - k0];
+    const double tr = exts[k - k0] - th * r0 / 3 - fam->state[NSTATE * k];
+    const double wv = wvs[k - k0];
     n2 += wv * tr * tr, pm += wv * r0 * fam->state[NSTATE * k];
   }
   const double st = 3 * G * sqrt(5 * n2 / m), Y = p->Y0 + p->H * p->eqps[i];
@@ -117,33 +174,87 @@ static void ep_point(pf_pd_body *b, const pf_points *pts, pf_int i) {
   p->mom[i] = pf_pd_dilatation_moment(b, i, th, pm, p->beta[i]);
 }
 
+/* Pass 2 for point i (records with theta in REC_AUX): the force density sum into f[3], and
+ * e^dp_{n+1} = e^d - beta (e^d - e^dp_n) at each end of each bond (untouched when elastic,
+ * beta = 1). */
+static inline __attribute__((always_inline)) void ep_point_force(const pf_pd_body *b, const double *restrict rec,
+                                                                  pf_int i, const int weighted, const int partial,
+                                                                  double f[3]) {
+  enum { L = PF_BATCH };
+  const ep *p = b->mat;
+  const pf_family *fam = &b->fam;
+  const uint8_t *restrict broken = fam->broken;
+  double *restrict edp = fam->state;
+  const int64_t k0 = fam->offset[i - b->first], k1 = fam->offset[i - b->first + 1];
+  const double *ri = rec + (size_t)PF_REC * (size_t)i;
+  const double thi = ri[REC_AUX], ai = p->a[i], bi = p->bc[i], betai = p->beta[i];
+  f[0] = f[1] = f[2] = 0;
+  for (int64_t kb = k0; kb < k1; kb += L) {
+    const int n = k1 - kb < L ? (int)(k1 - kb) : L;
+    int32_t idx[L];
+    double a[PF_REC][L], r0[L], r[L], e[3][L], aj[L], bj[L], betaj[L], e0[L], e1[L];
+    double fs[L], n0[L], n1[L];
+    for (int l = 0; l < L; l++) idx[l] = fam->neighbor[kb + l];
+    pf_batch_gather(rec, idx, a);
+    pf_batch_gather1(p->a, idx, aj);
+    pf_batch_gather1(p->bc, idx, bj);
+    pf_batch_gather1(p->beta, idx, betaj);
+    for (int l = 0; l < L; l++) /* (the state has no slack past the last row) */
+      e0[l] = l < n ? edp[NSTATE * (kb + l)] : 0.0, e1[l] = l < n ? edp[NSTATE * (kb + l) + 1] : 0.0;
+    ep_lengths(ri, a, r0, r, e);
+#pragma omp simd
+    for (int l = 0; l < L; l++) {
+      const double ext = r[l] - r0[l], w = weighted ? pf_pd_omega(&b->influence, r0[l]) : 1.0;
+      const double edi = ext - thi * r0[l] / 3, edj = ext - a[REC_AUX][l] * r0[l] / 3;
+      const double tij = w * (ai * r0[l] + bi * (edi - e0[l]));
+      const double tji = w * (aj[l] * r0[l] + bj[l] * (edj - e1[l]));
+      const double vj = partial && fam->vfrac ? a[REC_V][l] * fam->vfrac[kb + l] : a[REC_V][l];
+      fs[l] = (tij + tji) * vj / r[l];
+      n0[l] = edi - betai * (edi - e0[l]);
+      n1[l] = edj - betaj[l] * (edj - e1[l]);
+    }
+    for (int l = 0; l < n; l++) { /* (in the row's order) */
+      const int64_t k = kb + l;
+      if (broken[k]) continue;
+      for (int c = 0; c < 3; c++) f[c] += fs[l] * e[c][l];
+      if (betai != 1.0) edp[NSTATE * k] = n0[l];
+      if (betaj[l] != 1.0) edp[NSTATE * k + 1] = n1[l];
+    }
+  }
+}
+
 static int ep_force(pf_pd_body *b, pf_points *pts) {
   ep *p = b->mat;
   const double K = b->bulk_modulus, G = b->shear_modulus;
   const pf_family *fam = &b->fam;
-  double *edp = fam->state;
-  for (pf_int i = b->first; i < b->first + b->n; i++) ep_point(b, pts, i);
+  int64_t longest = 0;
+  for (pf_int i = 0; i < b->n; i++) longest = fam->offset[i + 1] - fam->offset[i] > longest ? fam->offset[i + 1] - fam->offset[i] : longest;
+  PF_CALL(ep_row_room(p, longest));
+  PF_CALL(pf_batch_records_fill(&p->rec, pts, b->s0));
+  const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = fam->vfrac != NULL;
+  if (!weighted && !partial) /* (omega = 1 folded away: x * 1.0 is x, the same bits) */
+    for (pf_int i = b->first; i < b->first + b->n; i++) ep_point(b, pts, p->rec.rec, i, 0, 0);
+  else
+    for (pf_int i = b->first; i < b->first + b->n; i++) ep_point(b, pts, p->rec.rec, i, 1, 1);
   PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta and beta for the force pass */
   PF_CALL(pf_points_exchange(pts, p->beta, 1));
   PF_CALL(pf_points_exchange(pts, p->mom, 1));
+  const pf_int nt = pts->n_total;
+  if (nt > p->ab_cap) {
+    free(p->a), free(p->bc);
+    p->ab_cap = nt + nt / 8 + 16;
+    PF_MALLOC(p->a, p->ab_cap);
+    PF_MALLOC(p->bc, p->ab_cap);
+  }
+  for (pf_int j = 0; j < nt; j++) { /* (each end's coefficients, as the bond-by-bond loop formed them) */
+    p->rec.rec[(size_t)PF_REC * (size_t)j + REC_AUX] = p->theta[j];
+    p->a[j] = pf_pd_lps_volumetric(K, G, p->theta[j], p->mom[j], p->m[j]);
+    p->bc[j] = 15 * G / p->m[j] * p->beta[j];
+  }
   for (pf_int i = b->first; i < b->first + b->n; i++) {
-    double f[3] = {0, 0, 0}, e[3], r0, r;
-    const double ai = pf_pd_lps_volumetric(K, G, p->theta[i], p->mom[i], p->m[i]), bi = 15 * G / p->m[i] * p->beta[i];
-    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-      if (fam->broken[k]) continue;
-      pf_int j = fam->neighbor[k];
-      pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
-      const double ext = r - r0, w = pf_pd_omega(&b->influence, r0);
-      const double aj = pf_pd_lps_volumetric(K, G, p->theta[j], p->mom[j], p->m[j]), bj = 15 * G / p->m[j] * p->beta[j];
-      const double edi = ext - p->theta[i] * r0 / 3, edj = ext - p->theta[j] * r0 / 3;
-      const double tij = w * (ai * r0 + bi * (edi - edp[NSTATE * k]));
-      const double tji = w * (aj * r0 + bj * (edj - edp[NSTATE * k + 1]));
-      const double fs = (tij + tji) * pf_pd_bond_volume(fam, pts->vol, k, j) / r;
-      for (int a = 0; a < 3; a++) f[a] += fs * e[a];
-      /* e^dp_{n+1} = e^d - beta (e^d - e^dp_n) at each end; untouched when elastic (beta = 1) */
-      if (p->beta[i] != 1.0) edp[NSTATE * k] = edi - p->beta[i] * (edi - edp[NSTATE * k]);
-      if (p->beta[j] != 1.0) edp[NSTATE * k + 1] = edj - p->beta[j] * (edj - edp[NSTATE * k + 1]);
-    }
+    double f[3];
+    if (!weighted && !partial) ep_point_force(b, p->rec.rec, i, 0, 0, f);
+    else ep_point_force(b, p->rec.rec, i, 1, 1, f);
     for (int a = 0; a < 3; a++) pts->f[3 * i + a] += pts->vol[i] * f[a];
   }
   return 0;
@@ -165,6 +276,11 @@ static double ep_energy(const pf_pd_body *b, const pf_points *pts) {
 }
 
 static void ep_destroy(pf_pd_body *b) {
+  ep *p = b->mat;
+  if (p) {
+    pf_batch_records_free(&p->rec);
+    free(p->a), free(p->bc), free(p->row);
+  }
   PF_FREE(b->mat);
 }
 
