@@ -25,6 +25,7 @@ disk_impact_elastic 60 40 sphere_disk_force_z
 fragmenting_cylinder 80 50 damage_fraction
 fragmenting_cylinder_exodus 80 50 damage_fraction
 expanding_tube 60 40 lexan_tube_force_z
+expanding_tube_two_bodies 60 40 projectile_plug_force_z
 panel_plate 50 30 sphere_panel_force_z
 panel_impact 50 30 sphere_panel_force_z
 dcb 30 20 upper_reaction_y
