@@ -149,7 +149,7 @@ int pf_fem_body_attach(pf_fem_body *b, int body, pf_points *pts, pf_int first, p
   PF_MALLOC(b->bvq, b->nel);
   PF_MALLOC(b->fe, 24 * (size_t)b->nel);
   PF_MALLOC(b->energy, 3 * (size_t)b->nel);
-  PF_MALLOC(b->buf, pf_fem_chunk_doubles(b->nqp, b->nstate));
+  b->buf = NULL, b->nbuf = 0; /* (grown to the thread count at the first evaluation) */
   free(b->due);
   b->due = NULL, b->n_due = 0;
   if (b->erosion) PF_MALLOC(b->due, b->nel);
@@ -186,6 +186,7 @@ int pf_fem_body_force(pf_fem_body *b, pf_points *pts, double dt, double t, long 
   int ierr = pf_fem_body_evaluate(b, pts, dt, t, step);
   PF_CALL(pf_fem_erosion_sync(b)); /* (collective: also after a failed evaluation) */
   if (ierr) return ierr;
+#pragma omp parallel for schedule(static)
   for (pf_int i = 0; i < b->n; i++) {
     double f[3];
     pf_fem_body_node_force(b, i, 0, f);
