@@ -217,13 +217,15 @@ int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts) {
   for (int k = 0; k < b->nstate && k < 16; k++) st[k] = pf_points_field_get(pts, pf_material_state_name(b->mat, k));
   const int nq = b->nqp;
   PF_MALLOC(vq, b->nel); /* each element's current volume per quadrature point, once */
+#pragma omp parallel for schedule(static)
   for (pf_int e = 0; e < b->nel; e++) {
     double x[8][3], B[8][3];
     for (int I = 0; I < 8; I++)
       for (int a = 0; a < 3; a++) x[I][a] = pts->y[3 * (size_t)b->conn[8 * (size_t)e + I] + a];
     vq[e] = pf_hex8_mean_gradient(x, B) / nq;
   }
-  for (pf_int i = 0; i < b->n; i++) {
+#pragma omp parallel for schedule(static)
+  for (pf_int i = 0; i < b->n; i++) { /* (each node its own sums, in its element order) */
     double w = 0, s[6] = {0}, h[16] = {0};
     for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
       pf_int e = b->node_item[q] / 8;
