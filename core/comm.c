@@ -1,5 +1,9 @@
-/* Global reductions and rank queries over MPI_COMM_WORLD, and the wall clock. */
+/* Global reductions and rank queries over MPI_COMM_WORLD, the threads per rank, and the wall clock. */
 #include "core/core.h"
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 static int mpi_ready(void) {
   int init = 0, fin = 0;
@@ -18,6 +22,14 @@ int pf_comm_size(void) {
   int s = 1;
   if (mpi_ready()) MPI_Comm_size(MPI_COMM_WORLD, &s);
   return s;
+}
+
+int pf_threads_per_rank(void) {
+#if defined(_OPENMP)
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
 }
 
 static double reduce(double local, MPI_Op op) {

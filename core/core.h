@@ -359,6 +359,8 @@ double pf_min_all(double local);
 double pf_max_all(double local);
 int pf_comm_rank(void);
 int pf_comm_size(void);
+/* The OpenMP threads a parallel region of this rank runs (omp_get_max_threads; 1 without OpenMP). */
+int pf_threads_per_rank(void);
 /* The memory this process may use, in bytes: the machine's physical memory (sysconf), or the
  * address-space limit (ulimit -v, less the address space in use now) or data-segment limit
  * (ulimit -d) when lower. For refusing, before

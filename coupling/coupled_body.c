@@ -227,6 +227,7 @@ static int energy_form_force(pf_coupled_body *c, pf_points *pts, double dt, doub
   PF_CALL(pf_pd_body_force(c->pd, pts, dt));
   PF_CALL(pf_fem_body_evaluate(c->fe, pts, dt, t, step));
   double *f = &pts->f[3 * (size_t)c->first];
+#pragma omp parallel for schedule(static)
   for (pf_int i = 0; i < c->n; i++) {
     double fe[3];
     pf_fem_body_node_force(c->fe, i, 1, fe);
@@ -247,6 +248,7 @@ int pf_coupled_body_force(pf_coupled_body *c, pf_points *pts, double dt, double 
   PF_CALL(pf_pd_body_force(c->pd, pts, dt));
   for (size_t k = 0; k < n3; k++) keep[k] += c->beta[c->first + k / 3] * f[k], f[k] = 0.0;
   PF_CALL(pf_fem_body_evaluate(c->fe, pts, dt, t, step));
+#pragma omp parallel for schedule(static)
   for (pf_int i = 0; i < c->n; i++) {
     double fe[3];
     pf_fem_body_node_force(c->fe, i, 0, fe);

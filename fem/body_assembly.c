@@ -149,7 +149,7 @@ int pf_fem_body_attach(pf_fem_body *b, int body, pf_points *pts, pf_int first, p
   PF_MALLOC(b->bvq, b->nel);
   PF_MALLOC(b->fe, 24 * (size_t)b->nel);
   PF_MALLOC(b->energy, 3 * (size_t)b->nel);
-  PF_MALLOC(b->buf, pf_fem_chunk_doubles(b->nqp, b->nstate));
+  b->buf = NULL, b->nbuf = 0; /* (grown to the thread count at the first evaluation) */
   free(b->due);
   b->due = NULL, b->n_due = 0;
   if (b->erosion) PF_MALLOC(b->due, b->nel);
@@ -186,6 +186,7 @@ int pf_fem_body_force(pf_fem_body *b, pf_points *pts, double dt, double t, long 
   int ierr = pf_fem_body_evaluate(b, pts, dt, t, step);
   PF_CALL(pf_fem_erosion_sync(b)); /* (collective: also after a failed evaluation) */
   if (ierr) return ierr;
+#pragma omp parallel for schedule(static)
   for (pf_int i = 0; i < b->n; i++) {
     double f[3];
     pf_fem_body_node_force(b, i, 0, f);
@@ -216,13 +217,15 @@ int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts) {
   for (int k = 0; k < b->nstate && k < 16; k++) st[k] = pf_points_field_get(pts, pf_material_state_name(b->mat, k));
   const int nq = b->nqp;
   PF_MALLOC(vq, b->nel); /* each element's current volume per quadrature point, once */
+#pragma omp parallel for schedule(static)
   for (pf_int e = 0; e < b->nel; e++) {
     double x[8][3], B[8][3];
     for (int I = 0; I < 8; I++)
       for (int a = 0; a < 3; a++) x[I][a] = pts->y[3 * (size_t)b->conn[8 * (size_t)e + I] + a];
     vq[e] = pf_hex8_mean_gradient(x, B) / nq;
   }
-  for (pf_int i = 0; i < b->n; i++) {
+#pragma omp parallel for schedule(static)
+  for (pf_int i = 0; i < b->n; i++) { /* (each node its own sums, in its element order) */
     double w = 0, s[6] = {0}, h[16] = {0};
     for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
       pf_int e = b->node_item[q] / 8;

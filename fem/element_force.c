@@ -22,6 +22,9 @@
 
 #include <math.h>
 #include <string.h>
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 /* Per-element scratch of one chunk. */
 typedef struct {
@@ -78,11 +81,16 @@ static int bad_element(const pf_fem_body *b, pf_int e, double x[8][3], const cha
   double c[3] = {0, 0, 0};
   for (int I = 0; I < 8; I++)
     for (int i = 0; i < 3; i++) c[i] += 0.125 * x[I][i];
-  return pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+  int code;
+#if defined(_OPENMP)
+#pragma omp critical(pf_error)
+#endif
+  code = pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
            "element %" PF_INT_FMT " of body '%s' (centroid (%g, %g, %g) m) at time %g s, step %ld: "
            "%s %g: the element is inverted or the run is unstable (reduce time.safety_factor, "
            "raise the hourglass or bulk viscosity coefficients, or refine the mesh)",
            b->eid[e] + 1, b->name, c[0], c[1], c[2], b->t, b->step, what, value);
+  return code;
 }
 
 /* A deleted element (fem/erosion.c) gives the material F = I and D = 0 at each point. */
@@ -174,7 +182,7 @@ static void hourglass_force(pf_fem_body *b, pf_int e, double x[8][3], double v[8
 
 /* Pass 2: forces from the new stress, bulk viscosity, hourglass; energies; stable step. */
 static int element_forces(pf_fem_body *b, const pf_points *p, pf_int e, double dt, const double *c,
-                          const double *D, const scratch *s) {
+                          const double *D, const scratch *s, double *stable_dt) {
   double X[8][3], x[8][3], xm[8][3], v[8][3], f[8][3] = {{0}};
   double(*B)[3] = (double(*)[3])s->B;
   gather_nodes(b, p, e, dt, X, x, xm, v);
@@ -218,31 +226,76 @@ static int element_forces(pf_fem_body *b, const pf_points *p, pf_int e, double d
   if (!b->bbar && b->hg != PF_HG_NONE) hourglass_force(b, e, x, v, B, V, cmax, rho, dt, s, f);
   memcpy(&b->fe[24 * (size_t)e], f, sizeof f);
   double Qb = s->trD < 0 ? b->bv_linear * cmax + b->bv_quadratic * l * fabs(s->trD) : 0;
-  b->stable_dt = fmin(b->stable_dt, l / (Qb + sqrt(Qb * Qb + cmax * cmax)));
+  *stable_dt = fmin(*stable_dt, l / (Qb + sqrt(Qb * Qb + cmax * cmax)));
   return 0;
 }
 
-int pf_fem_elements_evaluate(pf_fem_body *b, const pf_points *pts, double dt) {
+/* One chunk of elements [e0, e0 + ne) with its own scratch buf: kinematics, the batched material
+ * call, forces into the element's own slots of fe (the nodes gather them in a fixed order,
+ * pf_fem_body_node_force), erosion flags into due[e] (compacted in element order after). */
+static int evaluate_chunk(pf_fem_body *b, const pf_points *pts, double dt, pf_int e0, pf_int ne, double *buf,
+                          double *stable_dt) {
   const int nq = b->nqp;
-  double *F = b->buf, *D = F + 9 * (size_t)nq * PF_FEM_CHUNK, *c = D + 6 * (size_t)nq * PF_FEM_CHUNK;
+  double *F = buf, *D = F + 9 * (size_t)nq * PF_FEM_CHUNK, *c = D + 6 * (size_t)nq * PF_FEM_CHUNK;
   scratch *s = (scratch *)(c + (size_t)nq * PF_FEM_CHUNK);
-  b->stable_dt = INFINITY;
-  for (pf_int e0 = 0; e0 < b->nel; e0 += PF_FEM_CHUNK) {
-    pf_int ne = b->nel - e0 < PF_FEM_CHUNK ? b->nel - e0 : PF_FEM_CHUNK;
-    for (pf_int k = 0; k < ne; k++)
-      if (pf_fem_element_eroded(b, e0 + k)) at_rest(nq, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k]);
-      else PF_CALL(kinematics(b, pts, e0 + k, dt, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
-    pf_material_update(b->mat, ne * nq, dt, F, D, &b->sigma[6 * (size_t)nq * e0],
-                           &b->state[(size_t)b->nstate * nq * e0], c);
-    for (pf_int k = 0; k < ne; k++) {
-      const pf_int e = e0 + k;
-      if (pf_fem_element_eroded(b, e)) {
-        memset(&b->fe[24 * (size_t)e], 0, sizeof(double) * 24);
-        continue;
-      }
-      PF_CALL(element_forces(b, pts, e, dt, &c[(size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
-      if (b->erosion && pf_fem_erosion_due(b, e, s[k].V / s[k].V0)) b->due[b->n_due++] = b->eid[e];
+  for (pf_int k = 0; k < ne; k++)
+    if (pf_fem_element_eroded(b, e0 + k)) at_rest(nq, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k]);
+    else PF_CALL(kinematics(b, pts, e0 + k, dt, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
+  pf_material_update(b->mat, ne * nq, dt, F, D, &b->sigma[6 * (size_t)nq * e0],
+                         &b->state[(size_t)b->nstate * nq * e0], c);
+  for (pf_int k = 0; k < ne; k++) {
+    const pf_int e = e0 + k;
+    if (b->erosion) b->due[e] = -1;
+    if (pf_fem_element_eroded(b, e)) {
+      memset(&b->fe[24 * (size_t)e], 0, sizeof(double) * 24);
+      continue;
     }
+    PF_CALL(element_forces(b, pts, e, dt, &c[(size_t)nq * k], &D[6 * (size_t)nq * k], &s[k], stable_dt));
+    if (b->erosion && pf_fem_erosion_due(b, e, s[k].V / s[k].V0)) b->due[e] = b->eid[e];
   }
+  return 0;
+}
+
+/* The chunk scratch of every thread (pf_fem_chunk_doubles each), grown when more threads run. */
+static int thread_buffers(pf_fem_body *b, int nthreads) {
+  if (nthreads <= b->nbuf) return 0;
+  free(b->buf);
+  b->buf = NULL, b->nbuf = 0;
+  PF_MALLOC(b->buf, (size_t)nthreads * pf_fem_chunk_doubles(b->nqp, b->nstate));
+  b->nbuf = nthreads;
+  return 0;
+}
+
+/* The chunks are independent (each element writes only its own stress, state, forces and
+ * energies), so threads share them out; the stable step is their minimum, exact in any order. */
+int pf_fem_elements_evaluate(pf_fem_body *b, const pf_points *pts, double dt) {
+  int nthreads = 1;
+#if defined(_OPENMP)
+  nthreads = omp_get_max_threads();
+#endif
+  PF_CALL(thread_buffers(b, nthreads));
+  const size_t per_thread = pf_fem_chunk_doubles(b->nqp, b->nstate);
+  const pf_int nchunks = (b->nel + PF_FEM_CHUNK - 1) / PF_FEM_CHUNK;
+  double stable_dt = INFINITY;
+  int ierr = 0;
+#pragma omp parallel reduction(min : stable_dt) reduction(max : ierr)
+  { /* (the reduction copies start at the identities DBL_MAX and INT_MIN: each thread's own) */
+    int t = 0, err = 0;
+#if defined(_OPENMP)
+    t = omp_get_thread_num();
+#endif
+    double *buf = b->buf + (size_t)t * per_thread, dtmin = INFINITY;
+#pragma omp for schedule(static)
+    for (pf_int ch = 0; ch < nchunks; ch++) {
+      const pf_int e0 = ch * PF_FEM_CHUNK, ne = b->nel - e0 < PF_FEM_CHUNK ? b->nel - e0 : PF_FEM_CHUNK;
+      if (!err) err = evaluate_chunk(b, pts, dt, e0, ne, buf, &dtmin);
+    }
+    stable_dt = dtmin, ierr = err;
+  }
+  b->stable_dt = stable_dt;
+  if (ierr) return ierr;
+  b->n_due = 0;
+  for (pf_int e = 0; e < b->nel && b->erosion; e++) /* the due elements in element order */
+    if (b->due[e] >= 0) b->due[b->n_due++] = b->due[e];
   return 0;
 }

@@ -45,7 +45,8 @@ struct pf_fem_body {
   double *energy;    /* [3 nel] internal (stress work), hourglass, bulk-viscosity work, J */
   int64_t *node_off; /* [n + 1] CSR: elements of each owned node */
   pf_int *node_item; /* element * 8 + corner, ascending element */
-  double *buf;       /* chunk scratch */
+  double *buf;       /* chunk scratch, one per thread (pf_fem_chunk_doubles each) */
+  int nbuf;          /* threads buf has room for */
   /* blending with another operator on the same nodes (coupling/, pf_fem_body_set_blending) */
   pf_fem_weight_fn beta_fn;  /* beta(x): the other operator's weight, or NULL (no blending) */
   const void *beta_ctx;

@@ -586,6 +586,7 @@ static int failure_records(pf_pd_body *b, const pf_points *pts) {
     p->fcap = pts->n_total + pts->n_total / 8 + 16;
     PF_MALLOC(p->fails, p->fcap);
   }
+#pragma omp parallel for schedule(static)
   for (pf_int j = 0; j < pts->n_total; j++) {
     const double *g = &p->gx[GX * j];
     p->fails[j] = (uint8_t)((g[G_DETACHED] != 0) | (g[G_DAMAGE] > p->dcrit) << 1 | (b->region[j] == 0) << 2);
@@ -746,19 +747,31 @@ static void stress_to_force_state(pf_pd_body *b, pf_int i) {
  * same exchanged record, so both decide alike. */
 
 /* The model over the body's points in batches, leaving out the idle ones (coupled, beta = 0 all
- * round: at rest for good, their stress stays zero; in a coupled panel most of the body). */
-static void update_model(pf_pd_body *b) {
+ * round: at rest for good, their stress stays zero; in a coupled panel most of the body). The
+ * models are pointwise, so the threads take blocks of PF_CORR_BLOCK points, each block its runs
+ * of points that are not idle: the same numbers however the points are batched. */
+enum { PF_CORR_BLOCK = 64 };
+static void update_block(pf_pd_body *b, int ns, pf_int lo, pf_int hi) {
   corr *p = b->mat;
-  const int ns = p->nstate;
-  for (pf_int a = 0, e; a < b->n; a = e) {
+  for (pf_int a = lo, e; a < hi; a = e) {
     if (b->idle && b->idle[a]) {
       p->cw[a] = 0.0, e = a + 1;
       continue;
     }
-    for (e = a + 1; e < b->n && !(b->idle && b->idle[e]);) e++;
+    for (e = a + 1; e < hi && !(b->idle && b->idle[e]);) e++;
     double *state = ns ? &p->state[(size_t)ns * (b->first + a)] : NULL;
     pf_material_update(p->cm, e - a, b->dt, &p->F[9 * a], &p->D[6 * a], &p->sigma[6 * (b->first + a)], state,
                            &p->cw[a]);
+  }
+}
+
+static void update_model(pf_pd_body *b) {
+  const int ns = ((corr *)b->mat)->nstate;
+  const pf_int nblocks = (b->n + PF_CORR_BLOCK - 1) / PF_CORR_BLOCK;
+#pragma omp parallel for schedule(dynamic, 4)
+  for (pf_int blk = 0; blk < nblocks; blk++) {
+    const pf_int lo = blk * PF_CORR_BLOCK, hi = b->n - lo < PF_CORR_BLOCK ? b->n : lo + PF_CORR_BLOCK;
+    update_block(b, ns, lo, hi);
   }
 }
 
@@ -768,12 +781,14 @@ static int corr_pass1(pf_pd_body *b, pf_points *pts) {
   const int ns = p->nstate;
   pf_int ndetached = 0;
   PF_CALL(failure_records(b, pts));
+#pragma omp parallel for schedule(dynamic, 64) reduction(+ : ndetached)
   for (pf_int i = b->first; i < b->first + b->n; i++)
     if (b->idle && b->idle[i - b->first]) fail_row(b, i), at_rest(b, i, 0);
     else ndetached += !kinematics(b, pts, i);
   double *state = ns ? &p->state[(size_t)ns * b->first] : NULL;
   if (ndetached && ns) memcpy(p->saved, state, sizeof(double) * ns * b->n);
   update_model(b);
+#pragma omp parallel for schedule(static)
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     const pf_int li = i - b->first;
     double *g = &p->gx[GX * i];
@@ -910,6 +925,7 @@ static void pair_sums(const pf_pd_body *b, const pf_points *pts, pf_int i, int s
 static int corr_force(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   PF_CALL(corr_pass1(b, pts));
+#pragma omp parallel for schedule(dynamic, 64)
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     const int states = b->blend && b->blend_states; /* coupled, energy form */
     if (b->blend && (states ? b->idle[i - b->first] : b->blend[i] == 0)) continue; /* no PD force wanted */

@@ -52,9 +52,9 @@ static void version(void) {
   printf("perifem %s\n  libyaml %s, Exodus II %.2f, HDF5 %u.%u.%u, %s\n  %s\n", perifem_version(),
          yaml_get_version_string(), (double)EX_API_VERS, maj, min, rel, mpi, more);
 #if defined(_OPENMP)
-  printf("  OpenMP %d: %d threads per rank (OMP_NUM_THREADS)\n", _OPENMP, omp_get_max_threads());
+  printf("  OpenMP %d: %d threads per rank (OMP_NUM_THREADS; 1 when it is not set)\n", _OPENMP, omp_get_max_threads());
 #else
-  printf("  no OpenMP threads (cmake -DPERIFEM_OPENMP=ON builds them)\n");
+  printf("  no OpenMP threads (the compiler had no OpenMP, or cmake -DPERIFEM_OPENMP=OFF)\n");
 #endif
 }
 
@@ -158,7 +158,17 @@ static int run(const cli *c) {
   return exit_status(ierr);
 }
 
+/* One thread per rank unless OMP_NUM_THREADS says otherwise: an MPI launch of one rank per core
+ * then never runs ranks x cores threads on the cores (docs/user_guide.md, "Threads"). */
+static void default_threads(void) {
+#if defined(_OPENMP)
+  const char *n = getenv("OMP_NUM_THREADS");
+  if (!n || !*n) omp_set_num_threads(1);
+#endif
+}
+
 int main(int argc, char **argv) {
+  default_threads();
   /* A write past the file-size limit (ulimit -f) fails with EFBIG, like one on a full disk
    * fails with ENOSPC, and ends the run with a message instead of killing the process. */
   signal(SIGXFSZ, SIG_IGN);

@@ -62,6 +62,7 @@ static void summary(const pf_sim *sim, const pf_sim_history_row *g, double wall)
    * bond: every per-bond array stored (pf_pd_body_bytes_per_bond). */
   pf_log("perifem: %ld steps of %.4e s to t = %.4e s in %.2f s (time loop %.2f s, output %.2f s)\n",
          sim->loop_steps, sim->dt, sim->t, wall, sim->wall_loop, sim->wall_output);
+  pf_log("  ranks %d, threads per rank %d\n", pf_comm_size(), pf_threads_per_rank());
   pf_log("  points %" PF_GID_FMT ", directed bonds %.0f (%.3g bytes each), bond evaluations per second %.4g"
          " (directed bonds x steps / time loop)\n",
          sim->pts->n_global, nb, nb > 0 ? bytes / nb : 0.0,

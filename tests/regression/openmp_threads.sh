@@ -1,19 +1,24 @@
 #!/usr/bin/env bash
 # OpenMP threads give the bits of one thread (issue 9: "results still bitwise identical to 1
 # thread"): decks exercising every threaded loop -- the PMB and LPS bond loops with bonds
-# breaking, the PD short-range contact, FE <-> PD contact with its node shares, the integrator --
-# run without threads (perifem) and with 1, 2 and 3 threads (perifem_omp, built beside it
-# unless PERIFEM_OPENMP_CHECK=OFF; or perifem itself when built with PERIFEM_OPENMP=ON), and 2
-# MPI ranks of 2 threads each: every run must end with the same state digest.
+# breaking, the PD short-range contact, FE <-> PD contact with its node shares, the integrator,
+# the correspondence passes with damage, the hexahedra and a coupled body --
+# run without threads (the reference: perifem_plain beside a threaded perifem, or perifem itself
+# when built with PERIFEM_OPENMP=OFF) and with 1, 2 and 3 threads (perifem, or perifem_omp beside
+# an unthreaded one), and 2 MPI ranks of 2 threads each: every run must end with the same state
+# digest.
 # usage: openmp_threads.sh PERIFEM SCRATCH   (from the tests/ folder); exit 77 (skipped) when
 # no threaded build exists.
 set -u
 exe=$1 scratch=$2 fail=0
 source common/mpi_env.sh
-omp=$(dirname "$exe")/perifem_omp
-if [ ! -x "$omp" ]; then
-  "$exe" --version | grep -q "^  OpenMP" || { echo "no threaded build (perifem_omp or PERIFEM_OPENMP=ON): skipped"; exit 77; }
-  omp=$exe
+dir=$(cd "$(dirname "$exe")" && pwd)
+threaded() { "$1" --version | grep -q "^  OpenMP"; }
+if threaded "$exe"; then
+  omp=$exe plain=$dir/perifem_plain
+  [ -x "$plain" ] || { echo "no perifem_plain (PERIFEM_OPENMP_CHECK=OFF): the threads are checked against 1 thread only"; plain=$exe; }
+elif [ -x "$dir/perifem_omp" ]; then plain=$exe omp=$dir/perifem_omp
+else echo "no threaded build (perifem_omp, or PERIFEM_OPENMP=ON with a compiler that has OpenMP): skipped"; exit 77
 fi
 rm -rf "$scratch" && mkdir -p "$scratch"
 cd "$scratch"
@@ -27,9 +32,16 @@ sed -E 's/model: pmb/model: lps/' cylinder.yaml > cylinder_lps.yaml
 cp cylinder.yaml cylinder_contact.yaml
 printf 'contact:\n  pairs:\n    - {bodies: [cylinder, cylinder], radius: 0.0012, all_points: true, friction: 0.1}\n' >> cylinder_contact.yaml
 sed -E 's#\.\./\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/data/sphere_on_block.yaml" > sphere_on_block.yaml
+# the modified Johnson-Cook bar whose damage correspondence breaks bonds (the correspondence
+# passes and the model batched over blocks of points), pulled at 400 m/s instead of 40 so that
+# 60 steps break 19 % of its bonds; the FE sphere on an FE block with coupled peridynamics (the
+# hexahedra's chunks, the node gather, the blended forces) and contact, 60 steps
+sed -E 's/final_time: 4.5e-5/steps: 60/; s/d1: 0.1,/d1: 0.0,/; s/interval: 100/interval: 20/; s/"(-?)40 \* min/"\1400 * min/' \
+  "$OLDPWD/data/damage_bar.yaml" > damage_bar.yaml
+sed -E 's#\.\./\.\./meshes/#'"$OLDPWD"'/../meshes/#; s/steps: 150/steps: 60/' "$OLDPWD/data/sphere_on_coupled_block.yaml" > coupled_block.yaml
 
-for deck in cylinder cylinder_lps cylinder_contact sphere_on_block; do
-  out=$(OMP_NUM_THREADS=1 "$exe" --output-dir plain "$deck.yaml" 2>&1) || { echo "$deck: exit $?: $out"; fail=1; continue; }
+for deck in cylinder cylinder_lps cylinder_contact sphere_on_block damage_bar coupled_block; do
+  out=$(OMP_NUM_THREADS=1 "$plain" --output-dir plain "$deck.yaml" 2>&1) || { echo "$deck: exit $?: $out"; fail=1; continue; }
   ref=$(digest_of "$out")
   [ -n "$ref" ] || { echo "$deck: no digest"; fail=1; continue; }
   for t in 1 2 3; do
