@@ -215,6 +215,7 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
                          "finite_element bodies are written joined (a spread file set would cut "
                          "elements at the rank boundaries); use output.layout: joined");
   PF_CALL(pf_sim_build_rigid(sim)); /* (a checkpoint holds their positions and reactions) */
+  PF_CALL(pf_sim_link_particles(sim));
   pf_point_cloud pc[PF_MAX_BODIES];
   memset(pc, 0, sizeof pc);
   int ierr = 0;
