@@ -364,7 +364,8 @@ int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, dou
  * particle, fem/particles.c) counts with the mass its volume will have, density times volume. */
 static double min_mass(const pf_contact_body *b, const pf_points *pts) {
   double m = INFINITY;
-  for (pf_int i = b->first; i < b->first + b->n; i++) m = fmin(m, pts->m[i] > 0 ? pts->m[i] : b->density * pts->vol[i]);
+  for (pf_int i = b->first; i < b->first + b->n; i++)
+    m = fmin(m, pts->m[i] > 0 ? pts->m[i] : b->density * pts->vol[i]);
   return m;
 }
 

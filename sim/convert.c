@@ -58,6 +58,13 @@ static int book_overlap(pf_sim *sim, pf_fem_particles *first_p, double U0) {
   return ierr;
 }
 
+/* After a restart restored the conversions: the stable step of the restored masses. */
+int pf_sim_converted_restart(pf_sim *sim) {
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->body[b].ops->as_particles) return pf_sim_refresh_fixed_step(sim);
+  return 0;
+}
+
 int pf_sim_convert_elements(pf_sim *sim) {
   long any = 0;
   pf_fem_particles *first = NULL;
@@ -69,7 +76,10 @@ int pf_sim_convert_elements(pf_sim *sim) {
     if (n && !first) first = body->ops->as_particles(body->data);
     any += n;
   }
-  if (!any || !sim->contact) return 0;
-  pf_contact_rebuild(sim->contact);
-  return book_overlap(sim, first, sim->contact_energy);
+  if (!any) return 0;
+  if (sim->contact) {
+    pf_contact_rebuild(sim->contact);
+    PF_CALL(book_overlap(sim, first, sim->contact_energy));
+  }
+  return pf_sim_refresh_fixed_step(sim); /* (the nodes are lighter, the new particles in contact) */
 }

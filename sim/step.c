@@ -33,6 +33,11 @@ static double stable_step(pf_sim *sim) {
   return fmin(sim->pd_stable, pf_min_all(varying_step(sim)));
 }
 
+int pf_sim_refresh_fixed_step(pf_sim *sim) {
+  stable_step(sim);
+  return 0;
+}
+
 int pf_sim_setup_time(pf_sim *sim) {
   const pf_deck *d = sim->deck;
   const pf_node *tm = pf_node_get(pf_deck_root(d), "time");
