@@ -210,6 +210,10 @@ static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double 
     if (facing > 0 || (p->kind == PF_PAIR_SURFACES && facing == 0)) continue;
     double g = pf_contact_face_closest((const double(*)[3])x, &c->y[3 * e], cp, w, n);
     if (g < 0 && !projects_inside(nf, cp, &c->y[3 * e])) continue;
+    /* a face of a body that deletes elements: a particle deeper behind it than its body's spacing
+     * was not pushed through it but uncovered by a deletion (the face was inside the body until
+     * then); it is not pulled back through (docs/theory/contact.md sec. 2.5) */
+    if (p->kind == PF_PAIR_SURFACE && c->body[sd->body].eroded && g < -c->body[c->vbody[e]].spacing) continue;
     if (fabs(g) < best) {
       best = fabs(g), bg = g;
       memcpy(bn, n, sizeof bn), memcpy(bw, w, sizeof bw), memcpy(bv, nv, sizeof bv);
