@@ -200,6 +200,9 @@ static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double 
   double best = INFINITY, bg = 0, bn[3] = {0, 0, 0}, bw[4] = {0, 0, 0, 0}, ne[3] = {0, 0, 0};
   pf_int bv[4] = {0, 0, 0, 0};
   if (p->kind == PF_PAIR_SURFACES) node_normal(c, sd == &p->side[0] ? &p->side[1] : &p->side[0], e, ne);
+  const pf_contact_body *fb = &c->body[sd->body];
+  long ndead = 0; /* (the faces' body deletes elements: its erosion flags exist) */
+  const int uncovers = p->kind == PF_PAIR_SURFACE && fb->eroded && fb->eroded(fb->eroded_ctx, &ndead) != NULL;
   for (int64_t q = s; q < t; q++) {
     double x[4][3], cp[3], w[4], n[3], nf[3];
     pf_int nv[4];
@@ -213,7 +216,7 @@ static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double 
     /* a face of a body that deletes elements: a particle deeper behind it than its body's spacing
      * was not pushed through it but uncovered by a deletion (the face was inside the body until
      * then); it is not pulled back through (docs/theory/contact.md sec. 2.5) */
-    if (p->kind == PF_PAIR_SURFACE && c->body[sd->body].eroded && g < -c->body[c->vbody[e]].spacing) continue;
+    if (uncovers && g < -c->body[c->vbody[e]].spacing) continue;
     if (fabs(g) < best) {
       best = fabs(g), bg = g;
       memcpy(bn, n, sizeof bn), memcpy(bw, w, sizeof bw), memcpy(bv, nv, sizeof bv);
