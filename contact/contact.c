@@ -304,7 +304,7 @@ int pf_contact_destroy(pf_contact **cp) {
   free(c->surface_node), free(c->node_view), free(c->body_used), free(c->eroded_seen);
   free(c->pair), free(c->body);
   free(c->local), free(c->gid), free(c->vbody), free(c->rank);
-  free(c->y), free(c->v), free(c->vol), free(c->m), free(c->X), free(c->y_build);
+  free(c->y), free(c->v), free(c->vol), free(c->m), free(c->rad), free(c->X), free(c->y_build);
   pf_exchange_destroy(&c->exchange);
   free(c->scount), free(c->send), free(c->cand_off), free(c->cand), free(c->force);
   PF_FREE(*cp);
@@ -338,6 +338,8 @@ static int add_forces(pf_contact *c, pf_points *pts) {
 
 int pf_contact_nsums(const pf_contact *c) { return 3 * c->npairs + 1; }
 
+void pf_contact_rebuild(pf_contact *c) { c->built = 0; }
+
 void pf_contact_sums_take(pf_contact *c, const double *sums, double *energy) {
   for (int k = 0; k < c->npairs; k++) memcpy(c->pair[k].force, &sums[3 * k], sizeof c->pair[k].force);
   *energy = sums[3 * c->npairs];
@@ -358,10 +360,12 @@ int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, dou
   return 0;
 }
 
-/* Smallest mass of the owned points of body b (INFINITY when none). */
+/* Smallest mass of the owned points of body b (INFINITY when none); a point of mass 0 (a dormant
+ * particle, fem/particles.c) counts with the mass its volume will have, density times volume. */
 static double min_mass(const pf_contact_body *b, const pf_points *pts) {
   double m = INFINITY;
-  for (pf_int i = b->first; i < b->first + b->n; i++) m = fmin(m, pts->m[i]);
+  for (pf_int i = b->first; i < b->first + b->n; i++)
+    m = fmin(m, pts->m[i] > 0 ? pts->m[i] : b->density * pts->vol[i]);
   return m;
 }
 

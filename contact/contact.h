@@ -107,6 +107,9 @@ int pf_contact_attach(pf_contact *c, const pf_contact_body *bodies);
  * the friction work of this rank over dt is added to *dissipation. The per-point contact force
  * goes to the output field "contact_force". Collective (the search's exchanges). */
 int pf_contact_nsums(const pf_contact *c);
+/* Rebuild the search at the next force evaluation (points took or lost mass: a point of mass 0
+ * takes no part in contact). */
+void pf_contact_rebuild(pf_contact *c);
 int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, double *dissipation);
 /* The sums over the ranks: keep the pairs' forces (pf_contact_pair_force); *energy gets the
  * penalty energy, J. */

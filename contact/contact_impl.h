@@ -84,6 +84,8 @@ struct pf_contact {
   int32_t *vbody;         /* [nview] body index */
   int *rank;              /* [nview] owner rank */
   double *y, *v, *vol, *m; /* [3 nview], [3 nview], [nview], [nview] */
+  double *rad; /* [nview] a point's own contact radius (the point field "contact_radius" where
+                  positive: a particle made from an element, fem/particles.c), else INFINITY */
   double *X;              /* [3 nview] reference positions (short range within a body) */
   double *y_build;        /* [3 nown] positions at the last build */
   pf_int cap;             /* room in the view arrays */

@@ -64,13 +64,19 @@ double pf_contact_friction(double mu, double Fn, const double n[3], const double
 enum { SUM_ENERGY, SUM_DISSIPATION, SUM_FORCE };
 
 /* The contact radius of view entities i and j of short-range pair p, the bond between them k
- * (-1: none; k indexes the family of e, the owned one of the two). Between bodies r_c. Within one
+ * (-1: none; k indexes the family of e, the owned one of the two). With a particle made from an
+ * element (fem/particles.c) at most its own radius c->rad (the distance from its centre to its
+ * element's nearest face when it was made) plus the other's (its own radius, or half its body's
+ * spacing), so that a new particle starts without force against its neighbours. Between bodies r_c. Within one
  * body at most 0.9 of their reference distance (Parks et al. 2008, PDLAMMPS; LAMMPS pair peri
  * takes d_ij = min(0.9 |x0_i - x0_j|, 1.35 l_c), here r_c for 1.35 l_c), so that no two points
  * of a body touch in the reference configuration whatever the shape of its cells; and for a
  * broken bond at most its rest length, its length when it broke, so that a bond breaking in
  * compression sets no contact force free (energy from nothing: docs/theory/contact.md sec. 1.1). */
 static double pair_radius(const pf_contact *c, const pf_contact_pair *p, pf_int i, pf_int j, int64_t k) {
+  if (c->rad[i] < INFINITY || c->rad[j] < INFINITY) /* a particle made from an element: its own radius */
+    return fmin(p->radius, (c->rad[i] < INFINITY ? c->rad[i] : 0.5 * c->body[c->vbody[i]].spacing) +
+                               (c->rad[j] < INFINITY ? c->rad[j] : 0.5 * c->body[c->vbody[j]].spacing));
   if (c->vbody[i] != c->vbody[j]) return p->radius;
   const double *Xi = &c->X[3 * i], *Xj = &c->X[3 * j];
   const double d0 = Xi[0] - Xj[0], d1 = Xi[1] - Xj[1], d2 = Xi[2] - Xj[2];
@@ -123,7 +129,8 @@ static int push(pf_contact *c, int k, int body, pf_int e, const pf_int *nv, int 
     for (int a = 0; a < 3; a++) vs[a] += w[q] * c->v[3 * nv[q] + a];
   }
   for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * e + a] - vs[a];
-  double F = p->stiffness * (p->radius - g);
+  const double rc = fmin(p->radius, c->rad[e]); /* (a particle made from an element: its own radius) */
+  double F = p->stiffness * (rc - g);
   double *gap = &sums[SUM_FORCE + 3 * c->npairs + k];
   *gap = fmin(*gap, g / p->length);
   sums[SUM_DISSIPATION] += pf_contact_friction(p->friction, F, n, vrel, c->m[e] * ms / (c->m[e] + ms), dt, ft);
@@ -132,7 +139,7 @@ static int push(pf_contact *c, int k, int body, pf_int e, const pf_int *nv, int 
     f[a] = F * n[a] + ft[a];
     c->force[3 * e + a] += f[a], sums[SUM_FORCE + 3 * k + a] += on_a * f[a];
   }
-  sums[SUM_ENERGY] += 0.5 * p->stiffness * (p->radius - g) * (p->radius - g);
+  sums[SUM_ENERGY] += 0.5 * p->stiffness * (rc - g) * (rc - g);
   for (int q = 0; q < nn; q++)
     if (w[q] != 0) PF_CALL(share_push(l, body, c->gid[nv[q]], k, c->gid[e], f, w[q]));
   return 0;
@@ -210,6 +217,9 @@ static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double 
   double best = INFINITY, bg = 0, bn[3] = {0, 0, 0}, bw[4] = {0, 0, 0, 0}, ne[3] = {0, 0, 0};
   pf_int bv[4] = {0, 0, 0, 0};
   if (p->kind == PF_PAIR_SURFACES) node_normal(c, sd == &p->side[0] ? &p->side[1] : &p->side[0], e, ne);
+  const pf_contact_body *fb = &c->body[sd->body];
+  long ndead = 0; /* (the faces' body deletes elements: its erosion flags exist) */
+  const int uncovers = p->kind == PF_PAIR_SURFACE && fb->eroded && fb->eroded(fb->eroded_ctx, &ndead) != NULL;
   for (int64_t q = s; q < t; q++) {
     double x[4][3], cp[3], w[4], n[3], nf[3];
     pf_int nv[4];
@@ -221,12 +231,16 @@ static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double 
     if (facing > 0 || (p->kind == PF_PAIR_SURFACES && facing == 0)) continue;
     double g = pf_contact_face_closest((const double(*)[3])x, &c->y[3 * e], cp, w, n);
     if (g < 0 && !projects_inside(nf, cp, &c->y[3 * e])) continue;
+    /* a face of a body that deletes elements: a particle deeper behind it than its body's spacing
+     * was not pushed through it but uncovered by a deletion (the face was inside the body until
+     * then); it is not pulled back through (docs/theory/contact.md sec. 2.5) */
+    if (uncovers && g < -c->body[c->vbody[e]].spacing) continue;
     if (fabs(g) < best) {
       best = fabs(g), bg = g;
       memcpy(bn, n, sizeof bn), memcpy(bw, w, sizeof bw), memcpy(bv, nv, sizeof bv);
     }
   }
-  if (best == INFINITY || bg >= p->radius) return 0;
+  if (best == INFINITY || bg >= fmin(p->radius, c->rad[e])) return 0;
   return push(c, k, sd->body, e, bv, 4, bw, bg, bn, dt, l, sums);
 }
 
@@ -236,7 +250,7 @@ static int node(pf_contact *c, int k, pf_int e, pf_int j, double dt, share_list 
   double d[3], r = 0;
   for (int a = 0; a < 3; a++) d[a] = c->y[3 * e + a] - c->y[3 * j + a], r += d[a] * d[a];
   r = sqrt(r);
-  if (r >= p->radius || r == 0) return 0;
+  if (r >= fmin(p->radius, c->rad[e]) || r == 0) return 0;
   double n[3] = {d[0] / r, d[1] / r, d[2] / r}, w = 1;
   return push(c, k, p->a, e, &j, 1, &w, r, n, dt, l, sums);
 }
@@ -257,7 +271,8 @@ static int particle_range(pf_contact *c, pf_int e0, pf_int e1, double dt, share_
         for (int64_t s = q; s < t; s++) PF_CALL(node(c, k, e, c->cand[s].j, dt, l, sums));
       if (p->kind == PF_PAIR_SHORT_RANGE) { /* most candidates are out of reach: test that first */
         const double ye[3] = {c->y[3 * e], c->y[3 * e + 1], c->y[3 * e + 2]}, r2 = p->radius * p->radius;
-        const uint8_t *broken = c->body[c->vbody[e]].fam->broken;
+        const pf_family *fam = c->body[c->vbody[e]].fam;
+        const uint8_t *broken = fam ? fam->broken : NULL; /* (a body without bonds: never bonded) */
         tested += t - q;
         for (int64_t s = q; s < t; s++) {
           const pf_int j = c->cand[s].j;

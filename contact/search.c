@@ -89,6 +89,7 @@ static int view_reserve(pf_contact *c, pf_int n) {
   GROW(X, 3);
   GROW(vol, 1);
   GROW(m, 1);
+  GROW(rad, 1);
 #undef GROW
   c->cap = cap;
   return 0;
@@ -96,7 +97,7 @@ static int view_reserve(pf_contact *c, pf_int n) {
 
 static int is_entity(const pf_contact *c, const pf_points *pts, pf_int i) {
   int b = pts->body[i];
-  if (!c->body_used[b]) return 0;
+  if (!c->body_used[b] || !(pts->m[i] > 0)) return 0; /* (mass 0: a dormant particle, a bare node) */
   if (!c->body[b].is_fe) return 1;
   return c->surface_node[b] && c->surface_node[b][pts->gid[i] - c->body[b].gid0];
 }
@@ -111,6 +112,7 @@ int pf_contact_collect_owned(pf_contact *c, const pf_points *pts) {
   PF_MALLOC(c->force, 3 * n);
   PF_CALL(view_reserve(c, n));
   int me = pf_comm_rank();
+  const double *rad = pf_points_field_get(pts, "contact_radius");
   c->nown = c->nview = n;
   for (pf_int i = 0, e = 0; i < pts->n_owned; i++) {
     if (!is_entity(c, pts, i)) continue;
@@ -120,6 +122,7 @@ int pf_contact_collect_owned(pf_contact *c, const pf_points *pts) {
     c->rank[e] = me;
     c->vol[e] = pts->vol[i];
     c->m[e] = pts->m[i];
+    c->rad[e] = rad && rad[i] > 0 ? rad[i] : INFINITY;
     memcpy(&c->X[3 * e], &pts->X[3 * i], sizeof(double) * 3);
     e++;
   }
@@ -244,19 +247,21 @@ static int send_lists(pf_contact *c) {
  * velocity. Collective. */
 static int send_ghosts(pf_contact *c) {
   if (c->nranks == 1) return 0;
-  enum { META = 7 };
+  enum { META = 8 };
   double *meta;
   PF_MALLOC(meta, META * (size_t)c->nview);
   for (pf_int e = 0; e < c->nown; e++) {
     double *q = &meta[META * e];
     q[0] = (double)c->gid[e], q[1] = c->vbody[e], q[2] = c->vol[e], q[3] = c->m[e];
     memcpy(&q[4], &c->X[3 * e], sizeof(double) * 3);
+    q[7] = c->rad[e];
   }
   int ierr = exchange_doubles(c, META, meta);
   for (pf_int e = c->nown; e < c->nview && !ierr; e++) {
     const double *q = &meta[META * e];
     c->gid[e] = (pf_gid)q[0], c->vbody[e] = (int32_t)q[1], c->vol[e] = q[2], c->m[e] = q[3];
     memcpy(&c->X[3 * e], &q[4], sizeof(double) * 3);
+    c->rad[e] = q[7];
   }
   free(meta);
   if (ierr) return ierr;

@@ -89,23 +89,30 @@ static void element_reference(const pf_fem_body *b, const pf_points *p, pf_int e
     for (int i = 0; i < 3; i++) x[I][i] = p->X[3 * (size_t)b->conn[8 * (size_t)e + I] + i];
 }
 
-/* Lumped masses m_I = sum_e rho int N_I dV: each element's 8 contributions once, then each node
- * sums its elements in order. */
-static int lumped_masses(const pf_fem_body *b, pf_points *p) {
-  double *w = NULL;
-  PF_MALLOC(w, 8 * (size_t)b->nel);
+/* Lumped masses m_I = sum_e rho int N_I dV: each element's 8 contributions once (kept in wmass,
+ * the shares a converted element takes with it), then each node sums its elements in order,
+ * leaving out the elements converted into particles (fem/particles.c): the same sum on any rank
+ * and after any history of conversions, restarts and re-partitions. */
+static int element_shares(pf_fem_body *b, const pf_points *p) {
+  free(b->wmass);
+  PF_MALLOC(b->wmass, 8 * (size_t)b->nel);
   for (pf_int e = 0; e < b->nel; e++) {
     double x[8][3];
     element_reference(b, p, e, x);
-    pf_hex8_lumped_mass(x, b->rho, &w[8 * (size_t)e]);
+    pf_hex8_lumped_mass(x, b->rho, &b->wmass[8 * (size_t)e]);
   }
+  return 0;
+}
+
+void pf_fem_lumped_masses(const pf_fem_body *b, pf_points *p) {
   for (pf_int i = 0; i < b->n; i++) {
     double m = 0;
-    for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) m += w[b->node_item[q]];
+    for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
+      const pf_int k = b->node_item[q];
+      if (!b->mesh_converted || !b->mesh_converted[b->eid[k / 8]]) m += b->wmass[k];
+    }
     p->m[b->first + i] = m;
   }
-  free(w);
-  return 0;
 }
 
 static double reference_stable_dt(const pf_fem_body *b, const pf_points *p) {
@@ -134,7 +141,9 @@ int pf_fem_body_attach(pf_fem_body *b, int body, pf_points *pts, pf_int first, p
   free(loc);
   if (ierr) return ierr;
   PF_CALL(node_lists(b));
-  PF_CALL(lumped_masses(b, pts));
+  PF_CALL(element_shares(b, pts));
+  pf_fem_lumped_masses(b, pts);
+  b->pts = pts;
   size_t nq = (size_t)b->nqp * b->nel;
   free(b->sigma), free(b->state), free(b->hgq), free(b->bvq), free(b->fe), free(b->energy), free(b->buf), free(b->ref);
   PF_MALLOC(b->ref, 25 * (size_t)b->nel);

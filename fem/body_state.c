@@ -51,7 +51,9 @@ void pf_fem_body_state_set(pf_fem_body *b, const double *full) {
   for (pf_int e = 0; e < b->mesh.nelem; e++) {
     b->mesh_eroded[e] = full[(size_t)nc * e + nc - 1] != 0;
     b->n_eroded += b->mesh_eroded[e];
+    if (b->convert) b->mesh_converted[e] = b->mesh_eroded[e]; /* (a deleted element is converted at its step's end) */
   }
+  if (b->convert) pf_fem_lumped_masses(b, b->pts);
 }
 
 pf_int pf_fem_body_nlocal(const pf_fem_body *b) { return b->nel; }

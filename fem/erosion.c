@@ -18,6 +18,8 @@ const pf_key pf_fem_erosion_keys[] = {
     {"plastic_strain", PF_KEY_REAL, 0, NULL, "", "delete an element once a quadrature point's equivalent plastic strain reaches this (models with 'eqps')", NULL},
     {"min_volume_ratio", PF_KEY_REAL, 0, NULL, "", "delete an element whose volume ratio V/V0 falls to this", NULL},
     {"max_volume_ratio", PF_KEY_REAL, 0, NULL, "", "delete an element whose volume ratio V/V0 reaches this", NULL},
+    {"convert_to_particles", PF_KEY_BOOL, 0, "false", "",
+     "a deleted element becomes a particle of the `type: particles` body that names this body (fem/particles.c)", NULL},
     PF_KEY_END};
 
 int pf_fem_erosion_read(pf_fem_body *b, const pf_deck *d, const pf_node *body) {
@@ -45,10 +47,12 @@ int pf_fem_erosion_read(pf_fem_body *b, const pf_deck *d, const pf_node *body) {
   if (pf_node_get(map, "max_volume_ratio") && !(b->erode_jmax > 1))
     return pf_deck_error(d, pf_node_get(map, "max_volume_ratio"), "max_volume_ratio", "must exceed 1 (got %g)",
                          b->erode_jmax);
-  if (!pf_node_count(map))
+  PF_CALL(pf_deck_bool(d, map, "convert_to_particles", &b->convert));
+  if (pf_node_count(map) == !!pf_node_get(map, "convert_to_particles"))
     return pf_deck_error(d, map, "erosion", "give at least one of plastic_strain, min_volume_ratio, max_volume_ratio");
   b->erosion = 1;
   PF_MALLOC(b->mesh_eroded, b->mesh.nelem);
+  if (b->convert) PF_MALLOC(b->mesh_converted, b->mesh.nelem);
   return 0;
 }
 

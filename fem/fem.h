@@ -90,5 +90,33 @@ void pf_fem_body_node_force(const pf_fem_body *b, pf_int i, int weighted, double
 void pf_fem_body_node_blend_vector(const pf_fem_body *b, pf_int i, double beta_i, double g[3]);
 /* Lumped volume of each mesh node [nnodes], m^3. */
 const double *pf_fem_body_node_volumes(const pf_fem_body *b);
+/* ---- element-to-particle conversion (fem/particles.c; docs/theory/fem.md §9b) --------------- */
+/* A `type: particles` body: one dormant point (mass 0) per element of the FE body it names, which
+ * takes the element's mass, momentum and state when the element's erosion converts it. */
+typedef struct pf_fem_particles pf_fem_particles;
+extern const pf_key pf_fem_particles_keys[];
+int pf_fem_particles_create(const pf_deck *d, const pf_node *body, pf_fem_particles **p);
+int pf_fem_particles_destroy(pf_fem_particles **p);
+/* The name of the FE body it takes elements from; link it to that body (NULL: no FE body of
+ * that name: an input error, as is a body whose erosion does not convert). */
+const char *pf_fem_particles_source(const pf_fem_particles *p);
+int pf_fem_particles_link(pf_fem_particles *p, pf_fem_body *fe);
+/* One point per mesh element at its reference centroid, with the element's volume (after link). */
+int pf_fem_particles_cloud(pf_fem_particles *p, pf_point_cloud *pc);
+/* Take the owned particles [first, first + n) of the store (gid0: element 0's particle). */
+int pf_fem_particles_attach(pf_fem_particles *p, pf_points *pts, pf_int first, pf_int n, pf_gid gid0);
+void pf_fem_particles_material(const pf_fem_particles *p, double *density, double *bulk_modulus);
+/* The short-range contact's delta of the particles: three times the largest element edge, m. */
+double pf_fem_particles_horizon(const pf_fem_particles *p);
+/* The kinetic energy the conversions of this rank's particles removed (booked), J. */
+double pf_fem_particles_loss(const pf_fem_particles *p, const pf_points *pts);
+/* Add energy (J) to the booked conversion loss of the first particle made at the last
+ * conversion (on the rank that owns it; nothing elsewhere). */
+void pf_fem_particles_book(pf_fem_particles *p, pf_points *pts, double energy);
+/* Converted elements so far (mesh-wide). */
+long pf_fem_particles_count(const pf_fem_particles *p);
+/* At a step's end (dt the step, t the time): the elements deleted since the last call become
+ * particles; *converted gets how many (mesh-wide). Collective when some element was deleted. */
+int pf_fem_particles_convert(pf_fem_particles *p, pf_points *pts, double dt, double t, long *converted);
 
 #endif

@@ -60,6 +60,11 @@ struct pf_fem_body {
   long n_eroded;
   pf_gid *due;          /* [nel] elements found due at the last evaluation, mesh indices */
   pf_int n_due;
+  /* conversion of deleted elements into particles (`convert_to_particles:`, fem/particles.c) */
+  int convert;              /* deleted elements become particles */
+  uint8_t *mesh_converted;  /* [mesh.nelem] deleted elements already converted (every rank) */
+  double *wmass;            /* [8 nel] each local element's lumped-mass share at its corners, kg */
+  pf_points *pts;           /* the store of the last attach (masses are recomputed on conversion) */
   double stable_dt;  /* from the last force evaluation */
   double t;          /* time and step of the evaluation, for error messages */
   long step;
@@ -71,6 +76,9 @@ extern const pf_key pf_fem_erosion_keys[];
 int pf_fem_erosion_read(pf_fem_body *b, const pf_deck *d, const pf_node *body);
 int pf_fem_erosion_due(const pf_fem_body *b, pf_int e, double J);
 int pf_fem_erosion_sync(pf_fem_body *b);
+/* fem/body_assembly.c: the owned nodes' lumped masses from the elements not converted into
+ * particles, each node summing its elements' shares in ascending element order. */
+void pf_fem_lumped_masses(const pf_fem_body *b, pf_points *p);
 static inline int pf_fem_element_eroded(const pf_fem_body *b, pf_int e) {
   return b->erosion && b->mesh_eroded[b->eid[e]];
 }

@@ -21,6 +21,7 @@ typedef struct {
   double elastic;   /* PD stored energy */
   double fe[3];     /* elements: stress work, hourglass energy, bulk-viscosity work */
   double bonds, broken;
+  double converted; /* kinetic energy removed by converting elements into particles (booked), J */
 } pf_body_energies;
 
 typedef struct {
@@ -92,6 +93,9 @@ typedef struct {
   /* Optional, for tests and tools (pf_sim_body, pf_sim_fem_body): the body's PD or FE operator. */
   pf_pd_body *(*as_pd)(void *data);
   struct pf_fem_body *(*as_fem)(void *data);
+  /* Optional: the body's particles made from another body's elements (sim/convert.c links them
+   * to that body and converts at each step's end). */
+  struct pf_fem_particles *(*as_particles)(void *data);
 } pf_body_ops;
 
 /* A body of the simulation. */

@@ -5,3 +5,4 @@
 PF_BODY_KIND(pd)      /* type: peridynamic (the default) */
 PF_BODY_KIND(coupled) /* type: finite_element with a peridynamic: map */
 PF_BODY_KIND(fe)      /* type: finite_element */
+PF_BODY_KIND(particles) /* type: particles (elements converted by an FE body's erosion) */

@@ -215,6 +215,7 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
                          "finite_element bodies are written joined (a spread file set would cut "
                          "elements at the rank boundaries); use output.layout: joined");
   PF_CALL(pf_sim_build_rigid(sim)); /* (a checkpoint holds their positions and reactions) */
+  PF_CALL(pf_sim_link_particles(sim));
   pf_point_cloud pc[PF_MAX_BODIES];
   memset(pc, 0, sizeof pc);
   int ierr = 0;
@@ -295,6 +296,7 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   PF_CALL(pf_sim_setup_output(sim));
   PF_CALL(pf_sim_setup_restart(sim));
   if (sim->opt.restart_from) PF_CALL(pf_sim_restore_state(sim)); /* (renames the outputs) */
+  if (sim->opt.restart_from) PF_CALL(pf_sim_converted_restart(sim));
   pf_sim_fragments_name(sim);
   PF_CALL(pf_sim_check_paths(sim));
   sim->rss_setup = pf_memory_peak();

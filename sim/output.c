@@ -34,6 +34,14 @@ static void column(pf_sim_history_row *g, int j, const char *name, const char *s
 /* The appended columns: damage_redistribution; per body its energies, work and momentum; per
  * prescribed condition its reaction (N) and impulse (N s); per rigid surface its impulse on the
  * points and the work of its prescribed motion; per wall its impulse on the points. */
+/* 1 when some body's particles come from converted elements: the history then ends with the
+ * kinetic energy the conversions removed (docs/theory/fem.md §9b). */
+static int converts(const pf_sim *sim) {
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->body[b].ops->as_particles) return 1;
+  return 0;
+}
+
 static void appended_columns(const pf_sim *sim, pf_sim_history_row *g) {
   int j = g->extra0;
   g->names[2 + j] = strdup("damage_redistribution"), g->units[2 + j++] = "J";
@@ -51,6 +59,7 @@ static void appended_columns(const pf_sim *sim, pf_sim_history_row *g) {
     const char *q[PF_WALL_COLUMNS] = {"impulse_x", "impulse_y", "impulse_z"};
     for (int c = 0; c < PF_WALL_COLUMNS; c++) column(g, j++, pf_wall_name(sim->walls[k]), q[c], "N s");
   }
+  if (converts(sim)) g->names[2 + j] = strdup("conversion_loss"), g->units[2 + j++] = "J";
 }
 
 static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
@@ -83,7 +92,7 @@ int pf_sim_globals_init(const pf_sim *sim, pf_sim_history_row *g) {
   const int probe0 = g->probe0 = body0 + 6 * sim->nbodies;
   const int extra0 = g->extra0 = probe0 + pf_sim_probe_columns(sim);
   g->n = extra0 + 1 + PF_BODY_SUMS * sim->nbodies + PF_BC_COLUMNS * sim->nbcs + PF_RIGID_COLUMNS * sim->nrigid +
-         PF_WALL_COLUMNS * sim->nwalls;
+         PF_WALL_COLUMNS * sim->nwalls + converts(sim);
   PF_MALLOC(g->names, g->n + 2);
   PF_MALLOC(g->units, g->n + 2);
   PF_MALLOC(g->values, g->n + 2);
@@ -167,6 +176,7 @@ static void appended_values(const pf_sim *sim, const pf_sim_globals *s, double *
   }
   for (int k = 0; k < sim->nwalls; k++, x += 3, v += PF_WALL_COLUMNS)
     for (int a = 0; a < 3; a++) v[a] = x[a];
+  if (converts(sim)) *v = s->conversion_loss;
 }
 
 /* Fill values[0..n+1]: time, step, globals. */
@@ -175,7 +185,7 @@ int pf_sim_globals_eval(pf_sim *sim, pf_sim_history_row *g, int first) {
   PF_CALL(pf_sim_globals_get(sim, &s));
   double total = s.kinetic_centred + s.elastic + s.contact - s.external_work + s.fe_internal + s.hourglass +
                  s.bulk_viscosity + s.wall_loss + s.contact_dissipation + s.damage_dissipation +
-                 s.damage_redistribution;
+                 s.damage_redistribution + s.conversion_loss;
   if (first && !sim->have_e0) sim->e0 = total, sim->have_e0 = 1;
   g->e0 = sim->e0;
   double *v = g->values + 2;

@@ -80,6 +80,9 @@ static void summary(const pf_sim *sim, const pf_sim_history_row *g, double wall)
     if (body->ops->eroded && body->ops->eroded(body->data, &n))
       pf_log("  body '%s': %ld of %" PF_INT_FMT " elements deleted by erosion\n", sim->body_name[b], n,
              body->ops->mesh(body->data)->nelem);
+    if (body->ops->as_particles)
+      pf_log("  body '%s': %ld elements converted into particles, kinetic energy booked at the conversions %.4g J\n",
+             sim->body_name[b], pf_fem_particles_count(body->ops->as_particles(body->data)), g->values[g->n + 1]);
   }
   if (sim->contact) {
     long rebuilds;

@@ -75,6 +75,9 @@ typedef struct {
   /* the stored energy failed bonds moved rather than released (LPS: the dilatation's cross term
    * where negative; docs/theory/pd.md §5.1), J, <= 0; the balance books both */
   double damage_redistribution;
+  /* the kinetic energy converting elements into particles removed (the shares' velocities
+   * averaged; docs/theory/fem.md §9b), J, >= 0 */
+  double conversion_loss;
 } pf_sim_globals;
 int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g);
 /* 1 when the run has reached its final time (or step count). */

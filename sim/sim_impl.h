@@ -133,6 +133,14 @@ struct pf_sim {
   struct pf_sim_run *run; /* the time loop between calls (sim/run.c); NULL until it starts */
 };
 
+/* sim/convert.c: link each particles body to the FE body it names (before the clouds); at a
+ * step's end, the elements deleted in the step become particles (collective). */
+int pf_sim_link_particles(pf_sim *sim);
+int pf_sim_convert_elements(pf_sim *sim);
+int pf_sim_converted_restart(pf_sim *sim);
+/* sim/step.c: recompute the fixed part of the stable step (PD bodies, contact penalties) from the
+ * current masses, after conversions changed them or a restart restored them. Collective. */
+int pf_sim_refresh_fixed_step(pf_sim *sim);
 extern const pf_key pf_parallel_keys[];
 int pf_sim_setup_parallel(pf_sim *sim);
 /* sim/output.c: output.fields, precision and compression, checked against the output fields. */

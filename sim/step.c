@@ -33,6 +33,11 @@ static double stable_step(pf_sim *sim) {
   return fmin(sim->pd_stable, pf_min_all(varying_step(sim)));
 }
 
+int pf_sim_refresh_fixed_step(pf_sim *sim) {
+  stable_step(sim);
+  return 0;
+}
+
 int pf_sim_setup_time(pf_sim *sim) {
   const pf_deck *d = sim->deck;
   const pf_node *tm = pf_node_get(pf_deck_root(d), "time");
@@ -125,7 +130,7 @@ int pf_sim_setup_output(pf_sim *sim) {
 static void half_kick(pf_points *p, double dt) {
 #pragma omp parallel for schedule(static)
   for (pf_int i = 0; i < p->n_owned; i++) {
-    const double s = 0.5 * dt / p->m[i];
+    const double s = p->m[i] > 0 ? 0.5 * dt / p->m[i] : 0; /* (mass 0: a dormant particle, a node all of whose elements converted) */
     for (int a = 0; a < 3; a++) p->v[3 * i + a] += s * p->f[3 * i + a];
   }
 }
@@ -234,7 +239,7 @@ static int one_step(pf_sim *sim) {
   PF_CALL(pf_sim_guard_check(sim)); /* collective: every rank stops, back at the last good state */
   for (int b = 0; b < sim->nbodies; b++)
     if (sim->body[b].ops->post_step) PF_CALL(sim->body[b].ops->post_step(sim->body[b].data, p));
-  return 0;
+  return pf_sim_convert_elements(sim); /* (elements deleted in the step become particles) */
 }
 
 int pf_sim_step(pf_sim *sim, long n) {
@@ -247,7 +252,7 @@ int pf_sim_step(pf_sim *sim, long n) {
  * PF_BODY_SUMS per body, 6 per prescribed condition (its last step's impulse, its impulse since
  * the start), 3 per rigid surface and 3 per wall (their impulses). One reduction for all. */
 enum { S_KE, S_KC, S_EL, S_FEINT, S_HG, S_BV, S_WALL, S_CDISS, S_DAMAGE, S_REDIST, S_BCW, S_PX, S_PY, S_PZ,
-       S_BONDS, S_BROKEN, S_N };
+       S_BONDS, S_BROKEN, S_CONV, S_N };
 
 int pf_sim_sums_count(const pf_sim *sim) {
   return S_N + PF_BODY_SUMS * sim->nbodies + 6 * sim->nbcs + 3 * (sim->nrigid + sim->nwalls);
@@ -261,7 +266,7 @@ static void body_motion_sums(const pf_sim *sim, int b, const uint8_t *fixed, dou
   const double h = 0.5 * sim->dt;
   for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++)
     for (int a = 0; a < 3; a++) {
-      double v = p->v[3 * i + a], acc = fixed[3 * i + a] ? 0 : p->f[3 * i + a] / p->m[i];
+      double v = p->v[3 * i + a], acc = fixed[3 * i + a] || !(p->m[i] > 0) ? 0 : p->f[3 * i + a] / p->m[i];
       x[PF_BODY_KE] += 0.5 * p->m[i] * v * v;
       *kc += 0.5 * p->m[i] * (v * v - h * h * acc * acc);
       x[PF_BODY_PX + a] += p->m[i] * v;
@@ -290,7 +295,7 @@ int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g) {
     x[PF_BODY_WEXT] = sim->body_bc_work[b];
     s[S_KE] += x[PF_BODY_KE], s[S_EL] += e.elastic, s[S_FEINT] += e.fe[0], s[S_HG] += e.fe[1], s[S_BV] += e.fe[2];
     for (int a = 0; a < 3; a++) s[S_PX + a] += x[PF_BODY_PX + a];
-    s[S_BONDS] += e.bonds, s[S_BROKEN] += e.broken;
+    s[S_BONDS] += e.bonds, s[S_BROKEN] += e.broken, s[S_CONV] += e.converted;
   }
   free(fixed);
   s[S_WALL] = sim->wall_loss, s[S_CDISS] = sim->contact_dissipation;
@@ -316,6 +321,7 @@ int pf_sim_globals_get(pf_sim *sim, pf_sim_globals *g) {
   g->contact_dissipation = s[S_CDISS];
   g->damage_dissipation = s[S_DAMAGE];
   g->damage_redistribution = s[S_REDIST];
+  g->conversion_loss = s[S_CONV];
   g->external_work = sim->external_work + s[S_BCW];
   for (int a = 0; a < 3; a++) g->momentum[a] = s[S_PX + a];
   g->damage_fraction = s[S_BONDS] > 0 ? s[S_BROKEN] / s[S_BONDS] : 0;

@@ -1,0 +1,85 @@
+/* Element-to-particle conversion in the driver (fem/particles.c, docs/theory/fem.md §9b): each
+ * `type: particles` body is linked at set-up to the FE body it names, and at each step's end
+ * takes the elements that body's erosion deleted in the step. The contact search is then rebuilt
+ * so that the new particles take part in it from the next step on. */
+#include "sim/sim_impl.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+int pf_sim_link_particles(pf_sim *sim) {
+  int used[PF_MAX_BODIES] = {0};
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_body *body = &sim->body[b];
+    if (!body->ops->as_particles) continue;
+    pf_fem_particles *p = body->ops->as_particles(body->data);
+    struct pf_fem_body *fe = NULL;
+    for (int q = 0; q < sim->nbodies; q++)
+      if (!strcmp(sim->body_name[q], pf_fem_particles_source(p)) && sim->body[q].ops->as_fem && !used[q])
+        fe = sim->body[q].ops->as_fem(sim->body[q].data), used[q] = 1;
+    PF_CALL(pf_fem_particles_link(p, fe));
+  }
+  const pf_node *bodies = pf_node_get(pf_deck_root(sim->deck), "bodies");
+  for (int q = 0; q < sim->nbodies; q++) { /* an FE body that converts needs its particles body */
+    const pf_node *er = pf_node_get(pf_node_item(bodies, q), "erosion");
+    int convert = 0;
+    if (er && pf_node_get(er, "convert_to_particles")) PF_CALL(pf_deck_bool(sim->deck, er, "convert_to_particles", &convert));
+    if (convert && !used[q])
+      return pf_deck_error(sim->deck, pf_node_get(er, "convert_to_particles"), "convert_to_particles",
+                           "body '%s' converts its deleted elements, but no body of type: particles names it "
+                           "(add one: {name: %s_particles, type: particles, from: %s})",
+                           sim->body_name[q], sim->body_name[q], sim->body_name[q]);
+  }
+  return 0;
+}
+
+/* The penalty energy the new particles bring in where they overlap a surface or another point
+ * (a particle is born at its element's centre of mass, which may lie closer to a neighbour than
+ * the contact radius): the contact energy at the same positions with and without them, the
+ * difference booked against the conversion (on the rank owning the first new particle), so
+ * that the balance still closes. The step's forces and contact sums are left as they were. */
+static int book_overlap(pf_sim *sim, pf_fem_particles *first_p, double U0) {
+  pf_points *p = sim->pts;
+  double *f = NULL, (*reaction)[3] = NULL, (*wall)[3] = NULL;
+  PF_MALLOC(f, 3 * (size_t)p->n_owned);
+  PF_MALLOC(reaction, sim->nrigid);
+  PF_MALLOC(wall, sim->nwalls);
+  memcpy(f, p->f, sizeof(double) * 3 * (size_t)p->n_owned);
+  memcpy(reaction, sim->reaction, sizeof(double[3]) * sim->nrigid);
+  memcpy(wall, sim->wall_reaction, sizeof(double[3]) * sim->nwalls);
+  const double diss = sim->contact_dissipation;
+  int ierr = pf_sim_contact_forces(sim, 0.0); /* (dt 0: no friction) */
+  memcpy(p->f, f, sizeof(double) * 3 * (size_t)p->n_owned);
+  memcpy(sim->reaction, reaction, sizeof(double[3]) * sim->nrigid);
+  memcpy(sim->wall_reaction, wall, sizeof(double[3]) * sim->nwalls);
+  sim->contact_dissipation = diss;
+  free(f), free(reaction), free(wall);
+  if (!ierr) pf_fem_particles_book(first_p, p, -(sim->contact_energy - U0));
+  return ierr;
+}
+
+/* After a restart restored the conversions: the stable step of the restored masses. */
+int pf_sim_converted_restart(pf_sim *sim) {
+  for (int b = 0; b < sim->nbodies; b++)
+    if (sim->body[b].ops->as_particles) return pf_sim_refresh_fixed_step(sim);
+  return 0;
+}
+
+int pf_sim_convert_elements(pf_sim *sim) {
+  long any = 0;
+  pf_fem_particles *first = NULL;
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_body *body = &sim->body[b];
+    if (!body->ops->as_particles) continue;
+    long n = 0;
+    PF_CALL(pf_fem_particles_convert(body->ops->as_particles(body->data), sim->pts, sim->dt, sim->t, &n));
+    if (n && !first) first = body->ops->as_particles(body->data);
+    any += n;
+  }
+  if (!any) return 0;
+  if (sim->contact) {
+    pf_contact_rebuild(sim->contact);
+    PF_CALL(book_overlap(sim, first, sim->contact_energy));
+  }
+  return pf_sim_refresh_fixed_step(sim); /* (the nodes are lighter, the new particles in contact) */
+}
