@@ -6,13 +6,13 @@
 # surface, moving down, in free flight). Tupek et al. 2013 (sec. 3.2) place the experimental
 # ballistic limit near 530 m/s, where their panel barely stops the sphere; the bracket says where
 # this model's limit lies and fails when a change moves the limit out of it.
-# Each shot stops once its outcome is decided (label slow: about 8 minutes on 2 idle cores, estimated).
+# Each shot stops once its outcome is decided (label slow: about 11 minutes of CPU per rank, 15-33 minutes per shot on loaded cores).
 # usage: slow_panel_bisect.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2
 source common/mpi_env.sh
 rm -rf "$scratch" && mkdir -p "$scratch"
-lo=530 hi=635
+lo=582.5 hi=635
 # --width above the bracket: only its two ends are fired, and the script exits 1 unless the
 # lower one is stopped and the upper one perforates.
 "$PY" ../scripts/panel_bisect.py --deck ../inputs/panel_impact.yaml --ranks 2 --perifem "$exe" \
