@@ -46,8 +46,13 @@ typedef struct {
   pf_batch_records rec; /* pass 1: s0 in REC_AUX; pass 2: theta */
   double *a, *bc;       /* [store points] pass 2: the volumetric coefficient a_j and 15 G beta_j / m_j */
   pf_int ab_cap;
-  double *row;          /* scratch of one row: |xi|, the extension and w V_j of each bond, [3 row_cap] */
+  double *row;          /* scratch of one row per thread: |xi|, the extension and w V_j of each bond,
+                           [threads][3 row_cap] */
   int64_t row_cap;
+  int row_threads;
+  double *released;     /* [2 n] pass 1: each point's released energy and redistribution, booked
+                           after the threads, in point order */
+  pf_int released_cap;
 } ep;
 
 static int ep_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
@@ -102,13 +107,28 @@ static inline __attribute__((always_inline)) void ep_lengths(const double *restr
   }
 }
 
-/* Grow the row scratch to n bonds. */
-static int ep_row_room(ep *p, int64_t n) {
-  if (n <= p->row_cap) return 0;
-  free(p->row);
-  p->row_cap = n + PF_BATCH;
-  PF_MALLOC(p->row, 3 * p->row_cap);
+/* Grow the row scratch to n bonds for each of the threads, and the released energies to the
+ * body's points. */
+static int ep_scratch_room(ep *p, int64_t n, int threads, pf_int points) {
+  if (n > p->row_cap || threads > p->row_threads) {
+    free(p->row);
+    p->row_cap = n + PF_BATCH, p->row_threads = threads;
+    PF_MALLOC(p->row, 3 * p->row_cap * threads);
+  }
+  if (points > p->released_cap) {
+    free(p->released);
+    p->released_cap = points;
+    PF_MALLOC(p->released, 2 * (size_t)points);
+  }
   return 0;
+}
+
+static int ep_thread(void) {
+#if defined(_OPENMP)
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
 }
 
 /* Pass 1 for point i (records with s0 in REC_AUX): dilatation (failing bonds beyond the
@@ -123,7 +143,8 @@ static inline __attribute__((always_inline)) void ep_point(pf_pd_body *b, const 
   uint8_t *restrict broken = fam->broken;
   const int64_t k0 = fam->offset[i - b->first], k1 = fam->offset[i - b->first + 1];
   const double *ri = rec + (size_t)PF_REC * (size_t)i, s0i = ri[REC_AUX];
-  double *restrict r0s = p->row, *restrict exts = p->row + p->row_cap, *restrict wvs = p->row + 2 * p->row_cap;
+  double *restrict r0s = p->row + 3 * p->row_cap * ep_thread(), *restrict exts = r0s + p->row_cap,
+                   *restrict wvs = r0s + 2 * p->row_cap;
   double sum = 0, smin = INFINITY;
   int fresh = 0;
   for (int64_t kb = k0; kb < k1; kb += L) {
@@ -154,7 +175,9 @@ static inline __attribute__((always_inline)) void ep_point(pf_pd_body *b, const 
   }
   b->smin[i - b->first] = smin;
   const double m = p->m[i], th = 3.0 * sum / m, G = b->shear_modulus;
-  if (fresh) b->damage_work += pf_pd_lps_release(b, pts, i, m, fam->state, NSTATE); /* (plastic work stays) */
+  b->lost[i - b->first] = fresh > 0; /* (the release booked after the threads; plastic work stays) */
+  if (fresh) p->released[2 * (i - b->first)] = pf_pd_lps_release_point(b, pts, i, m, fam->state, NSTATE,
+                                                                         &p->released[2 * (i - b->first) + 1]);
   double n2 = 0, pm = 0; /* sum_j w (e^d - e^dp_n)^2 V_j, sum_j w |xi| e^dp_n V_j */
   for (int64_t k = k0; k < k1; k++) {
     if (broken[k]) continue;
@@ -229,13 +252,28 @@ static int ep_force(pf_pd_body *b, pf_points *pts) {
   const pf_family *fam = &b->fam;
   int64_t longest = 0;
   for (pf_int i = 0; i < b->n; i++) longest = fam->offset[i + 1] - fam->offset[i] > longest ? fam->offset[i + 1] - fam->offset[i] : longest;
-  PF_CALL(ep_row_room(p, longest));
+#if defined(_OPENMP)
+  const int threads = omp_get_max_threads();
+#else
+  const int threads = 1;
+#endif
+  PF_CALL(ep_scratch_room(p, longest, threads, b->n));
   PF_CALL(pf_batch_records_fill(&p->rec, pts, b->s0));
   const int weighted = b->influence.kind != PF_INFLUENCE_CONSTANT, partial = fam->vfrac != NULL;
-  if (!weighted && !partial) /* (omega = 1 folded away: x * 1.0 is x, the same bits) */
-    for (pf_int i = b->first; i < b->first + b->n; i++) ep_point(b, pts, p->rec.rec, i, 0, 0);
-  else
-    for (pf_int i = b->first; i < b->first + b->n; i++) ep_point(b, pts, p->rec.rec, i, 1, 1);
+  /* Owner computes, as the LPS loops (pd/lps_batched.c): a point writes only its own values and
+   * row, so the threads (each a contiguous range of points) share nothing; the energy released
+   * by failed bonds is added after, in point order, so the bits do not depend on the threads. */
+#pragma omp parallel
+  {
+    pf_int lo, hi;
+    pf_thread_range(b->first, b->n, &lo, &hi);
+    if (!weighted && !partial) /* (omega = 1 folded away: x * 1.0 is x, the same bits) */
+      for (pf_int i = lo; i < hi; i++) ep_point(b, pts, p->rec.rec, i, 0, 0);
+    else
+      for (pf_int i = lo; i < hi; i++) ep_point(b, pts, p->rec.rec, i, 1, 1);
+  }
+  for (pf_int i = 0; i < b->n; i++)
+    if (b->lost[i]) b->damage_work += p->released[2 * i], b->damage_redistribution += p->released[2 * i + 1];
   PF_CALL(pf_points_exchange(pts, p->theta, 1)); /* the ghosts' theta and beta for the force pass */
   PF_CALL(pf_points_exchange(pts, p->beta, 1));
   PF_CALL(pf_points_exchange(pts, p->mom, 1));
@@ -246,16 +284,22 @@ static int ep_force(pf_pd_body *b, pf_points *pts) {
     PF_MALLOC(p->a, p->ab_cap);
     PF_MALLOC(p->bc, p->ab_cap);
   }
+#pragma omp parallel for schedule(static)
   for (pf_int j = 0; j < nt; j++) { /* (each end's coefficients, as the bond-by-bond loop formed them) */
     p->rec.rec[(size_t)PF_REC * (size_t)j + REC_AUX] = p->theta[j];
     p->a[j] = pf_pd_lps_volumetric(K, G, p->theta[j], p->mom[j], p->m[j]);
     p->bc[j] = 15 * G / p->m[j] * p->beta[j];
   }
-  for (pf_int i = b->first; i < b->first + b->n; i++) {
-    double f[3];
-    if (!weighted && !partial) ep_point_force(b, p->rec.rec, i, 0, 0, f);
-    else ep_point_force(b, p->rec.rec, i, 1, 1, f);
-    for (int a = 0; a < 3; a++) pts->f[3 * i + a] += pts->vol[i] * f[a];
+#pragma omp parallel
+  {
+    pf_int lo, hi;
+    pf_thread_range(b->first, b->n, &lo, &hi);
+    for (pf_int i = lo; i < hi; i++) {
+      double f[3];
+      if (!weighted && !partial) ep_point_force(b, p->rec.rec, i, 0, 0, f);
+      else ep_point_force(b, p->rec.rec, i, 1, 1, f);
+      for (int a = 0; a < 3; a++) pts->f[3 * i + a] += pts->vol[i] * f[a];
+    }
   }
   return 0;
 }
@@ -279,7 +323,7 @@ static void ep_destroy(pf_pd_body *b) {
   ep *p = b->mat;
   if (p) {
     pf_batch_records_free(&p->rec);
-    free(p->a), free(p->bc), free(p->row);
+    free(p->a), free(p->bc), free(p->row), free(p->released);
   }
   PF_FREE(b->mat);
 }

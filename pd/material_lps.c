@@ -280,11 +280,12 @@ static void release_at(const pf_pd_body *b, const pf_points *pts, const double *
  * "Time step"); marks them broken, and adds their weighted volume to i's lost_volume. Q + max(C, 0)
  * is released (returned with C's negative part: the total change), min(C, 0) is booked as
  * redistribution. */
-double pf_pd_lps_release(pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
-                         int stride) {
+double pf_pd_lps_release_point(pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
+                               int stride, double *redistribution) {
   pf_family *fam = &b->fam;
   const int64_t k1 = fam->offset[i - b->first + 1];
   int64_t k = fam->offset[i - b->first];
+  *redistribution = 0.0;
   while (k < k1 && fam->broken[k] != PF_BOND_FRESH) k++;
   if (k == k1) return 0.0;
   double now[3], before[3];
@@ -293,8 +294,16 @@ double pf_pd_lps_release(pf_pd_body *b, const pf_points *pts, pf_int i, double m
   for (; k < k1; k++)
     if (fam->broken[k] == PF_BOND_FRESH) fam->broken[k] = PF_BOND_BROKEN;
   b->lost_volume[i] += now[2];
-  b->damage_redistribution += pts->vol[i] * 0.5 * (fmin(now[1], 0.0) + fmin(before[1], 0.0));
+  *redistribution = pts->vol[i] * 0.5 * (fmin(now[1], 0.0) + fmin(before[1], 0.0));
   return pts->vol[i] * 0.5 * (now[0] + now[1] + before[0] + before[1]);
+}
+
+double pf_pd_lps_release(pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
+                         int stride) {
+  double redistribution;
+  const double released = pf_pd_lps_release_point(b, pts, i, m, ep, stride, &redistribution);
+  b->damage_redistribution += redistribution;
+  return released;
 }
 
 static double lps_energy(const pf_pd_body *b, const pf_points *pts) {

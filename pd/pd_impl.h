@@ -214,6 +214,11 @@ double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_in
  * b->damage_redistribution. Marks them PF_BOND_BROKEN. */
 double pf_pd_lps_release(pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
                          int stride);
+/* The same, but the cross term into *redistribution instead of b->damage_redistribution: it
+ * writes only point i's data (its row's flags, lost_volume[i]), so threads may call it for their
+ * own points and add the two parts in point order after. */
+double pf_pd_lps_release_point(pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
+                               int stride, double *redistribution);
 
 /* The batched LPS loops (pd/lps_batched.c), for a body of one horizon whose points all take
  * the standard force. Pass 1: theta of every owned point from records with s0 in REC_AUX
