@@ -18,7 +18,8 @@
  *  - its angle to the notch axis, atan(1 / b), lies in 65-72 degrees, and the two cracks agree
  *    to 1 degree (the problem is symmetric about y = 0).
  * With PF_TEST_VERBOSE the angles are printed (docs/verification.md): 70.19 degrees at h = 1 mm,
- * 68.72 at 2 mm (the test verification/test_kalthoff_winkler_coarse), 70.81 at 1.25 mm. */
+ * 68.72 at 2 mm (the test verification/test_kalthoff_winkler_coarse), 70.81 at 1.25 mm; at
+ * 5/6 mm the two cracks part (71.12 and 68.94: the 1 degree check fails there). */
 #include "sim/sim.h"
 #include "test_common.h"
 
