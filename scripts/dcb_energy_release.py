@@ -2,7 +2,7 @@
 curve and its crack area.
 
     /usr/bin/python3 scripts/dcb_energy_release.py RUN.h5 RUN.e --dx DX --horizon DELTA
-        [--a0 0.005] [--B 0.003] [--L 0.050] [--h 0.020] [--json] [--csv FILE]
+        [--a0 0.005] [--B 0.003] [--L 0.050] [--h 0.020] [--partial-volumes] [--json] [--csv FILE]
 
 Reads from the history the force on each arm, F = (F_upper - F_lower)/2 (the reactions of the
 conditions 'upper' and 'lower'), and the opening Delta = u_upper - u_lower (the probes 'upper'
@@ -68,12 +68,41 @@ def exodus_damage(path):
     return times, x, y, z, damage
 
 
-def bond_counts(x, y, z, dx, delta, a0, lo, hi):
-    """N and Nc of points (x, y, z) on the cell-centred lattice of the box [lo, hi]."""
-    r = int(math.floor(delta / dx))
+def partial_volume(offset, delta, dx):
+    """The share of the cell of spacing dx centred at offset that lies within delta of the
+    origin, by the rule the code uses (all eight corners in: 1; all out: 0; else the share of
+    16^3 sub-cell midpoints inside; docs/theory/pd.md, "Partial volumes")."""
+    corners = offset + 0.5 * dx * np.array([(a, b, c) for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)])
+    inside = np.sum(corners * corners, axis=1) <= delta * delta
+    if inside.all():
+        return 1.0
+    if not inside.any():
+        return 0.0
+    sub = ((np.arange(16) + 0.5) / 16 - 0.5) * dx
+    sx, sy, sz = np.meshgrid(offset[0] + sub, offset[1] + sub, offset[2] + sub, indexing="ij")
+    return float(np.count_nonzero(sx * sx + sy * sy + sz * sz <= delta * delta)) / 4096.0
+
+
+def bond_offsets(dx, delta, partial_volumes):
+    """The offsets of a family on the lattice and their weights: 1 within the horizon, or with
+    partial volumes the share of the neighbour's cell inside it."""
+    if not partial_volumes:
+        r = int(math.floor(delta / dx))
+        off = np.array([(i, j, k) for i in range(-r, r + 1) for j in range(-r, r + 1) for k in range(-r, r + 1)
+                        if 0 < i * i + j * j + k * k and math.sqrt(i * i + j * j + k * k) * dx <= delta],
+                       dtype=float) * dx
+        return off, np.ones(len(off))
+    r = int(math.floor(delta / dx + math.sqrt(3) / 2))
     off = np.array([(i, j, k) for i in range(-r, r + 1) for j in range(-r, r + 1) for k in range(-r, r + 1)
-                    if 0 < i * i + j * j + k * k and math.sqrt(i * i + j * j + k * k) * dx <= delta],
-                   dtype=float) * dx
+                    if 0 < i * i + j * j + k * k], dtype=float) * dx
+    w = np.array([partial_volume(o, delta, dx) for o in off])
+    return off[w > 0], w[w > 0]
+
+
+def bond_counts(x, y, z, dx, delta, a0, lo, hi, partial_volumes=False):
+    """N and Nc of points (x, y, z) on the cell-centred lattice of the box [lo, hi] (with partial
+    volumes, the neighbours' volume shares summed instead of counted, as the damage weighs them)."""
+    off, weight = bond_offsets(dx, delta, partial_volumes)
     n = np.zeros(len(x))
     nc = np.zeros(len(x))
     for p in range(len(x)):
@@ -86,17 +115,17 @@ def bond_counts(x, y, z, dx, delta, a0, lo, hi):
             xc = x[p] + s * (q[:, 0] - x[p])
         cut = cross & (xc < a0)
         bond = inside & ~cut
-        n[p] = np.count_nonzero(bond)
-        nc[p] = np.count_nonzero(bond & cross)
+        n[p] = np.sum(weight[bond])
+        nc[p] = np.sum(weight[bond & cross])
     return n, nc
 
 
-def crack_areas(exo, dx, delta, a0, B, L, h):
+def crack_areas(exo, dx, delta, a0, B, L, h, partial_volumes=False):
     times, x, y, z, damage = exodus_damage(exo)
     face = (np.abs(y) < 0.75 * dx) & (x > a0)
     lo = np.array([0.0, -h / 2, 0.0])
     hi = np.array([L, h / 2, B])
-    n, nc = bond_counts(x[face], y[face], z[face], dx, delta, a0, lo, hi)
+    n, nc = bond_counts(x[face], y[face], z[face], dx, delta, a0, lo, hi, partial_volumes)
     share = np.minimum(1.0, damage[:, face] * n / nc)
     return times, share.sum(axis=1) * dx * dx / 2
 
@@ -111,12 +140,14 @@ def main():
     ap.add_argument("--B", type=float, default=0.003)
     ap.add_argument("--L", type=float, default=0.050)
     ap.add_argument("--h", type=float, default=0.020)
+    ap.add_argument("--partial-volumes", action="store_true",
+                    help="the run had partial_volumes: true (the damage weighs the neighbours by it)")
     ap.add_argument("--json", action="store_true", help="print one JSON line")
     ap.add_argument("--csv", help="write time, opening, force, crack area, D per output")
     a = ap.parse_args()
 
     t, force, opening, work, kinetic, elastic = history(a.h5)
-    et, area = crack_areas(a.exodus, a.dx, a.horizon, a.a0, a.B, a.L, a.h)
+    et, area = crack_areas(a.exodus, a.dx, a.horizon, a.a0, a.B, a.L, a.h, a.partial_volumes)
     rows = [int(np.argmin(np.abs(t - ti))) for ti in et]
     if max(abs(t[r] - ti) for r, ti in zip(rows, et)) > 1e-3 * (t[-1] - t[0]):
         sys.exit("dcb_energy_release: the Exodus outputs are not at history rows (make "
