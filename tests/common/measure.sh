@@ -7,6 +7,7 @@
 pf_measure_file=""
 if [ -n "${PF_MEASURE_DIR:-}" ]; then
   pf_measure_file="$PF_MEASURE_DIR/${PF_MEASURE_TEST:-$(basename "${BASH_SOURCE[1]:-$0}" .sh)}.tsv"
+  mkdir -p "$PF_MEASURE_DIR"
   : > "$pf_measure_file"
 fi
 pf_measure() {

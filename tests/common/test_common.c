@@ -1,5 +1,7 @@
 #include "test_common.h"
 
+#include <sys/stat.h>
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,6 +22,7 @@ static void measure_file_start(void) {
   const char *dir = getenv("PF_MEASURE_DIR"), *test = getenv("PF_MEASURE_TEST");
   if (!dir || !*dir || !test || !*test) return;
   snprintf(measure_path, sizeof measure_path, "%s/%s.tsv", dir, test);
+  if (pf_comm_rank() == 0) mkdir(dir, 0777); /* (made at configure time; again if removed since) */
   FILE *f = pf_comm_rank() == 0 ? fopen(measure_path, "w") : NULL; /* emptied: this run's only */
   if (f) fclose(f);
 }
