@@ -23,6 +23,9 @@
 #include <strings.h>
 #include <sys/resource.h>
 #include <unistd.h>
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 #define GMSH_HEX8 5 /* gmsh element types */
 #define GMSH_QUAD4 3
@@ -670,8 +673,12 @@ static int gmsh_read(const pf_mesh_source *src, pf_mesh_raw *raw) {
   r.src = src;
   const char *dot = strrchr(src->path, '.');
   r.is_geo = dot && !strcasecmp(dot, ".geo");
-  /* gmshInitialize sets the locale and lifts the stack limit for its own sake; both are put
-   * back after gmshFinalize. */
+  /* gmshInitialize sets the locale and lifts the stack limit for its own sake, and sets
+   * OpenMP's thread count to its own General.NumThreads (1); all three are put back after
+   * gmshFinalize. */
+#if defined(_OPENMP)
+  const int threads = omp_get_max_threads();
+#endif
   char locale[512] = "";
   const char *lc = setlocale(LC_ALL, NULL);
   if (lc) snprintf(locale, sizeof locale, "%s", lc);
@@ -693,6 +700,9 @@ static int gmsh_read(const pf_mesh_source *src, pf_mesh_raw *raw) {
   guard_stop();
   if (locale[0]) setlocale(LC_ALL, locale);
   if (have_stack) setrlimit(RLIMIT_STACK, &stack);
+#if defined(_OPENMP)
+  omp_set_num_threads(threads);
+#endif
   free(r.node_tag), free(r.hex_tag), free(r.hex_nodes), free(r.hex_block), free(r.faces);
   return code;
 }

@@ -51,6 +51,8 @@ for deck in cylinder cylinder_lps cylinder_ep cylinder_contact sphere_on_block d
     out=$(OMP_NUM_THREADS=$t "$omp" --output-dir "t$t" "$deck.yaml" 2>&1) || { echo "$deck, $t threads: exit $?: $out"; fail=1; continue; }
     d=$(digest_of "$out")
     [ "$d" = "$ref" ] || { echo "$deck: digest on $t threads '$d' differs from '$ref' without threads"; fail=1; }
+    # the run must have used them (gmsh's initialisation once set OpenMP's count back to 1)
+    grep -q "threads per rank $t\b" <<<"$out" || { echo "$deck: asked for $t threads, the summary says: $(grep -o 'threads per rank [0-9]*' <<<"$out")"; fail=1; }
   done
   out=$(OMP_NUM_THREADS=2 run 2 -x OMP_NUM_THREADS "$omp" --output-dir hybrid "$deck.yaml" 2>&1) ||
     { echo "$deck, 2 ranks x 2 threads: exit $?: $out"; fail=1; continue; }
