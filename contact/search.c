@@ -7,9 +7,8 @@
  * no contact (Verlet 1967; the LAMMPS neighbor skin). Each pair has its own rule (pair_stale):
  * a fast projectile's surface pair is rebuilt without its target's self-contact. The builds are
  * threaded over fixed chunks of entities (chunked_candidates). Ghosts: every rank sends the
- * entities that lie within a margin of another
- * rank's box of owned entities, margin = r_c + 2 s + twice the largest face size (a particle
- * needs every node of a face within reach). */
+ * entities that lie within a margin of another rank's box of owned entities, margin = r_c + 2 s
+ * + twice the largest face size (a particle needs every node of a face within reach). */
 #include "contact/contact_impl.h"
 
 #include <math.h>
