@@ -89,6 +89,7 @@ struct pf_contact {
   double *X;              /* [3 nview] reference positions (short range within a body) */
   double *y_build;        /* [npairs][3 nown] positions at each pair's last build */
   uint8_t *stale;         /* [npairs] the pair's candidates are rebuilt at this build */
+  long *built_at;         /* [npairs] the build (rebuilds count) that last rebuilt the pair */
   pf_int cap;             /* room in the view arrays */
   /* ghost exchange lists of the last build */
   int nranks;

@@ -112,6 +112,7 @@ int pf_contact_collect_owned(pf_contact *c, const pf_points *pts) {
   PF_MALLOC(c->local, n);
   PF_MALLOC(c->y_build, 3 * (size_t)n * (size_t)c->npairs);
   if (!c->stale) PF_MALLOC(c->stale, c->npairs);
+  if (!c->built_at) PF_MALLOC(c->built_at, c->npairs);
   PF_MALLOC(c->force, 3 * n);
   PF_CALL(view_reserve(c, n));
   int me = pf_comm_rank();
@@ -679,24 +680,38 @@ static int build_candidates(pf_contact *c, const pf_points *pts, const pf_gid *l
  * forces are the same bits as with a rebuild of every pair. Returns how many are stale.
  * Collective. */
 static int pair_stale(pf_contact *c, int *nstale) {
+  const int np = c->npairs;
   double *move;
-  PF_MALLOC(move, c->npairs);
-  for (int k = 0; k < c->npairs; k++) {
-    const pf_contact_pair *p = &c->pair[k];
-    const double *yb = &c->y_build[3 * (size_t)c->nown * (size_t)k];
-    double m2 = 0;
-#pragma omp parallel for schedule(static) reduction(max : m2)
-    for (pf_int e = 0; e < c->nown; e++) {
-      if (c->vbody[e] != p->a && c->vbody[e] != p->b) continue;
-      const double d2 = dist2(&c->y[3 * e], &yb[3 * e]);
-      m2 = d2 > m2 ? d2 : m2; /* (NaN positions are the guard's to report) */
-    }
-    move[k] = sqrt(m2);
+  int *same; /* the first pair built at the same build as pair k: the same positions at the build */
+  PF_MALLOC(move, np);
+  PF_MALLOC(same, np);
+  for (int k = 0; k < np; k++) {
+    same[k] = k;
+    for (int q = 0; q < k && same[k] == k; q++)
+      if (c->built_at[q] == c->built_at[k]) same[k] = q;
   }
-  const int ok = MPI_Allreduce(MPI_IN_PLACE, move, c->npairs, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS;
+#pragma omp parallel for schedule(static) reduction(max : move[:np])
+  for (pf_int e = 0; e < c->nown; e++) {
+    double d2[8];
+    int have = 0; /* bit q: d2 of pair q's build positions formed (the first 8 pairs) */
+    for (int k = 0; k < np; k++) {
+      const pf_contact_pair *p = &c->pair[k];
+      if (c->vbody[e] != p->a && c->vbody[e] != p->b) continue;
+      const int q = same[k];
+      double d;
+      if (q < 8 && (have >> q & 1)) d = d2[q];
+      else {
+        d = dist2(&c->y[3 * e], &c->y_build[3 * ((size_t)c->nown * (size_t)q + (size_t)e)]);
+        if (q < 8) d2[q] = d, have |= 1 << q;
+      }
+      move[k] = d > move[k] ? d : move[k]; /* (NaN positions are the guard's to report) */
+    }
+  }
+  for (int k = 0; k < np; k++) move[k] = sqrt(move[k]);
+  const int ok = MPI_Allreduce(MPI_IN_PLACE, move, np, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS;
   *nstale = 0;
-  for (int k = 0; k < c->npairs; k++) *nstale += c->stale[k] = !(move[k] <= 0.5 * c->skin);
-  free(move);
+  for (int k = 0; k < np; k++) *nstale += c->stale[k] = !(move[k] <= 0.5 * c->skin);
+  free(move), free(same);
   PF_CHECK(ok, PF_ERR_LIB, "MPI_Allreduce failed on the contact's displacements");
   return 0;
 }
@@ -729,10 +744,12 @@ int pf_contact_search(pf_contact *c, const pf_points *pts) {
   if (!ierr) ierr = build_candidates(c, pts, last_gid, nlast);
   free(last_gid);
   if (ierr) return ierr;
-  for (int k = 0; k < c->npairs; k++)
-    if (c->stale[k])
-      memcpy(&c->y_build[3 * (size_t)c->nown * (size_t)k], c->y, sizeof(double) * 3 * (size_t)c->nown);
-  c->built = 1;
   c->rebuilds++;
+  for (int k = 0; k < c->npairs; k++)
+    if (c->stale[k]) {
+      memcpy(&c->y_build[3 * (size_t)c->nown * (size_t)k], c->y, sizeof(double) * 3 * (size_t)c->nown);
+      c->built_at[k] = c->rebuilds;
+    }
+  c->built = 1;
   return 0;
 }
