@@ -680,38 +680,30 @@ static int build_candidates(pf_contact *c, const pf_points *pts, const pf_gid *l
  * forces are the same bits as with a rebuild of every pair. Returns how many are stale.
  * Collective. */
 static int pair_stale(pf_contact *c, int *nstale) {
-  const int np = c->npairs;
-  double *move;
-  int *same; /* the first pair built at the same build as pair k: the same positions at the build */
-  PF_MALLOC(move, np);
-  PF_MALLOC(same, np);
+  const int np = c->npairs, nb = c->nbodies;
+  double *move, *mb; /* [np] each pair's largest move; [nb] each body's, from one build's positions */
+  PF_MALLOC(move, np + nb);
+  mb = move + np;
+  /* one pass for each set of pairs built at the same build (the same positions at the build) */
   for (int k = 0; k < np; k++) {
-    same[k] = k;
-    for (int q = 0; q < k && same[k] == k; q++)
-      if (c->built_at[q] == c->built_at[k]) same[k] = q;
-  }
-#pragma omp parallel for schedule(static) reduction(max : move[:np])
-  for (pf_int e = 0; e < c->nown; e++) {
-    double d2[8];
-    int have = 0; /* bit q: d2 of pair q's build positions formed (the first 8 pairs) */
-    for (int k = 0; k < np; k++) {
-      const pf_contact_pair *p = &c->pair[k];
-      if (c->vbody[e] != p->a && c->vbody[e] != p->b) continue;
-      const int q = same[k];
-      double d;
-      if (q < 8 && (have >> q & 1)) d = d2[q];
-      else {
-        d = dist2(&c->y[3 * e], &c->y_build[3 * ((size_t)c->nown * (size_t)q + (size_t)e)]);
-        if (q < 8) d2[q] = d, have |= 1 << q;
-      }
-      move[k] = d > move[k] ? d : move[k]; /* (NaN positions are the guard's to report) */
+    int first = 1;
+    for (int q = 0; q < k; q++) first &= c->built_at[q] != c->built_at[k];
+    if (!first) continue;
+    const double *yb = &c->y_build[3 * (size_t)c->nown * (size_t)k];
+    for (int b = 0; b < nb; b++) mb[b] = 0;
+#pragma omp parallel for schedule(static) reduction(max : mb[:nb])
+    for (pf_int e = 0; e < c->nown; e++) {
+      const double d2 = dist2(&c->y[3 * e], &yb[3 * e]);
+      const int b = c->vbody[e];
+      mb[b] = d2 > mb[b] ? d2 : mb[b]; /* (NaN positions are the guard's to report) */
     }
+    for (int q = k; q < np; q++)
+      if (c->built_at[q] == c->built_at[k]) move[q] = sqrt(fmax(mb[c->pair[q].a], mb[c->pair[q].b]));
   }
-  for (int k = 0; k < np; k++) move[k] = sqrt(move[k]);
   const int ok = MPI_Allreduce(MPI_IN_PLACE, move, np, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS;
   *nstale = 0;
   for (int k = 0; k < np; k++) *nstale += c->stale[k] = !(move[k] <= 0.5 * c->skin);
-  free(move), free(same);
+  free(move);
   PF_CHECK(ok, PF_ERR_LIB, "MPI_Allreduce failed on the contact's displacements");
   return 0;
 }
