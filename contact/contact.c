@@ -304,7 +304,7 @@ int pf_contact_destroy(pf_contact **cp) {
   free(c->surface_node), free(c->node_view), free(c->body_used), free(c->eroded_seen);
   free(c->pair), free(c->body);
   free(c->local), free(c->gid), free(c->vbody), free(c->rank);
-  free(c->y), free(c->v), free(c->vol), free(c->m), free(c->rad), free(c->X), free(c->y_build);
+  free(c->y), free(c->v), free(c->vol), free(c->m), free(c->rad), free(c->X), free(c->y_build), free(c->stale), free(c->built_at);
   pf_exchange_destroy(&c->exchange);
   free(c->scount), free(c->send), free(c->cand_off), free(c->cand), free(c->force);
   PF_FREE(*cp);

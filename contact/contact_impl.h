@@ -87,7 +87,9 @@ struct pf_contact {
   double *rad; /* [nview] a point's own contact radius (the point field "contact_radius" where
                   positive: a particle made from an element, fem/particles.c), else INFINITY */
   double *X;              /* [3 nview] reference positions (short range within a body) */
-  double *y_build;        /* [3 nown] positions at the last build */
+  double *y_build;        /* [npairs][3 nown] positions at each pair's last build */
+  uint8_t *stale;         /* [npairs] the pair's candidates are rebuilt at this build */
+  long *built_at;         /* [npairs] the build (rebuilds count) that last rebuilt the pair */
   pf_int cap;             /* room in the view arrays */
   /* ghost exchange lists of the last build */
   int nranks;
@@ -117,8 +119,8 @@ void pf_contact_grid_free(pf_grid *g);
 void pf_contact_grid_range(const pf_grid *g, const double p[3], double r, int lo[3], int hi[3]);
 /* Refresh the owned entities' y, v from the store and the ghosts' from their owners. */
 int pf_contact_exchange(pf_contact *c, const pf_points *pts);
-/* Rebuild when some entity moved more than half the skin since the last build (or never
- * built): the ghosts and the candidate lists. Collective. */
+/* Rebuild when some entity of a pair's bodies moved more than half the skin since the pair's
+ * last build (or never built): the ghosts, and the candidate lists of those pairs. Collective. */
 int pf_contact_search(pf_contact *c, const pf_points *pts);
 /* Owned entities from the bodies' owned ranges (after attach). */
 int pf_contact_collect_owned(pf_contact *c, const pf_points *pts);

@@ -1,12 +1,14 @@
 /* The contact search: the entities (PD particles of bodies in a pair, FE nodes on a pair's
  * surface) this rank owns, the ghosts it needs from other ranks, and each owned particle's
- * candidates, found in uniform bins (a counting sort, O(n)) with a skin s. The search is rebuilt
- * only when some entity has moved more than s/2 since the last build: two entities that come
- * within r_c of each other were then within r_c + s at the build, whatever their speed, so a
- * candidate list of every partner within r_c + s misses no contact (Verlet 1967; the LAMMPS
- * neighbor skin). Ghosts: every rank sends the entities that lie within a margin of another
- * rank's box of owned entities, margin = r_c + 2 s + twice the largest face size (a particle
- * needs every node of a face within reach). */
+ * candidates, found in uniform bins (a counting sort, O(n)) with a skin s. A pair's candidates
+ * are rebuilt only when some entity of the pair's bodies has moved more than s/2 since the
+ * pair's last build: two entities that come within r_c of each other were then within r_c + s
+ * at the build, whatever their speed, so a candidate list of every partner within r_c + s misses
+ * no contact (Verlet 1967; the LAMMPS neighbor skin). Each pair has its own rule (pair_stale):
+ * a fast projectile's surface pair is rebuilt without its target's self-contact. The builds are
+ * threaded over fixed chunks of entities (chunked_candidates). Ghosts: every rank sends the
+ * entities that lie within a margin of another rank's box of owned entities, margin = r_c + 2 s
+ * + twice the largest face size (a particle needs every node of a face within reach). */
 #include "contact/contact_impl.h"
 
 #include <math.h>
@@ -108,7 +110,9 @@ int pf_contact_collect_owned(pf_contact *c, const pf_points *pts) {
   free(c->local), free(c->y_build), free(c->force);
   c->local = NULL, c->y_build = NULL, c->force = NULL;
   PF_MALLOC(c->local, n);
-  PF_MALLOC(c->y_build, 3 * n);
+  PF_MALLOC(c->y_build, 3 * (size_t)n * (size_t)c->npairs);
+  if (!c->stale) PF_MALLOC(c->stale, c->npairs);
+  if (!c->built_at) PF_MALLOC(c->built_at, c->npairs);
   PF_MALLOC(c->force, 3 * n);
   PF_CALL(view_reserve(c, n));
   int me = pf_comm_rank();
@@ -280,15 +284,26 @@ static void map_nodes(pf_contact *c) {
 }
 
 /* ---- candidates ---------------------------------------------------------------------------- */
-static int cand_push(pf_contact *c, int64_t *n, int32_t pair, pf_int j, pf_gid key) {
-  if (*n == c->cand_cap) {
-    int64_t cap = 2 * c->cand_cap + 1024;
-    pf_candidate *q = realloc(c->cand, sizeof *q * (size_t)cap);
+/* A growing list of candidates: each chunk of owned entities fills its own at a build. */
+typedef struct {
+  pf_candidate *v;
+  int64_t n, cap;
+} cand_list;
+
+static int cand_append(cand_list *l, const pf_candidate *x) {
+  if (l->n == l->cap) {
+    int64_t cap = 2 * l->cap + 1024;
+    pf_candidate *q = realloc(l->v, sizeof *q * (size_t)cap);
     PF_CHECK(q, PF_ERR_MEMORY, "out of memory for contact candidates");
-    c->cand = q, c->cand_cap = cap;
+    l->v = q, l->cap = cap;
   }
-  c->cand[(*n)++] = (pf_candidate){.pair = pair, .j = j, .key = key};
+  l->v[l->n++] = *x;
   return 0;
+}
+
+static int cand_push(cand_list *l, int32_t pair, pf_int j, pf_gid key) {
+  const pf_candidate x = {.pair = pair, .j = j, .key = key};
+  return cand_append(l, &x);
 }
 
 static int cand_cmp(const void *a, const void *b) {
@@ -310,7 +325,7 @@ static void cand_sort(pf_candidate *v, int64_t n) {
 }
 
 /* Partners of owned particle e in pair k among the view entities of body `other` (grid g). */
-static int point_candidates(pf_contact *c, const pf_grid *g, pf_int e, int k, int other, int64_t *n) {
+static int point_candidates(const pf_contact *c, const pf_grid *g, pf_int e, int k, int other, cand_list *l) {
   double reach = c->pair[k].radius + c->skin;
   int lo[3], hi[3];
   pf_contact_grid_range(g, &c->y[3 * e], reach, lo, hi);
@@ -321,103 +336,140 @@ static int point_candidates(pf_contact *c, const pf_grid *g, pf_int e, int k, in
         for (pf_int s = g->start[bin]; s < g->start[bin + 1]; s++) {
           pf_int j = g->item[s];
           if (j == e || c->vbody[j] != other || dist2(&c->y[3 * e], &c->y[3 * j]) > reach * reach) continue;
-          PF_CALL(cand_push(c, n, k, j, c->gid[j]));
+          PF_CALL(cand_push(l, k, j, c->gid[j]));
         }
       }
   return 0;
 }
 
-/* The faces of a pair's side whose nodes are all in the view: centres (for the face grid) and
- * boxes. */
+/* The faces of a pair's side whose nodes are all in the view, with their boxes, binned by their
+ * boxes grown by the pair's reach r_c + skin: a face is listed in every bin its grown box
+ * overlaps, so that an entity inside a grown box finds the face in its own bin, and an entity
+ * reads one bin instead of the bins of every face centre within reach + 2 l. */
 typedef struct {
   pf_int n;
   pf_int *face;   /* [n] face index of the side */
-  double *centre; /* [3n] */
   double *box;    /* [6n] */
-  pf_grid grid;
+  double reach;   /* r_c + skin */
+  double lo[3], cell;
+  int dim[3];
+  pf_int *start;  /* [nbins + 1] */
+  pf_int *item;   /* [start[nbins]] face-set index of each entry, ascending in each bin */
 } face_set;
+
+/* The bin range [klo, khi] of face t's grown box along each axis. The bins are those of
+ * floor((x - lo) / cell), which rounding keeps monotone in x: an entity y with
+ * box - reach <= y <= box + reach has its bin in the range. */
+static void face_bins(const face_set *s, pf_int t, int klo[3], int khi[3]) {
+  const double *bx = &s->box[6 * t];
+  for (int a = 0; a < 3; a++) {
+    klo[a] = (int)floor((bx[a] - s->reach - s->lo[a]) / s->cell);
+    khi[a] = (int)floor((bx[3 + a] + s->reach - s->lo[a]) / s->cell);
+  }
+}
+
+/* Count (pass 0) or fill (pass 1) the entries of the face set's bins. */
+static pf_int face_bin_entries(face_set *s, int pass) {
+  pf_int total = 0;
+  for (pf_int t = 0; t < s->n; t++) {
+    int klo[3], khi[3];
+    face_bins(s, t, klo, khi);
+    for (int z = klo[2]; z <= khi[2]; z++)
+      for (int y = klo[1]; y <= khi[1]; y++)
+        for (int x = klo[0]; x <= khi[0]; x++) {
+          const pf_int bin = (z * s->dim[1] + y) * s->dim[0] + x;
+          if (pass) s->item[s->start[bin]++] = t;
+          else s->start[bin + 1]++;
+          total++;
+        }
+  }
+  return total;
+}
 
 static int face_set_build(const pf_contact *c, const pf_contact_pair *p, const pf_contact_side *sd, face_set *s) {
   const pf_int *nv = c->node_view[sd->body];
   memset(s, 0, sizeof *s);
   PF_MALLOC(s->face, sd->nface);
-  PF_MALLOC(s->centre, 3 * sd->nface);
   PF_MALLOC(s->box, 6 * sd->nface);
+  s->reach = p->radius + c->skin;
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   for (pf_int f = 0; f < sd->nface; f++) {
     const pf_int *nd = sd->face[f].node;
     if (nv[nd[0]] < 0 || nv[nd[1]] < 0 || nv[nd[2]] < 0 || nv[nd[3]] < 0) continue;
-    double *ce = &s->centre[3 * s->n], *bx = &s->box[6 * s->n];
-    for (int a = 0; a < 3; a++) ce[a] = 0, bx[a] = INFINITY, bx[3 + a] = -INFINITY;
+    double *bx = &s->box[6 * s->n];
+    for (int a = 0; a < 3; a++) bx[a] = INFINITY, bx[3 + a] = -INFINITY;
     for (int q = 0; q < 4; q++)
       for (int a = 0; a < 3; a++) {
         double x = c->y[3 * nv[nd[q]] + a];
-        ce[a] += 0.25 * x;
         bx[a] = fmin(bx[a], x), bx[3 + a] = fmax(bx[3 + a], x);
       }
+    for (int a = 0; a < 3; a++) lo[a] = fmin(lo[a], bx[a] - s->reach), hi[a] = fmax(hi[a], bx[3 + a] + s->reach);
     s->face[s->n++] = f;
   }
-  /* a box grown by r_c + skin that contains p has its centre within r_c + skin + 2 l of p (l the
-   * largest node distance: the box's half diagonal is at most sqrt(3)/2 l... and 2 l covers it) */
-  return pf_contact_grid_build(&s->grid, s->n, s->centre, p->radius + c->skin + 2 * sd->size);
+  if (s->n == 0) lo[0] = lo[1] = lo[2] = hi[0] = hi[1] = hi[2] = 0;
+  /* bins of half the reach plus the face size: a face in at most 4^3 of them; no more bins than
+   * 64 a face (scattered faces widen the bins, not the memory) */
+  double nb;
+  s->cell = 0.5 * (s->reach + sd->size);
+  for (;;) {
+    nb = 1;
+    for (int a = 0; a < 3; a++) nb *= floor((hi[a] - lo[a]) / s->cell) + 1;
+    if (nb <= 64.0 * s->n + 64) break;
+    s->cell *= 2;
+  }
+  for (int a = 0; a < 3; a++) s->lo[a] = lo[a], s->dim[a] = (int)floor((hi[a] - lo[a]) / s->cell) + 1;
+  const pf_int nbins = (pf_int)nb;
+  PF_MALLOC(s->start, nbins + 1);
+  const pf_int total = face_bin_entries(s, 0);
+  PF_MALLOC(s->item, total);
+  for (pf_int b = 0; b < nbins; b++) s->start[b + 1] += s->start[b];
+  face_bin_entries(s, 1);
+  for (pf_int b = nbins; b > 0; b--) s->start[b] = s->start[b - 1];
+  s->start[0] = 0;
+  return 0;
 }
 
 static void face_set_free(face_set *s) {
-  free(s->face), free(s->centre), free(s->box);
-  pf_contact_grid_free(&s->grid);
+  free(s->face), free(s->box), free(s->start), free(s->item);
 }
 
-/* Faces of side sd of pair k whose box, grown by r_c + skin, contains owned entity e. On a pair
- * of two FE bodies a node does not meet the faces it belongs to (the bodies differ). */
-static int face_candidates(pf_contact *c, const face_set *s, const pf_contact_side *sd, pf_int e, int k,
-                           int64_t *n) {
-  const double reach = c->pair[k].radius + c->skin, *y = &c->y[3 * e];
-  int lo[3], hi[3];
-  pf_contact_grid_range(&s->grid, y, reach + 2 * sd->size, lo, hi);
-  for (int z = lo[2]; z <= hi[2]; z++)
-    for (int yy = lo[1]; yy <= hi[1]; yy++)
-      for (int x = lo[0]; x <= hi[0]; x++) {
-        pf_int bin = (z * s->grid.dim[1] + yy) * s->grid.dim[0] + x;
-        for (pf_int q = s->grid.start[bin]; q < s->grid.start[bin + 1]; q++) {
-          pf_int t = s->grid.item[q];
-          const double *bx = &s->box[6 * t];
-          int in = 1;
-          for (int a = 0; a < 3; a++) in &= y[a] >= bx[a] - reach && y[a] <= bx[3 + a] + reach;
-          if (in) PF_CALL(cand_push(c, n, k, s->face[t], s->face[t]));
-        }
-      }
-  return 0;
-}
-
-/* The candidates of owned entity e: a PD particle's in every pair of its body, an FE node's in
- * the pairs of two FE bodies (the particle's owner computes each FE <-> PD interaction). */
-static int entity_candidates(pf_contact *c, const pf_grid *g, face_set (*fs)[2], pf_int e, int64_t *n) {
-  const int b = c->vbody[e], fe = c->body[b].is_fe;
-  for (int k = 0; k < c->npairs; k++) {
-    const pf_contact_pair *p = &c->pair[k];
-    if ((p->a != b && p->b != b) || (fe && p->kind != PF_PAIR_SURFACES)) continue;
-    if (p->kind == PF_PAIR_SURFACE || p->kind == PF_PAIR_SURFACES) {
-      const pf_contact_side *sd = pf_contact_facing(p, b);
-      PF_CALL(face_candidates(c, &fs[k][sd - p->side], sd, e, k, n));
-    } else PF_CALL(point_candidates(c, g, e, k, p->a == b ? p->b : p->a, n));
+/* Faces of face set s of pair k whose box, grown by r_c + skin, contains owned entity e: those
+ * of e's bin that pass the test (face_set). On a pair of two FE bodies a node does not meet the
+ * faces it belongs to (the bodies differ). */
+static int face_candidates(const pf_contact *c, const face_set *s, pf_int e, int k, cand_list *l) {
+  const double reach = s->reach, *y = &c->y[3 * e];
+  int kb[3];
+  for (int a = 0; a < 3; a++) {
+    const double u = floor((y[a] - s->lo[a]) / s->cell);
+    if (!(u >= 0 && u < s->dim[a])) return 0; /* outside every grown box */
+    kb[a] = (int)u;
+  }
+  const pf_int bin = (kb[2] * s->dim[1] + kb[1]) * s->dim[0] + kb[0];
+  for (pf_int q = s->start[bin]; q < s->start[bin + 1]; q++) {
+    pf_int t = s->item[q];
+    const double *bx = &s->box[6 * t];
+    int in = 1;
+    for (int a = 0; a < 3; a++) in &= y[a] >= bx[a] - reach && y[a] <= bx[3 + a] + reach;
+    if (in) PF_CALL(cand_push(l, k, s->face[t], s->face[t]));
   }
   return 0;
 }
 
-/* The candidates [s, t) of owned particle e, sorted by (pair, partner gid): each short-range
+/* The m candidates v of owned particle e, sorted by (pair, partner gid): each short-range
  * candidate of e's own body gets the bond of e's family to it (-1: never bonded), found by
  * merging the pair's candidates with e's family row, both sorted by global id (pd/family.c);
- * every other candidate gets -1. Each family entry read is counted. */
-static void resolve_bonds(pf_contact *c, const pf_points *pts, pf_int e, int64_t s, int64_t t) {
+ * every other candidate gets -1. Returns the family entries read. */
+static int64_t resolve_bonds(const pf_contact *c, const pf_points *pts, pf_int e, pf_candidate *v, int64_t m) {
   const pf_family *fam = c->body[c->vbody[e]].fam;
   const int64_t row0 = fam ? fam->offset[c->local[e] - fam->first] : 0;
   const int64_t row1 = fam ? fam->offset[c->local[e] - fam->first + 1] : 0;
   int64_t reads = 0;
-  for (int64_t q = s; q < t;) {
-    const int32_t k = c->cand[q].pair;
+  for (int64_t q = 0; q < m;) {
+    const int32_t k = v[q].pair;
     const int mine = c->pair[k].kind == PF_PAIR_SHORT_RANGE && fam;
     int64_t b = row0;
-    for (; q < t && c->cand[q].pair == k; q++) {
-      pf_candidate *cd = &c->cand[q];
+    for (; q < m && v[q].pair == k; q++) {
+      pf_candidate *cd = &v[q];
       const pf_gid g = cd->key;
       cd->bond = -1;
       if (!mine || c->vbody[cd->j] != c->vbody[e]) continue;
@@ -425,56 +477,244 @@ static void resolve_bonds(pf_contact *c, const pf_points *pts, pf_int e, int64_t
       if (b < row1 && pts->gid[fam->neighbor[b]] == g) cd->bond = b;
     }
   }
-  c->family_reads += reads;
+  return reads;
 }
 
-static int build_candidates(pf_contact *c, const pf_points *pts) {
+
+/* The last build's candidates, kept for the pairs not rebuilt: CSR over the owned entities
+ * (which a build does not change), and the new view index of each of the last view's ghosts
+ * (NULL on one rank: no ghosts). */
+typedef struct {
+  const int64_t *off;
+  const pf_candidate *cand;
+  const pf_int *ghost; /* [last nview - nown] new view index, -1: not in the new view */
+} kept_list;
+
+/* Pair k's candidates of owned entity e from the last build (from *q on, the entity's list
+ * sorted by pair) into l, their ghost partners renumbered; counts into *missed a partner no
+ * longer in the view (none: pair_stale). */
+static int kept_candidates(const pf_contact *c, const kept_list *old, pf_int e, int k, int64_t *q, cand_list *l,
+                           int64_t *missed) {
+  const int64_t q1 = old->off[e + 1];
+  const int views = c->pair[k].kind == PF_PAIR_SHORT_RANGE || c->pair[k].kind == PF_PAIR_NODES; /* (else faces) */
+  while (*q < q1 && old->cand[*q].pair < k) (*q)++;
+  for (; *q < q1 && old->cand[*q].pair == k; (*q)++) {
+    pf_candidate x = old->cand[*q];
+    if (views && x.j >= c->nown) {
+      x.j = old->ghost ? old->ghost[x.j - c->nown] : -1;
+      if (x.j < 0) {
+        (*missed)++;
+        continue;
+      }
+    }
+    PF_CALL(cand_append(l, &x));
+  }
+  return 0;
+}
+
+/* The candidates of owned entity e into l: a PD particle's in every pair of its body, an FE
+ * node's in the pairs of two FE bodies (the particle's owner computes each FE <-> PD
+ * interaction); a stale pair's searched, sorted by partner (gid or face index) and its bonds
+ * resolved, another pair's kept from the last build (old). In pair order: the list is sorted
+ * by (pair, partner). Adds the family entries read to *reads. */
+static int entity_candidates(const pf_contact *c, const pf_points *pts, const pf_grid *g, const face_set (*fs)[2],
+                             const kept_list *old, pf_int e, cand_list *l, int64_t *reads, int64_t *missed) {
+  const int b = c->vbody[e], fe = c->body[b].is_fe;
+  int64_t q = old ? old->off[e] : 0;
+  for (int k = 0; k < c->npairs; k++) {
+    const pf_contact_pair *p = &c->pair[k];
+    if ((p->a != b && p->b != b) || (fe && p->kind != PF_PAIR_SURFACES)) continue;
+    if (!c->stale[k]) {
+      PF_CALL(kept_candidates(c, old, e, k, &q, l, missed));
+      continue;
+    }
+    const int64_t s = l->n;
+    if (p->kind == PF_PAIR_SURFACE || p->kind == PF_PAIR_SURFACES) {
+      const pf_contact_side *sd = pf_contact_facing(p, b);
+      PF_CALL(face_candidates(c, &fs[k][sd - p->side], e, k, l));
+    } else PF_CALL(point_candidates(c, g, e, k, p->a == b ? p->b : p->a, l));
+    const int64_t m = l->n - s;
+    if (m == 0) continue; /* (none yet: l->v may still be NULL, which qsort must not get) */
+    if (m <= 64) cand_sort(&l->v[s], m);
+    else qsort(&l->v[s], (size_t)m, sizeof *l->v, cand_cmp);
+    *reads += resolve_bonds(c, pts, e, &l->v[s], m);
+  }
+  return 0;
+}
+
+/* The candidates of owned entities [e0, e1) into l; off[e - e0] the start of entity e's. */
+static int chunk_candidates(const pf_contact *c, const pf_points *pts, const pf_grid *g, const face_set (*fs)[2],
+                            const kept_list *old, pf_int e0, pf_int e1, cand_list *l, int64_t *off, int64_t *reads,
+                            int64_t *missed) {
+  for (pf_int e = e0; e < e1; e++) {
+    off[e - e0] = l->n;
+    PF_CALL(entity_candidates(c, pts, g, fs, old, e, l, reads, missed));
+  }
+  return 0;
+}
+
+/* Every owned entity's candidates into a new CSR (*off_out, *cand_out). OpenMP threads take
+ * fixed chunks of entities, each filling its own list, and the lists are joined in chunk order:
+ * an entity's candidates depend on it alone, so the lists are the same bits on any number of
+ * threads. Adds to *missed the kept partners no longer in the view. */
+static int chunked_candidates(pf_contact *c, const pf_points *pts, const pf_grid *g, const face_set (*fs)[2],
+                              const kept_list *old, int64_t **off_out, pf_candidate **cand_out, int64_t *cap_out,
+                              int64_t *missed) {
+  enum { CHUNK = 1024 };
+  const int64_t nchunk = (c->nown + CHUNK - 1) / CHUNK;
+  int64_t *off;
+  PF_MALLOC(off, c->nown + 1);
+  cand_list *list = calloc((size_t)nchunk + 1, sizeof *list);
+  if (!list) free(off);
+  PF_CHECK(list, PF_ERR_MEMORY, "out of memory for the contact candidates of %lld chunks", (long long)nchunk);
+  int64_t reads = 0, miss = 0;
+  int ierr = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(max : ierr) reduction(+ : reads, miss)
+  for (int64_t q = 0; q < nchunk; q++) {
+    const pf_int e0 = (pf_int)(q * CHUNK), e1 = (pf_int)(q + 1 < nchunk ? (q + 1) * CHUNK : c->nown);
+    const int err = chunk_candidates(c, pts, g, fs, old, e0, e1, &list[q], &off[e0], &reads, &miss);
+    ierr = err > ierr ? err : ierr; /* (the reduction's private copy starts at INT_MIN) */
+  }
+  int64_t n = 0;
+  for (int64_t q = 0; q < nchunk; q++) n += list[q].n;
+  pf_candidate *cand = ierr ? NULL : malloc(sizeof *cand * (size_t)(n + 1));
+  if (!ierr && !cand)
+    ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory for contact candidates");
+  n = 0;
+  for (int64_t q = 0; q < nchunk && !ierr; q++) {
+    const pf_int e0 = (pf_int)(q * CHUNK), e1 = (pf_int)(q + 1 < nchunk ? (q + 1) * CHUNK : c->nown);
+    for (pf_int e = e0; e < e1; e++) off[e] += n;
+    if (list[q].n) memcpy(&cand[n], list[q].v, sizeof *list[q].v * (size_t)list[q].n);
+    n += list[q].n;
+  }
+  off[c->nown] = n;
+  for (int64_t q = 0; q < nchunk; q++) free(list[q].v);
+  free(list);
+  if (ierr) {
+    free(off);
+    return ierr;
+  }
+  c->family_reads += reads;
+  *missed += miss;
+  *off_out = off, *cand_out = cand, *cap_out = n + 1;
+  return 0;
+}
+
+static int gid_cmp(const void *a, const void *b) {
+  const pf_gid x = *(const pf_gid *)a, y = *(const pf_gid *)b;
+  return x < y ? -1 : x > y;
+}
+
+/* The new view index of each ghost of the last view (gid[nown + i] of the last view in
+ * last_gid[i], n of them): by the gids of the new view's ghosts, sorted. */
+static int renumber_ghosts(const pf_contact *c, const pf_gid *last_gid, pf_int n, pf_int **out) {
+  const pf_int ng = c->nview - c->nown;
+  pf_gid *sorted;
+  pf_int *ghost;
+  PF_MALLOC(sorted, 2 * (size_t)ng); /* pairs (gid, view index) */
+  PF_MALLOC(ghost, n);
+  for (pf_int i = 0; i < ng; i++) sorted[2 * i] = c->gid[c->nown + i], sorted[2 * i + 1] = c->nown + i;
+  if (ng > 1) qsort(sorted, (size_t)ng, 2 * sizeof *sorted, gid_cmp);
+  for (pf_int i = 0; i < n; i++) {
+    const pf_gid *hit = ng ? bsearch(&last_gid[i], sorted, (size_t)ng, 2 * sizeof *sorted, gid_cmp) : NULL;
+    ghost[i] = hit ? (pf_int)hit[1] : -1;
+  }
+  free(sorted);
+  *out = ghost;
+  return 0;
+}
+
+/* The candidates of the stale pairs searched anew, the others' kept (last_gid: the last view's
+ * ghosts, nlast of them). A kept partner missing from the new view (which pair_stale's rule
+ * excludes) makes every pair stale and the whole list is built again, on every rank. */
+static int build_candidates(pf_contact *c, const pf_points *pts, const pf_gid *last_gid, pf_int nlast) {
   double cell = 0;
   for (int k = 0; k < c->npairs; k++) cell = fmax(cell, c->pair[k].radius + c->skin);
-  pf_grid g;
-  PF_CALL(pf_contact_grid_build(&g, c->nview, c->y, cell));
+  int all = 1, points = 0; /* every pair stale; some point pair stale (the bins of the view) */
+  for (int k = 0; k < c->npairs; k++)
+    all &= c->stale[k], points |= c->stale[k] && (c->pair[k].kind == PF_PAIR_SHORT_RANGE || c->pair[k].kind == PF_PAIR_NODES);
+  pf_grid g = {{0, 0, 0}, 0, {0, 0, 0}, NULL, NULL};
+  PF_CALL(pf_contact_grid_build(&g, points ? c->nview : 0, c->y, cell));
   face_set(*fs)[2];
   PF_MALLOC(fs, c->npairs);
   int ierr = 0;
   for (int k = 0; k < c->npairs && !ierr; k++)
-    if (c->pair[k].kind == PF_PAIR_SURFACE || c->pair[k].kind == PF_PAIR_SURFACES)
+    if (c->stale[k] && (c->pair[k].kind == PF_PAIR_SURFACE || c->pair[k].kind == PF_PAIR_SURFACES))
       for (int s = 0; s < c->pair[k].nside && !ierr; s++)
         ierr = face_set_build(c, &c->pair[k], &c->pair[k].side[s], &fs[k][s]);
-  free(c->cand_off);
-  c->cand_off = malloc(sizeof *c->cand_off * (size_t)(c->nown + 1));
-  if (!c->cand_off) ierr = PF_ERR_MEMORY;
-  int64_t n = 0;
-  for (pf_int e = 0; e < c->nown && !ierr; e++) {
-    c->cand_off[e] = n;
-    ierr = entity_candidates(c, &g, fs, e, &n);
-    if (!ierr && n > c->cand_off[e]) { /* (none yet: c->cand may still be NULL, which qsort must not get) */
-      const int64_t m = n - c->cand_off[e];
-      if (m <= 64) cand_sort(&c->cand[c->cand_off[e]], m);
-      else qsort(&c->cand[c->cand_off[e]], (size_t)m, sizeof *c->cand, cand_cmp);
-      resolve_bonds(c, pts, e, c->cand_off[e], n);
-    }
+  pf_int *ghost = NULL;
+  if (!ierr && !all && nlast > 0) ierr = renumber_ghosts(c, last_gid, nlast, &ghost);
+  const kept_list old = {c->cand_off, c->cand, ghost};
+  int64_t *off = NULL, cap = 0, missed = 0;
+  pf_candidate *cand = NULL;
+  if (!ierr) ierr = chunked_candidates(c, pts, &g, (const face_set(*)[2])fs, all ? NULL : &old, &off, &cand, &cap, &missed);
+  if (!ierr && !all && pf_max_all((double)missed) > 0) { /* (collective: every rank takes the same way) */
+    free(off), free(cand);
+    for (int k = 0; k < c->npairs; k++) c->stale[k] = 1;
+    pf_contact_grid_free(&g);
+    ierr = pf_contact_grid_build(&g, c->nview, c->y, cell);
+    for (int k = 0; k < c->npairs && !ierr; k++)
+      if (c->pair[k].kind == PF_PAIR_SURFACE || c->pair[k].kind == PF_PAIR_SURFACES)
+        for (int s = 0; s < c->pair[k].nside && !ierr; s++)
+          if (!fs[k][s].face) ierr = face_set_build(c, &c->pair[k], &c->pair[k].side[s], &fs[k][s]);
+    if (!ierr) ierr = chunked_candidates(c, pts, &g, (const face_set(*)[2])fs, NULL, &off, &cand, &cap, &missed);
   }
-  if (c->cand_off) c->cand_off[c->nown] = n;
-  for (int k = 0; k < c->npairs; k++)
-    if (c->pair[k].kind == PF_PAIR_SURFACE || c->pair[k].kind == PF_PAIR_SURFACES)
-      for (int s = 0; s < c->pair[k].nside; s++) face_set_free(&fs[k][s]);
+  if (!ierr) {
+    free(c->cand_off), free(c->cand);
+    c->cand_off = off, c->cand = cand, c->cand_cap = cap;
+  }
+  free(ghost);
+  for (int k = 0; k < c->npairs; k++) face_set_free(&fs[k][0]), face_set_free(&fs[k][1]);
   free(fs);
   pf_contact_grid_free(&g);
   return ierr;
 }
 
-static double largest_move(const pf_contact *c) {
-  double m2 = 0;
-#pragma omp parallel for schedule(static) reduction(max : m2)
-  for (pf_int e = 0; e < c->nown; e++) {
-    const double d2 = dist2(&c->y[3 * e], &c->y_build[3 * e]);
-    m2 = d2 > m2 ? d2 : m2; /* (NaN positions are the guard's to report) */
+/* Marks the pairs whose candidates must be rebuilt: some entity of the pair's bodies moved more
+ * than half the skin since the pair's last build. Two entities that come within r_c of each
+ * other were then within r_c + skin at that build, whatever their speed (Verlet 1967), and each
+ * pair's rule reads only the motion of its own bodies, whose entities are all its candidates
+ * can be (the faces' nodes included: a point of a face moves no more than its nodes). A pair
+ * not rebuilt keeps a list that holds every interaction within r_c, like a rebuilt one, and a
+ * pair's forces depend only on those (a list sorted by partner, the rest passed over), so the
+ * forces are the same bits as with a rebuild of every pair. Returns how many are stale.
+ * Collective. */
+static int pair_stale(pf_contact *c, int *nstale) {
+  const int np = c->npairs, nb = c->nbodies;
+  double *move, *mb; /* [np] each pair's largest move; [nb] each body's, from one build's positions */
+  PF_MALLOC(move, np + nb);
+  mb = move + np;
+  /* one pass for each set of pairs built at the same build (the same positions at the build) */
+  for (int k = 0; k < np; k++) {
+    int first = 1;
+    for (int q = 0; q < k; q++) first &= c->built_at[q] != c->built_at[k];
+    if (!first) continue;
+    const double *yb = &c->y_build[3 * (size_t)c->nown * (size_t)k];
+    for (int b = 0; b < nb; b++) mb[b] = 0;
+#pragma omp parallel for schedule(static) reduction(max : mb[:nb])
+    for (pf_int e = 0; e < c->nown; e++) {
+      const double d2 = dist2(&c->y[3 * e], &yb[3 * e]);
+      const int b = c->vbody[e];
+      mb[b] = d2 > mb[b] ? d2 : mb[b]; /* (NaN positions are the guard's to report) */
+    }
+    for (int q = k; q < np; q++)
+      if (c->built_at[q] == c->built_at[k]) move[q] = sqrt(fmax(mb[c->pair[q].a], mb[c->pair[q].b]));
   }
-  return pf_max_all(sqrt(m2));
+  const int ok = MPI_Allreduce(MPI_IN_PLACE, move, np, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS;
+  *nstale = 0;
+  for (int k = 0; k < np; k++) *nstale += c->stale[k] = !(move[k] <= 0.5 * c->skin);
+  free(move);
+  PF_CHECK(ok, PF_ERR_LIB, "MPI_Allreduce failed on the contact's displacements");
+  return 0;
 }
 
 int pf_contact_search(pf_contact *c, const pf_points *pts) {
-  if (c->built && largest_move(c) <= 0.5 * c->skin) return 0;
+  if (c->built) {
+    int n = 0;
+    PF_CALL(pair_stale(c, &n));
+    if (n == 0) return 0;
+  } else
+    for (int k = 0; k < c->npairs; k++) c->stale[k] = 1;
   PF_CALL(face_sizes(c, pts));
   c->margin = c->skin;
   /* a partner within r_c at any time before the next build was within r_c + skin at this one;
@@ -482,13 +722,26 @@ int pf_contact_search(pf_contact *c, const pf_points *pts) {
    * face may grow by the skin before the next build */
   for (int k = 0; k < c->npairs; k++)
     c->margin = fmax(c->margin, c->pair[k].radius + 2 * c->skin + 2 * face_size(&c->pair[k]));
+  /* the last view's ghosts, to renumber the kept candidates' partners */
+  const pf_int nlast = c->built ? c->nview - c->nown : 0;
+  pf_gid *last_gid = NULL;
+  if (nlast > 0) {
+    PF_MALLOC(last_gid, nlast);
+    memcpy(last_gid, &c->gid[c->nown], sizeof *last_gid * (size_t)nlast);
+  }
   c->nview = c->nown;
-  PF_CALL(send_lists(c));
-  PF_CALL(send_ghosts(c));
-  map_nodes(c);
-  PF_CALL(build_candidates(c, pts));
-  memcpy(c->y_build, c->y, sizeof(double) * 3 * (size_t)c->nown);
-  c->built = 1;
+  int ierr = send_lists(c);
+  if (!ierr) ierr = send_ghosts(c);
+  if (!ierr) map_nodes(c);
+  if (!ierr) ierr = build_candidates(c, pts, last_gid, nlast);
+  free(last_gid);
+  if (ierr) return ierr;
   c->rebuilds++;
+  for (int k = 0; k < c->npairs; k++)
+    if (c->stale[k]) {
+      memcpy(&c->y_build[3 * (size_t)c->nown * (size_t)k], c->y, sizeof(double) * 3 * (size_t)c->nown);
+      c->built_at[k] = c->rebuilds;
+    }
+  c->built = 1;
   return 0;
 }

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# The contact search's skin and rebuild rule change no bit of a run. The contact forces depend
+# only on the pairs within the contact radius r_c; a search redone from scratch at every step
+# (a skin of 0.1 um: every pair's list is rebuilt at every step) finds exactly those, so it is the
+# reference: the deck's own skin (each pair rebuilt when its own bodies have moved half the skin
+# since its last build, the other pair's list kept, contact/search.c), a skin twice as large, and
+# the deck's skin on 2 ranks (the kept lists' ghost partners renumbered at a rebuild of the other
+# pair) must give its state digest. A rule that let a list go stale would miss an interaction
+# and change the digest.
+#   bash contact_skin.sh PERIFEM WORKDIR
+# Deck: tests/data/sphere_on_block.yaml (an FE sphere at 200 m/s on a PD block with friction,
+# and the block's self-contact), 150 steps; a few seconds.
+set -euo pipefail
+exe=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+work=$2
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+source "$here/tests/common/mpi_env.sh"
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+sed "s#\.\./\.\./meshes/#$here/meshes/#" "$here/tests/data/sphere_on_block.yaml" > deck.yaml
+
+rebuilds_of() { echo "$1" | sed -n 's/^ *contact: \([0-9]*\) search rebuilds.*/\1/p'; }
+fail=0
+# case name, ranks, extra arguments
+declare -a cases=("every_step 1 --set contact.skin=1e-7" "deck_skin 1" "double_skin 1 --set contact.skin=2.2e-3"
+                  "deck_skin_2_ranks 2")
+ref=""
+for c in "${cases[@]}"; do
+  read -r name np extra <<< "$c"
+  mkdir -p "$name"
+  # shellcheck disable=SC2086
+  out=$(cd "$name" && run "$np" "$exe" --output-dir . $extra ../deck.yaml 2>&1) || { echo "$out"; echo "FAIL: $name did not run"; exit 1; }
+  d=$(digest_of "$out")
+  n=$(rebuilds_of "$out")
+  echo "$name: $np rank(s), $n search rebuilds, digest $d"
+  [[ -n $d && -n $n ]] || { echo "$out"; echo "FAIL: $name printed no digest or rebuild count"; exit 1; }
+  if [[ $name == every_step ]]; then
+    ref=$d
+    ((n >= 150)) || { echo "FAIL: a skin of 0.1 um rebuilt $n times in 150 steps (expected every step)"; fail=1; }
+  elif [[ $d != "$ref" ]]; then
+    echo "FAIL: $name: digest $d differs from the every-step search's $ref"
+    fail=1
+  fi
+  if [[ $name == deck_skin ]] && ((n >= 150)); then
+    echo "FAIL: the deck's skin rebuilt at every step ($n): the test would not exercise the kept lists"
+    fail=1
+  fi
+done
+exit $fail
