@@ -235,7 +235,14 @@ static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double 
      * was not pushed through it but uncovered by a deletion (the face was inside the body until
      * then); it is not pulled back through (docs/theory/contact.md sec. 2.5) */
     if (uncovers && g < -c->body[c->vbody[e]].spacing) continue;
-    if (fabs(g) < best) {
+    /* two faces at the same distance (to round-off) that disagree on the side: the closest point
+     * is an edge or corner they share, which is convex (at a concave one a point whose closest
+     * point is the edge is behind both faces), so the point is outside: the face that sees it in
+     * front wins, as the sign of the edge's pseudonormal says (Baerentzen & Aanaes 2005). A fold
+     * of the surface (a sheet one crushed element thick, left by deletions) gives such ties
+     * (docs/theory/contact.md sec. 2) */
+    const int split = best < INFINITY && (g < 0) != (bg < 0) && fabs(fabs(g) - best) <= 1e-9 * best;
+    if (split ? g >= 0 : fabs(g) < best) {
       best = fabs(g), bg = g;
       memcpy(bn, n, sizeof bn), memcpy(bw, w, sizeof bw), memcpy(bv, nv, sizeof bv);
     }
