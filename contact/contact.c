@@ -363,11 +363,12 @@ void pf_contact_sums_take(pf_contact *c, const double *sums, double *energy) {
   *energy = sums[3 * c->npairs];
 }
 
-/* The point field "contact_offset" when a pair meets, with particles, the surface of a body that
- * deletes elements (registered at the first such evaluation, or read from a checkpoint); else
- * NULL (docs/theory/contact.md sec. 2.5). */
+/* The point fields "contact_offset" and "contact_reach" when a pair meets, with particles, the
+ * surface of a body that deletes elements (registered at the first such evaluation, or read from
+ * a checkpoint), this evaluation's "in reach" moved to the previous one's; else NULL
+ * (docs/theory/contact.md sec. 2.5). */
 static int offsets(pf_contact *c, pf_points *pts) {
-  c->offset = NULL;
+  c->offset = c->reach = NULL;
   for (int k = 0; k < c->npairs; k++) {
     const pf_contact_pair *p = &c->pair[k];
     const pf_contact_body *fb = &c->body[p->side[0].body];
@@ -376,6 +377,9 @@ static int offsets(pf_contact *c, pf_points *pts) {
     int idx;
     PF_CALL(pf_points_field_register(pts, "contact_offset", 1, PF_FIELD_RESTART | PF_FIELD_OUTPUT, &idx));
     c->offset = pts->fields[idx].data;
+    PF_CALL(pf_points_field_register(pts, "contact_reach", 2, PF_FIELD_RESTART, &idx));
+    c->reach = pts->fields[idx].data;
+    for (pf_int i = 0; i < pts->n_owned; i++) c->reach[2 * (size_t)i] = c->reach[2 * (size_t)i + 1], c->reach[2 * (size_t)i + 1] = 0;
     return 0;
   }
   return 0;

@@ -87,6 +87,8 @@ struct pf_contact {
   double *y, *v, *vol, *m; /* [3 nview], [3 nview], [nview], [nview] */
   double *offset; /* the point field "contact_offset" (NULL: no pair meets a surface that deletes
                    * elements): a particle's penetration held at its birth (pairs.c surface) */
+  double *reach;  /* the point field "contact_reach" (2 a point: in reach of such a surface at the
+                   * previous evaluation, at this one) */
   double *rad; /* [nview] a point's own contact radius (the point field "contact_radius" where
                   positive: a particle made from an element, fem/particles.c), else INFINITY */
   double *X;              /* [3 nview] reference positions (short range within a body) */

@@ -208,13 +208,18 @@ static void node_normal(const pf_contact *c, const pf_contact_side *own, pf_int 
  * deletes elements (docs/theory/contact.md sec. 2.5), given its gap g to the closest face
  * (INFINITY: none in reach) and its radius rc; `fresh` when that face was uncovered at this
  * evaluation. Its offset o (the point field "contact_offset") is set to its penetration
- * max(0, rc - g) when the face was uncovered under it or the particle is new (o < 0:
- * fem/particles.c); otherwise it only shrinks to the penetration, where the penalty
- * k ((rc - g) - o) is zero: it never sets energy free. Returns o, which the gap takes on. */
+ * max(0, rc - g) when the face was uncovered under it, when the particle is new (o < 0:
+ * fem/particles.c), or when it is behind the face (g < 0) without having been in reach of the
+ * surface at the previous evaluation (a step moves a point by far less than rc: the surface came
+ * to it, by a deletion or by a change of the face that holds it); otherwise it only shrinks to
+ * the penetration, where the penalty k ((rc - g) - o) is zero: it never sets energy free.
+ * The point field "contact_reach" keeps (previous, this) evaluation's "in reach". Returns o,
+ * which the gap takes on. */
 static double held(pf_contact *c, pf_int e, double g, double rc, int fresh) {
-  double *o = &c->offset[c->local[e]];
+  double *o = &c->offset[c->local[e]], *reach = &c->reach[2 * (size_t)c->local[e]];
   const double pen = g < INFINITY ? fmax(0.0, rc - g) : 0.0;
-  if (*o < 0 || fresh || pen < *o) *o = pen;
+  if (*o < 0 || fresh || (reach[0] == 0 && g < 0) || pen < *o) *o = pen;
+  reach[1] = pen > 0;
   return *o;
 }
 
