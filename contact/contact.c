@@ -218,6 +218,19 @@ static int mark_surfaces(pf_contact *c) {
  * pairs' sides on that body become the faces of its live elements (newly exposed faces
  * included), the surface nodes are marked anew and the search is rebuilt. Every rank holds the
  * same deleted elements, so every rank sees the same surfaces (docs/theory/contact.md sec. 2.5). */
+/* The faces of side sd (sorted by element and face, as pf_contact_surface_faces gives them) that
+ * the previous faces old[0 .. nold) did not have: uncovered by this deletion. */
+static int mark_fresh(pf_contact_side *sd, const pf_contact_face *old, pf_int nold) {
+  PF_FREE(sd->fresh);
+  PF_MALLOC(sd->fresh, sd->nface);
+  for (pf_int f = 0, j = 0; f < sd->nface; f++) {
+    const pf_contact_face *x = &sd->face[f];
+    while (j < nold && (old[j].elem < x->elem || (old[j].elem == x->elem && old[j].face < x->face))) j++;
+    sd->fresh[f] = !(j < nold && old[j].elem == x->elem && old[j].face == x->face);
+  }
+  return 0;
+}
+
 static int follow_erosion(pf_contact *c) {
   int changed = 0;
   for (int b = 0; b < c->nbodies; b++) {
@@ -230,8 +243,12 @@ static int follow_erosion(pf_contact *c) {
       for (int s = 0; s < c->pair[k].nside; s++) {
         pf_contact_side *sd = &c->pair[k].side[s];
         if (sd->body != b) continue;
-        PF_FREE(sd->face);
-        PF_CALL(pf_contact_surface_faces(c->body[b].mesh, sd->sideset, dead, &sd->face, &sd->nface));
+        pf_contact_face *old = sd->face;
+        const pf_int nold = sd->nface;
+        int ierr = pf_contact_surface_faces(c->body[b].mesh, sd->sideset, dead, &sd->face, &sd->nface);
+        if (!ierr) ierr = mark_fresh(sd, old, nold);
+        free(old);
+        PF_CALL(ierr);
         if (sd->node_off) {
           PF_FREE(sd->node_off);
           PF_FREE(sd->node_face);
@@ -296,7 +313,8 @@ int pf_contact_destroy(pf_contact **cp) {
   if (!c) return 0;
   for (int k = 0; c->pair && k < c->npairs; k++)
     for (int s = 0; s < 2; s++)
-      free(c->pair[k].side[s].face), free(c->pair[k].side[s].node_off), free(c->pair[k].side[s].node_face);
+      free(c->pair[k].side[s].face), free(c->pair[k].side[s].node_off), free(c->pair[k].side[s].node_face),
+          free(c->pair[k].side[s].fresh);
   for (int b = 0; b < c->nbodies; b++) {
     if (c->surface_node) free(c->surface_node[b]);
     if (c->node_view) free(c->node_view[b]);
@@ -345,14 +363,53 @@ void pf_contact_sums_take(pf_contact *c, const double *sums, double *energy) {
   *energy = sums[3 * c->npairs];
 }
 
+/* The point fields "contact_offset" and "contact_reach" when a pair meets, with particles, the
+ * surface of a body that deletes elements (registered at the first such evaluation, or read from
+ * a checkpoint), this evaluation's "in reach" moved to the previous one's; else NULL
+ * (docs/theory/contact.md sec. 2.5). */
+static int offsets(pf_contact *c, pf_points *pts) {
+  c->offset = c->reach = NULL;
+  for (int k = 0; k < c->npairs; k++) {
+    const pf_contact_pair *p = &c->pair[k];
+    const pf_contact_body *fb = &c->body[p->side[0].body];
+    long n = 0;
+    if (p->kind != PF_PAIR_SURFACE || !fb->eroded || !fb->eroded(fb->eroded_ctx, &n)) continue;
+    int idx;
+    PF_CALL(pf_points_field_register(pts, "contact_offset", 1, PF_FIELD_RESTART | PF_FIELD_OUTPUT, &idx));
+    c->offset = pts->fields[idx].data;
+    PF_CALL(pf_points_field_register(pts, "contact_reach", 2, PF_FIELD_RESTART, &idx));
+    c->reach = pts->fields[idx].data;
+    for (pf_int i = 0; i < pts->n_owned; i++) c->reach[2 * (size_t)i] = c->reach[2 * (size_t)i + 1], c->reach[2 * (size_t)i + 1] = 0;
+    return 0;
+  }
+  return 0;
+}
+
+/* The faces uncovered at this evaluation are fresh for it only; a new particle is new at its
+ * first evaluation only (its offset, -1 until then, is 0 unless a face took it). */
+static void fresh_done(pf_contact *c) {
+  for (pf_int e = 0; c->offset && e < c->nown; e++)
+    if (c->offset[c->local[e]] < 0) c->offset[c->local[e]] = 0;
+  for (int k = 0; k < c->npairs; k++)
+    for (int s = 0; s < c->pair[k].nside; s++) PF_FREE(c->pair[k].side[s].fresh);
+}
+
+int pf_contact_restored(pf_contact *c) {
+  PF_CALL(follow_erosion(c));
+  fresh_done(c);
+  return 0;
+}
+
 int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, double *dissipation) {
   double t0 = pf_wtime();
+  PF_CALL(offsets(c, pts));
   PF_CALL(follow_erosion(c));
   if (!c->built) PF_CALL(pf_contact_collect_owned(c, pts));
   PF_CALL(pf_contact_exchange(c, pts));
   PF_CALL(pf_contact_search(c, pts));
   double U = 0;
   PF_CALL(pf_contact_pairs_evaluate(c, dt, &U, dissipation));
+  fresh_done(c);
   PF_CALL(add_forces(c, pts));
   for (int k = 0; k < c->npairs; k++) memcpy(&sums[3 * k], c->pair[k].force, sizeof c->pair[k].force);
   sums[3 * c->npairs] = U;

@@ -110,6 +110,9 @@ int pf_contact_nsums(const pf_contact *c);
 /* Rebuild the search at the next force evaluation (points took or lost mass: a point of mass 0
  * takes no part in contact). */
 void pf_contact_rebuild(pf_contact *c);
+/* After a restart restored the deleted elements: the surfaces without them, none of their faces
+ * fresh (they were uncovered before the checkpoint). */
+int pf_contact_restored(pf_contact *c);
 int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, double *dissipation);
 /* The sums over the ranks: keep the pairs' forces (pf_contact_pair_force); *energy gets the
  * penalty energy, J. */

@@ -17,6 +17,7 @@ typedef struct {
   double size;       /* largest node-to-node distance of a face at the last build, m */
   pf_int *node_off;  /* SURFACES: [nnodes + 1] CSR of the faces of each mesh node */
   pf_int *node_face;
+  uint8_t *fresh;    /* [nface] or NULL: 1 for a face a deletion uncovered at this evaluation */
 } pf_contact_side;
 
 /* One entry of `contact: pairs:`. */
@@ -84,6 +85,10 @@ struct pf_contact {
   int32_t *vbody;         /* [nview] body index */
   int *rank;              /* [nview] owner rank */
   double *y, *v, *vol, *m; /* [3 nview], [3 nview], [nview], [nview] */
+  double *offset; /* the point field "contact_offset" (NULL: no pair meets a surface that deletes
+                   * elements): a particle's penetration held at its birth (pairs.c surface) */
+  double *reach;  /* the point field "contact_reach" (2 a point: in reach of such a surface at the
+                   * previous evaluation, at this one) */
   double *rad; /* [nview] a point's own contact radius (the point field "contact_radius" where
                   positive: a particle made from an element, fem/particles.c), else INFINITY */
   double *X;              /* [3 nview] reference positions (short range within a body) */

@@ -204,6 +204,25 @@ static void node_normal(const pf_contact *c, const pf_contact_side *own, pf_int 
   }
 }
 
+/* The penetration owned particle e keeps without force against the surface of a body that
+ * deletes elements (docs/theory/contact.md sec. 2.5), given its gap g to the closest face
+ * (INFINITY: none in reach) and its radius rc; `fresh` when that face was uncovered at this
+ * evaluation. Its offset o (the point field "contact_offset") is set to its penetration
+ * max(0, rc - g) when the face was uncovered under it, when the particle is new (o < 0:
+ * fem/particles.c), or when it is behind the face (g < 0) without having been in reach of the
+ * surface at the previous evaluation (a step moves a point by far less than rc: the surface came
+ * to it, by a deletion or by a change of the face that holds it); otherwise it only shrinks to
+ * the penetration, where the penalty k ((rc - g) - o) is zero: it never sets energy free.
+ * The point field "contact_reach" keeps (previous, this) evaluation's "in reach". Returns o,
+ * which the gap takes on. */
+static double held(pf_contact *c, pf_int e, double g, double rc, int fresh) {
+  double *o = &c->offset[c->local[e]], *reach = &c->reach[2 * (size_t)c->local[e]];
+  const double pen = g < INFINITY ? fmax(0.0, rc - g) : 0.0;
+  if (*o < 0 || fresh || (reach[0] == 0 && g < 0) || pen < *o) *o = pen;
+  reach[1] = pen > 0;
+  return *o;
+}
+
 /* Entity e (a particle, or an FE node of a pair of FE bodies) against the closest face among its
  * candidates [s, t) of pair k, on the side its body faces. An FE node meets only the faces that
  * face it, whose normal opposes its own (at an edge of the other body the side faces lie in the
@@ -215,7 +234,7 @@ static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double 
   const pf_contact_side *sd = pf_contact_facing(p, c->vbody[e]);
   const pf_int *view = c->node_view[sd->body];
   double best = INFINITY, bg = 0, bn[3] = {0, 0, 0}, bw[4] = {0, 0, 0, 0}, ne[3] = {0, 0, 0};
-  pf_int bv[4] = {0, 0, 0, 0};
+  pf_int bv[4] = {0, 0, 0, 0}, bf = -1;
   if (p->kind == PF_PAIR_SURFACES) node_normal(c, sd == &p->side[0] ? &p->side[1] : &p->side[0], e, ne);
   const pf_contact_body *fb = &c->body[sd->body];
   long ndead = 0; /* (the faces' body deletes elements: its erosion flags exist) */
@@ -235,11 +254,20 @@ static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double 
      * was not pushed through it but uncovered by a deletion (the face was inside the body until
      * then); it is not pulled back through (docs/theory/contact.md sec. 2.5) */
     if (uncovers && g < -c->body[c->vbody[e]].spacing) continue;
-    if (fabs(g) < best) {
-      best = fabs(g), bg = g;
+    /* two faces at the same distance (to round-off) that disagree on the side: the closest point
+     * is an edge or corner they share, which is convex (at a concave one a point whose closest
+     * point is the edge is behind both faces), so the point is outside: the face that sees it in
+     * front wins, as the sign of the edge's pseudonormal says (Baerentzen & Aanaes 2005). A fold
+     * of the surface (a sheet one crushed element thick, left by deletions) gives such ties
+     * (docs/theory/contact.md sec. 2) */
+    const int split = best < INFINITY && (g < 0) != (bg < 0) && fabs(fabs(g) - best) <= 1e-9 * best;
+    if (split ? g >= 0 : fabs(g) < best) {
+      best = fabs(g), bg = g, bf = c->cand[q].j;
       memcpy(bn, n, sizeof bn), memcpy(bw, w, sizeof bw), memcpy(bv, nv, sizeof bv);
     }
   }
+  if (uncovers && c->offset)
+    bg += held(c, e, best < INFINITY ? bg : INFINITY, fmin(p->radius, c->rad[e]), sd->fresh && bf >= 0 && sd->fresh[bf]);
   if (best == INFINITY || bg >= fmin(p->radius, c->rad[e])) return 0;
   return push(c, k, sd->body, e, bv, 4, bw, bg, bn, dt, l, sums);
 }

@@ -302,6 +302,8 @@ static void make_particle(pf_fem_particles *p, pf_points *pts, pf_int i, const d
   pf_points_field_get(pts, "particle_mass")[i] = M;
   pf_points_field_get(pts, "conversion_loss")[i] = dkc - ke;
   pf_points_field_get(pts, "conversion_time")[i] = t;
+  double *offset = pf_points_field_get(pts, "contact_offset"); /* new: its overlap with a surface is held (contact/pairs.c) */
+  if (offset) offset[i] = -1;
   const double *last = &rec[(size_t)W * (n - 1)];
   if (last[R_CORNER] == 8) {
     memcpy(&pf_points_field_get(pts, "particle_state")[(size_t)p->ncomp * i], &last[R_STATE], sizeof(double) * p->ncomp);

@@ -297,6 +297,7 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   PF_CALL(pf_sim_setup_restart(sim));
   if (sim->opt.restart_from) PF_CALL(pf_sim_restore_state(sim)); /* (renames the outputs) */
   if (sim->opt.restart_from) PF_CALL(pf_sim_converted_restart(sim));
+  if (sim->opt.restart_from && sim->contact) PF_CALL(pf_contact_restored(sim->contact));
   pf_sim_fragments_name(sim);
   PF_CALL(pf_sim_check_paths(sim));
   sim->rss_setup = pf_memory_peak();
