@@ -30,12 +30,7 @@ typedef struct {
 } share_list;
 
 static int share_append(share_list *l, const node_share *x) {
-  if (l->n == l->cap) {
-    int64_t cap = 2 * l->cap + 256;
-    node_share *q = realloc(l->s, sizeof *q * (size_t)cap);
-    PF_CHECK(q, PF_ERR_MEMORY, "out of memory for contact node forces");
-    l->s = q, l->cap = cap;
-  }
+  PF_GROW(l->s, l->n, l->cap, 256);
   l->s[l->n++] = *x;
   return 0;
 }

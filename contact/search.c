@@ -291,12 +291,7 @@ typedef struct {
 } cand_list;
 
 static int cand_append(cand_list *l, const pf_candidate *x) {
-  if (l->n == l->cap) {
-    int64_t cap = 2 * l->cap + 1024;
-    pf_candidate *q = realloc(l->v, sizeof *q * (size_t)cap);
-    PF_CHECK(q, PF_ERR_MEMORY, "out of memory for contact candidates");
-    l->v = q, l->cap = cap;
-  }
+  PF_GROW(l->v, l->n, l->cap, 1024);
   l->v[l->n++] = *x;
   return 0;
 }

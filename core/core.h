@@ -78,6 +78,18 @@ int pf_error_agree(int ok, int code, const char *file, int line, const char *fun
     PF_CHECK((ptr), PF_ERR_MEMORY, "out of memory allocating %zu x %zu bytes", pf_n_,             \
              sizeof(*(ptr)));                                                                      \
   } while (0)
+/* Room for one more element at index n of a growing array (ptr, its capacity cap, an int64_t):
+ * when full, the capacity becomes 2 cap + extra. */
+#define PF_GROW(ptr, n, cap, extra)                                                                \
+  do {                                                                                             \
+    if ((n) == (cap)) {                                                                            \
+      int64_t pf_cap_ = 2 * (cap) + (extra);                                                       \
+      void *pf_q_ = realloc((ptr), sizeof(*(ptr)) * (size_t)pf_cap_);                              \
+      PF_CHECK(pf_q_, PF_ERR_MEMORY, "out of memory growing an array to %lld x %zu bytes",         \
+               (long long)pf_cap_, sizeof(*(ptr)));                                                \
+      (ptr) = pf_q_, (cap) = pf_cap_;                                                              \
+    }                                                                                              \
+  } while (0)
 #define PF_FREE(ptr)                                                                               \
   do {                                                                                             \
     free(ptr);                                                                                     \
