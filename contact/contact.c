@@ -214,10 +214,6 @@ static int mark_surfaces(pf_contact *c) {
   return 0;
 }
 
-/* When elements of an FE body were deleted since the surfaces were built (fem/erosion.c), the
- * pairs' sides on that body become the faces of its live elements (newly exposed faces
- * included), the surface nodes are marked anew and the search is rebuilt. Every rank holds the
- * same deleted elements, so every rank sees the same surfaces (docs/theory/contact.md sec. 2.5). */
 /* The faces of side sd (sorted by element and face, as pf_contact_surface_faces gives them) that
  * the previous faces old[0 .. nold) did not have: uncovered by this deletion. */
 static int mark_fresh(pf_contact_side *sd, const pf_contact_face *old, pf_int nold) {
@@ -231,6 +227,10 @@ static int mark_fresh(pf_contact_side *sd, const pf_contact_face *old, pf_int no
   return 0;
 }
 
+/* When elements of an FE body were deleted since the surfaces were built (fem/erosion.c), the
+ * pairs' sides on that body become the faces of its live elements (newly exposed faces
+ * included), the surface nodes are marked anew and the search is rebuilt. Every rank holds the
+ * same deleted elements, so every rank sees the same surfaces (docs/theory/contact.md sec. 2.5). */
 static int follow_erosion(pf_contact *c) {
   int changed = 0;
   for (int b = 0; b < c->nbodies; b++) {
