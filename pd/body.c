@@ -488,6 +488,7 @@ int pf_pd_body_destroy(pf_pd_body **b) {
   free((*b)->idle);
   free((*b)->cracks);
   free((*b)->damage_data);
+  free((*b)->wc_bond);
   pf_expr_destroy(&(*b)->hz_expr);
   PF_FREE(*b);
   return 0;
@@ -514,7 +515,8 @@ int64_t pf_pd_body_nbonds(const pf_pd_body *b) { return pf_pd_family_nbonds(&b->
 double pf_pd_body_bytes_per_bond(const pf_pd_body *b) {
   const pf_family *f = &b->fam;
   return (double)(sizeof *f->neighbor + sizeof *f->broken + (f->vfrac ? sizeof *f->vfrac : 0) +
-                  (f->rest ? sizeof *f->rest : 0) + (size_t)f->nstate * sizeof *f->state);
+                  (f->rest ? sizeof *f->rest : 0) + (size_t)f->nstate * sizeof *f->state +
+                  (b->wc_bond ? sizeof *b->wc_bond : 0));
 }
 
 int pf_pd_body_force(pf_pd_body *b, pf_points *pts, double dt) {

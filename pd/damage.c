@@ -20,6 +20,9 @@ const pf_key pf_pd_damage_keys[] = {
     {"energy_release_rate", PF_KEY_REAL, 0, NULL, "J/m^2",
      "critical_stretch: G0, converted to s0 by the material's closed form; critical_energy: G0, "
      "converted to the critical bond energy w_c = 4 G0 / (pi delta^4)", NULL},
+    {"calibration", PF_KEY_STRING, 0, "continuum", "",
+     "critical_energy: continuum (w_c of a whole family for every bond) | family (each bond's w_c from "
+     "its two ends' families, so that a crack takes G0 near free faces and on a coarse lattice too)", NULL},
     {"s00", PF_KEY_REAL, 0, NULL, "", "silling_askari: s00 in s0 = s00 - alpha s_min", NULL},
     {"alpha", PF_KEY_REAL, 0, "0.25", "", "silling_askari: alpha in s0 = s00 - alpha s_min", NULL},
     {"no_fail", PF_KEY_LIST, 0, NULL, "",

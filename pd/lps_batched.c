@@ -56,14 +56,15 @@ dilatation_point(const pf_pd_body *restrict b, const double *restrict rec, pf_in
 }
 
 /* Pass 2 at point i: the force density sum into f[3]; with `energy` (critical_energy, Foster et
- * al. 2011) a bond in tension whose energy per V_i V_j, (t_ij + t_ji) e / 2, exceeds wc fails
- * and gives no force. REC_AUX holds Q, rm[j] = 1 / m_j. Returns the number failed. */
+ * al. 2011) a bond in tension whose energy per V_i V_j, (t_ij + t_ji) e / 2, exceeds wc (or
+ * its own b->wc_bond) fails and gives no force. REC_AUX holds Q, rm[j] = 1 / m_j. Returns the number failed. */
 static inline __attribute__((always_inline)) int
 force_point(const pf_pd_body *restrict b, const double *restrict rec, const double *restrict rm, pf_int i,
             double g15, double wc, const int weighted, const int partial, const int energy, double f[3]) {
   enum { L = PF_BATCH };
   const pf_family *fam = &b->fam;
   uint8_t *restrict broken = fam->broken;
+  const double *restrict wcb = b->wc_bond;
   const double *ri = rec + (size_t)PF_REC * (size_t)i;
   const double qi = ri[REC_AUX], rmi = rm[i];
   double f0[L] = {0}, f1[L] = {0}, f2[L] = {0};
@@ -85,7 +86,8 @@ force_point(const pf_pd_body *restrict b, const double *restrict rec, const doub
       const double om = weighted ? pf_pd_omega(&b->influence, g.r0[l]) : 1.0;
       const double tij = om * (qi * g.r0[l] + g15 * ext) * rmi;
       const double tji = om * (a[REC_AUX][l] * g.r0[l] + g15 * ext) * rmj[l];
-      const int fail = energy ? (ext > 0) & (0.5 * (tij + tji) * ext > wc) : 0;
+      const double wcl = energy && wcb ? wcb[k0 + l] : wc;
+      const int fail = energy ? (ext > 0) & (0.5 * (tij + tji) * ext > wcl) : 0;
       fails[l] = live[l] > 0 && fail ? 1.0 : 0.0;
       const double vj = partial ? a[REC_V][l] * fam->vfrac[k0 + l] : a[REC_V][l];
       const double fs = live[l] > 0 && !fail ? (tij + tji) * vj * g.ir[l] : 0.0;

@@ -181,7 +181,7 @@ static int lps_force_general(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
       const double thj = p->theta[j], aj = pf_pd_lps_volumetric(K, G, thj, p->mom[j], p->m[j]), bj = 15 * G / p->m[j];
       const double tij = pf_pd_in_family(b, i, r0) ? lps_t(ai, bi, thi, w, r0, ext) : 0.0;
       const double tji = pf_pd_in_family(b, j, r0) ? lps_t(aj, bj, thj, w, r0, ext) : 0.0;
-      if (energy && ext > 0 && 0.5 * (tij + tji) * ext > wc) {
+      if (energy && ext > 0 && 0.5 * (tij + tji) * ext > (b->wc_bond ? b->wc_bond[k] : wc)) {
         fam->broken[k] = PF_BOND_FRESH;
         ++*nfailed;
         continue;

@@ -59,7 +59,8 @@ static __attribute__((noinline)) double pmb_release(const pf_pd_body *b, const p
  * r0 = |xi|^2 (1 / r0), s = (r - r0) (1 / r0), so a bond at rest has s = 0 exactly. Fails
  * bonds whose stretch exceeds min(s0_i, s0_j), or with `energy` (law critical_energy, Foster et
  * al. 2011) bonds in tension whose pair micropotential
- *   w = (1/2) c omega s^2 |xi| > w_c   <=>   omega s^2 |xi| > 2 w_c / c = wlim.
+ *   w = (1/2) c omega s^2 |xi| > w_c   <=>   omega s^2 |xi| > 2 w_c / c = wlim
+ * (w_c the bond's own b->wc_bond where the law's calibration is `family`).
  * Both ends evaluate it from bitwise equal s, |xi| and omega, so they fail the bond together.
  * Inlined with the influence kind, the partial-volume switch and the law as constants.
  * The bonds go in batches of PF_BATCH: the neighbours' records are transposed into rows of
@@ -75,6 +76,7 @@ pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, do
   const float *restrict vfrac = fam->vfrac;
   uint8_t *restrict broken = fam->broken;
   const pf_int *restrict nb = fam->neighbor;
+  const double *restrict wlb = b->wc_bond;
   const double *ri = rec + (size_t)PF_REC * (size_t)i;
   const double s0i = ri[REC_S0];
   double f0[L] = {0}, f1[L] = {0}, f2[L] = {0}, sm[L];
@@ -93,7 +95,8 @@ pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, do
       const double r0 = g.r0[l], s = (g.r[l] - r0) * g.ir0[l];
       const double om = weighted ? pf_pd_omega(&b->influence, r0) : 1.0;
       const double slim = s0i < a[REC_S0][l] ? s0i : a[REC_S0][l];
-      const int fail = energy ? (s > 0) & (om * s * s * r0 > wlim) : s > slim;
+      const double wl = energy && wlb ? 2.0 * wlb[k0 + l] / c : wlim;
+      const int fail = energy ? (s > 0) & (om * s * s * r0 > wl) : s > slim;
       fails[l] = live[l] > 0 && fail ? 1.0 : 0.0;
       const double alive = fail ? 0.0 : live[l];
       sm[l] = alive > 0 && s < sm[l] ? s : sm[l];

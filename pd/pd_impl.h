@@ -65,6 +65,8 @@ struct pf_pd_body {
   int n_no_fail;     /* the deck's damage.no_fail: regions whose points start with s0 = INFINITY */
   pf_region no_fail[PF_PD_MAX_NO_FAIL];
   double critical_energy; /* a law that fails bonds on energy: w_c, J/m^6 */
+  double *wc_bond;        /* [bonds] each bond's own w_c (critical_energy, calibration: family),
+                             or NULL: every bond has critical_energy */
   double *s0;        /* field "critical_stretch": per point, used by the force kernels */
   double *smin;      /* [n] smallest stretch of each point's intact bonds this step */
   double *lost_volume; /* field "lost_weighted_volume" of the LPS family (lps, elastic_plastic):

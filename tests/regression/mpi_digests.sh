@@ -47,6 +47,14 @@ bodies:
 time: {steps: 20}
 DECK
 
+# Willberg's double cantilever beam on a 1 mm lattice, opened at 1 m/s until bonds fail, with the
+# critical energy calibrated to each bond's families (the moment tensors are a ghosted field,
+# recomputed after each re-partition), re-partitioned at output steps
+sed -E 's/^(\s*)dx: 0.5e-3/\1dx: 1.0e-3/; s/^(\s*)v: 0.05 /\1v: 1.0 /; s/final_time: 600e-6/final_time: 80e-6/;
+        s/interval: 100/interval: 25/; s/^(\s*)law: critical_energy/\1law: critical_energy\n\1calibration: family/' \
+  "$OLDPWD/../inputs/dcb.yaml" > dcb_family.yaml
+printf 'parallel:\n  rebalance_threshold: 1.0\n' >> dcb_family.yaml
+
 # a peridynamic plate beside a finite-element bar hitting a wall (tests/data/mixed_pd_fe.yaml)
 cp "$OLDPWD/data/mixed_pd_fe.yaml" mixed.yaml
 
@@ -81,8 +89,8 @@ cp coupled_bar.yaml coupled_rebalance.yaml
 printf 'parallel:\n  rebalance_threshold: 1.0\n' >> coupled_rebalance.yaml
 # (the consistent form is the default: coupled_bar runs it; a separate variant would repeat it)
 
-rebalanced="cylinder_rebalance mixed_rebalance sphere_on_block_rebalance cylinder_contact tube_ep coupled_rebalance horizon_consistent" # (the other two split evenly on 2 ranks)
-for deck in disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar wave_variable_horizon wave_pd_to_fe cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block sphere_on_block_rebalance cylinder_contact tube_ep taylor_corr damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance; do
+rebalanced="cylinder_rebalance mixed_rebalance sphere_on_block_rebalance cylinder_contact tube_ep coupled_rebalance horizon_consistent dcb_family" # (the other two split evenly on 2 ranks)
+for deck in disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar wave_variable_horizon wave_pd_to_fe cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block sphere_on_block_rebalance cylinder_contact tube_ep taylor_corr damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance dcb_family; do
   ref=""
   for np in 1 2 3; do
     mkdir -p "np$np"

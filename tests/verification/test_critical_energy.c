@@ -9,6 +9,10 @@
  *    e^d = 0, t_ij = t_ji = 9 K e / (|xi|^2 V)) w = (1/2)(t_ij + t_ji) e = 9 K e^2 / (|xi|^2 V),
  *    which is also the LPS energy of the pair over V^2 (so the factor 1/2 is that of the
  *    code's energy, not of the slide's 1/4).
+ *    With `calibration: family` (docs/theory/materials.md section 4.7) each end's family is the
+ *    one bond, whose moment along it is mu = sum (xi . n)^2 / |xi| V = |xi| V, so
+ *    w_c,ij = 8 G0 / (3 (mu_i + mu_j)) = 4 G0 / (3 |xi| V): PMB breaks at
+ *    s = sqrt(8 G0 / (3 c |xi|^2 V)), LPS at s = sqrt(4 G0 / (27 K |xi|)).
  *
  * 2. Separation (Willberg's material, DLR slides: K = 1.75 GPa, G = 0.808 GPa, rho = 2000, G0 = 12
  *    J/m^2; delta = 3.015 h, h = 0.5 mm). A bar of 12 x 16 x 16 points is pulled apart along x by
@@ -57,10 +61,10 @@ static const double K = 1.75e9, G = 8.08e8, RHO = 2000, G0 = 12;
 
 /* Part 1. Two points h apart along x, V = h^3; the right one moves by d(t) = rate t. Returns
  * the stretch of the step in which the bond broke, that of the step before in *seen_before,
- * and the hand value in *want. */
-static double one_bond(const char *model, double *want, double *seen_before) {
+ * and the hand value in *want; `family`: the law's calibration is `family`. */
+static double one_bond(const char *model, int family, double *want, double *seen_before) {
   const double h = 1e-3, delta = 1.5e-3, V = h * h * h, rate = 1; /* m/s */
-  const double wc = 4 * G0 / (PF_PI * pow(delta, 4));
+  const double wc = family ? 4 * G0 / (3 * h * V) : 4 * G0 / (PF_PI * pow(delta, 4));
   if (model[0] == 'p') { /* (1/2) c s^2 h = wc */
     double c = 18 * K / (PF_PI * pow(delta, 4));
     *want = sqrt(2 * wc / (c * h));
@@ -73,12 +77,12 @@ static double one_bond(const char *model, double *want, double *seen_before) {
            "materials: {m: {model: %s, density: %g, bulk_modulus: %g, shear_modulus: %g}}\n"
            "bodies:\n  - {name: b, material: m, horizon: %.17g,\n"
            "     geometry: {shape: box, lo: [0, 0, 0], hi: [%.17g, 0, 0], spacing: %.17g},\n"
-           "     damage: {law: critical_energy, energy_release_rate: %g}}\n"
+           "     damage: {law: critical_energy, energy_release_rate: %g, calibration: %s}}\n"
            "boundary_conditions:\n"
            "  - {region: {shape: box, lo: [-1, -1, -1], hi: [%.17g, 1, 1]}, displacement: [\"0\", \"0\", \"0\"]}\n"
            "  - {region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]}, displacement: [\"%.17g * t\", \"0\", \"0\"]}\n"
            "time: {steps: 1000000, dt: %.17g}\n",
-           model, RHO, K, G, delta, h, h, G0, 0.5 * h, 0.5 * h, rate, dt);
+           model, RHO, K, G, delta, h, h, G0, family ? "family" : "continuum", 0.5 * h, 0.5 * h, rate, dt);
   pf_sim *sim = pf_test_sim("critical_energy_bond", deck);
   pf_sim_globals g;
   const long nmax = (long)(2 * *want * h / (rate * dt)) + 10;
@@ -210,14 +214,15 @@ int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
   const int verbose = getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0;
   const char *models[2] = {"pmb", "lps"};
-  for (int m = 0; m < 2; m++) {
-    double want, before;
-    double got = one_bond(models[m], &want, &before);
-    /* the break happens in the first step whose stretch exceeds the hand value */
-    PF_TEST_TRUE(got >= want && before <= want);
-    if (verbose) printf("one %s bond: breaks at s = %.6e (previous step %.6e), hand value %.6e\n",
-                        models[m], got, before, want);
-  }
+  for (int m = 0; m < 2; m++)
+    for (int family = 0; family < 2; family++) {
+      double want, before;
+      double got = one_bond(models[m], family, &want, &before);
+      /* the break happens in the first step whose stretch exceeds the hand value */
+      PF_TEST_TRUE(got >= want && before <= want);
+      if (verbose) printf("one %s bond (calibration %s): breaks at s = %.6e (previous step %.6e), hand value %.6e\n",
+                          models[m], family ? "family" : "continuum", got, before, want);
+    }
   const char *laws[2] = {"critical_energy", "critical_stretch"};
   for (int m = 0; m < 2; m++)
     for (int l = 0; l < 2; l++) {
