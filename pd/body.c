@@ -512,6 +512,17 @@ double pf_pd_body_bulk_modulus(const pf_pd_body *b) { return b->bulk_modulus; }
 const pf_family *pf_pd_body_family(const pf_pd_body *b) { return &b->fam; }
 int64_t pf_pd_body_nbonds(const pf_pd_body *b) { return pf_pd_family_nbonds(&b->fam); }
 
+double pf_pd_body_point_sum(const pf_pd_body *b, const pf_points *pts, pf_pd_point_term term) {
+  double *v = malloc(sizeof *v * (size_t)(b->n > 0 ? b->n : 1));
+  if (!v) return NAN; /* (out of memory: shows in the balance) */
+#pragma omp parallel for schedule(static)
+  for (pf_int k = 0; k < b->n; k++) v[k] = term(b, pts, b->first + k);
+  double sum = 0;
+  for (pf_int k = 0; k < b->n; k++) sum += v[k];
+  free(v);
+  return sum;
+}
+
 double pf_pd_body_bytes_per_bond(const pf_pd_body *b) {
   const pf_family *f = &b->fam;
   return (double)(sizeof *f->neighbor + sizeof *f->broken + (f->vfrac ? sizeof *f->vfrac : 0) +
@@ -569,10 +580,12 @@ void pf_pd_body_record_breaks(pf_pd_body *b, const pf_points *pts) {
   }
 }
 
+/* Threaded: a point writes only its own damage, and the count of broken bonds is an integer sum. */
 int64_t pf_pd_body_damage(const pf_pd_body *b, pf_points *pts) {
   double *phi = pf_points_field_get(pts, "damage");
   const pf_family *fam = &b->fam;
   int64_t nbroken = 0;
+#pragma omp parallel for reduction(+ : nbroken) schedule(static)
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     double all = 0, intact = 0;
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {

@@ -308,15 +308,15 @@ static int ep_force(pf_pd_body *b, pf_points *pts) {
  *   W_i = V_i [ (K/2) theta^2 + (alpha_i / 2) sum_j w (e^d - e^dp)^2 V_j + Y0 eqps + H eqps^2 / 2 ]
  * (the plastic work int Y d eqps = sum_j t^d de^dp V_j: the energy a run's balance needs, as the
  * stress work of FE and correspondence bodies). */
-static double ep_energy(const pf_pd_body *b, const pf_points *pts) {
+static double ep_point_energy(const pf_pd_body *b, const pf_points *pts, pf_int i) {
   const ep *p = b->mat;
-  double w = 0;
-  for (pf_int i = b->first; i < b->first + b->n; i++) {
-    const double eq = p->eqps[i];
-    w += pts->vol[i] * (pf_pd_lps_energy_density(b, pts, i, p->theta[i], p->m[i], b->fam.state, NSTATE) +
+  const double eq = p->eqps[i];
+  return pts->vol[i] * (pf_pd_lps_energy_density(b, pts, i, p->theta[i], p->m[i], b->fam.state, NSTATE) +
                         p->Y0 * eq + 0.5 * p->H * eq * eq);
-  }
-  return w;
+}
+
+static double ep_energy(const pf_pd_body *b, const pf_points *pts) {
+  return pf_pd_body_point_sum(b, pts, ep_point_energy);
 }
 
 static void ep_destroy(pf_pd_body *b) {

@@ -306,12 +306,13 @@ double pf_pd_lps_release(pf_pd_body *b, const pf_points *pts, pf_int i, double m
   return released;
 }
 
-static double lps_energy(const pf_pd_body *b, const pf_points *pts) {
+static double lps_point_energy(const pf_pd_body *b, const pf_points *pts, pf_int i) {
   const lps *p = b->mat;
-  double w = 0;
-  for (pf_int i = b->first; i < b->first + b->n; i++)
-    w += pts->vol[i] * pf_pd_lps_energy_density(b, pts, i, p->theta[i], p->m[i], NULL, 0);
-  return w;
+  return pts->vol[i] * pf_pd_lps_energy_density(b, pts, i, p->theta[i], p->m[i], NULL, 0);
+}
+
+static double lps_energy(const pf_pd_body *b, const pf_points *pts) {
+  return pf_pd_body_point_sum(b, pts, lps_point_energy);
 }
 
 /* For the stable step: the PMB micromodulus of equal P-wave modulus, K_eq = (K + 4G/3) / 1.8. */

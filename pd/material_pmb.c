@@ -248,13 +248,16 @@ static double pmb_point_energy(const pf_pd_body *b, const double *rec, pf_int i,
   return total;
 }
 
+static double pmb_vol_energy(const pf_pd_body *b, const pf_points *pts, pf_int i) {
+  const pmb *p = b->mat;
+  return pts->vol[i] * pmb_point_energy(b, p->rec.rec, i, p->c);
+}
+
 /* Stored energy: W = sum_i V_i sum_j (1/4) c omega s^2 |xi| V_j (Silling & Askari 2005, eq. 6). */
 static double pmb_energy(const pf_pd_body *b, const pf_points *pts) {
   pmb *p = b->mat;
   if (pf_batch_records_fill(&p->rec, pts, b->s0)) return NAN; /* (out of memory: shows in the balance) */
-  double w = 0;
-  for (pf_int i = b->first; i < b->first + b->n; i++) w += pts->vol[i] * pmb_point_energy(b, p->rec.rec, i, p->c);
-  return w;
+  return pf_pd_body_point_sum(b, pts, pmb_vol_energy);
 }
 
 static double pmb_micromodulus(const pf_pd_body *b, double delta) {

@@ -235,6 +235,10 @@ int64_t pf_pd_lps_batched_force(pf_pd_body *b, pf_points *pts, const double *rec
  * m_i = sum_j omega |xi|^2 V_j of the owned points (Silling et al. 2007, eq. 90) into m, then the
  * ghosts' values; an isolated point is an input error naming it (pd/body.c). */
 int pf_pd_weighted_volumes(const pf_pd_body *b, pf_points *pts, double *m);
+/* sum_i term(i) over the owned points, the terms evaluated by the threads and summed in point
+ * order: the same bits for every thread count (NAN when out of memory). */
+typedef double (*pf_pd_point_term)(const pf_pd_body *b, const pf_points *pts, pf_int i);
+double pf_pd_body_point_sum(const pf_pd_body *b, const pf_points *pts, pf_pd_point_term term);
 
 /* Partial stress (pd/partial_stress.c, docs/theory/coupling.md §2). The inverse shape tensor
  * of store point i over its own intact family into Ki (row-major); 0 (and Ki = 0) when its
