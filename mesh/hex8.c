@@ -147,3 +147,29 @@ double pf_hex8_char_length(double x[8][3], double V) {
   }
   return V / amax;
 }
+
+/* The smallest Jacobian determinant det(dx/dxi) over the eight corners. At corner I the trilinear
+ * map's derivative along each parent axis is exact from the edge to the neighbour n_k that differs
+ * in that coordinate only: dx/dxi_k = (x_I - x_{n_k}) / (2 s_k), s_k = node_sign[I][k]. A one-point
+ * element checks det J at its centre only; a corner below zero means the map folds over itself
+ * there (the element is tangled, its surface self-intersecting) while the centre may look sound
+ * (the corner Jacobians of Knupp 2000 for hexahedral mesh quality). */
+double pf_hex8_min_corner_jacobian(double x[8][3]) {
+  double jmin = INFINITY;
+  for (int I = 0; I < 8; I++) {
+    double d[3][3];
+    for (int k = 0; k < 3; k++) {
+      int n = 0;
+      for (int J = 0; J < 8; J++) {
+        int same = 0;
+        for (int c = 0; c < 3; c++) same += pf_hex8_node_sign[J][c] == pf_hex8_node_sign[I][c];
+        if (same == 2 && pf_hex8_node_sign[J][k] != pf_hex8_node_sign[I][k]) n = J;
+      }
+      for (int i = 0; i < 3; i++) d[k][i] = (x[I][i] - x[n][i]) / (2.0 * pf_hex8_node_sign[I][k]);
+    }
+    double c[3];
+    pf_vec3_cross(d[0], d[1], c);
+    jmin = fmin(jmin, c[0] * d[2][0] + c[1] * d[2][1] + c[2] * d[2][2]);
+  }
+  return jmin;
+}
