@@ -180,9 +180,10 @@ static void hourglass_force(pf_fem_body *b, pf_int e, double x[8][3], double v[8
     }
 }
 
-/* Pass 2: forces from the new stress, bulk viscosity, hourglass; energies; stable step. */
+/* Pass 2: forces from the new stress, bulk viscosity, hourglass; energies; stable step; *tangled
+ * when the body converts elements and a corner's Jacobian is negative (docs/theory/fem.md sec. 9b). */
 static int element_forces(pf_fem_body *b, const pf_points *p, pf_int e, double dt, const double *c,
-                          const double *D, const scratch *s, double *stable_dt) {
+                          const double *D, const scratch *s, double *stable_dt, int *tangled) {
   double X[8][3], x[8][3], xm[8][3], v[8][3], f[8][3] = {{0}};
   double(*B)[3] = (double(*)[3])s->B;
   gather_nodes(b, p, e, dt, X, x, xm, v);
@@ -227,6 +228,7 @@ static int element_forces(pf_fem_body *b, const pf_points *p, pf_int e, double d
   memcpy(&b->fe[24 * (size_t)e], f, sizeof f);
   double Qb = s->trD < 0 ? b->bv_linear * cmax + b->bv_quadratic * l * fabs(s->trD) : 0;
   *stable_dt = fmin(*stable_dt, l / (Qb + sqrt(Qb * Qb + cmax * cmax)));
+  *tangled = b->convert && pf_hex8_min_corner_jacobian(x) < 0;
   return 0;
 }
 
@@ -250,8 +252,9 @@ static int evaluate_chunk(pf_fem_body *b, const pf_points *pts, double dt, pf_in
       memset(&b->fe[24 * (size_t)e], 0, sizeof(double) * 24);
       continue;
     }
-    PF_CALL(element_forces(b, pts, e, dt, &c[(size_t)nq * k], &D[6 * (size_t)nq * k], &s[k], stable_dt));
-    if (b->erosion && pf_fem_erosion_due(b, e, s[k].V / s[k].V0)) b->due[e] = b->eid[e];
+    int tangled = 0;
+    PF_CALL(element_forces(b, pts, e, dt, &c[(size_t)nq * k], &D[6 * (size_t)nq * k], &s[k], stable_dt, &tangled));
+    if (b->erosion && (tangled || pf_fem_erosion_due(b, e, s[k].V / s[k].V0))) b->due[e] = b->eid[e];
   }
   return 0;
 }

@@ -147,3 +147,24 @@ double pf_hex8_char_length(double x[8][3], double V) {
   }
   return V / amax;
 }
+
+/* The smallest Jacobian determinant det(dx/dxi) over the eight corners. At corner I the trilinear
+ * map's derivative along each parent axis is exact from the edge to the neighbour n_k that differs
+ * in that coordinate only: dx/dxi_k = (x_I - x_{n_k}) / (2 s_k), s_k = node_sign[I][k]. A one-point
+ * element checks det J at its centre only; a corner below zero means the map folds over itself
+ * there (the element is tangled, its surface self-intersecting) while the centre may look sound
+ * (the corner Jacobians of Knupp 2000 for hexahedral mesh quality). */
+double pf_hex8_min_corner_jacobian(double x[8][3]) {
+  static const int edge_neighbour[8][3] = {{1, 3, 4}, {0, 2, 5}, {3, 1, 6}, {2, 0, 7},
+                                           {5, 7, 0}, {4, 6, 1}, {7, 5, 2}, {6, 4, 3}};
+  double jmin = INFINITY;
+  for (int I = 0; I < 8; I++) {
+    double d[3][3], c[3];
+    for (int k = 0; k < 3; k++)
+      for (int i = 0; i < 3; i++)
+        d[k][i] = (x[I][i] - x[edge_neighbour[I][k]][i]) / (2.0 * pf_hex8_node_sign[I][k]);
+    pf_vec3_cross(d[0], d[1], c);
+    jmin = fmin(jmin, c[0] * d[2][0] + c[1] * d[2][1] + c[2] * d[2][2]);
+  }
+  return jmin;
+}

@@ -64,5 +64,7 @@ double pf_hex8_gradients(double x[8][3], const double xi[3], double grad[8][3]);
 double pf_hex8_mean_gradient(double x[8][3], double B[8][3]);
 void pf_hex8_lumped_mass(double x[8][3], double rho, double m[8]);
 double pf_hex8_char_length(double x[8][3], double V);
+/* The smallest det J over the eight corners (below 0: the element is tangled). */
+double pf_hex8_min_corner_jacobian(double x[8][3]);
 
 #endif

@@ -8,6 +8,7 @@
 #include "test_common.h"
 
 #include <math.h>
+#include <string.h>
 
 static const double gl6_x[6] = {-0.9324695142031521, -0.6612093864662645, -0.2386191860831969,
                                 0.2386191860831969,  0.6612093864662645,  0.9324695142031521};
@@ -120,8 +121,33 @@ static void test_mass_and_length(void) {
   PF_TEST_CLOSE(pf_hex8_char_length(c, pf_hex8_mean_gradient(c, B)), h, 1e-14, 0);
 }
 
+/* Corner Jacobians: a cube of edge h has det J = (h/2)^3 at every corner; a distorted element's
+ * smallest equals the smallest full isoparametric det J evaluated at the corners; pushing a corner
+ * node past the plane of its three neighbours (the corner folds over) makes it negative while the
+ * element's volume stays positive. */
+static void test_corner_jacobian(void) {
+  double c[8][3], x[8][3], grad[8][3], h = 2.0e-3;
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) c[I][i] = 0.5 * h * (1 + pf_hex8_node_sign[I][i]);
+  PF_TEST_CLOSE(pf_hex8_min_corner_jacobian(c), 0.125 * h * h * h, 1e-14, 0);
+  distorted(x);
+  double jmin = INFINITY;
+  for (int I = 0; I < 8; I++) jmin = fmin(jmin, pf_hex8_gradients(x, pf_hex8_node_sign[I], grad));
+  PF_TEST_CLOSE(pf_hex8_min_corner_jacobian(x), jmin, 1e-13, 0);
+  /* node 6 (+1, +1, +1) of the cube: its neighbours 2, 5, 7 span the plane x + y + z = 2h; moved
+   * along (-1, -1, -1) by d, it crosses the plane at d = h / sqrt(3) */
+  for (int k = -1; k <= 1; k += 2) {
+    double d = h / sqrt(3.0) * (1 + 0.01 * k), B[8][3];
+    memcpy(x, c, sizeof x);
+    for (int i = 0; i < 3; i++) x[6][i] -= d / sqrt(3.0);
+    PF_TEST_TRUE((pf_hex8_min_corner_jacobian(x) < 0) == (k > 0));
+    PF_TEST_TRUE(pf_hex8_mean_gradient(x, B) > 0.5 * h * h * h);
+  }
+}
+
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
+  test_corner_jacobian();
   test_mean_gradient();
   test_far_from_origin();
   test_hourglass_vectors();
