@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Every shipped deck, cut to a few steps, runs to the end: exit 0, a state digest, an Exodus
 # file that ncdump reads with a SPHERE block for a peridynamic body and a HEX8 block for a
-# finite-element body, a history file; and a second run gives the same digest (determinism).
+# finite-element body, a history file; and a second run gives the same digest (determinism),
+# except for the decks whose reduced copies mpi_digests runs three times and compares already.
 # usage: run_examples.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
+repeated_in_mpi_digests=" disk_impact_rigid fragmenting_cylinder wave_in_bar wave_variable_horizon wave_pd_to_fe taylor_impact "
 rm -rf "$scratch" && mkdir -p "$scratch"
 for deck in ../inputs/*.yaml; do
   name=$(basename "$deck" .yaml)
@@ -14,10 +16,14 @@ for deck in ../inputs/*.yaml; do
   sed -E 's/^(\s*)final_time:.*/\1steps: 5/; s#\.\./meshes/#'"$PWD"'/../meshes/#' "$deck" > "$short"
   grep -qE '^\s*steps: 5$' "$short" ||
     { echo "$name: no 'final_time:' line of its own to cut the run at 5 steps (block style: time:, then final_time: on a line)"; fail=1; continue; }
-  for run in 1 2; do
+  runs="1 2"
+  [[ "$repeated_in_mpi_digests" == *" $name "* ]] && runs=1
+  digest[2]=
+  for run in $runs; do
     out=$(cd "$scratch" && "$exe" "$name.yaml" 2>&1) || { echo "$name: exit $?: $out"; fail=1; continue; }
     digest[$run]=$(echo "$out" | sed -n 's/^state digest: //p')
   done
+  [ "$runs" = 1 ] && digest[2]=${digest[1]:-}
   [ -n "${digest[1]:-}" ] || { echo "$name: no state digest"; fail=1; continue; }
   [ "${digest[1]}" = "${digest[2]}" ] || { echo "$name: digests differ: ${digest[1]} ${digest[2]}"; fail=1; }
   exo=$(ls "$scratch"/*.e 2>/dev/null | grep -F "$(grep -E '^\s*file:' "$short" | sed -E 's/.*file:\s*//' | head -1)" | head -1)
