@@ -11,6 +11,14 @@
  *    double, the rest in single precision with the stretch written as
  *    s = (2 xi.eta + eta.eta) / (|xi| (|xi + eta| + |xi|)), which has no cancellation (exactly 0
  *    at rest), and the force sums in double.
+ *  - half, fixed point: the half-bond loop with every force summed as a 64-bit integer count of
+ *    2^-40 N (one rounding per bond and side), so that the sums do not depend on their order and
+ *    therefore not on the partition or the thread count;
+ *  - half, gathered: pass 1 computes each pair's force scale w = c s V_i V_j / r once (j > i) and
+ *    stores it in both directed slots (i's and, through the reverse index, j's); pass 2 walks
+ *    every full row in its order and sums w (y_j - y_i), so each point's sum has the production
+ *    loop's order whatever the partition (the issue's "computed once per undirected bond and
+ *    gathered in row order").
  * Each prints its rate in directed bond evaluations per second, its ratio to production and
  * its largest force difference from production. Usage: bench_bond_variants (one rank). */
 #include "sim/sim.h"
@@ -26,23 +34,33 @@
 #if defined(PF_BATCH_AVX512)
 static const double BULK = 1.0e9, HORIZON = 3.0001e-3; /* those of pf_test_bond_lattice */
 
-/* The pairs (i, j > i) of the family, row by row, with 8 slack entries. */
+/* The pairs (i, j > i) of the family, row by row, with 8 slack entries; for each pair its two
+ * directed slots in the full rows, i's (slot) and j's (rev). */
 typedef struct {
   int64_t *off;
-  int32_t *nb;
+  int32_t *nb, *slot, *rev;
 } half_list;
 
 static half_list half_of(const pf_family *fam, pf_int n) {
-  half_list h = {malloc((size_t)(n + 1) * sizeof *h.off), calloc((size_t)fam->offset[n] / 2 + 16, sizeof *h.nb)};
+  const size_t cap = (size_t)fam->offset[n] / 2 + 16;
+  half_list h = {malloc((size_t)(n + 1) * sizeof *h.off), calloc(cap, sizeof *h.nb), calloc(cap, sizeof *h.slot),
+                 calloc(cap, sizeof *h.rev)};
   int64_t m = 0;
   for (pf_int i = 0; i < n; i++) {
     h.off[i] = m;
-    for (int64_t k = fam->offset[i]; k < fam->offset[i + 1]; k++)
-      if (fam->neighbor[k] > i) h.nb[m++] = fam->neighbor[k];
+    for (int64_t k = fam->offset[i]; k < fam->offset[i + 1]; k++) {
+      const pf_int j = fam->neighbor[k];
+      if (j <= i) continue;
+      int64_t kr = fam->offset[j];
+      while (fam->neighbor[kr] != i) kr++; /* the family is symmetric on one rank */
+      h.nb[m] = j, h.slot[m] = (int32_t)k, h.rev[m] = (int32_t)kr, m++;
+    }
   }
   h.off[n] = m;
   return h;
 }
+
+static void half_free(half_list *h) { free(h->off), free(h->nb), free(h->slot), free(h->rev); }
 
 /* F[4 j + q] -= v[q] lane l for the nn lanes l (j = idx[l]): the three vectors transposed into
  * rows of four (the fourth 0) by 4 unpacks and 4 permutes, each row one 256-bit
@@ -63,6 +81,26 @@ static inline void scatter_sub(double *F, const int32_t *idx, int nn, const __m5
       double *fj = F + 4 * (size_t)idx[l];
       const __m256d row = hh ? _mm512_extractf64x4_pd(r[q], 1) : _mm512_castpd512_pd256(r[q]);
       _mm256_storeu_pd(fj, _mm256_sub_pd(_mm256_loadu_pd(fj), row));
+    }
+}
+
+/* As scatter_sub for rows of four 64-bit integers: v holds the counts' bits (cast to double
+ * only to be transposed by the same permutes); each row one 256-bit integer subtract. */
+static inline void scatter_sub_q(int64_t *F, const int32_t *idx, int nn, const __m512d v[3]) {
+  const __m512d z = _mm512_setzero_pd();
+  const __m512d xy0 = _mm512_unpacklo_pd(v[0], v[1]), xy1 = _mm512_unpackhi_pd(v[0], v[1]);
+  const __m512d z0 = _mm512_unpacklo_pd(v[2], z), z1 = _mm512_unpackhi_pd(v[2], z);
+  const __m512i lo = _mm512_set_epi64(11, 10, 3, 2, 9, 8, 1, 0), hi = _mm512_set_epi64(15, 14, 7, 6, 13, 12, 5, 4);
+  const __m512d r[4] = {_mm512_permutex2var_pd(xy0, lo, z0), _mm512_permutex2var_pd(xy0, hi, z0),
+                        _mm512_permutex2var_pd(xy1, lo, z1), _mm512_permutex2var_pd(xy1, hi, z1)};
+  static const int lane[4][2] = {{0, 2}, {4, 6}, {1, 3}, {5, 7}};
+  for (int q = 0; q < 4; q++)
+    for (int hh = 0; hh < 2; hh++) {
+      const int l = lane[q][hh];
+      if (l >= nn) continue;
+      __m256i *fj = (__m256i *)(F + 4 * (size_t)idx[l]);
+      const __m256i row = _mm256_castpd_si256(hh ? _mm512_extractf64x4_pd(r[q], 1) : _mm512_castpd512_pd256(r[q]));
+      _mm256_storeu_si256(fj, _mm256_sub_epi64(_mm256_loadu_si256(fj), row));
     }
 }
 
@@ -91,6 +129,94 @@ static void half_pmb(const half_list *h, const double *rec, pf_int n, double c, 
       scatter_sub(F, h->nb + k0, nn, fe);
     }
     for (int q = 0; q < 3; q++) F[4 * i + q] += pf_batch_sum_v(Fi[q]);
+  }
+}
+
+/* The half-bond batch's force vectors fe (zero in dead lanes) and its count of lanes: the pair
+ * force c s V_i V_j e / r of half_pmb, shared by the two order-independent variants below. */
+static inline __attribute__((always_inline)) void half_batch(const half_list *h, const double *rec, const double *ri,
+                                                             int64_t k0, int64_t end, __m512d cc, __m512d *w,
+                                                             __m512d fe[3]) {
+  const int nn = end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH;
+  __m512d a[PF_REC];
+  pf_batch_geom g;
+  pf_batch_gather_v(rec, h->nb + k0, a);
+  pf_batch_geom_v(a, ri, &g);
+  const __m512d s = _mm512_mul_pd(_mm512_sub_pd(g.r, g.r0), g.ir0);
+  const __mmask8 over = _mm512_cmp_pd_mask(s, _mm512_min_pd(_mm512_set1_pd(ri[REC_AUX]), a[REC_AUX]), _CMP_GT_OQ);
+  const __mmask8 alive = (__mmask8)(((1u << nn) - 1u) & ~over);
+  *w = _mm512_maskz_mov_pd(alive, _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(cc, s), g.ir),
+                                                _mm512_mul_pd(_mm512_set1_pd(ri[REC_V]), a[REC_V])));
+  for (int q = 0; q < 3; q++) fe[q] = _mm512_mul_pd(*w, g.e[q]);
+}
+
+enum { FIX_BITS = 40 }; /* the fixed-point unit: 2^-40 N */
+
+/* Half-bond PMB summed in fixed point: Fq (rows of four 64-bit counts of 2^-40 N) gets each
+ * pair's force, rounded once, added to i and subtracted from j; integer sums are exact, so the
+ * result does not depend on the order of the pairs. F (rows of three) is Fq in newtons. */
+static void half_fixed_pmb(const half_list *h, const double *rec, pf_int n, double c, int64_t *Fq, double *F) {
+  const __m512d cc = _mm512_set1_pd(c), unit = _mm512_set1_pd(ldexp(1.0, FIX_BITS));
+  memset(Fq, 0, 4 * (size_t)n * sizeof *Fq);
+  for (pf_int i = 0; i < n; i++) {
+    const double *ri = rec + PF_REC * (size_t)i;
+    __m512i Fi[3] = {_mm512_setzero_si512(), _mm512_setzero_si512(), _mm512_setzero_si512()};
+    for (int64_t k0 = h->off[i]; k0 < h->off[i + 1]; k0 += PF_BATCH) {
+      __m512d w, fe[3];
+      half_batch(h, rec, ri, k0, h->off[i + 1], cc, &w, fe);
+      __m512d fq[3];
+      for (int q = 0; q < 3; q++) {
+        const __m512i k = _mm512_cvtpd_epi64(_mm512_mul_pd(fe[q], unit));
+        Fi[q] = _mm512_add_epi64(Fi[q], k);
+        fq[q] = _mm512_castsi512_pd(k);
+      }
+      const int nn = h->off[i + 1] - k0 < PF_BATCH ? (int)(h->off[i + 1] - k0) : PF_BATCH;
+      scatter_sub_q(Fq, h->nb + k0, nn, fq);
+    }
+    for (int q = 0; q < 3; q++) Fq[4 * i + q] += _mm512_reduce_add_epi64(Fi[q]);
+  }
+  for (pf_int i = 0; i < n; i++)
+    for (int q = 0; q < 3; q++) F[3 * i + q] = ldexp((double)Fq[4 * i + q], -FIX_BITS);
+}
+
+/* Half-bond PMB, gathered: pass 1 stores each pair's w = c s V_i V_j / r once, in pair order
+ * (wh); pass 2 walks every full row in row order, gathers w through the slot's pair index (pk)
+ * and y_j from rows of four (y4), and sums w (y_j - y_i): production's order of the terms. */
+static void half_gathered_pmb(const half_list *h, const pf_family *fam, const int32_t *pk, const double *rec,
+                              const double *y4, pf_int n, double c, double *wh, double *F) {
+  const __m512d cc = _mm512_set1_pd(c);
+  for (pf_int i = 0; i < n; i++) {
+    const double *ri = rec + PF_REC * (size_t)i;
+    for (int64_t k0 = h->off[i]; k0 < h->off[i + 1]; k0 += PF_BATCH) {
+      __m512d w, fe[3];
+      half_batch(h, rec, ri, k0, h->off[i + 1], cc, &w, fe);
+      _mm512_storeu_pd(wh + k0, w);
+    }
+  }
+  const __m512i lo = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0), hi = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
+  for (pf_int i = 0; i < n; i++) {
+    const __m512d yi[3] = {_mm512_set1_pd(y4[4 * i]), _mm512_set1_pd(y4[4 * i + 1]), _mm512_set1_pd(y4[4 * i + 2])};
+    __m512d Fi[3] = {_mm512_setzero_pd(), _mm512_setzero_pd(), _mm512_setzero_pd()};
+    const int64_t end = fam->offset[i + 1];
+    for (int64_t k0 = fam->offset[i]; k0 < end; k0 += PF_BATCH) {
+      const __mmask8 lanes = (__mmask8)((1u << (end - k0 < PF_BATCH ? end - k0 : PF_BATCH)) - 1u);
+      const int32_t *j = fam->neighbor + k0;
+      /* rows l and l + 4 of y4 in one register each, then the 8 x 4 transpose */
+      __m512d r[4], t[4];
+      for (int l = 0; l < 4; l++)
+        r[l] = _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_loadu_pd(y4 + 4 * (size_t)j[l])),
+                                  _mm256_loadu_pd(y4 + 4 * (size_t)j[l + 4]), 1);
+      t[0] = _mm512_unpacklo_pd(r[0], r[1]), t[1] = _mm512_unpackhi_pd(r[0], r[1]);
+      t[2] = _mm512_unpacklo_pd(r[2], r[3]), t[3] = _mm512_unpackhi_pd(r[2], r[3]);
+      /* t[0] = x0 x1 z0 z1 | x4 x5 z4 z5, t[1] = y0 y1 . . | y4 y5 . ., t[2], t[3] rows 2, 3, 6, 7 */
+      const __m512d yx = _mm512_permutex2var_pd(t[0], lo, t[2]), yz = _mm512_permutex2var_pd(t[0], hi, t[2]);
+      const __m512d yy = _mm512_permutex2var_pd(t[1], lo, t[3]);
+      const __m512d yj[3] = {yx, yy, yz};
+      const __m512d w = _mm512_mask_i32gather_pd(_mm512_setzero_pd(), lanes,
+                                                 _mm256_loadu_si256((const __m256i *)(pk + k0)), wh, 8);
+      for (int q = 0; q < 3; q++) Fi[q] = _mm512_fmadd_pd(w, _mm512_sub_pd(yj[q], yi[q]), Fi[q]);
+    }
+    for (int q = 0; q < 3; q++) F[3 * i + q] = pf_batch_sum_v(Fi[q]);
   }
 }
 
@@ -155,16 +281,27 @@ int main(int argc, char **argv) {
   pf_pd_body *b = pf_sim_body(sim, 0);
   const pf_family *fam = pf_pd_body_family(b);
   const pf_int n = p->n_owned;
-  const half_list h = half_of(fam, n);
+  half_list h = half_of(fam, n);
   const double c = 18 * BULK / (acos(-1.0) * pow(HORIZON, 4)), bonds = (double)fam->offset[n];
   double *s0 = malloc((size_t)n * sizeof *s0), *Fh = aligned_alloc(64, (32 * (size_t)n + 63) / 64 * 64),
-         *Fm = malloc(3 * (size_t)n * sizeof *Fm);
+         *Fm = malloc(3 * (size_t)n * sizeof *Fm), *Fx = malloc(3 * (size_t)n * sizeof *Fx),
+         *Fg = malloc(3 * (size_t)n * sizeof *Fg), *wh = calloc((size_t)bonds / 2 + 16, sizeof *wh),
+         *y4 = calloc(4 * (size_t)n, sizeof *y4);
+  int32_t *pk = calloc((size_t)bonds + 16, sizeof *pk);
+  for (int64_t m = 0; m < h.off[n]; m++) pk[h.slot[m]] = (int32_t)m, pk[h.rev[m]] = (int32_t)m;
+  for (pf_int i = 0; i < n; i++)
+    for (int q = 0; q < 3; q++) y4[4 * i + q] = p->y[3 * i + q];
+  int64_t *Fq = aligned_alloc(64, (32 * (size_t)n + 63) / 64 * 64);
   for (pf_int i = 0; i < n; i++) s0[i] = 0.5;
   pf_batch_records rec = {0};
-  double best[3] = {INFINITY, INFINITY, INFINITY};
+  enum { NV = 5 };
+  static const char *name[NV] = {"production:", "half:", "mixed:", "half, fixed point:", "half, gathered:"};
+  const double *force[NV] = {p->f, Fh, Fm, Fx, Fg};
+  const int stride[NV] = {3, 4, 3, 3, 3};
+  double best[NV] = {INFINITY, INFINITY, INFINITY, INFINITY, INFINITY};
   for (int rep = 0; rep < 9; rep++) {
     memset(p->f, 0, 3 * (size_t)n * sizeof *p->f);
-    double t[4];
+    double t[NV + 1];
     t[0] = pf_wtime();
     if (pf_pd_body_force(b, p, 0.0)) return 1;
     t[1] = pf_wtime();
@@ -174,18 +311,22 @@ int main(int argc, char **argv) {
     if (pf_batch_records_fill(&rec, p, s0)) return 1;
     mixed_pmb(fam, rec.rec, n, c, Fm);
     t[3] = pf_wtime();
-    for (int v = 0; v < 3; v++) best[v] = fmin(best[v], t[v + 1] - t[v]);
+    if (pf_batch_records_fill(&rec, p, s0)) return 1;
+    half_fixed_pmb(&h, rec.rec, n, c, Fq, Fx);
+    t[4] = pf_wtime();
+    if (pf_batch_records_fill(&rec, p, s0)) return 1;
+    half_gathered_pmb(&h, fam, pk, rec.rec, y4, n, c, wh, Fg);
+    t[5] = pf_wtime();
+    for (int v = 0; v < NV; v++) best[v] = fmin(best[v], t[v + 1] - t[v]);
   }
   double fmax_ = 0;
   for (pf_int k = 0; k < 3 * n; k++) fmax_ = fmax(fmax_, fabs(p->f[k]));
   printf("lattice 30^3, %.0f directed bonds; largest force %.3g N\n", bonds, fmax_);
-  printf("production: %6.0f M directed bonds/s\n", bonds / best[0] / 1e6);
-  printf("half:       %6.0f M directed bonds/s, %.2fx production, max force difference %.2g N\n",
-         bonds / best[1] / 1e6, best[0] / best[1], max_diff(Fh, 4, p->f, n));
-  printf("mixed:      %6.0f M directed bonds/s, %.2fx production, max force difference %.2g N\n",
-         bonds / best[2] / 1e6, best[0] / best[2], max_diff(Fm, 3, p->f, n));
+  for (int v = 0; v < NV; v++)
+    printf("%-19s %6.0f M directed bonds/s, %.2fx production, max force difference %.2g N\n", name[v],
+           bonds / best[v] / 1e6, best[0] / best[v], v ? max_diff(force[v], stride[v], p->f, n) : 0.0);
   pf_batch_records_free(&rec);
-  free(s0), free(Fh), free(Fm), free(h.off), free(h.nb);
+  free(s0), free(Fh), free(Fm), free(Fx), free(Fg), free(wh), free(y4), free(pk), free(Fq), half_free(&h);
   pf_sim_destroy(&sim);
   return pf_test_finish();
 }
