@@ -559,7 +559,8 @@ static pf_int row_of_bond(const int64_t *offset, pf_int n, int64_t k) {
 /* Each bond that broke since the last call takes its current length as its rest length. Called
  * every step when the body is in self-contact, so the scan reads the broken flags eight at a
  * time and skips a word of intact bonds at once (PF_FAMILY_SLACK zeros end the array): before,
- * testing every bond cost 15 % of a PMB step in which nothing broke. */
+ * testing every bond cost 15 % of a PMB step in which nothing broke. A word with broken bonds
+ * finds its unrecorded ones by one mask (5.7 % of the expanding tube's run bond by bond). */
 void pf_pd_body_record_breaks(pf_pd_body *b, const pf_points *pts) {
   pf_family *fam = &b->fam;
   const int64_t nbonds = fam->offset[b->n], nwords = (nbonds + 7) / 8;
@@ -568,8 +569,14 @@ void pf_pd_body_record_breaks(pf_pd_body *b, const pf_points *pts) {
     uint64_t word;
     memcpy(&word, &fam->broken[8 * w], sizeof word);
     if (!word) continue;
-    for (int64_t k = 8 * w; k < 8 * w + 8 && k < nbonds; k++) {
-      if (!fam->broken[k] || fam->rest[k] > 0) continue;
+    /* the word's broken bonds not yet recorded, as bits, without a branch per bond (in a
+     * fragmenting body most words hold broken bonds; the slack past the last bond is zero) */
+    const uint8_t *bw = &fam->broken[8 * w];
+    const float *rw = &fam->rest[8 * w];
+    unsigned todo = 0;
+    for (int l = 0; l < 8; l++) todo |= (unsigned)((bw[l] != 0) & !(rw[l] > 0.0f)) << l;
+    for (; todo; todo &= todo - 1) {
+      const int64_t k = 8 * w + __builtin_ctz(todo);
       const pf_int i = b->first + row_of_bond(fam->offset, b->n, k);
       const double *yi = &pts->y[3 * i], *yj = &pts->y[3 * fam->neighbor[k]];
       const double d0 = yj[0] - yi[0], d1 = yj[1] - yi[1], d2 = yj[2] - yi[2], r = sqrt(d0 * d0 + d1 * d1 + d2 * d2);

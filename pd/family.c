@@ -226,7 +226,7 @@ int pf_pd_family_from_rows(const pf_bond_rows *rows, const pf_int *local, pf_int
   PF_MALLOC(fam->neighbor, nb + PF_FAMILY_SLACK);
   PF_MALLOC(fam->broken, nb + PF_FAMILY_SLACK);
   if (partial_volumes) PF_MALLOC(fam->vfrac, nb + PF_FAMILY_SLACK);
-  PF_MALLOC(fam->rest, nb + 1);
+  PF_MALLOC(fam->rest, nb + PF_FAMILY_SLACK); /* (pf_pd_body_record_breaks reads whole words) */
   if (ns > 0) PF_MALLOC(fam->state, nb * ns);
   for (pf_int i = 0; i <= n; i++) fam->offset[i] = rows->offset[first + i] - o0;
   for (int64_t k = 0; k < nb; k++) fam->neighbor[k] = local[o0 + k];
