@@ -85,7 +85,9 @@ static inline void scatter_sub(double *F, const int32_t *idx, int nn, const __m5
 }
 
 /* As scatter_sub for rows of four 64-bit integers: v holds the counts' bits (cast to double
- * only to be transposed by the same permutes); each row one 256-bit integer subtract. */
+ * only to be transposed by the same permutes); each row one 256-bit integer subtract. Written
+ * out again on purpose: with the transpose shared through an array of eight rows, GCC kept the
+ * rows in memory and the fixed-point loop measured 1.03x production instead of 1.28x. */
 static inline void scatter_sub_q(int64_t *F, const int32_t *idx, int nn, const __m512d v[3]) {
   const __m512d z = _mm512_setzero_pd();
   const __m512d xy0 = _mm512_unpacklo_pd(v[0], v[1]), xy1 = _mm512_unpackhi_pd(v[0], v[1]);
