@@ -106,50 +106,50 @@ static inline void scatter_sub_q(int64_t *F, const int32_t *idx, int nn, const _
     }
 }
 
-/* Half-bond PMB: F (forces, N, rows of four) of the n points; the pair force c s V_i V_j e / r (Silling &
- * Askari 2005, eq. 7) goes to i and, negated, to j. */
+/* The lanes of the half-bond batch from k0 of a row ending at end: the neighbours' records in a,
+ * the geometry in g, the stretch s; returns the lanes whose bond holds (s <= min(s0_i, s0_j),
+ * REC_AUX holding s0). */
+static inline __attribute__((always_inline)) __mmask8 half_geom(const half_list *h, const double *rec,
+                                                                const double *ri, int64_t k0, int64_t end,
+                                                                __m512d a[PF_REC], pf_batch_geom *g, __m512d *s) {
+  const int nn = end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH;
+  pf_batch_gather_v(rec, h->nb + k0, a);
+  pf_batch_geom_v(a, ri, g);
+  *s = _mm512_mul_pd(_mm512_sub_pd(g->r, g->r0), g->ir0);
+  const __mmask8 over = _mm512_cmp_pd_mask(*s, _mm512_min_pd(_mm512_set1_pd(ri[REC_AUX]), a[REC_AUX]), _CMP_GT_OQ);
+  return (__mmask8)(((1u << nn) - 1u) & ~over);
+}
+
+/* The half-bond PMB batch: the pair force c s V_i V_j e / r (Silling & Askari 2005, eq. 7) as
+ * w = c s V_i V_j / r and the vectors fe = w e (zero in the lanes that do not hold). */
+static inline __attribute__((always_inline)) void half_batch(const half_list *h, const double *rec, const double *ri,
+                                                             int64_t k0, int64_t end, __m512d cc, __m512d *w,
+                                                             __m512d fe[3]) {
+  __m512d a[PF_REC], s;
+  pf_batch_geom g;
+  const __mmask8 alive = half_geom(h, rec, ri, k0, end, a, &g, &s);
+  *w = _mm512_maskz_mov_pd(alive, _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(cc, s), g.ir),
+                                                _mm512_mul_pd(_mm512_set1_pd(ri[REC_V]), a[REC_V])));
+  for (int q = 0; q < 3; q++) fe[q] = _mm512_mul_pd(*w, g.e[q]);
+}
+
+/* Half-bond PMB: F (forces, N, rows of four) of the n points; each pair's force goes to i and,
+ * negated, to j. */
 static void half_pmb(const half_list *h, const double *rec, pf_int n, double c, double *F) {
   const __m512d cc = _mm512_set1_pd(c);
   memset(F, 0, 4 * (size_t)n * sizeof *F);
   for (pf_int i = 0; i < n; i++) {
     const double *ri = rec + PF_REC * (size_t)i;
-    const __m512d s0i = _mm512_set1_pd(ri[REC_AUX]), vi = _mm512_set1_pd(ri[REC_V]);
     __m512d Fi[3] = {_mm512_setzero_pd(), _mm512_setzero_pd(), _mm512_setzero_pd()};
     for (int64_t k0 = h->off[i]; k0 < h->off[i + 1]; k0 += PF_BATCH) {
       const int nn = h->off[i + 1] - k0 < PF_BATCH ? (int)(h->off[i + 1] - k0) : PF_BATCH;
-      __m512d a[PF_REC];
-      pf_batch_geom g;
-      pf_batch_gather_v(rec, h->nb + k0, a);
-      pf_batch_geom_v(a, ri, &g);
-      const __m512d s = _mm512_mul_pd(_mm512_sub_pd(g.r, g.r0), g.ir0);
-      const __mmask8 over = _mm512_cmp_pd_mask(s, _mm512_min_pd(s0i, a[REC_AUX]), _CMP_GT_OQ);
-      const __mmask8 alive = (__mmask8)(((1u << nn) - 1u) & ~over);
-      const __m512d w = _mm512_maskz_mov_pd(
-          alive, _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(cc, s), g.ir), _mm512_mul_pd(vi, a[REC_V])));
-      __m512d fe[3];
-      for (int q = 0; q < 3; q++) fe[q] = _mm512_mul_pd(w, g.e[q]), Fi[q] = _mm512_add_pd(Fi[q], fe[q]);
+      __m512d w, fe[3];
+      half_batch(h, rec, ri, k0, h->off[i + 1], cc, &w, fe);
+      for (int q = 0; q < 3; q++) Fi[q] = _mm512_add_pd(Fi[q], fe[q]);
       scatter_sub(F, h->nb + k0, nn, fe);
     }
     for (int q = 0; q < 3; q++) F[4 * i + q] += pf_batch_sum_v(Fi[q]);
   }
-}
-
-/* The half-bond batch's force vectors fe (zero in dead lanes) and its count of lanes: the pair
- * force c s V_i V_j e / r of half_pmb, shared by the two order-independent variants below. */
-static inline __attribute__((always_inline)) void half_batch(const half_list *h, const double *rec, const double *ri,
-                                                             int64_t k0, int64_t end, __m512d cc, __m512d *w,
-                                                             __m512d fe[3]) {
-  const int nn = end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH;
-  __m512d a[PF_REC];
-  pf_batch_geom g;
-  pf_batch_gather_v(rec, h->nb + k0, a);
-  pf_batch_geom_v(a, ri, &g);
-  const __m512d s = _mm512_mul_pd(_mm512_sub_pd(g.r, g.r0), g.ir0);
-  const __mmask8 over = _mm512_cmp_pd_mask(s, _mm512_min_pd(_mm512_set1_pd(ri[REC_AUX]), a[REC_AUX]), _CMP_GT_OQ);
-  const __mmask8 alive = (__mmask8)(((1u << nn) - 1u) & ~over);
-  *w = _mm512_maskz_mov_pd(alive, _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(cc, s), g.ir),
-                                                _mm512_mul_pd(_mm512_set1_pd(ri[REC_V]), a[REC_V])));
-  for (int q = 0; q < 3; q++) fe[q] = _mm512_mul_pd(*w, g.e[q]);
 }
 
 enum { FIX_BITS = 40 }; /* the fixed-point unit: 2^-40 N */
@@ -246,13 +246,9 @@ static void half_fixed_lps(half_lps *L, pf_batch_records *rec, const pf_points *
     __m512i Ti = _mm512_setzero_si512();
     for (int64_t k0 = h->off[i]; k0 < h->off[i + 1]; k0 += PF_BATCH) {
       const int nn = h->off[i + 1] - k0 < PF_BATCH ? (int)(h->off[i + 1] - k0) : PF_BATCH;
-      __m512d a[PF_REC];
+      __m512d a[PF_REC], st;
       pf_batch_geom g;
-      pf_batch_gather_v(rec->rec, h->nb + k0, a);
-      pf_batch_geom_v(a, ri, &g);
-      const __m512d s = _mm512_mul_pd(_mm512_sub_pd(g.r, g.r0), g.ir0);
-      const __mmask8 over = _mm512_cmp_pd_mask(s, _mm512_min_pd(_mm512_set1_pd(ri[REC_AUX]), a[REC_AUX]), _CMP_GT_OQ);
-      const __mmask8 alive = (__mmask8)(((1u << nn) - 1u) & ~over);
+      const __mmask8 alive = half_geom(h, rec->rec, ri, k0, h->off[i + 1], a, &g, &st);
       const __m512d we = _mm512_maskz_mov_pd(alive, _mm512_mul_pd(_mm512_mul_pd(g.r0, _mm512_sub_pd(g.r, g.r0)), tu));
       Ti = _mm512_add_epi64(Ti, _mm512_cvtpd_epi64(_mm512_mul_pd(we, a[REC_V])));
       int64_t tj[PF_BATCH];
