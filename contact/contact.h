@@ -47,6 +47,8 @@ void pf_rigid_advance(pf_rigid *r, double t, double dt, const double reaction[3]
  * linear law (INFINITY for the quadratic law, whose stiffness grows from zero with the depth,
  * and when it touches no body). Collective. */
 double pf_rigid_stable_dt(const pf_rigid *r, const pf_points *pts);
+/* The velocity of the last advance, m/s (0 before the first). */
+void pf_rigid_velocity(const pf_rigid *r, double v[3]);
 /* Current position (sphere centre, plane point, point of the cylinder axis); restart. */
 void pf_rigid_position(const pf_rigid *r, double x[3]);
 void pf_rigid_set_position(pf_rigid *r, const double x[3]);

@@ -289,6 +289,8 @@ void pf_rigid_advance(pf_rigid *r, double t, double dt, const double reaction[3]
   }
 }
 
+void pf_rigid_velocity(const pf_rigid *r, double v[3]) { memcpy(v, r->v, sizeof r->v); }
+
 double pf_rigid_stable_dt(const pf_rigid *r, const pf_points *pts) {
   if (r->law == LAW_QUADRATIC) return INFINITY;
   double m = INFINITY;

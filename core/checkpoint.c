@@ -642,6 +642,14 @@ int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, in
   return ierr;
 }
 
+int pf_checkpoint_read_scalars(const char *path, int n, const char *const *names, double *values) {
+  h5io io = {-1, path, path, 0, 0, 0};
+  PF_CALL(open_for_reading(path, &io.file));
+  int ierr = read_scalars(&io, n, names, values);
+  H5Fclose(io.file);
+  return ierr;
+}
+
 int pf_checkpoint_read_table(const char *path, const pf_table *t, double *full) {
   h5io io = {-1, path, path, (hsize_t)t->total, 0, (hsize_t)t->total};
   PF_CALL(open_for_reading(path, &io.file));

@@ -559,9 +559,11 @@ int pf_table_allgather(const pf_table *t, double *full);
  * history's running sums per body, per condition, per rigid surface and per wall (appended
  * scalars). 4: the point fields previous_positions and lost_weighted_volume, and the
  * correspondence record's three matrices by columns (by rows before: pf_pd_correspondence_upgrade).
+ * 5: the run's books as the ledger's named records ("ledger:<column>") and the interactions'
+ * state ("rigid:<name>_position_x" ...), in place of the fixed energy scalars of 2 to 4.
  * Formats PF_CHECKPOINT_FORMAT_OLDEST to PF_CHECKPOINT_FORMAT are read. */
-#define PF_CHECKPOINT_FORMAT 4
-#define PF_CHECKPOINT_FORMAT_OLDEST 2
+#define PF_CHECKPOINT_FORMAT 5
+#define PF_CHECKPOINT_FORMAT_OLDEST 5
 /* Write the owned points (every array and field) and their bond rows (each bond field flagged
  * PF_FIELD_RESTART under /bonds/<name>, after pf_bond_rows_fields_agree), plus named scalars and
  * tables (each written whole, under /tables/<name>), to path (through path.tmp, renamed when
@@ -585,6 +587,9 @@ int pf_checkpoint_write(const char *path, const pf_points *pts, pf_bond_rows *ro
  * file and the dataset, on every rank alike. Collective. */
 int pf_checkpoint_read(const char *path, pf_points **pts, pf_bond_rows *rows, int nscalars,
                        const char *const *names, double *values, int nscalars_format2, int *format);
+/* Read more named scalars of a checkpoint (each there and finite), after pf_checkpoint_read.
+ * Collective. */
+int pf_checkpoint_read_scalars(const char *path, int n, const char *const *names, double *values);
 /* Read a table written with the checkpoint whole on every rank: full[total * ncomp] (name,
  * total and ncomp as written; a mismatch is an error). Collective. */
 int pf_checkpoint_read_table(const char *path, const pf_table *t, double *full);

@@ -126,4 +126,33 @@ double pf_body_pd_bytes(double points, double m);
 /* An optional flag op that is always true (step_varies, uses_velocity). */
 int pf_body_always(const void *data);
 
+/* The optional ops, each with its default (the comments of pf_body_ops): sim/ calls these, never
+ * an optional op directly. pf_body_table_shape returns 0 for a body without a state table;
+ * pf_body_eroded_count the elements its erosion deleted (-1: it deletes none); pf_body_carries_stable_dt
+ * whether it keeps a stable step across re-partitions and restarts. */
+int pf_body_find_rows(const pf_body *b, const pf_point_cloud *pc, const pf_points *pts, const pf_body_span *s,
+                      pf_bond_rows *rows);
+int pf_body_bond_fields(const pf_body *b, pf_bond_rows *rows);
+int pf_body_step_varies(const pf_body *b);
+int pf_body_uses_velocity(const pf_body *b);
+int pf_body_post_step(const pf_body *b, pf_points *pts);
+void pf_body_take_damage_work(const pf_body *b, double w[2]);
+const pf_family *pf_body_family(const pf_body *b);
+double pf_body_bytes_per_bond(const pf_body *b);
+void pf_body_record_breaks(const pf_body *b, const pf_points *pts);
+double pf_body_horizon(const pf_body *b);
+double pf_body_point_horizon(const pf_body *b, pf_int i);
+double pf_body_reach(const pf_body *b, const pf_points *pts, pf_int i);
+const char *pf_body_reach_name(const pf_body *b);
+const pf_mesh *pf_body_mesh(const pf_body *b);
+long pf_body_eroded_count(const pf_body *b);
+int pf_body_output_fields(const pf_body *b, pf_points *pts);
+int pf_body_table_shape(const pf_body *b, pf_gid *total, int *ncomp, pf_int *nlocal);
+void pf_body_table_set(const pf_body *b, const double *full);
+int pf_body_carries_stable_dt(const pf_body *b);
+void pf_body_set_stable_dt(const pf_body *b, double dt);
+pf_pd_body *pf_body_as_pd(const pf_body *b);
+struct pf_fem_body *pf_body_as_fem(const pf_body *b);
+struct pf_fem_particles *pf_body_as_particles(const pf_body *b);
+
 #endif

@@ -20,7 +20,7 @@ int pf_sim_bond_rows(const pf_sim *sim, pf_bond_rows *rows) {
 
 int pf_sim_bond_fields(const pf_sim *sim, pf_bond_rows *rows) {
   for (int b = 0; b < sim->nbodies; b++)
-    if (sim->body[b].ops->bond_fields) PF_CALL(sim->body[b].ops->bond_fields(sim->body[b].data, rows));
+    PF_CALL(pf_body_bond_fields(&sim->body[b], rows));
   return 0;
 }
 
@@ -28,9 +28,8 @@ int pf_sim_table_shape(const pf_sim *sim, int b, pf_table *t, pf_int *nlocal) {
   const pf_body *body = &sim->body[b];
   memset(t, 0, sizeof *t);
   *nlocal = 0;
-  if (!body->ops->table_shape) return 0;
+  if (!pf_body_table_shape(body, &t->total, &t->ncomp, nlocal)) return 0;
   snprintf(t->name, sizeof t->name, "fem_%s", sim->body_name[b]);
-  body->ops->table_shape(body->data, &t->total, &t->ncomp, nlocal);
   return 1;
 }
 
@@ -63,8 +62,8 @@ int pf_sim_settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows) {
   int n = 0, ierr = pf_sim_body_tables(sim, t, &n);
   for (int k = 0, b = 0; b < sim->nbodies; b++) {
     const pf_body *body = &sim->body[b];
-    stable[b] = body->ops->set_stable_dt ? pf_min_all(body->ops->stable_dt(body->data, sim->pts)) : INFINITY;
-    if (!body->ops->table_shape || ierr) continue;
+    stable[b] = pf_body_carries_stable_dt(body) ? pf_min_all(body->ops->stable_dt(body->data, sim->pts)) : INFINITY;
+    if (ierr || !pf_body_table_shape(body, &(pf_gid){0}, &(int){0}, &(pf_int){0})) continue;
     if (!(full[b] = malloc(sizeof(double) * ((size_t)t[k].total * t[k].ncomp + 1))))
       ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
     else ierr = pf_table_allgather(&t[k], full[b]);
@@ -74,8 +73,8 @@ int pf_sim_settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows) {
   if (!ierr) ierr = pf_sim_settle(sim, rows, 0);
   for (int b = 0; b < sim->nbodies; b++) {
     const pf_body *body = &sim->body[b];
-    if (!ierr && body->ops->table_set) body->ops->table_set(body->data, full[b]);
-    if (!ierr && body->ops->set_stable_dt) body->ops->set_stable_dt(body->data, stable[b]);
+    if (!ierr && full[b]) pf_body_table_set(body, full[b]);
+    if (!ierr) pf_body_set_stable_dt(body, stable[b]);
     free(full[b]);
   }
   return ierr;

@@ -47,9 +47,9 @@ static void body_material(const pf_sim *sim, int b, body_row *r) {
 static double body_bond_bytes(const pf_sim *sim, int b, double points) {
   const pf_body *bd = &sim->body[b];
   const pf_points *p = sim->pts;
-  double bytes = 0, delta = bd->ops->horizon ? bd->ops->horizon(bd->data) : 0;
+  double bytes = 0;
   for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++) {
-    const double d = bd->ops->point_horizon ? bd->ops->point_horizon(bd->data, i) : delta;
+    const double d = pf_body_point_horizon(bd, i);
     bytes += pf_body_pd_bytes(points, d / p->cell[i]) / points;
   }
   return sum(bytes);
@@ -57,15 +57,15 @@ static double body_bond_bytes(const pf_sim *sim, int b, double points) {
 
 static void body_counts(const pf_sim *sim, int b, body_row *r) {
   const pf_body *bd = &sim->body[b];
-  const pf_family *fam = bd->ops->family ? bd->ops->family(bd->data) : NULL;
-  const pf_mesh *mesh = bd->ops->mesh ? bd->ops->mesh(bd->data) : NULL;
+  const pf_family *fam = pf_body_family(bd);
+  const pf_mesh *mesh = pf_body_mesh(bd);
   double cells = 0;
   for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++) cells += sim->pts->cell[i];
   r->points = (double)(sim->gid0[b + 1] - sim->gid0[b]);
   r->bonds = sum(fam ? (double)pf_pd_family_nbonds(fam) : 0);
   r->elements = mesh ? (double)mesh->nelem : 0;
   r->cell = r->points > 0 ? sum(cells) / r->points : 0;
-  const double delta = fam && bd->ops->horizon ? bd->ops->horizon(bd->data) : 0;
+  const double delta = fam ? pf_body_horizon(bd) : 0;
   r->m = r->cell > 0 ? delta / r->cell : 0;
   r->kind = fam && mesh ? "coupled" : fam ? "PD" : "FE";
   body_material(sim, b, r);
@@ -151,10 +151,11 @@ int pf_sim_check_report(pf_sim *sim) {
     points += r.points, bonds += r.bonds, elements += r.elements, bytes += r.bytes;
     tb += r.bonds * (double)sim->nsteps / r.rate;
     const pf_body *bd = &sim->body[b];
-    if (bd->ops->bytes_per_bond && r.bonds > 0) bond_bytes = fmax(bond_bytes, bd->ops->bytes_per_bond(bd->data));
+    if (r.bonds > 0) bond_bytes = fmax(bond_bytes, pf_body_bytes_per_bond(bd));
   }
-  for (int k = 0; k < sim->nrigid; k++)
-    pf_log("  %-16s %-8s %12s %15s %10s %16s  -\n", pf_rigid_name(sim->rigid[k]), "rigid", "-", "-", "-", "-");
+  for (int k = 0; k < sim->ninter; k++) /* rigid surfaces, contact, walls, conditions */
+    pf_log("  %-16s %-8s %12s %15s %10s %16s  -\n", pf_sim_interaction_name(sim, k), sim->inter[k].ops->kind, "-", "-",
+           "-", "-");
   pf_log("  time step: %.4e s (%s), %s%ld steps", sim->dt,
          sim->adaptive ? "at the start: the step follows the deformation" : "fixed", sim->adaptive ? "about " : "",
          sim->nsteps);

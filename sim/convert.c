@@ -10,13 +10,12 @@
 int pf_sim_link_particles(pf_sim *sim) {
   int used[PF_MAX_BODIES] = {0};
   for (int b = 0; b < sim->nbodies; b++) {
-    const pf_body *body = &sim->body[b];
-    if (!body->ops->as_particles) continue;
-    pf_fem_particles *p = body->ops->as_particles(body->data);
+    pf_fem_particles *p = pf_body_as_particles(&sim->body[b]);
+    if (!p) continue;
     struct pf_fem_body *fe = NULL;
     for (int q = 0; q < sim->nbodies; q++)
-      if (!strcmp(sim->body_name[q], pf_fem_particles_source(p)) && sim->body[q].ops->as_fem && !used[q])
-        fe = sim->body[q].ops->as_fem(sim->body[q].data), used[q] = 1;
+      if (!strcmp(sim->body_name[q], pf_fem_particles_source(p)) && pf_body_as_fem(&sim->body[q]) && !used[q])
+        fe = pf_body_as_fem(&sim->body[q]), used[q] = 1;
     PF_CALL(pf_fem_particles_link(p, fe));
   }
   const pf_node *bodies = pf_node_get(pf_deck_root(sim->deck), "bodies");
@@ -33,35 +32,46 @@ int pf_sim_link_particles(pf_sim *sim) {
   return 0;
 }
 
+/* The penalty energy in the books now: the accounts that add into contact_energy (each the same
+ * on every rank). */
+static double contact_energy(const pf_sim *sim) {
+  const pf_ledger *l = &sim->ledger;
+  double U = 0;
+  for (int k = 0; k < l->n; k++)
+    if (l->a[k].total == sim->acc.totals.contact) U += l->a[k].local[0];
+  return U;
+}
+
 /* The penalty energy the new particles bring in where they overlap a surface or another point
  * (a particle is born at its element's centre of mass, which may lie closer to a neighbour than
  * the contact radius): the contact energy at the same positions with and without them, the
  * difference booked against the conversion (on the rank owning the first new particle), so
- * that the balance still closes. The step's forces and contact sums are left as they were. */
-static int book_overlap(pf_sim *sim, pf_fem_particles *first_p, double U0) {
+ * that the balance still closes. The step's forces and books are left as they were. */
+static int book_overlap(pf_sim *sim, pf_fem_particles *first_p) {
   pf_points *p = sim->pts;
-  double *f = NULL, (*reaction)[3] = NULL, (*wall)[3] = NULL;
+  pf_ledger *l = &sim->ledger;
+  double *f = NULL;
+  pf_account *books = NULL;
   PF_MALLOC(f, 3 * (size_t)p->n_owned);
-  PF_MALLOC(reaction, sim->nrigid);
-  PF_MALLOC(wall, sim->nwalls);
+  books = malloc(sizeof *books * (size_t)l->n);
+  if (!books) free(f);
+  PF_CHECK(books, PF_ERR_MEMORY, "out of memory");
   memcpy(f, p->f, sizeof(double) * 3 * (size_t)p->n_owned);
-  memcpy(reaction, sim->reaction, sizeof(double[3]) * sim->nrigid);
-  memcpy(wall, sim->wall_reaction, sizeof(double[3]) * sim->nwalls);
-  const double diss = sim->contact_dissipation;
-  int ierr = pf_sim_contact_forces(sim, 0.0); /* (dt 0: no friction) */
+  memcpy(books, l->a, sizeof *books * (size_t)l->n);
+  const double U0 = contact_energy(sim);
+  int ierr = pf_sim_interactions_force(sim, 0.0); /* (dt 0: no friction, no work) */
+  const double U = contact_energy(sim);
   memcpy(p->f, f, sizeof(double) * 3 * (size_t)p->n_owned);
-  memcpy(sim->reaction, reaction, sizeof(double[3]) * sim->nrigid);
-  memcpy(sim->wall_reaction, wall, sizeof(double[3]) * sim->nwalls);
-  sim->contact_dissipation = diss;
-  free(f), free(reaction), free(wall);
-  if (!ierr) pf_fem_particles_book(first_p, p, -(sim->contact_energy - U0));
+  memcpy(l->a, books, sizeof *books * (size_t)l->n);
+  free(f), free(books);
+  if (!ierr) pf_fem_particles_book(first_p, p, -(U - U0));
   return ierr;
 }
 
 /* After a restart restored the conversions: the stable step of the restored masses. */
 int pf_sim_converted_restart(pf_sim *sim) {
   for (int b = 0; b < sim->nbodies; b++)
-    if (sim->body[b].ops->as_particles) return pf_sim_refresh_fixed_step(sim);
+    if (pf_body_as_particles(&sim->body[b])) return pf_sim_refresh_fixed_step(sim);
   return 0;
 }
 
@@ -69,17 +79,15 @@ int pf_sim_convert_elements(pf_sim *sim) {
   long any = 0;
   pf_fem_particles *first = NULL;
   for (int b = 0; b < sim->nbodies; b++) {
-    const pf_body *body = &sim->body[b];
-    if (!body->ops->as_particles) continue;
+    pf_fem_particles *fp = pf_body_as_particles(&sim->body[b]);
+    if (!fp) continue;
     long n = 0;
-    PF_CALL(pf_fem_particles_convert(body->ops->as_particles(body->data), sim->pts, sim->dt, sim->t, &n));
-    if (n && !first) first = body->ops->as_particles(body->data);
+    PF_CALL(pf_fem_particles_convert(fp, sim->pts, sim->dt, sim->t, &n));
+    if (n && !first) first = fp;
     any += n;
   }
   if (!any) return 0;
-  if (sim->contact) {
-    pf_contact_rebuild(sim->contact);
-    PF_CALL(book_overlap(sim, first, sim->contact_energy));
-  }
+  pf_sim_interactions_masses_changed(sim);
+  if (sim->ninter) PF_CALL(book_overlap(sim, first));
   return pf_sim_refresh_fixed_step(sim); /* (the nodes are lighter, the new particles in contact) */
 }

@@ -208,13 +208,12 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
     PF_CALL(body_kind(sim->deck, body, b, &bd->ops));
     bd->name = sim->body_name[b];
     PF_CALL(bd->ops->create(sim->deck, body, pf_node_get(root, "materials"), &bd->data));
-    sim->nmeshed += bd->ops->mesh != NULL;
+    sim->nmeshed += pf_body_mesh(bd) != NULL;
   }
   if (sim->spread_output && sim->nmeshed)
     return pf_deck_error(sim->deck, pf_node_get(pf_node_get(root, "output"), "layout"), "layout",
                          "finite_element bodies are written joined (a spread file set would cut "
                          "elements at the rank boundaries); use output.layout: joined");
-  PF_CALL(pf_sim_build_rigid(sim)); /* (a checkpoint holds their positions and reactions) */
   PF_CALL(pf_sim_link_particles(sim));
   pf_point_cloud pc[PF_MAX_BODIES];
   memset(pc, 0, sizeof pc);
@@ -235,34 +234,6 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
     PF_CALL(set_initial_field(sim, b, pf_node_item(bodies, b), "initial_velocity"));
     PF_CALL(set_initial_field(sim, b, pf_node_item(bodies, b), "initial_displacement"));
   }
-  return 0;
-}
-
-static int build_bcs(pf_sim *sim, const pf_node *root) {
-  const pf_node *bcs = pf_node_get(root, "boundary_conditions");
-  sim->nbcs = pf_node_count(bcs);
-  PF_MALLOC(sim->bcs, sim->nbcs);
-  for (int k = 0; k < sim->nbcs; k++) {
-    PF_CALL(pf_bc_create(sim->deck, pf_node_item(bcs, k), sim->pts, sim->nbodies, sim->body_name, &sim->sets, k,
-                         &sim->bcs[k]));
-    char where[512];
-    pf_node_where(sim->deck, pf_node_item(bcs, k), where, sizeof where);
-    pf_log("boundary condition '%s' (%s): %" PF_GID_FMT " points\n", pf_bc_name(sim->bcs[k]), where,
-           (pf_gid)pf_sum_all(pf_bc_npoints(sim->bcs[k])));
-  }
-  return 0;
-}
-
-static int build_walls(pf_sim *sim, const pf_node *root) {
-  const pf_node *walls = pf_node_get(root, "walls");
-  sim->nwalls = pf_node_count(walls);
-  PF_MALLOC(sim->walls, sim->nwalls);
-  PF_MALLOC(sim->wall_reaction, sim->nwalls);
-  PF_MALLOC(sim->wall_impulse, sim->nwalls);
-  PF_MALLOC(sim->rigid_work, sim->nrigid); /* (the rigid surfaces are built with the bodies) */
-  PF_MALLOC(sim->rigid_impulse, sim->nrigid);
-  for (int k = 0; k < sim->nwalls; k++)
-    PF_CALL(pf_wall_create(sim->deck, pf_node_item(walls, k), sim->nbodies, sim->body_name, &sim->walls[k]));
   return 0;
 }
 
@@ -289,15 +260,14 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   pf_sim_warn_unit_slips(sim->deck, pf_node_get(root, "materials"));
   PF_CALL(pf_sim_setup_parallel(sim));
   PF_CALL(build_bodies(sim, root));
-  PF_CALL(pf_sim_build_contact(sim));
-  PF_CALL(build_bcs(sim, root));
-  PF_CALL(build_walls(sim, root));
+  PF_CALL(pf_sim_interactions_build(sim));
   PF_CALL(pf_sim_setup_time(sim));
   PF_CALL(pf_sim_setup_output(sim));
+  PF_CALL(pf_sim_accounts_open(sim));
   PF_CALL(pf_sim_setup_restart(sim));
   if (sim->opt.restart_from) PF_CALL(pf_sim_restore_state(sim)); /* (renames the outputs) */
   if (sim->opt.restart_from) PF_CALL(pf_sim_converted_restart(sim));
-  if (sim->opt.restart_from && sim->contact) PF_CALL(pf_contact_restored(sim->contact));
+  if (sim->opt.restart_from) PF_CALL(pf_sim_interactions_restored(sim));
   pf_sim_fragments_name(sim);
   PF_CALL(pf_sim_check_paths(sim));
   sim->rss_setup = pf_memory_peak();
@@ -328,15 +298,8 @@ int pf_sim_destroy(pf_sim **s) {
   free(sim->exo_fields);
   for (int b = 0; b < sim->nbodies; b++)
     if (sim->body[b].ops) sim->body[b].ops->destroy(&sim->body[b].data);
-  for (int k = 0; k < sim->nwalls && sim->walls; k++) pf_wall_destroy(&sim->walls[k]);
-  free(sim->walls), free(sim->wall_reaction), free(sim->sums);
-  free(sim->wall_impulse), free(sim->rigid_work), free(sim->rigid_impulse), free(sim->row_sums);
-  for (int k = 0; k < sim->nrigid && sim->rigid; k++) pf_rigid_destroy(&sim->rigid[k]);
-  pf_contact_destroy(&sim->contact);
-  for (int k = 0; k < sim->nbcs && sim->bcs; k++) pf_bc_destroy(&sim->bcs[k]);
-  free(sim->rigid);
-  free(sim->reaction);
-  free(sim->bcs);
+  pf_sim_interactions_destroy(sim);
+  pf_ledger_free(&sim->ledger);
   free(sim->probes);
   pf_points_destroy(&sim->pts);
   pf_points_destroy(&sim->joined);
@@ -352,13 +315,11 @@ int pf_sim_destroy(pf_sim **s) {
 pf_points *pf_sim_points(pf_sim *sim) { return sim->pts; }
 int pf_sim_nbodies(const pf_sim *sim) { return sim->nbodies; }
 pf_pd_body *pf_sim_body(pf_sim *sim, int b) {
-  const pf_body *body = &sim->body[b];
-  return body->ops->as_pd ? body->ops->as_pd(body->data) : NULL;
+  return pf_body_as_pd(&sim->body[b]);
 }
 pf_contact *pf_sim_contact(pf_sim *sim) { return sim->contact; }
 pf_fem_body *pf_sim_fem_body(pf_sim *sim, int b) {
-  const pf_body *body = &sim->body[b];
-  return body->ops->as_fem ? body->ops->as_fem(body->data) : NULL;
+  return pf_body_as_fem(&sim->body[b]);
 }
 int pf_sim_body_force(pf_sim *sim, int b, double dt) {
   int tripped = 0;

@@ -85,7 +85,7 @@ int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh) {
   free(owner_of), free(local);
   pf_bond_rows_release(rows); /* (the bodies hold their bonds now) */
   pf_memory_trim();
-  if (!ierr) ierr = pf_sim_contact_attach(sim);
+  if (!ierr) ierr = pf_sim_interactions_attach(sim);
   return ierr;
 }
 
@@ -108,8 +108,7 @@ int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc) {
     while (first + n < sim->pts->n_owned && sim->pts->body[first + n] == b) n++;
     const pf_body_span s = {b, gid0[b], first, n};
     const pf_body *body = &sim->body[b];
-    ierr = body->ops->find_rows ? body->ops->find_rows(body->data, &pc[b], sim->pts, &s, &rows)
-                                : body->ops->rows(body->data, sim->pts, &s, &rows);
+    ierr = pf_body_find_rows(body, &pc[b], sim->pts, &s, &rows);
     first += n;
   }
   if (!ierr) ierr = pf_sim_settle(sim, &rows, 1);
@@ -122,8 +121,8 @@ static double local_work(const pf_sim *sim) {
   double w = sim->pts->n_owned;
   for (int b = 0; b < sim->nbodies; b++) {
     const pf_body *body = &sim->body[b];
-    if (!body->ops->family) continue;
-    const pf_family *fam = body->ops->family(body->data);
+    const pf_family *fam = pf_body_family(body);
+    if (!fam) continue;
     for (int64_t k = 0; k < pf_pd_family_nbonds(fam); k++) w += !fam->broken[k];
   }
   return w;
@@ -139,7 +138,6 @@ int pf_sim_rebalance(pf_sim *sim) {
   if (!ierr) ierr = pf_sim_bond_rows(sim, &rows);
   if (!ierr) ierr = pf_sim_settle_keeping_tables(sim, &rows);
   pf_bond_rows_free(&rows);
-  for (int k = 0; k < sim->nbcs && !ierr; k++) ierr = pf_bc_select(sim->bcs[k], sim->pts);
   if (ierr) return ierr;
   w = local_work(sim);
   pf_log("step %ld: re-partitioned (work imbalance %.3f > %.3f); now %.3f\n", sim->step, imbalance,

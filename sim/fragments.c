@@ -25,7 +25,7 @@ enum { F_BODY, F_ID, F_GID, F_N, F_M, F_X, F_V = F_X + 3, F_NREC = F_V + 3 };
 
 static const pf_family *body_family(const pf_sim *sim, int b) {
   const pf_body *body = &sim->body[b];
-  return body->ops->family ? body->ops->family(body->data) : NULL;
+  return pf_body_family(body);
 }
 
 /* One sweep over the owned points of body b: label <- min over intact bonds. Changes counted. */

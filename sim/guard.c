@@ -33,12 +33,12 @@ void pf_sim_guard_free(pf_sim *sim) {
  * horizon), or by default the point's cell (an FE node's: the cube root of its lumped volume). */
 static double reach(const pf_sim *sim, pf_int i) {
   const pf_body *body = &sim->body[sim->pts->body[i]];
-  return body->ops->reach ? body->ops->reach(body->data, sim->pts, i) : sim->pts->cell[i];
+  return pf_body_reach(body, sim->pts, i);
 }
 
 static const char *reach_name(const pf_sim *sim, pf_int i) {
   const pf_body *body = &sim->body[sim->pts->body[i]];
-  return body->ops->reach ? body->ops->reach_name : "cell";
+  return pf_body_reach_name(body);
 }
 
 void pf_sim_guard_motion(pf_sim *sim, double dt) {

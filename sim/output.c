@@ -8,152 +8,55 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const fixed_names[G_FIXED] = {
-    "kinetic_energy", "elastic_energy", "contact_energy", "external_work", "energy_error",
-    "momentum_x",     "momentum_y",     "momentum_z",     "damage_fraction",
-    "fe_internal_energy", "hourglass_energy", "bulk_viscosity_work", "wall_dissipation", "contact_dissipation",
-    "damage_dissipation"};
-static const char *const fixed_units[G_FIXED] = {"J", "J", "J", "J", "J", "kg m/s", "kg m/s", "kg m/s", "",
-                                                 "J", "J", "J", "J", "J", "J"};
-
-/* The columns appended after the probes' (sim_impl.h gives their order): */
-static const char *const body_names[PF_BODY_SUMS] = {
-    "kinetic_energy", "internal_energy", "hourglass_energy", "viscous_work", "damage_dissipation",
-    "damage_redistribution", "external_work", "momentum_x", "momentum_y", "momentum_z"};
-static const char *const body_units[PF_BODY_SUMS] = {"J", "J", "J", "J", "J", "J", "J", "kg m/s", "kg m/s", "kg m/s"};
-enum { PF_BC_COLUMNS = 6, PF_RIGID_COLUMNS = 4, PF_WALL_COLUMNS = 3 };
-
-/* Name column j (after time and step) name_suffix, with units. */
-static void column(pf_sim_history_row *g, int j, const char *name, const char *suffix, const char *units) {
-  char buf[192];
-  snprintf(buf, sizeof buf, "%s_%s", name, suffix);
-  g->names[2 + j] = strdup(buf);
-  g->units[2 + j] = units;
+void pf_sim_output_name(const pf_sim *sim, const char *given, const char *ext, char *out, size_t len) {
+  char base[2048];
+  if (given) snprintf(base, sizeof base, "%s", given);
+  else {
+    const char *p = pf_deck_path(sim->deck), *slash = strrchr(p, '/'), *name = slash ? slash + 1 : p;
+    const char *dot = strrchr(name, '.');
+    snprintf(base, sizeof base, "%.*s%s", (int)(dot ? dot - name : (long)strlen(name)), name, ext);
+  }
+  if (sim->opt.output_dir && base[0] != '/') snprintf(out, len, "%s/%s", sim->opt.output_dir, base);
+  else snprintf(out, len, "%s", base);
 }
 
-/* The appended columns: damage_redistribution; per body its energies, work and momentum; per
- * prescribed condition its reaction (N) and impulse (N s); per rigid surface its impulse on the
- * points and the work of its prescribed motion; per wall its impulse on the points. */
-/* 1 when some body's particles come from converted elements: the history then ends with the
- * kinetic energy the conversions removed (docs/theory/fem.md §9b). */
-static int converts(const pf_sim *sim) {
-  for (int b = 0; b < sim->nbodies; b++)
-    if (sim->body[b].ops->as_particles) return 1;
-  return 0;
-}
-
-static void appended_columns(const pf_sim *sim, pf_sim_history_row *g) {
-  int j = g->extra0;
-  g->names[2 + j] = strdup("damage_redistribution"), g->units[2 + j++] = "J";
-  for (int b = 0; b < sim->nbodies; b++)
-    for (int q = 0; q < PF_BODY_SUMS; q++) column(g, j++, sim->body_name[b], body_names[q], body_units[q]);
-  for (int k = 0; k < sim->nbcs; k++) {
-    const char *q[PF_BC_COLUMNS] = {"reaction_x", "reaction_y", "reaction_z", "impulse_x", "impulse_y", "impulse_z"};
-    for (int c = 0; c < PF_BC_COLUMNS; c++) column(g, j++, pf_bc_name(sim->bcs[k]), q[c], c < 3 ? "N" : "N s");
-  }
-  for (int k = 0; k < sim->nrigid; k++) {
-    const char *q[PF_RIGID_COLUMNS] = {"impulse_x", "impulse_y", "impulse_z", "work"};
-    for (int c = 0; c < PF_RIGID_COLUMNS; c++) column(g, j++, pf_rigid_name(sim->rigid[k]), q[c], c < 3 ? "N s" : "J");
-  }
-  for (int k = 0; k < sim->nwalls; k++) {
-    const char *q[PF_WALL_COLUMNS] = {"impulse_x", "impulse_y", "impulse_z"};
-    for (int c = 0; c < PF_WALL_COLUMNS; c++) column(g, j++, pf_wall_name(sim->walls[k]), q[c], "N s");
-  }
-  if (converts(sim)) g->names[2 + j] = strdup("conversion_loss"), g->units[2 + j++] = "J";
-}
-
-static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
-
-/* Two columns of one name (a body, condition, surface or wall named so that its column takes
- * another's name, e.g. a body "fe" and fe_internal_energy) would make the history unwritable:
- * refuse at set-up, naming the column. */
-static int unique_columns(const pf_sim *sim, const pf_sim_history_row *g) {
-  char **sorted;
-  PF_MALLOC(sorted, g->n + 2);
-  memcpy(sorted, g->names, sizeof *sorted * (size_t)(g->n + 2));
-  qsort(sorted, (size_t)g->n + 2, sizeof *sorted, by_name);
-  const char *twice = NULL;
-  for (int k = 1; k < g->n + 2 && !twice; k++)
-    if (!strcmp(sorted[k - 1], sorted[k])) twice = sorted[k];
-  char name[192] = "";
-  if (twice) snprintf(name, sizeof name, "%s", twice);
-  free(sorted);
-  PF_CHECK(!twice, PF_ERR_INPUT,
-           "%s: the history would have two columns named '%s' (a body's, condition's, rigid surface's or "
-           "wall's columns are its name followed by _<quantity>, e.g. <body>_internal_energy): rename the body, "
-           "condition (name:), surface or wall",
-           pf_deck_path(sim->deck), name);
-  return 0;
+int pf_sim_setup_output(pf_sim *sim) {
+  const pf_deck *d = sim->deck;
+  const pf_node *out = pf_node_get(pf_deck_root(d), "output");
+  const char *file = NULL, *hfile = NULL;
+  sim->output_interval = 100;
+  sim->history_interval = 10;
+  PF_CALL(pf_deck_string(d, out, "file", &file));
+  PF_CALL(pf_deck_string(d, out, "history_file", &hfile));
+  PF_CALL(pf_deck_int(d, out, "interval", &sim->output_interval));
+  PF_CALL(pf_deck_int(d, out, "history_interval", &sim->history_interval));
+  PF_CALL(pf_deck_bool(d, out, "fragments", &sim->fragments));
+  PF_CALL(pf_sim_fragments_setup(sim));
+  PF_CALL(pf_sim_setup_probes(sim));
+  if (sim->output_interval < 0)
+    return pf_deck_error(d, pf_node_get(out, "interval"), "interval", "must not be negative");
+  if (sim->history_interval < 1)
+    return pf_deck_error(d, pf_node_get(out, "history_interval"), "history_interval", "must be at least 1");
+  pf_sim_output_name(sim, file, ".e", sim->exodus_path, sizeof sim->exodus_path);
+  pf_sim_output_name(sim, hfile, ".h5", sim->history_path, sizeof sim->history_path);
+  return pf_sim_setup_exodus_format(sim, out);
 }
 
 int pf_sim_globals_init(const pf_sim *sim, pf_sim_history_row *g) {
-  int npairs = pf_contact_npairs(sim->contact);
-  const int body0 = g->body0 = G_FIXED + 3 * (sim->nrigid + sim->nwalls + npairs);
-  const int probe0 = g->probe0 = body0 + 6 * sim->nbodies;
-  const int extra0 = g->extra0 = probe0 + pf_sim_probe_columns(sim);
-  g->n = extra0 + 1 + PF_BODY_SUMS * sim->nbodies + PF_BC_COLUMNS * sim->nbcs + PF_RIGID_COLUMNS * sim->nrigid +
-         PF_WALL_COLUMNS * sim->nwalls + converts(sim);
+  const pf_ledger *l = &sim->ledger;
+  g->n = pf_ledger_columns(l);
   PF_MALLOC(g->names, g->n + 2);
   PF_MALLOC(g->units, g->n + 2);
   PF_MALLOC(g->values, g->n + 2);
-  /* history columns: time, step, then the globals */
   g->names[0] = strdup("time"), g->units[0] = "s";
   g->names[1] = strdup("step"), g->units[1] = "";
-  for (int k = 0; k < G_FIXED; k++) g->names[2 + k] = strdup(fixed_names[k]), g->units[2 + k] = fixed_units[k];
-  for (int k = 0; k < sim->nrigid; k++)
-    for (int a = 0; a < 3; a++) {
-      char buf[128];
-      snprintf(buf, sizeof buf, "%s_force_%c", pf_rigid_name(sim->rigid[k]), 'x' + a);
-      g->names[2 + G_FIXED + 3 * k + a] = strdup(buf);
-      g->units[2 + G_FIXED + 3 * k + a] = "N";
-    }
-  for (int k = 0; k < sim->nwalls; k++)
-    for (int a = 0; a < 3; a++) {
-      char buf[128];
-      int j = 2 + G_FIXED + 3 * sim->nrigid + 3 * k + a;
-      snprintf(buf, sizeof buf, "%s_force_%c", pf_wall_name(sim->walls[k]), 'x' + a);
-      g->names[j] = strdup(buf);
-      g->units[j] = "N";
-    }
-  for (int k = 0; k < npairs; k++)
-    for (int a = 0; a < 3; a++) {
-      char buf[128];
-      int j = 2 + G_FIXED + 3 * (sim->nrigid + sim->nwalls + k) + a;
-      snprintf(buf, sizeof buf, "%s_force_%c", pf_contact_pair_name(sim->contact, k), 'x' + a);
-      g->names[j] = strdup(buf);
-      g->units[j] = "N";
-    }
-  for (int b = 0; b < sim->nbodies; b++)
-    for (int q = 0; q < 6; q++) {
-      char buf[160];
-      int j = 2 + body0 + 6 * b + q;
-      snprintf(buf, sizeof buf, "%s_%s_%c", sim->body_name[b], q < 3 ? "position" : "velocity", 'x' + q % 3);
-      g->names[j] = strdup(buf);
-      g->units[j] = q < 3 ? "m" : "m/s";
-    }
-  for (int k = 0; k < extra0 - probe0; k++) {
-    char buf[160];
-    pf_sim_probe_column(sim, k, buf, sizeof buf, &g->units[2 + probe0 + k]);
-    g->names[2 + probe0 + k] = strdup(buf);
+  for (int k = 0; k < g->n; k++) {
+    char buf[192];
+    pf_ledger_column(l, k, buf, sizeof buf, &g->units[2 + k]);
+    g->names[2 + k] = strdup(buf);
   }
-  appended_columns(sim, g);
   for (int k = 0; k < g->n + 2; k++) PF_CHECK(g->names[k], PF_ERR_MEMORY, "out of memory");
-  return unique_columns(sim, g);
-}
-
-/* Each body's centre of mass (current positions) and mass-averaged velocity into v[6 b ..]:
- * a projectile's path and its residual velocity. Collective. */
-static void body_motion(const pf_sim *sim, double *v) {
-  const pf_points *p = sim->pts;
-  double s[7 * PF_MAX_BODIES] = {0}; /* per body: m y (3), m v (3), m; one reduction for all */
-  for (int b = 0; b < sim->nbodies; b++)
-    for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++) {
-      for (int a = 0; a < 3; a++) s[7 * b + a] += p->m[i] * p->y[3 * i + a], s[7 * b + 3 + a] += p->m[i] * p->v[3 * i + a];
-      s[7 * b + 6] += p->m[i];
-    }
-  MPI_Allreduce(MPI_IN_PLACE, s, 7 * sim->nbodies, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-  for (int b = 0; b < sim->nbodies; b++)
-    for (int q = 0; q < 6; q++) v[6 * b + q] = s[7 * b + 6] > 0 ? s[7 * b + q] / s[7 * b + 6] : 0.0;
+  return 0;
 }
 
 void pf_sim_globals_free(pf_sim_history_row *g) {
@@ -163,49 +66,11 @@ void pf_sim_globals_free(pf_sim_history_row *g) {
   PF_FREE(g->values);
 }
 
-/* The appended columns' values (appended_columns), from the last pf_sim_globals_get. */
-static void appended_values(const pf_sim *sim, const pf_sim_globals *s, double *v) {
-  const double *x = pf_sim_row_sums(sim);
-  *v++ = s->damage_redistribution;
-  for (int q = 0; q < PF_BODY_SUMS * sim->nbodies; q++) *v++ = *x++;
-  for (int k = 0; k < sim->nbcs; k++, x += 6, v += PF_BC_COLUMNS)
-    for (int a = 0; a < 3; a++) v[a] = sim->step > 0 ? x[a] / sim->dt : 0.0, v[3 + a] = x[3 + a];
-  for (int k = 0; k < sim->nrigid; k++, x += 3, v += PF_RIGID_COLUMNS) {
-    for (int a = 0; a < 3; a++) v[a] = x[a];
-    v[3] = sim->rigid_work[k];
-  }
-  for (int k = 0; k < sim->nwalls; k++, x += 3, v += PF_WALL_COLUMNS)
-    for (int a = 0; a < 3; a++) v[a] = x[a];
-  if (converts(sim)) *v = s->conversion_loss;
-}
-
-/* Fill values[0..n+1]: time, step, globals. */
 int pf_sim_globals_eval(pf_sim *sim, pf_sim_history_row *g, int first) {
-  pf_sim_globals s;
-  PF_CALL(pf_sim_globals_get(sim, &s));
-  double total = s.kinetic_centred + s.elastic + s.contact - s.external_work + s.fe_internal + s.hourglass +
-                 s.bulk_viscosity + s.wall_loss + s.contact_dissipation + s.damage_dissipation +
-                 s.damage_redistribution + s.conversion_loss;
-  if (first && !sim->have_e0) sim->e0 = total, sim->have_e0 = 1;
-  g->e0 = sim->e0;
-  double *v = g->values + 2;
+  PF_CALL(pf_sim_accounts_evaluate(sim, first));
   g->values[0] = sim->t;
   g->values[1] = (double)sim->step;
-  v[G_KE] = s.kinetic, v[G_EL] = s.elastic, v[G_CONTACT] = s.contact, v[G_WEXT] = s.external_work;
-  v[G_EERR] = total - g->e0;
-  for (int a = 0; a < 3; a++) v[G_PX + a] = s.momentum[a];
-  v[G_DAMAGE] = s.damage_fraction;
-  v[G_FEINT] = s.fe_internal, v[G_HG] = s.hourglass, v[G_BV] = s.bulk_viscosity, v[G_WALL] = s.wall_loss;
-  v[G_CDISS] = s.contact_dissipation, v[G_DDISS] = s.damage_dissipation;
-  for (int k = 0; k < sim->nrigid; k++)
-    for (int a = 0; a < 3; a++) v[G_FIXED + 3 * k + a] = sim->reaction[k][a];
-  for (int k = 0; k < sim->nwalls; k++)
-    for (int a = 0; a < 3; a++) v[G_FIXED + 3 * sim->nrigid + 3 * k + a] = sim->wall_reaction[k][a];
-  for (int k = 0; k < pf_contact_npairs(sim->contact); k++)
-    pf_contact_pair_force(sim->contact, k, &v[G_FIXED + 3 * (sim->nrigid + sim->nwalls + k)]);
-  body_motion(sim, &v[g->body0]);
-  PF_CALL(pf_sim_probes_eval(sim, &v[g->probe0]));
-  appended_values(sim, &s, &v[g->extra0]);
+  pf_ledger_values(&sim->ledger, g->values + 2);
   return 0;
 }
 
@@ -299,9 +164,8 @@ static int open_exodus(pf_sim *sim, pf_sim_history_row *g) {
   int ierr = 0;
   for (int b = 0; b < sim->nbodies; b++) {
     hex[b] = (pf_exodus_hexes){0, NULL, 0};
-    const pf_body *body = &sim->body[b];
-    if (!body->ops->mesh || ierr) continue;
-    const pf_mesh *m = body->ops->mesh(body->data);
+    const pf_mesh *m = pf_body_mesh(&sim->body[b]);
+    if (!m || ierr) continue;
     if (!(conn[b] = malloc(sizeof(pf_int) * 8 * ((size_t)m->nelem + 1)))) {
       ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
       break;
@@ -325,8 +189,7 @@ int pf_sim_open_output(pf_sim *sim, pf_sim_history_row *g) {
 }
 
 static int write_exodus(pf_sim *sim, const double *values) {
-  for (int b = 0; b < sim->nbodies; b++)
-    if (sim->body[b].ops->output_fields) PF_CALL(sim->body[b].ops->output_fields(sim->body[b].data, sim->pts));
+  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_output_fields(&sim->body[b], sim->pts));
   if (pf_sim_spread_output(sim)) return pf_exodus_write(sim->exo, sim->t, sim->pts, values);
   PF_CALL(pf_points_gather(sim->pts, &sim->joined));
   return sim->joined ? pf_exodus_write(sim->exo, sim->t, sim->joined, values) : 0;

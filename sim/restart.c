@@ -24,7 +24,7 @@ const pf_key pf_restart_keys[] = {
  * may change on restart). */
 static const char *const physics_parts[] = {"units", "materials", "bodies", "indenters", "contact", "boundary_conditions",
                                             "walls", "time.dt", "time.safety_factor"};
-enum { NPARTS = sizeof physics_parts / sizeof physics_parts[0], NFIXED = 10 };
+enum { NPARTS = sizeof physics_parts / sizeof physics_parts[0], NFIXED = 3 };
 
 static uint64_t part_hash(const pf_deck *d, const char *part) {
   const pf_node *root = pf_deck_root(d);
@@ -35,131 +35,41 @@ static uint64_t part_hash(const pf_deck *d, const char *part) {
   return pf_node_hash(pf_node_get(pf_node_get(root, top), dot + 1));
 }
 
-/* The walls and contact pairs as the deck lists them (known before they are built: a restart
- * reads the scalars with the points). */
-static int deck_walls(const pf_sim *sim) { return pf_node_count(pf_node_get(pf_deck_root(sim->deck), "walls")); }
-static int deck_pairs(const pf_sim *sim) {
-  return pf_node_count(pf_node_get(pf_node_get(pf_deck_root(sim->deck), "contact"), "pairs"));
-}
+/* Where each group of scalars starts (see scalars_make); the run's books (the ledger's records)
+ * and the interactions' state come after the geometry. */
+static int at_stable(void) { return NFIXED + 2 * NPARTS; }
+static int at_geometry(const pf_sim *sim) { return at_stable() + sim->nbodies; }
+static int at_books(const pf_sim *sim) { return at_geometry(sim) + PF_GEOMETRY_SCALARS * sim->nbodies; }
+static int nbooks(const pf_sim *sim) { return pf_ledger_records(&sim->ledger) + pf_sim_interactions_nstate(sim); }
 
-/* Where each group of scalars starts (see scalars_make). */
-static int at_rigid(void) { return NFIXED + 2 * NPARTS; }
-static int at_stable(const pf_sim *sim) { return at_rigid() + 6 * sim->nrigid; }
-static int at_geometry(const pf_sim *sim) { return at_stable(sim) + sim->nbodies; }
-static int at_walls(const pf_sim *sim) { return at_geometry(sim) + PF_GEOMETRY_SCALARS * sim->nbodies; }
-static int at_pairs(const pf_sim *sim) { return at_walls(sim) + 3 * deck_walls(sim); }
-static int at_sums(const pf_sim *sim) { return at_pairs(sim) + 3 * deck_pairs(sim); } /* (format 3 on) */
-static int deck_bcs(const pf_sim *sim) {
-  return pf_node_count(pf_node_get(pf_deck_root(sim->deck), "boundary_conditions"));
-}
-
-/* The history's running sums (format 3): damage_redistribution; per body its damage
- * dissipation, redistribution and prescribed work; per condition its last step's and total
- * impulse; per rigid surface its impulse and work; per wall its impulse. */
-enum { SUMS_BODY = 3, SUMS_BC = 6, SUMS_RIGID = 4, SUMS_WALL = 3 };
-static int nsums(const pf_sim *sim) {
-  return 1 + SUMS_BODY * sim->nbodies + SUMS_BC * deck_bcs(sim) + SUMS_RIGID * sim->nrigid + SUMS_WALL * deck_walls(sim);
-}
-
-static void sums_names(const pf_sim *sim, pf_sim_scalars *s) {
-  char (*name)[96] = &s->name[at_sums(sim)];
-  const char *body[SUMS_BODY] = {"damage", "redistribution", "bc_work"};
-  snprintf(*name++, 96, "damage_redistribution");
-  for (int b = 0; b < sim->nbodies; b++)
-    for (int q = 0; q < SUMS_BODY; q++) snprintf(*name++, 96, "body_%d_%s_%s", b, sim->body_name[b], body[q]);
-  for (int k = 0; k < deck_bcs(sim); k++)
-    for (int q = 0; q < SUMS_BC; q++) snprintf(*name++, 96, "bc_%d_%s_%c", k, q < 3 ? "step_impulse" : "impulse", 'x' + q % 3);
-  for (int k = 0; k < sim->nrigid; k++) {
-    for (int a = 0; a < 3; a++) snprintf(*name++, 96, "indenter_%d_%s_impulse_%c", k, pf_rigid_name(sim->rigid[k]), 'x' + a);
-    snprintf(*name++, 96, "indenter_%d_%s_work", k, pf_rigid_name(sim->rigid[k]));
-  }
-  for (int k = 0; k < deck_walls(sim); k++)
-    for (int a = 0; a < 3; a++) snprintf(*name++, 96, "wall_%d_impulse_%c", k, 'x' + a);
-}
-
-/* Their values: sums over the ranks (collective), the rigid surfaces' work as it is (the same on
- * every rank). */
-static void sums_fill(const pf_sim *sim, double *v) {
-  *v++ = pf_sum_all(sim->damage_redistribution);
-  for (int b = 0; b < sim->nbodies; b++) {
-    *v++ = pf_sum_all(sim->body_damage[b]);
-    *v++ = pf_sum_all(sim->body_redistribution[b]);
-    *v++ = pf_sum_all(sim->body_bc_work[b]);
-  }
-  for (int k = 0; k < deck_bcs(sim); k++) {
-    double step[3] = {0, 0, 0}, total[3] = {0, 0, 0};
-    if (k < sim->nbcs) pf_bc_impulse(sim->bcs[k], step, total); /* (none before they are built) */
-    for (int a = 0; a < 3; a++) *v++ = pf_sum_all(step[a]);
-    for (int a = 0; a < 3; a++) *v++ = pf_sum_all(total[a]);
-  }
-  for (int k = 0; k < sim->nrigid; k++) {
-    for (int a = 0; a < 3; a++) *v++ = pf_sum_all(sim->rigid_impulse[k][a]);
-    *v++ = sim->rigid_work[k];
-  }
-  for (int k = 0; k < deck_walls(sim); k++)
-    for (int a = 0; a < 3; a++) *v++ = k < sim->nwalls ? pf_sum_all(sim->wall_impulse[k][a]) : 0;
-}
-
-/* Take them back: rank 0 carries each sum over the ranks, the others start from 0. */
-static void sums_restore(pf_sim *sim, const double *v) {
-  const double root = pf_comm_rank() == 0;
-  sim->damage_redistribution = root * *v++;
-  for (int b = 0; b < sim->nbodies; b++) {
-    sim->body_damage[b] = root * *v++;
-    sim->body_redistribution[b] = root * *v++;
-    sim->body_bc_work[b] = root * *v++;
-  }
-  for (int k = 0; k < sim->nbcs; k++, v += SUMS_BC) {
-    double step[3], total[3];
-    for (int a = 0; a < 3; a++) step[a] = root * v[a], total[a] = root * v[3 + a];
-    pf_bc_impulse_set(sim->bcs[k], step, total);
-  }
-  for (int k = 0; k < sim->nrigid; k++, v += SUMS_RIGID) {
-    for (int a = 0; a < 3; a++) sim->rigid_impulse[k][a] = root * v[a];
-    sim->rigid_work[k] = v[3];
-  }
-  for (int k = 0; k < sim->nwalls; k++, v += SUMS_WALL)
-    for (int a = 0; a < 3; a++) sim->wall_impulse[k][a] = root * v[a];
-}
-
-/* Scalar names and values: time, step, dt, contact_energy, external_work, initial_energy,
- * wall_loss, bc_work, contact_dissipation and damage_dissipation (sums over the ranks), the
- * deck-part hashes (two 32-bit halves each), per rigid surface its position and reaction, per
+/* Scalar names and values: time, step, dt, the deck-part hashes (two 32-bit halves each), per
  * body the carried stable step of the last force evaluation (FE and coupled bodies; 0 for the
- * others), per body its geometry (points, elements, hash halves: sim/restart_geometry.c), and
- * the last forces on each wall and contact pair (the history row of the restarted step), and
- * the history's running sums (sums_names). */
-static int scalars_make(const pf_sim *sim, pf_sim_scalars *s) {
-  const int nw = deck_walls(sim), np = deck_pairs(sim);
-  s->n = at_sums(sim) + nsums(sim);
+ * others) and its geometry (points, elements, hash halves: sim/restart_geometry.c); then, once the
+ * interactions and the ledger exist (books: 1), the ledger's records and the interactions'
+ * state. A restart reads the first part with the points and the books after the set-up. */
+static int scalars_make(const pf_sim *sim, int books, pf_sim_scalars *s) {
+  s->n = at_books(sim) + (books ? nbooks(sim) : 0);
   PF_MALLOC(s->name, s->n);
   PF_MALLOC(s->names, s->n);
   PF_MALLOC(s->value, s->n);
-  const char *fixed[NFIXED] = {"time", "step", "dt", "contact_energy", "external_work", "initial_energy", "wall_loss", "bc_work", "contact_dissipation",
-                               "damage_dissipation"};
+  const char *fixed[NFIXED] = {"time", "step", "dt"};
   int k = 0;
   for (; k < NFIXED; k++) snprintf(s->name[k], 96, "%s", fixed[k]);
   for (int p = 0; p < NPARTS; p++, k += 2) {
     snprintf(s->name[k], 96, "deck_hash_%s_hi", physics_parts[p]);
     snprintf(s->name[k + 1], 96, "deck_hash_%s_lo", physics_parts[p]);
   }
-  for (int q = 0, at = k; q < sim->nrigid; q++)
-    for (int a = 0; a < 3; a++) {
-      snprintf(s->name[at + 6 * q + a], 96, "indenter_%d_%s_position_%c", q, pf_rigid_name(sim->rigid[q]), 'x' + a);
-      snprintf(s->name[at + 6 * q + 3 + a], 96, "indenter_%d_%s_reaction_%c", q, pf_rigid_name(sim->rigid[q]), 'x' + a);
-    }
   const char *geo[PF_GEOMETRY_SCALARS] = {"points", "elements", "positions_hash_hi", "positions_hash_lo",
                                           "connectivity_hash_hi", "connectivity_hash_lo"};
   for (int b = 0; b < sim->nbodies; b++) {
-    snprintf(s->name[at_stable(sim) + b], 96, "body_%d_%s_stable_dt", b, sim->body_name[b]);
+    snprintf(s->name[at_stable() + b], 96, "body_%d_%s_stable_dt", b, sim->body_name[b]);
     for (int c = 0; c < PF_GEOMETRY_SCALARS; c++)
       snprintf(s->name[at_geometry(sim) + PF_GEOMETRY_SCALARS * b + c], 96, "body_%d_%s_%s", b, sim->body_name[b], geo[c]);
   }
-  for (int q = 0; q < nw; q++)
-    for (int a = 0; a < 3; a++) snprintf(s->name[at_walls(sim) + 3 * q + a], 96, "wall_%d_force_%c", q, 'x' + a);
-  for (int q = 0; q < np; q++)
-    for (int a = 0; a < 3; a++) snprintf(s->name[at_pairs(sim) + 3 * q + a], 96, "contact_pair_%d_force_%c", q, 'x' + a);
-  sums_names(sim, s);
+  if (books) {
+    pf_ledger_record_names(&sim->ledger, &s->name[at_books(sim)]);
+    pf_sim_interactions_state_names(sim, &s->name[at_books(sim) + pf_ledger_records(&sim->ledger)]);
+  }
   for (int q = 0; q < s->n; q++) s->names[q] = s->name[q];
   return 0;
 }
@@ -170,34 +80,23 @@ static void scalars_free(pf_sim_scalars *s) {
   PF_FREE(s->value);
 }
 
-static void scalars_fill(const pf_sim *sim, pf_sim_scalars *s) {
+/* Collective (the books' sums, the carried stable steps). */
+static int scalars_fill(pf_sim *sim, int books, pf_sim_scalars *s) {
   double *v = s->value;
   v[0] = sim->t, v[1] = (double)sim->step, v[2] = sim->dt;
-  v[3] = sim->contact_energy, v[4] = sim->external_work, v[5] = sim->e0;
-  v[6] = pf_sum_all(sim->wall_loss), v[7] = pf_sum_all(sim->bc_work); /* collective */
-  v[8] = pf_sum_all(sim->contact_dissipation), v[9] = pf_sum_all(sim->damage_dissipation);
   for (int p = 0; p < NPARTS; p++) {
     uint64_t h = part_hash(sim->deck, physics_parts[p]);
     v[NFIXED + 2 * p] = (double)(h >> 32), v[NFIXED + 2 * p + 1] = (double)(h & 0xffffffffu);
   }
-  for (int q = 0, at = at_rigid(); q < sim->nrigid; q++) {
-    double x[3];
-    pf_rigid_position(sim->rigid[q], x);
-    for (int a = 0; a < 3; a++) v[at + 6 * q + a] = x[a], v[at + 6 * q + 3 + a] = sim->reaction[q][a];
-  }
-  for (int b = 0, at = at_stable(sim); b < sim->nbodies; b++) {
-    const pf_body *body = &sim->body[b]; /* the carried stable steps (collective) */
-    v[at + b] = body->ops->set_stable_dt ? pf_min_all(body->ops->stable_dt(body->data, sim->pts)) : 0;
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_body *body = &sim->body[b]; /* the carried stable steps */
+    v[at_stable() + b] = pf_body_carries_stable_dt(body) ? pf_min_all(body->ops->stable_dt(body->data, sim->pts)) : 0;
   }
   pf_sim_geometry_scalars(sim, &v[at_geometry(sim)]);
-  for (int q = 0; q < deck_walls(sim); q++) /* (0 before the walls are built: only compared then) */
-    for (int a = 0; a < 3; a++) v[at_walls(sim) + 3 * q + a] = q < sim->nwalls ? sim->wall_reaction[q][a] : 0;
-  for (int q = 0; q < deck_pairs(sim); q++) {
-    double f[3] = {0, 0, 0};
-    if (sim->contact) pf_contact_pair_force(sim->contact, q, f);
-    for (int a = 0; a < 3; a++) v[at_pairs(sim) + 3 * q + a] = f[a];
-  }
-  sums_fill(sim, &v[at_sums(sim)]);
+  if (!books) return 0;
+  PF_CALL(pf_ledger_record_values(&sim->ledger, &v[at_books(sim)]));
+  pf_sim_interactions_state_get(sim, &v[at_books(sim) + pf_ledger_records(&sim->ledger)]);
+  return 0;
 }
 
 int pf_sim_setup_restart(pf_sim *sim) {
@@ -218,11 +117,11 @@ int pf_sim_checkpoint(pf_sim *sim) {
   pf_table tables[PF_MAX_BODIES];
   int ntables = 0;
   PF_CALL(pf_bond_rows_init(&rows));
-  int ierr = scalars_make(sim, &s);
+  int ierr = scalars_make(sim, 1, &s);
   if (!ierr) ierr = pf_sim_bond_rows(sim, &rows);
   if (!ierr) ierr = pf_sim_body_tables(sim, tables, &ntables);
+  if (!ierr) ierr = scalars_fill(sim, 1, &s);
   if (!ierr) {
-    scalars_fill(sim, &s);
     pf_points owned = *sim->pts; /* the owned points only */
     owned.n_total = owned.n_owned;
     pf_error_context("(checkpoint of step %ld, t = %.6e s)", sim->step, sim->t);
@@ -263,13 +162,13 @@ static void body_gids(pf_sim *sim) {
 int pf_sim_restore_points(pf_sim *sim) {
   pf_bond_rows rows;
   PF_CALL(pf_bond_rows_init(&rows));
-  PF_CALL(scalars_make(sim, &sim->restart_scalars));
+  PF_CALL(scalars_make(sim, 0, &sim->restart_scalars));
   pf_sim_scalars *s = &sim->restart_scalars;
   int ierr = pf_sim_bond_fields(sim, &rows);
-  if (!ierr) ierr = pf_checkpoint_read(sim->opt.restart_from, &sim->pts, &rows, s->n, s->names, s->value, at_sums(sim),
+  if (!ierr) ierr = pf_checkpoint_read(sim->opt.restart_from, &sim->pts, &rows, s->n, s->names, s->value, s->n,
                                        &sim->restart_format);
   if (!ierr) ierr = pf_sim_check_restart_geometry(sim, &s->value[at_geometry(sim)]);
-  if (!ierr) ierr = pf_sim_check_restart_scalars(sim, s->value, &s->value[at_stable(sim)]);
+  if (!ierr) ierr = pf_sim_check_restart_scalars(sim, s->value, &s->value[at_stable()]);
   if (!ierr) ierr = pf_sim_check_restart_bodies(sim);
   if (!ierr) body_gids(sim);
   if (!ierr) ierr = pf_sim_check_restart_gids(sim);
@@ -283,9 +182,8 @@ int pf_sim_restore_points(pf_sim *sim) {
     double *full = malloc(sizeof(double) * ((size_t)t.total * t.ncomp + 1));
     if (!full) return pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
     ierr = pf_checkpoint_read_table(sim->opt.restart_from, &t, full);
-    if (!ierr) body->ops->table_set(body->data, full);
-    if (!ierr && body->ops->set_stable_dt)
-      body->ops->set_stable_dt(body->data, s->value[at_stable(sim) + b]);
+    if (!ierr) pf_body_table_set(body, full);
+    if (!ierr) pf_body_set_stable_dt(body, s->value[at_stable() + b]);
     free(full);
   }
   return ierr;
@@ -299,12 +197,26 @@ static void rename_output(char *path, size_t len, long step) {
   snprintf(dot, len - (size_t)(dot - path), "-restart%ld%s", step, tail);
 }
 
-/* After the set-up: check the deck and take time, energies and indenter state from the file. */
+/* The books as the checkpoint holds them: the ledger's records and the interactions' state. */
+static int restore_books(pf_sim *sim) {
+  pf_sim_scalars all = {0};
+  PF_CALL(scalars_make(sim, 1, &all));
+  const int at = at_books(sim);
+  int ierr = pf_checkpoint_read_scalars(sim->opt.restart_from, all.n - at, all.names + at, all.value + at);
+  if (!ierr) {
+    pf_ledger_restore(&sim->ledger, &all.value[at]);
+    pf_sim_interactions_state_set(sim, &all.value[at + pf_ledger_records(&sim->ledger)]);
+  }
+  scalars_free(&all);
+  return ierr;
+}
+
+/* After the set-up: check the deck and take time and the books from the file. */
 int pf_sim_restore_state(pf_sim *sim) {
   pf_sim_scalars now = {0}, *saved = &sim->restart_scalars;
-  PF_CALL(scalars_make(sim, &now));
-  scalars_fill(sim, &now);
-  int ierr = check_deck(sim, saved, &now);
+  PF_CALL(scalars_make(sim, 0, &now));
+  int ierr = scalars_fill(sim, 0, &now);
+  if (!ierr) ierr = check_deck(sim, saved, &now);
   scalars_free(&now);
   if (ierr) return ierr;
   const double *v = saved->value;
@@ -312,24 +224,8 @@ int pf_sim_restore_state(pf_sim *sim) {
   if (sim->adaptive) sim->dt = v[2]; /* the step follows the elements: the last one taken */
   PF_CHECK(v[2] == sim->dt, PF_ERR_INPUT, "the checkpoint %s was written with dt = %.17g s, this set-up gives %.17g s",
            sim->opt.restart_from, v[2], sim->dt);
-  sim->t = v[0], sim->step = (long)v[1], sim->contact_energy = v[3], sim->external_work = v[4];
-  sim->e0 = v[5], sim->have_e0 = 1;
-  int root = pf_comm_rank() == 0; /* per-rank sums: rank 0 carries the total */
-  sim->wall_loss = root ? v[6] : 0, sim->bc_work = root ? v[7] : 0;
-  sim->contact_dissipation = root ? v[8] : 0, sim->damage_dissipation = root ? v[9] : 0;
-  for (int q = 0, at = at_rigid(); q < sim->nrigid; q++) {
-    pf_rigid_set_position(sim->rigid[q], &v[at + 6 * q]);
-    for (int a = 0; a < 3; a++) sim->reaction[q][a] = v[at + 6 * q + 3 + a];
-  }
-  for (int q = 0; q < sim->nwalls; q++)
-    for (int a = 0; a < 3; a++) sim->wall_reaction[q][a] = v[at_walls(sim) + 3 * q + a];
-  for (int q = 0; q < deck_pairs(sim) && sim->contact; q++) pf_contact_pair_force_set(sim->contact, q, &v[at_pairs(sim) + 3 * q]);
-  if (sim->restart_format < 4) pf_pd_correspondence_upgrade(sim->pts);
-  if (sim->restart_format >= 3) sums_restore(sim, &v[at_sums(sim)]);
-  else
-    pf_log("note: %s is a checkpoint of format %d, without the history's running sums per body, condition, "
-           "rigid surface and wall: those columns start again from 0 (the global ones continue)\n",
-           sim->opt.restart_from, sim->restart_format);
+  sim->t = v[0], sim->step = (long)v[1];
+  PF_CALL(restore_books(sim));
   rename_output(sim->exodus_path, sizeof sim->exodus_path, sim->step);
   rename_output(sim->history_path, sizeof sim->history_path, sim->step);
   pf_log("restarted from %s at step %ld, t = %.6e s\n", sim->opt.restart_from, sim->step, sim->t);

@@ -14,7 +14,7 @@ void pf_sim_geometry_take(pf_sim *sim, const pf_point_cloud *pc) {
   for (int b = 0; b < sim->nbodies; b++) {
     const pf_point_cloud *c = &pc[b];
     const pf_body *body = &sim->body[b];
-    const pf_mesh *m = body->ops->mesh ? body->ops->mesh(body->data) : NULL;
+    const pf_mesh *m = pf_body_mesh(body);
     uint64_t h = PF_FNV1A_SEED, hc = PF_FNV1A_SEED;
     const size_t n = (size_t)c->n;
     h = pf_fnv1a(h, c->X, 3 * n * sizeof(double));

@@ -7,16 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-double pf_sim_energy_scale(const pf_sim_history_row *g) {
-  const double *v = g->values + 2;
-  return fmax(fabs(g->e0), fmax(fabs(v[G_WEXT]), v[G_KE] + v[G_EL] + v[G_CONTACT] + fabs(v[G_FEINT])));
-}
-
-double pf_sim_energy_error(const pf_sim_history_row *g) {
-  const double scale = pf_sim_energy_scale(g);
-  return scale > 0 ? fabs(g->values[2 + G_EERR]) / scale : 0.0;
-}
-
 /* How far the run is, 0..1: by time when the step follows the deformation (the step count is
  * not known ahead), else by steps. */
 static double run_fraction(const pf_sim *sim) {
@@ -28,7 +18,7 @@ static double run_fraction(const pf_sim *sim) {
  * simulated time of the final time, steps per second of wall time, the time left at that rate,
  * and the energy balance error and damage fraction of the last history row (no collective:
  * ranks need not agree on when). */
-static void progress(const pf_sim *sim, const pf_sim_history_row *g, double wall0, int status) {
+static void progress(const pf_sim *sim, double wall0, int status) {
   double el = pf_wtime() - wall0, rate = sim->step / fmax(el, 1e-9);
   const int by_time = sim->adaptive && isfinite(sim->final_time);
   const double frac = run_fraction(sim);
@@ -38,23 +28,23 @@ static void progress(const pf_sim *sim, const pf_sim_history_row *g, double wall
                   : snprintf(line, sizeof line, "step %ld/%ld", sim->step, sim->nsteps);
   snprintf(line + n, sizeof line - n,
            "  t = %.4e / %.4e s (%.0f %%)  %.1f steps/s  about %.0f s left  energy error %.2e  damage %.4g",
-           sim->t, tend, 100 * frac, rate, el * (1 - frac) / fmax(frac, 1e-9), pf_sim_energy_error(g),
-           g->values[2 + G_DAMAGE]);
+           sim->t, tend, 100 * frac, rate, el * (1 - frac) / fmax(frac, 1e-9), pf_sim_energy_error(sim),
+           pf_sim_total(sim, sim->acc.totals.damage_fraction));
   if (status) pf_log_status("%s", line);
   else pf_log("%s\n", line);
 }
 
-static void summary(const pf_sim *sim, const pf_sim_history_row *g, double wall) {
+static void summary(pf_sim *sim, double wall) {
   double nb = 0, bytes = 0;
   for (int b = 0; b < sim->nbodies; b++) {
-    const pf_body *body = &sim->body[b];
-    if (!body->ops->family) continue;
-    const double n = (double)pf_pd_family_nbonds(body->ops->family(body->data));
+    const pf_family *fam = pf_body_family(&sim->body[b]);
+    const double n = fam ? (double)pf_pd_family_nbonds(fam) : 0;
     nb += n;
-    bytes += n * body->ops->bytes_per_bond(body->data);
+    bytes += n > 0 ? n * pf_body_bytes_per_bond(&sim->body[b]) : 0;
   }
   nb = pf_sum_all(nb), bytes = pf_sum_all(bytes);
-  const double *v = g->values + 2;
+  const pf_sim_totals *T = &sim->acc.totals;
+  const double hg = pf_sim_total(sim, T->hourglass), fe = pf_sim_total(sim, T->fe_internal);
   /* wall: from the start of the run (t = 0 forces, first output) to the output files closed;
    * the time loop's steps alone, and its output, history rows and rebalancing, apart. The rate
    * counts every stored directed bond once per step taken in this run (broken ones too: the
@@ -69,29 +59,20 @@ static void summary(const pf_sim *sim, const pf_sim_history_row *g, double wall)
          sim->wall_loop > 0 ? nb * sim->loop_steps / sim->wall_loop : 0.0);
   double nel = 0;
   for (int b = 0; b < sim->nbodies; b++)
-    if (sim->body[b].ops->mesh) nel += sim->body[b].ops->mesh(sim->body[b].data)->nelem;
+    if (pf_body_mesh(&sim->body[b])) nel += pf_body_mesh(&sim->body[b])->nelem;
   if (nel > 0)
     pf_log("  elements %.0f, element cycles per second %.4g, hourglass energy %.3g J (%.3g times the internal)\n",
-           nel, sim->wall_loop > 0 ? nel * sim->loop_steps / sim->wall_loop : 0.0, v[G_HG],
-           v[G_FEINT] != 0 ? v[G_HG] / v[G_FEINT] : 0.0);
+           nel, sim->wall_loop > 0 ? nel * sim->loop_steps / sim->wall_loop : 0.0, hg, fe != 0 ? hg / fe : 0.0);
   for (int b = 0; b < sim->nbodies; b++) {
     const pf_body *body = &sim->body[b];
-    long n = 0;
-    if (body->ops->eroded && body->ops->eroded(body->data, &n))
-      pf_log("  body '%s': %ld of %" PF_INT_FMT " elements deleted by erosion\n", sim->body_name[b], n,
-             body->ops->mesh(body->data)->nelem);
-    if (body->ops->as_particles)
+    const long n = pf_body_eroded_count(body);
+    if (n >= 0) pf_log("  body '%s': %ld of %" PF_INT_FMT " elements deleted by erosion\n", sim->body_name[b], n,
+                  pf_body_mesh(body)->nelem);
+    if (pf_body_as_particles(body))
       pf_log("  body '%s': %ld elements converted into particles, kinetic energy booked at the conversions %.4g J\n",
-             sim->body_name[b], pf_fem_particles_count(body->ops->as_particles(body->data)), g->values[g->n + 1]);
+             sim->body_name[b], pf_fem_particles_count(pf_body_as_particles(body)), pf_sim_total(sim, T->conversion));
   }
-  if (sim->contact) {
-    long rebuilds;
-    double sec;
-    pf_contact_stats(sim->contact, &rebuilds, &sec);
-    sec = pf_max_all(sec);
-    pf_log("  contact: %ld search rebuilds, %.3g s (%.1f %% of the time loop), dissipation %.3g J\n", rebuilds, sec,
-           sim->wall_loop > 0 ? 100 * sec / sim->wall_loop : 0.0, v[G_CDISS]);
-  }
+  pf_sim_interactions_summary(sim);
   /* the set-up's peak resident memory, and the run's: resident at the end of the time loop, or
    * the process's peak when the run raised it above the set-up's */
   const double peak = pf_memory_peak(), setup = pf_max_all(sim->rss_setup), before = pf_max_all(sim->rss0);
@@ -99,7 +80,8 @@ static void summary(const pf_sim *sim, const pf_sim_history_row *g, double wall)
   pf_log("  memory: set-up peak %.1f MB, run %.1f MB (%.2f x), before the set-up %.1f MB (resident, the largest"
          " over the ranks)\n", setup / 1e6, run / 1e6, run > 0 ? setup / run : 0.0, before / 1e6);
   pf_log("  final damage fraction %.6g, energy balance error %.3g J (relative %.3g; damage dissipated %.3g J)\n",
-         v[G_DAMAGE], v[G_EERR], pf_sim_energy_error(g), v[G_DDISS]);
+         pf_sim_total(sim, T->damage_fraction), pf_sim_total(sim, T->error), pf_sim_energy_error(sim),
+         pf_sim_total(sim, T->damage));
   if (!sim->opt.no_output)
     pf_log("  output: %s%s, %s\n", sim->exodus_path, pf_sim_spread_output(sim) ? ".<ranks>.<rank>" : "", sim->history_path);
   pf_sim_health_summary(sim);
@@ -152,14 +134,14 @@ static int run_loop(pf_sim *sim, long n) {
       if (exo) PF_CALL(pf_sim_rebalance(sim));
       PF_CALL(pf_sim_globals_eval(sim, g, 0));
       PF_CALL(pf_sim_write_output(sim, g, exo, his, last));
-      if (his) PF_CALL(pf_sim_health_check(sim, g));
+      if (his) PF_CALL(pf_sim_health_check(sim));
       sim->wall_output += pf_wtime() - t0;
       loop0 += pf_wtime() - t0; /* output is not part of the step rate */
     }
     if (last) continue;
-    if (status && pf_wtime() - sim->run->shown > 0.25) progress(sim, g, sim->run->wall0, 1), sim->run->shown = pf_wtime();
+    if (status && pf_wtime() - sim->run->shown > 0.25) progress(sim, sim->run->wall0, 1), sim->run->shown = pf_wtime();
     else if (!status && (int)(20 * run_fraction(sim)) > sim->run->twentieths)
-      sim->run->twentieths = (int)(20 * run_fraction(sim)), progress(sim, g, sim->run->wall0, 0);
+      sim->run->twentieths = (int)(20 * run_fraction(sim)), progress(sim, sim->run->wall0, 0);
   }
   sim->wall_loop += pf_wtime() - loop0;
   sim->loop_steps = sim->step - sim->run->step0;
@@ -186,7 +168,7 @@ int pf_sim_run_begin(pf_sim *sim) {
   if (!ierr) ierr = pf_sim_globals_eval(sim, &r->row, 1);
   if (!ierr) ierr = pf_sim_open_output(sim, &r->row);
   if (!ierr) ierr = pf_sim_write_output(sim, &r->row, 1, 1, 0);
-  if (!ierr) ierr = pf_sim_health_check(sim, &r->row);
+  if (!ierr) ierr = pf_sim_health_check(sim);
   if (ierr) run_close(sim, RUN_FAILED);
   r->shown = pf_wtime();
   return ierr;
@@ -199,7 +181,7 @@ int pf_sim_run_advance(pf_sim *sim, long n) {
   if (ierr) run_close(sim, RUN_FAILED);
   else if (pf_sim_finished(sim) || sim->stopped) {
     run_close(sim, RUN_ENDED); /* (closing the files is part of the run's wall time) */
-    summary(sim, &sim->run->row, pf_wtime() - sim->run->wall0);
+    summary(sim, pf_wtime() - sim->run->wall0);
   }
   return ierr;
 }

@@ -55,7 +55,7 @@ int pf_sim_sets_build(pf_sim *sim, const pf_point_cloud *pc) {
   pf_gid gid0 = 0;
   for (int b = 0; b < sim->nbodies; b++) {
     const pf_body *body = &sim->body[b];
-    const pf_mesh *m = body->ops->mesh ? body->ops->mesh(body->data) : NULL;
+    const pf_mesh *m = pf_body_mesh(body);
     if (m) PF_CALL(add_mesh_sets(sim, b, m, gid0));
     PF_CALL(add_cloud_sets(sim, b, &pc[b], gid0));
     gid0 += pc[b].n;

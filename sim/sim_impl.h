@@ -5,9 +5,33 @@
 #include "contact/contact.h"
 #include "sim/body.h"
 #include "coupling/coupling.h"
+#include "sim/interaction.h"
+#include "sim/ledger.h"
 #include "sim/sim.h"
 
 #define PF_MAX_BODIES 64
+
+/* The run's totals in the ledger: the history's first columns, each the sum of its parts (the
+ * bodies' and interactions' accounts), in this order. */
+typedef struct {
+  int kinetic, elastic, contact, work, error, momentum, damage_fraction, fe_internal, hourglass, viscous, wall,
+      contact_dissipation, damage, redistribution, conversion;
+} pf_sim_totals;
+/* A body's accounts (sim/accounts.c): its centre of mass and mean velocity, kinetic energy (and
+ * the centred one the balance takes), internal energy (PD stored energy and element stress work,
+ * also apart), hourglass energy, viscous work, damage dissipation and redistribution, external
+ * work (the prescribed motions' and loads' on its points), momentum, the kinetic energy its
+ * conversions removed, its bonds and broken bonds. */
+typedef struct {
+  int position, velocity, kinetic, centred, internal, elastic, fe_internal, hourglass, viscous, damage,
+      redistribution, work, momentum, conversion, bonds, broken;
+} pf_body_accounts;
+typedef struct {
+  pf_sim_totals totals;
+  pf_body_accounts body[PF_MAX_BODIES];
+  int body_work[PF_MAX_BODIES]; /* = body[b].work, for the interactions' step */
+  int probe0, nprobe;           /* the probes' accounts: probe0 .. probe0 + nprobe - 1 */
+} pf_sim_accounts;
 
 /* Named scalars of a checkpoint (sim/restart.c). */
 typedef struct {
@@ -29,9 +53,9 @@ enum { PF_PROBE_MAX_QUANTITIES = 8 };
 /* The run-health monitor's state (sim/health.c). */
 enum { PF_HEALTH_MAX_WARNINGS = 32 };
 typedef struct {
-  pf_body_energies local[PF_MAX_BODIES]; /* this rank's, from the last pf_sim_globals_get */
   double e0[PF_MAX_BODIES];     /* each body's energy at the first check, J */
   double damage[PF_MAX_BODIES]; /* each body's damaged fraction at the last check */
+  double error;                 /* the relative energy error at the last check */
   long step0;                   /* the step of the first check */
   int started;                  /* the first check is done */
   int n;                        /* warnings given so far */
@@ -56,18 +80,12 @@ struct pf_sim {
   pf_gid gid0[PF_MAX_BODIES + 1];  /* global ids of body b: [gid0[b], gid0[b+1]) */
   const char *body_name[PF_MAX_BODIES];
   pf_int body_start[PF_MAX_BODIES + 1];
-  int nrigid;
-  pf_rigid **rigid;      /* rigid surfaces: `contact: rigid_surfaces:` and `indenters:` */
-  double (*reaction)[3]; /* [nrigid] force on each rigid surface, N */
-  pf_contact *contact;   /* contact between bodies (NULL: no pair) */
+  pf_contact *contact; /* the contact pairs' (borrowed from their interaction; NULL: none): pf_sim_contact */
   pf_point_sets sets; /* the bodies' node and side sets, for regions (sim/sets.c) */
-  int nbcs;
-  pf_bc **bcs;
-  int nwalls;
-  pf_wall **walls;
-  double (*wall_reaction)[3]; /* [nwalls] force of the points on each wall, N */
-  double *sums;               /* [2 nsums] the step's contact sums, this rank's then all ranks' */
-  int nsums;
+  pf_interaction *inter; /* rigid surfaces, contact, walls, conditions (sim/interaction.h), list order */
+  int ninter, cap_inter;
+  pf_ledger ledger;      /* the run's books (sim/ledger.h) */
+  pf_sim_accounts acc;   /* the run's and the bodies' accounts in it (sim/accounts.c) */
   /* parallel */
   pf_partition_method decomposition;
   double rebalance_threshold; /* re-partition when max/mean work exceeds this (0: never) */
@@ -79,23 +97,7 @@ struct pf_sim {
   double safety;        /* fraction of the stable step */
   double max_motion;    /* guard: largest step motion, as a fraction of horizon (PD) or cell (FE) */
   double pd_stable;     /* the PD bodies' stable step (fixed) */
-  /* energy bookkeeping */
-  double contact_energy, external_work, wall_loss;
-  double contact_dissipation; /* friction work of this rank's contacts (summed in the globals) */
-  double damage_dissipation;  /* energy released by this rank's failed bonds (summed likewise) */
-  double bc_work; /* work of the prescribed motions on this rank's points (summed in the globals) */
-  double damage_redistribution; /* the stored energy bond failures moved rather than released
-                                   (<= 0; docs/theory/pd.md §5.1), this rank's points */
-  /* the same per body, this rank's points: prescribed motions' work, damage dissipation and
-   * redistribution, J (the history's per-body columns) */
-  double body_bc_work[PF_MAX_BODIES], body_damage[PF_MAX_BODIES], body_redistribution[PF_MAX_BODIES];
-  int restart_format;           /* the format of the checkpoint restarted from */
-  double *row_sums;            /* the last pf_sim_globals_get's sums over the ranks (sim/step.c) */
-  double *rigid_work;          /* [nrigid] work of each rigid surface's prescribed motion, J */
-  double (*rigid_impulse)[3];  /* [nrigid] impulse of each surface on the points, N s (rank 0 keeps it) */
-  double (*wall_impulse)[3];   /* [nwalls] impulse of each wall on this rank's points, N s */
-  double e0;   /* total energy at the start of the run (kept across restarts) */
-  int have_e0;
+  int restart_format;  /* the format of the checkpoint restarted from */
   /* checkpoints */
   char restart_path[4096];
   long restart_interval;
@@ -194,35 +196,33 @@ void pf_sim_setup_done(void);
  * it the largest over the ranks, in sim->signal. */
 int pf_sim_signal_here(void);
 int pf_sim_setup_output(pf_sim *sim);
-/* sim/output.c: the history's columns (fixed ones, then per rigid surface, wall and contact pair,
- * per body and per probe) and one row of them; the Exodus file; output at a step; the last good
- * state. Collective. */
-enum { G_KE, G_EL, G_CONTACT, G_WEXT, G_EERR, G_PX, G_PY, G_PZ, G_DAMAGE,
-       G_FEINT, G_HG, G_BV, G_WALL, G_CDISS, G_DDISS, G_FIXED };
+/* sim/output.c: the history's columns (time, step, then the ledger's columns: the run's totals,
+ * each body's, each interaction's, the probes') and one row of them; the Exodus file; output at a
+ * step; the last good state. Collective. */
 typedef struct {
-  int n;
+  int n;             /* the ledger's columns (time and step come before them) */
   char **names;
   const char **units;
-  double *values;
-  double e0; /* initial total energy */
-  int body0, probe0; /* the columns (after time and step) where the bodies' and the probes' start */
-  int extra0;        /* where the appended ones start (damage_redistribution, then per body ...) */
+  double *values;    /* [n + 2] */
 } pf_sim_history_row;
-/* The history's per-body quantities (sim/step.c), in this order per body: kinetic energy, internal
- * energy (PD stored energy and element stress work), hourglass energy, viscous work (bulk
- * viscosity), damage dissipation (>= 0), damage redistribution (<= 0), external work (the
- * prescribed motions' on its points), momentum x, y, z. */
-enum { PF_BODY_KE, PF_BODY_INTERNAL, PF_BODY_HG, PF_BODY_VISCOUS, PF_BODY_DAMAGE, PF_BODY_REDIST, PF_BODY_WEXT,
-       PF_BODY_PX, PF_BODY_SUMS = PF_BODY_PX + 3 };
-/* The number of sums pf_sim_globals_get reduces, and after it the summed values past the global
- * ones: PF_BODY_SUMS per body, then per prescribed condition its last step's impulse (3) and its
- * impulse since the start (3), then the impulse of each rigid surface (3) and wall (3), N s. */
-int pf_sim_sums_count(const pf_sim *sim);
-const double *pf_sim_row_sums(const pf_sim *sim);
 int pf_sim_globals_init(const pf_sim *sim, pf_sim_history_row *g);
-/* Fill values[0..n+1]: time, step, the columns; first: the initial energy too. */
+/* Fill values[0..n+1]: time, step, the columns; first: the balance now is the initial one. */
 int pf_sim_globals_eval(pf_sim *sim, pf_sim_history_row *g, int first);
 void pf_sim_globals_free(pf_sim_history_row *g);
+/* sim/accounts.c: open the run's totals, each body's accounts, the interactions' and the
+ * probes' (at set-up, after the interactions are built); evaluate them (the bodies' energies and
+ * motion, the probes, one reduction; first: the initial balance); book the energy the bodies'
+ * failed bonds released since the last call (after each force evaluation). Collective but the
+ * last. */
+int pf_sim_accounts_open(pf_sim *sim);
+int pf_sim_accounts_evaluate(pf_sim *sim, int first);
+void pf_sim_accounts_book_damage(pf_sim *sim);
+/* The run's totals after the last evaluation: its account's value. */
+double pf_sim_total(const pf_sim *sim, int id);
+/* The largest energy in play, max(|E0|, |W_ext|, KE + W_el + U_contact + |U_FE|), J, and the
+ * energy balance error relative to it, after the last evaluation. */
+double pf_sim_energy_scale(const pf_sim *sim);
+double pf_sim_energy_error(const pf_sim *sim);
 /* sim/run.c: the history columns as last evaluated (at the start of the run and at each history
  * row; sim/api.c evaluates them again at the end of each call), or NULL before the run starts or
  * after it failed. */
@@ -262,16 +262,15 @@ int pf_sim_guard_save(pf_sim *sim);
 void pf_sim_guard_motion(pf_sim *sim, double dt);
 int pf_sim_guard_check(pf_sim *sim);
 void pf_sim_guard_free(pf_sim *sim);
-/* The largest energy in play, max(|E0|, |W_ext|, KE + W_el + U_contact + |U_FE|), J, and the
- * energy balance error relative to it (sim/run.c). */
-double pf_sim_energy_scale(const pf_sim_history_row *g);
-double pf_sim_energy_error(const pf_sim_history_row *g);
 /* sim/health.c, the run-health monitor: at each history row (g just evaluated), warn on rank 0
  * once per class and body when the energy error passes 1 % and 5 %, a body's hourglass energy
  * passes 10 % of its internal energy, a body's damaged fraction rises by more than 0.1 between
  * two rows, or a contact pair's bodies interpenetrate; with --strict the first warning is a run
  * failure on every rank. Two small reductions. Collective. */
-int pf_sim_health_check(pf_sim *sim, const pf_sim_history_row *g);
+int pf_sim_health_check(pf_sim *sim);
+/* A warning of the monitor, unless `what` (its class and owner) was given before; with --strict
+ * an error on every rank (each holds the same reduced figures). */
+int pf_sim_health_warn(pf_sim *sim, const char *what, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 /* The summary's last line: "health: ok" or "health: N warnings (…)". */
 void pf_sim_health_summary(const pf_sim *sim);
 /* sim/body_state.c: body b's span of the store; the bond rows of every owned point (PD
@@ -287,17 +286,4 @@ int pf_sim_table_shape(const pf_sim *sim, int b, pf_table *t, pf_int *nlocal);
 int pf_sim_body_tables(const pf_sim *sim, pf_table *t, int *n);
 void pf_sim_body_tables_free(pf_table *t, int n);
 int pf_sim_settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows);
-/* sim/contact.c: rigid surfaces and contact pairs from the deck (after the bodies);
- * the contact's view of the bodies after every (re)partition. */
-int pf_sim_build_contact(pf_sim *sim);
-/* The rigid surfaces (`contact: rigid_surfaces:` and `indenters:`): after the bodies' names and
- * before a restart reads the checkpoint, whose scalars hold their positions. */
-int pf_sim_build_rigid(pf_sim *sim);
-int pf_sim_contact_attach(pf_sim *sim);
-/* Contact forces (rigid surfaces, pairs and walls) at the current positions, dt the step just
- * taken; sets the reactions and contact_energy (one reduction). Collective. */
-int pf_sim_contact_forces(pf_sim *sim, double dt);
-/* The stable step of the penalties. Collective. */
-double pf_sim_contact_stable_dt(pf_sim *sim);
-
 #endif

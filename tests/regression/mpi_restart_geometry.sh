@@ -16,9 +16,9 @@
 #     restarted on 2: one coordinate of the file moved by 1 um, or a point dropped: refused naming
 #     the point file.
 #  3. A checkpoint without the format attribute (as perifem wrote them before it recorded the
-#     geometry) or of a newer format: refused naming both formats. One of format 2 (without the
-#     history's running sums per body, condition, surface and wall) restarts to the same digest
-#     with a note; one of format 3 missing one of those sums is refused naming the attribute.
+#     geometry), of an older format (4: the run's books as fixed scalars, before the ledger) or of
+#     a newer one: refused naming the formats. One missing one of the ledger's records is refused
+#     naming the attribute.
 # usage: mpi_restart_geometry.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
@@ -89,7 +89,7 @@ refused pts.yaml ckp.h5 2 "point dropped" "body 'block'" "point file 'pts.txt' g
 cp pts_orig.txt pts.txt
 
 # 3. the format
-for f in 0 5; do
+for f in 0 4 6; do
   cp ckp.h5 ckp$f.h5
   "$PY" -c "
 import h5py, sys
@@ -98,29 +98,17 @@ with h5py.File('ckp$f.h5', 'r+') as h:
     else: del h.attrs['format']
 " || { echo "h5py could not edit the checkpoint"; fail=1; }
 done
-refused pts.yaml ckp0.h5 1 "no format attribute" "ckp0.h5 is of format 1, this perifem reads formats 2 to 4 only" "older perifem"
-refused pts.yaml ckp5.h5 1 "format 5" "ckp5.h5 is of format 5" "newer perifem"
-# a format-2 checkpoint (before the history's running sums were kept: format 3 without them; and
-# before format 4's point fields previous_positions and lost_weighted_volume, which this deck's
-# unbroken bonds do not need) restarts to the same digest with a note; a format-3 one without one
-# of the sums is refused
+refused pts.yaml ckp0.h5 1 "no format attribute" "ckp0.h5 is of format 1, this perifem reads formats 5 to 5 only" "older perifem"
+refused pts.yaml ckp4.h5 1 "format 4" "ckp4.h5 is of format 4" "older perifem"
+refused pts.yaml ckp6.h5 1 "format 6" "ckp6.h5 is of format 6" "newer perifem"
+# a checkpoint without one of the ledger's records (the books of the run) is refused naming it
 "$PY" -c "
 import h5py, shutil
-for name, fmt in (('ckp2.h5', 2), ('ckp3.h5', 3)):
-    shutil.copy('ckp.h5', name)
-    with h5py.File(name, 'r+') as h:
-        sums = [a for a in h.attrs if a == 'damage_redistribution' or a.startswith('body_0_block_') and
-                a.endswith(('_damage', '_redistribution', '_bc_work'))]
-        assert len(sums) == 4, sums
-        for a in (sums if fmt == 2 else sums[:1]): del h.attrs[a]
-        if fmt == 2:
-            for f in ('previous_positions', 'lost_weighted_volume'):
-                if 'fields/' + f in h: del h['fields/' + f]
-            assert 'fields/previous_positions' not in h
-        h.attrs.modify('format', fmt)
+shutil.copy('ckp.h5', 'ckp_books.h5')
+with h5py.File('ckp_books.h5', 'r+') as h:
+    books = [a for a in h.attrs if a.startswith('ledger:')]
+    assert 'ledger:block_external_work' in books and 'ledger:initial_energy' in books, books
+    del h.attrs['ledger:block_external_work']
 " || { echo "h5py could not edit the checkpoint"; fail=1; }
-out=$(run 1 "$exe" --restart ckp2.h5 pts.yaml 2>&1)
-[ "$(digest_of "$out")" = "$ref" ] && echo "$out" | grep -q "ckp2.h5 is a checkpoint of format 2" ||
-  { echo "format 2: expected the uninterrupted digest $ref and a note:"; echo "$out" | tail -5; fail=1; }
-refused pts.yaml ckp3.h5 1 "format 3 without a running sum" "ckp3.h5 has no attribute"
+refused pts.yaml ckp_books.h5 1 "a record of the books missing" "ckp_books.h5 has no attribute 'ledger:block_external_work'"
 exit $fail

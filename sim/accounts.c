@@ -1,0 +1,206 @@
+/* The run's and the bodies' accounts in the ledger (sim/ledger.h): the run's totals come first
+ * in the history, then per body its motion and energies, then what each interaction opens, then
+ * the probes. A body's state accounts are evaluated at each history row from its energies op
+ * and its points; its running ones are booked during the steps (damage here, external work by
+ * the conditions). */
+#include "sim/sim_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* One line per total: name, units, components. */
+static int open_totals(pf_sim *sim) {
+  pf_ledger *l = &sim->ledger;
+  pf_sim_totals *T = &sim->acc.totals;
+  const int S = PF_BOOK_STATE, N = PF_BOOK_NO_BALANCE;
+  PF_CALL(pf_ledger_open(l, "kinetic_energy", "J", 1, 0, S, N, -1, &T->kinetic));
+  PF_CALL(pf_ledger_open(l, "elastic_energy", "J", 1, 0, S, N, -1, &T->elastic));
+  PF_CALL(pf_ledger_open(l, "contact_energy", "J", 1, 0, S, N, -1, &T->contact));
+  PF_CALL(pf_ledger_open(l, "external_work", "J", 1, 0, S, N, -1, &T->work));
+  PF_CALL(pf_ledger_open_error(l));
+  T->error = l->error_id;
+  PF_CALL(pf_ledger_open(l, "momentum", "kg m/s", 3, 0, S, N, -1, &T->momentum));
+  PF_CALL(pf_ledger_open(l, "damage_fraction", "", 1, 0, S, N | PF_BOOK_SHARED, -1, &T->damage_fraction));
+  PF_CALL(pf_ledger_open(l, "fe_internal_energy", "J", 1, 0, S, N, -1, &T->fe_internal));
+  PF_CALL(pf_ledger_open(l, "hourglass_energy", "J", 1, 0, S, N, -1, &T->hourglass));
+  PF_CALL(pf_ledger_open(l, "bulk_viscosity_work", "J", 1, 0, S, N, -1, &T->viscous));
+  PF_CALL(pf_ledger_open(l, "wall_dissipation", "J", 1, 0, S, N, -1, &T->wall));
+  PF_CALL(pf_ledger_open(l, "contact_dissipation", "J", 1, 0, S, N, -1, &T->contact_dissipation));
+  PF_CALL(pf_ledger_open(l, "damage_dissipation", "J", 1, 0, S, N, -1, &T->damage));
+  PF_CALL(pf_ledger_open(l, "damage_redistribution", "J", 1, 0, S, N, -1, &T->redistribution));
+  T->conversion = -1; /* a column only where some body's particles come from converted elements */
+  for (int b = 0; b < sim->nbodies && T->conversion < 0; b++)
+    if (pf_body_as_particles(&sim->body[b]))
+      PF_CALL(pf_ledger_open(l, "conversion_loss", "J", 1, 0, S, N, -1, &T->conversion));
+  return 0;
+}
+
+/* Body b's accounts: (column suffix, units, components, sign, kind, flags, total). */
+static int open_body(pf_sim *sim, int b) {
+  pf_ledger *l = &sim->ledger;
+  const pf_sim_totals *T = &sim->acc.totals;
+  pf_body_accounts *A = &sim->acc.body[b];
+  const int S = PF_BOOK_STATE, R = PF_BOOK_RUNNING, H = PF_BOOK_HIDDEN;
+  const struct {
+    int *id;
+    const char *suffix, *units;
+    int ncomp, sign;
+    pf_book_kind kind;
+    int flags, total;
+  } list[] = {
+      {&A->position, "position", "m", 3, 0, S, PF_BOOK_SHARED, -1},
+      {&A->velocity, "velocity", "m/s", 3, 0, S, PF_BOOK_SHARED, -1},
+      {&A->kinetic, "kinetic_energy", "J", 1, 0, S, 0, T->kinetic},
+      {&A->centred, "kinetic_energy_centred", "J", 1, 1, S, H, -1},
+      {&A->internal, "internal_energy", "J", 1, 0, S, 0, -1},
+      {&A->elastic, "elastic_energy", "J", 1, 1, S, H, T->elastic},
+      {&A->fe_internal, "fe_internal_energy", "J", 1, 1, S, H, T->fe_internal},
+      {&A->hourglass, "hourglass_energy", "J", 1, 1, S, 0, T->hourglass},
+      {&A->viscous, "viscous_work", "J", 1, 1, S, 0, T->viscous},
+      {&A->damage, "damage_dissipation", "J", 1, 1, R, 0, T->damage},
+      {&A->redistribution, "damage_redistribution", "J", 1, 1, R, 0, T->redistribution},
+      {&A->work, "external_work", "J", 1, -1, R, 0, T->work},
+      {&A->momentum, "momentum", "kg m/s", 3, 0, S, 0, T->momentum},
+      {&A->conversion, "conversion_loss", "J", 1, 1, S, H, T->conversion},
+      {&A->bonds, "bonds", "", 1, 0, S, H, -1},
+      {&A->broken, "broken_bonds", "", 1, 0, S, H, -1},
+  };
+  for (size_t k = 0; k < sizeof list / sizeof list[0]; k++) {
+    char name[160];
+    snprintf(name, sizeof name, "%s_%s", sim->body_name[b], list[k].suffix);
+    PF_CALL(pf_ledger_open(l, name, list[k].units, list[k].ncomp, list[k].sign, list[k].kind, list[k].flags,
+                           list[k].total, list[k].id));
+  }
+  sim->acc.body_work[b] = A->work;
+  return 0;
+}
+
+static int open_probes(pf_sim *sim) {
+  sim->acc.nprobe = pf_sim_probe_columns(sim);
+  sim->acc.probe0 = sim->ledger.n;
+  for (int k = 0; k < sim->acc.nprobe; k++) {
+    char name[160];
+    const char *units;
+    int id;
+    pf_sim_probe_column(sim, k, name, sizeof name, &units);
+    PF_CALL(pf_ledger_open(&sim->ledger, name, units, 1, 0, PF_BOOK_STATE, PF_BOOK_SHARED, -1, &id));
+  }
+  return 0;
+}
+
+int pf_sim_accounts_open(pf_sim *sim) {
+  PF_CALL(open_totals(sim));
+  for (int b = 0; b < sim->nbodies; b++) PF_CALL(open_body(sim, b));
+  PF_CALL(pf_sim_interactions_open_accounts(sim));
+  return open_probes(sim);
+}
+
+/* Body b's kinetic energy, momentum and the centred kinetic energy: a prescribed component's
+ * force (marked in fixed) is a reaction, not an acceleration, so it does not enter the centred
+ * kinetic energy sum m (|v|^2 - (dt/2)^2 |a|^2) / 2 = sum m v(t - dt/2) . v(t + dt/2) / 2, the
+ * kinetic part of the energy velocity Verlet conserves exactly for linear forces. */
+static void body_motion(pf_sim *sim, int b, const uint8_t *fixed) {
+  const pf_points *p = sim->pts;
+  const pf_body_accounts *A = &sim->acc.body[b];
+  const double h = 0.5 * sim->dt;
+  double ke = 0, kc = 0, mom[3] = {0, 0, 0};
+  for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++)
+    for (int a = 0; a < 3; a++) {
+      double v = p->v[3 * i + a], acc = fixed[3 * i + a] || !(p->m[i] > 0) ? 0 : p->f[3 * i + a] / p->m[i];
+      ke += 0.5 * p->m[i] * v * v;
+      kc += 0.5 * p->m[i] * (v * v - h * h * acc * acc);
+      mom[a] += p->m[i] * v;
+    }
+  pf_ledger_set(&sim->ledger, A->kinetic, &ke);
+  pf_ledger_set(&sim->ledger, A->centred, &kc);
+  pf_ledger_set(&sim->ledger, A->momentum, mom);
+}
+
+/* Each body's centre of mass (current positions) and mass-averaged velocity: a projectile's path
+ * and its residual velocity. One reduction. */
+static int body_centres(pf_sim *sim) {
+  const pf_points *p = sim->pts;
+  double s[7 * PF_MAX_BODIES] = {0}; /* per body: m y (3), m v (3), m */
+  for (int b = 0; b < sim->nbodies; b++)
+    for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++) {
+      for (int a = 0; a < 3; a++) s[7 * b + a] += p->m[i] * p->y[3 * i + a], s[7 * b + 3 + a] += p->m[i] * p->v[3 * i + a];
+      s[7 * b + 6] += p->m[i];
+    }
+  PF_CHECK(MPI_Allreduce(MPI_IN_PLACE, s, 7 * sim->nbodies, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) == MPI_SUCCESS,
+           PF_ERR_LIB, "MPI_Allreduce failed summing the bodies' centres of mass");
+  for (int b = 0; b < sim->nbodies; b++) {
+    double x[6];
+    for (int q = 0; q < 6; q++) x[q] = s[7 * b + 6] > 0 ? s[7 * b + q] / s[7 * b + 6] : 0.0;
+    pf_ledger_set(&sim->ledger, sim->acc.body[b].position, x);
+    pf_ledger_set(&sim->ledger, sim->acc.body[b].velocity, x + 3);
+  }
+  return 0;
+}
+
+/* Each body's energies op into its state accounts. */
+static void body_energies(pf_sim *sim, int b) {
+  pf_ledger *l = &sim->ledger;
+  const pf_body_accounts *A = &sim->acc.body[b];
+  pf_body_energies e;
+  sim->body[b].ops->energies(sim->body[b].data, sim->pts, &e);
+  const double internal = e.elastic + e.fe[0];
+  pf_ledger_set(l, A->internal, &internal);
+  pf_ledger_set(l, A->elastic, &e.elastic);
+  pf_ledger_set(l, A->fe_internal, &e.fe[0]);
+  pf_ledger_set(l, A->hourglass, &e.fe[1]);
+  pf_ledger_set(l, A->viscous, &e.fe[2]);
+  pf_ledger_set(l, A->conversion, &e.converted);
+  pf_ledger_set(l, A->bonds, &e.bonds);
+  pf_ledger_set(l, A->broken, &e.broken);
+}
+
+int pf_sim_accounts_evaluate(pf_sim *sim, int first) {
+  const pf_points *p = sim->pts;
+  uint8_t *fixed = calloc(3 * (size_t)p->n_owned + 1, 1);
+  PF_CHECK(fixed, PF_ERR_MEMORY, "out of memory");
+  pf_sim_interactions_mark(sim, fixed);
+  for (int b = 0; b < sim->nbodies; b++) {
+    body_energies(sim, b);
+    body_motion(sim, b, fixed);
+  }
+  free(fixed);
+  PF_CALL(body_centres(sim));
+  double *probe;
+  PF_MALLOC(probe, sim->acc.nprobe + 1);
+  int ierr = pf_sim_probes_eval(sim, probe);
+  for (int k = 0; k < sim->acc.nprobe && !ierr; k++) pf_ledger_set(&sim->ledger, sim->acc.probe0 + k, &probe[k]);
+  free(probe);
+  if (!ierr) ierr = pf_ledger_evaluate(&sim->ledger, first);
+  double bonds = 0, broken = 0;
+  for (int b = 0; b < sim->nbodies; b++)
+    bonds += pf_ledger_value(&sim->ledger, sim->acc.body[b].bonds, 0),
+        broken += pf_ledger_value(&sim->ledger, sim->acc.body[b].broken, 0);
+  sim->ledger.a[sim->acc.totals.damage_fraction].value[0] = bonds > 0 ? broken / bonds : 0;
+  return ierr;
+}
+
+/* w[0]: the stored energy the failed bonds took, w[1] the part of it moved, not released (<= 0;
+ * docs/theory/pd.md §5.1): the dissipation is the rest. */
+void pf_sim_accounts_book_damage(pf_sim *sim) {
+  for (int b = 0; b < sim->nbodies; b++) {
+    double w[2] = {0, 0};
+    pf_body_take_damage_work(&sim->body[b], w);
+    pf_ledger_add(&sim->ledger, sim->acc.body[b].damage, w[0] - w[1]);
+    pf_ledger_add(&sim->ledger, sim->acc.body[b].redistribution, w[1]);
+  }
+}
+
+double pf_sim_total(const pf_sim *sim, int id) { return id >= 0 ? pf_ledger_value(&sim->ledger, id, 0) : 0.0; }
+
+double pf_sim_energy_scale(const pf_sim *sim) {
+  const pf_sim_totals *T = &sim->acc.totals;
+  const double in_play = pf_sim_total(sim, T->kinetic) + pf_sim_total(sim, T->elastic) +
+                         pf_sim_total(sim, T->contact) + fabs(pf_sim_total(sim, T->fe_internal));
+  return fmax(fabs(sim->ledger.e0), fmax(fabs(pf_sim_total(sim, T->work)), in_play));
+}
+
+double pf_sim_energy_error(const pf_sim *sim) {
+  const double scale = pf_sim_energy_scale(sim);
+  return scale > 0 ? fabs(pf_sim_total(sim, sim->acc.totals.error)) / scale : 0.0;
+}

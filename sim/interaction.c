@@ -1,0 +1,174 @@
+/* The registry of interaction kinds (sim/interaction_kinds.h) and the dispatchers that call
+ * every interaction in list order, each optional op with its default here and nowhere else. */
+#include "sim/sim_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const pf_interaction_ops *const kinds[] = {
+#define PF_INTERACTION_KIND(id) &pf_interaction_kind_##id,
+#include "sim/interaction_kinds.h"
+#undef PF_INTERACTION_KIND
+};
+enum { NKINDS = sizeof kinds / sizeof kinds[0], PF_MAX_EXTRA_KINDS = 8 };
+
+/* Kinds registered at run time (a program or a test adding its own, before pf_sim_create). */
+static const pf_interaction_ops *extra[PF_MAX_EXTRA_KINDS];
+static int nextra;
+
+int pf_interaction_kind_register(const pf_interaction_ops *ops) {
+  for (int k = 0; k < nextra; k++)
+    if (extra[k] == ops) return 0;
+  PF_CHECK(ops && ops->kind && ops->build && ops->destroy, PF_ERR_INPUT,
+           "pf_interaction_kind_register: an interaction kind needs a name, build and destroy");
+  PF_CHECK(nextra < PF_MAX_EXTRA_KINDS, PF_ERR_INPUT, "pf_interaction_kind_register: at most %d kinds may be added",
+           PF_MAX_EXTRA_KINDS);
+  extra[nextra++] = ops;
+  return 0;
+}
+
+int pf_interaction_kind_count(void) { return NKINDS + nextra; }
+const pf_interaction_ops *pf_interaction_kind_at(int k) { return k < NKINDS ? kinds[k] : extra[k - NKINDS]; }
+
+int pf_sim_interaction_add(pf_sim *sim, const pf_interaction_ops *ops, void *data) {
+  PF_CHECK(ops->build && ops->destroy, PF_ERR_RUN, "interaction kind '%s' lacks a required op (sim/interaction.h)",
+           ops->kind);
+  if (sim->ninter == sim->cap_inter) {
+    int cap = sim->cap_inter ? 2 * sim->cap_inter : 8;
+    pf_interaction *a = realloc(sim->inter, sizeof *a * (size_t)cap);
+    PF_CHECK(a, PF_ERR_MEMORY, "out of memory adding an interaction of kind '%s'", ops->kind);
+    sim->inter = a, sim->cap_inter = cap;
+  }
+  sim->inter[sim->ninter++] = (pf_interaction){ops, data};
+  return 0;
+}
+
+int pf_sim_interactions_build(pf_sim *sim) {
+  for (int k = 0; k < pf_interaction_kind_count(); k++) PF_CALL(pf_interaction_kind_at(k)->build(sim));
+  return 0;
+}
+
+void pf_sim_interactions_destroy(pf_sim *sim) {
+  for (int k = 0; k < sim->ninter; k++) sim->inter[k].ops->destroy(&sim->inter[k].data);
+  PF_FREE(sim->inter);
+  sim->ninter = sim->cap_inter = 0;
+}
+
+int pf_sim_interactions_open_accounts(pf_sim *sim) {
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->open_accounts) PF_CALL(sim->inter[k].ops->open_accounts(sim->inter[k].data, sim));
+  return 0;
+}
+
+int pf_sim_interactions_attach(pf_sim *sim) {
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->attach) PF_CALL(sim->inter[k].ops->attach(sim->inter[k].data, sim));
+  return 0;
+}
+
+void pf_sim_interactions_mark(const pf_sim *sim, uint8_t *fixed) {
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->mark_prescribed) sim->inter[k].ops->mark_prescribed(sim->inter[k].data, fixed);
+}
+
+static pf_interaction_step step_of(pf_sim *sim, double dt) {
+  return (pf_interaction_step){sim->pts, &sim->ledger, sim->t, dt, sim->nbodies, sim->acc.body_work};
+}
+
+void pf_sim_interactions_midstep(pf_sim *sim, double dt) {
+  const pf_interaction_step s = step_of(sim, dt);
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->midstep) sim->inter[k].ops->midstep(sim->inter[k].data, &s);
+}
+
+void pf_sim_interactions_after_drift(pf_sim *sim, double dt) {
+  const pf_interaction_step s = step_of(sim, dt);
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->after_drift) sim->inter[k].ops->after_drift(sim->inter[k].data, &s);
+}
+
+static int nsums(const pf_interaction *x) { return x->ops->nsums ? x->ops->nsums(x->data) : 0; }
+
+/* Each interaction's forces and its part of the sums, one reduction for all, then each takes its
+ * summed part (reactions, penalty energies). */
+int pf_sim_interactions_force(pf_sim *sim, double dt) {
+  const pf_interaction_step s = step_of(sim, dt);
+  int n = 0;
+  for (int k = 0; k < sim->ninter; k++) n += nsums(&sim->inter[k]);
+  double *local = NULL;
+  PF_MALLOC(local, 2 * (size_t)n + 1);
+  double *sum = local + n;
+  int ierr = 0;
+  for (int k = 0, at = 0; k < sim->ninter && !ierr; at += nsums(&sim->inter[k]), k++)
+    if (sim->inter[k].ops->force) ierr = sim->inter[k].ops->force(sim->inter[k].data, &s, &local[at]);
+  if (!ierr && n > 0 && MPI_Allreduce(local, sum, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) != MPI_SUCCESS)
+    ierr = pf_error_raise(PF_ERR_LIB, __FILE__, __LINE__, __func__, "MPI_Allreduce failed summing the interactions' forces");
+  for (int k = 0, at = 0; k < sim->ninter && !ierr; at += nsums(&sim->inter[k]), k++)
+    if (sim->inter[k].ops->take_sums) sim->inter[k].ops->take_sums(sim->inter[k].data, &s, &sum[at]);
+  free(local);
+  return ierr;
+}
+
+void pf_sim_interactions_endstep(pf_sim *sim, double dt) {
+  const pf_interaction_step s = step_of(sim, dt);
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->endstep) sim->inter[k].ops->endstep(sim->inter[k].data, &s);
+}
+
+double pf_sim_interactions_stable_dt(const pf_sim *sim) {
+  double dt = INFINITY;
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->stable_dt) dt = fmin(dt, sim->inter[k].ops->stable_dt(sim->inter[k].data, sim->pts));
+  return dt;
+}
+
+static int nstate(const pf_interaction *x) { return x->ops->nstate ? x->ops->nstate(x->data) : 0; }
+
+int pf_sim_interactions_nstate(const pf_sim *sim) {
+  int n = 0;
+  for (int k = 0; k < sim->ninter; k++) n += nstate(&sim->inter[k]);
+  return n;
+}
+
+void pf_sim_interactions_state_names(const pf_sim *sim, char (*names)[96]) {
+  for (int k = 0; k < sim->ninter; names += nstate(&sim->inter[k]), k++)
+    if (nstate(&sim->inter[k])) sim->inter[k].ops->state_names(sim->inter[k].data, names);
+}
+
+void pf_sim_interactions_state_get(const pf_sim *sim, double *v) {
+  for (int k = 0; k < sim->ninter; v += nstate(&sim->inter[k]), k++)
+    if (nstate(&sim->inter[k])) sim->inter[k].ops->state_get(sim->inter[k].data, v);
+}
+
+void pf_sim_interactions_state_set(pf_sim *sim, const double *v) {
+  for (int k = 0; k < sim->ninter; v += nstate(&sim->inter[k]), k++)
+    if (nstate(&sim->inter[k])) sim->inter[k].ops->state_set(sim->inter[k].data, v);
+}
+
+int pf_sim_interactions_restored(pf_sim *sim) {
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->restored) PF_CALL(sim->inter[k].ops->restored(sim->inter[k].data));
+  return 0;
+}
+
+int pf_sim_interactions_health(pf_sim *sim) {
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->health) PF_CALL(sim->inter[k].ops->health(sim->inter[k].data, sim));
+  return 0;
+}
+
+void pf_sim_interactions_summary(pf_sim *sim) {
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->summary) sim->inter[k].ops->summary(sim->inter[k].data, sim);
+}
+
+void pf_sim_interactions_masses_changed(pf_sim *sim) {
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->masses_changed) sim->inter[k].ops->masses_changed(sim->inter[k].data);
+}
+
+const char *pf_sim_interaction_name(const pf_sim *sim, int k) {
+  const pf_interaction *x = &sim->inter[k];
+  return x->ops->name ? x->ops->name(x->data) : x->ops->kind;
+}

@@ -1,0 +1,113 @@
+/* The interaction interface of the driver, the bodies' twin (docs/architecture.md §4b): whatever
+ * acts on bodies without being one (rigid surfaces and indenters, contact between bodies, walls,
+ * prescribed motions and loads) is an interaction kind, an ops table listed once in
+ * sim/interaction_kinds.h. sim/ calls interactions only through the dispatchers below, which
+ * give an optional op its default: no call site tests an op for NULL. Private to sim/.
+ *
+ * One step (sim/step.c) calls, in list order:
+ *   half kick;  midstep (prescribed velocities);  drift;  after_drift (walls put points back,
+ *   rigid surfaces move);  body forces;  force (each rank's part of the sums) -> one reduction
+ *   for every interaction -> take_sums (reactions, penalty energies into the ledger);  half kick;
+ *   endstep (prescribed velocities, the step's work and impulse booked by the ledger's rule). */
+#ifndef PF_SIM_INTERACTION_H
+#define PF_SIM_INTERACTION_H
+
+#include "core/core.h"
+#include "sim/ledger.h"
+#include "sim/sim.h"
+
+/* What an interaction sees of the step. */
+typedef struct {
+  pf_points *pts;
+  pf_ledger *ledger;
+  double t;             /* the step's start (midstep, after_drift) or end (force, endstep), s */
+  double dt;            /* the step, s (0: forces that advance nothing: the initial ones) */
+  int nbodies;
+  const int *body_work; /* [nbodies] each body's external-work account (sim/ledger.h) */
+} pf_interaction_step;
+
+typedef struct {
+  const char *kind; /* in messages */
+  /* Required: create every instance of the kind the deck asks for, each added with
+   * pf_sim_interaction_add (after the bodies are named; before the points exist). */
+  int (*build)(pf_sim *sim);
+  int (*destroy)(void **data);
+  /* Optional (default in brackets). Open the instance's ledger accounts [none]; after every
+   * (re)partition, take the bodies' current points [nothing]; mark the velocity components it
+   * prescribes (fixed[3 i + c] = 1) [none]. */
+  int (*open_accounts)(void *data, pf_sim *sim);
+  int (*attach)(void *data, pf_sim *sim);
+  void (*mark_prescribed)(const void *data, uint8_t *fixed);
+  /* The step's hooks [nothing]. */
+  void (*midstep)(void *data, const pf_interaction_step *s);
+  void (*after_drift)(void *data, const pf_interaction_step *s);
+  /* Forces at the current positions: add to pts->f, write this rank's part of nsums values into
+   * sums; take_sums gets them summed over the ranks [no sums]. */
+  int (*nsums)(const void *data);
+  int (*force)(void *data, const pf_interaction_step *s, double *sums);
+  void (*take_sums)(void *data, const pf_interaction_step *s, const double *sums);
+  void (*endstep)(void *data, const pf_interaction_step *s);
+  /* The stable step its penalties allow; collective [INFINITY]. */
+  double (*stable_dt)(const void *data, const pf_points *pts);
+  /* Checkpoint state besides the ledger's accounts (a surface's position): count, names
+   * (96 characters each), values and their restoring [none]; after a restart restored
+   * everything [nothing]. */
+  int (*nstate)(const void *data);
+  void (*state_names)(const void *data, char (*names)[96]);
+  void (*state_get)(const void *data, double *v);
+  void (*state_set)(void *data, const double *v);
+  int (*restored)(void *data);
+  /* At each history row: run-health checks, warning through pf_sim_health_warn; collective
+   * [nothing]. */
+  int (*health)(void *data, pf_sim *sim);
+  /* The end-of-run summary line(s) [none]. */
+  void (*summary)(const void *data, pf_sim *sim);
+  /* Points took or lost mass (elements converted into particles) [nothing]. */
+  void (*masses_changed)(void *data);
+  /* The instance's name, for --check [the kind]. */
+  const char *(*name)(const void *data);
+} pf_interaction_ops;
+
+/* An interaction of the simulation. */
+typedef struct {
+  const pf_interaction_ops *ops;
+  void *data;
+} pf_interaction;
+
+#define PF_INTERACTION_KIND(id) extern const pf_interaction_ops pf_interaction_kind_##id;
+#include "sim/interaction_kinds.h"
+#undef PF_INTERACTION_KIND
+
+/* The registered kinds in list order (sim/interaction_kinds.h). */
+int pf_interaction_kind_count(void);
+const pf_interaction_ops *pf_interaction_kind_at(int k);
+/* Add a kind at run time (a program or a test with its own kind; before pf_sim_create). */
+int pf_interaction_kind_register(const pf_interaction_ops *ops);
+/* Add an instance (a kind's build); a kind missing a required op is refused naming it. */
+int pf_sim_interaction_add(pf_sim *sim, const pf_interaction_ops *ops, void *data);
+
+/* The dispatchers, over every interaction in list order. */
+int pf_sim_interactions_build(pf_sim *sim);
+void pf_sim_interactions_destroy(pf_sim *sim);
+int pf_sim_interactions_open_accounts(pf_sim *sim);
+int pf_sim_interactions_attach(pf_sim *sim);
+void pf_sim_interactions_mark(const pf_sim *sim, uint8_t *fixed);
+void pf_sim_interactions_midstep(pf_sim *sim, double dt);
+void pf_sim_interactions_after_drift(pf_sim *sim, double dt);
+/* Forces of every interaction at the current positions with one reduction of their sums;
+ * dt: the step just taken. Collective. */
+int pf_sim_interactions_force(pf_sim *sim, double dt);
+void pf_sim_interactions_endstep(pf_sim *sim, double dt);
+double pf_sim_interactions_stable_dt(const pf_sim *sim);
+int pf_sim_interactions_nstate(const pf_sim *sim);
+void pf_sim_interactions_state_names(const pf_sim *sim, char (*names)[96]);
+void pf_sim_interactions_state_get(const pf_sim *sim, double *v);
+void pf_sim_interactions_state_set(pf_sim *sim, const double *v);
+int pf_sim_interactions_restored(pf_sim *sim);
+int pf_sim_interactions_health(pf_sim *sim);
+void pf_sim_interactions_summary(pf_sim *sim);
+void pf_sim_interactions_masses_changed(pf_sim *sim);
+/* Interaction k's name and kind (--check). */
+const char *pf_sim_interaction_name(const pf_sim *sim, int k);
+
+#endif

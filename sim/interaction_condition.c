@@ -1,0 +1,100 @@
+/* Prescribed motions and loads as interactions (`boundary_conditions:`; core/bc.c applies
+ * them): a prescribed velocity or displacement sets the points' velocity at the velocity-Verlet
+ * hooks, a body force adds to their force. Its books: the work of its reaction (or load) on the
+ * points of each body, into that body's external work (core/bc.c gives the trapezoidal rule),
+ * its impulse on the points (<name>_impulse) and its mean reaction over the last step, the step's
+ * impulse over dt (<name>_reaction). */
+#include "sim/sim_impl.h"
+
+#include <stdlib.h>
+
+typedef struct {
+  pf_bc *bc;
+  int reaction, impulse; /* accounts */
+} condition;
+
+static int build(pf_sim *sim) {
+  const pf_node *list = pf_node_get(pf_deck_root(sim->deck), "boundary_conditions");
+  for (int k = 0; k < pf_node_count(list); k++) {
+    condition *x;
+    PF_MALLOC(x, 1);
+    int ierr = pf_bc_create(sim->deck, pf_node_item(list, k), sim->pts, sim->nbodies, sim->body_name, &sim->sets, k,
+                            &x->bc);
+    if (!ierr) ierr = pf_sim_interaction_add(sim, &pf_interaction_kind_condition, x);
+    if (ierr) {
+      pf_bc_destroy(&x->bc);
+      free(x);
+      return ierr;
+    }
+    char where[512];
+    pf_node_where(sim->deck, pf_node_item(list, k), where, sizeof where);
+    pf_log("boundary condition '%s' (%s): %" PF_GID_FMT " points\n", pf_bc_name(x->bc), where,
+           (pf_gid)pf_sum_all(pf_bc_npoints(x->bc)));
+  }
+  return 0;
+}
+
+static int destroy(void **data) {
+  condition *x = *data;
+  if (x) pf_bc_destroy(&x->bc);
+  PF_FREE(*data);
+  return 0;
+}
+
+static int open_accounts(void *data, pf_sim *sim) {
+  condition *x = data;
+  char name[160];
+  snprintf(name, sizeof name, "%s_reaction", pf_bc_name(x->bc));
+  PF_CALL(pf_ledger_open(&sim->ledger, name, "N", 3, 0, PF_BOOK_LAST, 0, -1, &x->reaction));
+  snprintf(name, sizeof name, "%s_impulse", pf_bc_name(x->bc));
+  return pf_ledger_open(&sim->ledger, name, "N s", 3, 0, PF_BOOK_RUNNING, 0, -1, &x->impulse);
+}
+
+static int attach(void *data, pf_sim *sim) { return pf_bc_select(((condition *)data)->bc, sim->pts); }
+
+static void mark_prescribed(const void *data, uint8_t *fixed) { pf_bc_mark(((const condition *)data)->bc, fixed); }
+
+typedef void (*bc_hook)(pf_bc *bc, pf_points *pts, double t, double dt, double *work);
+
+/* Run a hook of core/bc.c and book what it did: the work per body, the impulse. */
+static void apply(condition *x, const pf_interaction_step *s, bc_hook hook) {
+  double w[PF_MAX_BODIES] = {0}, step0[3], total0[3], step1[3], total1[3], d[3];
+  pf_bc_impulse(x->bc, step0, total0);
+  hook(x->bc, s->pts, s->t, s->dt, w);
+  pf_bc_impulse(x->bc, step1, total1);
+  for (int a = 0; a < 3; a++) d[a] = total1[a] - total0[a];
+  pf_ledger_book(s->ledger, x->impulse, d);
+  for (int b = 0; b < s->nbodies; b++) pf_ledger_add(s->ledger, s->body_work[b], w[b]);
+}
+
+static void midstep(void *data, const pf_interaction_step *s) { apply(data, s, pf_bc_apply_midstep); }
+
+static int force(void *data, const pf_interaction_step *s, double *sums) {
+  (void)sums;
+  apply(data, s, pf_bc_apply_force);
+  return 0;
+}
+
+static void endstep(void *data, const pf_interaction_step *s) {
+  condition *x = data;
+  apply(x, s, pf_bc_apply_endstep);
+  double step[3], total[3];
+  pf_bc_impulse(x->bc, step, total);
+  for (int a = 0; a < 3; a++) step[a] /= s->dt;
+  pf_ledger_set(s->ledger, x->reaction, step);
+}
+
+static const char *name(const void *data) { return pf_bc_name(((const condition *)data)->bc); }
+
+const pf_interaction_ops pf_interaction_kind_condition = {
+    .kind = "condition",
+    .build = build,
+    .destroy = destroy,
+    .open_accounts = open_accounts,
+    .attach = attach,
+    .mark_prescribed = mark_prescribed,
+    .midstep = midstep,
+    .force = force,
+    .endstep = endstep,
+    .name = name,
+};

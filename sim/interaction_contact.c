@@ -1,0 +1,204 @@
+/* Contact between bodies as an interaction (`contact: pairs:`; contact/ holds the methods:
+ * node-to-particle, short-range forces between particles, FE <-> FE surfaces). Its books: each
+ * pair's force on its first body (<pair>_force), the penalty energy (in contact_energy) and the
+ * friction work (in contact_dissipation) of all pairs. At each history row it checks the pairs'
+ * interpenetration for the run-health monitor. */
+#include "sim/sim_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The run-health thresholds of interpenetration (docs/user_guide.md, "Run health"). */
+#define PF_HEALTH_DEPTH 0.5 /* a point behind a contact surface by this much of r_c */
+#define PF_HEALTH_CLOSE 0.5 /* two contact points closer than this much of r_c */
+
+typedef struct {
+  pf_contact *c;
+  pf_sim *sim;    /* the bodies: their views for contact, their broken bonds' rest lengths */
+  int energy, dissipation; /* accounts of all pairs */
+  int *force;     /* [npairs] accounts */
+} contact;
+
+/* The largest cell edge of body b's points over all ranks. Collective. */
+static double body_spacing(const pf_sim *sim, int b) {
+  double h = 0;
+  for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++) h = fmax(h, sim->pts->cell[i]);
+  return pf_max_all(h);
+}
+
+/* What contact needs of each body. Collective (spacings). A body with bonds is a particle body
+ * to contact, whether or not it also has elements: a coupled body's nodes are the particles that
+ * fracture, so an FE projectile meets them node-to-particle (surface to particle) and its
+ * fragments meet each other by short-range forces, as a PD body's do. A body without bonds meets
+ * others through its mesh's surface. */
+static void contact_bodies(const pf_sim *sim, pf_contact_body *cb) {
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_body *body = &sim->body[b];
+    pf_contact_body *c = &cb[b];
+    memset(c, 0, sizeof *c);
+    c->name = sim->body_name[b];
+    c->gid0 = sim->gid0[b];
+    c->first = sim->body_start[b];
+    c->n = sim->body_start[b + 1] - sim->body_start[b];
+    c->spacing = body_spacing(sim, b);
+    body->ops->material(body->data, &c->density, &c->bulk_modulus);
+    c->fam = pf_body_family(body);
+    c->horizon = pf_body_horizon(body);
+    c->mesh = c->fam ? NULL : pf_body_mesh(body);
+    c->is_fe = c->mesh != NULL;
+    if (c->is_fe) c->eroded = body->ops->eroded, c->eroded_ctx = body->data;
+  }
+}
+
+static int build(pf_sim *sim) {
+  const pf_node *map = pf_node_get(pf_deck_root(sim->deck), "contact");
+  if (!map) return 0;
+  pf_contact_body cb[PF_MAX_BODIES];
+  contact_bodies(sim, cb);
+  pf_contact *c = NULL;
+  PF_CALL(pf_contact_create(sim->deck, map, sim->nbodies, cb, &c));
+  if (!c) return 0;
+  contact *x = calloc(1, sizeof *x);
+  if (x) x->force = calloc((size_t)pf_contact_npairs(c) + 1, sizeof *x->force);
+  if (!x || !x->force) {
+    if (x) free(x);
+    pf_contact_destroy(&c);
+    return pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+  }
+  x->c = c, x->sim = sim;
+  sim->contact = c; /* (pf_sim_contact, for tests) */
+  return pf_sim_interaction_add(sim, &pf_interaction_kind_contact, x);
+}
+
+static int destroy(void **data) {
+  contact *x = *data;
+  if (x) {
+    pf_contact_destroy(&x->c);
+    x->sim->contact = NULL;
+    free(x->force);
+  }
+  PF_FREE(*data);
+  return 0;
+}
+
+static int open_accounts(void *data, pf_sim *sim) {
+  contact *x = data;
+  pf_ledger *l = &sim->ledger;
+  const pf_sim_totals *T = &sim->acc.totals;
+  for (int k = 0; k < pf_contact_npairs(x->c); k++) {
+    char name[160];
+    snprintf(name, sizeof name, "%s_force", pf_contact_pair_name(x->c, k));
+    PF_CALL(pf_ledger_open(l, name, "N", 3, 0, PF_BOOK_LAST, PF_BOOK_SHARED, -1, &x->force[k]));
+  }
+  PF_CALL(pf_ledger_open(l, "contact:pairs_energy", "J", 1, 1, PF_BOOK_LAST, PF_BOOK_SHARED | PF_BOOK_HIDDEN,
+                         T->contact, &x->energy));
+  return pf_ledger_open(l, "contact:pairs_dissipation", "J", 1, 1, PF_BOOK_RUNNING, PF_BOOK_HIDDEN,
+                        T->contact_dissipation, &x->dissipation);
+}
+
+static int attach(void *data, pf_sim *sim) {
+  pf_contact_body cb[PF_MAX_BODIES];
+  contact_bodies(sim, cb);
+  return pf_contact_attach(((contact *)data)->c, cb);
+}
+
+static int nsums(const void *data) { return pf_contact_nsums(((const contact *)data)->c); }
+
+/* The bodies in short-range contact with themselves first give their bonds broken since the last
+ * evaluation their rest lengths; then the pairs' forces. */
+static int force(void *data, const pf_interaction_step *s, double *sums) {
+  contact *x = data;
+  const pf_sim *sim = x->sim;
+  for (int b = 0; b < sim->nbodies; b++)
+    if (pf_contact_self_pair(x->c, b)) pf_body_record_breaks(&sim->body[b], s->pts);
+  double diss = 0;
+  PF_CALL(pf_contact_force(x->c, s->pts, s->dt, sums, &diss));
+  pf_ledger_add(s->ledger, x->dissipation, diss);
+  return 0;
+}
+
+static void take_sums(void *data, const pf_interaction_step *s, const double *sums) {
+  contact *x = data;
+  double U;
+  pf_contact_sums_take(x->c, sums, &U);
+  pf_ledger_set(s->ledger, x->energy, &U);
+  for (int k = 0; k < pf_contact_npairs(x->c); k++) {
+    double f[3];
+    pf_contact_pair_force(x->c, k, f);
+    pf_ledger_set(s->ledger, x->force[k], f);
+  }
+}
+
+static double stable_dt(const void *data, const pf_points *pts) {
+  return pf_contact_stable_dt(((const contact *)data)->c, pts);
+}
+
+static int restored(void *data) { return pf_contact_restored(((contact *)data)->c); }
+static void masses_changed(void *data) { pf_contact_rebuild(((contact *)data)->c); }
+
+/* Each pair's smallest gap over the ranks (one reduction), against the thresholds. */
+static int health(void *data, pf_sim *sim) {
+  contact *x = data;
+  const int np = pf_contact_npairs(x->c);
+  double *gap;
+  PF_MALLOC(gap, np);
+  pf_contact_gap *info;
+  PF_MALLOC(info, np);
+  for (int k = 0; k < np; k++) gap[k] = pf_contact_pair_gap(x->c, k, &info[k]);
+  int ierr = MPI_Allreduce(MPI_IN_PLACE, gap, np, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD) != MPI_SUCCESS;
+  for (int k = 0; k < np && !ierr; k++) {
+    const pf_contact_gap *c = &info[k];
+    const char *a = sim->body_name[c->a], *b = sim->body_name[c->b];
+    char what[96], pair[200];
+    snprintf(what, sizeof what, "interpenetration '%.34s'/'%.34s'", a, b);
+    if (c->a == c->b) snprintf(pair, sizeof pair, "body '%s' (with itself)", a);
+    else snprintf(pair, sizeof pair, "bodies '%s' and '%s'", a, b);
+    const char *start = sim->step == sim->health.step0 ? " (they start inside each other)" : "";
+    if (c->surface && gap[k] < -PF_HEALTH_DEPTH)
+      ierr = pf_sim_health_warn(sim, what,
+                                "%s interpenetrate at t = %.4e s (step %ld)%s: a point is %.3g m behind the surface of "
+                                "'%s', %.3g contact radii (r_c = %.3g m; more than %g)",
+                                pair, sim->t, sim->step, start, -gap[k] * c->length, a, -gap[k], c->length,
+                                PF_HEALTH_DEPTH);
+    else if (!c->surface && gap[k] < PF_HEALTH_CLOSE)
+      ierr = pf_sim_health_warn(sim, what,
+                                "%s interpenetrate at t = %.4e s (step %ld)%s: two points are %.3g of their contact "
+                                "radius apart (less than %g; r_c = %.3g m)",
+                                pair, sim->t, sim->step, start, gap[k], PF_HEALTH_CLOSE, c->length);
+  }
+  free(gap), free(info);
+  return ierr;
+}
+
+static void summary(const void *data, pf_sim *sim) {
+  const contact *x = data;
+  long rebuilds;
+  double sec;
+  pf_contact_stats(x->c, &rebuilds, &sec);
+  sec = pf_max_all(sec);
+  pf_log("  contact: %ld search rebuilds, %.3g s (%.1f %% of the time loop), dissipation %.3g J\n", rebuilds, sec,
+         sim->wall_loop > 0 ? 100 * sec / sim->wall_loop : 0.0, pf_ledger_value(&sim->ledger, x->dissipation, 0));
+}
+
+static const char *name(const void *data) {
+  (void)data;
+  return "contact pairs";
+}
+
+const pf_interaction_ops pf_interaction_kind_contact = {
+    .kind = "contact",
+    .build = build,
+    .destroy = destroy,
+    .open_accounts = open_accounts,
+    .attach = attach,
+    .nsums = nsums,
+    .force = force,
+    .take_sums = take_sums,
+    .stable_dt = stable_dt,
+    .restored = restored,
+    .masses_changed = masses_changed,
+    .health = health,
+    .summary = summary,
+    .name = name,
+};

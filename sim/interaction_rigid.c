@@ -1,0 +1,142 @@
+/* Rigid surfaces with prescribed motion as interactions (`contact: rigid_surfaces:` and the
+ * foundation's `indenters:`, the same surfaces; contact/rigid.c has the geometry and the force).
+ *
+ * Its books (docs/theory/pd.md §8): the force of the points on the surface R (<name>_force), the
+ * penalty energy U (<name>_penalty_energy, in contact_energy), the friction work (<name>_friction_work, in
+ * contact_dissipation), and over a step in which the surface moves by dx = v(t + dt/2) dt the
+ * work on the points -(R^n + R^(n+1))/2 . dx (<name>_work, in external_work) and the impulse
+ * -(R^n + R^(n+1)) dt/2 (<name>_impulse): the trapezoidal rule of the ledger, second order in
+ * the step, since d(K + W_el + U)/dt = -R . v. */
+#include "sim/sim_impl.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+  pf_rigid *r;
+  int force, energy, dissipation, work, impulse; /* accounts */
+  double r_old[3]; /* R at the step's start */
+  double dx[3];    /* the step's motion */
+} rigid;
+
+static int add(pf_sim *sim, const pf_node *list) {
+  for (int k = 0; k < pf_node_count(list); k++) {
+    rigid *x;
+    PF_MALLOC(x, 1);
+    int ierr = pf_rigid_create(sim->deck, pf_node_item(list, k), sim->nbodies, sim->body_name, &x->r);
+    if (!ierr) ierr = pf_sim_interaction_add(sim, &pf_interaction_kind_rigid, x);
+    if (ierr) {
+      pf_rigid_destroy(&x->r);
+      free(x);
+      return ierr;
+    }
+  }
+  return 0;
+}
+
+static int build(pf_sim *sim) {
+  const pf_node *root = pf_deck_root(sim->deck);
+  PF_CALL(add(sim, pf_node_get(root, "indenters")));
+  return add(sim, pf_node_get(pf_node_get(root, "contact"), "rigid_surfaces"));
+}
+
+static int destroy(void **data) {
+  rigid *x = *data;
+  if (x) pf_rigid_destroy(&x->r);
+  PF_FREE(*data);
+  return 0;
+}
+
+static int open_accounts(void *data, pf_sim *sim) {
+  rigid *x = data;
+  pf_ledger *l = &sim->ledger;
+  const pf_sim_totals *T = &sim->acc.totals;
+  char name[160];
+  const char *n = pf_rigid_name(x->r);
+  snprintf(name, sizeof name, "%s_force", n);
+  PF_CALL(pf_ledger_open(l, name, "N", 3, 0, PF_BOOK_LAST, PF_BOOK_SHARED, -1, &x->force));
+  snprintf(name, sizeof name, "%s_penalty_energy", n);
+  PF_CALL(pf_ledger_open(l, name, "J", 1, 1, PF_BOOK_LAST, PF_BOOK_SHARED, T->contact, &x->energy));
+  snprintf(name, sizeof name, "%s_friction_work", n);
+  PF_CALL(pf_ledger_open(l, name, "J", 1, 1, PF_BOOK_RUNNING, 0, T->contact_dissipation, &x->dissipation));
+  snprintf(name, sizeof name, "%s_work", n);
+  PF_CALL(pf_ledger_open(l, name, "J", 1, -1, PF_BOOK_RUNNING, PF_BOOK_SHARED, T->work, &x->work));
+  snprintf(name, sizeof name, "%s_impulse", n);
+  return pf_ledger_open(l, name, "N s", 3, 0, PF_BOOK_RUNNING, PF_BOOK_SHARED, -1, &x->impulse);
+}
+
+static void midstep(void *data, const pf_interaction_step *s) {
+  rigid *x = data;
+  for (int a = 0; a < 3; a++) x->r_old[a] = pf_ledger_local(s->ledger, x->force, a);
+}
+
+static void after_drift(void *data, const pf_interaction_step *s) {
+  rigid *x = data;
+  double v[3], none = 0;
+  pf_rigid_advance(x->r, s->t, s->dt, (const double[3]){0, 0, 0}, &none);
+  pf_rigid_velocity(x->r, v);
+  for (int a = 0; a < 3; a++) x->dx[a] = v[a] * s->dt;
+}
+
+static int nsums(const void *data) {
+  (void)data;
+  return 4;
+}
+
+static int force(void *data, const pf_interaction_step *s, double *sums) {
+  rigid *x = data;
+  double diss = 0;
+  PF_CALL(pf_rigid_force_local(x->r, s->pts, s->dt, sums, &diss));
+  pf_ledger_add(s->ledger, x->dissipation, diss);
+  return 0;
+}
+
+static void take_sums(void *data, const pf_interaction_step *s, const double *sums) {
+  rigid *x = data;
+  pf_ledger_set(s->ledger, x->force, sums);
+  pf_ledger_set(s->ledger, x->energy, &sums[3]);
+}
+
+static void endstep(void *data, const pf_interaction_step *s) {
+  rigid *x = data;
+  double r_new[3];
+  for (int a = 0; a < 3; a++) r_new[a] = pf_ledger_local(s->ledger, x->force, a);
+  pf_ledger_book_centred(s->ledger, x->work, x->r_old, r_new, x->dx);
+  pf_ledger_book_impulse(s->ledger, x->impulse, x->r_old, r_new, s->dt);
+}
+
+static double stable_dt(const void *data, const pf_points *pts) {
+  return pf_rigid_stable_dt(((const rigid *)data)->r, pts);
+}
+
+static int nstate(const void *data) {
+  (void)data;
+  return 3;
+}
+
+static void state_names(const void *data, char (*names)[96]) {
+  for (int a = 0; a < 3; a++) snprintf(names[a], 96, "rigid:%.70s_position_%c", pf_rigid_name(((const rigid *)data)->r), 'x' + a);
+}
+
+static void state_get(const void *data, double *v) { pf_rigid_position(((const rigid *)data)->r, v); }
+static void state_set(void *data, const double *v) { pf_rigid_set_position(((rigid *)data)->r, v); }
+static const char *name(const void *data) { return pf_rigid_name(((const rigid *)data)->r); }
+
+const pf_interaction_ops pf_interaction_kind_rigid = {
+    .kind = "rigid",
+    .build = build,
+    .destroy = destroy,
+    .open_accounts = open_accounts,
+    .midstep = midstep,
+    .after_drift = after_drift,
+    .nsums = nsums,
+    .force = force,
+    .take_sums = take_sums,
+    .endstep = endstep,
+    .stable_dt = stable_dt,
+    .nstate = nstate,
+    .state_names = state_names,
+    .state_get = state_get,
+    .state_set = state_set,
+    .name = name,
+};
