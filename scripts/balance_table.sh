@@ -18,7 +18,7 @@ for f in "$here"/inputs/*.yaml "$here"/tests/data/*.yaml; do
   name=$(basename "$f" .yaml)
   sed -E "s/^(\s*)final_time:.*/\1steps: $steps/; s/final_time: [0-9.eE+-]+/steps: $steps/; s/steps: [0-9]+/steps: $steps/; \
           s#\.\./\.\./meshes/#$here/meshes/#; s#\.\./meshes/#$here/meshes/#" "$f" > "$work/$name.yaml"
-  log=$(cd "$work" && "$exe" --quiet --output-dir out --set output.interval=0 --set output.history_interval=1 \
+  log=$(cd "$work" && "$exe" --progress plain --output-dir out --set output.interval=0 --set output.history_interval=1 \
         "$name.yaml" 2>&1)
   warnings=$(echo "$log" | grep -c "perifem warning")
   h5=$(ls "$work"/out/"$name"*.h5 2>/dev/null | head -1)

@@ -30,10 +30,7 @@ static int open_totals(pf_sim *sim) {
   PF_CALL(pf_ledger_open(l, "damage_dissipation", "J", 1, 0, S, N, -1, &T->damage));
   PF_CALL(pf_ledger_open(l, "damage_redistribution", "J", 1, 0, S, N, -1, &T->redistribution));
   T->conversion = -1; /* a column only where some body's particles come from converted elements */
-  for (int b = 0; b < sim->nbodies && T->conversion < 0; b++)
-    if (pf_body_as_particles(&sim->body[b]))
-      PF_CALL(pf_ledger_open(l, "conversion_loss", "J", 1, 0, S, N, -1, &T->conversion));
-  return 0;
+  return pf_sim_converts(sim) ? pf_ledger_open(l, "conversion_loss", "J", 1, 0, S, N, -1, &T->conversion) : 0;
 }
 
 /* Body b's accounts: (column suffix, units, components, sign, kind, flags, total). */

@@ -25,7 +25,8 @@ typedef struct {
 } pf_body_energies;
 
 typedef struct {
-  const char *type; /* the deck's `type:` */
+  const char *type;  /* the deck's `type:` */
+  const char *label; /* the kind in --check's table (PD, coupled, FE, particles) */
   /* Required. The keys of the body mapping; is this mapping of `type` this kind (NULL: yes)? */
   const pf_key *(*keys)(void);
   int (*claims)(const pf_node *body);

@@ -79,6 +79,7 @@ static pf_fem_body *as_fem(void *data) { return fem_of(data); }
 
 const pf_body_ops pf_body_kind_coupled = {
     .type = "finite_element",
+    .label = "coupled",
     .keys = pf_coupled_body_keys,
     .claims = claims,
     .create = create,

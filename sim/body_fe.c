@@ -69,6 +69,7 @@ static pf_fem_body *as_fem(void *data) { return data; }
 
 const pf_body_ops pf_body_kind_fe = {
     .type = "finite_element",
+    .label = "FE",
     .keys = keys,
     .create = create,
     .destroy = destroy,

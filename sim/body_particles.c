@@ -57,6 +57,7 @@ static pf_fem_particles *as_particles(void *data) { return data; }
 
 const pf_body_ops pf_body_kind_particles = {
     .type = "particles",
+    .label = "particles",
     .keys = keys,
     .create = create,
     .destroy = destroy,

@@ -149,6 +149,7 @@ static pf_pd_body *as_pd(void *data) { return data; }
 
 const pf_body_ops pf_body_kind_pd = {
     .type = "peridynamic",
+    .label = "PD",
     .keys = keys,
     .create = create,
     .destroy = destroy,

@@ -53,29 +53,3 @@ int pf_sim_body_tables(const pf_sim *sim, pf_table *t, int *n) {
 void pf_sim_body_tables_free(pf_table *t, int n) {
   for (int k = 0; k < n; k++) free((void *)t[k].id), free((void *)t[k].data);
 }
-
-/* The bodies' tables over a re-partition, gathered whole before and set back after, with the
- * stable step of their last force evaluation. */
-int pf_sim_settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows) {
-  pf_table t[PF_MAX_BODIES];
-  double *full[PF_MAX_BODIES] = {NULL}, stable[PF_MAX_BODIES];
-  int n = 0, ierr = pf_sim_body_tables(sim, t, &n);
-  for (int k = 0, b = 0; b < sim->nbodies; b++) {
-    const pf_body *body = &sim->body[b];
-    stable[b] = pf_body_carries_stable_dt(body) ? pf_min_all(body->ops->stable_dt(body->data, sim->pts)) : INFINITY;
-    if (ierr || !pf_body_table_shape(body, &(pf_gid){0}, &(int){0}, &(pf_int){0})) continue;
-    if (!(full[b] = malloc(sizeof(double) * ((size_t)t[k].total * t[k].ncomp + 1))))
-      ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
-    else ierr = pf_table_allgather(&t[k], full[b]);
-    k++;
-  }
-  pf_sim_body_tables_free(t, n);
-  if (!ierr) ierr = pf_sim_settle(sim, rows, 0);
-  for (int b = 0; b < sim->nbodies; b++) {
-    const pf_body *body = &sim->body[b];
-    if (!ierr && full[b]) pf_body_table_set(body, full[b]);
-    if (!ierr) pf_body_set_stable_dt(body, stable[b]);
-    free(full[b]);
-  }
-  return ierr;
-}

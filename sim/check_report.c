@@ -67,7 +67,7 @@ static void body_counts(const pf_sim *sim, int b, body_row *r) {
   r->cell = r->points > 0 ? sum(cells) / r->points : 0;
   const double delta = fam ? pf_body_horizon(bd) : 0;
   r->m = r->cell > 0 ? delta / r->cell : 0;
-  r->kind = fam && mesh ? "coupled" : fam ? "PD" : "FE";
+  r->kind = bd->ops->label;
   body_material(sim, b, r);
   r->bytes = fam ? body_bond_bytes(sim, b, r->points) : r->points * PF_BYTES_PER_NODE;
   r->bytes += r->elements * PF_BYTES_PER_ELEMENT;

@@ -69,14 +69,15 @@ static int book_overlap(pf_sim *sim, pf_fem_particles *first_p) {
 }
 
 /* After a restart restored the conversions: the stable step of the restored masses. */
-int pf_sim_converted_restart(pf_sim *sim) {
+int pf_sim_converts(const pf_sim *sim) {
   for (int b = 0; b < sim->nbodies; b++)
-    if (pf_body_as_particles(&sim->body[b])) return pf_sim_refresh_fixed_step(sim);
+    if (pf_body_as_particles(&sim->body[b])) return 1;
   return 0;
 }
 
-int pf_sim_convert_elements(pf_sim *sim) {
+int pf_sim_convert_elements(pf_sim *sim, long *converted) {
   long any = 0;
+  *converted = 0;
   pf_fem_particles *first = NULL;
   for (int b = 0; b < sim->nbodies; b++) {
     pf_fem_particles *fp = pf_body_as_particles(&sim->body[b]);
@@ -87,7 +88,7 @@ int pf_sim_convert_elements(pf_sim *sim) {
     any += n;
   }
   if (!any) return 0;
+  *converted = any;
   pf_sim_interactions_masses_changed(sim);
-  if (sim->ninter) PF_CALL(book_overlap(sim, first));
-  return pf_sim_refresh_fixed_step(sim); /* (the nodes are lighter, the new particles in contact) */
+  return sim->ninter ? book_overlap(sim, first) : 0;
 }

@@ -1,35 +1,10 @@
-/* The registry of interaction kinds (sim/interaction_kinds.h) and the dispatchers that call
- * every interaction in list order, each optional op with its default here and nowhere else. */
+/* The dispatchers that call every interaction in list order, each optional op with its default
+ * here and nowhere else (sim/interaction.h). */
 #include "sim/sim_impl.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-static const pf_interaction_ops *const kinds[] = {
-#define PF_INTERACTION_KIND(id) &pf_interaction_kind_##id,
-#include "sim/interaction_kinds.h"
-#undef PF_INTERACTION_KIND
-};
-enum { NKINDS = sizeof kinds / sizeof kinds[0], PF_MAX_EXTRA_KINDS = 8 };
-
-/* Kinds registered at run time (a program or a test adding its own, before pf_sim_create). */
-static const pf_interaction_ops *extra[PF_MAX_EXTRA_KINDS];
-static int nextra;
-
-int pf_interaction_kind_register(const pf_interaction_ops *ops) {
-  for (int k = 0; k < nextra; k++)
-    if (extra[k] == ops) return 0;
-  PF_CHECK(ops && ops->kind && ops->build && ops->destroy, PF_ERR_INPUT,
-           "pf_interaction_kind_register: an interaction kind needs a name, build and destroy");
-  PF_CHECK(nextra < PF_MAX_EXTRA_KINDS, PF_ERR_INPUT, "pf_interaction_kind_register: at most %d kinds may be added",
-           PF_MAX_EXTRA_KINDS);
-  extra[nextra++] = ops;
-  return 0;
-}
-
-int pf_interaction_kind_count(void) { return NKINDS + nextra; }
-const pf_interaction_ops *pf_interaction_kind_at(int k) { return k < NKINDS ? kinds[k] : extra[k - NKINDS]; }
 
 int pf_sim_interaction_add(pf_sim *sim, const pf_interaction_ops *ops, void *data) {
   PF_CHECK(ops->build && ops->destroy, PF_ERR_RUN, "interaction kind '%s' lacks a required op (sim/interaction.h)",
@@ -44,10 +19,6 @@ int pf_sim_interaction_add(pf_sim *sim, const pf_interaction_ops *ops, void *dat
   return 0;
 }
 
-int pf_sim_interactions_build(pf_sim *sim) {
-  for (int k = 0; k < pf_interaction_kind_count(); k++) PF_CALL(pf_interaction_kind_at(k)->build(sim));
-  return 0;
-}
 
 void pf_sim_interactions_destroy(pf_sim *sim) {
   for (int k = 0; k < sim->ninter; k++) sim->inter[k].ops->destroy(&sim->inter[k].data);

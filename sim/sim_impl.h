@@ -136,10 +136,12 @@ struct pf_sim {
 };
 
 /* sim/convert.c: link each particles body to the FE body it names (before the clouds); at a
- * step's end, the elements deleted in the step become particles (collective). */
+ * step's end, the elements deleted in the step become particles (*converted of them, collective:
+ * the caller then recomputes the fixed stable step). */
 int pf_sim_link_particles(pf_sim *sim);
-int pf_sim_convert_elements(pf_sim *sim);
-int pf_sim_converted_restart(pf_sim *sim);
+int pf_sim_convert_elements(pf_sim *sim, long *converted);
+/* 1 when some body's particles come from another's elements. */
+int pf_sim_converts(const pf_sim *sim);
 /* sim/step.c: recompute the fixed part of the stable step (PD bodies, contact penalties) from the
  * current masses, after conversions changed them or a restart restored them. Collective. */
 int pf_sim_refresh_fixed_step(pf_sim *sim);
@@ -186,7 +188,7 @@ int pf_sim_check_restart_time(const pf_sim *sim, const double *v);
 void pf_sim_geometry_take(pf_sim *sim, const pf_point_cloud *pc);
 void pf_sim_geometry_scalars(const pf_sim *sim, double *v);
 int pf_sim_check_restart_geometry(const pf_sim *sim, const double *saved);
-/* SIGTERM / SIGINT: caught from the start of the set-up. During the set-up (meshing, lattices,
+/* sim/signals.c: SIGTERM / SIGINT, caught from the start of the set-up. During the set-up (meshing, lattices,
  * neighbour search: nothing is written then) a signal ends the process at once with a message
  * and exit status 128 + signal; after pf_sim_setup_done it stops the run at the end of the
  * current step with a checkpoint. */
@@ -285,5 +287,4 @@ int pf_sim_bond_fields(const pf_sim *sim, pf_bond_rows *rows);
 int pf_sim_table_shape(const pf_sim *sim, int b, pf_table *t, pf_int *nlocal);
 int pf_sim_body_tables(const pf_sim *sim, pf_table *t, int *n);
 void pf_sim_body_tables_free(pf_table *t, int n);
-int pf_sim_settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows);
 #endif

@@ -156,7 +156,9 @@ static int one_step(pf_sim *sim) {
   pf_sim_interactions_endstep(sim, dt);
   PF_CALL(pf_sim_guard_check(sim)); /* collective: every rank stops, back at the last good state */
   for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_post_step(&sim->body[b], p));
-  return pf_sim_convert_elements(sim); /* (elements deleted in the step become particles) */
+  long converted; /* (elements deleted in the step become particles) */
+  PF_CALL(pf_sim_convert_elements(sim, &converted));
+  return converted ? pf_sim_refresh_fixed_step(sim) : 0; /* (the nodes are lighter, the new particles in contact) */
 }
 
 int pf_sim_step(pf_sim *sim, long n) {

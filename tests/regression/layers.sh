@@ -7,8 +7,12 @@
 #    M links (no other module's private *_impl.h); include/perifem.h, the public C API, only
 #    in sim/, which implements it;
 #  - the driver calls bodies only through the body interface: no file of sim/ but the kinds'
-#    own (sim/body_<kind>.c) names a PD, FE or coupled body function.
-# usage: layers.sh PERIFEM SCRATCH   (from the tests/ folder)
+#    own (sim/body_<kind>.c) names a PD, FE or coupled body function;
+#  - sim/ calls bodies and interactions alike (docs/architecture.md §4b): no file of sim/ tests
+#    an optional op for NULL outside the dispatchers (sim/body.c, sim/interaction.c), none
+#    branches on a kind's or a material's name outside the registries (sim/*_kinds.c), and no
+#    files of sim/ call each other in a loop (scripts/file_cycles.py on the build's objects).
+# usage: layers.sh PERIFEM SCRATCH TESTS_BINARY_DIR   (from the tests/ folder)
 set -u
 scratch=$2 fail=0
 rm -rf "$scratch" && mkdir -p "$scratch"
@@ -67,4 +71,16 @@ for f in "$top"/sim/*.c "$top"/sim/*.h; do
     [ -z "$calls" ] || { echo "FAIL: ${f#$top/} calls a body kind's own function (use the body ops):"; echo "$calls" | head -5; fail=1; }
   fi
 done
+
+# 4. bodies and interactions through their ops, sim/ without circles
+nulls=$(grep -nE "ops->[a-z_]+ *(\?|&&|\)|!=|==)|!\s*[a-z>.-]*ops->[a-z_]+" "$top"/sim/*.c | grep -v "/sim/body.c:\|/sim/interaction.c:")
+[ -z "$nulls" ] || { echo "FAIL: an optional op tested for NULL outside its dispatcher:"; echo "$nulls" | head -5; fail=1; }
+kinds=$(grep -nE 'strcmp\([^)]*(kind|type|model|label)|"(pmb|lps|elastic_plastic|peridynamic|finite_element|particles)"' \
+        "$top"/sim/*.c | grep -v "_kinds.c:\|/sim/body_[a-z]*.c:")
+[ -z "$kinds" ] || { echo "FAIL: a branch on a kind's or a material's name in sim/:"; echo "$kinds" | head -5; fail=1; }
+build=$(cd "${3:-../build/tests}/.." && pwd)
+PY=python3
+[ -x /usr/bin/python3 ] && PY=/usr/bin/python3
+"$PY" "$top/scripts/file_cycles.py" "$build" sim --check > "$scratch/cycles" ||
+  { echo "FAIL: files of sim/ call each other in a loop:"; cat "$scratch/cycles"; fail=1; }
 exit $fail

@@ -1,0 +1,47 @@
+/* Signals: SIGTERM and SIGINT end the set-up at once, and stop a run at the end of a step with a
+ * checkpoint (sim/run.c takes the signal the step's guard reduction agreed on). */
+#include "sim/sim_impl.h"
+
+#include <signal.h>
+#include <string.h>
+#include <unistd.h>
+
+/* SIGTERM / SIGINT: during the set-up, stop at once (nothing is written during the set-up, so
+ * nothing is left half-written: a long mesh generation or neighbour search can be stopped);
+ * afterwards, checkpoint at the end of the current step, then stop. Under mpirun every rank
+ * receives the signal (mpirun forwards it) and ends; rank 0 prints the message. */
+static volatile sig_atomic_t stop_signal = 0, in_setup = 0;
+static char setup_msg[2][160]; /* [0] SIGTERM, [1] SIGINT; formatted before they are needed */
+static size_t setup_len[2];
+
+static void on_signal(int sig) {
+  if (in_setup) {
+    int k = sig == SIGINT;
+    if (setup_len[k] && write(STDERR_FILENO, setup_msg[k], setup_len[k]) < 0) setup_len[k] = 0;
+    _exit(128 + sig);
+  }
+  stop_signal = sig;
+}
+
+void pf_sim_catch_signals(void) {
+  const int rank0 = pf_comm_rank() == 0;
+  const int sigs[2] = {SIGTERM, SIGINT};
+  for (int k = 0; k < 2; k++) {
+    snprintf(setup_msg[k], sizeof setup_msg[k],
+             "perifem: %s (signal %d) during the set-up: stopped (exit status %d); nothing was run "
+             "or written\n",
+             k ? "SIGINT" : "SIGTERM", sigs[k], 128 + sigs[k]);
+    setup_len[k] = rank0 ? strlen(setup_msg[k]) : 0;
+  }
+  in_setup = 1;
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  for (int k = 0; k < 2; k++) sigaction(sigs[k], &sa, NULL);
+}
+
+void pf_sim_setup_done(void) { in_setup = 0; }
+
+int pf_sim_signal_here(void) { return (int)stop_signal; }
