@@ -35,6 +35,9 @@ double pf_body_reach(const pf_body *b, const pf_points *pts, pf_int i) {
 }
 const char *pf_body_reach_name(const pf_body *b) { return b->ops->reach ? b->ops->reach_name : "cell"; }
 const pf_mesh *pf_body_mesh(const pf_body *b) { return b->ops->mesh ? b->ops->mesh(b->data) : NULL; }
+const pf_mesh *pf_body_contact_surface(const pf_body *b) {
+  return b->ops->contact_surface ? b->ops->contact_surface(b->data) : NULL;
+}
 long pf_body_eroded_count(const pf_body *b) {
   long n = 0;
   return b->ops->eroded && b->ops->eroded(b->data, &n) ? n : -1;

@@ -80,6 +80,10 @@ typedef struct {
    * without bonds) and its deleted elements (NULL: none). */
   const pf_mesh *(*mesh)(const void *data);
   const uint8_t *(*eroded)(const void *data, long *count);
+  /* Optional: the mesh whose surface meets other bodies in contact (NULL: the body meets them by
+   * its points, as particles: a PD body, and a coupled body, whose nodes are the particles that
+   * fracture). */
+  const pf_mesh *(*contact_surface)(const void *data);
   /* Optional: fill the body's output fields before an Exodus step. */
   int (*output_fields)(void *data, pf_points *pts);
   /* Optional: state kept per element rather than per point, as one table of `total` rows of
@@ -146,6 +150,7 @@ double pf_body_point_horizon(const pf_body *b, pf_int i);
 double pf_body_reach(const pf_body *b, const pf_points *pts, pf_int i);
 const char *pf_body_reach_name(const pf_body *b);
 const pf_mesh *pf_body_mesh(const pf_body *b);
+const pf_mesh *pf_body_contact_surface(const pf_body *b);
 long pf_body_eroded_count(const pf_body *b);
 int pf_body_output_fields(const pf_body *b, pf_points *pts);
 int pf_body_table_shape(const pf_body *b, pf_gid *total, int *ncomp, pf_int *nlocal);

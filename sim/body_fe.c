@@ -83,6 +83,7 @@ const pf_body_ops pf_body_kind_fe = {
     .energies = energies,
     .material = material,
     .mesh = mesh,
+    .contact_surface = mesh,
     .eroded = eroded,
     .output_fields = output_fields,
     .table_shape = table_shape,

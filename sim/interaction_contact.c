@@ -27,11 +27,11 @@ static double body_spacing(const pf_sim *sim, int b) {
   return pf_max_all(h);
 }
 
-/* What contact needs of each body. Collective (spacings). A body with bonds is a particle body
- * to contact, whether or not it also has elements: a coupled body's nodes are the particles that
- * fracture, so an FE projectile meets them node-to-particle (surface to particle) and its
- * fragments meet each other by short-range forces, as a PD body's do. A body without bonds meets
- * others through its mesh's surface. */
+/* What contact needs of each body. Collective (spacings). A body meets others through its mesh's
+ * surface when its kind says so (the contact_surface op: an FE body), else by its points, as
+ * particles: a coupled body's nodes are the particles that fracture, so an FE projectile meets
+ * them node-to-particle (surface to particle) and its fragments meet each other by short-range
+ * forces, as a PD body's do. */
 static void contact_bodies(const pf_sim *sim, pf_contact_body *cb) {
   for (int b = 0; b < sim->nbodies; b++) {
     const pf_body *body = &sim->body[b];
@@ -45,7 +45,7 @@ static void contact_bodies(const pf_sim *sim, pf_contact_body *cb) {
     body->ops->material(body->data, &c->density, &c->bulk_modulus);
     c->fam = pf_body_family(body);
     c->horizon = pf_body_horizon(body);
-    c->mesh = c->fam ? NULL : pf_body_mesh(body);
+    c->mesh = pf_body_contact_surface(body);
     c->is_fe = c->mesh != NULL;
     if (c->is_fe) c->eroded = body->ops->eroded, c->eroded_ctx = body->data;
   }
