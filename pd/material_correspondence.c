@@ -77,6 +77,8 @@ typedef struct {
   double *K0;                         /* [9n] the whole family's shape tensor (broken bonds too) */
   int *nfam;                          /* [n] the number of bonds in the point's own family */
   unsigned char *lost;                /* [n] the point lost a bond this step (rereference) */
+  double *jump; /* [n] scratch: the step's unbooked work at a point whose bonds failed or that
+                   detached (failure_work; docs/theory/pd.md §5.1), J; NAN elsewhere */
   double *ghost;                      /* field "ghost_correction" [3]: the corrected form's d_i */
   double *lm;                         /* field "consistent_weights": the consistent form's multipliers */
   double *rate, *whg2, *cw; /* scratch [n]: beta / sigma_min(Fbar), omega_hg^2, wave speed */
@@ -377,9 +379,9 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
   if (b->n > p->cap) {
     free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm);
     free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam), free(p->lost);
-    free(p->kcount), free(p->kinv), free(p->kshape), free(p->nearz);
+    free(p->kcount), free(p->kinv), free(p->kshape), free(p->nearz), free(p->jump);
     p->lost = p->nearz = NULL;
-    p->F = p->D = p->s_old = p->saved = p->Jm = p->rate = p->whg2 = p->cw = p->Ki = p->K0 = NULL;
+    p->F = p->D = p->s_old = p->saved = p->Jm = p->rate = p->whg2 = p->cw = p->Ki = p->K0 = p->jump = NULL;
     p->kinv = p->kshape = NULL;
     p->nfam = p->kcount = NULL;
     PF_MALLOC(p->kcount, b->n);
@@ -390,6 +392,7 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
     PF_MALLOC(p->K0, 9 * (size_t)b->n);
     PF_MALLOC(p->nfam, b->n);
     PF_MALLOC(p->lost, b->n);
+    PF_MALLOC(p->jump, b->n);
     PF_MALLOC(p->Jm, b->n);
     PF_MALLOC(p->rate, b->n);
     PF_MALLOC(p->whg2, b->n);
@@ -465,7 +468,7 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
     if (stretch && pf_pd_may_fail(b, i, j)) { /* (both ends test every row bond) */
       const double s = (sqrt(r2) - r0) / r0;
       if (s > fmin(b->s0[i], b->s0[j])) {
-        fam->broken[k] = 1, p->lost[li] = 1;
+        fam->broken[k] = PF_BOND_FRESH, p->lost[li] = 1;
         continue;
       }
       smin = fmin(smin, s);
@@ -528,7 +531,7 @@ static inline __attribute__((always_inline)) int row_kernel(pf_pd_body *b, const
     if (broken[k]) continue;
     const pf_int j = nbr[k];
     if (record_fails(fi, fails[j])) {
-      broken[k] = 1, lost = 1;
+      broken[k] = PF_BOND_FRESH, lost = 1;
       continue;
     }
     const double x0 = X[3 * j] - xi0, x1 = X[3 * j + 1] - xi1, x2 = X[3 * j + 2] - xi2;
@@ -537,7 +540,7 @@ static inline __attribute__((always_inline)) int row_kernel(pf_pd_body *b, const
     if (stretch && (fi & fails[j] & 4)) { /* (both ends test every row bond) */
       const double s = (sqrt(Y[0] * Y[0] + Y[1] * Y[1] + Y[2] * Y[2]) - r0) / r0;
       if (s > fmin(b->s0[i], b->s0[j])) {
-        broken[k] = 1, lost = 1;
+        broken[k] = PF_BOND_FRESH, lost = 1;
         continue;
       }
       smin = fmin(smin, s);
@@ -574,7 +577,16 @@ static void fail_row(pf_pd_body *b, pf_int i) {
   const pf_int li = i - b->first;
   p->lost[li] = 0;
   for (int64_t k = fam->offset[li]; k < fam->offset[li + 1]; k++)
-    if (!fam->broken[k] && record_fails(p->fails[i], p->fails[fam->neighbor[k]])) fam->broken[k] = 1, p->lost[li] = 1;
+    if (!fam->broken[k] && record_fails(p->fails[i], p->fails[fam->neighbor[k]])) fam->broken[k] = PF_BOND_FRESH, p->lost[li] = 1;
+}
+
+/* Marks the PF_BOND_FRESH bonds of owned point i's row PF_BOND_BROKEN (an idle point: no force
+ * state acted through them, nothing to book). */
+static void settle_row(pf_pd_body *b, pf_int i) {
+  pf_family *fam = &b->fam;
+  for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++)
+    if (fam->broken[k]) fam->broken[k] = PF_BOND_BROKEN;
+  ((corr *)b->mat)->jump[i - b->first] = NAN;
 }
 
 /* Last step's record of every store point for the failure test (owned points and ghosts read the
@@ -671,6 +683,47 @@ static void shape_of(pf_pd_body *b, const pf_points *pts, pf_int i) {
   p->kcount[li] = nb;
 }
 
+/* Half the work of point i's last force state over this step, on the bonds it acted through:
+ * (dt/2) P^n : Fdot_S, with Fdot_S = [sum_S w V_j Ydot (x) xi] K_S^-1 (+ sum_S Ydot (x) h_ik at a
+ * point of the consistent form) over the set S the last evaluation used, this step's intact bonds
+ * and its PF_BOND_FRESH ones (Tupek et al. 2013, eqs. 3-4; the first term of the step's account,
+ * docs/theory/pd.md §5.1). Ydot = v^{n+1/2} differences, so dt Fdot_S is the change of that set's
+ * Fbar over the step. Pn: P^n, row-major. Marks the fresh bonds PF_BOND_BROKEN. */
+static double old_half_work(pf_pd_body *b, const pf_points *pts, pf_int i, const double Pn[9]) {
+  const corr *p = b->mat;
+  pf_family *fam = &b->fam;
+  const pf_int li = i - b->first;
+  const int consistent = pf_pd_consistent_at(b, i);
+  double K[3][3] = {{0}}, B[3][3] = {{0}}, Hd[3][3] = {{0}}, Ki[3][3];
+  for (int64_t k = fam->offset[li]; k < fam->offset[li + 1]; k++) {
+    if (fam->broken[k] == PF_BOND_BROKEN) continue;
+    if (fam->broken[k]) fam->broken[k] = PF_BOND_BROKEN;
+    const pf_int j = fam->neighbor[k];
+    double xi[3], Yd[3], r02 = 0;
+    for (int a = 0; a < 3; a++) {
+      xi[a] = pts->X[3 * j + a] - pts->X[3 * i + a], Yd[a] = pts->v[3 * j + a] - pts->v[3 * i + a];
+      r02 += xi[a] * xi[a];
+    }
+    const double r0 = sqrt(r02), w = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    if (consistent) {
+      double h[3];
+      pf_pd_consistent_h(&p->lm[PF_CONSISTENT_NLM * i], &p->lm[PF_CONSISTENT_NLM * j], w,
+                         pf_pd_energy_weight(b, i) * pts->vol[i], xi, h);
+      for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) Hd[r][c] += Yd[r] * h[c];
+    }
+    if (!pf_pd_in_family(b, i, r0)) continue;
+    for (int r = 0; r < 3; r++)
+      for (int c = 0; c < 3; c++) K[r][c] += w * xi[r] * xi[c], B[r][c] += w * Yd[r] * xi[c];
+  }
+  if (!(pf_mat3_inverse(K, Ki) > 0)) return 0.0; /* (then no force state acted: detached) */
+  double pw = 0;
+  for (int r = 0; r < 3; r++)
+    for (int c = 0; c < 3; c++)
+      pw += Pn[3 * r + c] * (B[r][0] * Ki[0][c] + B[r][1] * Ki[1][c] + B[r][2] * Ki[2][c] + Hd[r][c]);
+  return 0.5 * b->dt * pw;
+}
+
 /* Kinematics of point i for the model: Fbar into F, D into D, the rotated previous stress; K^-1
  * kept in the ghost record until the stress is known. Returns 0 when the point is detached: too
  * few bonds for an invertible K, intact bonds that lost the span, or an inverted or crushed Fbar
@@ -680,13 +733,15 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
   corr *p = b->mat;
   const pf_int li = i - b->first;
   double A[3][3], B[3][3], H[3][3] = {{0}}, Hd[3][3] = {{0}}, Ki[3][3], Fb[3][3], Fd[3][3], Fm[3][3], Fmi[3][3];
-  double L[3][3], R[3][3], *g = &p->gx[GX * i], *F = &p->F[9 * li], *D = &p->D[6 * li];
+  double L[3][3], R[3][3], *g = &p->gx[GX * i], *F = &p->F[9 * li], *D = &p->D[6 * li], Pn[9];
   int nb;
+  memcpy(Pn, &g[G_NU], sizeof Pn); /* the last evaluation's P, for failure_work */
   if (pf_pd_consistent_at(b, i)) {
     double K[3][3], sums[2];
     fail_row(b, i);
     nb = bond_sums(b, pts, i, K, A, B, H, Hd, sums);
   } else nb = row_sums(b, pts, i, A, B);
+  p->jump[li] = p->lost[li] ? old_half_work(b, pts, i, Pn) : NAN;
   if (nb != p->kcount[li]) shape_of(b, pts, i);
   const double *c = &p->kshape[4 * li];
   memcpy(Ki, &p->kinv[9 * li], sizeof Ki);
@@ -702,6 +757,7 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
     if (ok) step_rates(b, i, c[0], Fb, &c[1], &p->rate[li], &p->whg2[li]);
   }
   if (!ok) { /* the model sees a state at rest; its result is discarded */
+    if (!p->lost[li]) p->jump[li] = old_half_work(b, pts, i, Pn); /* (its force state goes) */
     at_rest(b, i, 1);
     return 0;
   }
@@ -737,6 +793,12 @@ static void stress_to_force_state(pf_pd_body *b, pf_int i) {
   for (int r = 0; r < 3; r++) /* P = J sigma F^-T */
     for (int c = 0; c < 3; c++) P[r][c] = J * (S[r][0] * Fi[c][0] + S[r][1] * Fi[c][1] + S[r][2] * Fi[c][2]);
   mat_mul(P, Ki, T);
+  if (!isnan(p->jump[li])) { /* failure_work: + (dt/2) P^n+1 : Fdot - the stress work just booked */
+    double pf = 0;
+    for (int r = 0; r < 3; r++)
+      for (int c = 0; c < 3; c++) pf += P[r][c] * g[G_FDOT + r + 3 * c];
+    p->jump[li] += 0.5 * b->dt * pf - b->dt * p->Jm[li] * power;
+  }
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) g[G_PK + r + 3 * c] = T[r][c], g[G_NU + 3 * r + c] = P[r][c];
 }
@@ -775,6 +837,20 @@ static void update_model(pf_pd_body *b) {
   }
 }
 
+/* What the step's failures leave out of the balance (docs/theory/pd.md §5.1): at each point whose
+ * row lost bonds, or that detached, the work its force states did over the step, by the trapezoid
+ * velocity Verlet applies, (dt/2) (P^n : Fdot_{S^n} + P^{n+1} : Fdot_{S^{n+1}}), less the stress
+ * work the step booked, dt J_m sigma_m : D (zero for a point that detached: P^{n+1} = 0 and no
+ * work). Times beta_i V_i (the stress work's weight in corr_energy), into b->damage_work in point
+ * order: each point's term is its own data, the same on any partition. */
+static void failure_work(pf_pd_body *b, const pf_points *pts) {
+  const corr *p = b->mat;
+  for (pf_int li = 0; li < b->n; li++) {
+    const pf_int i = b->first + li;
+    if (!isnan(p->jump[li])) b->damage_work += (b->blend ? b->blend[i] : 1.0) * pts->vol[i] * p->jump[li];
+  }
+}
+
 /* Pass 1 for every owned point, the model batched over the body, then the ghost exchange. */
 static int corr_pass1(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
@@ -783,7 +859,7 @@ static int corr_pass1(pf_pd_body *b, pf_points *pts) {
   PF_CALL(failure_records(b, pts));
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : ndetached)
   for (pf_int i = b->first; i < b->first + b->n; i++)
-    if (b->idle && b->idle[i - b->first]) fail_row(b, i), at_rest(b, i, 0);
+    if (b->idle && b->idle[i - b->first]) fail_row(b, i), settle_row(b, i), at_rest(b, i, 0);
     else ndetached += !kinematics(b, pts, i);
   double *state = ns ? &p->state[(size_t)ns * b->first] : NULL;
   if (ndetached && ns) memcpy(p->saved, state, sizeof(double) * ns * b->n);
@@ -804,6 +880,7 @@ static int corr_pass1(pf_pd_body *b, pf_points *pts) {
     g[G_DAMAGE] = p->idamage >= 0 ? state[(size_t)ns * li + p->idamage] : 0.0;
     for (int k = 0; k < ns; k++) p->out[k][i] = state[(size_t)ns * li + k];
   }
+  failure_work(b, pts);
   return pf_points_exchange(pts, p->gx, GX);
 }
 
@@ -976,7 +1053,7 @@ static void corr_destroy(pf_pd_body *b) {
   pf_material_destroy(&p->cm);
   free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm), free(p->out);
   free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam), free(p->lost);
-  free(p->kcount), free(p->kinv), free(p->kshape), free(p->nearz), free(p->fails);
+  free(p->kcount), free(p->kinv), free(p->kshape), free(p->nearz), free(p->fails), free(p->jump);
   PF_FREE(b->mat);
 }
 
