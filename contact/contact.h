@@ -40,15 +40,14 @@ const char *pf_rigid_name(const pf_rigid *r);
 int pf_rigid_force_local(pf_rigid *r, pf_points *pts, double dt, double sums[4], double *dissipation);
 int pf_rigid_force(pf_rigid *r, pf_points *pts, double dt, double reaction[3], double *energy,
                    double *dissipation);
-/* Move the surface from t to t + dt with its prescribed velocity v(t + dt/2) and add the work
- * done on the points, -reaction . v dt, to *work. */
-void pf_rigid_advance(pf_rigid *r, double t, double dt, const double reaction[3], double *work);
+/* Move the surface from t to t + dt with its prescribed velocity v(t + dt/2): dx[3] gets the
+ * motion dt v(t + dt/2), m (the work it does on the points is booked by the caller: the
+ * trapezoidal rule of sim/ledger.h). */
+void pf_rigid_advance(pf_rigid *r, double t, double dt, double dx[3]);
 /* The stable step the penalty allows the owned points it may touch, 2 sqrt(m_min / k) for the
  * linear law (INFINITY for the quadratic law, whose stiffness grows from zero with the depth,
  * and when it touches no body). Collective. */
 double pf_rigid_stable_dt(const pf_rigid *r, const pf_points *pts);
-/* The velocity of the last advance, m/s (0 before the first). */
-void pf_rigid_velocity(const pf_rigid *r, double v[3]);
 /* Current position (sphere centre, plane point, point of the cylinder axis); restart. */
 void pf_rigid_position(const pf_rigid *r, double x[3]);
 void pf_rigid_set_position(pf_rigid *r, const double x[3]);

@@ -279,17 +279,13 @@ int pf_rigid_force(pf_rigid *r, pf_points *pts, double dt, double reaction[3], d
   return 0;
 }
 
-void pf_rigid_advance(pf_rigid *r, double t, double dt, const double reaction[3], double *work) {
-  double v[3] = {0, 0, 0};
+void pf_rigid_advance(pf_rigid *r, double t, double dt, double dx[3]) {
   for (int a = 0; a < 3; a++) {
-    if (r->vel[a]) v[a] = pf_expr_eval(r->vel[a], 0, 0, 0, t + 0.5 * dt);
-    r->x[a] += dt * v[a];
-    *work -= reaction[a] * v[a] * dt;
-    r->v[a] = v[a];
+    r->v[a] = r->vel[a] ? pf_expr_eval(r->vel[a], 0, 0, 0, t + 0.5 * dt) : 0.0;
+    dx[a] = dt * r->v[a];
+    r->x[a] += dx[a];
   }
 }
-
-void pf_rigid_velocity(const pf_rigid *r, double v[3]) { memcpy(v, r->v, sizeof r->v); }
 
 double pf_rigid_stable_dt(const pf_rigid *r, const pf_points *pts) {
   if (r->law == LAW_QUADRATIC) return INFINITY;

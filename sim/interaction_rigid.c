@@ -72,10 +72,7 @@ static void midstep(void *data, const pf_interaction_step *s) {
 
 static void after_drift(void *data, const pf_interaction_step *s) {
   rigid *x = data;
-  double v[3], none = 0;
-  pf_rigid_advance(x->r, s->t, s->dt, (const double[3]){0, 0, 0}, &none);
-  pf_rigid_velocity(x->r, v);
-  for (int a = 0; a < 3; a++) x->dx[a] = v[a] * s->dt;
+  pf_rigid_advance(x->r, s->t, s->dt, x->dx);
 }
 
 static int nsums(const void *data) {
