@@ -229,7 +229,7 @@ static int check_variable_horizon(const pf_deck *d, const pf_node *body, const p
     return pf_deck_error(d, b->hz_expr ? h : f, b->hz_expr ? "horizon" : "formulation",
                          "a variable horizon and the partial-stress form need lps or a correspondence "
                          "material (body '%s' has %s)", b->name, b->ops->name);
-  if (b->form == PF_PD_PARTIAL_STRESS && (b->damage->fails_on_stretch || b->damage->fails_on_energy))
+  if (b->form == PF_PD_PARTIAL_STRESS && (pf_pd_stretch_limited(b) || pf_pd_energy_limited(b)))
     return pf_deck_error(d, dmg, "damage", "body '%s' is all partial stress (a transition region), which "
                          "carries no damage; use formulation: auto to keep damage where the horizon is "
                          "constant", b->name);
@@ -241,7 +241,7 @@ static int check_variable_horizon(const pf_deck *d, const pf_node *body, const p
     return pf_deck_error(d, pf_node_get(body, "influence"), "influence",
                          "the gaussian influence scales with the horizon; with a variable horizon use "
                          "constant or inverse_distance");
-  if (b->damage->fails_on_energy || (dmg && pf_node_get(dmg, "energy_release_rate")))
+  if (pf_pd_energy_limited(b) || (dmg && pf_node_get(dmg, "energy_release_rate")))
     return pf_deck_error(d, dmg, "damage", "the energy-based laws depend on the horizon; with a variable "
                          "horizon give a critical_stretch");
   return 0;

@@ -3,15 +3,21 @@
  * themselves are pd/damage_<id>.c. */
 #include "pd/pd_impl.h"
 
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
-static const pf_pd_damage_ops *const law_list[] = {
+/* The laws: the list of pd/damage_laws.h, then the ones registered at run time. */
+static const pf_pd_damage_ops *law_list[PF_PD_MAX_LAWS] = {
 #define PF_PD_DAMAGE_LAW(id) &pf_pd_damage_##id,
 #include "pd/damage_laws.h"
 #undef PF_PD_DAMAGE_LAW
 };
-enum { NLAWS = sizeof law_list / sizeof law_list[0] };
+static int nlaws = 0
+#define PF_PD_DAMAGE_LAW(id) +1
+#include "pd/damage_laws.h"
+#undef PF_PD_DAMAGE_LAW
+    ;
 
 const pf_key pf_pd_damage_keys[] = {
     {"law", PF_KEY_STRING, 1, NULL, "", "none | critical_stretch | silling_askari | critical_energy",
@@ -32,9 +38,18 @@ const pf_key pf_pd_damage_keys[] = {
     PF_KEY_END};
 
 const pf_pd_damage_ops *pf_pd_damage_find(const char *name) {
-  for (int k = 0; k < NLAWS; k++)
+  for (int k = 0; k < nlaws; k++)
     if (!strcmp(law_list[k]->name, name)) return law_list[k];
   return NULL;
+}
+
+int pf_pd_damage_register(const pf_pd_damage_ops *law) {
+  PF_CHECK(law && law->name && law->name[0] && law->read, PF_ERR_INPUT, "a damage law needs a name and a read");
+  PF_CHECK(!pf_pd_damage_find(law->name), PF_ERR_INPUT, "damage law '%s' is already registered", law->name);
+  PF_CHECK(nlaws < PF_PD_MAX_LAWS, PF_ERR_INPUT, "no room for damage law '%s' (at most %d laws)", law->name,
+           PF_PD_MAX_LAWS);
+  law_list[nlaws++] = law;
+  return 0;
 }
 
 /* words joined by sep into out (size n), cut short rather than overflow. */
@@ -48,9 +63,9 @@ static const char *join(const char *const *words, int count, const char *sep, ch
 
 const char *pf_pd_damage_names(void) {
   static char known[256];
-  const char *names[NLAWS];
-  for (int k = 0; k < NLAWS; k++) names[k] = law_list[k]->name;
-  return join(names, NLAWS, ", ", known, sizeof known);
+  const char *names[PF_PD_MAX_LAWS];
+  for (int k = 0; k < nlaws; k++) names[k] = law_list[k]->name;
+  return join(names, nlaws, ", ", known, sizeof known);
 }
 
 int pf_pd_damage_read_required(const pf_deck *d, const pf_node *map, const char *key, double *v) {
@@ -91,7 +106,13 @@ int pf_pd_damage_read(const pf_deck *d, const pf_node *map, pf_pd_body *b) {
                          name, pf_pd_damage_names());
   PF_CALL(check_keys(d, map, law));
   b->damage = law;
+  b->s0_init = b->critical_energy = INFINITY; /* no limit until the law sets one */
   PF_CALL(law->read(d, map, b));
+  if (pf_pd_energy_limited(b) && !b->ops->bond_energy) /* (the force kernel evaluates the energy) */
+    return pf_deck_error(d, pf_node_get(map, "law"), "law",
+                         "law '%s' needs the bond energy from the material's force kernel; material "
+                         "model '%s' does not provide it (it does: %s)", law->name, b->ops->name,
+                         pf_pd_material_names_with(offsetof(pf_pd_material_ops, bond_energy)));
   const pf_node *nf = map ? pf_node_get(map, "no_fail") : NULL;
   b->n_no_fail = nf ? pf_node_count(nf) : 0;
   if (b->n_no_fail > PF_PD_MAX_NO_FAIL)

@@ -127,5 +127,4 @@ const pf_pd_damage_ops pf_pd_damage_critical_energy = {
     .keys = keys,
     .read = read_critical_energy,
     .attach = attach_critical_energy,
-    .fails_on_energy = 1,
 };

@@ -34,5 +34,4 @@ const pf_pd_damage_ops pf_pd_damage_critical_stretch = {
     .name = "critical_stretch",
     .keys = keys,
     .read = read_critical_stretch,
-    .fails_on_stretch = 1,
 };

@@ -36,5 +36,4 @@ const pf_pd_damage_ops pf_pd_damage_silling_askari = {
     .keys = keys,
     .read = read_silling_askari,
     .post_step = post_step,
-    .fails_on_stretch = 1,
 };

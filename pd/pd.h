@@ -105,6 +105,13 @@ double pf_pd_pmb_critical_stretch(double G0, double bulk_modulus, double delta);
 extern const pf_key pf_pd_body_keys[];
 extern const pf_key pf_pd_material_keys[];
 extern const pf_key pf_pd_damage_keys[];
+/* Add a damage law to the list of pd/damage_laws.h at run time (a law defined in a test, as
+ * PETSc's PCRegister): law (pf_pd_damage_ops, pd/pd_impl.h; kept, not copied) is found by its
+ * name from then on. An error when the name is taken, or the list is full (PF_PD_MAX_LAWS). Not
+ * thread safe: register before reading a deck. */
+typedef struct pf_pd_damage_ops pf_pd_damage_ops;
+enum { PF_PD_MAX_LAWS = 16 };
+int pf_pd_damage_register(const pf_pd_damage_ops *law);
 /* 1 when model names a peridynamic material; the known names, comma separated. */
 int pf_pd_material_known(const char *model);
 const char *pf_pd_material_names(void);
