@@ -1,4 +1,4 @@
-/* The damage laws: their deck keys, lookup by name in the list pd/damage_laws.h, and the body's
+/* The damage laws: their deck table (each law's own keys), lookup by name in the list pd/damage_laws.h, and the body's
  * entry points that dispatch to the law's ops table (pf_pd_damage_ops, pd/pd_impl.h). The laws
  * themselves are pd/damage_<id>.c. */
 #include "pd/pd_impl.h"
@@ -19,23 +19,6 @@ static int nlaws = 0
 #undef PF_PD_DAMAGE_LAW
     ;
 
-const pf_key pf_pd_damage_keys[] = {
-    {"law", PF_KEY_STRING, 1, NULL, "", "none | critical_stretch | silling_askari | critical_energy",
-     NULL},
-    {"critical_stretch", PF_KEY_REAL, 0, NULL, "", "critical_stretch: s0", NULL},
-    {"energy_release_rate", PF_KEY_REAL, 0, NULL, "J/m^2",
-     "critical_stretch: G0, converted to s0 by the material's closed form; critical_energy: G0, "
-     "converted to the critical bond energy w_c = 4 G0 / (pi delta^4)", NULL},
-    {"calibration", PF_KEY_STRING, 0, "continuum", "",
-     "critical_energy: continuum (w_c of a whole family for every bond) | family (each bond's w_c from "
-     "its two ends' families, so that a crack takes G0 near free faces and on a coarse lattice too)", NULL},
-    {"s00", PF_KEY_REAL, 0, NULL, "", "silling_askari: s00 in s0 = s00 - alpha s_min", NULL},
-    {"alpha", PF_KEY_REAL, 0, "0.25", "", "silling_askari: alpha in s0 = s00 - alpha s_min", NULL},
-    {"no_fail", PF_KEY_LIST, 0, NULL, "",
-     "critical_stretch: regions (reference positions, at most 8) whose points have no stretch limit (s0 = "
-     "infinity); a bond fails at the smaller s0 of its ends, so the bonds with both ends inside never fail",
-     pf_region_keys},
-    PF_KEY_END};
 
 const pf_pd_damage_ops *pf_pd_damage_find(const char *name) {
   for (int k = 0; k < nlaws; k++)
@@ -61,6 +44,25 @@ static const char *join(const char *const *words, int count, const char *sep, ch
   return out;
 }
 
+/* pf_pd_damage_keys: `law`, then each law's own rows in list order (a key several laws read
+ * once, its descriptions joined), assembled at first use and again after a registration. */
+enum { MAX_DAMAGE_KEYS = 48 };
+pf_key pf_pd_damage_key_rows[MAX_DAMAGE_KEYS + 1];
+
+const pf_key *pf_pd_damage_key_table(void) {
+  static char text[4096], laws[256];
+  static int assembled = 0; /* the number of laws assembled */
+  if (assembled == nlaws) return pf_pd_damage_key_rows;
+  const char *names[PF_PD_MAX_LAWS];
+  for (int k = 0; k < nlaws; k++) names[k] = law_list[k]->name;
+  pf_key_table t = {pf_pd_damage_key_rows, MAX_DAMAGE_KEYS, 1, text, sizeof text, 0};
+  t.rows[0] = (pf_key){"law", PF_KEY_STRING, 1, NULL, "", join(names, nlaws, " | ", laws, sizeof laws), NULL};
+  for (int k = 0; k < nlaws; k++)
+    if (pf_key_table_add(&t, law_list[k]->keys)) break; /* (full: the error is raised) */
+  assembled = nlaws;
+  return pf_pd_damage_key_rows;
+}
+
 const char *pf_pd_damage_names(void) {
   static char known[256];
   const char *names[PF_PD_MAX_LAWS];
@@ -75,8 +77,8 @@ int pf_pd_damage_read_required(const pf_deck *d, const pf_node *map, const char 
 
 /* Does the law read key? */
 static int takes(const pf_pd_damage_ops *law, const char *key) {
-  for (int q = 0; law->keys && law->keys[q]; q++)
-    if (!strcmp(law->keys[q], key)) return 1;
+  for (const pf_key *k = law->keys; k && k->name; k++)
+    if (!strcmp(k->name, key)) return 1;
   return 0;
 }
 
@@ -85,12 +87,13 @@ static int takes(const pf_pd_damage_ops *law, const char *key) {
 static int check_keys(const pf_deck *d, const pf_node *map, const pf_pd_damage_ops *law) {
   for (const pf_key *key = pf_pd_damage_keys + 1; map && key->name; key++) {
     if (takes(law, key->name) || !pf_node_get(map, key->name)) continue;
+    const char *names[MAX_DAMAGE_KEYS];
     int n = 0;
-    while (law->keys && law->keys[n]) n++;
+    for (const pf_key *k = law->keys; k && k->name && n < MAX_DAMAGE_KEYS; k++) names[n++] = k->name;
     char list[256];
     return pf_deck_error(d, pf_node_get(map, key->name), key->name,
                          "not a parameter of damage law '%s' (it takes: %s)", law->name,
-                         n ? join(law->keys, n, ", ", list, sizeof list) : "nothing else");
+                         n ? join(names, n, ", ", list, sizeof list) : "nothing else");
   }
   return 0;
 }

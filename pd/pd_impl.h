@@ -107,6 +107,10 @@ struct pf_pd_material_ops {
   int uses_velocity;  /* 1: its forces read the neighbours' velocities (a rate form) */
   int bond_energy;    /* 1: its force kernel evaluates each bond's energy (critical_energy law) */
   const char *const *body_keys; /* keys of the body mapping only it reads (NULL-ended), or NULL */
+  /* Its own rows of the material mapping besides model, density, bulk_modulus and shear_modulus
+   * (PF_KEY_END-ended, or NULL; each description starts "<id>: "), assembled into
+   * pf_pd_material_keys in list order. */
+  const pf_key *keys;
 };
 /* Does material m read body key `key` (one of its body_keys)? */
 int pf_pd_material_reads_key(const pf_pd_material_ops *m, const char *key);
@@ -128,8 +132,11 @@ const char *pf_pd_material_names_with(size_t flag);
  * `law`), attach (NULL: every owned point starts at b->s0_init), post_step (NULL: s0 stays). */
 struct pf_pd_damage_ops {
   const char *name; /* the deck's `law:` value (the <id>) */
-  const char *const *keys; /* the keys of pf_pd_damage_keys it reads besides `law` (NULL-ended):
-                              any other one in the deck is an error naming it */
+  /* Its own rows of the `damage:` mapping besides `law` (PF_KEY_END-ended, or NULL; each
+   * description starts "<id>: "), assembled into pf_pd_damage_keys; any other key of that table
+   * in the deck is an error naming it. A key that several laws read is a row in each (the same
+   * type, default and units), their descriptions joined in list order. */
+  const pf_key *keys;
   /* Read its parameters from the body's `damage:` mapping (NULL when the deck has none; the
    * material is created): set its limits, b->s0_init (a finite value: the body has a stretch
    * limit) and b->critical_energy (finite: an energy limit), both INFINITY until it does, and
@@ -160,6 +167,9 @@ static inline double pf_pd_energy_limit(const pf_pd_body *b, int64_t k) {
   return b->wc_bond ? b->wc_bond[k] : b->critical_energy;
 }
 
+/* pd/damage.c: the storage of pf_pd_damage_keys, for the body tables that nest it (filled by
+ * pf_pd_damage_key_table, which every reader of those tables calls first). */
+extern pf_key pf_pd_damage_key_rows[];
 /* pd/damage.c: the law named name, or NULL; the known names, comma separated. */
 const pf_pd_damage_ops *pf_pd_damage_find(const char *name);
 const char *pf_pd_damage_names(void);
