@@ -224,8 +224,8 @@ typedef struct {
   size_t ntext, used;
 } pf_key_table;
 /* Append the rows of part (PF_KEY_END-ended, or NULL); a row whose name the table holds already
- * adds its description to that row's after "; ". The table stays PF_KEY_END-ended; PF_ERR_RUN
- * when it is full. */
+ * (of the same type and units) adds its description to that row's after "; ". The table stays
+ * PF_KEY_END-ended; PF_ERR_RUN when it is full or a repeated row disagrees. */
 int pf_key_table_add(pf_key_table *t, const pf_key *part);
 
 /* Check every key of a mapping node against a table: unknown keys (with a suggestion), wrong

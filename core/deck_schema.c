@@ -259,6 +259,8 @@ int pf_key_table_add(pf_key_table *t, const pf_key *part) {
       t->rows[t->n++] = *r;
       continue;
     }
+    PF_CHECK(old->type == r->type && !strcmp(old->units, r->units), PF_ERR_RUN,
+             "key '%s' is given twice with a different type or units", r->name);
     const size_t len = strlen(old->doc) + strlen(r->doc) + 3;
     PF_CHECK(t->used + len <= t->ntext, PF_ERR_RUN, "key table text full at key '%s'", r->name);
     char *doc = t->text + t->used;
