@@ -1,6 +1,7 @@
-/* The damage laws: their deck table (each law's own keys), lookup by name in the list pd/damage_laws.h, and the body's
- * entry points that dispatch to the law's ops table (pf_pd_damage_ops, pd/pd_impl.h). The laws
- * themselves are pd/damage_<id>.c. */
+/* The damage laws: lookup by name in the list pd/damage_laws.h (and the laws registered at run
+ * time), their deck table assembled from each law's own keys, and the body's entry points that
+ * dispatch to the law's ops table (pf_pd_damage_ops, pd/pd_impl.h). The laws themselves are
+ * pd/damage_<id>.c. */
 #include "pd/pd_impl.h"
 
 #include <stddef.h>
@@ -13,12 +14,11 @@ static const pf_pd_damage_ops *law_list[PF_PD_MAX_LAWS] = {
 #include "pd/damage_laws.h"
 #undef PF_PD_DAMAGE_LAW
 };
-static int nlaws = 0
+static int nlaws = 0 /* (each line of the list adds 1) */
 #define PF_PD_DAMAGE_LAW(id) +1
 #include "pd/damage_laws.h"
 #undef PF_PD_DAMAGE_LAW
     ;
-
 
 const pf_pd_damage_ops *pf_pd_damage_find(const char *name) {
   for (int k = 0; k < nlaws; k++)

@@ -81,7 +81,7 @@ static double lps_dilatation(pf_pd_body *b, const pf_points *pts, pf_int i, doub
     pf_int j = fam->neighbor[k];
     pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
     double s = (r - r0) / r0;
-    if (s > fmin(b->s0[i], b->s0[j]) && pf_pd_may_fail(b, i, j)) {
+    if (pf_pd_stretch_fails(b, i, j, s) && pf_pd_may_fail(b, i, j)) {
       fam->broken[k] = PF_BOND_FRESH;
       fresh++;
       continue;

@@ -101,10 +101,10 @@ double pf_pd_pmb_micromodulus(double bulk_modulus, const pf_influence *w, double
 double pf_pd_pmb_critical_stretch(double G0, double bulk_modulus, double delta);
 
 /* A body of peridynamic points, read from the deck (`bodies[i]`, with its material from
- * `materials`): material, horizon, influence function, damage law, pre-cracks. */
-/* The tables are assembled at first use from the lists pd/materials.h and pd/damage_laws.h: each
- * material and each law gives its own rows (pf_pd_material_ops.keys, pf_pd_damage_ops.keys),
- * so that adding one edits no table here. The names read as the tables. */
+ * `materials`): material, horizon, influence function, damage law, pre-cracks. Its deck tables
+ * are assembled at first use from the lists pd/materials.h and pd/damage_laws.h: each material
+ * and each law gives its own rows (pf_pd_material_ops.keys, pf_pd_damage_ops.keys), so that
+ * adding one edits no table here. The names read as the tables. */
 const pf_key *pf_pd_body_key_table(void);
 const pf_key *pf_pd_material_key_table(void);
 const pf_key *pf_pd_damage_key_table(void);
