@@ -214,6 +214,20 @@ typedef struct pf_key {
 } pf_key;
 #define PF_KEY_END {NULL, 0, 0, NULL, NULL, NULL, NULL}
 
+/* A schema table assembled at run time from the rows of several owners (each model's own keys,
+ * from an X-macro list): rows has room for cap rows and the PF_KEY_END, text for the joined
+ * descriptions. Start with n = used = 0. */
+typedef struct {
+  pf_key *rows;
+  int cap, n;
+  char *text;
+  size_t ntext, used;
+} pf_key_table;
+/* Append the rows of part (PF_KEY_END-ended, or NULL); a row whose name the table holds already
+ * (of the same type and units) adds its description to that row's after "; ". The table stays
+ * PF_KEY_END-ended; PF_ERR_RUN when it is full or a repeated row disagrees. */
+int pf_key_table_add(pf_key_table *t, const pf_key *part);
+
 /* Check every key of a mapping node against a table: unknown keys (with a suggestion), wrong
  * types and missing required keys are errors naming file:line:column and the key. Recurses
  * into MAP/LIST/ANYMAP rows. */

@@ -243,3 +243,31 @@ int pf_deck_body_index(const pf_deck *d, const pf_node *item, const char *key, i
   }
   return pf_deck_error(d, item, key, "no body is named '%s' (known: %s)", name, known);
 }
+
+/* The row of t named name, or NULL. */
+static pf_key *table_row(pf_key_table *t, const char *name) {
+  for (int k = 0; k < t->n; k++)
+    if (!strcmp(t->rows[k].name, name)) return &t->rows[k];
+  return NULL;
+}
+
+int pf_key_table_add(pf_key_table *t, const pf_key *part) {
+  for (const pf_key *r = part; r && r->name; r++) {
+    pf_key *old = table_row(t, r->name);
+    if (!old) {
+      PF_CHECK(t->n < t->cap, PF_ERR_RUN, "key table full (%d rows) at key '%s'", t->cap, r->name);
+      t->rows[t->n++] = *r;
+      continue;
+    }
+    PF_CHECK(old->type == r->type && !strcmp(old->units, r->units), PF_ERR_RUN,
+             "key '%s' is given twice with a different type or units", r->name);
+    const size_t len = strlen(old->doc) + strlen(r->doc) + 3;
+    PF_CHECK(t->used + len <= t->ntext, PF_ERR_RUN, "key table text full at key '%s'", r->name);
+    char *doc = t->text + t->used;
+    snprintf(doc, len, "%s; %s", old->doc, r->doc);
+    old->doc = doc;
+    t->used += len;
+  }
+  t->rows[t->n] = (pf_key)PF_KEY_END;
+  return 0;
+}

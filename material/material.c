@@ -20,40 +20,32 @@ static const char model_names[] = ""
 #undef PF_MATERIAL
     ;
 
-const pf_key pf_material_keys[] = {
-    {"model", PF_KEY_STRING, 1, NULL, "",
-     "constitutive model: elastic | neo_hookean | j2 | johnson_cook | modified_johnson_cook", NULL},
-    {"density", PF_KEY_REAL, 1, NULL, "kg/m^3", "reference mass density rho0 (> 0)", NULL},
+/* The keys every model reads (material_read, read_elastic), after `model` and `density`. */
+static const pf_key elastic_keys[] = {
     {"youngs_modulus", PF_KEY_REAL, 0, NULL, "Pa",
      "Young's modulus E (give E and poissons_ratio, or bulk_modulus and shear_modulus)", NULL},
     {"poissons_ratio", PF_KEY_REAL, 0, NULL, "", "Poisson's ratio nu, 0 <= nu < 0.5", NULL},
     {"bulk_modulus", PF_KEY_REAL, 0, NULL, "Pa",
      "bulk modulus K (with shear_modulus, instead of youngs_modulus and poissons_ratio)", NULL},
     {"shear_modulus", PF_KEY_REAL, 0, NULL, "Pa", "shear modulus G", NULL},
-    {"yield_stress", PF_KEY_REAL, 0, NULL, "Pa", "j2: initial yield stress sigma_y0 (> 0)", NULL},
-    {"hardening_modulus", PF_KEY_REAL, 0, "0", "Pa",
-     "j2: isotropic hardening H in sigma_y = sigma_y0 + H eqps^hardening_exponent (>= 0)", NULL},
-    {"hardening_exponent", PF_KEY_REAL, 0, "1", "",
-     "j2: exponent of the hardening law (1 = linear hardening, > 0)", NULL},
-    {"johnson_cook", PF_KEY_MAP, 0, NULL, "",
-     "johnson_cook: flow stress (A + B eqps^n)(1 + C ln(rate*))(1 - T*^m) parameters",
-     pf_material_johnson_cook_keys},
-    {"initial_temperature", PF_KEY_REAL, 0, "reference_temperature", "K",
-     "johnson_cook: temperature at t = 0", NULL},
-    {"specific_heat", PF_KEY_REAL, 0, NULL, "J/(kg K)",
-     "johnson_cook: specific heat c_p (needed when taylor_quinney > 0)", NULL},
-    {"taylor_quinney", PF_KEY_REAL, 0, "0", "",
-     "johnson_cook: fraction beta of plastic work turned into heat (0 = isothermal, <= 1)", NULL},
-    {"eos", PF_KEY_MAP, 0, NULL, "",
-     "johnson_cook: equation of state for the pressure (else hypoelastic with the bulk modulus)",
-     pf_material_eos_keys},
-    {"modified_johnson_cook", PF_KEY_MAP, 0, NULL, "",
-     "modified_johnson_cook: flow stress sigma0 (1 + eqps/eps0)^n (1 + C asinh(rate/(2 rate0))) "
-     "parameters (Tupek et al. 2013)", pf_material_modified_johnson_cook_keys},
-    {"damage", PF_KEY_MAP, 0, NULL, "",
-     "modified_johnson_cook: Johnson-Cook damage, eps_f = (d1 + d2 exp(d3 sigma_m/sigma_e)) "
-     "(1 + d4 ln(rate/rate0)) (absent: no damage)", pf_material_jc_damage_keys},
     PF_KEY_END};
+
+/* pf_material_keys: `model` (naming the list), `density`, the elastic constants, then each
+ * model's own rows (pf_material_ops.keys) in list order, assembled at first use. */
+const pf_key *pf_material_key_table(void) {
+  enum { MAX_KEYS = 48 };
+  static pf_key rows[MAX_KEYS + 1];
+  static char text[2048], model[256];
+  if (rows[0].name) return rows;
+  snprintf(model, sizeof model, "constitutive model: ");
+  for (int k = 0; k < NMODELS; k++) strcat(strcat(model, k ? " | " : ""), model_list[k]->name);
+  pf_key_table t = {rows, MAX_KEYS, 2, text, sizeof text, 0};
+  rows[0] = (pf_key){"model", PF_KEY_STRING, 1, NULL, "", model, NULL};
+  rows[1] = (pf_key){"density", PF_KEY_REAL, 1, NULL, "kg/m^3", "reference mass density rho0 (> 0)", NULL};
+  int ierr = pf_key_table_add(&t, elastic_keys);
+  for (int k = 0; k < NMODELS && !ierr; k++) ierr = pf_key_table_add(&t, model_list[k]->keys);
+  return rows;
+}
 
 static const pf_material_ops *find_model(const char *model) {
   for (int k = 0; k < NMODELS; k++)
@@ -73,11 +65,13 @@ static int check_keys(const pf_deck *d, const pf_node *mat, const pf_material_op
     const pf_node *v = pf_node_map_item(mat, i, &key);
     if (!strcmp(key, "model") || !strcmp(key, "density")) continue;
     int used = 0;
-    for (const char *const *k = ops->keys; *k && !used; k++) used = !strcmp(*k, key);
+    for (const pf_key *k = elastic_keys; k->name && !used; k++) used = !strcmp(k->name, key);
+    for (const pf_key *k = ops->keys; k && k->name && !used; k++) used = !strcmp(k->name, key);
     if (used) continue;
     char list[512] = "model, density";
-    for (const char *const *k = ops->keys; *k; k++)
-      if (strlen(list) + strlen(*k) + 3 < sizeof list) strcat(strcat(list, ", "), *k);
+    for (const pf_key *k = elastic_keys; k->name; k++) strcat(strcat(list, ", "), k->name);
+    for (const pf_key *k = ops->keys; k && k->name; k++)
+      if (strlen(list) + strlen(k->name) + 3 < sizeof list) strcat(strcat(list, ", "), k->name);
     return pf_deck_error(d, v, key, "not used by model '%s' (its keys: %s)", ops->name, list);
   }
   return 0;

@@ -15,8 +15,11 @@
  * of n material points over one step, batched. Stress and rate of deformation are symmetric
  * tensors in Voigt order (xx, yy, zz, yz, xz, xy), tensor (not engineering) shear components. */
 typedef struct pf_material pf_material;
-/* Keys of a material under `materials:` whose model is an FE model. */
-extern const pf_key pf_material_keys[];
+/* Keys of a material under `materials:` whose model is an FE model: assembled at first use from
+ * the list material/materials.h, each model giving its own rows (pf_material_ops.keys), so that
+ * adding a model edits no table here. The name reads as the table. */
+const pf_key *pf_material_key_table(void);
+#define pf_material_keys (pf_material_key_table())
 /* 1 when model names an FE/continuum model (elastic, neo_hookean, j2, johnson_cook). */
 int pf_material_known(const char *model);
 /* The known model names, comma separated (for error messages). */

@@ -5,9 +5,6 @@
  *   sigma_{n+1} = sigma_n^R + dt (lambda tr(D_{n+1/2}) I + 2 G D_{n+1/2}). */
 #include "material/material_impl.h"
 
-static const char *const elastic_keys[] = {"youngs_modulus", "poissons_ratio", "bulk_modulus",
-                                           "shear_modulus", NULL};
-
 static int elastic_create(const pf_deck *d, const pf_node *mat, pf_material *m) {
   (void)d, (void)mat, (void)m; /* the elastic constants were read by material.c */
   return 0;
@@ -36,7 +33,6 @@ static void elastic_update(const pf_material *m, pf_int n, double dt, const doub
 const pf_material_ops pf_material_elastic = {
     .name = "elastic",
     .nstate = 0,
-    .keys = elastic_keys,
     .create = elastic_create,
     .update = elastic_update,
 };

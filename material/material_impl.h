@@ -26,17 +26,20 @@ struct pf_material {
 };
 
 /* A model: one file material/material_<id>.c defining pf_material_<id>, and one line in
- * material/materials.h. Required: name, keys, create, update. Optional: state_names (nstate = 0),
+ * material/materials.h. Required: name, create, update. Optional: keys (NULL: the elastic
+ * constants only), state_names (nstate = 0),
  * init (NULL: state zero), wave_speed (NULL: the hypoelastic estimate
  * pf_material_hypo_wave_speed with the small-strain K and G), destroy (NULL: free(data)).
  * Before create is called, material.c has read density and the elastic constants into the
- * material (every model is elastic at small strain) and rejected any key not in keys. */
+ * material (every model is elastic at small strain) and rejected any other key not in keys. */
 struct pf_material_ops {
   const char *name; /* the deck's `model:` name */
   int nstate;
   const char *const *state_names; /* [nstate] output names */
-  /* Keys of pf_material_keys this model reads besides model and density (NULL-ended). */
-  const char *const *keys;
+  /* Its own rows of the material mapping besides model, density and the elastic constants
+   * (PF_KEY_END-ended, or NULL; each description starts "<id>: "), assembled into
+   * pf_material_keys in list order: the model reads these and no other key. */
+  const pf_key *keys;
   int (*create)(const pf_deck *d, const pf_node *mat, pf_material *m);
   void (*init)(const pf_material *m, pf_int n, double *restrict state);
   /* Advance n points over dt: see pf_material_update (the wave speed is done separately). */

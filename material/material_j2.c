@@ -19,9 +19,13 @@ typedef struct {
   double sy0, H, nh; /* sigma_y = sy0 + H eqps^nh */
 } j2;
 
-static const char *const j2_keys[] = {"youngs_modulus", "poissons_ratio", "bulk_modulus",
-                                      "shear_modulus", "yield_stress", "hardening_modulus",
-                                      "hardening_exponent", NULL};
+static const pf_key j2_keys[] = {
+    {"yield_stress", PF_KEY_REAL, 0, NULL, "Pa", "j2: initial yield stress sigma_y0 (> 0)", NULL},
+    {"hardening_modulus", PF_KEY_REAL, 0, "0", "Pa",
+     "j2: isotropic hardening H in sigma_y = sigma_y0 + H eqps^hardening_exponent (>= 0)", NULL},
+    {"hardening_exponent", PF_KEY_REAL, 0, "1", "",
+     "j2: exponent of the hardening law (1 = linear hardening, > 0)", NULL},
+    PF_KEY_END};
 static const char *const j2_state[] = {"eqps"};
 
 static int j2_create(const pf_deck *d, const pf_node *mat, pf_material *m) {

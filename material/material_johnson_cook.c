@@ -44,9 +44,20 @@ const pf_key pf_material_johnson_cook_keys[] = {
     {"melt_temperature", PF_KEY_REAL, 1, NULL, "K", "melting temperature T_melt (> T_ref)", NULL},
     PF_KEY_END};
 
-static const char *const jc_keys[] = {"youngs_modulus", "poissons_ratio", "bulk_modulus",
-                                      "shear_modulus", "johnson_cook", "initial_temperature",
-                                      "specific_heat", "taylor_quinney", "eos", NULL};
+static const pf_key jc_keys[] = {
+    {"johnson_cook", PF_KEY_MAP, 0, NULL, "",
+     "johnson_cook: flow stress (A + B eqps^n)(1 + C ln(rate*))(1 - T*^m) parameters",
+     pf_material_johnson_cook_keys},
+    {"initial_temperature", PF_KEY_REAL, 0, "reference_temperature", "K",
+     "johnson_cook: temperature at t = 0", NULL},
+    {"specific_heat", PF_KEY_REAL, 0, NULL, "J/(kg K)",
+     "johnson_cook: specific heat c_p (needed when taylor_quinney > 0)", NULL},
+    {"taylor_quinney", PF_KEY_REAL, 0, "0", "",
+     "johnson_cook: fraction beta of plastic work turned into heat (0 = isothermal, <= 1)", NULL},
+    {"eos", PF_KEY_MAP, 0, NULL, "",
+     "johnson_cook: equation of state for the pressure (else hypoelastic with the bulk modulus)",
+     pf_material_eos_keys},
+    PF_KEY_END};
 static const char *const jc_state[] = {"eqps", "temperature", "energy"};
 
 static int jc_check(const pf_deck *d, const pf_node *map, const char *key, int ok, double v,

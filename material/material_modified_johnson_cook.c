@@ -56,8 +56,14 @@ const pf_key pf_material_jc_damage_keys[] = {
      "reference strain rate of the damage rate factor (> 0; factor 1 below it)", NULL},
     PF_KEY_END};
 
-static const char *const mjc_keys[] = {"youngs_modulus", "poissons_ratio", "bulk_modulus",
-                                       "shear_modulus", "modified_johnson_cook", "damage", NULL};
+static const pf_key mjc_keys[] = {
+    {"modified_johnson_cook", PF_KEY_MAP, 0, NULL, "",
+     "modified_johnson_cook: flow stress sigma0 (1 + eqps/eps0)^n (1 + C asinh(rate/(2 rate0))) "
+     "parameters (Tupek et al. 2013)", pf_material_modified_johnson_cook_keys},
+    {"damage", PF_KEY_MAP, 0, NULL, "",
+     "modified_johnson_cook: Johnson-Cook damage, eps_f = (d1 + d2 exp(d3 sigma_m/sigma_e)) "
+     "(1 + d4 ln(rate/rate0)) (absent: no damage)", pf_material_jc_damage_keys},
+    PF_KEY_END};
 static const char *const mjc_state[NSTATE] = {"eqps",      "damage",    "cp_inv_xx", "cp_inv_yy",
                                               "cp_inv_zz", "cp_inv_yz", "cp_inv_xz", "cp_inv_xy"};
 

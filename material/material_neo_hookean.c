@@ -8,9 +8,6 @@
  * elasticity to first order in the strain. */
 #include "material/material_impl.h"
 
-static const char *const nh_keys[] = {"youngs_modulus", "poissons_ratio", "bulk_modulus",
-                                      "shear_modulus", NULL};
-
 static int nh_create(const pf_deck *d, const pf_node *mat, pf_material *m) {
   (void)d, (void)mat, (void)m;
   return 0;
@@ -62,7 +59,6 @@ static void nh_wave_speed(const pf_material *m, pf_int n, const double *restrict
 const pf_material_ops pf_material_neo_hookean = {
     .name = "neo_hookean",
     .nstate = 0,
-    .keys = nh_keys,
     .create = nh_create,
     .update = nh_update,
     .wave_speed = nh_wave_speed,

@@ -15,14 +15,28 @@ static const pf_pd_material_ops *const material_list[] = {
 };
 enum { NMATERIALS = sizeof material_list / sizeof material_list[0] };
 
-const pf_key pf_pd_material_keys[] = {
-    {"model", PF_KEY_STRING, 1, NULL, "", "peridynamic material: pmb | lps | elastic_plastic", NULL},
+/* pf_pd_material_keys: `model` (naming the list), the keys every PD material reads
+ * (read_material), then each material's own rows (pf_pd_material_ops.keys) in list order,
+ * assembled at first use. */
+static const pf_key common_material_keys[] = {
     {"density", PF_KEY_REAL, 1, NULL, "kg/m^3", "mass density", NULL},
     {"bulk_modulus", PF_KEY_REAL, 0, NULL, "Pa", "bulk modulus K", NULL},
     {"shear_modulus", PF_KEY_REAL, 0, NULL, "Pa", "shear modulus G (lps, elastic_plastic)", NULL},
-    {"yield_stress", PF_KEY_REAL, 0, NULL, "Pa", "elastic_plastic: initial yield stress (> 0)", NULL},
-    {"hardening_modulus", PF_KEY_REAL, 0, "0", "Pa", "elastic_plastic: linear hardening modulus (>= 0)", NULL},
     PF_KEY_END};
+
+const pf_key *pf_pd_material_key_table(void) {
+  enum { MAX_KEYS = 32 };
+  static pf_key rows[MAX_KEYS + 1];
+  static char text[1024], model[256] = "peridynamic material: ";
+  if (rows[0].name) return rows;
+  for (int k = 0; k < NMATERIALS; k++)
+    strcat(strcat(model, k ? " | " : ""), material_list[k]->name);
+  pf_key_table t = {rows, MAX_KEYS, 1, text, sizeof text, 0};
+  rows[0] = (pf_key){"model", PF_KEY_STRING, 1, NULL, "", model, NULL};
+  int ierr = pf_key_table_add(&t, common_material_keys);
+  for (int k = 0; k < NMATERIALS && !ierr; k++) ierr = pf_key_table_add(&t, material_list[k]->keys);
+  return rows;
+}
 
 static const pf_key crack_keys[] = {
     {"shape", PF_KEY_STRING, 1, NULL, "", "rectangle | disk", NULL},
@@ -34,7 +48,7 @@ static const pf_key crack_keys[] = {
     {"radius", PF_KEY_REAL, 0, NULL, "m", "disk: radius", NULL},
     PF_KEY_END};
 
-const pf_key pf_pd_body_keys[] = {
+static const pf_key body_keys[] = {
     {"name", PF_KEY_STRING, 1, NULL, "", "body name (the Exodus block name)", NULL},
     {"type", PF_KEY_STRING, 0, "peridynamic", "", "peridynamic", NULL},
     {"material", PF_KEY_STRING, 1, NULL, "", "a name under materials:", NULL},
@@ -52,7 +66,7 @@ const pf_key pf_pd_body_keys[] = {
     {"influence_length", PF_KEY_REAL, 0, "horizon/2", "m", "gaussian: sigma in exp(-r^2/sigma^2)", NULL},
     {"partial_volumes", PF_KEY_BOOL, 0, "false", "",
      "weigh neighbours by the fraction of their cell inside the horizon", NULL},
-    {"damage", PF_KEY_MAP, 0, "law: none", "", "bond failure law", pf_pd_damage_keys},
+    {"damage", PF_KEY_MAP, 0, "law: none", "", "bond failure law", pf_pd_damage_key_rows},
     {"precracks", PF_KEY_LIST, 0, NULL, "", "planar cracks: bonds crossing them are not created", crack_keys},
     {"initial_velocity", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m/s", "expressions in x, y, z", NULL},
     {"initial_displacement", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m", "expressions in x, y, z; the stress follows it in hyperelastic and PD models (rate-form models start unstressed)", NULL},
@@ -64,6 +78,12 @@ const pf_key pf_pd_body_keys[] = {
      "correspondence: keep_stress (a point that loses bonds keeps its elastic state) | jump (its "
      "stress follows the new Fbar at once, as Tupek et al. 2013)", NULL},
     PF_KEY_END};
+
+/* The body tables nest the damage table: it is assembled first. */
+const pf_key *pf_pd_body_key_table(void) {
+  pf_pd_damage_key_table();
+  return body_keys;
+}
 
 double pf_pd_pmb_micromodulus(double K, const pf_influence *w, double delta) {
   return 18.0 * K / pf_pd_influence_moment(w, delta, 3);
@@ -229,7 +249,7 @@ static int check_variable_horizon(const pf_deck *d, const pf_node *body, const p
     return pf_deck_error(d, b->hz_expr ? h : f, b->hz_expr ? "horizon" : "formulation",
                          "a variable horizon and the partial-stress form need lps or a correspondence "
                          "material (body '%s' has %s)", b->name, b->ops->name);
-  if (b->form == PF_PD_PARTIAL_STRESS && (b->damage->fails_on_stretch || b->damage->fails_on_energy))
+  if (b->form == PF_PD_PARTIAL_STRESS && (pf_pd_stretch_limited(b) || pf_pd_energy_limited(b)))
     return pf_deck_error(d, dmg, "damage", "body '%s' is all partial stress (a transition region), which "
                          "carries no damage; use formulation: auto to keep damage where the horizon is "
                          "constant", b->name);
@@ -241,7 +261,7 @@ static int check_variable_horizon(const pf_deck *d, const pf_node *body, const p
     return pf_deck_error(d, pf_node_get(body, "influence"), "influence",
                          "the gaussian influence scales with the horizon; with a variable horizon use "
                          "constant or inverse_distance");
-  if (b->damage->fails_on_energy || (dmg && pf_node_get(dmg, "energy_release_rate")))
+  if (pf_pd_energy_limited(b) || (dmg && pf_node_get(dmg, "energy_release_rate")))
     return pf_deck_error(d, dmg, "damage", "the energy-based laws depend on the horizon; with a variable "
                          "horizon give a critical_stretch");
   return 0;
@@ -306,7 +326,7 @@ static int horizon_at(const pf_pd_body *b, const double *x, pf_gid gid, double *
                        "positive", b->name, *h, gid, x[0], x[1], x[2]);
 }
 
-const pf_key pf_pd_coupled_keys[] = {
+static const pf_key coupled_keys[] = {
     {"horizon", PF_KEY_EXPR, 1, NULL, "m",
      "horizon at the nodes: a number or an expression in x, y, z and d_fe (the distance to the nearest node "
      "where the elements act, blending < 1)", NULL},
@@ -326,9 +346,14 @@ const pf_key pf_pd_coupled_keys[] = {
     {"bond_loss", PF_KEY_STRING, 0, "keep_stress", "",
      "keep_stress (a point that loses bonds keeps its elastic state) | jump (its stress follows the "
      "new Fbar at once, as Tupek et al. 2013)", NULL},
-    {"damage", PF_KEY_MAP, 0, "law: none", "", "bond failure law (acts where beta = 1 only)", pf_pd_damage_keys},
+    {"damage", PF_KEY_MAP, 0, "law: none", "", "bond failure law (acts where beta = 1 only)", pf_pd_damage_key_rows},
     {"precracks", PF_KEY_LIST, 0, NULL, "", "planar cracks", crack_keys},
     PF_KEY_END};
+
+const pf_key *pf_pd_coupled_key_table(void) {
+  pf_pd_damage_key_table();
+  return coupled_keys;
+}
 
 int pf_pd_body_create_coupled(const pf_deck *d, const pf_node *owner, const pf_node *map,
                               const pf_node *materials, pf_pd_body **out) {

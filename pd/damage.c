@@ -1,40 +1,38 @@
-/* The damage laws: their deck keys, lookup by name in the list pd/damage_laws.h, and the body's
- * entry points that dispatch to the law's ops table (pf_pd_damage_ops, pd/pd_impl.h). The laws
- * themselves are pd/damage_<id>.c. */
+/* The damage laws: lookup by name in the list pd/damage_laws.h (and the laws registered at run
+ * time), their deck table assembled from each law's own keys, and the body's entry points that
+ * dispatch to the law's ops table (pf_pd_damage_ops, pd/pd_impl.h). The laws themselves are
+ * pd/damage_<id>.c. */
 #include "pd/pd_impl.h"
 
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
-static const pf_pd_damage_ops *const law_list[] = {
+/* The laws: the list of pd/damage_laws.h, then the ones registered at run time. */
+static const pf_pd_damage_ops *law_list[PF_PD_MAX_LAWS] = {
 #define PF_PD_DAMAGE_LAW(id) &pf_pd_damage_##id,
 #include "pd/damage_laws.h"
 #undef PF_PD_DAMAGE_LAW
 };
-enum { NLAWS = sizeof law_list / sizeof law_list[0] };
-
-const pf_key pf_pd_damage_keys[] = {
-    {"law", PF_KEY_STRING, 1, NULL, "", "none | critical_stretch | silling_askari | critical_energy",
-     NULL},
-    {"critical_stretch", PF_KEY_REAL, 0, NULL, "", "critical_stretch: s0", NULL},
-    {"energy_release_rate", PF_KEY_REAL, 0, NULL, "J/m^2",
-     "critical_stretch: G0, converted to s0 by the material's closed form; critical_energy: G0, "
-     "converted to the critical bond energy w_c = 4 G0 / (pi delta^4)", NULL},
-    {"calibration", PF_KEY_STRING, 0, "continuum", "",
-     "critical_energy: continuum (w_c of a whole family for every bond) | family (each bond's w_c from "
-     "its two ends' families, so that a crack takes G0 near free faces and on a coarse lattice too)", NULL},
-    {"s00", PF_KEY_REAL, 0, NULL, "", "silling_askari: s00 in s0 = s00 - alpha s_min", NULL},
-    {"alpha", PF_KEY_REAL, 0, "0.25", "", "silling_askari: alpha in s0 = s00 - alpha s_min", NULL},
-    {"no_fail", PF_KEY_LIST, 0, NULL, "",
-     "critical_stretch: regions (reference positions, at most 8) whose points have no stretch limit (s0 = "
-     "infinity); a bond fails at the smaller s0 of its ends, so the bonds with both ends inside never fail",
-     pf_region_keys},
-    PF_KEY_END};
+static int nlaws = 0 /* (each line of the list adds 1) */
+#define PF_PD_DAMAGE_LAW(id) +1
+#include "pd/damage_laws.h"
+#undef PF_PD_DAMAGE_LAW
+    ;
 
 const pf_pd_damage_ops *pf_pd_damage_find(const char *name) {
-  for (int k = 0; k < NLAWS; k++)
+  for (int k = 0; k < nlaws; k++)
     if (!strcmp(law_list[k]->name, name)) return law_list[k];
   return NULL;
+}
+
+int pf_pd_damage_register(const pf_pd_damage_ops *law) {
+  PF_CHECK(law && law->name && law->name[0] && law->read, PF_ERR_INPUT, "a damage law needs a name and a read");
+  PF_CHECK(!pf_pd_damage_find(law->name), PF_ERR_INPUT, "damage law '%s' is already registered", law->name);
+  PF_CHECK(nlaws < PF_PD_MAX_LAWS, PF_ERR_INPUT, "no room for damage law '%s' (at most %d laws)", law->name,
+           PF_PD_MAX_LAWS);
+  law_list[nlaws++] = law;
+  return 0;
 }
 
 /* words joined by sep into out (size n), cut short rather than overflow. */
@@ -46,11 +44,30 @@ static const char *join(const char *const *words, int count, const char *sep, ch
   return out;
 }
 
+/* pf_pd_damage_keys: `law`, then each law's own rows in list order (a key several laws read
+ * once, its descriptions joined), assembled at first use and again after a registration. */
+enum { MAX_DAMAGE_KEYS = 48 };
+pf_key pf_pd_damage_key_rows[MAX_DAMAGE_KEYS + 1];
+
+const pf_key *pf_pd_damage_key_table(void) {
+  static char text[4096], laws[256];
+  static int assembled = 0; /* the number of laws assembled */
+  if (assembled == nlaws) return pf_pd_damage_key_rows;
+  const char *names[PF_PD_MAX_LAWS];
+  for (int k = 0; k < nlaws; k++) names[k] = law_list[k]->name;
+  pf_key_table t = {pf_pd_damage_key_rows, MAX_DAMAGE_KEYS, 1, text, sizeof text, 0};
+  t.rows[0] = (pf_key){"law", PF_KEY_STRING, 1, NULL, "", join(names, nlaws, " | ", laws, sizeof laws), NULL};
+  for (int k = 0; k < nlaws; k++)
+    if (pf_key_table_add(&t, law_list[k]->keys)) break; /* (full: the error is raised) */
+  assembled = nlaws;
+  return pf_pd_damage_key_rows;
+}
+
 const char *pf_pd_damage_names(void) {
   static char known[256];
-  const char *names[NLAWS];
-  for (int k = 0; k < NLAWS; k++) names[k] = law_list[k]->name;
-  return join(names, NLAWS, ", ", known, sizeof known);
+  const char *names[PF_PD_MAX_LAWS];
+  for (int k = 0; k < nlaws; k++) names[k] = law_list[k]->name;
+  return join(names, nlaws, ", ", known, sizeof known);
 }
 
 int pf_pd_damage_read_required(const pf_deck *d, const pf_node *map, const char *key, double *v) {
@@ -60,8 +77,8 @@ int pf_pd_damage_read_required(const pf_deck *d, const pf_node *map, const char 
 
 /* Does the law read key? */
 static int takes(const pf_pd_damage_ops *law, const char *key) {
-  for (int q = 0; law->keys && law->keys[q]; q++)
-    if (!strcmp(law->keys[q], key)) return 1;
+  for (const pf_key *k = law->keys; k && k->name; k++)
+    if (!strcmp(k->name, key)) return 1;
   return 0;
 }
 
@@ -70,12 +87,13 @@ static int takes(const pf_pd_damage_ops *law, const char *key) {
 static int check_keys(const pf_deck *d, const pf_node *map, const pf_pd_damage_ops *law) {
   for (const pf_key *key = pf_pd_damage_keys + 1; map && key->name; key++) {
     if (takes(law, key->name) || !pf_node_get(map, key->name)) continue;
+    const char *names[MAX_DAMAGE_KEYS];
     int n = 0;
-    while (law->keys && law->keys[n]) n++;
+    for (const pf_key *k = law->keys; k && k->name && n < MAX_DAMAGE_KEYS; k++) names[n++] = k->name;
     char list[256];
     return pf_deck_error(d, pf_node_get(map, key->name), key->name,
                          "not a parameter of damage law '%s' (it takes: %s)", law->name,
-                         n ? join(law->keys, n, ", ", list, sizeof list) : "nothing else");
+                         n ? join(names, n, ", ", list, sizeof list) : "nothing else");
   }
   return 0;
 }
@@ -91,7 +109,13 @@ int pf_pd_damage_read(const pf_deck *d, const pf_node *map, pf_pd_body *b) {
                          name, pf_pd_damage_names());
   PF_CALL(check_keys(d, map, law));
   b->damage = law;
+  b->s0_init = b->critical_energy = INFINITY; /* no limit until the law sets one */
   PF_CALL(law->read(d, map, b));
+  if (pf_pd_energy_limited(b) && !b->ops->bond_energy) /* (the force kernel evaluates the energy) */
+    return pf_deck_error(d, pf_node_get(map, "law"), "law",
+                         "law '%s' needs the bond energy from the material's force kernel; material "
+                         "model '%s' does not provide it (it does: %s)", law->name, b->ops->name,
+                         pf_pd_material_names_with(offsetof(pf_pd_material_ops, bond_energy)));
   const pf_node *nf = map ? pf_node_get(map, "no_fail") : NULL;
   b->n_no_fail = nf ? pf_node_count(nf) : 0;
   if (b->n_no_fail > PF_PD_MAX_NO_FAIL)

@@ -32,7 +32,13 @@ double pf_pd_critical_energy(double G0, double delta) {
   return 4.0 * G0 / (PF_PI * delta * delta * delta * delta);
 }
 
-static const char *const keys[] = {"energy_release_rate", "calibration", NULL};
+static const pf_key keys[] = {
+    {"energy_release_rate", PF_KEY_REAL, 0, NULL, "J/m^2",
+     "critical_energy: G0, converted to the critical bond energy w_c = 4 G0 / (pi delta^4)", NULL},
+    {"calibration", PF_KEY_STRING, 0, "continuum", "",
+     "critical_energy: continuum (w_c of a whole family for every bond) | family (each bond's w_c from "
+     "its two ends' families, so that a crack takes G0 near free faces and on a coarse lattice too)", NULL},
+    PF_KEY_END};
 
 typedef struct {
   double G0;
@@ -127,5 +133,4 @@ const pf_pd_damage_ops pf_pd_damage_critical_energy = {
     .keys = keys,
     .read = read_critical_energy,
     .attach = attach_critical_energy,
-    .fails_on_energy = 1,
 };

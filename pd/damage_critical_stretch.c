@@ -6,7 +6,15 @@
  * of Ha & Bobaru (2010). */
 #include "pd/pd_impl.h"
 
-static const char *const keys[] = {"critical_stretch", "energy_release_rate", "no_fail", NULL};
+static const pf_key keys[] = {
+    {"critical_stretch", PF_KEY_REAL, 0, NULL, "", "critical_stretch: s0", NULL},
+    {"energy_release_rate", PF_KEY_REAL, 0, NULL, "J/m^2",
+     "critical_stretch: G0, converted to s0 by the material's closed form", NULL},
+    {"no_fail", PF_KEY_LIST, 0, NULL, "",
+     "critical_stretch: regions (reference positions, at most 8) whose points have no stretch limit (s0 = "
+     "infinity); a bond fails at the smaller s0 of its ends, so the bonds with both ends inside never fail",
+     pf_region_keys}, /* (read by pd/damage.c for the laws that list it) */
+    PF_KEY_END};
 
 /* Constant s0, given or from G0 through the material's closed form. */
 static int read_critical_stretch(const pf_deck *d, const pf_node *map, pf_pd_body *b) {
@@ -34,5 +42,4 @@ const pf_pd_damage_ops pf_pd_damage_critical_stretch = {
     .name = "critical_stretch",
     .keys = keys,
     .read = read_critical_stretch,
-    .fails_on_stretch = 1,
 };

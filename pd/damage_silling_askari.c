@@ -5,7 +5,10 @@
  * peri/pmb); every point starts at s00. */
 #include "pd/pd_impl.h"
 
-static const char *const keys[] = {"s00", "alpha", NULL};
+static const pf_key keys[] = {
+    {"s00", PF_KEY_REAL, 0, NULL, "", "silling_askari: s00 in s0 = s00 - alpha s_min", NULL},
+    {"alpha", PF_KEY_REAL, 0, "0.25", "", "silling_askari: alpha in s0 = s00 - alpha s_min", NULL},
+    PF_KEY_END};
 
 typedef struct {
   double s00, alpha;
@@ -36,5 +39,4 @@ const pf_pd_damage_ops pf_pd_damage_silling_askari = {
     .keys = keys,
     .read = read_silling_askari,
     .post_step = post_step,
-    .fails_on_stretch = 1,
 };

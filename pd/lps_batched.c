@@ -55,8 +55,8 @@ dilatation_point(const pf_pd_body *restrict b, const double *restrict rec, pf_in
   return total;
 }
 
-/* Pass 2 at point i: the force density sum into f[3]; with `energy` (critical_energy, Foster et
- * al. 2011) a bond in tension whose energy per V_i V_j, (t_ij + t_ji) e / 2, exceeds wc (or
+/* Pass 2 at point i: the force density sum into f[3]; with `energy` (the body's energy limit:
+ * critical_energy, Foster et al. 2011) a bond in tension whose energy per V_i V_j, (t_ij + t_ji) e / 2, exceeds wc (or
  * its own b->wc_bond) fails and gives no force. REC_AUX holds Q, rm[j] = 1 / m_j. Returns the number failed. */
 static inline __attribute__((always_inline)) int
 force_point(const pf_pd_body *restrict b, const double *restrict rec, const double *restrict rm, pf_int i,
@@ -247,7 +247,7 @@ static inline __attribute__((always_inline)) int64_t forces(pf_pd_body *b, pf_po
 
 int64_t pf_pd_lps_batched_force(pf_pd_body *b, pf_points *pts, const double *rec, const double *rm) {
   const pf_influence_kind kind = b->influence.kind;
-  const int partial = b->fam.vfrac != NULL, energy = b->damage->fails_on_energy;
+  const int partial = b->fam.vfrac != NULL, energy = pf_pd_energy_limited(b);
   int64_t failed = 0;
 #pragma omp parallel reduction(+ : failed)
   {

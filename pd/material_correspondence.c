@@ -448,7 +448,7 @@ static int bond_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double K[3][
   const corr *p = b->mat;
   const pf_family *fam = &b->fam;
   const pf_int li = i - b->first;
-  const int consistent = pf_pd_consistent_at(b, i), stretch = b->damage->fails_on_stretch;
+  const int consistent = pf_pd_consistent_at(b, i), stretch = pf_pd_stretch_limited(b);
   double smin = INFINITY;
   int nb = 0;
   memset(K, 0, 9 * sizeof(double)), memset(A, 0, 9 * sizeof(double)), memset(B, 0, 9 * sizeof(double));
@@ -512,7 +512,7 @@ static inline __attribute__((always_inline)) int row_kernel(pf_pd_body *b, const
   corr *p = b->mat;
   const pf_family *fam = &b->fam;
   const pf_int li = i - b->first;
-  const int stretch = general && b->damage->fails_on_stretch, one_sided = general && b->one_sided;
+  const int stretch = general && pf_pd_stretch_limited(b), one_sided = general && b->one_sided;
   const pf_influence *infl = &b->influence;
   const int unit_w = !general || infl->kind == PF_INFLUENCE_CONSTANT;
   const double *restrict X = pts->X, *restrict y = pts->y, *restrict v = pts->v, *restrict vol = pts->vol;
@@ -564,7 +564,7 @@ static inline __attribute__((always_inline)) int row_kernel(pf_pd_body *b, const
 /* row_kernel in its general form, or with the critical stretch, the variable horizon, the
  * influence function and the partial volumes folded away when the body has none of them. */
 static int row_sums(pf_pd_body *b, const pf_points *pts, pf_int i, double A[3][3], double B[3][3]) {
-  if (b->damage->fails_on_stretch || b->one_sided || b->influence.kind != PF_INFLUENCE_CONSTANT || b->fam.vfrac)
+  if (pf_pd_stretch_limited(b) || b->one_sided || b->influence.kind != PF_INFLUENCE_CONSTANT || b->fam.vfrac)
     return row_kernel(b, pts, i, A, B, 1);
   return row_kernel(b, pts, i, A, B, 0);
 }

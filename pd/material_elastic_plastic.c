@@ -328,8 +328,14 @@ static void ep_destroy(pf_pd_body *b) {
   PF_FREE(b->mat);
 }
 
+static const pf_key keys[] = {
+    {"yield_stress", PF_KEY_REAL, 0, NULL, "Pa", "elastic_plastic: initial yield stress (> 0)", NULL},
+    {"hardening_modulus", PF_KEY_REAL, 0, "0", "Pa", "elastic_plastic: linear hardening modulus (>= 0)", NULL},
+    PF_KEY_END};
+
 const pf_pd_material_ops pf_pd_material_elastic_plastic = {
     .name = "elastic_plastic",
+    .keys = keys,
     .create = ep_create,
     .setup = ep_setup,
     .force = ep_force,

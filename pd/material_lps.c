@@ -81,7 +81,7 @@ static double lps_dilatation(pf_pd_body *b, const pf_points *pts, pf_int i, doub
     pf_int j = fam->neighbor[k];
     pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
     double s = (r - r0) / r0;
-    if (s > fmin(b->s0[i], b->s0[j]) && pf_pd_may_fail(b, i, j)) {
+    if (pf_pd_stretch_fails(b, i, j, s) && pf_pd_may_fail(b, i, j)) {
       fam->broken[k] = PF_BOND_FRESH;
       fresh++;
       continue;
@@ -160,8 +160,8 @@ static int lps_force_batched(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
 /* The general passes (any horizon, partial stress, overlap): dilatations, then forces. */
 static int lps_force_general(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
   lps *p = b->mat;
-  const double K = b->bulk_modulus, G = b->shear_modulus, wc = b->critical_energy;
-  const int energy = b->damage->fails_on_energy;
+  const double K = b->bulk_modulus, G = b->shear_modulus;
+  const int energy = pf_pd_energy_limited(b);
   const pf_family *fam = &b->fam;
   for (pf_int i = b->first; i < b->first + b->n; i++) p->theta[i] = lps_dilatation(b, pts, i, p->m[i]);
   PF_CALL(lps_moments(b, pts));
@@ -181,7 +181,7 @@ static int lps_force_general(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
       const double thj = p->theta[j], aj = pf_pd_lps_volumetric(K, G, thj, p->mom[j], p->m[j]), bj = 15 * G / p->m[j];
       const double tij = pf_pd_in_family(b, i, r0) ? lps_t(ai, bi, thi, w, r0, ext) : 0.0;
       const double tji = pf_pd_in_family(b, j, r0) ? lps_t(aj, bj, thj, w, r0, ext) : 0.0;
-      if (energy && ext > 0 && 0.5 * (tij + tji) * ext > (b->wc_bond ? b->wc_bond[k] : wc)) {
+      if (energy && ext > 0 && 0.5 * (tij + tji) * ext > pf_pd_energy_limit(b, k)) {
         fam->broken[k] = PF_BOND_FRESH;
         ++*nfailed;
         continue;

@@ -57,12 +57,12 @@ static __attribute__((noinline)) double pmb_release(const pf_pd_body *b, const p
  * its intact bonds. The force density is c omega s V_j e / r with s = (r - r0) / r0 (Silling &
  * Askari 2005, eq. 7), formed from the inverse lengths 1 / r0 and 1 / r (pf_batch_rsqrt):
  * r0 = |xi|^2 (1 / r0), s = (r - r0) (1 / r0), so a bond at rest has s = 0 exactly. Fails
- * bonds whose stretch exceeds min(s0_i, s0_j), or with `energy` (law critical_energy, Foster et
- * al. 2011) bonds in tension whose pair micropotential
+ * bonds whose stretch exceeds min(s0_i, s0_j), and with `energy` (the body's energy limit: law
+ * critical_energy, Foster et al. 2011) also bonds in tension whose pair micropotential
  *   w = (1/2) c omega s^2 |xi| > w_c   <=>   omega s^2 |xi| > 2 w_c / c = wlim
- * (w_c the bond's own b->wc_bond where the law's calibration is `family`).
+ * (w_c the bond's own b->wc_bond where the law gives one, pf_pd_energy_limit).
  * Both ends evaluate it from bitwise equal s, |xi| and omega, so they fail the bond together.
- * Inlined with the influence kind, the partial-volume switch and the law as constants.
+ * Inlined with the influence kind, the partial-volume switch and the energy switch as constants.
  * The bonds go in batches of PF_BATCH: the neighbours' records are transposed into rows of
  * the batch (pd/bond_batch.h), then branch-free passes over the batch, in vector registers,
  * add into per-lane sums, which are summed at the end. The empty lanes of a row's last batch
@@ -96,7 +96,7 @@ pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, do
       const double om = weighted ? pf_pd_omega(&b->influence, r0) : 1.0;
       const double slim = s0i < a[REC_S0][l] ? s0i : a[REC_S0][l];
       const double wl = energy && wlb ? 2.0 * wlb[k0 + l] / c : wlim;
-      const int fail = energy ? (s > 0) & (om * s * s * r0 > wl) : s > slim;
+      const int fail = (s > slim) | (energy ? (s > 0) & (om * s * s * r0 > wl) : 0);
       fails[l] = live[l] > 0 && fail ? 1.0 : 0.0;
       const double alive = fail ? 0.0 : live[l];
       sm[l] = alive > 0 && s < sm[l] ? s : sm[l];
@@ -184,7 +184,7 @@ static inline __attribute__((always_inline)) int pmb_loop(pf_pd_body *b, pf_poin
   return any;
 }
 
-/* The critical-energy loops, out of line so that the stretch-law loops of pmb_force keep
+/* The energy-limit loops, out of line so that the stretch-law loops of pmb_force keep
  * their code and layout. */
 static __attribute__((noinline)) int pmb_force_energy(pf_pd_body *b, pf_points *pts, double c, pf_int lo,
                                                       pf_int hi, int partial) {
@@ -203,7 +203,7 @@ static int pmb_force(pf_pd_body *b, pf_points *pts) {
   const double c = ((const pmb *)b->mat)->c;
   PF_CALL(pf_batch_records_fill(&((pmb *)b->mat)->rec, pts, b->s0));
   const pf_influence_kind kind = b->influence.kind;
-  const int partial = b->fam.vfrac != NULL, energy = b->damage->fails_on_energy;
+  const int partial = b->fam.vfrac != NULL, energy = pf_pd_energy_limited(b);
   int any = 0;
 #pragma omp parallel reduction(| : any)
   {

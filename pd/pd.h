@@ -101,10 +101,23 @@ double pf_pd_pmb_micromodulus(double bulk_modulus, const pf_influence *w, double
 double pf_pd_pmb_critical_stretch(double G0, double bulk_modulus, double delta);
 
 /* A body of peridynamic points, read from the deck (`bodies[i]`, with its material from
- * `materials`): material, horizon, influence function, damage law, pre-cracks. */
-extern const pf_key pf_pd_body_keys[];
-extern const pf_key pf_pd_material_keys[];
-extern const pf_key pf_pd_damage_keys[];
+ * `materials`): material, horizon, influence function, damage law, pre-cracks. Its deck tables
+ * are assembled at first use from the lists pd/materials.h and pd/damage_laws.h: each material
+ * and each law gives its own rows (pf_pd_material_ops.keys, pf_pd_damage_ops.keys), so that
+ * adding one edits no table here. The names read as the tables. */
+const pf_key *pf_pd_body_key_table(void);
+const pf_key *pf_pd_material_key_table(void);
+const pf_key *pf_pd_damage_key_table(void);
+#define pf_pd_body_keys (pf_pd_body_key_table())
+#define pf_pd_material_keys (pf_pd_material_key_table())
+#define pf_pd_damage_keys (pf_pd_damage_key_table())
+/* Add a damage law to the list of pd/damage_laws.h at run time (a law defined in a test, as
+ * PETSc's PCRegister): law (pf_pd_damage_ops, pd/pd_impl.h; kept, not copied) is found by its
+ * name from then on. An error when the name is taken, or the list is full (PF_PD_MAX_LAWS). Not
+ * thread safe: register before reading a deck. */
+typedef struct pf_pd_damage_ops pf_pd_damage_ops;
+enum { PF_PD_MAX_LAWS = 16 };
+int pf_pd_damage_register(const pf_pd_damage_ops *law);
 /* 1 when model names a peridynamic material; the known names, comma separated. */
 int pf_pd_material_known(const char *model);
 const char *pf_pd_material_names(void);
@@ -113,7 +126,8 @@ int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *mate
 /* A peridynamic operator over the nodes of a finite-element body (docs/theory/coupling.md §3):
  * its keys from map (pf_pd_coupled_keys, an FE body's `peridynamic:`), its name and material from
  * the FE body's mapping owner: a correspondence body of the FE body's continuum model. */
-extern const pf_key pf_pd_coupled_keys[];
+const pf_key *pf_pd_coupled_key_table(void);
+#define pf_pd_coupled_keys (pf_pd_coupled_key_table())
 int pf_pd_body_create_coupled(const pf_deck *d, const pf_node *owner, const pf_node *map,
                               const pf_node *materials, pf_pd_body **b);
 /* Each store point's blending weight (FE-coupled bodies), read at attach: points with beta < 1

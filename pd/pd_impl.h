@@ -9,7 +9,6 @@
 enum { PF_PD_MAX_NO_FAIL = 8 }; /* regions in a body's damage.no_fail list */
 
 typedef struct pf_pd_material_ops pf_pd_material_ops;
-typedef struct pf_pd_damage_ops pf_pd_damage_ops;
 
 /* How a point's internal force is formed (docs/theory/coupling.md §2). Standard: from the force
  * states of both ends of each bond. Partial stress (Silling & Seleson 2013; Littlewood 2014,
@@ -61,10 +60,10 @@ struct pf_pd_body {
   /* damage */
   const pf_pd_damage_ops *damage; /* the law (pd/damage_laws.h); "none" when the deck gives none */
   void *damage_data; /* the law's own parameters, or NULL (allocated by its read, freed with the body) */
-  double s0_init;    /* initial critical stretch (INFINITY: none) */
+  double s0_init;    /* initial critical stretch (INFINITY: no stretch limit; pf_pd_damage_ops) */
   int n_no_fail;     /* the deck's damage.no_fail: regions whose points start with s0 = INFINITY */
   pf_region no_fail[PF_PD_MAX_NO_FAIL];
-  double critical_energy; /* a law that fails bonds on energy: w_c, J/m^6 */
+  double critical_energy; /* the energy limit w_c, J/m^6 (INFINITY: none; pf_pd_damage_ops) */
   double *wc_bond;        /* [bonds] each bond's own w_c (critical_energy, calibration: family),
                              or NULL: every bond has critical_energy */
   double *s0;        /* field "critical_stretch": per point, used by the force kernels */
@@ -108,6 +107,10 @@ struct pf_pd_material_ops {
   int uses_velocity;  /* 1: its forces read the neighbours' velocities (a rate form) */
   int bond_energy;    /* 1: its force kernel evaluates each bond's energy (critical_energy law) */
   const char *const *body_keys; /* keys of the body mapping only it reads (NULL-ended), or NULL */
+  /* Its own rows of the material mapping besides model, density, bulk_modulus and shear_modulus
+   * (PF_KEY_END-ended, or NULL; each description starts "<id>: "), assembled into
+   * pf_pd_material_keys in list order. */
+  const pf_key *keys;
 };
 /* Does material m read body key `key` (one of its body_keys)? */
 int pf_pd_material_reads_key(const pf_pd_material_ops *m, const char *key);
@@ -116,36 +119,57 @@ int pf_pd_material_reads_key(const pf_pd_material_ops *m, const char *key);
 const char *pf_pd_material_names_with(size_t flag);
 
 /* A damage law (bond failure): one file pd/damage_<id>.c defining pf_pd_damage_<id>, and one
- * line in pd/damage_laws.h. Stretch laws: a bond fails when its stretch exceeds min(s0_i, s0_j)
- * (both ends, as LAMMPS' peri pair styles), s0 being the point field "critical_stretch" (b->s0),
- * constant or evolving. Energy laws: a bond in tension fails when its energy per V_i V_j
- * exceeds b->critical_energy; the material's force kernel evaluates it. The force kernels read
- * the flags once per call, never the law's name. Required: name, read. Optional: keys (NULL:
- * none besides `law`), attach (NULL: every owned point starts at b->s0_init), post_step (NULL:
- * s0 stays), the flags (0). */
+ * line in pd/damage_laws.h (or, in a test, pf_pd_damage_register). A law owns its test by the
+ * LIMITS it leaves in the body, which every force kernel compares against (pf_pd_stretch_fails,
+ * pf_pd_energy_limit below), whatever the law:
+ *   stretch: a bond fails when its stretch exceeds min(s0_i, s0_j) (both ends, as LAMMPS' peri
+ *     pair styles), s0 the point field "critical_stretch" (b->s0), starting at b->s0_init or
+ *     filled by attach, evolving by post_step; INFINITY where there is no limit;
+ *   energy: a bond in tension fails when its energy per V_i V_j exceeds b->critical_energy, or
+ *     the bond's own b->wc_bond[k]; INFINITY (and wc_bond NULL) when there is none. The
+ *     material's force kernel evaluates the energy (pf_pd_material_ops.bond_energy).
+ * The kernels never read the law. Required: name, read. Optional: keys (NULL: none besides
+ * `law`), attach (NULL: every owned point starts at b->s0_init), post_step (NULL: s0 stays). */
 struct pf_pd_damage_ops {
-  const char *name;        /* the deck's `law:` value (the <id>) */
-  const char *const *keys; /* the keys of pf_pd_damage_keys it reads besides `law` (NULL-ended):
-                              any other one in the deck is an error naming it */
+  const char *name; /* the deck's `law:` value (the <id>) */
+  /* Its own rows of the `damage:` mapping besides `law` (PF_KEY_END-ended, or NULL; each
+   * description starts "<id>: "), assembled into pf_pd_damage_keys; any other key of that table
+   * in the deck is an error naming it. A key that several laws read is a row in each (the same
+   * type, default and units), their descriptions joined in list order. */
+  const pf_key *keys;
   /* Read its parameters from the body's `damage:` mapping (NULL when the deck has none; the
-   * material is created): set b->s0_init (INFINITY: no stretch limit), b->critical_energy for an
-   * energy law, b->damage_data for parameters of its own. */
+   * material is created): set its limits, b->s0_init (a finite value: the body has a stretch
+   * limit) and b->critical_energy (finite: an energy limit), both INFINITY until it does, and
+   * b->damage_data for parameters of its own. */
   int (*read)(const pf_deck *d, const pf_node *map, pf_pd_body *b);
   /* At attach, the field "critical_stretch" (b->s0) registered: when fresh, fill the owned
-   * points' initial s0 (their ghosts follow); register any field of its own. */
+   * points' initial s0 (their ghosts follow); register any field of its own, or fill
+   * b->wc_bond [bonds + PF_FAMILY_SLACK] (freed with the body). */
   int (*attach)(pf_pd_body *b, pf_points *pts, int fresh);
   /* After each step: update s0 from the step's b->smin, ghosts included. Collective. */
   int (*post_step)(pf_pd_body *b, pf_points *pts);
-  int fails_on_stretch; /* 1: a bond fails when s > min(s0_i, s0_j) (kernels that otherwise skip
-                           the test, correspondence, run it) */
-  int fails_on_energy;  /* 1: the material's force kernel fails a bond in tension whose energy
-                           per V_i V_j exceeds b->critical_energy */
 };
 
 #define PF_PD_DAMAGE_LAW(id) extern const pf_pd_damage_ops pf_pd_damage_##id;
 #include "pd/damage_laws.h"
 #undef PF_PD_DAMAGE_LAW
 
+/* The limits as the kernels read them, once per call (to choose a specialized loop): has the
+ * body a stretch limit, an energy limit? */
+static inline int pf_pd_stretch_limited(const pf_pd_body *b) { return isfinite(b->s0_init); }
+static inline int pf_pd_energy_limited(const pf_pd_body *b) { return isfinite(b->critical_energy); }
+/* Does the bond i - j of stretch s exceed its stretch limit min(s0_i, s0_j)? */
+static inline int pf_pd_stretch_fails(const pf_pd_body *b, pf_int i, pf_int j, double s) {
+  return s > fmin(b->s0[i], b->s0[j]);
+}
+/* The energy limit of bond k (per V_i V_j, J/m^6): its own, or the body's. */
+static inline double pf_pd_energy_limit(const pf_pd_body *b, int64_t k) {
+  return b->wc_bond ? b->wc_bond[k] : b->critical_energy;
+}
+
+/* pd/damage.c: the storage of pf_pd_damage_keys, for the body tables that nest it (filled by
+ * pf_pd_damage_key_table, which every reader of those tables calls first). */
+extern pf_key pf_pd_damage_key_rows[];
 /* pd/damage.c: the law named name, or NULL; the known names, comma separated. */
 const pf_pd_damage_ops *pf_pd_damage_find(const char *name);
 const char *pf_pd_damage_names(void);
@@ -226,7 +250,7 @@ double pf_pd_lps_release_point(pf_pd_body *b, const pf_points *pts, pf_int i, do
  * the standard force. Pass 1: theta of every owned point from records with s0 in REC_AUX
  * (pd/bond_batch.h), failing bonds on the critical stretch and booking the energy they held.
  * Pass 2: the forces, from records with Q = (3K - 5G) theta in REC_AUX and rm = 1 / m (store
- * points); fails bonds on the critical energy when that is the law and returns their number. */
+ * points); fails bonds on the energy limit when the body has one and returns their number. */
 void pf_pd_lps_batched_dilatation(pf_pd_body *b, const pf_points *pts, const double *rec, const double *m,
                                   double *theta);
 int64_t pf_pd_lps_batched_force(pf_pd_body *b, pf_points *pts, const double *rec, const double *rm);
