@@ -548,6 +548,8 @@ double pf_pd_body_point_sum(const pf_pd_body *b, const pf_points *pts, pf_pd_poi
   return sum;
 }
 
+double pf_pd_body_bond_rate(const pf_pd_body *b) { return b->ops->bond_rate > 0 ? b->ops->bond_rate : 1.5e8; }
+
 double pf_pd_body_bytes_per_bond(const pf_pd_body *b) {
   const pf_family *f = &b->fam;
   return (double)(sizeof *f->neighbor + sizeof *f->broken + (f->vfrac ? sizeof *f->vfrac : 0) +

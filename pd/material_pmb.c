@@ -283,4 +283,5 @@ const pf_pd_material_ops pf_pd_material_pmb = {
     .critical_stretch = pmb_critical_stretch,
     .destroy = pmb_destroy,
     .bond_energy = 1,
+    .bond_rate = 2.3e8,
 };

@@ -203,6 +203,8 @@ int64_t pf_pd_body_nbonds(const pf_pd_body *b);
 /* Bytes the body keeps per directed bond: neighbour index, broken flag, partial-volume
  * fraction (when on) and the material's bond state. */
 double pf_pd_body_bytes_per_bond(const pf_pd_body *b);
+/* Directed bond evaluations per second and rank of its model on the benchmark machine (--check). */
+double pf_pd_body_bond_rate(const pf_pd_body *b);
 
 /* Stable step of store point i of body b: sqrt(2 rho / sum_j V_j c omega / |xi|) over its own
  * family (Silling & Askari 2005, eq. 15 with the Peridigm form). */

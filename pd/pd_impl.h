@@ -106,6 +106,10 @@ struct pf_pd_material_ops {
   int gradient_forms; /* 1: takes the corrected and consistent forms (a deformation gradient) */
   int uses_velocity;  /* 1: its forces read the neighbours' velocities (a rate form) */
   int bond_energy;    /* 1: its force kernel evaluates each bond's energy (critical_energy law) */
+  /* directed bond evaluations per second and rank measured on the project's 2-core benchmark
+   * machine (87 451-point target, 150 steps), for perifem --check's run-time estimate; 0: the
+   * rate of the other models, 1.5e8 */
+  double bond_rate;
   const char *const *body_keys; /* keys of the body mapping only it reads (NULL-ended), or NULL */
   /* Its own rows of the material mapping besides model, density, bulk_modulus and shear_modulus
    * (PF_KEY_END-ended, or NULL; each description starts "<id>: "), assembled into

@@ -23,6 +23,7 @@ void pf_body_take_damage_work(const pf_body *b, double w[2]) {
 }
 const pf_family *pf_body_family(const pf_body *b) { return b->ops->family ? b->ops->family(b->data) : NULL; }
 double pf_body_bytes_per_bond(const pf_body *b) { return b->ops->bytes_per_bond ? b->ops->bytes_per_bond(b->data) : 0; }
+double pf_body_bond_rate(const pf_body *b) { return b->ops->bond_rate ? b->ops->bond_rate(b->data) : 1.5e8; }
 void pf_body_record_breaks(const pf_body *b, const pf_points *pts) {
   if (b->ops->record_breaks) b->ops->record_breaks(b->data, pts);
 }

@@ -65,6 +65,9 @@ typedef struct {
   /* Optional: the bonds (NULL: none); their memory per directed bond, bytes. */
   const pf_family *(*family)(const void *data);
   double (*bytes_per_bond)(const void *data);
+  /* Optional: directed bond evaluations per second and rank on the benchmark machine, for the
+   * --check estimate (NULL: 1.5e8). */
+  double (*bond_rate)(const void *data);
   /* Optional: give the bonds broken since the last call their rest length (self-contact). */
   void (*record_breaks)(void *data, const pf_points *pts);
   /* Required: density (kg/m^3) and bulk modulus (Pa); optional: the largest horizon, m. */
@@ -144,6 +147,7 @@ int pf_body_post_step(const pf_body *b, pf_points *pts);
 void pf_body_take_damage_work(const pf_body *b, double w[2]);
 const pf_family *pf_body_family(const pf_body *b);
 double pf_body_bytes_per_bond(const pf_body *b);
+double pf_body_bond_rate(const pf_body *b);
 void pf_body_record_breaks(const pf_body *b, const pf_points *pts);
 double pf_body_horizon(const pf_body *b);
 double pf_body_point_horizon(const pf_body *b, pf_int i);

@@ -56,6 +56,7 @@ static void energies(const void *data, pf_points *pts, pf_body_energies *e) {
 
 static const pf_family *family(const void *data) { return pd->family(pd_of(data)); }
 static double bytes_per_bond(const void *data) { return pd->bytes_per_bond(pd_of(data)); }
+static double bond_rate(const void *data) { return pd->bond_rate(pd_of(data)); }
 static void record_breaks(void *data, const pf_points *pts) { pd->record_breaks(pd_of(data), pts); }
 static void material(const void *data, double *density, double *bulk) { fe->material(fem_of(data), density, bulk); }
 static double horizon(const void *data) { return pd->horizon(pd_of(data)); }
@@ -97,6 +98,7 @@ const pf_body_ops pf_body_kind_coupled = {
     .energies = energies,
     .family = family,
     .bytes_per_bond = bytes_per_bond,
+    .bond_rate = bond_rate,
     .record_breaks = record_breaks,
     .material = material,
     .horizon = horizon,

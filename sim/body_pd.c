@@ -133,6 +133,7 @@ static void energies(const void *data, pf_points *pts, pf_body_energies *e) {
 
 static const pf_family *family(const void *data) { return pf_pd_body_family(data); }
 static double bytes_per_bond(const void *data) { return pf_pd_body_bytes_per_bond(data); }
+static double bond_rate(const void *data) { return pf_pd_body_bond_rate(data); }
 static void record_breaks(void *data, const pf_points *pts) { pf_pd_body_record_breaks(data, pts); }
 
 static void material(const void *data, double *density, double *bulk_modulus) {
@@ -167,6 +168,7 @@ const pf_body_ops pf_body_kind_pd = {
     .energies = energies,
     .family = family,
     .bytes_per_bond = bytes_per_bond,
+    .bond_rate = bond_rate,
     .record_breaks = record_breaks,
     .material = material,
     .horizon = horizon,

@@ -9,11 +9,9 @@
 #include <math.h>
 #include <string.h>
 
-/* Rates per rank measured on this project's 2-core benchmark machine: PMB and LPS directed bond
- * evaluations per second (87 451-point target, 150 steps) and hex8 element cycles per second
- * (80 000-element bar, 300 steps). */
-#define PF_RATE_BONDS_PMB 2.3e8
-#define PF_RATE_BONDS_OTHER 1.5e8
+/* Rates per rank measured on this project's 2-core benchmark machine: hex8 element cycles per
+ * second (80 000-element bar, 300 steps); the bodies give their models' bond rates (pd/: PMB and
+ * LPS directed bond evaluations per second, 87 451-point target, 150 steps). */
 #define PF_RATE_ELEMENTS 1.1e6
 /* Memory constants of the estimate: a node of a meshed body (as a PD point without bonds) and
  * an element, measured as the set-up's growth of resident memory: 15.1 MB for a pamgen block of
@@ -71,7 +69,7 @@ static void body_counts(const pf_sim *sim, int b, body_row *r) {
   body_material(sim, b, r);
   r->bytes = fam ? body_bond_bytes(sim, b, r->points) : r->points * PF_BYTES_PER_NODE;
   r->bytes += r->elements * PF_BYTES_PER_ELEMENT;
-  r->rate = !strcmp(r->model, "pmb") ? PF_RATE_BONDS_PMB : PF_RATE_BONDS_OTHER;
+  r->rate = pf_body_bond_rate(bd);
 }
 
 static void print_size(const char *label, double bytes) {
@@ -121,15 +119,16 @@ static void print_memory(const pf_sim *sim, double bytes) {
   pf_log("\n");
 }
 
-static void print_time(double bond_seconds, double element_seconds) {
+/* bond_rate: the bodies' bond rates, weighted by their bonds (0: no bonds). */
+static void print_time(double bond_seconds, double element_seconds, double bond_rate) {
   const int ranks = pf_comm_size();
   const double s = (bond_seconds + element_seconds) / ranks;
   if (s < 120) pf_log("  rough run time: %.2g s", s);
   else if (s < 7200) pf_log("  rough run time: %.2g min", s / 60);
   else pf_log("  rough run time: %.3g h", s / 3600);
-  pf_log(" on %d rank(s) (at %.2g directed bond evaluations/s per rank for pmb, %.2g for other models, "
-         "%.2g element cycles/s, measured on a 2-core Xeon; contact and output not counted)\n",
-         ranks, PF_RATE_BONDS_PMB, PF_RATE_BONDS_OTHER, PF_RATE_ELEMENTS);
+  pf_log(" on %d rank(s) (at %.2g directed bond evaluations/s per rank for these models, %.2g element cycles/s, "
+         "measured on a 2-core Xeon; contact and output not counted)\n",
+         ranks, bond_rate, PF_RATE_ELEMENTS);
 }
 
 int pf_sim_check_report(pf_sim *sim) {
@@ -163,6 +162,6 @@ int pf_sim_check_report(pf_sim *sim) {
   pf_log("\n");
   print_memory(sim, bytes);
   print_output(sim, points, bonds, elements, bond_bytes);
-  print_time(tb, elements * (double)sim->nsteps / PF_RATE_ELEMENTS);
+  print_time(tb, elements * (double)sim->nsteps / PF_RATE_ELEMENTS, tb > 0 ? bonds * (double)sim->nsteps / tb : 0);
   return 0;
 }
