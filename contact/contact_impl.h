@@ -209,10 +209,6 @@ struct pf_contact_eval {
   pf_contact_shares *shares;  /* the FE nodes' shares of the forces (pf_contact_push) */
   int64_t tested, reads;      /* work counters (pf_contact_counts) */
 };
-/* Pair k's smallest gap (over its length) so far in w. */
-static inline double *pf_contact_eval_gap(const pf_contact *c, pf_contact_eval *w, int k) {
-  return &w->sums[PF_CONTACT_SUM_FORCE + 3 * c->npairs + k];
-}
 /* Push entity e by f = k (r_c - g) n + friction against a surface point of body `body` with
  * weights w on the view entities nv[nn] (n outward of that body, towards e); the nodes' shares
  * go to the evaluation's list. The pair's force is the force on its body a: e's when e belongs to
