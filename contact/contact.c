@@ -144,9 +144,11 @@ static int pick_method(const pf_deck *d, const pf_node *map, pf_contact_case cs,
   known[0] = '\0';
   for (int q = 0; q < pf_contact_nmethods && len < sizeof known; q++) {
     const pf_contact_method *m = pf_contact_methods[q];
-    if (m->claims == cs && m->name) len += (size_t)snprintf(known + len, sizeof known - len, "%s%s", named++ ? ", " : "", m->name);
+    if (m->claims == cs && m->name)
+      len += (size_t)snprintf(known + len, sizeof known - len, "%s%s", named++ ? ", " : "", m->name);
   }
-  if (named > 1) return pf_deck_error(d, pf_node_get(map, "method"), "method", "unknown method '%s' (known: %s)", name, known);
+  if (named > 1)
+    return pf_deck_error(d, pf_node_get(map, "method"), "method", "unknown method '%s' (known: %s)", name, known);
   *out = pf_contact_method_find(cs, NULL);
   PF_CHECK(*out, PF_ERR_INPUT, "no contact method claims this pair of bodies");
   return 0;

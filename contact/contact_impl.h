@@ -210,7 +210,7 @@ struct pf_contact_eval {
   int64_t tested, reads;      /* work counters (pf_contact_counts) */
 };
 /* Push entity e by f = k (r_c - g) n + friction against a surface point of body `body` with
- * weights w on the view entities nv[nn] (n outward of that body, towards e); the nodes' shares
+ * weights wt on the view entities nv[nn] (n outward of that body, towards e); the nodes' shares
  * go to the evaluation's list. The pair's force is the force on its body a: e's when e belongs to
  * a, else the nodes'. */
 int pf_contact_push(pf_contact *c, int k, int body, pf_int e, const pf_int *nv, int nn, const double *wt, double g,

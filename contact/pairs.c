@@ -58,7 +58,11 @@ double pf_contact_friction(double mu, double Fn, const double n[3], const double
 }
 
 /* A chunk's sums (contact_impl.h). */
-enum { SUM_ENERGY = PF_CONTACT_SUM_ENERGY, SUM_DISSIPATION = PF_CONTACT_SUM_DISSIPATION, SUM_FORCE = PF_CONTACT_SUM_FORCE };
+enum {
+  SUM_ENERGY = PF_CONTACT_SUM_ENERGY,
+  SUM_DISSIPATION = PF_CONTACT_SUM_DISSIPATION,
+  SUM_FORCE = PF_CONTACT_SUM_FORCE
+};
 
 int pf_contact_push(pf_contact *c, int k, int body, pf_int e, const pf_int *nv, int nn, const double *wt, double g,
                     const double n[3], double dt, pf_contact_eval *w) {
@@ -165,9 +169,9 @@ static double held(pf_contact *c, pf_int e, double g, double rc, int fresh) {
 }
 
 /* Entity e (a particle, or an FE node of a pair of FE bodies: fe_node) against the closest face
- * among its candidates [s, t) of pair k, on the side its body faces. An FE node meets only the faces that
- * face it, whose normal opposes its own (at an edge of the other body the side faces lie in the
- * plane of the node's approach and would hide the face it hits). A face counts an entity behind
+ * among its candidates [s, t) of pair k, on the side its body faces. An FE node meets only the
+ * faces that face it, whose normal opposes its own (at an edge of the other body the side faces
+ * lie in the plane of the node's approach and would hide the face it hits). A face counts an entity behind
  * its plane as inside only when the entity lies over it: one beside a convex edge is behind the
  * plane of the face but outside the body (docs/theory/contact.md sec. 2, 2.4). */
 int pf_contact_closest_face(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double dt, pf_contact_eval *ev,

@@ -143,11 +143,13 @@ static void two_bodies(const pf_contact_method *m, double shift, int touching) {
     if (!(energy > 0)) fail("no penalty energy between the overlapping boxes", m);
     for (int k = 0; k < 3; k++) {
       if (!(fabs(fa[k] - pair[k]) <= 1e-10 * F)) {
-        snprintf(what, sizeof what, "body a's points carry %.17g N along %d, the pair's force %.17g N", fa[k], k, pair[k]);
+        snprintf(what, sizeof what, "body a's points carry %.17g N along %d, the pair's force %.17g N", fa[k], k,
+                 pair[k]);
         fail(what, m);
       }
       if (!(fabs(fb[k] + pair[k]) <= 1e-10 * F)) {
-        snprintf(what, sizeof what, "body b's points carry %.17g N along %d, not the opposite of %.17g N", fb[k], k, pair[k]);
+        snprintf(what, sizeof what, "body b's points carry %.17g N along %d, not the opposite of %.17g N", fb[k], k,
+                 pair[k]);
         fail(what, m);
       }
     }
