@@ -46,11 +46,14 @@ typedef struct {
    * case's first method reads the pair and refuses the value in its own words. */
   int (*read)(const pf_deck *d, const pf_node *map, const pf_contact_body *a, const pf_contact_body *b,
               pf_contact_pair *p);
-  /* The interactions of owned entity e with its candidates [q0, q1) of pair k (c->cand, sorted by
-   * partner): add the force on e to c->force[3 e], the shares of FE nodes it pushes
-   * (pf_contact_push), and the energy, dissipation, pair force and gap to w's sums. Called once
-   * per entity and pair: the loop over the candidates is the method's. */
-  int (*evaluate)(pf_contact *c, int k, pf_int e, int64_t q0, int64_t q1, double dt, pf_contact_eval *w);
+  /* The interactions of owned entities [e0, e1), in turn, with their candidates of pair k among
+   * [q0, q1) (c->cand; each entity's sorted by partner, pf_contact_entity_candidates): add the
+   * force on each to c->force, the shares of FE nodes it pushes (pf_contact_push), and the
+   * energy, dissipation, pair force and gap to w's sums. The pair loop (pairs.c) calls it once for
+   * a run of entities whose candidates are all of pair k, else once for an entity and a pair: the
+   * loops over the entities and the candidates are the method's. */
+  int (*evaluate)(pf_contact *c, int k, pf_int e0, pf_int e1, int64_t q0, int64_t q1, double dt,
+                  pf_contact_eval *w);
   /* omega^2 of the stiffest contact a point of the pair can see (the stable step is 2 / omega).
    * Collective. */
   double (*stable_w2)(const pf_contact *c, const pf_contact_pair *p, const pf_points *pts);
@@ -209,6 +212,12 @@ struct pf_contact_eval {
   pf_contact_shares *shares;  /* the FE nodes' shares of the forces (pf_contact_push) */
   int64_t tested, reads;      /* work counters (pf_contact_counts) */
 };
+/* The candidates [*s, *t) of entity e of an evaluate call over candidates [q0, q1). */
+static inline void pf_contact_entity_candidates(const pf_contact *c, pf_int e, int64_t q0, int64_t q1, int64_t *s,
+                                                int64_t *t) {
+  *s = c->cand_off[e] > q0 ? c->cand_off[e] : q0;
+  *t = c->cand_off[e + 1] < q1 ? c->cand_off[e + 1] : q1;
+}
 /* Push entity e by f = k (r_c - g) n + friction against a surface point of body `body` with
  * weights wt on the view entities nv[nn] (n outward of that body, towards e); the nodes' shares
  * go to the evaluation's list. The pair's force is the force on its body a: e's when e belongs to

@@ -5,17 +5,22 @@
 
 #include <math.h>
 
-/* Particle e against its candidate surface nodes [q0, q1) of pair k. */
-static int evaluate_nodes(pf_contact *c, int k, pf_int e, int64_t q0, int64_t q1, double dt, pf_contact_eval *w) {
+/* Particles [e0, e1) against their candidate surface nodes of pair k in [q0, q1). */
+static int evaluate_nodes(pf_contact *c, int k, pf_int e0, pf_int e1, int64_t q0, int64_t q1, double dt,
+                          pf_contact_eval *w) {
   const pf_contact_pair *p = &c->pair[k];
-  for (int64_t s = q0; s < q1; s++) {
-    pf_int j = c->cand[s].j;
-    double d[3], r = 0;
-    for (int a = 0; a < 3; a++) d[a] = c->y[3 * e + a] - c->y[3 * j + a], r += d[a] * d[a];
-    r = sqrt(r);
-    if (r >= fmin(p->radius, c->rad[e]) || r == 0) continue;
-    double n[3] = {d[0] / r, d[1] / r, d[2] / r}, wt = 1;
-    PF_CALL(pf_contact_push(c, k, p->a, e, &j, 1, &wt, r, n, dt, w));
+  for (pf_int e = e0; e < e1; e++) {
+    int64_t s0, s1;
+    pf_contact_entity_candidates(c, e, q0, q1, &s0, &s1);
+    for (int64_t s = s0; s < s1; s++) {
+      pf_int j = c->cand[s].j;
+      double d[3], r = 0;
+      for (int a = 0; a < 3; a++) d[a] = c->y[3 * e + a] - c->y[3 * j + a], r += d[a] * d[a];
+      r = sqrt(r);
+      if (r >= fmin(p->radius, c->rad[e]) || r == 0) continue;
+      double n[3] = {d[0] / r, d[1] / r, d[2] / r}, wt = 1;
+      PF_CALL(pf_contact_push(c, k, p->a, e, &j, 1, &wt, r, n, dt, w));
+    }
   }
   return 0;
 }

@@ -84,23 +84,30 @@ static void short_range(pf_contact *c, int k, pf_int e, pf_int j, int64_t b, dou
   sums[PF_CONTACT_SUM_ENERGY] += 0.5 * 0.5 * p->stiffness * (c->vol[lo] * c->vol[hi]) * (rc - r) * (rc - r);
 }
 
-/* Owned particle e against its candidates [q0, q1) of pair k: most are out of reach, which is
- * tested first; a bonded pair (the bond resolved at the build) interacts once its bond broke. */
-static int evaluate_short_range(pf_contact *c, int k, pf_int e, int64_t q0, int64_t q1, double dt, pf_contact_eval *w) {
+/* Owned particles [e0, e1) against their candidates of pair k in [q0, q1): most are out of
+ * reach, which is tested first; a bonded pair (the bond resolved at the build) interacts once its
+ * bond broke. */
+static int evaluate_short_range(pf_contact *c, int k, pf_int e0, pf_int e1, int64_t q0, int64_t q1, double dt,
+                                pf_contact_eval *w) {
   const pf_contact_pair *p = &c->pair[k];
-  const double ye[3] = {c->y[3 * e], c->y[3 * e + 1], c->y[3 * e + 2]}, r2 = p->radius * p->radius;
-  const pf_family *fam = c->body[c->vbody[e]].fam;
-  const uint8_t *broken = fam ? fam->broken : NULL; /* (a body without bonds: never bonded) */
+  const double r2 = p->radius * p->radius;
   int64_t reads = 0;
   w->tested += q1 - q0;
-  for (int64_t s = q0; s < q1; s++) {
-    const pf_int j = c->cand[s].j;
-    const double *yj = &c->y[3 * j];
-    const double d0 = ye[0] - yj[0], d1 = ye[1] - yj[1], d2 = ye[2] - yj[2];
-    if (d0 * d0 + d1 * d1 + d2 * d2 >= r2) continue;
-    const int64_t b = c->cand[s].bond; /* (resolved at the build) */
-    reads += b >= 0 && !p->all_points;
-    if (p->all_points || b < 0 || broken[b]) short_range(c, k, e, j, b, dt, w->sums);
+  for (pf_int e = e0; e < e1; e++) {
+    int64_t s0, s1;
+    pf_contact_entity_candidates(c, e, q0, q1, &s0, &s1);
+    const double ye[3] = {c->y[3 * e], c->y[3 * e + 1], c->y[3 * e + 2]};
+    const pf_family *fam = c->body[c->vbody[e]].fam;
+    const uint8_t *broken = fam ? fam->broken : NULL; /* (a body without bonds: never bonded) */
+    for (int64_t s = s0; s < s1; s++) {
+      const pf_int j = c->cand[s].j;
+      const double *yj = &c->y[3 * j];
+      const double d0 = ye[0] - yj[0], d1 = ye[1] - yj[1], d2 = ye[2] - yj[2];
+      if (d0 * d0 + d1 * d1 + d2 * d2 >= r2) continue;
+      const int64_t b = c->cand[s].bond; /* (resolved at the build) */
+      reads += b >= 0 && !p->all_points;
+      if (p->all_points || b < 0 || broken[b]) short_range(c, k, e, j, b, dt, w->sums);
+    }
   }
   w->reads += reads;
   return 0;

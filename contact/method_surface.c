@@ -7,8 +7,14 @@
  * offsets, sec. 2.5). */
 #include "contact/contact_impl.h"
 
-static int evaluate_surface(pf_contact *c, int k, pf_int e, int64_t q0, int64_t q1, double dt, pf_contact_eval *w) {
-  return pf_contact_closest_face(c, k, e, q0, q1, dt, w, 0, 1);
+static int evaluate_surface(pf_contact *c, int k, pf_int e0, pf_int e1, int64_t q0, int64_t q1, double dt,
+                            pf_contact_eval *w) {
+  for (pf_int e = e0; e < e1; e++) {
+    int64_t s0, s1;
+    pf_contact_entity_candidates(c, e, q0, q1, &s0, &s1);
+    if (s0 < s1) PF_CALL(pf_contact_closest_face(c, k, e, s0, s1, dt, w, 0, 1));
+  }
+  return 0;
 }
 
 const pf_contact_method pf_contact_method_surface = {

@@ -52,9 +52,16 @@ static int read_surfaces(const pf_deck *d, const pf_node *map, const pf_contact_
   return 0;
 }
 
-/* FE node e against the faces of the other body among its candidates [q0, q1) of pair k. */
-static int evaluate_surfaces(pf_contact *c, int k, pf_int e, int64_t q0, int64_t q1, double dt, pf_contact_eval *w) {
-  return pf_contact_closest_face(c, k, e, q0, q1, dt, w, 1, 0);
+/* FE nodes [e0, e1) against the faces of the other body among their candidates of pair k in
+ * [q0, q1). */
+static int evaluate_surfaces(pf_contact *c, int k, pf_int e0, pf_int e1, int64_t q0, int64_t q1, double dt,
+                             pf_contact_eval *w) {
+  for (pf_int e = e0; e < e1; e++) {
+    int64_t s0, s1;
+    pf_contact_entity_candidates(c, e, q0, q1, &s0, &s1);
+    if (s0 < s1) PF_CALL(pf_contact_closest_face(c, k, e, s0, s1, dt, w, 1, 0));
+  }
+  return 0;
 }
 
 /* Each node is pushed as a node and as a face's: twice the larger of the two ways round of

@@ -218,20 +218,41 @@ int pf_contact_closest_face(pf_contact *c, int k, pf_int e, int64_t s, int64_t t
   return pf_contact_push(c, k, sd->body, e, bv, 4, bw, bg, bn, dt, ev);
 }
 
+/* 1 when entity e's candidates are all of pair k (or it has none). */
+static int only_pair(const pf_contact *c, pf_int e, int k) {
+  const int64_t q0 = c->cand_off[e], q1 = c->cand_off[e + 1];
+  return q0 == q1 || (c->cand[q0].pair == k && c->cand[q1 - 1].pair == k); /* (sorted by pair) */
+}
+
 /* The interactions of the owned entities [e0, e1): their forces (cleared first), the nodes'
  * shares into l, the energy, dissipation and pairs' forces into sums. An entity's candidates are
- * sorted by pair: each pair's run goes to the pair's method. */
+ * sorted by pair: each pair's run goes to the pair's method, and a run of entities whose
+ * candidates are all of one pair goes to it in one call. Entity by entity, pair by pair, as the
+ * calls come: the order of the sums is that of the entities' candidates. */
 static int particle_range(pf_contact *c, pf_int e0, pf_int e1, double dt, share_list *l, double *sums) {
   pf_contact_eval w = {sums, l, 0, 0};
   memset(&c->force[3 * e0], 0, sizeof(double) * 3 * (size_t)(e1 - e0));
-  for (pf_int e = e0; e < e1; e++) {
+  for (pf_int e = e0; e < e1;) {
+    if (c->cand_off[e] == c->cand_off[e + 1]) {
+      e++;
+      continue;
+    }
+    const int k0 = c->cand[c->cand_off[e]].pair;
+    if (only_pair(c, e, k0)) {
+      pf_int f = e + 1;
+      while (f < e1 && only_pair(c, f, k0)) f++;
+      PF_CALL(c->pair[k0].method->evaluate(c, k0, e, f, c->cand_off[e], c->cand_off[f], dt, &w));
+      e = f;
+      continue;
+    }
     for (int64_t q = c->cand_off[e]; q < c->cand_off[e + 1];) {
       int k = c->cand[q].pair;
       int64_t t = q;
       while (t < c->cand_off[e + 1] && c->cand[t].pair == k) t++;
-      PF_CALL(c->pair[k].method->evaluate(c, k, e, q, t, dt, &w));
+      PF_CALL(c->pair[k].method->evaluate(c, k, e, e + 1, q, t, dt, &w));
       q = t;
     }
+    e++;
   }
   const int64_t tested = w.tested, reads = w.reads;
 #if defined(_OPENMP)
