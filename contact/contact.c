@@ -1,28 +1,50 @@
-/* Contact between bodies: the `contact:` deck section, defaults derived from the materials and
- * the discretization, the stable step of the penalties, and the per-step entry point.
+/* Contact between bodies: the `contact:` deck section, the pick of each pair's method from its
+ * two bodies and its `method:` key (the list contact/methods.h; each method, its law and its
+ * defaults derived from the materials and the discretization, is a file contact/method_<id>.c),
+ * the stable step of the penalties, and the per-step entry point. The generic code here, in
+ * search.c and in pairs.c reads a pair's method through its ops (pf_contact_method,
+ * contact_impl.h), with one dispatcher below for each optional op.
  *
- * Short range (PD <-> PD, and a PD body with itself): Littlewood (2014, "Contact in
- * peridynamic simulations"; Silling & Askari 2005) f = C (r_c - r) V_i V_j for r < r_c, along
- * the line of centres, with C = 18 k_s / (pi delta^5): Peridigm's short-range force
- * c = 9 k_s / (pi delta^4) per unit volume per unit (r_c - r)/delta, which Peridigm applies from
- * both ends of each pair, so one pair carries twice it. By default
- * bonded points do not interact (their bond carries the load); `all_points: true` acts on
- * every pair within r_c, as Peridigm does. Two points of one body use min(r_c, 0.9 |x_i - x_j|,
- * the rest length of their broken bond) (contact/pairs.c pair_radius, docs/theory/contact.md
- * sec. 1.1).
- *
- * FE <-> PD (Tupek et al. 2013, sec. 3.2: penalty forces between the FE nodes and the
- * particles): `method: nodes` is the node-to-particle penalty f = k (r_c - d) between every
- * surface node and particle closer than r_c; `method: surface` (the default) takes the gap of a
- * particle to the closest point of the FE surface - a node, an edge or a face (the
- * particle-to-face check that stops particles between the nodes of a coarse mesh) - and pushes
- * with f = k (r_c - g) along the surface normal, the reaction going to the face's nodes with
- * the weights of the closest point (docs/theory/contact.md). */
+ * Short range (PD <-> PD, and a PD body with itself): Littlewood's f = C (r_c - r) V_i V_j
+ * (contact/method_short_range.c). FE <-> PD (Tupek et al. 2013, sec. 3.2): `method: surface` (the
+ * default, contact/method_surface.c) pushes a particle off the closest point of the FE surface
+ * with f = k (r_c - g), `method: nodes` (contact/method_nodes.c) is the node-to-particle penalty
+ * f = k (r_c - d). FE <-> FE: each body's surface nodes against the other's faces
+ * (contact/method_surfaces.c). docs/theory/contact.md. */
 #include "contact/contact_impl.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+const pf_contact_method *const pf_contact_methods[] = {
+#define PF_CONTACT_METHOD(id) &pf_contact_method_##id,
+#include "contact/methods.h"
+#undef PF_CONTACT_METHOD
+};
+const int pf_contact_nmethods = (int)(sizeof pf_contact_methods / sizeof pf_contact_methods[0]);
+
+const pf_contact_method *pf_contact_method_find(pf_contact_case cs, const char *name) {
+  for (int q = 0; q < pf_contact_nmethods; q++) {
+    const pf_contact_method *m = pf_contact_methods[q];
+    if (m->claims == cs && (!name || (m->name && !strcmp(m->name, name)))) return m;
+  }
+  return NULL;
+}
+
+/* ---- the dispatchers of the optional ops ---------------------------------------------------- */
+double pf_contact_method_length(const pf_contact *c, const pf_contact_pair *p) {
+  return p->method->length ? p->method->length(c, p) : p->radius;
+}
+
+int pf_contact_method_self_rest_lengths(const pf_contact_pair *p) {
+  return p->method->self_rest_lengths ? p->method->self_rest_lengths(p) : 0;
+}
+
+int pf_contact_method_side_rebuilt(const pf_contact_method *m, const pf_contact_body *fe, pf_contact_side *sd) {
+  return m->side_rebuilt ? m->side_rebuilt(fe, sd) : 0;
+}
 
 const pf_key pf_contact_pair_keys[] = {
     {"bodies", PF_KEY_STRLIST, 1, NULL, "", "the two bodies (the same name twice: self-contact of a PD body)", NULL},
@@ -66,10 +88,8 @@ static int pair_bodies(const pf_deck *d, const pf_node *map, int nbodies, const 
   return 0;
 }
 
-/* The faces of FE body `fe` (index b) in contact: the side set named by the scalar `node` under
- * `key`, or the whole boundary when node is NULL. */
-static int read_side(const pf_deck *d, const pf_node *node, const char *key, const pf_contact_body *fe, int b,
-                     pf_contact_side *side) {
+int pf_contact_side_read(const pf_deck *d, const pf_node *node, const char *key, const pf_contact_body *fe, int b,
+                         pf_contact_side *side) {
   int sideset = -1;
   if (node) {
     const char *name = pf_node_text(node);
@@ -81,41 +101,20 @@ static int read_side(const pf_deck *d, const pf_node *node, const char *key, con
   return pf_contact_surface_faces(fe->mesh, sideset, NULL, &side->face, &side->nface);
 }
 
-/* The faces of each mesh node of a side (CSR), for the nodal normals of FE <-> FE pairs. */
-static int side_node_faces(const pf_contact_body *fe, pf_contact_side *sd) {
-  pf_int nn = fe->mesh->nnodes;
-  PF_MALLOC(sd->node_off, nn + 1);
-  PF_MALLOC(sd->node_face, 4 * sd->nface);
-  for (pf_int f = 0; f < sd->nface; f++)
-    for (int q = 0; q < 4; q++) sd->node_off[sd->face[f].node[q] + 1]++;
-  for (pf_int i = 0; i < nn; i++) sd->node_off[i + 1] += sd->node_off[i];
-  for (pf_int f = 0; f < sd->nface; f++)
-    for (int q = 0; q < 4; q++) sd->node_face[sd->node_off[sd->face[f].node[q]]++] = f;
-  for (pf_int i = nn; i > 0; i--) sd->node_off[i] = sd->node_off[i - 1];
-  sd->node_off[0] = 0;
+int pf_contact_refuse_keys(const pf_deck *d, const pf_node *map, const char *const *keys, const char *why) {
+  for (const char *const *k = keys; *k; k++)
+    if (pf_node_get(map, *k)) return pf_deck_error(d, pf_node_get(map, *k), *k, "'%s' is %s", *k, why);
   return 0;
 }
 
-static int refuse_short_range_keys(const pf_deck *d, const pf_node *map) {
-  for (const char *const *k = (const char *const[]){"spring_constant", "horizon", "all_points", NULL}; *k; k++)
-    if (pf_node_get(map, *k))
-      return pf_deck_error(d, pf_node_get(map, *k), *k, "'%s' is a key of short-range (PD <-> PD) pairs", *k);
-  return 0;
-}
-
-static int fe_pair(const pf_deck *d, const pf_node *map, const pf_contact_body *fe, const pf_contact_body *pd,
-                   pf_contact_pair *p) {
-  const char *method = "surface";
-  PF_CALL(pf_deck_string(d, map, "method", &method));
-  if (!strcmp(method, "surface")) p->kind = PF_PAIR_SURFACE;
-  else if (!strcmp(method, "nodes")) p->kind = PF_PAIR_NODES;
-  else return pf_deck_error(d, pf_node_get(map, "method"), "method", "unknown method '%s' (known: surface, nodes)", method);
-  PF_CALL(refuse_short_range_keys(d, map));
+int pf_contact_fe_pd_read(const pf_deck *d, const pf_node *map, const pf_contact_body *fe, const pf_contact_body *pd,
+                          pf_contact_pair *p) {
+  PF_CALL(pf_contact_refuse_keys(d, map, pf_contact_short_range_keys, "a key of short-range (PD <-> PD) pairs"));
   if (pf_node_get(map, "surfaces"))
     return pf_deck_error(d, pf_node_get(map, "surfaces"), "surfaces",
                          "'surfaces' is a key of FE <-> FE pairs (an FE <-> PD pair takes 'surface')");
   p->nside = 1;
-  PF_CALL(read_side(d, pf_node_get(map, "surface"), "surface", fe, p->a, &p->side[0]));
+  PF_CALL(pf_contact_side_read(d, pf_node_get(map, "surface"), "surface", fe, p->a, &p->side[0]));
   p->radius = 0.5 * pd->spacing;
   p->stiffness = pd->bulk_modulus * pd->spacing;
   PF_CALL(pf_deck_positive(d, map, "radius", &p->radius));
@@ -123,54 +122,35 @@ static int fe_pair(const pf_deck *d, const pf_node *map, const pf_contact_body *
   return 0;
 }
 
-/* Two FE bodies (docs/theory/contact.md sec. 2.4): each body's surface nodes against the other's
- * faces, f = k (r_c - g) with r_c = 0 by default (the surfaces meet) and k = 10 K h of the softer
- * side (K the bulk modulus, h the nodal spacing). `surface:` names a side set of each body, in
- * the order of `bodies:`. */
-static int fe_fe_pair(const pf_deck *d, const pf_node *map, const pf_contact_body *a, const pf_contact_body *b,
-                      pf_contact_pair *p) {
-  const char *method = "surface";
-  PF_CALL(pf_deck_string(d, map, "method", &method));
-  if (strcmp(method, "surface"))
-    return pf_deck_error(d, pf_node_get(map, "method"), "method",
-                         "two finite-element bodies meet surface to surface only (got '%s')", method);
-  PF_CALL(refuse_short_range_keys(d, map));
-  if (pf_node_get(map, "surface"))
-    return pf_deck_error(d, pf_node_get(map, "surface"), "surface",
-                         "an FE <-> FE pair names a side set of each body under 'surfaces', in the order of 'bodies'");
-  const pf_node *key = pf_node_get(map, "surfaces");
-  if (key && pf_node_count(key) != 2)
-    return pf_deck_error(d, key, "surfaces", "names two side sets, one of each body, in the order of 'bodies' (got %d)",
-                         pf_node_count(key));
-  p->kind = PF_PAIR_SURFACES;
-  p->nside = 2;
-  PF_CALL(read_side(d, key ? pf_node_item(key, 0) : NULL, "surfaces", a, p->a, &p->side[0]));
-  PF_CALL(read_side(d, key ? pf_node_item(key, 1) : NULL, "surfaces", b, p->b, &p->side[1]));
-  PF_CALL(side_node_faces(a, &p->side[0]));
-  PF_CALL(side_node_faces(b, &p->side[1]));
-  p->radius = 0;
-  p->stiffness = 10 * fmin(a->bulk_modulus * a->spacing, b->bulk_modulus * b->spacing);
-  PF_CALL(pf_deck_real(d, map, "radius", &p->radius));
-  if (!(p->radius >= 0))
-    return pf_deck_error(d, pf_node_get(map, "radius"), "radius", "must not be negative (got %g)", p->radius);
-  PF_CALL(pf_deck_positive(d, map, "stiffness", &p->stiffness));
-  return 0;
+/* A particle on one face and a node carrying up to (face diagonal / h)^2 particles: omega^2 =
+ * k / m_p + k max(1, (l / h)^2) / m_n (docs/theory/contact.md). */
+double pf_contact_fe_pd_stable_w2(const pf_contact *c, const pf_contact_pair *p, const pf_points *pts) {
+  const pf_contact_body *a = &c->body[p->a], *b = &c->body[p->b];
+  double mb = pf_contact_min_mass(b, pts), ma = pf_contact_min_mass(a, pts);
+  return pf_contact_node_on_face_w2(p->stiffness, mb, b->spacing, ma, a->spacing);
 }
 
-static int short_range_pair(const pf_deck *d, const pf_node *map, const pf_contact_body *a, const pf_contact_body *b,
-                            pf_contact_pair *p) {
-  p->kind = PF_PAIR_SHORT_RANGE;
-  for (const char *const *k = (const char *const[]){"method", "surface", "surfaces", NULL}; *k; k++)
-    if (pf_node_get(map, *k))
-      return pf_deck_error(d, pf_node_get(map, *k), *k, "'%s' is a key of pairs with an FE body", *k);
-  double ks = fmax(a->bulk_modulus, b->bulk_modulus), delta = fmax(a->horizon, b->horizon);
-  PF_CALL(pf_deck_positive(d, map, "spring_constant", &ks));
-  PF_CALL(pf_deck_positive(d, map, "horizon", &delta));
-  p->stiffness = 18.0 * ks / (PF_PI * pow(delta, 5));
-  p->radius = 0.9 * fmax(a->spacing, b->spacing);
-  PF_CALL(pf_deck_positive(d, map, "stiffness", &p->stiffness));
-  PF_CALL(pf_deck_positive(d, map, "radius", &p->radius));
-  PF_CALL(pf_deck_bool(d, map, "all_points", &p->all_points));
+/* The method of a pair of case cs: the one its `method:` names, or the case's first. An unknown
+ * name is refused here when the case has several named methods; else the case's one method
+ * refuses it in its own words (its read). */
+static int pick_method(const pf_deck *d, const pf_node *map, pf_contact_case cs, const pf_contact_method **out) {
+  const char *name = NULL;
+  PF_CALL(pf_deck_string(d, map, "method", &name));
+  *out = pf_contact_method_find(cs, name);
+  if (*out) return 0;
+  char known[256];
+  size_t len = 0;
+  int named = 0;
+  known[0] = '\0';
+  for (int q = 0; q < pf_contact_nmethods && len < sizeof known; q++) {
+    const pf_contact_method *m = pf_contact_methods[q];
+    if (m->claims == cs && m->name)
+      len += (size_t)snprintf(known + len, sizeof known - len, "%s%s", named++ ? ", " : "", m->name);
+  }
+  if (named > 1)
+    return pf_deck_error(d, pf_node_get(map, "method"), "method", "unknown method '%s' (known: %s)", name, known);
+  *out = pf_contact_method_find(cs, NULL);
+  PF_CHECK(*out, PF_ERR_INPUT, "no contact method claims this pair of bodies");
   return 0;
 }
 
@@ -178,9 +158,9 @@ static int read_pair(const pf_deck *d, const pf_node *map, int nbodies, const pf
                      pf_contact_pair *p) {
   PF_CALL(pair_bodies(d, map, nbodies, bodies, p));
   const pf_contact_body *a = &bodies[p->a], *b = &bodies[p->b];
-  if (a->is_fe && b->is_fe) PF_CALL(fe_fe_pair(d, map, a, b, p));
-  else if (a->is_fe) PF_CALL(fe_pair(d, map, a, b, p));
-  else PF_CALL(short_range_pair(d, map, a, b, p));
+  const pf_contact_case cs = !a->is_fe ? PF_CONTACT_PD_PD : b->is_fe ? PF_CONTACT_FE_FE : PF_CONTACT_FE_PD;
+  PF_CALL(pick_method(d, map, cs, &p->method));
+  PF_CALL(p->method->read(d, map, a, b, p));
   PF_CALL(pf_deck_real(d, map, "friction", &p->friction));
   if (!(p->friction >= 0))
     return pf_deck_error(d, pf_node_get(map, "friction"), "friction", "must not be negative (got %g)", p->friction);
@@ -249,11 +229,7 @@ static int follow_erosion(pf_contact *c) {
         if (!ierr) ierr = mark_fresh(sd, old, nold);
         free(old);
         PF_CALL(ierr);
-        if (sd->node_off) {
-          PF_FREE(sd->node_off);
-          PF_FREE(sd->node_face);
-          PF_CALL(side_node_faces(&c->body[b], sd));
-        }
+        PF_CALL(pf_contact_method_side_rebuilt(c->pair[k].method, &c->body[b], sd));
       }
   }
   if (!changed) return 0;
@@ -269,11 +245,9 @@ static int contact_setup(const pf_deck *d, const pf_node *map, pf_contact *c) {
   for (int k = 0; k < c->npairs; k++) {
     PF_CALL(read_pair(d, pf_node_item(pairs, k), c->nbodies, c->body, &c->pair[k]));
     rmax = fmax(rmax, c->pair[k].radius);
-    c->pair[k].length = c->pair[k].radius, c->pair[k].gap = INFINITY;
-    if (c->pair[k].kind == PF_PAIR_SURFACES) /* r_c may be 0: half the finer spacing */
-      c->pair[k].length = fmax(c->pair[k].radius, 0.5 * fmin(c->body[c->pair[k].a].spacing, c->body[c->pair[k].b].spacing));
+    c->pair[k].length = pf_contact_method_length(c, &c->pair[k]), c->pair[k].gap = INFINITY;
     rmax = fmax(rmax, c->pair[k].length);
-    c->has_fe |= c->pair[k].kind != PF_PAIR_SHORT_RANGE;
+    c->has_fe |= c->body[c->pair[k].a].is_fe || c->body[c->pair[k].b].is_fe;
   }
   c->skin = rmax;
   PF_CALL(pf_deck_positive(d, map, "skin", &c->skin));
@@ -373,7 +347,7 @@ static int offsets(pf_contact *c, pf_points *pts) {
     const pf_contact_pair *p = &c->pair[k];
     const pf_contact_body *fb = &c->body[p->side[0].body];
     long n = 0;
-    if (p->kind != PF_PAIR_SURFACE || !fb->eroded || !fb->eroded(fb->eroded_ctx, &n)) continue;
+    if (!p->method->holds_offsets || !fb->eroded || !fb->eroded(fb->eroded_ctx, &n)) continue;
     int idx;
     PF_CALL(pf_points_field_register(pts, "contact_offset", 1, PF_FIELD_RESTART | PF_FIELD_OUTPUT, &idx));
     c->offset = pts->fields[idx].data;
@@ -417,44 +391,22 @@ int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, dou
   return 0;
 }
 
-/* Smallest mass of the owned points of body b (INFINITY when none); a point of mass 0 (a dormant
- * particle, fem/particles.c) counts with the mass its volume will have, density times volume. */
-static double min_mass(const pf_contact_body *b, const pf_points *pts) {
+double pf_contact_min_mass(const pf_contact_body *b, const pf_points *pts) {
   double m = INFINITY;
   for (pf_int i = b->first; i < b->first + b->n; i++)
     m = fmin(m, pts->m[i] > 0 ? pts->m[i] : b->density * pts->vol[i]);
-  return m;
+  return pf_min_all(m);
 }
 
-/* omega^2 of a point of mass m and spacing h pressed with stiffness k on a face of spacing l
- * whose node of mass m_f carries up to (sqrt 2 l / h)^2 such points. */
-static double node_on_face_w2(double k, double m, double h, double mf, double l) {
+double pf_contact_node_on_face_w2(double k, double m, double h, double mf, double l) {
   double d = sqrt(2.0) * l, many = fmax(1.0, (d / h) * (d / h));
   return k / m + k * many / mf;
 }
 
-/* 2 / omega for each pair: short range, a particle inside the spheres of radius r_c + h/2 of
- * partners filling it, omega^2 = C (4/3) pi (r_c + h/2)^3 / rho_min; FE <-> PD, a particle on one
- * face and a node carrying up to (face diagonal / h)^2 particles, omega^2 = k / m_p +
- * k max(1, (l / h)^2) / m_n; FE <-> FE, twice the larger of the two ways round
- * (docs/theory/contact.md). */
+/* 2 / omega of the stiffest pair (each method's stable_w2). */
 double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts) {
   double dt = INFINITY;
-  for (int k = 0; k < c->npairs; k++) {
-    const pf_contact_pair *p = &c->pair[k];
-    const pf_contact_body *a = &c->body[p->a], *b = &c->body[p->b];
-    double w2;
-    if (p->kind == PF_PAIR_SHORT_RANGE) {
-      double h = fmax(a->spacing, b->spacing), rho = fmin(a->density, b->density);
-      w2 = p->stiffness * 4.0 / 3.0 * PF_PI * pow(p->radius + 0.5 * h, 3) / rho;
-    } else {
-      double mb = pf_min_all(min_mass(b, pts)), ma = pf_min_all(min_mass(a, pts));
-      w2 = node_on_face_w2(p->stiffness, mb, b->spacing, ma, a->spacing);
-      if (p->kind == PF_PAIR_SURFACES) /* both passes: each node is pushed as a node and as a face's */
-        w2 = 2 * fmax(w2, node_on_face_w2(p->stiffness, ma, a->spacing, mb, b->spacing));
-    }
-    dt = fmin(dt, 2.0 / sqrt(w2));
-  }
+  for (int k = 0; k < c->npairs; k++) dt = fmin(dt, 2.0 / sqrt(c->pair[k].method->stable_w2(c, &c->pair[k], pts)));
   return dt;
 }
 
@@ -471,7 +423,7 @@ void pf_contact_counts(const pf_contact *c, int64_t *pairs_tested, int64_t *fami
 int pf_contact_self_pair(const pf_contact *c, int b) {
   for (int k = 0; c && k < c->npairs; k++) {
     const pf_contact_pair *p = &c->pair[k];
-    if (p->kind == PF_PAIR_SHORT_RANGE && p->a == b && p->b == b && !p->all_points) return 1;
+    if (p->a == b && p->b == b && pf_contact_method_self_rest_lengths(p)) return 1;
   }
   return 0;
 }
@@ -482,7 +434,7 @@ void pf_contact_pair_force(const pf_contact *c, int k, double f[3]) { memcpy(f, 
 
 double pf_contact_pair_gap(const pf_contact *c, int k, pf_contact_gap *info) {
   const pf_contact_pair *p = &c->pair[k];
-  *info = (pf_contact_gap){p->a, p->b, p->kind == PF_PAIR_SURFACE || p->kind == PF_PAIR_SURFACES, p->length};
+  *info = (pf_contact_gap){p->a, p->b, p->method->signed_gap, p->length};
   return p->gap;
 }
 void pf_contact_pair_force_set(pf_contact *c, int k, const double f[3]) { memcpy(c->pair[k].force, f, sizeof c->pair[k].force); }

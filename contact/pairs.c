@@ -1,4 +1,7 @@
-/* Contact forces of the candidates of each owned particle (contact/contact.c gives the laws).
+/* Contact forces of the candidates of each owned entity: the loop over the entities and their
+ * candidates, which hands each entity's candidates of a pair to the pair's method
+ * (pf_contact_method evaluate: contact/method_<id>.c), the sums, the FE nodes' shares, and the
+ * kernels the methods share (the push off a surface point, the closest face).
  *
  * Friction (all pairs): regularized Coulomb on the tangential part v_t of the relative
  * mid-step velocity, F_t = -min(mu |F_n|, m* |v_t| / dt) v_t / |v_t| with m* the reduced mass of
@@ -24,10 +27,11 @@ typedef struct {
   double body, node, pair, key, f[3];
 } node_share;
 
-typedef struct {
+struct pf_contact_shares {
   node_share *s;
   int64_t n, cap;
-} share_list;
+};
+typedef pf_contact_shares share_list;
 
 static int share_append(share_list *l, const node_share *x) {
   PF_GROW(l->s, l->n, l->cap, 256);
@@ -53,75 +57,21 @@ double pf_contact_friction(double mu, double Fn, const double n[3], const double
   return F * s * dt;
 }
 
-/* A chunk's sums: sums[SUM_ENERGY], sums[SUM_DISSIPATION], pair k's force at
- * sums[SUM_FORCE + 3 k], and after the forces pair k's smallest gap over the contact radius
- * (a minimum, not a sum; read by the run-health monitor). */
-enum { SUM_ENERGY, SUM_DISSIPATION, SUM_FORCE };
+/* A chunk's sums (contact_impl.h). */
+enum {
+  SUM_ENERGY = PF_CONTACT_SUM_ENERGY,
+  SUM_DISSIPATION = PF_CONTACT_SUM_DISSIPATION,
+  SUM_FORCE = PF_CONTACT_SUM_FORCE
+};
 
-/* The contact radius of view entities i and j of short-range pair p, the bond between them k
- * (-1: none; k indexes the family of e, the owned one of the two). With a particle made from an
- * element (fem/particles.c) at most its own radius c->rad (the distance from its centre to its
- * element's nearest face when it was made) plus the other's (its own radius, or half its body's
- * spacing), so that a new particle starts without force against its neighbours. Between bodies r_c. Within one
- * body at most 0.9 of their reference distance (Parks et al. 2008, PDLAMMPS; LAMMPS pair peri
- * takes d_ij = min(0.9 |x0_i - x0_j|, 1.35 l_c), here r_c for 1.35 l_c), so that no two points
- * of a body touch in the reference configuration whatever the shape of its cells; and for a
- * broken bond at most its rest length, its length when it broke, so that a bond breaking in
- * compression sets no contact force free (energy from nothing: docs/theory/contact.md sec. 1.1). */
-static double pair_radius(const pf_contact *c, const pf_contact_pair *p, pf_int i, pf_int j, int64_t k) {
-  if (c->rad[i] < INFINITY || c->rad[j] < INFINITY) /* a particle made from an element: its own radius */
-    return fmin(p->radius, (c->rad[i] < INFINITY ? c->rad[i] : 0.5 * c->body[c->vbody[i]].spacing) +
-                               (c->rad[j] < INFINITY ? c->rad[j] : 0.5 * c->body[c->vbody[j]].spacing));
-  if (c->vbody[i] != c->vbody[j]) return p->radius;
-  const double *Xi = &c->X[3 * i], *Xj = &c->X[3 * j];
-  const double d0 = Xi[0] - Xj[0], d1 = Xi[1] - Xj[1], d2 = Xi[2] - Xj[2];
-  double rc = fmin(p->radius, 0.9 * sqrt(d0 * d0 + d1 * d1 + d2 * d2));
-  if (k >= 0 && !p->all_points) {
-    const float rest = c->body[c->vbody[i]].fam->rest[k];
-    if (rest > 0) rc = fmin(rc, (double)rest);
-  }
-  return rc;
-}
-
-/* Short range between owned particle e and view entity j of pair k, joined by the (broken) bond
- * b of e's family (-1: none): the force on e. The pair is evaluated ordered by global id
- * (lo, hi), f on lo = C (r_c - r) V_lo V_hi (y_lo - y_hi) / r, r_c the pair's radius
- * (pair_radius). */
-static void short_range(pf_contact *c, int k, pf_int e, pf_int j, int64_t b, double dt, double *sums) {
+int pf_contact_push(pf_contact *c, int k, int body, pf_int e, const pf_int *nv, int nn, const double *wt, double g,
+                    const double n[3], double dt, pf_contact_eval *w) {
   const pf_contact_pair *p = &c->pair[k];
-  int flip = c->gid[e] > c->gid[j];
-  pf_int lo = flip ? j : e, hi = flip ? e : j;
-  double d[3], r = 0;
-  for (int a = 0; a < 3; a++) d[a] = c->y[3 * lo + a] - c->y[3 * hi + a], r += d[a] * d[a];
-  r = sqrt(r);
-  const double rc = pair_radius(c, p, lo, hi, b);
-  if (r >= rc || r == 0) return;
-  double *gap = &sums[SUM_FORCE + 3 * c->npairs + k];
-  *gap = fmin(*gap, r / rc);
-  double n[3] = {d[0] / r, d[1] / r, d[2] / r}, vrel[3], ft[3];
-  double F = p->stiffness * (rc - r) * (c->vol[lo] * c->vol[hi]);
-  for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * lo + a] - c->v[3 * hi + a];
-  double mr = c->m[lo] * c->m[hi] / (c->m[lo] + c->m[hi]);
-  sums[SUM_DISSIPATION] += 0.5 * pf_contact_friction(p->friction, F, n, vrel, mr, dt, ft); /* half: each end counts it */
-  const double sign = flip ? -1.0 : 1.0;
-  for (int a = 0; a < 3; a++) {
-    double fa = sign * (F * n[a] + ft[a]);
-    c->force[3 * e + a] += fa;
-    if (c->vbody[e] == p->a && p->a != p->b) sums[SUM_FORCE + 3 * k + a] += fa;
-  }
-  sums[SUM_ENERGY] += 0.5 * 0.5 * p->stiffness * (c->vol[lo] * c->vol[hi]) * (rc - r) * (rc - r);
-}
-
-/* Push entity e by f = k (r_c - g) n + friction against a surface point of body `body` with
- * weights w on the nodes nv[4] (n outward of that body, towards e); the nodes' shares go to l.
- * The pair's force is the force on its body a: e's when e belongs to a, else the nodes'. */
-static int push(pf_contact *c, int k, int body, pf_int e, const pf_int *nv, int nn, const double *w, double g,
-                const double n[3], double dt, share_list *l, double *sums) {
-  const pf_contact_pair *p = &c->pair[k];
+  double *sums = w->sums;
   double vs[3] = {0, 0, 0}, ms = 0, vrel[3], ft[3], f[3];
   for (int q = 0; q < nn; q++) {
-    ms += w[q] * c->m[nv[q]];
-    for (int a = 0; a < 3; a++) vs[a] += w[q] * c->v[3 * nv[q] + a];
+    ms += wt[q] * c->m[nv[q]];
+    for (int a = 0; a < 3; a++) vs[a] += wt[q] * c->v[3 * nv[q] + a];
   }
   for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * e + a] - vs[a];
   const double rc = fmin(p->radius, c->rad[e]); /* (a particle made from an element: its own radius) */
@@ -136,7 +86,7 @@ static int push(pf_contact *c, int k, int body, pf_int e, const pf_int *nv, int 
   }
   sums[SUM_ENERGY] += 0.5 * p->stiffness * (rc - g) * (rc - g);
   for (int q = 0; q < nn; q++)
-    if (w[q] != 0) PF_CALL(share_push(l, body, c->gid[nv[q]], k, c->gid[e], f, w[q]));
+    if (wt[q] != 0) PF_CALL(share_push(w->shares, body, c->gid[nv[q]], k, c->gid[e], f, wt[q]));
   return 0;
 }
 
@@ -218,22 +168,23 @@ static double held(pf_contact *c, pf_int e, double g, double rc, int fresh) {
   return *o;
 }
 
-/* Entity e (a particle, or an FE node of a pair of FE bodies) against the closest face among its
- * candidates [s, t) of pair k, on the side its body faces. An FE node meets only the faces that
- * face it, whose normal opposes its own (at an edge of the other body the side faces lie in the
- * plane of the node's approach and would hide the face it hits). A face counts an entity behind
+/* Entity e (a particle, or an FE node of a pair of FE bodies: fe_node) against the closest face
+ * among its candidates [s, t) of pair k, on the side its body faces. An FE node meets only the
+ * faces that face it, whose normal opposes its own (at an edge of the other body the side faces
+ * lie in the plane of the node's approach and would hide the face it hits). A face counts an entity behind
  * its plane as inside only when the entity lies over it: one beside a convex edge is behind the
  * plane of the face but outside the body (docs/theory/contact.md sec. 2, 2.4). */
-static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double dt, share_list *l, double *sums) {
+int pf_contact_closest_face(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double dt, pf_contact_eval *ev,
+                            int fe_node, int may_uncover) {
   const pf_contact_pair *p = &c->pair[k];
   const pf_contact_side *sd = pf_contact_facing(p, c->vbody[e]);
   const pf_int *view = c->node_view[sd->body];
   double best = INFINITY, bg = 0, bn[3] = {0, 0, 0}, bw[4] = {0, 0, 0, 0}, ne[3] = {0, 0, 0};
   pf_int bv[4] = {0, 0, 0, 0}, bf = -1;
-  if (p->kind == PF_PAIR_SURFACES) node_normal(c, sd == &p->side[0] ? &p->side[1] : &p->side[0], e, ne);
+  if (fe_node) node_normal(c, sd == &p->side[0] ? &p->side[1] : &p->side[0], e, ne);
   const pf_contact_body *fb = &c->body[sd->body];
   long ndead = 0; /* (the faces' body deletes elements: its erosion flags exist) */
-  const int uncovers = p->kind == PF_PAIR_SURFACE && fb->eroded && fb->eroded(fb->eroded_ctx, &ndead) != NULL;
+  const int uncovers = may_uncover && fb->eroded && fb->eroded(fb->eroded_ctx, &ndead) != NULL;
   for (int64_t q = s; q < t; q++) {
     double x[4][3], cp[3], w[4], n[3], nf[3];
     pf_int nv[4];
@@ -242,7 +193,7 @@ static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double 
     if (best < INFINITY && beyond((const double(*)[3])x, &c->y[3 * e], best)) continue;
     face_normal((const double(*)[3])x, nf);
     const double facing = nf[0] * ne[0] + nf[1] * ne[1] + nf[2] * ne[2];
-    if (facing > 0 || (p->kind == PF_PAIR_SURFACES && facing == 0)) continue;
+    if (facing > 0 || (fe_node && facing == 0)) continue;
     double g = pf_contact_face_closest((const double(*)[3])x, &c->y[3 * e], cp, w, n);
     if (g < 0 && !projects_inside(nf, cp, &c->y[3 * e])) continue;
     /* a face of a body that deletes elements: a particle deeper behind it than its body's spacing
@@ -264,52 +215,46 @@ static int surface(pf_contact *c, int k, pf_int e, int64_t s, int64_t t, double 
   if (uncovers && c->offset)
     bg += held(c, e, best < INFINITY ? bg : INFINITY, fmin(p->radius, c->rad[e]), sd->fresh && bf >= 0 && sd->fresh[bf]);
   if (best == INFINITY || bg >= fmin(p->radius, c->rad[e])) return 0;
-  return push(c, k, sd->body, e, bv, 4, bw, bg, bn, dt, l, sums);
+  return pf_contact_push(c, k, sd->body, e, bv, 4, bw, bg, bn, dt, ev);
 }
 
-/* Node-to-particle: particle e against surface node j. */
-static int node(pf_contact *c, int k, pf_int e, pf_int j, double dt, share_list *l, double *sums) {
-  const pf_contact_pair *p = &c->pair[k];
-  double d[3], r = 0;
-  for (int a = 0; a < 3; a++) d[a] = c->y[3 * e + a] - c->y[3 * j + a], r += d[a] * d[a];
-  r = sqrt(r);
-  if (r >= fmin(p->radius, c->rad[e]) || r == 0) return 0;
-  double n[3] = {d[0] / r, d[1] / r, d[2] / r}, w = 1;
-  return push(c, k, p->a, e, &j, 1, &w, r, n, dt, l, sums);
+/* 1 when entity e's candidates are all of pair k (or it has none). */
+static int only_pair(const pf_contact *c, pf_int e, int k) {
+  const int64_t q0 = c->cand_off[e], q1 = c->cand_off[e + 1];
+  return q0 == q1 || (c->cand[q0].pair == k && c->cand[q1 - 1].pair == k); /* (sorted by pair) */
 }
 
-/* The interactions of the owned particles [e0, e1): their forces (cleared first), the nodes'
- * shares into l, the energy, dissipation and pairs' forces into sums. */
+/* The interactions of the owned entities [e0, e1): their forces (cleared first), the nodes'
+ * shares into l, the energy, dissipation and pairs' forces into sums. An entity's candidates are
+ * sorted by pair: each pair's run goes to the pair's method, and a run of entities whose
+ * candidates are all of one pair goes to it in one call. Entity by entity, pair by pair, as the
+ * calls come: the order of the sums is that of the entities' candidates. */
 static int particle_range(pf_contact *c, pf_int e0, pf_int e1, double dt, share_list *l, double *sums) {
-  int64_t tested = 0, reads = 0;
+  pf_contact_eval w = {sums, l, 0, 0};
   memset(&c->force[3 * e0], 0, sizeof(double) * 3 * (size_t)(e1 - e0));
-  for (pf_int e = e0; e < e1; e++) {
+  for (pf_int e = e0; e < e1;) {
+    if (c->cand_off[e] == c->cand_off[e + 1]) {
+      e++;
+      continue;
+    }
+    const int k0 = c->cand[c->cand_off[e]].pair;
+    if (only_pair(c, e, k0)) {
+      pf_int f = e + 1;
+      while (f < e1 && only_pair(c, f, k0)) f++;
+      PF_CALL(c->pair[k0].method->evaluate(c, k0, e, f, c->cand_off[e], c->cand_off[f], dt, &w));
+      e = f;
+      continue;
+    }
     for (int64_t q = c->cand_off[e]; q < c->cand_off[e + 1];) {
       int k = c->cand[q].pair;
-      pf_contact_pair *p = &c->pair[k];
       int64_t t = q;
       while (t < c->cand_off[e + 1] && c->cand[t].pair == k) t++;
-      if (p->kind == PF_PAIR_SURFACE || p->kind == PF_PAIR_SURFACES) PF_CALL(surface(c, k, e, q, t, dt, l, sums));
-      if (p->kind == PF_PAIR_NODES)
-        for (int64_t s = q; s < t; s++) PF_CALL(node(c, k, e, c->cand[s].j, dt, l, sums));
-      if (p->kind == PF_PAIR_SHORT_RANGE) { /* most candidates are out of reach: test that first */
-        const double ye[3] = {c->y[3 * e], c->y[3 * e + 1], c->y[3 * e + 2]}, r2 = p->radius * p->radius;
-        const pf_family *fam = c->body[c->vbody[e]].fam;
-        const uint8_t *broken = fam ? fam->broken : NULL; /* (a body without bonds: never bonded) */
-        tested += t - q;
-        for (int64_t s = q; s < t; s++) {
-          const pf_int j = c->cand[s].j;
-          const double *yj = &c->y[3 * j];
-          const double d0 = ye[0] - yj[0], d1 = ye[1] - yj[1], d2 = ye[2] - yj[2];
-          if (d0 * d0 + d1 * d1 + d2 * d2 >= r2) continue;
-          const int64_t b = c->cand[s].bond; /* (resolved at the build) */
-          reads += b >= 0 && !p->all_points;
-          if (p->all_points || b < 0 || broken[b]) short_range(c, k, e, j, b, dt, sums);
-        }
-      }
+      PF_CALL(c->pair[k].method->evaluate(c, k, e, e + 1, q, t, dt, &w));
       q = t;
     }
+    e++;
   }
+  const int64_t tested = w.tested, reads = w.reads;
 #if defined(_OPENMP)
 #pragma omp atomic
 #endif

@@ -461,7 +461,7 @@ static int64_t resolve_bonds(const pf_contact *c, const pf_points *pts, pf_int e
   int64_t reads = 0;
   for (int64_t q = 0; q < m;) {
     const int32_t k = v[q].pair;
-    const int mine = c->pair[k].kind == PF_PAIR_SHORT_RANGE && fam;
+    const int mine = c->pair[k].method->bonds && fam;
     int64_t b = row0;
     for (; q < m && v[q].pair == k; q++) {
       pf_candidate *cd = &v[q];
@@ -491,7 +491,7 @@ typedef struct {
 static int kept_candidates(const pf_contact *c, const kept_list *old, pf_int e, int k, int64_t *q, cand_list *l,
                            int64_t *missed) {
   const int64_t q1 = old->off[e + 1];
-  const int views = c->pair[k].kind == PF_PAIR_SHORT_RANGE || c->pair[k].kind == PF_PAIR_NODES; /* (else faces) */
+  const int views = c->pair[k].method->partners == PF_CONTACT_PARTNER_POINTS; /* (else faces) */
   while (*q < q1 && old->cand[*q].pair < k) (*q)++;
   for (; *q < q1 && old->cand[*q].pair == k; (*q)++) {
     pf_candidate x = old->cand[*q];
@@ -518,13 +518,13 @@ static int entity_candidates(const pf_contact *c, const pf_points *pts, const pf
   int64_t q = old ? old->off[e] : 0;
   for (int k = 0; k < c->npairs; k++) {
     const pf_contact_pair *p = &c->pair[k];
-    if ((p->a != b && p->b != b) || (fe && p->kind != PF_PAIR_SURFACES)) continue;
+    if ((p->a != b && p->b != b) || (fe && !p->method->fe_entities)) continue;
     if (!c->stale[k]) {
       PF_CALL(kept_candidates(c, old, e, k, &q, l, missed));
       continue;
     }
     const int64_t s = l->n;
-    if (p->kind == PF_PAIR_SURFACE || p->kind == PF_PAIR_SURFACES) {
+    if (p->method->partners == PF_CONTACT_PARTNER_FACES) {
       const pf_contact_side *sd = pf_contact_facing(p, b);
       PF_CALL(face_candidates(c, &fs[k][sd - p->side], e, k, l));
     } else PF_CALL(point_candidates(c, g, e, k, p->a == b ? p->b : p->a, l));
@@ -627,14 +627,14 @@ static int build_candidates(pf_contact *c, const pf_points *pts, const pf_gid *l
   for (int k = 0; k < c->npairs; k++) cell = fmax(cell, c->pair[k].radius + c->skin);
   int all = 1, points = 0; /* every pair stale; some point pair stale (the bins of the view) */
   for (int k = 0; k < c->npairs; k++)
-    all &= c->stale[k], points |= c->stale[k] && (c->pair[k].kind == PF_PAIR_SHORT_RANGE || c->pair[k].kind == PF_PAIR_NODES);
+    all &= c->stale[k], points |= c->stale[k] && c->pair[k].method->partners == PF_CONTACT_PARTNER_POINTS;
   pf_grid g = {{0, 0, 0}, 0, {0, 0, 0}, NULL, NULL};
   PF_CALL(pf_contact_grid_build(&g, points ? c->nview : 0, c->y, cell));
   face_set(*fs)[2];
   PF_MALLOC(fs, c->npairs);
   int ierr = 0;
   for (int k = 0; k < c->npairs && !ierr; k++)
-    if (c->stale[k] && (c->pair[k].kind == PF_PAIR_SURFACE || c->pair[k].kind == PF_PAIR_SURFACES))
+    if (c->stale[k] && c->pair[k].method->partners == PF_CONTACT_PARTNER_FACES)
       for (int s = 0; s < c->pair[k].nside && !ierr; s++)
         ierr = face_set_build(c, &c->pair[k], &c->pair[k].side[s], &fs[k][s]);
   pf_int *ghost = NULL;
@@ -649,7 +649,7 @@ static int build_candidates(pf_contact *c, const pf_points *pts, const pf_gid *l
     pf_contact_grid_free(&g);
     ierr = pf_contact_grid_build(&g, c->nview, c->y, cell);
     for (int k = 0; k < c->npairs && !ierr; k++)
-      if (c->pair[k].kind == PF_PAIR_SURFACE || c->pair[k].kind == PF_PAIR_SURFACES)
+      if (c->pair[k].method->partners == PF_CONTACT_PARTNER_FACES)
         for (int s = 0; s < c->pair[k].nside && !ierr; s++)
           if (!fs[k][s].face) ierr = face_set_build(c, &c->pair[k], &c->pair[k].side[s], &fs[k][s]);
     if (!ierr) ierr = chunked_candidates(c, pts, &g, (const face_set(*)[2])fs, NULL, &off, &cand, &cap, &missed);
