@@ -80,6 +80,8 @@ int pf_sim_setup_solver(pf_sim *sim) {
   s->load_step = pf_sim_solver_load_step;
   PF_CALL(read_numbers(d, sv, s));
   PF_CALL(check_deck(sim, sv));
+  int idx;
+  PF_CALL(pf_points_field_register(sim->pts, PF_SOLVER_INCREMENT, 3, PF_FIELD_RESTART, &idx));
   sim->nsteps = s->load_steps; /* one step of the time loop per load step */
   sim->dt = sim->final_time / (double)s->load_steps;
   sim->adaptive = 0;

@@ -33,6 +33,10 @@ typedef struct {
   uint8_t *fixed;  /* [3 n] prescribed components */
 } pf_sim_solver;
 
+/* The point field of the last load step's displacement increment (the next load step's predictor;
+ * carried by re-partitions and checkpoints). */
+#define PF_SOLVER_INCREMENT "load_step_increment"
+
 /* sim/solver.c: the `solver:` keys; read the section (after the time and output set-up: the
  * load steps replace time.dt and the step count, history rows come at every load step unless
  * output.history_interval says otherwise); refuse decks the quasi-static solver cannot run (no

@@ -173,14 +173,25 @@ static int begin(pf_sim *sim) {
   return 0;
 }
 
+/* The predictor: the free components move by the last load step's increment (exact for a linear
+ * response to a load proportional to t; nothing at the first load step). */
+static void predict(pf_sim *sim) {
+  pf_sim_solver *s = &sim->solver;
+  pf_points *p = sim->pts;
+  const double *inc = pf_points_field_get(p, PF_SOLVER_INCREMENT);
+  for (pf_int d = 0; d < 3 * p->n_owned; d++)
+    if (is_free(s, d)) p->u[d] += inc[d], p->y[d] = p->X[d] + p->u[d];
+}
+
 /* The load step's end: the work of the reactions and loads over it into each body's external
- * work by the trapezoidal rule, (g0 + g1) / 2 . (u1 - u0); the points at rest. */
+ * work by the trapezoidal rule, (g0 + g1) / 2 . (u1 - u0); the increment kept; the points at rest. */
 static void finish(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
-  double w[PF_MAX_BODIES] = {0};
+  double w[PF_MAX_BODIES] = {0}, *inc = pf_points_field_get(p, PF_SOLVER_INCREMENT);
   for (pf_int d = 0; d < 3 * p->n_owned; d++) {
     w[p->body[d / 3]] += 0.5 * (s->g0[d] + applied(s, p, d)) * (p->u[d] - s->u0[d]);
+    inc[d] = p->u[d] - s->u0[d];
     p->v[d] = 0;
   }
   for (int b = 0; b < sim->nbodies; b++) pf_ledger_add(&sim->ledger, sim->acc.body_work[b], w[b]);
@@ -201,6 +212,7 @@ int pf_sim_solver_load_step(pf_sim *sim) {
   sim->step++;
   sim->t = (double)sim->step / (double)s->load_steps * sim->final_time;
   pf_sim_interactions_place(sim, sim->dt);
+  predict(sim);
   long it = 0;
   double res = 0;
   PF_CALL(relax(sim, &it, &res));
