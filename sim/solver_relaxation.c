@@ -49,7 +49,8 @@ int pf_sim_solver_sums(const double *x, pf_int n, int m, double *out) {
   for (int j = 0; j < m; j++) {
     if (!(mx[j] > 0) || !isfinite(mx[j])) continue;
     frexp(mx[j], &e[j]); /* mx < 2^e */
-    for (pf_int d = 0; d < n; d++) q[j] += (int64_t)llrint(ldexp(x[(size_t)j * n + d], bits - e[j]));
+    const double scale = ldexp(1.0, bits - e[j]); /* (a power of 2: x scale is exact) */
+    for (pf_int d = 0; d < n; d++) q[j] += (int64_t)llrint(x[(size_t)j * n + d] * scale);
   }
   PF_CHECK(MPI_Allreduce(MPI_IN_PLACE, q, m, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD) == MPI_SUCCESS, PF_ERR_LIB,
            "MPI_Allreduce failed in the quasi-static solver");
