@@ -212,3 +212,17 @@ void pf_bc_apply_force(pf_bc *bc, pf_points *pts, double t, double dt, double *w
     }
   }
 }
+
+void pf_bc_apply_static(const pf_bc *bc, pf_points *pts, double t, double dt) {
+  if (bc->kind == BC_BODY_FORCE) return;
+  for (pf_int k = 0; k < bc->n; k++) {
+    const pf_int i = bc->points[k];
+    const double *x = &pts->X[3 * i];
+    for (int c = 0; c < 3; c++) {
+      if (!bc->e[c]) continue;
+      if (bc->kind == BC_DISPLACEMENT) pts->u[3 * i + c] = pf_expr_eval(bc->e[c], x[0], x[1], x[2], t);
+      else pts->u[3 * i + c] += dt * pf_expr_eval(bc->e[c], x[0], x[1], x[2], t - 0.5 * dt);
+      pts->y[3 * i + c] = x[c] + pts->u[3 * i + c];
+    }
+  }
+}

@@ -551,6 +551,11 @@ void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t, double dt, double 
 void pf_bc_apply_force(pf_bc *bc, pf_points *pts, double t, double dt, double *work);
 /* Set mask[3 i + c] = 1 for every component c of owned point i the condition prescribes. */
 void pf_bc_mark(const pf_bc *bc, uint8_t *mask);
+/* Quasi-static loading (sim/solver_relaxation.c): put the prescribed components of the selected
+ * owned points at their values at pseudo-time t, u = g(X, t) for a displacement and
+ * u += dt v(X, t - dt/2) for a velocity over the load step dt (y follows); a body force does
+ * nothing here (its force hook adds it). */
+void pf_bc_apply_static(const pf_bc *bc, pf_points *pts, double t, double dt);
 
 /* ---- tables of global rows (core/table.c) ------------------------------------------- */
 /* Rows of a global [total][ncomp] table, each rank holding some of them (row id[k] is data[k]):

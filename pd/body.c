@@ -687,6 +687,13 @@ double pf_pd_body_stable_dt(const pf_pd_body *b, const pf_points *pts) {
   return dt;
 }
 
+double pf_pd_body_stiffness_bound(const pf_pd_body *b, const pf_points *pts, pf_int i) {
+  const double h = b->hz[i];
+  const double c = b->ops->micromodulus ? b->ops->micromodulus(b, h) : pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, h);
+  const double dt = pf_pd_stable_dt_point(b, pts, i, c);
+  return isfinite(dt) ? 4 * pts->m[i] / (dt * dt) : 0;
+}
+
 int pf_pd_lost_volume_fields(pf_pd_body *b, pf_points *pts, double **mom) {
   int il, im;
   PF_CALL(pf_points_field_register(pts, "lost_weighted_volume", 1, PF_FIELD_RESTART, &il));

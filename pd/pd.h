@@ -209,5 +209,10 @@ double pf_pd_body_bond_rate(const pf_pd_body *b);
 /* Stable step of store point i of body b: sqrt(2 rho / sum_j V_j c omega / |xi|) over its own
  * family (Silling & Askari 2005, eq. 15 with the Peridigm form). */
 double pf_pd_stable_dt_point(const pf_pd_body *b, const pf_points *pts, pf_int i, double c);
+/* The Gershgorin bound of store point i's block row of the linearised stiffness, N/m:
+ * sum_j |K_ij| <= 2 V_i sum_j V_j c omega / |xi| = 4 m_i / dt_i^2 with dt_i the point's stable step
+ * above, c the micromodulus of its horizon (for LPS and correspondence the PMB-equivalent of the
+ * body's bulk modulus; 0 for a point without bonds). */
+double pf_pd_body_stiffness_bound(const pf_pd_body *b, const pf_points *pts, pf_int i);
 
 #endif

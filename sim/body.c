@@ -2,6 +2,8 @@
  * tests a body's op for NULL. */
 #include "sim/body.h"
 
+#include <math.h>
+
 int pf_body_always(const void *data) {
   (void)data;
   return 1;
@@ -62,4 +64,16 @@ pf_pd_body *pf_body_as_pd(const pf_body *b) { return b->ops->as_pd ? b->ops->as_
 struct pf_fem_body *pf_body_as_fem(const pf_body *b) { return b->ops->as_fem ? b->ops->as_fem(b->data) : NULL; }
 struct pf_fem_particles *pf_body_as_particles(const pf_body *b) {
   return b->ops->as_particles ? b->ops->as_particles(b->data) : NULL;
+}
+
+/* The default: an explicit operator is stable for dt < 2 / omega_max, so a body whose stable step
+ * is dt_b has omega_max^2 = K_i / m_i <= 4 / dt_b^2 at each point: K_i ~ 4 m_i / dt_b^2. */
+int pf_body_stiffness_bounds(const pf_body *b, const pf_points *pts, pf_int first, pf_int n, double *k) {
+  if (b->ops->stiffness_bound) {
+    for (pf_int i = 0; i < n; i++) k[i] = b->ops->stiffness_bound(b->data, pts, first + i);
+    return 0;
+  }
+  const double dt = pf_min_all(b->ops->stable_dt(b->data, pts));
+  for (pf_int i = 0; i < n; i++) k[i] = isfinite(dt) && dt > 0 ? 4 * pts->m[first + i] / (dt * dt) : 0;
+  return 0;
 }

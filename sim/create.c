@@ -61,6 +61,7 @@ const pf_key pf_deck_keys[] = {
     {"output", PF_KEY_MAP, 0, NULL, "", "output files and intervals", output_keys},
     {"parallel", PF_KEY_MAP, 0, NULL, "", "domain decomposition over MPI ranks", pf_parallel_keys},
     {"restart", PF_KEY_MAP, 0, NULL, "", "checkpoints for restart", pf_restart_keys},
+    {"solver", PF_KEY_MAP, 0, NULL, "", "explicit dynamics (the default) or quasi-static loading (docs/theory/quasi_static.md)", pf_sim_solver_keys},
     PF_KEY_END};
 
 /* Each material against the table of its kind, chosen by its model. */
@@ -263,6 +264,7 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   PF_CALL(pf_sim_interactions_build(sim));
   PF_CALL(pf_sim_setup_time(sim));
   PF_CALL(pf_sim_setup_output(sim));
+  PF_CALL(pf_sim_setup_solver(sim));
   PF_CALL(pf_sim_accounts_open(sim));
   PF_CALL(pf_sim_setup_restart(sim));
   if (sim->opt.restart_from) PF_CALL(pf_sim_restore_state(sim)); /* (renames the outputs) */
@@ -307,6 +309,7 @@ int pf_sim_destroy(pf_sim **s) {
   pf_sim_restart_free(sim);
   pf_sim_guard_free(sim);
   pf_sim_run_free(sim);
+  pf_sim_solver_free(sim);
   pf_deck_destroy(&sim->deck);
   PF_FREE(*s);
   return 0;

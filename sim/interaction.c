@@ -59,6 +59,12 @@ void pf_sim_interactions_after_drift(pf_sim *sim, double dt) {
     if (sim->inter[k].ops->after_drift) sim->inter[k].ops->after_drift(sim->inter[k].data, &s);
 }
 
+void pf_sim_interactions_place(pf_sim *sim, double dt) {
+  const pf_interaction_step s = step_of(sim, dt);
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->place) sim->inter[k].ops->place(sim->inter[k].data, &s);
+}
+
 static int nsums(const pf_interaction *x) { return x->ops->nsums ? x->ops->nsums(x->data) : 0; }
 
 /* Each interaction's forces and its part of the sums, one reduction for all, then each takes its

@@ -47,6 +47,9 @@ typedef struct {
   int (*force)(void *data, const pf_interaction_step *s, double *sums);
   void (*take_sums)(void *data, const pf_interaction_step *s, const double *sums);
   void (*endstep)(void *data, const pf_interaction_step *s);
+  /* Quasi-static loading (sim/solver_relaxation.c): put the components it prescribes at their
+   * values at s->t, s->dt the load step [nothing]. */
+  void (*place)(void *data, const pf_interaction_step *s);
   /* The stable step its penalties allow; collective [INFINITY]. */
   double (*stable_dt)(const void *data, const pf_points *pts);
   /* Checkpoint state besides the ledger's accounts (a surface's position): count, names
@@ -98,6 +101,7 @@ void pf_sim_interactions_after_drift(pf_sim *sim, double dt);
  * dt: the step just taken. Collective. */
 int pf_sim_interactions_force(pf_sim *sim, double dt);
 void pf_sim_interactions_endstep(pf_sim *sim, double dt);
+void pf_sim_interactions_place(pf_sim *sim, double dt);
 double pf_sim_interactions_stable_dt(const pf_sim *sim);
 int pf_sim_interactions_nstate(const pf_sim *sim);
 void pf_sim_interactions_state_names(const pf_sim *sim, char (*names)[96]);

@@ -84,6 +84,10 @@ static void endstep(void *data, const pf_interaction_step *s) {
   pf_ledger_set(s->ledger, x->reaction, step);
 }
 
+static void place(void *data, const pf_interaction_step *s) {
+  pf_bc_apply_static(((condition *)data)->bc, s->pts, s->t, s->dt);
+}
+
 static const char *name(const void *data) { return pf_bc_name(((const condition *)data)->bc); }
 
 const pf_interaction_ops pf_interaction_kind_condition = {
@@ -96,5 +100,6 @@ const pf_interaction_ops pf_interaction_kind_condition = {
     .midstep = midstep,
     .force = force,
     .endstep = endstep,
+    .place = place,
     .name = name,
 };

@@ -73,6 +73,7 @@ static void summary(pf_sim *sim, double wall) {
              sim->body_name[b], pf_fem_particles_count(pf_body_as_particles(body)), pf_sim_total(sim, T->conversion));
   }
   pf_sim_interactions_summary(sim);
+  pf_sim_solver_summary(sim);
   /* the set-up's peak resident memory, and the run's: resident at the end of the time loop, or
    * the process's peak when the run raised it above the set-up's */
   const double peak = pf_memory_peak(), setup = pf_max_all(sim->rss_setup), before = pf_max_all(sim->rss0);

@@ -8,6 +8,7 @@
 #include "sim/interaction.h"
 #include "sim/ledger.h"
 #include "sim/sim.h"
+#include "sim/solver.h"
 
 #define PF_MAX_BODIES 64
 
@@ -133,6 +134,7 @@ struct pf_sim {
   long good_step;
   pf_sim_health health; /* run-health monitor (sim/health.c) */
   struct pf_sim_run *run; /* the time loop between calls (sim/run.c); NULL until it starts */
+  pf_sim_solver solver;   /* explicit dynamics or quasi-static loading (sim/solver.h) */
 };
 
 /* sim/convert.c: link each particles body to the FE body it names (before the clouds); at a
@@ -145,6 +147,9 @@ int pf_sim_converts(const pf_sim *sim);
 /* sim/step.c: recompute the fixed part of the stable step (PD bodies, contact penalties) from the
  * current masses, after conversions changed them or a restart restored them. Collective. */
 int pf_sim_refresh_fixed_step(pf_sim *sim);
+/* sim/step.c: the bodies' forces at the current positions into f (the ghosts exchanged, the failed
+ * bonds' energy booked; the interactions' come after, pf_sim_interactions_force). Collective. */
+int pf_sim_body_forces(pf_sim *sim, double dt);
 extern const pf_key pf_parallel_keys[];
 int pf_sim_setup_parallel(pf_sim *sim);
 /* sim/output.c: output.fields, precision and compression, checked against the output fields. */

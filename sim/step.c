@@ -119,10 +119,9 @@ static int previous_positions(pf_points *p, double **yp) {
   return 0;
 }
 
-/* Forces at the current positions: the bodies', then the interactions'; dt is the step just
- * taken (0 for the initial forces: no time has passed, so the element stresses must not
- * advance). */
-static int compute_forces(pf_sim *sim, double dt) {
+/* The bodies' forces at the current positions (f set to them); dt is the step just taken (0 for
+ * the initial forces: no time has passed, so the element stresses must not advance). */
+int pf_sim_body_forces(pf_sim *sim, double dt) {
   pf_points *p = sim->pts;
   double *yp;
   PF_CALL(pf_points_exchange_positions(p)); /* the ghosts' u and y */
@@ -135,6 +134,12 @@ static int compute_forces(pf_sim *sim, double dt) {
     PF_CALL(sim->body[b].ops->force(sim->body[b].data, p, dt, sim->t, sim->step, &sim->guard_tripped));
   memcpy(yp, p->y, sizeof(double) * 3 * (size_t)p->n_total); /* (the ghosts' as exchanged) */
   pf_sim_accounts_book_damage(sim); /* the stored energy failed bonds took */
+  return 0;
+}
+
+/* Forces at the current positions: the bodies', then the interactions'. */
+static int compute_forces(pf_sim *sim, double dt) {
+  PF_CALL(pf_sim_body_forces(sim, dt));
   return pf_sim_interactions_force(sim, dt);
 }
 
@@ -163,7 +168,7 @@ static int one_step(pf_sim *sim) {
 
 int pf_sim_step(pf_sim *sim, long n) {
   if (sim->step == 0 && sim->t == 0) PF_CALL(compute_forces(sim, 0.0));
-  for (long s = 0; s < n; s++) PF_CALL(one_step(sim));
+  for (long s = 0; s < n; s++) PF_CALL(sim->solver.load_step ? sim->solver.load_step(sim) : one_step(sim));
   return 0;
 }
 

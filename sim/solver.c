@@ -1,0 +1,109 @@
+/* The `solver:` section (sim/solver.h): explicit dynamics by default, or quasi-static loading by
+ * adaptive dynamic relaxation. Reads and checks the keys, and what a quasi-static run needs of the
+ * rest of the deck; the load steps take the place of the time steps. */
+#include "sim/sim_impl.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+const pf_key pf_sim_solver_keys[] = {
+    {"type", PF_KEY_STRING, 0, "explicit", "",
+     "explicit (velocity-Verlet dynamics) | quasi_static (load steps relaxed to equilibrium by adaptive "
+     "dynamic relaxation; docs/theory/quasi_static.md)", NULL},
+    {"load_steps", PF_KEY_INT, 0, "10", "",
+     "quasi_static: load steps N; load step k applies the boundary conditions at t = k / N time.final_time", NULL},
+    {"tolerance", PF_KEY_REAL, 0, "1e-6", "",
+     "quasi_static: a load step has converged when the out-of-balance force on the free components (2-norm) "
+     "is below tolerance x the reference force (the reactions' and loads' 2-norm, else the internal forces')",
+     NULL},
+    {"max_iterations", PF_KEY_INT, 0, "100000", "",
+     "quasi_static: relaxation iterations allowed per load step (one force evaluation each); a load step "
+     "that has not converged then stops the run with an error", NULL},
+    PF_KEY_END};
+
+/* Deck sections the first quasi-static solver does not take: the first one given, or NULL. */
+static const char *unsupported(const pf_node *root, const pf_node **where) {
+  static const char *const keys[] = {"contact", "walls", "indenters"};
+  for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
+    if ((*where = pf_node_get(root, keys[k]))) return keys[k];
+  return NULL;
+}
+
+/* What a quasi-static run needs of the rest of the deck. */
+static int check_deck(const pf_sim *sim, const pf_node *sv) {
+  const pf_deck *d = sim->deck;
+  const pf_node *root = pf_deck_root(d), *n;
+  if (pf_node_count(pf_node_get(root, "boundary_conditions")) == 0)
+    return pf_deck_error(d, pf_node_get(sv, "type"), "type",
+                         "a quasi_static solver needs a load: give boundary_conditions (displacement, velocity or "
+                         "body_force)");
+  const char *what = unsupported(root, &n);
+  if (what)
+    return pf_deck_error(d, n, what, "'%s' is not yet supported with the quasi_static solver", what);
+  const pf_node *bodies = pf_node_get(root, "bodies");
+  for (int b = 0; b < pf_node_count(bodies); b++)
+    if ((n = pf_node_get(pf_node_item(bodies, b), "initial_velocity")))
+      return pf_deck_error(d, n, "initial_velocity",
+                           "a quasi_static solver starts at rest: remove the initial velocity of body '%s'",
+                           sim->body_name[b]);
+  if (!pf_node_get(pf_node_get(root, "time"), "final_time"))
+    return pf_deck_error(d, pf_node_get(root, "time"), "final_time",
+                         "a quasi_static solver needs time.final_time: the pseudo-time of the last load step");
+  return 0;
+}
+
+static int read_numbers(const pf_deck *d, const pf_node *sv, pf_sim_solver *s) {
+  PF_CALL(pf_deck_int(d, sv, "load_steps", &s->load_steps));
+  PF_CALL(pf_deck_real(d, sv, "tolerance", &s->tolerance));
+  PF_CALL(pf_deck_int(d, sv, "max_iterations", &s->max_iterations));
+  if (s->load_steps < 1)
+    return pf_deck_error(d, pf_node_get(sv, "load_steps"), "load_steps", "must be at least 1 (got %ld)", s->load_steps);
+  if (!(s->tolerance > 0 && s->tolerance < 1))
+    return pf_deck_error(d, pf_node_get(sv, "tolerance"), "tolerance", "must be in (0, 1) (got %g)", s->tolerance);
+  if (s->max_iterations < 1)
+    return pf_deck_error(d, pf_node_get(sv, "max_iterations"), "max_iterations", "must be at least 1 (got %ld)",
+                         s->max_iterations);
+  return 0;
+}
+
+int pf_sim_setup_solver(pf_sim *sim) {
+  const pf_deck *d = sim->deck;
+  const pf_node *root = pf_deck_root(d), *sv = pf_node_get(root, "solver");
+  pf_sim_solver *s = &sim->solver;
+  *s = (pf_sim_solver){.type = PF_SOLVER_EXPLICIT, .load_steps = 10, .tolerance = 1e-6, .max_iterations = 100000};
+  const char *chosen = "explicit";
+  PF_CALL(pf_deck_string(d, sv, "type", &chosen));
+  if (!strcmp(chosen, "explicit")) return 0;
+  if (strcmp(chosen, "quasi_static"))
+    return pf_deck_error(d, pf_node_get(sv, "type"), "type", "explicit or quasi_static (got '%s')", chosen);
+  s->type = PF_SOLVER_QUASI_STATIC;
+  s->load_step = pf_sim_solver_load_step;
+  PF_CALL(read_numbers(d, sv, s));
+  PF_CALL(check_deck(sim, sv));
+  int idx;
+  PF_CALL(pf_points_field_register(sim->pts, PF_SOLVER_INCREMENT, 3, PF_FIELD_RESTART, &idx));
+  sim->nsteps = s->load_steps; /* one step of the time loop per load step */
+  sim->dt = sim->final_time / (double)s->load_steps;
+  sim->adaptive = 0;
+  if (!pf_node_get(pf_node_get(root, "output"), "history_interval")) sim->history_interval = 1;
+  pf_log("solver: quasi-static, %ld load steps of %g s (pseudo-time), tolerance %g, at most %ld iterations each\n",
+         s->load_steps, sim->dt, s->tolerance, s->max_iterations);
+  return 0;
+}
+
+void pf_sim_solver_summary(const pf_sim *sim) {
+  const pf_sim_solver *s = &sim->solver;
+  if (s->type != PF_SOLVER_QUASI_STATIC) return;
+  pf_log("  quasi-static: %ld load steps, %ld relaxation iterations, %ld force evaluations in %.2f s\n",
+         s->load_steps, s->iterations, s->evaluations, s->wall);
+}
+
+void pf_sim_solver_free(pf_sim *sim) {
+  pf_sim_solver *s = &sim->solver;
+  free(s->lambda), free(s->vel), free(s->f_old), free(s->u_last), free(s->f_body), free(s->u0), free(s->g0);
+  free(s->fixed), free(s->terms);
+  s->terms = NULL;
+  s->lambda = s->vel = s->f_old = s->u_last = s->f_body = s->u0 = s->g0 = NULL;
+  s->fixed = NULL;
+  s->n = 0;
+}

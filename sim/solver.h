@@ -1,0 +1,60 @@
+/* The solver the deck selects (`solver:`): explicit dynamics (velocity Verlet, sim/step.c; the
+ * default) or quasi-static loading by adaptive dynamic relaxation (sim/solver_relaxation.c; docs/
+ * theory/quasi_static.md). The quasi-static solver takes a "step" of the time loop as one load
+ * step: the boundary conditions at pseudo-time t_k = k / N final_time, relaxed to equilibrium over
+ * the same force evaluation as the explicit step. Private to sim/. */
+#ifndef PF_SIM_SOLVER_H
+#define PF_SIM_SOLVER_H
+
+#include "core/core.h"
+#include "sim/sim.h"
+
+enum { PF_SOLVER_SUMS = 6 }; /* the sums of an iteration (sim/solver_relaxation.c) */
+typedef enum { PF_SOLVER_EXPLICIT, PF_SOLVER_QUASI_STATIC } pf_solver_type;
+
+typedef struct {
+  pf_solver_type type;
+  int (*load_step)(pf_sim *sim); /* the step the time loop takes (NULL: the explicit one, sim/step.c) */
+  long load_steps;     /* N */
+  double tolerance;    /* the residual relative to the reference force at convergence */
+  long max_iterations; /* per load step */
+  /* what the run did: iterations and force evaluations over every load step */
+  long iterations, evaluations;
+  double wall; /* seconds in the load steps */
+  /* the load step's scratch, [3 n] each over the owned points (n: as allocated) */
+  pf_int n;
+  double *lambda;  /* [n] fictitious mass per point (Kilic & Madenci 2010), kg s^-2 x (1 s)^2 */
+  double *vel;     /* the relaxation's velocity u-dot^(n-1/2), m per iteration */
+  double *f_old;   /* F^(n-1), the force of the previous iteration */
+  double *u_last;  /* u at the last force evaluation (the bodies read v = u - u_last, dt = 1) */
+  double *f_body;  /* the bodies' part of the last evaluation (the rest is the loads') */
+  double *u0, *g0; /* u and the applied force (reaction or load) at the load step's start */
+  double *terms;   /* [PF_SOLVER_SUMS 3 n] each iteration's terms of its sums */
+  uint8_t *fixed;  /* [3 n] prescribed components */
+} pf_sim_solver;
+
+/* The point field of the last load step's displacement increment (the next load step's predictor;
+ * carried by re-partitions and checkpoints). */
+#define PF_SOLVER_INCREMENT "load_step_increment"
+
+/* sim/solver.c: the `solver:` keys; read the section (after the time and output set-up: the
+ * load steps replace time.dt and the step count, history rows come at every load step unless
+ * output.history_interval says otherwise); refuse decks the quasi-static solver cannot run (no
+ * boundary condition, an initial velocity, contact, walls or indenters) as input errors naming
+ * file:line and key; the summary line; free the scratch. */
+extern const pf_key pf_sim_solver_keys[];
+int pf_sim_setup_solver(pf_sim *sim);
+void pf_sim_solver_summary(const pf_sim *sim);
+void pf_sim_solver_free(pf_sim *sim);
+/* sim/solver_relaxation.c: one load step (the time loop's step when the solver is quasi-static):
+ * t and step advance by one load step, the state relaxed to equilibrium; a load step that does
+ * not converge in max_iterations is a run error naming it, the residual and the iterations.
+ * Collective. */
+int pf_sim_solver_load_step(pf_sim *sim);
+/* A sum over every rank's terms x[0 .. n-1] that does not depend on how the terms are spread
+ * over the ranks (each term rounded to a grid fixed by the largest |x| over the ranks, the
+ * integers summed): the same bits on any number of ranks. m sums at once: x[j n .. j n + n-1]
+ * into out[j]. Collective. */
+int pf_sim_solver_sums(const double *x, pf_int n, int m, double *out);
+
+#endif

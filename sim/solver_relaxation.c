@@ -1,0 +1,226 @@
+/* One load step of the quasi-static solver by adaptive dynamic relaxation (Underwood 1983; Kilic &
+ * Madenci 2010; docs/theory/quasi_static.md). With the fictitious time step 1 and a diagonal
+ * fictitious mass lambda_i >= (1/4) sum_j |K_ij| (Gershgorin, from the bodies' stiffness bounds):
+ *   u-dot^(1/2)   = F^0 / (2 lambda)
+ *   u^(n+1)       = u^n + u-dot^(n+1/2)
+ *   u-dot^(n+1/2) = ((2 - c^n) u-dot^(n-1/2) + 2 F^n / lambda) / (2 + c^n)
+ *   c^n = 2 sqrt(u^T 1K u / u^T u),  1K_ii = -(F_i^n - F_i^(n-1)) / (lambda_i u-dot_i^(n-1/2))
+ * over the free components; F is the force of the explicit step (bodies, then the loads), the
+ * bodies reading the iteration's increment as their velocity over a step of 1. Every sum is
+ * taken by pf_sim_solver_sums, so the iterations are the same on any number of ranks. */
+#include "sim/sim_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { S_RESIDUAL, S_REFERENCE, S_INTERNAL, S_UKU, S_UU, S_TRIPPED }; /* the sums (PF_SOLVER_SUMS) */
+
+static int scratch(pf_sim_solver *s, pf_int n) {
+  if (s->n == n && s->lambda) return 0;
+  free(s->lambda), free(s->vel), free(s->f_old), free(s->u_last), free(s->f_body), free(s->u0), free(s->g0);
+  free(s->fixed), free(s->terms);
+  const size_t n3 = 3 * (size_t)n + 1;
+  s->lambda = calloc((size_t)n + 1, sizeof(double));
+  s->vel = calloc(n3, sizeof(double)), s->f_old = calloc(n3, sizeof(double));
+  s->u_last = calloc(n3, sizeof(double)), s->f_body = calloc(n3, sizeof(double));
+  s->u0 = calloc(n3, sizeof(double)), s->g0 = calloc(n3, sizeof(double));
+  s->terms = calloc(PF_SOLVER_SUMS * n3, sizeof(double));
+  s->fixed = calloc(n3, 1);
+  s->n = n;
+  PF_CHECK(s->lambda && s->vel && s->f_old && s->u_last && s->f_body && s->u0 && s->g0 && s->terms && s->fixed,
+           PF_ERR_MEMORY, "out of memory for the quasi-static solver's arrays (%" PF_INT_FMT " points)", n);
+  return 0;
+}
+
+int pf_sim_solver_sums(const double *x, pf_int n, int m, double *out) {
+  double mx[PF_SOLVER_SUMS + 1] = {0};
+  for (int j = 0; j < m; j++)
+    for (pf_int d = 0; d < n; d++) mx[j] = fmax(mx[j], fabs(x[(size_t)j * n + d])); /* (NaN: dropped) */
+  for (int j = 0; j < m; j++)
+    for (pf_int d = 0; d < n; d++)
+      if (!isfinite(x[(size_t)j * n + d])) mx[j] = INFINITY;
+  mx[m] = (double)n;
+  PF_CHECK(MPI_Allreduce(MPI_IN_PLACE, mx, m + 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS, PF_ERR_LIB,
+           "MPI_Allreduce failed in the quasi-static solver");
+  const int bits = 61 - (int)ceil(log2(mx[m] * pf_comm_size() + 2)); /* room for every rank's terms */
+  int64_t q[PF_SOLVER_SUMS] = {0};
+  int e[PF_SOLVER_SUMS] = {0};
+  for (int j = 0; j < m; j++) {
+    if (!(mx[j] > 0) || !isfinite(mx[j])) continue;
+    frexp(mx[j], &e[j]); /* mx < 2^e */
+    const double scale = ldexp(1.0, bits - e[j]); /* (a power of 2: x scale is exact) */
+    for (pf_int d = 0; d < n; d++) q[j] += (int64_t)llrint(x[(size_t)j * n + d] * scale);
+  }
+  PF_CHECK(MPI_Allreduce(MPI_IN_PLACE, q, m, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD) == MPI_SUCCESS, PF_ERR_LIB,
+           "MPI_Allreduce failed in the quasi-static solver");
+  for (int j = 0; j < m; j++) out[j] = isfinite(mx[j]) ? ldexp((double)q[j], e[j] - bits) : NAN;
+  return 0;
+}
+
+static int is_free(const pf_sim_solver *s, pf_int d) { return !s->fixed[d] && s->lambda[d / 3] > 0; }
+
+/* The fictitious masses: lambda_i = k_i / (4 safety^2), k_i the point's stiffness bound. */
+static int masses(pf_sim *sim) {
+  pf_sim_solver *s = &sim->solver;
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_int first = sim->body_start[b];
+    PF_CALL(pf_body_stiffness_bounds(&sim->body[b], sim->pts, first, sim->body_start[b + 1] - first, &s->lambda[first]));
+  }
+  for (pf_int i = 0; i < sim->pts->n_owned; i++) s->lambda[i] /= 4 * sim->safety * sim->safety;
+  return 0;
+}
+
+/* Forces at the current positions: the bodies' (read the increment since the last evaluation as
+ * their velocity over a step of 1), then the loads' (dt 0: no work booked here). */
+static int evaluate(pf_sim *sim) {
+  pf_sim_solver *s = &sim->solver;
+  pf_points *p = sim->pts;
+  const pf_int n3 = 3 * p->n_owned;
+  for (pf_int d = 0; d < n3; d++) p->v[d] = p->u[d] - s->u_last[d];
+  PF_CALL(pf_sim_body_forces(sim, 1.0));
+  memcpy(s->f_body, p->f, sizeof(double) * (size_t)n3);
+  PF_CALL(pf_sim_interactions_force(sim, 0.0));
+  memcpy(s->u_last, p->u, sizeof(double) * (size_t)n3);
+  s->evaluations++;
+  return 0;
+}
+
+/* The force from outside on component d: the reaction on a prescribed one, the load on a free one. */
+static double applied(const pf_sim_solver *s, const pf_points *p, pf_int d) {
+  return s->fixed[d] ? -p->f[d] : p->f[d] - s->f_body[d];
+}
+
+/* The iteration's sums: the residual, the reference force and the internal forces (squared
+ * 2-norms), u^T 1K u and u^T u of the damping coefficient, and whether a body tripped. */
+static int measure(pf_sim *sim, double *q) {
+  pf_sim_solver *s = &sim->solver;
+  const pf_points *p = sim->pts;
+  const pf_int n3 = 3 * p->n_owned;
+  double *t = s->terms;
+  for (pf_int d = 0; d < n3; d++) {
+    const int fr = is_free(s, d);
+    const double g = applied(s, p, d), u = p->u[d], dv = s->vel[d] * s->lambda[d / 3];
+    t[S_RESIDUAL * n3 + d] = fr ? p->f[d] * p->f[d] : 0;
+    t[S_REFERENCE * n3 + d] = g * g;
+    t[S_INTERNAL * n3 + d] = s->f_body[d] * s->f_body[d];
+    t[S_UKU * n3 + d] = fr && dv != 0 ? -u * u * (p->f[d] - s->f_old[d]) / dv : 0;
+    t[S_UU * n3 + d] = fr ? u * u : 0;
+    t[S_TRIPPED * n3 + d] = d == 0 ? sim->guard_tripped : 0;
+  }
+  return pf_sim_solver_sums(t, n3, PF_SOLVER_SUMS, q);
+}
+
+/* The residual relative to the reference force (the loads' and reactions', else the internal). */
+static double relative_residual(const double *q) {
+  const double ref = q[S_REFERENCE] > 0 ? q[S_REFERENCE] : q[S_INTERNAL];
+  return q[S_RESIDUAL] > 0 ? sqrt(q[S_RESIDUAL] / ref) : 0;
+}
+
+/* The next relaxation velocity of the free components (first: u-dot^(1/2)), then u moves by it. */
+static void advance(pf_sim *sim, const double *q, int first) {
+  pf_sim_solver *s = &sim->solver;
+  pf_points *p = sim->pts;
+  const double r = q[S_UU] > 0 ? q[S_UKU] / q[S_UU] : 0;
+  const double c = first || !(r > 0) ? 0 : fmin(2 * sqrt(r), 2.0);
+  for (pf_int d = 0; d < 3 * p->n_owned; d++) {
+    if (!is_free(s, d)) continue;
+    const double a = p->f[d] / s->lambda[d / 3];
+    s->vel[d] = first ? 0.5 * a : ((2 - c) * s->vel[d] + 2 * a) / (2 + c);
+    s->f_old[d] = p->f[d];
+    p->u[d] += s->vel[d];
+    p->y[d] = p->X[d] + p->u[d];
+  }
+}
+
+static int not_converged(const pf_sim *sim, long it, double res) {
+  return pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+                        "quasi-static load step %ld of %ld (t = %g s) did not converge: the residual is %.3e of the "
+                        "reference force after %ld iterations (solver.tolerance %g, solver.max_iterations %ld)",
+                        sim->step, sim->solver.load_steps, sim->t, res, it, sim->solver.tolerance,
+                        sim->solver.max_iterations);
+}
+
+/* Relax the load step's state to equilibrium: *it iterations, *res the relative residual. */
+static int relax(pf_sim *sim, long *it, double *res) {
+  pf_sim_solver *s = &sim->solver;
+  double q[PF_SOLVER_SUMS];
+  memset(s->vel, 0, sizeof(double) * 3 * (size_t)sim->pts->n_owned);
+  PF_CALL(evaluate(sim));
+  PF_CALL(measure(sim, q));
+  for (*it = 0;; ++*it) {
+    *res = relative_residual(q);
+    if (q[S_TRIPPED] > 0 || !isfinite(*res)) return 0; /* the guard check names it */
+    if (*res <= s->tolerance) return 0;
+    if (*it == s->max_iterations) return not_converged(sim, *it, *res);
+    advance(sim, q, *it == 0);
+    PF_CALL(evaluate(sim));
+    PF_CALL(measure(sim, q));
+  }
+}
+
+/* The load step's start: scratch, prescribed components, masses, the forces at the state reached
+ * (their applied part g0 and u0 for the work). */
+static int begin(pf_sim *sim) {
+  pf_sim_solver *s = &sim->solver;
+  pf_points *p = sim->pts;
+  PF_CALL(scratch(s, p->n_owned));
+  memset(s->fixed, 0, 3 * (size_t)p->n_owned);
+  pf_sim_interactions_mark(sim, s->fixed);
+  PF_CALL(masses(sim));
+  memcpy(s->u_last, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
+  PF_CALL(evaluate(sim));
+  for (pf_int d = 0; d < 3 * p->n_owned; d++) s->u0[d] = p->u[d], s->g0[d] = applied(s, p, d);
+  return 0;
+}
+
+/* The predictor: the free components move by the last load step's increment (exact for a linear
+ * response to a load proportional to t; nothing at the first load step). */
+static void predict(pf_sim *sim) {
+  pf_sim_solver *s = &sim->solver;
+  pf_points *p = sim->pts;
+  const double *inc = pf_points_field_get(p, PF_SOLVER_INCREMENT);
+  for (pf_int d = 0; d < 3 * p->n_owned; d++)
+    if (is_free(s, d)) p->u[d] += inc[d], p->y[d] = p->X[d] + p->u[d];
+}
+
+/* The load step's end: the work of the reactions and loads over it into each body's external
+ * work by the trapezoidal rule, (g0 + g1) / 2 . (u1 - u0); the increment kept; the points at rest. */
+static void finish(pf_sim *sim) {
+  pf_sim_solver *s = &sim->solver;
+  pf_points *p = sim->pts;
+  double w[PF_MAX_BODIES] = {0}, *inc = pf_points_field_get(p, PF_SOLVER_INCREMENT);
+  for (pf_int d = 0; d < 3 * p->n_owned; d++) {
+    w[p->body[d / 3]] += 0.5 * (s->g0[d] + applied(s, p, d)) * (p->u[d] - s->u0[d]);
+    inc[d] = p->u[d] - s->u0[d];
+    p->v[d] = 0;
+  }
+  for (int b = 0; b < sim->nbodies; b++) pf_ledger_add(&sim->ledger, sim->acc.body_work[b], w[b]);
+}
+
+static int progress(pf_sim *sim, long it, double res) {
+  PF_CALL(pf_sim_accounts_evaluate(sim, 0)); /* (collective) the damage fraction */
+  pf_log("load step %ld/%ld  t = %.4e s  iterations %ld  residual %.3e  damage %.4g\n", sim->step,
+         sim->solver.load_steps, sim->t, it, res, pf_sim_total(sim, sim->acc.totals.damage_fraction));
+  return 0;
+}
+
+int pf_sim_solver_load_step(pf_sim *sim) {
+  pf_sim_solver *s = &sim->solver;
+  const double wall0 = pf_wtime();
+  PF_CALL(pf_sim_guard_save(sim));
+  PF_CALL(begin(sim));
+  sim->step++;
+  sim->t = (double)sim->step / (double)s->load_steps * sim->final_time;
+  pf_sim_interactions_place(sim, sim->dt);
+  predict(sim);
+  long it = 0;
+  double res = 0;
+  PF_CALL(relax(sim, &it, &res));
+  s->iterations += it;
+  finish(sim);
+  PF_CALL(pf_sim_guard_check(sim)); /* collective: a body that tripped, a non-finite force */
+  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_post_step(&sim->body[b], sim->pts));
+  s->wall += pf_wtime() - wall0;
+  return progress(sim, it, res);
+}

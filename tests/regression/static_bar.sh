@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# Quasi-static loading (solver: quasi_static, sim/solver_relaxation.c) on inputs/static_bar.yaml:
+# a neo-Hookean FE bar and an LPS bar, each held at one end in x and pulled by d = 1e-4 m at the
+# other, lateral faces free, in 4 load steps (docs/examples/static_bar.md). Checks:
+#  - the FE bar against the closed form u_x = d x / L: 1e-8 of d (measured 8e-10; the tolerance
+#    1e-9 of the residual; a homogeneous deformation is exact in the elements);
+#  - the LPS bar against the same closed form: 1 % of d (measured 0.45 %: the PD surface effect,
+#    docs/examples/static_bar.md), its mid-half strain within 1.5 % of d / L (measured +0.77 %);
+#  - the history: a row per load step, kinetic energy 0, the LPS bar's external work equal to its
+#    stored energy within 1e-4 (measured 1.3e-5), the FE bar's work within 1e-3 of E A d^2 / 2L;
+#  - a progress line per load step;
+#  - force control (the FE bar alone under a body force on its end face): below;
+#  - the same state digest on 1, 2 and 3 ranks (2 load steps);
+#  - no boundary condition, an initial velocity and a load step that cannot converge in
+#    max_iterations: a message naming the key or the load step and a non-zero exit.
+# usage: static_bar.sh PERIFEM SCRATCH   (from the tests/ folder)
+set -u
+exe=$1 scratch=$2 fail=0
+deck=$(cd .. && pwd)/inputs/static_bar.yaml
+source common/mpi_env.sh
+rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch"
+out=$("$exe" "$deck" 2>&1) || { echo "FAIL: the deck: $out"; exit 1; }
+[ "$(echo "$out" | grep -c '^load step [1-4]/4 ')" = 4 ] || { echo "FAIL: not 4 progress lines: $out"; fail=1; }
+"$PY" - static_bar.e static_bar.h5 <<'PYEOF' || fail=1
+import sys
+import h5py
+import netCDF4
+import numpy as np
+e = netCDF4.Dataset(sys.argv[1])
+names = [b"".join(n).decode().strip("\x00") for n in e["name_nod_var"][:]]
+X = np.array(e["coordx"][:])
+Y = np.array(e["coordy"][:])
+ux = np.array(e["vals_nod_var%d" % (names.index("displacement_x") + 1)][-1])
+d, L, ok = 1e-4, 0.1, True
+fe, pd = Y < 0.02, Y > 0.02  # the FE bar at y in [0, 0.01], the LPS bar at [0.03, 0.05]
+err_fe = np.abs(ux[fe] - d * X[fe] / L).max() / d
+err_pd = np.abs(ux[pd] - d * X[pd] / L).max() / d
+mid = pd & (X > 0.025) & (X < 0.075)
+slope = np.polyfit(X[mid], ux[mid], 1)[0] / (d / L)
+print("FE bar: max |u_x - d x/L| / d = %.3g; LPS bar: %.3g, mid-half strain / (d/L) = %.5f" % (err_fe, err_pd, slope))
+if not err_fe < 1e-8: print("FAIL: the FE bar is off the closed form by %g of d" % err_fe); ok = False
+if not err_pd < 1e-2: print("FAIL: the LPS bar is off the closed form by %g of d" % err_pd); ok = False
+if not abs(slope - 1) < 0.015: print("FAIL: the LPS bar's mid-half strain is %g of d/L" % slope); ok = False
+h = h5py.File(sys.argv[2], "r")
+if list(h["step"][:]) != [0, 1, 2, 3, 4]: print("FAIL: history steps %s" % h["step"][:]); ok = False
+if np.abs(h["kinetic_energy"][:]).max() != 0: print("FAIL: kinetic energy %s" % h["kinetic_energy"][:]); ok = False
+w, u = h["lps_bar_external_work"][-1], h["lps_bar_internal_energy"][-1]
+if not abs(w - u) < 1e-4 * w: print("FAIL: LPS bar: work %.8g J, stored %.8g J" % (w, u)); ok = False
+w_fe, w_cf = h["fe_bar_external_work"][-1], 200e9 * 1e-4 * d * d / (2 * L)
+if not abs(w_fe - w_cf) < 1e-3 * w_cf: print("FAIL: FE bar: work %.8g J, E A d^2/2L %.8g J" % (w_fe, w_cf)); ok = False
+sys.exit(0 if ok else 1)
+PYEOF
+digests=""
+for np in 1 2 3; do
+  mkdir -p np$np
+  o=$(cd np$np && run $np "$exe" --quiet --set solver.load_steps=2 "$deck" 2>&1) || { echo "FAIL: $np ranks: $o"; fail=1; }
+  digests="$digests $(digest_of "$o")"
+done
+set -- $digests
+[ $# = 3 ] && [ "$1" = "$2" ] && [ "$1" = "$3" ] || { echo "FAIL: digests on 1, 2, 3 ranks:$digests"; fail=1; }
+echo "digests on 1, 2, 3 ranks:$digests"
+# force control: the FE bar alone, its end face's nodes loaded by a body force of F = 2e4 N in all
+# (b = F / (rho A h/2), the face nodes' lumped mass), held at x = 0: u_x linear in x within 1e-8 of
+# u_x(L), u_x(L) within 1e-3 of F L / (E A) = 1e-4 m (neo-Hookean at strain 1e-3; measured
+# 1.00073), the load's work equal to the stored energy within 1e-4 (measured 1.1e-5)
+sed -n '/^materials:/,/^  steel_pd:/p' "$deck" | sed '$d' > force.yaml
+sed -n '/^  - name: fe_bar/,/^  - name: lps_bar/p' "$deck" | sed '$d' | sed '1s/^/bodies:\n/' >> force.yaml
+cat >> force.yaml <<'DECK'
+boundary_conditions:
+  - name: held
+    region: {shape: box, lo: [-0.001, -1, -1], hi: [0.001, 1, 1]}
+    displacement: ["0", "free", "free"]
+  - name: load
+    region: {shape: box, lo: [0.099, -1, -1], hi: [0.101, 1, 1]}
+    body_force: ["2.0e4 / (7800 * 1e-4 * 0.0025) * t", "free", "free"]
+solver: {type: quasi_static, load_steps: 4, tolerance: 1.0e-9}
+time: {final_time: 1.0}
+output: {interval: 0}
+DECK
+o=$("$exe" force.yaml 2>&1) || { echo "FAIL: force control: $o"; fail=1; }
+"$PY" - force.e force.h5 <<'PYEOF' || fail=1
+import sys
+import h5py
+import netCDF4
+import numpy as np
+e = netCDF4.Dataset(sys.argv[1])
+names = [b"".join(n).decode().strip("\x00") for n in e["name_nod_var"][:]]
+X = np.array(e["coordx"][:])
+ux = np.array(e["vals_nod_var%d" % (names.index("displacement_x") + 1)][-1])
+uL = ux[X > 0.099].mean()
+lin = np.abs(ux - uL * X / 0.1).max() / uL
+h = h5py.File(sys.argv[2], "r")
+w, u = h["external_work"][-1], h["fe_internal_energy"][-1]
+print("force control: u_x(L) / (F L/EA) = %.6f, off linear %.3g, work %.8g J, stored %.8g J" % (uL / 1e-4, lin, w, u))
+ok = lin < 1e-8 and abs(uL / 1e-4 - 1) < 1e-3 and abs(w - u) < 1e-4 * w
+if not ok: print("FAIL: force control")
+sys.exit(0 if ok else 1)
+PYEOF
+# bad input: each a message and a non-zero exit
+expect() { # expect STATUS PATTERN ARGS...: the run exits with STATUS, its output matches PATTERN
+  local want=$1 pattern=$2; shift 2
+  local msg rc
+  msg=$("$exe" "$@" 2>&1); rc=$?
+  [ $rc -eq "$want" ] && echo "$msg" | grep -q "$pattern" || { echo "FAIL: $*: exit $rc: $msg"; fail=1; }
+}
+sed '/^boundary_conditions:/,/^solver:/{/^solver:/!d}' "$deck" > nobc.yaml
+expect 2 "nobc.yaml:.*key 'type': a quasi_static solver needs a load" nobc.yaml
+sed 's/^    material: steel_pd/    material: steel_pd\n    initial_velocity: ["1", "0", "0"]/' "$deck" > moving.yaml
+expect 2 "moving.yaml:.*key 'initial_velocity': a quasi_static solver starts at rest" moving.yaml
+expect 1 "load step 1 of 4 .* did not converge: the residual is .* after 20 iterations" --set solver.max_iterations=20 "$deck"
+expect 2 "key 'tolerance': must be in (0, 1)" --set solver.tolerance=0 "$deck"
+exit $fail
