@@ -67,7 +67,7 @@ static int open_accounts(void *data, pf_sim *sim) {
 
 static void midstep(void *data, const pf_interaction_step *s) {
   rigid *x = data;
-  for (int a = 0; a < 3; a++) x->r_old[a] = pf_ledger_local(s->ledger, x->force, a);
+  pf_ledger_get(s->ledger, x->force, x->r_old);
 }
 
 static void after_drift(void *data, const pf_interaction_step *s) {
@@ -97,7 +97,7 @@ static void take_sums(void *data, const pf_interaction_step *s, const double *su
 static void endstep(void *data, const pf_interaction_step *s) {
   rigid *x = data;
   double r_new[3];
-  for (int a = 0; a < 3; a++) r_new[a] = pf_ledger_local(s->ledger, x->force, a);
+  pf_ledger_get(s->ledger, x->force, r_new);
   pf_ledger_book_centred(s->ledger, x->work, x->r_old, r_new, x->dx);
   pf_ledger_book_impulse(s->ledger, x->impulse, x->r_old, r_new, s->dt);
 }

@@ -50,7 +50,7 @@ static int open_accounts(void *data, pf_sim *sim) {
 
 static void midstep(void *data, const pf_interaction_step *s) {
   wall *x = data;
-  for (int a = 0; a < 3; a++) x->r_old[a] = pf_ledger_local(s->ledger, x->force, a);
+  pf_ledger_get(s->ledger, x->force, x->r_old);
 }
 
 /* Points behind the plane go back onto it (an impulse on this rank's points). */
@@ -82,7 +82,7 @@ static void endstep(void *data, const pf_interaction_step *s) {
   wall *x = data;
   if (pf_comm_rank() != 0) return;
   double r_new[3];
-  for (int a = 0; a < 3; a++) r_new[a] = pf_ledger_local(s->ledger, x->force, a);
+  pf_ledger_get(s->ledger, x->force, r_new);
   pf_ledger_book_impulse(s->ledger, x->impulse, x->r_old, r_new, s->dt);
 }
 

@@ -76,6 +76,10 @@ static inline void pf_ledger_set(pf_ledger *l, int id, const double *x) {
  * -(r_old + r_new) / 2 * s to each component of a vector account (impulse: s = dt). */
 void pf_ledger_book_centred(pf_ledger *l, int id, const double r_old[3], const double r_new[3], const double w[3]);
 void pf_ledger_book_impulse(pf_ledger *l, int id, const double r_old[3], const double r_new[3], double dt);
+/* This rank's part of an account into x[ncomp] (a shared account's value: a reaction). */
+static inline void pf_ledger_get(const pf_ledger *l, int id, double *x) {
+  for (int c = 0; c < l->a[id].ncomp; c++) x[c] = l->a[id].local[c];
+}
 /* This rank's part, and the value over the ranks at the last evaluation. */
 static inline double pf_ledger_local(const pf_ledger *l, int id, int c) { return l->a[id].local[c]; }
 static inline double pf_ledger_value(const pf_ledger *l, int id, int c) { return l->a[id].value[c]; }
