@@ -165,7 +165,7 @@ int pf_sim_accounts_evaluate(pf_sim *sim, int first) {
   PF_CALL(body_centres(sim));
   double *probe;
   PF_MALLOC(probe, sim->acc.nprobe + 1);
-  int ierr = pf_sim_probes_eval(sim, probe);
+  int ierr = sim->acc.nprobe ? pf_sim_probes_eval(sim, probe) : 0; /* (its reduction only with probes) */
   for (int k = 0; k < sim->acc.nprobe && !ierr; k++) pf_ledger_set(&sim->ledger, sim->acc.probe0 + k, &probe[k]);
   free(probe);
   if (!ierr) ierr = pf_ledger_evaluate(&sim->ledger, first);
