@@ -62,6 +62,8 @@ static int open_body(pf_sim *sim, int b) {
       {&A->conversion, "conversion_loss", "J", 1, 1, S, H, T->conversion},
       {&A->bonds, "bonds", "", 1, 0, S, H, -1},
       {&A->broken, "broken_bonds", "", 1, 0, S, H, -1},
+      {&A->moment, "mass_moment", "kg m", 3, 0, S, H, -1},
+      {&A->mass, "mass", "kg", 1, 0, S, H, -1},
   };
   for (size_t k = 0; k < sizeof list / sizeof list[0]; k++) {
     char name[160];
@@ -114,25 +116,28 @@ static void body_motion(pf_sim *sim, int b, const uint8_t *fixed) {
   pf_ledger_set(&sim->ledger, A->momentum, mom);
 }
 
-/* Each body's centre of mass (current positions) and mass-averaged velocity: a projectile's path
- * and its residual velocity. One reduction. */
-static int body_centres(pf_sim *sim) {
+/* Each body's first moment of mass (current positions) and mass, summed with the other accounts:
+ * after the reduction, its centre of mass and mass-averaged velocity (momentum / mass), a
+ * projectile's path and its residual velocity. */
+static void body_moment(pf_sim *sim, int b) {
   const pf_points *p = sim->pts;
-  double s[7 * PF_MAX_BODIES] = {0}; /* per body: m y (3), m v (3), m */
-  for (int b = 0; b < sim->nbodies; b++)
-    for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++) {
-      for (int a = 0; a < 3; a++) s[7 * b + a] += p->m[i] * p->y[3 * i + a], s[7 * b + 3 + a] += p->m[i] * p->v[3 * i + a];
-      s[7 * b + 6] += p->m[i];
-    }
-  PF_CHECK(MPI_Allreduce(MPI_IN_PLACE, s, 7 * sim->nbodies, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) == MPI_SUCCESS,
-           PF_ERR_LIB, "MPI_Allreduce failed summing the bodies' centres of mass");
-  for (int b = 0; b < sim->nbodies; b++) {
-    double x[6];
-    for (int q = 0; q < 6; q++) x[q] = s[7 * b + 6] > 0 ? s[7 * b + q] / s[7 * b + 6] : 0.0;
-    pf_ledger_set(&sim->ledger, sim->acc.body[b].position, x);
-    pf_ledger_set(&sim->ledger, sim->acc.body[b].velocity, x + 3);
+  double s[4] = {0, 0, 0, 0}; /* m y (3), m */
+  for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++) {
+    for (int a = 0; a < 3; a++) s[a] += p->m[i] * p->y[3 * i + a];
+    s[3] += p->m[i];
   }
-  return 0;
+  pf_ledger_set(&sim->ledger, sim->acc.body[b].moment, s);
+  pf_ledger_set(&sim->ledger, sim->acc.body[b].mass, s + 3);
+}
+
+static void body_centre(pf_sim *sim, int b) {
+  pf_ledger *l = &sim->ledger;
+  const pf_body_accounts *A = &sim->acc.body[b];
+  const double m = pf_ledger_value(l, A->mass, 0);
+  for (int a = 0; a < 3; a++) {
+    l->a[A->position].value[a] = l->a[A->position].local[a] = m > 0 ? pf_ledger_value(l, A->moment, a) / m : 0.0;
+    l->a[A->velocity].value[a] = l->a[A->velocity].local[a] = m > 0 ? pf_ledger_value(l, A->momentum, a) / m : 0.0;
+  }
 }
 
 /* Each body's energies op into its state accounts. */
@@ -160,15 +165,16 @@ int pf_sim_accounts_evaluate(pf_sim *sim, int first) {
   for (int b = 0; b < sim->nbodies; b++) {
     body_energies(sim, b);
     body_motion(sim, b, fixed);
+    body_moment(sim, b);
   }
   free(fixed);
-  PF_CALL(body_centres(sim));
   double *probe;
   PF_MALLOC(probe, sim->acc.nprobe + 1);
   int ierr = sim->acc.nprobe ? pf_sim_probes_eval(sim, probe) : 0; /* (its reduction only with probes) */
   for (int k = 0; k < sim->acc.nprobe && !ierr; k++) pf_ledger_set(&sim->ledger, sim->acc.probe0 + k, &probe[k]);
   free(probe);
   if (!ierr) ierr = pf_ledger_evaluate(&sim->ledger, first);
+  for (int b = 0; b < sim->nbodies && !ierr; b++) body_centre(sim, b);
   double bonds = 0, broken = 0;
   for (int b = 0; b < sim->nbodies; b++)
     bonds += pf_ledger_value(&sim->ledger, sim->acc.body[b].bonds, 0),

@@ -22,10 +22,11 @@ typedef struct {
  * the centred one the balance takes), internal energy (PD stored energy and element stress work,
  * also apart), hourglass energy, viscous work, damage dissipation and redistribution, external
  * work (the prescribed motions' and loads' on its points), momentum, the kinetic energy its
- * conversions removed, its bonds and broken bonds. */
+ * conversions removed, its bonds and broken bonds; hidden, its first moment of mass and its mass,
+ * summed with the rest and divided into the centre and mean velocity after the reduction. */
 typedef struct {
   int position, velocity, kinetic, centred, internal, elastic, fe_internal, hourglass, viscous, damage,
-      redistribution, work, momentum, conversion, bonds, broken;
+      redistribution, work, momentum, conversion, bonds, broken, moment, mass;
 } pf_body_accounts;
 typedef struct {
   pf_sim_totals totals;
