@@ -7,11 +7,12 @@ perifem's mesh, the stress concentration, the comparisons and the plot.
       linear elastic E = 200 GPa, nu = 0.3, the ends x = +-L/2 moved by -+d along x, and the
       symmetry lines of the end faces held in y (y = 0) and z (z = 0) against rigid motions
       (zero reactions by symmetry; perifem needs no such constraint: no force drives them).
-  plate_hole.py report PERIFEM.e [--ccx CCX.dat] [--fe FE.e] [--table FILE] [--bands]
+  plate_hole.py report PERIFEM.e [--ccx CCX.dat] [--fe FE.e] [--table FILE] [--bands [--no-kt]]
       the concentration K = sigma_xx(hole edge, x = 0) / sigma_nom of each run, sigma_nom the
       mean of sigma_xx over the sections x = +-45 mm (equilibrium: F / (W t)); with --bands,
       exit 1 unless the FE run (--fe, or PERIFEM.e) is within 1 % of CalculiX (edge stress,
-      displacement field) and each run's K within 3 % of Howland's 3.14.
+      displacement field) and each run's K within 3 % of Howland's 3.14 (--no-kt: the
+      CalculiX band only, for a coarse mesh).
   plate_hole.py plot OUT.png PERIFEM.e [--ccx CCX.dat] [--fe FE.e]
       sigma_xx / sigma_nom along the ligament x = 0 against (r - a) / a, with Kirsch's curve.
 
@@ -192,7 +193,7 @@ def cmd_report(a):
     for name, r in runs.items():
         print(f"{name:<12} {r['sn']:15.6g} {r['K']:9.4f} {r['K'] / KT_HOWLAND - 1:+9.4f} {r['Kraw']:12.4f}")
         rows.append((name, r["sn"], r["K"], r["K"] / KT_HOWLAND - 1))
-        if not abs(r["K"] / KT_HOWLAND - 1) <= 0.03:
+        if not a.no_kt and not abs(r["K"] / KT_HOWLAND - 1) <= 0.03:
             print(f"  {name}: K = {r['K']:.4f} misses Howland's {KT_HOWLAND} by more than 3 %")
             ok = False
     if a.ccx:
@@ -260,6 +261,7 @@ def main():
     c.add_argument("--fe")
     c.add_argument("--table")
     c.add_argument("--bands", action="store_true")
+    c.add_argument("--no-kt", action="store_true", help="with --bands: the CalculiX band only")
     c = s.add_parser("plot")
     c.add_argument("out")
     c.add_argument("perifem")
