@@ -145,7 +145,7 @@ def edge_points(X, sxx):
 def edge_stress(X, sxx):
     """sigma_xx at the hole's edge (x = 0, r = a): the mean of the two sides' Kirsch-form fits."""
     idx, r = ligament(X)
-    vals = []
+    vals, raws = [], []
     for side in (1, -1):
         k = idx[np.sign(X[idx, 1]) == side]
         k = k[np.argsort(np.abs(X[k, 1]))]
@@ -153,7 +153,8 @@ def edge_stress(X, sxx):
         s = (A / rr[1:5]) ** 2
         c = np.polyfit(s, sxx[k[1:5]], 2)
         vals.append(np.polyval(c, 1.0))
-    return float(np.mean(vals)), float(np.mean(sxx[k[:1]]))
+        raws.append(sxx[k[0]])
+    return float(np.mean(vals)), float(np.mean(raws))
 
 
 def cmd_inp(a):
