@@ -7,7 +7,11 @@
  *   c^n = 2 sqrt(u^T 1K u / u^T u),  1K_ii = -(F_i^n - F_i^(n-1)) / (lambda_i u-dot_i^(n-1/2))
  * over the free components; F is the force of the explicit step (bodies, then the loads), the
  * bodies reading the iteration's increment as their velocity over a step of 1. Every sum is
- * taken by pf_sim_solver_sums, so the iterations are the same on any number of ranks. */
+ * taken by pf_sim_solver_sums, so the iterations are the same on any number of ranks.
+ * Damage only at equilibrium: the bodies' damage is frozen while the load step relaxes (no bond
+ * fails at the out-of-balance states of the iterations); at the equilibrium reached one force
+ * evaluation with the damage thawed fails the bonds whose limit is met, and if any failed the
+ * load step relaxes again at the same load, until an equilibrium fails none. */
 #include "sim/sim_impl.h"
 
 #include <math.h>
@@ -141,8 +145,9 @@ static int not_converged(const pf_sim *sim, long it, double res) {
                         sim->solver.max_iterations);
 }
 
-/* Relax the load step's state to equilibrium: *it iterations, *res the relative residual. */
-static int relax(pf_sim *sim, long *it, double *res) {
+/* Relax the load step's state to equilibrium: *it iterations, *res the relative residual; *stop
+ * set (on every rank) when a body tripped the guard or the residual is not finite. */
+static int relax(pf_sim *sim, long *it, double *res, int *stop) {
   pf_sim_solver *s = &sim->solver;
   double q[PF_SOLVER_SUMS];
   memset(s->vel, 0, sizeof(double) * 3 * (size_t)sim->pts->n_owned);
@@ -150,12 +155,61 @@ static int relax(pf_sim *sim, long *it, double *res) {
   PF_CALL(measure(sim, q));
   for (*it = 0;; ++*it) {
     *res = relative_residual(q);
-    if (q[S_TRIPPED] > 0 || !isfinite(*res)) return 0; /* the guard check names it */
-    if (*res <= s->tolerance) return 0;
+    *stop = q[S_TRIPPED] > 0 || !isfinite(*res); /* (the guard check names it) */
+    if (*stop || *res <= s->tolerance) return 0;
     if (*it == s->max_iterations) return not_converged(sim, *it, *res);
     advance(sim, q, *it == 0);
     PF_CALL(evaluate(sim));
     PF_CALL(measure(sim, q));
+  }
+}
+
+/* Freeze (1) or thaw (0) every body's damage (sim/body.h). */
+static int freeze_damage(pf_sim *sim, int frozen) {
+  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_freeze_damage(&sim->body[b], sim->pts, frozen));
+  return 0;
+}
+
+/* The failed directed bonds of every body over every rank (an integer: the sum is exact). */
+static double broken_bonds(const pf_sim *sim) {
+  int64_t n = 0;
+  for (int b = 0; b < sim->nbodies; b++) n += pf_body_broken_bonds(&sim->body[b]);
+  return pf_sum_all((double)n);
+}
+
+/* The damage check at an equilibrium: one force evaluation with the damage thawed (the bodies fail
+ * the bonds whose limit the state meets, their energy booked); *failed the bonds it failed. */
+static int check_damage(pf_sim *sim, double *failed) {
+  const double before = broken_bonds(sim);
+  PF_CALL(freeze_damage(sim, 0));
+  PF_CALL(evaluate(sim));
+  PF_CALL(freeze_damage(sim, 1));
+  *failed = broken_bonds(sim) - before;
+  return 0;
+}
+
+static int too_many_passes(const pf_sim *sim, double failed) {
+  return pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+                        "quasi-static load step %ld of %ld (t = %g s): bonds still fail at equilibrium after %ld "
+                        "damage passes (%.0f directed bonds in the last check; solver.max_damage_passes %ld)",
+                        sim->step, sim->solver.load_steps, sim->t, sim->solver.max_damage_passes, failed,
+                        sim->solver.max_damage_passes);
+}
+
+/* Relax, check the damage at the equilibrium, relax again at the same load while bonds fail:
+ * *it iterations in all, *res the last relative residual, *passes the relaxations after the first. */
+static int equilibrate(pf_sim *sim, long *it, double *res, long *passes) {
+  *it = 0;
+  for (*passes = 0;; ++*passes) {
+    long n = 0;
+    int stop = 0;
+    double failed = 0;
+    PF_CALL(relax(sim, &n, res, &stop));
+    *it += n;
+    if (stop) return 0; /* the guard check names it */
+    PF_CALL(check_damage(sim, &failed));
+    if (failed == 0) return 0;
+    if (*passes == sim->solver.max_damage_passes) return too_many_passes(sim, failed);
   }
 }
 
@@ -198,10 +252,11 @@ static void finish(pf_sim *sim) {
   for (int b = 0; b < sim->nbodies; b++) pf_ledger_add(&sim->ledger, sim->acc.body_work[b], w[b]);
 }
 
-static int progress(pf_sim *sim, long it, double res) {
+static int progress(pf_sim *sim, long it, double res, long passes) {
   PF_CALL(pf_sim_accounts_evaluate(sim, 0)); /* (collective) the damage fraction */
-  pf_log("load step %ld/%ld  t = %.4e s  iterations %ld  residual %.3e  damage %.4g\n", sim->step,
-         sim->solver.load_steps, sim->t, it, res, pf_sim_total(sim, sim->acc.totals.damage_fraction));
+  pf_log("load step %ld/%ld  t = %.4e s  iterations %ld  residual %.3e  damage passes %ld  damage %.4g\n",
+         sim->step, sim->solver.load_steps, sim->t, it, res, passes,
+         pf_sim_total(sim, sim->acc.totals.damage_fraction));
   return 0;
 }
 
@@ -209,18 +264,20 @@ int pf_sim_solver_load_step(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   const double wall0 = pf_wtime();
   PF_CALL(pf_sim_guard_save(sim));
+  PF_CALL(freeze_damage(sim, 1)); /* (thawed at the load step's end: nothing re-attaches bodies within it) */
   PF_CALL(begin(sim));
   sim->step++;
   sim->t = (double)sim->step / (double)s->load_steps * sim->final_time;
   pf_sim_interactions_place(sim, sim->dt);
   predict(sim);
-  long it = 0;
+  long it = 0, passes = 0;
   double res = 0;
-  PF_CALL(relax(sim, &it, &res));
-  s->iterations += it;
+  PF_CALL(equilibrate(sim, &it, &res, &passes));
+  PF_CALL(freeze_damage(sim, 0));
+  s->iterations += it, s->damage_passes += passes;
   finish(sim);
   PF_CALL(pf_sim_guard_check(sim)); /* collective: a body that tripped, a non-finite force */
   for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_post_step(&sim->body[b], sim->pts));
   s->wall += pf_wtime() - wall0;
-  return progress(sim, it, res);
+  return progress(sim, it, res, passes);
 }
