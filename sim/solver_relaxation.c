@@ -6,7 +6,9 @@
  *   u-dot^(n+1/2) = ((2 - c^n) u-dot^(n-1/2) + 2 F^n / lambda) / (2 + c^n)
  *   c^n = 2 sqrt(u^T 1K u / u^T u),  1K_ii = -(F_i^n - F_i^(n-1)) / (lambda_i u-dot_i^(n-1/2))
  * over the free components; F is the force of the explicit step (bodies, then the loads), the
- * bodies reading the iteration's increment as their velocity over a step of 1. Every sum is
+ * bodies reading an increment as their velocity over a step of 1: a body that keeps history the
+ * load step's (its history put back as committed at the load step's start before each evaluation:
+ * one backward-Euler increment from the last converged state), the others the iteration's. Every sum is
  * taken by pf_sim_solver_sums, so the iterations are the same on any number of ranks.
  * Damage only at equilibrium: the bodies' damage is frozen while the load step relaxes (no bond
  * fails at the out-of-balance states of the iterations); at the equilibrium reached one force
@@ -75,13 +77,29 @@ static int masses(pf_sim *sim) {
   return 0;
 }
 
-/* Forces at the current positions: the bodies' (read the increment since the last evaluation as
- * their velocity over a step of 1), then the loads' (dt 0: no work booked here). */
+/* Each body's velocity for its force op over a step of 1: a body that keeps history (sim/body.h)
+ * gets it back as committed at the load step's start and reads the load step's increment u - u0,
+ * so each evaluation is one increment from the last converged state; the others read the
+ * increment since the last evaluation. */
+static int velocities(pf_sim *sim) {
+  pf_sim_solver *s = &sim->solver;
+  pf_points *p = sim->pts;
+  for (int b = 0; b < sim->nbodies; b++) {
+    const int hist = pf_body_keeps_history(&sim->body[b]);
+    const double *from = hist ? s->u0 : s->u_last;
+    if (hist) PF_CALL(pf_body_history(&sim->body[b], 1));
+    for (pf_int d = 3 * sim->body_start[b]; d < 3 * sim->body_start[b + 1]; d++) p->v[d] = p->u[d] - from[d];
+  }
+  return 0;
+}
+
+/* Forces at the current positions: the bodies' (with the velocities above, over a step of 1),
+ * then the loads' (dt 0: no work booked here). */
 static int evaluate(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
   const pf_int n3 = 3 * p->n_owned;
-  for (pf_int d = 0; d < n3; d++) p->v[d] = p->u[d] - s->u_last[d];
+  PF_CALL(velocities(sim));
   PF_CALL(pf_sim_body_forces(sim, 1.0));
   memcpy(s->f_body, p->f, sizeof(double) * (size_t)n3);
   PF_CALL(pf_sim_interactions_force(sim, 0.0));
@@ -213,8 +231,8 @@ static int equilibrate(pf_sim *sim, long *it, double *res, long *passes) {
   }
 }
 
-/* The load step's start: scratch, prescribed components, masses, the forces at the state reached
- * (their applied part g0 and u0 for the work). */
+/* The load step's start: scratch, prescribed components, masses, the bodies' history committed,
+ * the forces at the state reached (their applied part g0 and u0 for the work). */
 static int begin(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
@@ -222,9 +240,11 @@ static int begin(pf_sim *sim) {
   memset(s->fixed, 0, 3 * (size_t)p->n_owned);
   pf_sim_interactions_mark(sim, s->fixed);
   PF_CALL(masses(sim));
+  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_history(&sim->body[b], 0)); /* (committed) */
   memcpy(s->u_last, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
+  memcpy(s->u0, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
   PF_CALL(evaluate(sim));
-  for (pf_int d = 0; d < 3 * p->n_owned; d++) s->u0[d] = p->u[d], s->g0[d] = applied(s, p, d);
+  for (pf_int d = 0; d < 3 * p->n_owned; d++) s->g0[d] = applied(s, p, d);
   return 0;
 }
 
