@@ -6,7 +6,7 @@
  * its mean reaction over the last step, the step's impulse over dt (<name>_reaction), and the
  * mean displacement of its points at the step's end (<name>_displacement: the grip's).
  * Under the quasi-static solver the reaction, work and displacement are booked at each load
- * step's equilibrium instead (settled; docs/theory/quasi_static.md §4), summed over the ranks by
+ * step's equilibrium instead (settled; docs/theory/quasi_static.md §4.1), summed over the ranks by
  * pf_sim_solver_sums: the same bits on any number of ranks. */
 #include "sim/sim_impl.h"
 
