@@ -103,8 +103,11 @@ int pf_sim_setup_solver(pf_sim *sim) {
 void pf_sim_solver_summary(const pf_sim *sim) {
   const pf_sim_solver *s = &sim->solver;
   if (s->type != PF_SOLVER_QUASI_STATIC) return;
-  pf_log("  quasi-static: %ld load steps, %ld relaxation iterations, %ld force evaluations, %ld damage passes in "
-         "%.2f s\n", s->load_steps, s->iterations, s->evaluations, s->damage_passes, s->wall);
+  /* (this run's: after a restart, the load steps since the checkpoint; the counters are not in it) */
+  pf_log("  quasi-static: load steps %ld to %ld of %ld, %ld relaxation iterations, %ld force evaluations, %ld damage "
+         "passes in %.2f s\n",
+         sim->step - sim->loop_steps + (sim->loop_steps > 0), sim->step, s->load_steps, s->iterations, s->evaluations,
+         s->damage_passes, s->wall);
 }
 
 void pf_sim_solver_free(pf_sim *sim) {

@@ -46,10 +46,11 @@ int pf_sim_solver_sums(const double *x, pf_int n, int m, double *out) {
   for (int j = 0; j < m; j++)
     for (pf_int d = 0; d < n; d++)
       if (!isfinite(x[(size_t)j * n + d])) mx[j] = INFINITY;
-  mx[m] = (double)n;
-  PF_CHECK(MPI_Allreduce(MPI_IN_PLACE, mx, m + 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS, PF_ERR_LIB,
-           "MPI_Allreduce failed in the quasi-static solver");
-  const int bits = 61 - (int)ceil(log2(mx[m] * pf_comm_size() + 2)); /* room for every rank's terms */
+  double count = (double)n; /* the terms over the ranks: room for all of them, the same on any partition */
+  PF_CHECK(MPI_Allreduce(MPI_IN_PLACE, mx, m, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS &&
+               MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) == MPI_SUCCESS,
+           PF_ERR_LIB, "MPI_Allreduce failed in the quasi-static solver");
+  const int bits = 61 - (int)ceil(log2(count + 2));
   int64_t q[PF_SOLVER_SUMS] = {0};
   int e[PF_SOLVER_SUMS] = {0};
   for (int j = 0; j < m; j++) {
@@ -259,17 +260,21 @@ static void predict(pf_sim *sim) {
 }
 
 /* The load step's end: the work of the reactions and loads over it into each body's external
- * work by the trapezoidal rule, (g0 + g1) / 2 . (u1 - u0); the increment kept; the points at rest. */
-static void finish(pf_sim *sim) {
+ * work by the trapezoidal rule, (g0 + g1) / 2 . (u1 - u0); the interactions' books at the
+ * equilibrium (the conditions' reactions, work and grip displacements); the increment kept; the
+ * points at rest. Collective. */
+static int finish(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
   double w[PF_MAX_BODIES] = {0}, *inc = pf_points_field_get(p, PF_SOLVER_INCREMENT);
+  PF_CALL(pf_sim_interactions_settled(sim, sim->dt, s->g0, s->u0));
   for (pf_int d = 0; d < 3 * p->n_owned; d++) {
     w[p->body[d / 3]] += 0.5 * (s->g0[d] + applied(s, p, d)) * (p->u[d] - s->u0[d]);
     inc[d] = p->u[d] - s->u0[d];
     p->v[d] = 0;
   }
   for (int b = 0; b < sim->nbodies; b++) pf_ledger_add(&sim->ledger, sim->acc.body_work[b], w[b]);
+  return 0;
 }
 
 static int progress(pf_sim *sim, long it, double res, long passes) {
@@ -295,7 +300,7 @@ int pf_sim_solver_load_step(pf_sim *sim) {
   PF_CALL(equilibrate(sim, &it, &res, &passes));
   PF_CALL(freeze_damage(sim, 0));
   s->iterations += it, s->damage_passes += passes;
-  finish(sim);
+  PF_CALL(finish(sim));
   PF_CALL(pf_sim_guard_check(sim)); /* collective: a body that tripped, a non-finite force */
   for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_post_step(&sim->body[b], sim->pts));
   s->wall += pf_wtime() - wall0;
