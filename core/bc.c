@@ -226,3 +226,37 @@ void pf_bc_apply_static(const pf_bc *bc, pf_points *pts, double t, double dt) {
     }
   }
 }
+
+void pf_bc_displacement_sum(const pf_bc *bc, const pf_points *pts, double sum[3]) {
+  for (int c = 0; c < 3; c++) sum[c] = 0;
+  for (pf_int k = 0; k < bc->n; k++)
+    for (int c = 0; c < 3; c++) sum[c] += pts->u[3 * bc->points[k] + c];
+}
+
+/* The force the condition exerts on component c of owned point i at pseudo-time t: the reaction
+ * -f of a prescribed component (in equilibrium it holds the point against the forces of the
+ * bodies, as the explicit step's impulse over dt does), a body force's load m b(X, t), 0 on a
+ * component it leaves free. */
+static double static_force(const pf_bc *bc, const pf_points *pts, pf_int i, int c, double t) {
+  if (!bc->e[c]) return 0;
+  const double *x = &pts->X[3 * i];
+  return bc->kind == BC_BODY_FORCE ? pts->m[i] * pf_expr_eval(bc->e[c], x[0], x[1], x[2], t) : -pts->f[3 * i + c];
+}
+
+void pf_bc_static_terms(const pf_bc *bc, const pf_points *pts, double t, double dt, const double *g0,
+                        const double *u0, double *terms) {
+  const pf_int n = bc->n;
+  for (pf_int k = 0; k < n; k++) {
+    const pf_int i = bc->points[k];
+    double w = 0;
+    for (int c = 0; c < 3; c++) {
+      const size_t d = 3 * (size_t)i + c;
+      const double g = static_force(bc, pts, i, c, t);
+      const double start = bc->kind == BC_BODY_FORCE ? static_force(bc, pts, i, c, t - dt) : bc->e[c] ? g0[d] : 0;
+      w += 0.5 * (start + g) * (pts->u[d] - u0[d]);
+      terms[(size_t)c * n + k] = g;
+      terms[(size_t)(4 + c) * n + k] = pts->u[d];
+    }
+    terms[3 * (size_t)n + k] = w;
+  }
+}

@@ -556,6 +556,18 @@ void pf_bc_mark(const pf_bc *bc, uint8_t *mask);
  * u += dt v(X, t - dt/2) for a velocity over the load step dt (y follows); a body force does
  * nothing here (its force hook adds it). */
 void pf_bc_apply_static(const pf_bc *bc, pf_points *pts, double t, double dt);
+/* This rank's sum of its selected owned points' displacements (the grip's mean displacement is
+ * its sum over the ranks divided by the condition's points). */
+void pf_bc_displacement_sum(const pf_bc *bc, const pf_points *pts, double sum[3]);
+/* Quasi-static loading, at a load step's equilibrium (docs/theory/quasi_static.md §4): the terms
+ * of the condition's books, one per selected owned point k (n = pf_bc_npoints), into
+ * terms[j n + k]: j = 0, 1, 2 the force the condition exerts on the point (on each component it
+ * prescribes, minus the point's force: its reaction; a body force: its load m b(X, t)), j = 3 the
+ * work of that force over the load step from t - dt to t by the trapezoidal rule
+ * (g0 + g) / 2 . (u - u0), j = 4, 5, 6 the point's displacement. g0, u0: [3 n_owned] the force
+ * from outside and the displacement at the load step's start (a body force takes m b(X, t - dt)). */
+void pf_bc_static_terms(const pf_bc *bc, const pf_points *pts, double t, double dt, const double *g0,
+                        const double *u0, double *terms);
 
 /* ---- tables of global rows (core/table.c) ------------------------------------------- */
 /* Rows of a global [total][ncomp] table, each rank holding some of them (row id[k] is data[k]):

@@ -119,6 +119,7 @@ static int put_variable_names(pf_exodus *ex, const pf_points *pts) {
   char(*store)[PF_EX_NAME_LEN + 1] = NULL;
   char **names = NULL;
   PF_MALLOC(store, ex->nvars);
+  memset(store, 0, sizeof(*store) * (size_t)ex->nvars); /* (the file takes each name's whole buffer) */
   names = calloc((size_t)ex->nvars, sizeof(*names));
   if (!names) {
     PF_FREE(store);

@@ -144,7 +144,7 @@ int pf_fem_body_destroy(pf_fem_body **pb) {
   pf_material_destroy(&b->mat);
   free(b->node_volume), free(b->mesh_node_off), free(b->mesh_node_item), free(b->eid), free(b->conn), free(b->own), free(b->sigma), free(b->state);
   free(b->hgq), free(b->bvq), free(b->ref), free(b->share), free(b->fe), free(b->energy), free(b->node_off), free(b->node_item), free(b->buf);
-  free(b->mesh_eroded), free(b->due), free(b->mesh_converted), free(b->wmass);
+  free(b->mesh_eroded), free(b->due), free(b->mesh_converted), free(b->wmass), free(b->committed);
   PF_FREE(*pb);
   return 0;
 }

@@ -56,6 +56,24 @@ void pf_fem_body_state_set(pf_fem_body *b, const double *full) {
   if (b->convert) pf_fem_lumped_masses(b, b->pts);
 }
 
+int pf_fem_body_history(pf_fem_body *b, int restore) {
+  const size_t nc = (size_t)pf_fem_body_state_ncomp(b);
+  if (restore) {
+    PF_CHECK(b->committed && b->committed_nel == b->nel, PF_ERR_RUN,
+             "FE body '%s': no committed history for its %" PF_INT_FMT " elements", b->name, b->nel);
+    for (pf_int e = 0; e < b->nel; e++) unpack(b, e, &b->committed[nc * e]);
+    return 0;
+  }
+  if (b->committed_nel != b->nel || !b->committed) {
+    free(b->committed);
+    b->committed_nel = 0;
+    PF_MALLOC(b->committed, nc * (size_t)b->nel);
+    b->committed_nel = b->nel;
+  }
+  for (pf_int e = 0; e < b->nel; e++) pack(b, e, &b->committed[nc * e]);
+  return 0;
+}
+
 pf_int pf_fem_body_nlocal(const pf_fem_body *b) { return b->nel; }
 
 void pf_fem_body_set_stable_dt(pf_fem_body *b, double dt) { b->stable_dt = dt; }

@@ -58,6 +58,12 @@ pf_int pf_fem_body_nlocal(const pf_fem_body *b);
 pf_int pf_fem_body_state_get(const pf_fem_body *b, pf_gid *ids, double *data);
 /* Set every local element's state from the whole table full[nelem * ncomp] (after attach). */
 void pf_fem_body_state_set(pf_fem_body *b, const double *full);
+/* The elements' history (stress, material state, hourglass forces, bulk-viscosity pressure and
+ * energies: the table rows above): commit the current one (restore 0), or put the committed one
+ * back (restore 1). The quasi-static solver commits at each load step's start and restores before
+ * each force evaluation, so that every evaluation is one increment from the last converged state
+ * (docs/theory/quasi_static.md §6). Element deletion is not undone. */
+int pf_fem_body_history(pf_fem_body *b, int restore);
 /* Restore the stable step of the last force evaluation (restart, re-partition). */
 void pf_fem_body_set_stable_dt(pf_fem_body *b, double dt);
 /* Fill the nodal output fields "stress" (6) and the material's state names with the

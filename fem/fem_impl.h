@@ -65,6 +65,8 @@ struct pf_fem_body {
   uint8_t *mesh_converted;  /* [mesh.nelem] deleted elements already converted (every rank) */
   double *wmass;            /* [8 nel] each local element's lumped-mass share at its corners, kg */
   pf_points *pts;           /* the store of the last attach (masses are recomputed on conversion) */
+  double *committed; /* [ncomp nel] the elements' committed state (pf_fem_body_history), or NULL */
+  pf_int committed_nel;
   double stable_dt;  /* from the last force evaluation */
   double t;          /* time and step of the evaluation, for error messages */
   long step;

@@ -507,6 +507,8 @@ int pf_pd_body_bond_fields(const pf_pd_body *b, pf_bond_rows *rows) {
 int pf_pd_body_destroy(pf_pd_body **b) {
   if (!*b) return 0;
   if ((*b)->ops && (*b)->ops->destroy && (*b)->mat) (*b)->ops->destroy(*b);
+  pf_pd_body_freeze_damage(*b, NULL, 0); /* (the law's limits back, to be freed) */
+  free((*b)->frozen.none_s0);
   pf_pd_family_free(&(*b)->fam);
   free((*b)->smin);
   free((*b)->lost);

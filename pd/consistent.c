@@ -306,7 +306,7 @@ int pf_pd_consistent_solve(const pf_pd_body *b, const pf_points *pts, const doub
     }
   PF_CALL(solve(&q, rhs, lam, &it, &rel));
   pf_log("body '%s': consistent form, %lld transition bonds of %lld points solved in %d iterations "
-         "(residual %.1e)%s", b->name, (long long)npairs, (long long)q.np, it, rel,
+         "(residual %.1e)%s\n", b->name, (long long)npairs, (long long)q.np, it, rel,
          rel > 1e-8 ? "; NOT converged: the transition keeps ghost forces of about that relative size" : "");
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     const pf_int p = find(&q, pts->gid[i]);

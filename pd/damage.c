@@ -140,6 +140,31 @@ int pf_pd_damage_setup(pf_pd_body *b, pf_points *pts, int fresh) {
   return pf_points_exchange(pts, b->s0, 1);
 }
 
+/* Frozen: the law's limits kept aside, the body's replaced by none (an all-INFINITY s0 over the
+ * store, owned points and ghosts; no energy limit), so every kernel takes its loop without a
+ * limit and fails nothing. Thawed: the kept limits back. */
+int pf_pd_body_freeze_damage(pf_pd_body *b, const pf_points *pts, int frozen) {
+  if (!frozen == !b->frozen.on) return 0;
+  if (!frozen) {
+    b->s0 = b->frozen.s0, b->s0_init = b->frozen.s0_init;
+    b->critical_energy = b->frozen.critical_energy, b->wc_bond = b->frozen.wc_bond;
+    b->frozen.on = 0;
+    return 0;
+  }
+  if (b->frozen.none_n < pts->n_total) {
+    free(b->frozen.none_s0);
+    b->frozen.none_n = 0;
+    PF_MALLOC(b->frozen.none_s0, pts->n_total);
+    b->frozen.none_n = pts->n_total;
+  }
+  for (pf_int i = 0; i < pts->n_total; i++) b->frozen.none_s0[i] = INFINITY;
+  b->frozen.s0 = b->s0, b->frozen.s0_init = b->s0_init;
+  b->frozen.critical_energy = b->critical_energy, b->frozen.wc_bond = b->wc_bond;
+  b->s0 = b->frozen.none_s0, b->s0_init = b->critical_energy = INFINITY, b->wc_bond = NULL;
+  b->frozen.on = 1;
+  return 0;
+}
+
 int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts) {
   return b->damage->post_step ? b->damage->post_step(b, pts) : 0;
 }

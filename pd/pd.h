@@ -177,6 +177,13 @@ int pf_pd_body_force(pf_pd_body *b, pf_points *pts, double dt);
 int pf_pd_body_uses_velocity(const pf_pd_body *b);
 /* After the step: update damage-law state (e.g. Silling–Askari s0 from the step's s_min). */
 int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts);
+/* Freeze (1) or thaw (0) the body's damage. Frozen, the body fails no bond: the force kernels,
+ * which only compare against the limits the law leaves (pd/pd_impl.h), read none (every point's
+ * critical stretch INFINITY, no energy limit); thawed, the law's limits are back as they were.
+ * The quasi-static solver freezes the damage while it relaxes a load step and checks it at the
+ * equilibrium reached (docs/theory/quasi_static.md §5). Nothing may re-attach the body while
+ * frozen. */
+int pf_pd_body_freeze_damage(pf_pd_body *b, const pf_points *pts, int frozen);
 /* Stored elastic energy (J) of the body's owned points. */
 double pf_pd_body_energy(const pf_pd_body *b, const pf_points *pts);
 /* The change of stored energy (J) of the body's owned points when bonds failed since the last

@@ -79,6 +79,14 @@ struct pf_pd_body {
   double damage_redistribution; /* the part of damage_work that is not released but moved: the
                                    LPS dilatation's cross term where negative (docs/theory/pd.md
                                    §5.1), J, <= 0; taken by pf_pd_body_take_damage_redistribution */
+  /* The law's limits while the damage is frozen (pf_pd_body_freeze_damage): the body then holds
+   * none (s0 the all-INFINITY none_s0 [none_n], no energy limit), so no kernel fails a bond. */
+  struct {
+    int on;
+    double *s0, s0_init, critical_energy, *wc_bond;
+    double *none_s0;
+    pf_int none_n;
+  } frozen;
 };
 
 /* A bond a force kernel fails is first marked PF_BOND_FRESH, so that the kernel can book the

@@ -11,6 +11,11 @@ has data for:
   velocity        each body's mass-averaged velocity (a projectile's velocity history)
   forces          the forces on indenters, walls and contact pairs
   probes          columns named probe_* (mass-averaged values over regions)
+  load_displacement_<name>
+                  for each boundary condition <name> with a reaction and a grip displacement
+                  (<name>_reaction_*, <name>_displacement_*): its reaction against the mean
+                  displacement of its points, one line per component the reaction acts along
+                  (quasi-static runs: one point per load step; explicit runs: one per row)
 and prints the path of each. Needs numpy, h5py and matplotlib (Debian python3-numpy,
 python3-h5py, python3-matplotlib). Exit status 2 for a file that is not a perifem history.
 """
@@ -75,6 +80,40 @@ def plots(c):
     return t, out
 
 
+def load_displacement(c):
+    """{condition: [(component, grip displacement, reaction)]} for each condition whose history has
+    both columns, the components along which its reaction is not 0 at every row."""
+    out = {}
+    for k in sorted(c):
+        if not k.endswith("_reaction_x"):
+            continue
+        name = k[: -len("_reaction_x")]
+        curves = [(a, c["%s_displacement_%s" % (name, a)], c["%s_reaction_%s" % (name, a)]) for a in "xyz"
+                  if "%s_displacement_%s" % (name, a) in c and "%s_reaction_%s" % (name, a) in c]
+        curves = [cv for cv in curves if np.any(cv[2] != 0)]
+        if curves:
+            out[name] = curves
+    return out
+
+
+def plot_load_displacement(plt, c, stem, out):
+    """One PNG per condition: reaction (kN) against grip displacement (mm)."""
+    for name, curves in load_displacement(c).items():
+        fig, ax = plt.subplots(figsize=(7, 4.2))
+        for a, u, r in curves:
+            ax.plot(u * 1e3, r * 1e-3, "o-" if len(u) <= 50 else "-", ms=3, label="%s: reaction %s" % (name, a))
+        ax.set_xlabel("grip displacement (mm)")
+        ax.set_ylabel("reaction (kN)")
+        ax.set_title("%s — %s: load against displacement" % (stem, name))
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        path = os.path.join(out, "%s_load_displacement_%s.png" % (stem, name))
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        print(path)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("history", help="the run's .h5 history file")
@@ -110,6 +149,7 @@ def main():
         fig.savefig(path, dpi=110)
         plt.close(fig)
         print(path)
+    plot_load_displacement(plt, c, stem, out)
 
 
 if __name__ == "__main__":

@@ -20,6 +20,17 @@ int pf_body_bond_fields(const pf_body *b, pf_bond_rows *rows) {
 int pf_body_step_varies(const pf_body *b) { return b->ops->step_varies && b->ops->step_varies(b->data); }
 int pf_body_uses_velocity(const pf_body *b) { return b->ops->uses_velocity && b->ops->uses_velocity(b->data); }
 int pf_body_post_step(const pf_body *b, pf_points *pts) { return b->ops->post_step ? b->ops->post_step(b->data, pts) : 0; }
+int pf_body_freeze_damage(const pf_body *b, const pf_points *pts, int frozen) {
+  return b->ops->freeze_damage ? b->ops->freeze_damage(b->data, pts, frozen) : 0;
+}
+int pf_body_keeps_history(const pf_body *b) { return b->ops->history != NULL; }
+int pf_body_history(const pf_body *b, int restore) { return b->ops->history ? b->ops->history(b->data, restore) : 0; }
+int64_t pf_body_broken_bonds(const pf_body *b) {
+  const pf_family *fam = pf_body_family(b);
+  int64_t n = 0;
+  for (int64_t k = 0; fam && k < fam->offset[fam->n]; k++) n += fam->broken[k] != 0;
+  return n;
+}
 void pf_body_take_damage_work(const pf_body *b, double w[2]) {
   if (b->ops->take_damage_work) b->ops->take_damage_work(b->data, w);
 }

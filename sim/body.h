@@ -56,6 +56,18 @@ typedef struct {
   int (*uses_velocity)(const void *data);
   /* Optional: after the step (damage-law state; NULL: nothing). */
   int (*post_step)(void *data, pf_points *pts);
+  /* Optional: freeze (1) or thaw (0) the body's damage: frozen, its force op fails no bond and
+   * degrades nothing (the quasi-static solver relaxes a load step frozen, then checks the damage
+   * by one force evaluation thawed at the equilibrium reached); NULL: a body without damage,
+   * nothing to do. */
+  int (*freeze_damage)(void *data, const pf_points *pts, int frozen);
+  /* Optional: the body's history (plastic and rate-form state): commit the current one
+   * (restore 0) or put the committed one back (restore 1). With it, the quasi-static solver
+   * commits at each load step's start and restores before each force evaluation, and the body
+   * reads the whole load step's increment as its velocity over a step of 1: each evaluation is
+   * one increment from the last converged state. NULL: the body's force keeps no history, or one
+   * that the iterations advance (it reads the iteration's increment). */
+  int (*history)(void *data, int restore);
   /* Optional: the change of stored energy when bonds failed since the last call into w[0], and
    * the part of it that is moved, not released, into w[1] (<= 0; docs/theory/pd.md §5.1), J
    * (NULL: none). */
@@ -148,6 +160,11 @@ int pf_body_bond_fields(const pf_body *b, pf_bond_rows *rows);
 int pf_body_step_varies(const pf_body *b);
 int pf_body_uses_velocity(const pf_body *b);
 int pf_body_post_step(const pf_body *b, pf_points *pts);
+int pf_body_freeze_damage(const pf_body *b, const pf_points *pts, int frozen);
+int pf_body_keeps_history(const pf_body *b);
+int pf_body_history(const pf_body *b, int restore);
+/* The failed directed bonds of the body's owned rows (0 for a body without bonds). */
+int64_t pf_body_broken_bonds(const pf_body *b);
 void pf_body_take_damage_work(const pf_body *b, double w[2]);
 const pf_family *pf_body_family(const pf_body *b);
 double pf_body_bytes_per_bond(const pf_body *b);

@@ -43,6 +43,9 @@ static int force(void *data, pf_points *pts, double dt, double t, long step, int
 
 static double stable_dt(const void *data, const pf_points *pts) { return fe->stable_dt(fem_of(data), pts); }
 static int post_step(void *data, pf_points *pts) { return pd->post_step(pd_of(data), pts); }
+static int freeze_damage(void *data, const pf_points *pts, int frozen) {
+  return pd->freeze_damage(pd_of(data), pts, frozen);
+}
 static void take_damage_work(void *data, double w[2]) { pd->take_damage_work(pd_of(data), w); }
 
 /* The elements' energies, each weighted by its share 1 - beta, and the PD operator's blended
@@ -94,6 +97,7 @@ const pf_body_ops pf_body_kind_coupled = {
     .step_varies = pf_body_always,
     .uses_velocity = pf_body_always,
     .post_step = post_step,
+    .freeze_damage = freeze_damage,
     .take_damage_work = take_damage_work,
     .energies = energies,
     .family = family,

@@ -66,6 +66,7 @@ static pf_int table_get(const void *data, pf_gid *ids, double *out) { return pf_
 static void table_set(void *data, const double *full) { pf_fem_body_state_set(data, full); }
 static void set_stable_dt(void *data, double dt) { pf_fem_body_set_stable_dt(data, dt); }
 static pf_fem_body *as_fem(void *data) { return data; }
+static int history(void *data, int restore) { return pf_fem_body_history(data, restore); }
 
 const pf_body_ops pf_body_kind_fe = {
     .type = "finite_element",
@@ -90,5 +91,6 @@ const pf_body_ops pf_body_kind_fe = {
     .table_get = table_get,
     .table_set = table_set,
     .set_stable_dt = set_stable_dt,
+    .history = history,
     .as_fem = as_fem,
 };

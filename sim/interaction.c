@@ -65,6 +65,13 @@ void pf_sim_interactions_place(pf_sim *sim, double dt) {
     if (sim->inter[k].ops->place) sim->inter[k].ops->place(sim->inter[k].data, &s);
 }
 
+int pf_sim_interactions_settled(pf_sim *sim, double dt, const double *g0, const double *u0) {
+  const pf_interaction_step s = step_of(sim, dt);
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->settled) PF_CALL(sim->inter[k].ops->settled(sim->inter[k].data, &s, g0, u0));
+  return 0;
+}
+
 static int nsums(const pf_interaction *x) { return x->ops->nsums ? x->ops->nsums(x->data) : 0; }
 
 /* Each interaction's forces and its part of the sums, one reduction for all, then each takes its

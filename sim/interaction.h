@@ -50,6 +50,11 @@ typedef struct {
   /* Quasi-static loading (sim/solver_relaxation.c): put the components it prescribes at their
    * values at s->t, s->dt the load step [nothing]. */
   void (*place)(void *data, const pf_interaction_step *s);
+  /* Quasi-static loading: the load step from s->t - s->dt to s->t has reached equilibrium; g0,
+   * u0: [3 n_owned] the force from outside on each owned component (on a prescribed one its
+   * reaction, minus the point's force; on a free one the loads) and the displacement at the load
+   * step's start: book its reactions and work. Collective [nothing]. */
+  int (*settled)(void *data, const pf_interaction_step *s, const double *g0, const double *u0);
   /* The stable step its penalties allow; collective [INFINITY]. */
   double (*stable_dt)(const void *data, const pf_points *pts);
   /* Checkpoint state besides the ledger's accounts (a surface's position): count, names
@@ -102,6 +107,7 @@ void pf_sim_interactions_after_drift(pf_sim *sim, double dt);
 int pf_sim_interactions_force(pf_sim *sim, double dt);
 void pf_sim_interactions_endstep(pf_sim *sim, double dt);
 void pf_sim_interactions_place(pf_sim *sim, double dt);
+int pf_sim_interactions_settled(pf_sim *sim, double dt, const double *g0, const double *u0);
 double pf_sim_interactions_stable_dt(const pf_sim *sim);
 int pf_sim_interactions_nstate(const pf_sim *sim);
 void pf_sim_interactions_state_names(const pf_sim *sim, char (*names)[96]);

@@ -21,7 +21,7 @@ const pf_key pf_restart_keys[] = {
 /* The parts of the deck whose change changes the physics (output, parallel and the run length
  * may change on restart). */
 static const char *const physics_parts[] = {"units", "materials", "bodies", "indenters", "contact", "boundary_conditions",
-                                            "walls", "time.dt", "time.safety_factor"};
+                                            "walls", "time.dt", "time.safety_factor", "solver"};
 enum { NPARTS = sizeof physics_parts / sizeof physics_parts[0], NFIXED = 3 };
 
 static uint64_t part_hash(const pf_deck *d, const char *part) {

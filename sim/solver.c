@@ -19,6 +19,10 @@ const pf_key pf_sim_solver_keys[] = {
     {"max_iterations", PF_KEY_INT, 0, "100000", "",
      "quasi_static: relaxation iterations allowed per load step (one force evaluation each); a load step "
      "that has not converged then stops the run with an error", NULL},
+    {"max_damage_passes", PF_KEY_INT, 0, "1000", "",
+     "quasi_static: bodies fail no bond while a load step relaxes; at equilibrium one damage check fails the "
+     "bonds whose limit is met and, if any failed, the load step relaxes again at the same load: at most this "
+     "many times per load step, then the run stops with an error", NULL},
     PF_KEY_END};
 
 /* Deck sections the first quasi-static solver does not take: the first one given, or NULL. */
@@ -56,6 +60,7 @@ static int read_numbers(const pf_deck *d, const pf_node *sv, pf_sim_solver *s) {
   PF_CALL(pf_deck_int(d, sv, "load_steps", &s->load_steps));
   PF_CALL(pf_deck_real(d, sv, "tolerance", &s->tolerance));
   PF_CALL(pf_deck_int(d, sv, "max_iterations", &s->max_iterations));
+  PF_CALL(pf_deck_int(d, sv, "max_damage_passes", &s->max_damage_passes));
   if (s->load_steps < 1)
     return pf_deck_error(d, pf_node_get(sv, "load_steps"), "load_steps", "must be at least 1 (got %ld)", s->load_steps);
   if (!(s->tolerance > 0 && s->tolerance < 1))
@@ -63,6 +68,9 @@ static int read_numbers(const pf_deck *d, const pf_node *sv, pf_sim_solver *s) {
   if (s->max_iterations < 1)
     return pf_deck_error(d, pf_node_get(sv, "max_iterations"), "max_iterations", "must be at least 1 (got %ld)",
                          s->max_iterations);
+  if (s->max_damage_passes < 0)
+    return pf_deck_error(d, pf_node_get(sv, "max_damage_passes"), "max_damage_passes", "must be at least 0 (got %ld)",
+                         s->max_damage_passes);
   return 0;
 }
 
@@ -70,7 +78,8 @@ int pf_sim_setup_solver(pf_sim *sim) {
   const pf_deck *d = sim->deck;
   const pf_node *root = pf_deck_root(d), *sv = pf_node_get(root, "solver");
   pf_sim_solver *s = &sim->solver;
-  *s = (pf_sim_solver){.type = PF_SOLVER_EXPLICIT, .load_steps = 10, .tolerance = 1e-6, .max_iterations = 100000};
+  *s = (pf_sim_solver){.type = PF_SOLVER_EXPLICIT, .load_steps = 10, .tolerance = 1e-6, .max_iterations = 100000,
+                        .max_damage_passes = 1000};
   const char *chosen = "explicit";
   PF_CALL(pf_deck_string(d, sv, "type", &chosen));
   if (!strcmp(chosen, "explicit")) return 0;
@@ -94,8 +103,11 @@ int pf_sim_setup_solver(pf_sim *sim) {
 void pf_sim_solver_summary(const pf_sim *sim) {
   const pf_sim_solver *s = &sim->solver;
   if (s->type != PF_SOLVER_QUASI_STATIC) return;
-  pf_log("  quasi-static: %ld load steps, %ld relaxation iterations, %ld force evaluations in %.2f s\n",
-         s->load_steps, s->iterations, s->evaluations, s->wall);
+  /* (this run's: after a restart, the load steps since the checkpoint; the counters are not in it) */
+  pf_log("  quasi-static: load steps %ld to %ld of %ld, %ld relaxation iterations, %ld force evaluations, %ld damage "
+         "passes in %.2f s\n",
+         sim->step - sim->loop_steps + (sim->loop_steps > 0), sim->step, s->load_steps, s->iterations, s->evaluations,
+         s->damage_passes, s->wall);
 }
 
 void pf_sim_solver_free(pf_sim *sim) {

@@ -18,8 +18,9 @@ typedef struct {
   long load_steps;     /* N */
   double tolerance;    /* the residual relative to the reference force at convergence */
   long max_iterations; /* per load step */
-  /* what the run did: iterations and force evaluations over every load step */
-  long iterations, evaluations;
+  long max_damage_passes; /* re-equilibrations after bonds failed, per load step */
+  /* what the run did: iterations, force evaluations and damage passes over every load step */
+  long iterations, evaluations, damage_passes;
   double wall; /* seconds in the load steps */
   /* the load step's scratch, [3 n] each over the owned points (n: as allocated) */
   pf_int n;

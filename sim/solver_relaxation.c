@@ -6,8 +6,14 @@
  *   u-dot^(n+1/2) = ((2 - c^n) u-dot^(n-1/2) + 2 F^n / lambda) / (2 + c^n)
  *   c^n = 2 sqrt(u^T 1K u / u^T u),  1K_ii = -(F_i^n - F_i^(n-1)) / (lambda_i u-dot_i^(n-1/2))
  * over the free components; F is the force of the explicit step (bodies, then the loads), the
- * bodies reading the iteration's increment as their velocity over a step of 1. Every sum is
- * taken by pf_sim_solver_sums, so the iterations are the same on any number of ranks. */
+ * bodies reading an increment as their velocity over a step of 1: a body that keeps history the
+ * load step's (its history put back as committed at the load step's start before each evaluation:
+ * one backward-Euler increment from the last converged state), the others the iteration's. Every sum is
+ * taken by pf_sim_solver_sums, so the iterations are the same on any number of ranks.
+ * Damage only at equilibrium: the bodies' damage is frozen while the load step relaxes (no bond
+ * fails at the out-of-balance states of the iterations); at the equilibrium reached one force
+ * evaluation with the damage thawed fails the bonds whose limit is met, and if any failed the
+ * load step relaxes again at the same load, until an equilibrium fails none. */
 #include "sim/sim_impl.h"
 
 #include <math.h>
@@ -40,10 +46,11 @@ int pf_sim_solver_sums(const double *x, pf_int n, int m, double *out) {
   for (int j = 0; j < m; j++)
     for (pf_int d = 0; d < n; d++)
       if (!isfinite(x[(size_t)j * n + d])) mx[j] = INFINITY;
-  mx[m] = (double)n;
-  PF_CHECK(MPI_Allreduce(MPI_IN_PLACE, mx, m + 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS, PF_ERR_LIB,
-           "MPI_Allreduce failed in the quasi-static solver");
-  const int bits = 61 - (int)ceil(log2(mx[m] * pf_comm_size() + 2)); /* room for every rank's terms */
+  double count = (double)n; /* the terms over the ranks: room for all of them, the same on any partition */
+  PF_CHECK(MPI_Allreduce(MPI_IN_PLACE, mx, m, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS &&
+               MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) == MPI_SUCCESS,
+           PF_ERR_LIB, "MPI_Allreduce failed in the quasi-static solver");
+  const int bits = 61 - (int)ceil(log2(count + 2));
   int64_t q[PF_SOLVER_SUMS] = {0};
   int e[PF_SOLVER_SUMS] = {0};
   for (int j = 0; j < m; j++) {
@@ -71,13 +78,29 @@ static int masses(pf_sim *sim) {
   return 0;
 }
 
-/* Forces at the current positions: the bodies' (read the increment since the last evaluation as
- * their velocity over a step of 1), then the loads' (dt 0: no work booked here). */
+/* Each body's velocity for its force op over a step of 1: a body that keeps history (sim/body.h)
+ * gets it back as committed at the load step's start and reads the load step's increment u - u0,
+ * so each evaluation is one increment from the last converged state; the others read the
+ * increment since the last evaluation. */
+static int velocities(pf_sim *sim) {
+  pf_sim_solver *s = &sim->solver;
+  pf_points *p = sim->pts;
+  for (int b = 0; b < sim->nbodies; b++) {
+    const int hist = pf_body_keeps_history(&sim->body[b]);
+    const double *from = hist ? s->u0 : s->u_last;
+    if (hist) PF_CALL(pf_body_history(&sim->body[b], 1));
+    for (pf_int d = 3 * sim->body_start[b]; d < 3 * sim->body_start[b + 1]; d++) p->v[d] = p->u[d] - from[d];
+  }
+  return 0;
+}
+
+/* Forces at the current positions: the bodies' (with the velocities above, over a step of 1),
+ * then the loads' (dt 0: no work booked here). */
 static int evaluate(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
   const pf_int n3 = 3 * p->n_owned;
-  for (pf_int d = 0; d < n3; d++) p->v[d] = p->u[d] - s->u_last[d];
+  PF_CALL(velocities(sim));
   PF_CALL(pf_sim_body_forces(sim, 1.0));
   memcpy(s->f_body, p->f, sizeof(double) * (size_t)n3);
   PF_CALL(pf_sim_interactions_force(sim, 0.0));
@@ -141,8 +164,9 @@ static int not_converged(const pf_sim *sim, long it, double res) {
                         sim->solver.max_iterations);
 }
 
-/* Relax the load step's state to equilibrium: *it iterations, *res the relative residual. */
-static int relax(pf_sim *sim, long *it, double *res) {
+/* Relax the load step's state to equilibrium: *it iterations, *res the relative residual; *stop
+ * set (on every rank) when a body tripped the guard or the residual is not finite. */
+static int relax(pf_sim *sim, long *it, double *res, int *stop) {
   pf_sim_solver *s = &sim->solver;
   double q[PF_SOLVER_SUMS];
   memset(s->vel, 0, sizeof(double) * 3 * (size_t)sim->pts->n_owned);
@@ -150,8 +174,8 @@ static int relax(pf_sim *sim, long *it, double *res) {
   PF_CALL(measure(sim, q));
   for (*it = 0;; ++*it) {
     *res = relative_residual(q);
-    if (q[S_TRIPPED] > 0 || !isfinite(*res)) return 0; /* the guard check names it */
-    if (*res <= s->tolerance) return 0;
+    *stop = q[S_TRIPPED] > 0 || !isfinite(*res); /* (the guard check names it) */
+    if (*stop || *res <= s->tolerance) return 0;
     if (*it == s->max_iterations) return not_converged(sim, *it, *res);
     advance(sim, q, *it == 0);
     PF_CALL(evaluate(sim));
@@ -159,8 +183,57 @@ static int relax(pf_sim *sim, long *it, double *res) {
   }
 }
 
-/* The load step's start: scratch, prescribed components, masses, the forces at the state reached
- * (their applied part g0 and u0 for the work). */
+/* Freeze (1) or thaw (0) every body's damage (sim/body.h). */
+static int freeze_damage(pf_sim *sim, int frozen) {
+  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_freeze_damage(&sim->body[b], sim->pts, frozen));
+  return 0;
+}
+
+/* The failed directed bonds of every body over every rank (an integer: the sum is exact). */
+static double broken_bonds(const pf_sim *sim) {
+  int64_t n = 0;
+  for (int b = 0; b < sim->nbodies; b++) n += pf_body_broken_bonds(&sim->body[b]);
+  return pf_sum_all((double)n);
+}
+
+/* The damage check at an equilibrium: one force evaluation with the damage thawed (the bodies fail
+ * the bonds whose limit the state meets, their energy booked); *failed the bonds it failed. */
+static int check_damage(pf_sim *sim, double *failed) {
+  const double before = broken_bonds(sim);
+  PF_CALL(freeze_damage(sim, 0));
+  PF_CALL(evaluate(sim));
+  PF_CALL(freeze_damage(sim, 1));
+  *failed = broken_bonds(sim) - before;
+  return 0;
+}
+
+static int too_many_passes(const pf_sim *sim, double failed) {
+  return pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+                        "quasi-static load step %ld of %ld (t = %g s): bonds still fail at equilibrium after %ld "
+                        "damage passes (%.0f directed bonds in the last check; solver.max_damage_passes %ld)",
+                        sim->step, sim->solver.load_steps, sim->t, sim->solver.max_damage_passes, failed,
+                        sim->solver.max_damage_passes);
+}
+
+/* Relax, check the damage at the equilibrium, relax again at the same load while bonds fail:
+ * *it iterations in all, *res the last relative residual, *passes the relaxations after the first. */
+static int equilibrate(pf_sim *sim, long *it, double *res, long *passes) {
+  *it = 0;
+  for (*passes = 0;; ++*passes) {
+    long n = 0;
+    int stop = 0;
+    double failed = 0;
+    PF_CALL(relax(sim, &n, res, &stop));
+    *it += n;
+    if (stop) return 0; /* the guard check names it */
+    PF_CALL(check_damage(sim, &failed));
+    if (failed == 0) return 0;
+    if (*passes == sim->solver.max_damage_passes) return too_many_passes(sim, failed);
+  }
+}
+
+/* The load step's start: scratch, prescribed components, masses, the bodies' history committed,
+ * the forces at the state reached (their applied part g0 and u0 for the work). */
 static int begin(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
@@ -168,9 +241,11 @@ static int begin(pf_sim *sim) {
   memset(s->fixed, 0, 3 * (size_t)p->n_owned);
   pf_sim_interactions_mark(sim, s->fixed);
   PF_CALL(masses(sim));
+  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_history(&sim->body[b], 0)); /* (committed) */
   memcpy(s->u_last, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
+  memcpy(s->u0, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
   PF_CALL(evaluate(sim));
-  for (pf_int d = 0; d < 3 * p->n_owned; d++) s->u0[d] = p->u[d], s->g0[d] = applied(s, p, d);
+  for (pf_int d = 0; d < 3 * p->n_owned; d++) s->g0[d] = applied(s, p, d);
   return 0;
 }
 
@@ -185,23 +260,28 @@ static void predict(pf_sim *sim) {
 }
 
 /* The load step's end: the work of the reactions and loads over it into each body's external
- * work by the trapezoidal rule, (g0 + g1) / 2 . (u1 - u0); the increment kept; the points at rest. */
-static void finish(pf_sim *sim) {
+ * work by the trapezoidal rule, (g0 + g1) / 2 . (u1 - u0); the interactions' books at the
+ * equilibrium (the conditions' reactions, work and grip displacements); the increment kept; the
+ * points at rest. Collective. */
+static int finish(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
   double w[PF_MAX_BODIES] = {0}, *inc = pf_points_field_get(p, PF_SOLVER_INCREMENT);
+  PF_CALL(pf_sim_interactions_settled(sim, sim->dt, s->g0, s->u0));
   for (pf_int d = 0; d < 3 * p->n_owned; d++) {
     w[p->body[d / 3]] += 0.5 * (s->g0[d] + applied(s, p, d)) * (p->u[d] - s->u0[d]);
     inc[d] = p->u[d] - s->u0[d];
     p->v[d] = 0;
   }
   for (int b = 0; b < sim->nbodies; b++) pf_ledger_add(&sim->ledger, sim->acc.body_work[b], w[b]);
+  return 0;
 }
 
-static int progress(pf_sim *sim, long it, double res) {
+static int progress(pf_sim *sim, long it, double res, long passes) {
   PF_CALL(pf_sim_accounts_evaluate(sim, 0)); /* (collective) the damage fraction */
-  pf_log("load step %ld/%ld  t = %.4e s  iterations %ld  residual %.3e  damage %.4g\n", sim->step,
-         sim->solver.load_steps, sim->t, it, res, pf_sim_total(sim, sim->acc.totals.damage_fraction));
+  pf_log("load step %ld/%ld  t = %.4e s  iterations %ld  residual %.3e  damage passes %ld  damage %.4g\n",
+         sim->step, sim->solver.load_steps, sim->t, it, res, passes,
+         pf_sim_total(sim, sim->acc.totals.damage_fraction));
   return 0;
 }
 
@@ -209,18 +289,20 @@ int pf_sim_solver_load_step(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   const double wall0 = pf_wtime();
   PF_CALL(pf_sim_guard_save(sim));
+  PF_CALL(freeze_damage(sim, 1)); /* (thawed at the load step's end: nothing re-attaches bodies within it) */
   PF_CALL(begin(sim));
   sim->step++;
   sim->t = (double)sim->step / (double)s->load_steps * sim->final_time;
   pf_sim_interactions_place(sim, sim->dt);
   predict(sim);
-  long it = 0;
+  long it = 0, passes = 0;
   double res = 0;
-  PF_CALL(relax(sim, &it, &res));
-  s->iterations += it;
-  finish(sim);
+  PF_CALL(equilibrate(sim, &it, &res, &passes));
+  PF_CALL(freeze_damage(sim, 0));
+  s->iterations += it, s->damage_passes += passes;
+  PF_CALL(finish(sim));
   PF_CALL(pf_sim_guard_check(sim)); /* collective: a body that tripped, a non-finite force */
   for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_post_step(&sim->body[b], sim->pts));
   s->wall += pf_wtime() - wall0;
-  return progress(sim, it, res);
+  return progress(sim, it, res, passes);
 }
