@@ -86,9 +86,9 @@ static int velocities(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
   for (int b = 0; b < sim->nbodies; b++) {
-    const int hist = pf_body_keeps_history(&sim->body[b]);
+    const int hist = pf_body_keeps_history(&sim->body[b], p);
     const double *from = hist ? s->u0 : s->u_last;
-    if (hist) PF_CALL(pf_body_history(&sim->body[b], 1));
+    if (hist) PF_CALL(pf_body_history(&sim->body[b], p, PF_HISTORY_RESTORE));
     for (pf_int d = 3 * sim->body_start[b]; d < 3 * sim->body_start[b + 1]; d++) p->v[d] = p->u[d] - from[d];
   }
   return 0;
@@ -241,7 +241,7 @@ static int begin(pf_sim *sim) {
   memset(s->fixed, 0, 3 * (size_t)p->n_owned);
   pf_sim_interactions_mark(sim, s->fixed);
   PF_CALL(masses(sim));
-  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_history(&sim->body[b], 0)); /* (committed) */
+  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_history(&sim->body[b], sim->pts, PF_HISTORY_COMMIT));
   memcpy(s->u_last, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
   memcpy(s->u0, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
   PF_CALL(evaluate(sim));
