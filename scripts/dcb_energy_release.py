@@ -44,14 +44,26 @@ import netCDF4
 import numpy as np
 
 
-def history(path):
+def history(path, quasi_static=False):
     with h5py.File(path, "r") as f:
         t = f["time"][:]
         force = 0.5 * (f["upper_reaction_y"][:] - f["lower_reaction_y"][:])
-        opening = f["probe_upper_displacement_y"][:] - f["probe_lower_displacement_y"][:]
-        kinetic = f["kinetic_energy"][:]
+        if quasi_static:
+            # the grips' own displacement columns (every point of a grip moves as one in y)
+            opening = f["upper_displacement_y"][:] - f["lower_displacement_y"][:]
+            kinetic = np.zeros_like(t)  # every row is an equilibrium
+        else:
+            opening = f["probe_upper_displacement_y"][:] - f["probe_lower_displacement_y"][:]
+            kinetic = f["kinetic_energy"][:]
         elastic = f["elastic_energy"][:]
+        booked = f["upper_work"][:] + f["lower_work"][:] if quasi_static else None
+    if quasi_static and t[0] > 0:  # the rows are the load steps; the unloaded state comes first
+        t, force, opening, elastic, booked = (np.concatenate(([0.0], c)) for c in (t, force, opening, elastic, booked))
+        kinetic = np.zeros_like(t)
     work = np.concatenate(([0.0], np.cumsum(0.5 * (force[1:] + force[:-1]) * np.diff(opening))))
+    if quasi_static and np.abs(work - booked).max() > 1e-6 * np.abs(booked).max():
+        sys.exit("dcb_energy_release: the work read off the force-opening curve and the grips' "
+                 "work columns differ by %.3g of the latter" % (np.abs(work - booked).max() / np.abs(booked).max()))
     return t, force, opening, work, kinetic, elastic
 
 
@@ -142,11 +154,14 @@ def main():
     ap.add_argument("--h", type=float, default=0.020)
     ap.add_argument("--partial-volumes", action="store_true",
                     help="the run had partial_volumes: true (the damage weighs the neighbours by it)")
+    ap.add_argument("--quasi-static", action="store_true",
+                    help="the run had solver.type quasi_static: every row an equilibrium (no kinetic "
+                         "energy), the opening from the grips' displacement columns")
     ap.add_argument("--json", action="store_true", help="print one JSON line")
     ap.add_argument("--csv", help="write time, opening, force, crack area, D per output")
     a = ap.parse_args()
 
-    t, force, opening, work, kinetic, elastic = history(a.h5)
+    t, force, opening, work, kinetic, elastic = history(a.h5, a.quasi_static)
     et, area = crack_areas(a.exodus, a.dx, a.horizon, a.a0, a.B, a.L, a.h, a.partial_volumes)
     rows = [int(np.argmin(np.abs(t - ti))) for ti in et]
     if max(abs(t[r] - ti) for r, ti in zip(rows, et)) > 1e-3 * (t[-1] - t[0]):
@@ -159,6 +174,10 @@ def main():
     if np.count_nonzero(run) < 3:
         sys.exit("dcb_energy_release: the crack ran through fewer than 3 outputs (%d); run longer"
                  % np.count_nonzero(run))
+    with h5py.File(a.h5, "r") as f:
+        booked = f["damage_dissipation"][:]
+    if a.quasi_static and len(booked) < len(t):
+        booked = np.concatenate(([0.0], booked))
     out = {
         "G": float(np.polyfit(area[run], D[run], 1)[0]),
         "G_total": float(D[-1] / area[-1]),
@@ -168,6 +187,7 @@ def main():
         "crack_length_end": float(a.a0 + area[-1] / a.B),
         "outputs_fitted": int(np.count_nonzero(run)),
         "kinetic_share_end": float(Kc[-1] / max(W[-1], 1e-300)),
+        "G_bonds": float(np.polyfit(area[run], booked[rows][run], 1)[0]),
     }
     if a.csv:
         np.savetxt(a.csv, np.column_stack((et, Dl, F, area, D)), delimiter=",",
