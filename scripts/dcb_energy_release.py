@@ -2,7 +2,8 @@
 curve and its crack area.
 
     /usr/bin/python3 scripts/dcb_energy_release.py RUN.h5 RUN.e --dx DX --horizon DELTA
-        [--a0 0.005] [--B 0.003] [--L 0.050] [--h 0.020] [--partial-volumes] [--json] [--csv FILE]
+        [--a0 0.005] [--B 0.003] [--L 0.050] [--h 0.020] [--partial-volumes] [--quasi-static]
+        [--json] [--csv FILE]
 
 Reads from the history the force on each arm, F = (F_upper - F_lower)/2 (the reactions of the
 conditions 'upper' and 'lower'), and the opening Delta = u_upper - u_lower (the probes 'upper'
@@ -22,6 +23,20 @@ along its secant, so it holds E_el = F Delta / 2. Once the crack has jumped off 
 pre-crack the arms vibrate (the run is not slow enough to damp that out), and the vibration's
 elastic energy, about as large as its kinetic energy, is then counted in D: G_secant is
 between 4 % below and 31 % above G in the runs of docs/examples/dcb.md.
+
+--quasi-static: a run with solver.type quasi_static (docs/examples/dcb.md, "Loaded
+quasi-statically"). Every history row is an equilibrium (load step k at pseudo-time t_k), so
+K_c = 0 and D = W - E_el; the opening is read from the grips' own displacement columns
+(upper_displacement_y - lower_displacement_y) and W = int F dDelta is checked against the grips'
+work columns (upper_work + lower_work, to 1e-6). There G_secant is the area method: at each
+equilibrium a linear body holds F Delta / 2 (Clapeyron), so D = W - F Delta / 2 is the area
+between the loading curve and the secant to the current state.
+
+G_bonds is the slope of the history's damage_dissipation (the energy each bond held when it
+failed) against A over the same outputs: what the bonds take. What a crack advance releases
+beyond it stays in the body as waves in a dynamic run (in E_el + K_c, so not in D: G = G_bonds
+there within about 1 %), and is removed by the relaxation's damping in a quasi-static one (so it
+is in D: G - G_bonds >= 0 is that share).
 
 Crack area: a point next to the plane (|y| = dx/2, x > a0) has N bonds, Nc of them crossing the
 plane; when the crack has passed it, those Nc are broken and its damage (the broken share of
