@@ -516,6 +516,7 @@ int pf_pd_body_destroy(pf_pd_body **b) {
   free((*b)->cracks);
   free((*b)->damage_data);
   free((*b)->wc_bond);
+  free((*b)->history.committed);
   pf_expr_destroy(&(*b)->hz_expr);
   PF_FREE(*b);
   return 0;

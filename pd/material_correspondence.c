@@ -169,26 +169,28 @@ static int corr_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
   return 0;
 }
 
+/* Register a field that a step advances: it is history, committed and restored by the
+ * quasi-static solver (pd/history.c). */
+static int history_field(pf_pd_body *b, pf_points *pts, const char *name, int ncomp, int flags, double **data) {
+  int idx;
+  PF_CALL(pf_points_field_register(pts, name, ncomp, flags | PF_FIELD_RESTART, &idx));
+  *data = pts->fields[idx].data;
+  return pf_pd_body_keep_history(b, idx);
+}
+
 static int register_fields(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   int idx;
-  PF_CALL(pf_points_field_register(pts, "stress", 6, PF_FIELD_OUTPUT | PF_FIELD_RESTART, &idx));
-  p->sigma = pts->fields[idx].data;
-  PF_CALL(pf_points_field_register(pts, "stress_work", 1, PF_FIELD_RESTART, &idx));
-  p->work = pts->fields[idx].data;
-  PF_CALL(pf_points_field_register(pts, "hourglass_work", 1, PF_FIELD_RESTART, &idx));
-  p->hgwork = pts->fields[idx].data;
-  PF_CALL(pf_points_field_register(pts, "hourglass_force", 3, PF_FIELD_RESTART, &idx));
-  p->hgforce = pts->fields[idx].data;
-  PF_CALL(pf_points_field_register(pts, "correspondence", GX, PF_FIELD_GHOST | PF_FIELD_RESTART, &idx));
-  p->gx = pts->fields[idx].data;
-  PF_CALL(pf_points_field_register(pts, "stable_step", 1, PF_FIELD_RESTART, &idx));
-  p->step = pts->fields[idx].data;
+  PF_CALL(history_field(b, pts, "stress", 6, PF_FIELD_OUTPUT, &p->sigma));
+  PF_CALL(history_field(b, pts, "stress_work", 1, 0, &p->work));
+  PF_CALL(history_field(b, pts, "hourglass_work", 1, 0, &p->hgwork));
+  PF_CALL(history_field(b, pts, "hourglass_force", 3, 0, &p->hgforce));
+  PF_CALL(history_field(b, pts, "correspondence", GX, PF_FIELD_GHOST, &p->gx));
+  PF_CALL(history_field(b, pts, "stable_step", 1, 0, &p->step));
   if (!p->nstate) return 0;
   char name[32];
   snprintf(name, sizeof name, "material_state_%d", p->nstate); /* bodies own disjoint ranges */
-  PF_CALL(pf_points_field_register(pts, name, p->nstate, PF_FIELD_RESTART, &idx));
-  p->state = pts->fields[idx].data;
+  PF_CALL(history_field(b, pts, name, p->nstate, 0, &p->state));
   if (!p->out) PF_MALLOC(p->out, p->nstate);
   for (int k = 0; k < p->nstate; k++) { /* the model's damage D is not the bond damage phi */
     const char *sname = pf_material_state_name(p->cm, k);

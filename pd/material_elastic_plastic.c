@@ -87,6 +87,7 @@ static int ep_setup(pf_pd_body *b, pf_points *pts) {
   p->theta = pts->fields[it].data;
   p->beta = pts->fields[ib].data;
   p->eqps = pts->fields[ie].data;
+  PF_CALL(pf_pd_body_keep_history(b, ie)); /* (with e^dp, the bonds' state) */
   return pf_pd_weighted_volumes(b, pts, p->m);
 }
 

@@ -184,6 +184,13 @@ int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts);
  * equilibrium reached (docs/theory/quasi_static.md §5). Nothing may re-attach the body while
  * frozen. */
 int pf_pd_body_freeze_damage(pf_pd_body *b, const pf_points *pts, int frozen);
+/* 1 when the body's material keeps history (a plastic or rate-form state its force advances). */
+int pf_pd_body_keeps_history(const pf_pd_body *b);
+/* Commit the body's history (restore 0: the material's history fields of its owned points and
+ * its bonds' state as they are now) or put the committed one back (restore 1). The
+ * quasi-static solver commits at each load step's start and restores before each force
+ * evaluation (docs/theory/quasi_static.md §6). */
+int pf_pd_body_history(pf_pd_body *b, pf_points *pts, int restore);
 /* Stored elastic energy (J) of the body's owned points. */
 double pf_pd_body_energy(const pf_pd_body *b, const pf_points *pts);
 /* The change of stored energy (J) of the body's owned points when bonds failed since the last

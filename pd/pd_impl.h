@@ -20,6 +20,8 @@ typedef struct pf_pd_material_ops pf_pd_material_ops;
  * gives no ghost force (§2.6). */
 typedef enum { PF_PD_AUTO, PF_PD_STANDARD, PF_PD_PARTIAL_STRESS, PF_PD_CORRECTED, PF_PD_CONSISTENT } pf_pd_formulation;
 
+enum { PF_PD_MAX_HISTORY_FIELDS = 8 };
+
 struct pf_pd_body {
   char name[64];
   char material[64];   /* its name under materials: */
@@ -79,6 +81,13 @@ struct pf_pd_body {
   double damage_redistribution; /* the part of damage_work that is not released but moved: the
                                    LPS dilatation's cross term where negative (docs/theory/pd.md
                                    §5.1), J, <= 0; taken by pf_pd_body_take_damage_redistribution */
+  /* The material's history (pd/history.c): the point fields its force advances, by index, and
+   * (with fam.nstate > 0) the bonds' state, committed by pf_pd_body_history into committed[]. */
+  struct {
+    int field[PF_PD_MAX_HISTORY_FIELDS], nfields;
+    double *committed;
+    size_t n;
+  } history;
   /* The law's limits while the damage is frozen (pf_pd_body_freeze_damage): the body then holds
    * none (s0 the all-INFINITY none_s0 [none_n], no energy limit), so no kernel fails a bond. */
   struct {
@@ -88,6 +97,11 @@ struct pf_pd_body {
     pf_int none_n;
   } frozen;
 };
+
+/* A material's setup names a point field its force advances as history (plastic or rate-form
+ * state: pf_pd_body_history commits and restores it for the quasi-static solver); the bonds'
+ * material state (fam.nstate > 0) is history without being named. */
+int pf_pd_body_keep_history(pf_pd_body *b, int field);
 
 /* A bond a force kernel fails is first marked PF_BOND_FRESH, so that the kernel can book the
  * energy it released (the point's stored energy with the bond less without it, at the same

@@ -2,7 +2,8 @@
 curve and its crack area.
 
     /usr/bin/python3 scripts/dcb_energy_release.py RUN.h5 RUN.e --dx DX --horizon DELTA
-        [--a0 0.005] [--B 0.003] [--L 0.050] [--h 0.020] [--partial-volumes] [--json] [--csv FILE]
+        [--a0 0.005] [--B 0.003] [--L 0.050] [--h 0.020] [--partial-volumes] [--quasi-static]
+        [--json] [--csv FILE]
 
 Reads from the history the force on each arm, F = (F_upper - F_lower)/2 (the reactions of the
 conditions 'upper' and 'lower'), and the opening Delta = u_upper - u_lower (the probes 'upper'
@@ -22,6 +23,20 @@ along its secant, so it holds E_el = F Delta / 2. Once the crack has jumped off 
 pre-crack the arms vibrate (the run is not slow enough to damp that out), and the vibration's
 elastic energy, about as large as its kinetic energy, is then counted in D: G_secant is
 between 4 % below and 31 % above G in the runs of docs/examples/dcb.md.
+
+--quasi-static: a run with solver.type quasi_static (docs/examples/dcb.md, "Loaded
+quasi-statically"). Every history row is an equilibrium (load step k at pseudo-time t_k), so
+K_c = 0 and D = W - E_el; the opening is read from the grips' own displacement columns
+(upper_displacement_y - lower_displacement_y) and W = int F dDelta is checked against the grips'
+work columns (upper_work + lower_work, to 1e-6). There G_secant is the area method: at each
+equilibrium a linear body holds F Delta / 2 (Clapeyron), so D = W - F Delta / 2 is the area
+between the loading curve and the secant to the current state.
+
+G_bonds is the slope of the history's damage_dissipation (the energy each bond held when it
+failed) against A over the same outputs: what the bonds take. What a crack advance releases
+beyond it stays in the body as waves in a dynamic run (in E_el + K_c, so not in D: G = G_bonds
+there within about 1 %), and is removed by the relaxation's damping in a quasi-static one (so it
+is in D: G - G_bonds >= 0 is that share).
 
 Crack area: a point next to the plane (|y| = dx/2, x > a0) has N bonds, Nc of them crossing the
 plane; when the crack has passed it, those Nc are broken and its damage (the broken share of
@@ -44,14 +59,26 @@ import netCDF4
 import numpy as np
 
 
-def history(path):
+def history(path, quasi_static=False):
     with h5py.File(path, "r") as f:
         t = f["time"][:]
         force = 0.5 * (f["upper_reaction_y"][:] - f["lower_reaction_y"][:])
-        opening = f["probe_upper_displacement_y"][:] - f["probe_lower_displacement_y"][:]
-        kinetic = f["kinetic_energy"][:]
+        if quasi_static:
+            # the grips' own displacement columns (every point of a grip moves as one in y)
+            opening = f["upper_displacement_y"][:] - f["lower_displacement_y"][:]
+            kinetic = np.zeros_like(t)  # every row is an equilibrium
+        else:
+            opening = f["probe_upper_displacement_y"][:] - f["probe_lower_displacement_y"][:]
+            kinetic = f["kinetic_energy"][:]
         elastic = f["elastic_energy"][:]
+        booked = f["upper_work"][:] + f["lower_work"][:] if quasi_static else None
+    if quasi_static and t[0] > 0:  # the rows are the load steps; the unloaded state comes first
+        t, force, opening, elastic, booked = (np.concatenate(([0.0], c)) for c in (t, force, opening, elastic, booked))
+        kinetic = np.zeros_like(t)
     work = np.concatenate(([0.0], np.cumsum(0.5 * (force[1:] + force[:-1]) * np.diff(opening))))
+    if quasi_static and np.abs(work - booked).max() > 1e-6 * np.abs(booked).max():
+        sys.exit("dcb_energy_release: the work read off the force-opening curve and the grips' "
+                 "work columns differ by %.3g of the latter" % (np.abs(work - booked).max() / np.abs(booked).max()))
     return t, force, opening, work, kinetic, elastic
 
 
@@ -142,11 +169,14 @@ def main():
     ap.add_argument("--h", type=float, default=0.020)
     ap.add_argument("--partial-volumes", action="store_true",
                     help="the run had partial_volumes: true (the damage weighs the neighbours by it)")
+    ap.add_argument("--quasi-static", action="store_true",
+                    help="the run had solver.type quasi_static: every row an equilibrium (no kinetic "
+                         "energy), the opening from the grips' displacement columns")
     ap.add_argument("--json", action="store_true", help="print one JSON line")
     ap.add_argument("--csv", help="write time, opening, force, crack area, D per output")
     a = ap.parse_args()
 
-    t, force, opening, work, kinetic, elastic = history(a.h5)
+    t, force, opening, work, kinetic, elastic = history(a.h5, a.quasi_static)
     et, area = crack_areas(a.exodus, a.dx, a.horizon, a.a0, a.B, a.L, a.h, a.partial_volumes)
     rows = [int(np.argmin(np.abs(t - ti))) for ti in et]
     if max(abs(t[r] - ti) for r, ti in zip(rows, et)) > 1e-3 * (t[-1] - t[0]):
@@ -159,6 +189,10 @@ def main():
     if np.count_nonzero(run) < 3:
         sys.exit("dcb_energy_release: the crack ran through fewer than 3 outputs (%d); run longer"
                  % np.count_nonzero(run))
+    with h5py.File(a.h5, "r") as f:
+        booked = f["damage_dissipation"][:]
+    if a.quasi_static and len(booked) < len(t):
+        booked = np.concatenate(([0.0], booked))
     out = {
         "G": float(np.polyfit(area[run], D[run], 1)[0]),
         "G_total": float(D[-1] / area[-1]),
@@ -168,6 +202,7 @@ def main():
         "crack_length_end": float(a.a0 + area[-1] / a.B),
         "outputs_fitted": int(np.count_nonzero(run)),
         "kinetic_share_end": float(Kc[-1] / max(W[-1], 1e-300)),
+        "G_bonds": float(np.polyfit(area[run], booked[rows][run], 1)[0]),
     }
     if a.csv:
         np.savetxt(a.csv, np.column_stack((et, Dl, F, area, D)), delimiter=",",

@@ -98,11 +98,13 @@ int pf_sim_accounts_open(pf_sim *sim) {
 /* Body b's kinetic energy, momentum and the centred kinetic energy: a prescribed component's
  * force (marked in fixed) is a reaction, not an acceleration, so it does not enter the centred
  * kinetic energy sum m (|v|^2 - (dt/2)^2 |a|^2) / 2 = sum m v(t - dt/2) . v(t + dt/2) / 2, the
- * kinetic part of the energy velocity Verlet conserves exactly for linear forces. */
+ * kinetic part of the energy velocity Verlet conserves exactly for linear forces. Quasi-static,
+ * the force left at a load step's end is the relaxation's residual, not an acceleration over a
+ * step: the centred kinetic energy is the kinetic energy (0, the points at rest). */
 static void body_motion(pf_sim *sim, int b, const uint8_t *fixed) {
   const pf_points *p = sim->pts;
   const pf_body_accounts *A = &sim->acc.body[b];
-  const double h = 0.5 * sim->dt;
+  const double h = sim->solver.type == PF_SOLVER_QUASI_STATIC ? 0.0 : 0.5 * sim->dt;
   double ke = 0, kc = 0, mom[3] = {0, 0, 0};
   for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++)
     for (int a = 0; a < 3; a++) {

@@ -23,8 +23,12 @@ int pf_body_post_step(const pf_body *b, pf_points *pts) { return b->ops->post_st
 int pf_body_freeze_damage(const pf_body *b, const pf_points *pts, int frozen) {
   return b->ops->freeze_damage ? b->ops->freeze_damage(b->data, pts, frozen) : 0;
 }
-int pf_body_keeps_history(const pf_body *b) { return b->ops->history != NULL; }
-int pf_body_history(const pf_body *b, int restore) { return b->ops->history ? b->ops->history(b->data, restore) : 0; }
+int pf_body_keeps_history(const pf_body *b, pf_points *pts) {
+  return b->ops->history && b->ops->history(b->data, pts, PF_HISTORY_KEPT) == 1;
+}
+int pf_body_history(const pf_body *b, pf_points *pts, pf_history_op op) {
+  return pf_body_keeps_history(b, pts) ? b->ops->history(b->data, pts, op) : 0;
+}
 int64_t pf_body_broken_bonds(const pf_body *b) {
   const pf_family *fam = pf_body_family(b);
   int64_t n = 0;

@@ -24,6 +24,9 @@ typedef struct {
   double converted; /* kinetic energy removed by converting elements into particles (booked), J */
 } pf_body_energies;
 
+/* What the body op `history` is asked. */
+typedef enum { PF_HISTORY_KEPT, PF_HISTORY_COMMIT, PF_HISTORY_RESTORE } pf_history_op;
+
 typedef struct {
   const char *type;  /* the deck's `type:` */
   const char *label; /* the kind in --check's table (PD, coupled, FE, particles) */
@@ -61,13 +64,14 @@ typedef struct {
    * by one force evaluation thawed at the equilibrium reached); NULL: a body without damage,
    * nothing to do. */
   int (*freeze_damage)(void *data, const pf_points *pts, int frozen);
-  /* Optional: the body's history (plastic and rate-form state): commit the current one
-   * (restore 0) or put the committed one back (restore 1). With it, the quasi-static solver
-   * commits at each load step's start and restores before each force evaluation, and the body
+  /* Optional: the body's history (plastic and rate-form state): whether it keeps any
+   * (PF_HISTORY_KEPT: returns 1 or 0), commit the current one (PF_HISTORY_COMMIT) or put the
+   * committed one back (PF_HISTORY_RESTORE). A body that keeps history has the quasi-static
+   * solver commit it at each load step's start and restore it before each force evaluation, and
    * reads the whole load step's increment as its velocity over a step of 1: each evaluation is
-   * one increment from the last converged state. NULL: the body's force keeps no history, or one
-   * that the iterations advance (it reads the iteration's increment). */
-  int (*history)(void *data, int restore);
+   * one increment from the last converged state. NULL, or 0 kept: the body's force keeps no
+   * history, or one that the iterations advance (it reads the iteration's increment). */
+  int (*history)(void *data, pf_points *pts, pf_history_op op);
   /* Optional: the change of stored energy when bonds failed since the last call into w[0], and
    * the part of it that is moved, not released, into w[1] (<= 0; docs/theory/pd.md §5.1), J
    * (NULL: none). */
@@ -161,8 +165,8 @@ int pf_body_step_varies(const pf_body *b);
 int pf_body_uses_velocity(const pf_body *b);
 int pf_body_post_step(const pf_body *b, pf_points *pts);
 int pf_body_freeze_damage(const pf_body *b, const pf_points *pts, int frozen);
-int pf_body_keeps_history(const pf_body *b);
-int pf_body_history(const pf_body *b, int restore);
+int pf_body_keeps_history(const pf_body *b, pf_points *pts);
+int pf_body_history(const pf_body *b, pf_points *pts, pf_history_op op);
 /* The failed directed bonds of the body's owned rows (0 for a body without bonds). */
 int64_t pf_body_broken_bonds(const pf_body *b);
 void pf_body_take_damage_work(const pf_body *b, double w[2]);

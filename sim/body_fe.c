@@ -66,7 +66,10 @@ static pf_int table_get(const void *data, pf_gid *ids, double *out) { return pf_
 static void table_set(void *data, const double *full) { pf_fem_body_state_set(data, full); }
 static void set_stable_dt(void *data, double dt) { pf_fem_body_set_stable_dt(data, dt); }
 static pf_fem_body *as_fem(void *data) { return data; }
-static int history(void *data, int restore) { return pf_fem_body_history(data, restore); }
+static int history(void *data, pf_points *pts, pf_history_op op) {
+  (void)pts;
+  return op == PF_HISTORY_KEPT ? 1 : pf_fem_body_history(data, op == PF_HISTORY_RESTORE);
+}
 
 const pf_body_ops pf_body_kind_fe = {
     .type = "finite_element",

@@ -126,6 +126,10 @@ static int post_step(void *data, pf_points *pts) { return pf_pd_body_post_step(d
 static int freeze_damage(void *data, const pf_points *pts, int frozen) {
   return pf_pd_body_freeze_damage(data, pts, frozen);
 }
+static int history(void *data, pf_points *pts, pf_history_op op) {
+  if (op == PF_HISTORY_KEPT) return pf_pd_body_keeps_history(data);
+  return pf_pd_body_history(data, pts, op == PF_HISTORY_RESTORE);
+}
 static void take_damage_work(void *data, double w[2]) {
   w[0] = pf_pd_body_take_damage_work(data), w[1] = pf_pd_body_take_damage_redistribution(data);
 }
@@ -172,6 +176,7 @@ const pf_body_ops pf_body_kind_pd = {
     .uses_velocity = uses_velocity,
     .post_step = post_step,
     .freeze_damage = freeze_damage,
+    .history = history,
     .take_damage_work = take_damage_work,
     .energies = energies,
     .family = family,

@@ -9,7 +9,7 @@
 #include "core/core.h"
 #include "sim/sim.h"
 
-enum { PF_SOLVER_SUMS = 6 }; /* the sums of an iteration (sim/solver_relaxation.c) */
+enum { PF_SOLVER_SUMS = 7 }; /* the sums of an iteration (sim/solver_relaxation.c) */
 typedef enum { PF_SOLVER_EXPLICIT, PF_SOLVER_QUASI_STATIC } pf_solver_type;
 
 typedef struct {

@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { S_RESIDUAL, S_REFERENCE, S_INTERNAL, S_UKU, S_UU, S_TRIPPED }; /* the sums (PF_SOLVER_SUMS) */
+enum { S_RESIDUAL, S_REFERENCE, S_INTERNAL, S_UKU, S_UU, S_TRIPPED, S_SIGNAL }; /* the sums (PF_SOLVER_SUMS) */
 
 static int scratch(pf_sim_solver *s, pf_int n) {
   if (s->n == n && s->lambda) return 0;
@@ -86,9 +86,9 @@ static int velocities(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
   for (int b = 0; b < sim->nbodies; b++) {
-    const int hist = pf_body_keeps_history(&sim->body[b]);
+    const int hist = pf_body_keeps_history(&sim->body[b], p);
     const double *from = hist ? s->u0 : s->u_last;
-    if (hist) PF_CALL(pf_body_history(&sim->body[b], 1));
+    if (hist) PF_CALL(pf_body_history(&sim->body[b], p, PF_HISTORY_RESTORE));
     for (pf_int d = 3 * sim->body_start[b]; d < 3 * sim->body_start[b + 1]; d++) p->v[d] = p->u[d] - from[d];
   }
   return 0;
@@ -130,6 +130,7 @@ static int measure(pf_sim *sim, double *q) {
     t[S_UKU * n3 + d] = fr && dv != 0 ? -u * u * (p->f[d] - s->f_old[d]) / dv : 0;
     t[S_UU * n3 + d] = fr ? u * u : 0;
     t[S_TRIPPED * n3 + d] = d == 0 ? sim->guard_tripped : 0;
+    t[S_SIGNAL * n3 + d] = d == 0 ? pf_sim_signal_here() : 0;
   }
   return pf_sim_solver_sums(t, n3, PF_SOLVER_SUMS, q);
 }
@@ -156,6 +157,8 @@ static void advance(pf_sim *sim, const double *q, int first) {
   }
 }
 
+enum { STOP_GUARD = 1, STOP_SIGNAL = 2 }; /* why a relaxation stopped before equilibrium */
+
 static int not_converged(const pf_sim *sim, long it, double res) {
   return pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
                         "quasi-static load step %ld of %ld (t = %g s) did not converge: the residual is %.3e of the "
@@ -165,7 +168,8 @@ static int not_converged(const pf_sim *sim, long it, double res) {
 }
 
 /* Relax the load step's state to equilibrium: *it iterations, *res the relative residual; *stop
- * set (on every rank) when a body tripped the guard or the residual is not finite. */
+ * set (on every rank) to STOP_GUARD when a body tripped the guard or the residual is not finite,
+ * to STOP_SIGNAL when a rank received SIGTERM or SIGINT. */
 static int relax(pf_sim *sim, long *it, double *res, int *stop) {
   pf_sim_solver *s = &sim->solver;
   double q[PF_SOLVER_SUMS];
@@ -174,7 +178,7 @@ static int relax(pf_sim *sim, long *it, double *res, int *stop) {
   PF_CALL(measure(sim, q));
   for (*it = 0;; ++*it) {
     *res = relative_residual(q);
-    *stop = q[S_TRIPPED] > 0 || !isfinite(*res); /* (the guard check names it) */
+    *stop = q[S_TRIPPED] > 0 || !isfinite(*res) ? STOP_GUARD : q[S_SIGNAL] > 0 ? STOP_SIGNAL : 0;
     if (*stop || *res <= s->tolerance) return 0;
     if (*it == s->max_iterations) return not_converged(sim, *it, *res);
     advance(sim, q, *it == 0);
@@ -216,16 +220,16 @@ static int too_many_passes(const pf_sim *sim, double failed) {
 }
 
 /* Relax, check the damage at the equilibrium, relax again at the same load while bonds fail:
- * *it iterations in all, *res the last relative residual, *passes the relaxations after the first. */
-static int equilibrate(pf_sim *sim, long *it, double *res, long *passes) {
+ * *it iterations in all, *res the last relative residual, *passes the relaxations after the first;
+ * *stop as relax leaves it. */
+static int equilibrate(pf_sim *sim, long *it, double *res, long *passes, int *stop) {
   *it = 0;
   for (*passes = 0;; ++*passes) {
     long n = 0;
-    int stop = 0;
     double failed = 0;
-    PF_CALL(relax(sim, &n, res, &stop));
+    PF_CALL(relax(sim, &n, res, stop));
     *it += n;
-    if (stop) return 0; /* the guard check names it */
+    if (*stop) return 0; /* (the guard check names a guard's stop; a signal abandons the load step) */
     PF_CALL(check_damage(sim, &failed));
     if (failed == 0) return 0;
     if (*passes == sim->solver.max_damage_passes) return too_many_passes(sim, failed);
@@ -241,7 +245,7 @@ static int begin(pf_sim *sim) {
   memset(s->fixed, 0, 3 * (size_t)p->n_owned);
   pf_sim_interactions_mark(sim, s->fixed);
   PF_CALL(masses(sim));
-  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_history(&sim->body[b], 0)); /* (committed) */
+  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_history(&sim->body[b], sim->pts, PF_HISTORY_COMMIT));
   memcpy(s->u_last, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
   memcpy(s->u0, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
   PF_CALL(evaluate(sim));
@@ -277,6 +281,27 @@ static int finish(pf_sim *sim) {
   return 0;
 }
 
+/* SIGTERM or SIGINT during a load step: back to the last equilibrium (the load step's start:
+ * displacements, and the forces, the bodies' history and fields evaluated there with the damage
+ * still frozen; step and time), so that the checkpoint the time loop then writes, and the history
+ * row, are those of the last load step; the restart takes this load step again. Bonds a damage
+ * check of this load step failed stay failed. Collective (every rank stops at the same
+ * iteration: the signal is one of the iteration's sums). */
+static int abandon(pf_sim *sim, long it) {
+  pf_sim_solver *s = &sim->solver;
+  pf_points *p = sim->pts;
+  for (pf_int d = 0; d < 3 * p->n_owned; d++) p->u[d] = s->u0[d], p->y[d] = p->X[d] + p->u[d];
+  PF_CALL(evaluate(sim));
+  PF_CALL(freeze_damage(sim, 0));
+  memset(p->v, 0, sizeof(double) * 3 * (size_t)p->n_owned);
+  sim->step--;
+  sim->t = (double)sim->step / (double)s->load_steps * sim->final_time;
+  s->iterations += it;
+  pf_log("load step %ld/%ld abandoned after %ld iterations: signal %d\n", sim->step + 1, s->load_steps, it,
+         pf_sim_signal_here());
+  return pf_sim_guard_check(sim); /* (collective: sets sim->signal for the time loop's checkpoint) */
+}
+
 static int progress(pf_sim *sim, long it, double res, long passes) {
   PF_CALL(pf_sim_accounts_evaluate(sim, 0)); /* (collective) the damage fraction */
   pf_log("load step %ld/%ld  t = %.4e s  iterations %ld  residual %.3e  damage passes %ld  damage %.4g\n",
@@ -297,7 +322,9 @@ int pf_sim_solver_load_step(pf_sim *sim) {
   predict(sim);
   long it = 0, passes = 0;
   double res = 0;
-  PF_CALL(equilibrate(sim, &it, &res, &passes));
+  int stop = 0;
+  PF_CALL(equilibrate(sim, &it, &res, &passes, &stop));
+  if (stop == STOP_SIGNAL) return abandon(sim, it);
   PF_CALL(freeze_damage(sim, 0));
   s->iterations += it, s->damage_passes += passes;
   PF_CALL(finish(sim));
