@@ -47,6 +47,13 @@ static int freeze_damage(void *data, const pf_points *pts, int frozen) {
   return pd->freeze_damage(pd_of(data), pts, frozen);
 }
 static void take_damage_work(void *data, double w[2]) { pd->take_damage_work(pd_of(data), w); }
+/* History: the elements' and the PD operator's (both read the load step's increment over one
+ * velocity field, so both take one increment from the committed state). */
+static int history(void *data, pf_points *pts, pf_history_op op) {
+  if (op == PF_HISTORY_KEPT) return 1;
+  PF_CALL(fe->history(fem_of(data), pts, op));
+  return pd->history(pd_of(data), pts, PF_HISTORY_KEPT) == 1 ? pd->history(pd_of(data), pts, op) : 0;
+}
 
 /* The elements' energies, each weighted by its share 1 - beta, and the PD operator's blended
  * share. */
@@ -98,6 +105,7 @@ const pf_body_ops pf_body_kind_coupled = {
     .uses_velocity = pf_body_always,
     .post_step = post_step,
     .freeze_damage = freeze_damage,
+    .history = history,
     .take_damage_work = take_damage_work,
     .energies = energies,
     .family = family,
