@@ -16,7 +16,7 @@ for deck in ../inputs/*.yaml; do
   cut='s/^(\s*)final_time:.*/\1steps: 5/'
   # (a quasi-static deck keeps its pseudo-time: one load step, relaxed a few iterations only
   # (tolerance 0.9): what is checked here is that the deck runs and writes, not its equilibrium)
-  grep -q "type: quasi_static" "$deck" && cut='s/^(\s*)load_steps:.*/\1load_steps: 1/; s/^(\s*)tolerance:.*/\1tolerance: 0.9/'
+  grep -qE "^\s+type: quasi_static" "$deck" && cut='s/^(\s*)load_steps:.*/\1load_steps: 1/; s/^(\s*)tolerance:.*/\1tolerance: 0.9/'
   sed -E "$cut"'; s#\.\./meshes/#'"$PWD"'/../meshes/#' "$deck" > "$short"
   grep -qE '^\s*(steps: 5|load_steps: 1)$' "$short" ||
     { echo "$name: no 'final_time:' line of its own to cut the run at 5 steps (block style: time:, then final_time: on a line)"; fail=1; continue; }
