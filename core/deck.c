@@ -127,6 +127,23 @@ static int read_file(const char *path, char **text, size_t *len) {
   return 0;
 }
 
+/* The hint of a YAML syntax error on a line that holds a ${...}: in a flow mapping or list,
+ * the braces of an unquoted ${...} are YAML's own. */
+static const char *substitution_hint(const char *text, size_t len, int line) {
+  const char *p = text, *end = text + len;
+  for (int l = 1; l < line && p < end; l++) {
+    p = memchr(p, '\n', (size_t)(end - p));
+    if (!p) return "";
+    p++;
+  }
+  const char *eol = memchr(p, '\n', (size_t)(end - p));
+  const size_t n = (size_t)((eol ? eol : end) - p);
+  for (size_t k = 0; k + 1 < n; k++)
+    if (p[k] == '$' && p[k + 1] == '{')
+      return " (a ${...} inside { } or [ ] must be quoted there: spacing: \"${dx}\")";
+  return "";
+}
+
 /* One YAML document into a tree; a deck file's root must be a mapping (need_map), an override's
  * value may be anything. */
 static int parse_text(const char *path, const char *text, size_t len, int need_map, pf_node **out) {
@@ -140,7 +157,8 @@ static int parse_text(const char *path, const char *text, size_t len, int need_m
     snprintf(prob, sizeof prob, "%s%s%s", parser.problem ? parser.problem : "syntax error",
              parser.context ? " " : "", parser.context ? parser.context : "");
     yaml_parser_delete(&parser);
-    PF_CHECK(0, PF_ERR_INPUT, "%s:%d:%d: YAML syntax error: %s", path, line, col, prob);
+    PF_CHECK(0, PF_ERR_INPUT, "%s:%d:%d: YAML syntax error: %s%s", path, line, col, prob,
+             substitution_hint(text, len, line));
   }
   yaml_node_t *root = yaml_document_get_root_node(&doc);
   int ierr = 0;
