@@ -10,10 +10,13 @@
 #     (interval) is accepted (every restart here uses a deck with other output settings).
 #  5. Finite elements (the Taylor bar, cut to 200 steps: J2 history, viscous hourglass,
 #     adaptive step, rigid wall): a run with a checkpoint at step 160 on 2 ranks, restarted on
-#     3 and on 1, ends with the uninterrupted 1-rank run's digest; the same with element
-#     erosion (elements deleted before and after the checkpoint).
+#     3 and on 1, ends with the uninterrupted 1-rank run's digest, and so does the 2-rank run
+#     itself; the same with element erosion (elements deleted before and after the checkpoint).
 #  6. PD materials with history, the coupled bar, contact, and a rigid indenter (1 -> 1, 1 -> 3,
-#     2 -> 2, 2 -> 1): restarts end with the uninterrupted run's digest.
+#     2 -> 2, 2 -> 1): restarts, and the 2-rank runs that write their checkpoints, end with the
+#     uninterrupted 1-rank run's digest (these 2-rank runs are the decks' 2-rank runs:
+#     mpi_digests.sh runs taylor_impact, disk_impact_rigid, sphere_on_block and coupled_bar on
+#     1 and 3 ranks only).
 # usage: mpi_restart.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
@@ -83,13 +86,15 @@ echo "$out" | grep -q "'materials' differs from the deck the checkpoint" || { ec
 # finite elements
 sed -E 's/^(\s*)final_time:.*/\1steps: 200/; s#\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/../inputs/taylor_impact.yaml" > fe$tag.yaml
 printf 'restart:\n  file: ckfe.h5\n  interval: 80\n' >> fe$tag.yaml
-# check_restart DECK CHECKPOINT LABEL: the uninterrupted 1-rank digest, then a 2-rank run with
-# checkpoints restarted on 3 and on 1 ranks must end with it
+# check_restart DECK CHECKPOINT LABEL: the uninterrupted 1-rank digest; the 2-rank run that
+# writes the checkpoints must end with it, and so must its restarts on 3 and on 1 ranks
 check_restart() {
-  local ref d
+  local ref d out
   ref=$(digest_of "$(run 1 "$exe" --quiet $1 2>&1)")
   rm -f $2
-  run 2 "$exe" --quiet $1 > /dev/null 2>&1 || { echo "$3: run with checkpoints failed"; fail=1; }
+  out=$(run 2 "$exe" --quiet $1 2>&1) || { echo "$3: run with checkpoints failed: $out"; fail=1; }
+  d=$(digest_of "$out")
+  [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "$3: on 2 ranks: digest '$d', on 1 rank '$ref'"; fail=1; }
   for np in 3 1; do
     d=$(digest_of "$(run $np "$exe" --quiet --restart $2 $1 2>&1)")
     [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "$3: restarted on $np ranks: digest '$d', uninterrupted '$ref'"; fail=1; }
@@ -104,10 +109,13 @@ check_restart fer$tag.yaml ckfer.h5 "FE erosion"
 # PD materials with history: the elastic-plastic tube (tests/data/expanding_tube_ep.yaml,
 # yielding from the first steps; per-bond plastic extensions in /bonds/state) and the modified
 # Johnson-Cook bar (tests/data/damage_bar.yaml; stress, history and the last step's damage
-# record as point fields): a 2-rank run with checkpoints, restarted on 3 and on 1, ends with the
-# uninterrupted 1-rank run's digest
+# record as point fields; pulled at 400 m/s instead of 40, so that bonds break from step 10, in
+# steps 10-30 before the checkpoint at step 40 and in steps 42 and 51 after it: 60 steps instead
+# of 360 at 40 m/s, whose bonds broke from step 160): a 2-rank run with checkpoints, restarted on
+# 3 and on 1, ends with the uninterrupted 1-rank run's digest
 cp "$OLDPWD/data/expanding_tube_ep.yaml" ep$tag.yaml
-sed -E 's/final_time: 4.5e-5/steps: 360/; s/d1: 0.1,/d1: 0.0,/' "$OLDPWD/data/damage_bar.yaml" > jc$tag.yaml
+sed -E 's/final_time: 4.5e-5/steps: 60/; s/d1: 0.1,/d1: 0.0,/; s/"(-?)40 \* min/"\1400 * min/' "$OLDPWD/data/damage_bar.yaml" > jc$tag.yaml
+grep -q '"400 \* min' jc$tag.yaml || { echo "jc: the deck was not made"; fail=1; }
 # and the coupled PD/FE bar (tests/data/coupled_bar.yaml: PD bonds with damage on FE nodes, J2
 # elements, blending), checkpointed at step 50 of 60
 # (cc: the same in the corrected form, whose ghost-correction vectors, set at t = 0 from the
@@ -122,21 +130,27 @@ sed -E 's/^(\s*)damage: \{law/\1formulation: consistent\n\1damage: {law/' cb$tag
 # block's, which the restart must number the same way), checkpointed at step 100 of 150
 sed -E 's#\.\./\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/data/sphere_on_block.yaml" > sb$tag.yaml
 for m in ep jc cb cc cn sb; do
-  printf 'restart:\n  file: ck%s.h5\n  interval: %d\n' $m $(case $m in ep) echo 60 ;; jc) echo 150 ;; sb) echo 100 ;; *) echo 25 ;; esac) >> $m$tag.yaml
+  printf 'restart:\n  file: ck%s.h5\n  interval: %d\n' $m $(case $m in ep) echo 60 ;; jc) echo 40 ;; sb) echo 100 ;; *) echo 25 ;; esac) >> $m$tag.yaml
   check_restart $m$tag.yaml ck$m.h5 $m
 done
 # A rigid indenter (inputs/disk_impact_rigid.yaml, reduced: radius 12 mm, 60 steps, checkpoint at
 # step 50): its position and reaction travel in the checkpoint's scalars, which must know the
-# indenter when the restart reads them. Written on 1 rank, restarted on 1 and 3; written on 2,
-# restarted on 2 and 1: each ends with the uninterrupted 1-rank run's digest.
+# indenter when the restart reads them. The uninterrupted 1-rank run writes the checkpoint
+# restarted on 1 and 3; a 2-rank run (ending with the same digest) writes the one restarted on 2
+# and 1: each restart ends with the uninterrupted 1-rank run's digest.
 sed -E 's/radius: 0.037/radius: 0.012/; s/^(\s*)final_time:.*/\1steps: 60/' "$OLDPWD/../inputs/disk_impact_rigid.yaml" > ri$tag.yaml
 printf 'restart:\n  file: ckri.h5\n  interval: 25\n' >> ri$tag.yaml
-ref=$(digest_of "$(run 1 "$exe" --quiet ri$tag.yaml 2>&1)")
+for np in 1 2; do
+  rm -f ckri.h5
+  out=$(run $np "$exe" --quiet ri$tag.yaml 2>&1) || { echo "indenter: the run with checkpoints on $np ranks failed: $out"; fail=1; }
+  d=$(digest_of "$out")
+  [ $np -eq 1 ] && ref=$d
+  [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "indenter: on $np ranks: digest '$d', on 1 rank '$ref'"; fail=1; }
+  mv ckri.h5 ckri$np.h5 2>/dev/null || { echo "indenter: no checkpoint written on $np ranks"; fail=1; }
+done
 for pair in "1 1" "1 3" "2 2" "2 1"; do
   set -- $pair
-  rm -f ckri.h5
-  run $1 "$exe" --quiet ri$tag.yaml > /dev/null 2>&1 || { echo "indenter: the run with checkpoints on $1 ranks failed"; fail=1; }
-  d=$(digest_of "$(run $2 "$exe" --quiet --restart ckri.h5 ri$tag.yaml 2>&1)")
+  d=$(digest_of "$(run $2 "$exe" --quiet --restart ckri$1.h5 ri$tag.yaml 2>&1)")
   [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "indenter: written on $1 ranks, restarted on $2: digest '$d', uninterrupted '$ref'"; fail=1; }
 done
 exit $fail

@@ -2,7 +2,8 @@
 # Every shipped deck, cut to a few steps, runs to the end: exit 0, a state digest, an Exodus
 # file that ncdump reads with a SPHERE block for a peridynamic body and a HEX8 block for a
 # finite-element body, a history file; and a second run gives the same digest (determinism),
-# except for the decks whose reduced copies mpi_digests runs three times and compares already.
+# except for the decks whose reduced copies mpi_digests runs on 1 and 3 ranks (some on 2 as well)
+# and compares already.
 # usage: run_examples.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
