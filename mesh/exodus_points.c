@@ -1,13 +1,24 @@
 /* Peridigm's Exodus discretization as a peridynamic body's points (`geometry: {shape: exodus}`):
- * an Exodus II file whose element blocks hold SPHERE elements, one node each; every element is
- * one point at its node, of the volume the element's attribute named `volume` gives. When a
- * block's attributes carry no names, the Sierra/SolidMechanics sphere convention that Peridigm
- * follows applies: attribute 1 is the sphere's radius, attribute 2 its volume. The points come
- * in file order (blocks in file order, elements in block order), each with its block's id.
- * A node set holds the points of the elements on its nodes (for SPHERE elements: the element at
- * each node), as Peridigm reads it; side sets have no meaning for spheres and are ignored.
+ * an Exodus II file whose element blocks hold SPHERE, HEX8 or TET4 elements, one point per
+ * element, as Peridigm's Exodus discretization reads them.
+ *  - SPHERE (one node): the point sits at the node, with the volume the element's attribute named
+ *    `volume` gives. When a block's attributes carry no names, the Sierra/SolidMechanics sphere
+ *    convention that Peridigm follows applies: attribute 1 is the sphere's radius, attribute 2
+ *    its volume.
+ *  - HEX8 (type HEX, HEX8 or HEXAHEDRON, 8 nodes) and TET4 (TET, TET4, TETRA or TETRA4, 4 nodes):
+ *    the point sits at the element's centroid with the element's volume, both computed from
+ *    tetrahedra as Peridigm does (mesh/element_point.c); an element with a tetrahedron of
+ *    negative volume is refused, as Peridigm refuses it.
+ * Any other element type is refused naming the block. The points come in file order (blocks in
+ * file order, elements in block order), each with its block's id.
+ * A node set holds the points of every element that has one of its nodes (a SPHERE: the element
+ * at the node; a hexahedron or tetrahedron: every element the node is a corner of), as Peridigm
+ * maps a node set onto its points; elements of blocks not taken are left out. Side sets are
+ * ignored, as Peridigm ignores them.
  * Exodus II format: Schoof & Yarberry, SAND92-2137 (1994); Peridigm's use of it: Parks,
- * Littlewood, Mitchell & Silling, Peridigm Users' Guide v1.0.0, SAND2012-7800 (2012). */
+ * Littlewood, Mitchell & Silling, Peridigm Users' Guide v1.0.0, SAND2012-7800 (2012), and
+ * Peridigm's src/io/discretization/Peridigm_ExodusDiscretization.cpp (loadData: element types,
+ * the node-set rule). */
 #include "mesh/mesh_impl.h"
 
 #include <errno.h>
@@ -31,18 +42,22 @@ typedef struct {
   char (*blk_name)[64];
   int *take;       /* [nblk] 1: the deck takes this block */
   double *xyz;     /* [3 nnodes] coordinates, component-major as Exodus stores them */
-  pf_int *node_pt; /* [nnodes] the cloud point at each node, -1: none */
-} sphere_reader;
+  int64_t *pt_node; /* [8 points] the nodes (0-based) of each point's element, -1: none */
+  int64_t *node_off; /* [nnodes + 1] node -> points: node_pts[node_off[k] .. node_off[k + 1]) */
+  pf_int *node_pts;  /* the points of the elements on each node, ascending */
+  int64_t nkind[4];  /* elements read of each kind (elem_kind) */
+} exo_reader;
 
-static void reader_free(sphere_reader *r) {
-  free(r->blk_id), free(r->blk_name), free(r->take), free(r->xyz), free(r->node_pt);
+static void reader_free(exo_reader *r) {
+  free(r->blk_id), free(r->blk_name), free(r->take), free(r->xyz), free(r->pt_node), free(r->node_off);
+  free(r->node_pts);
   if (r->exoid >= 0) ex_close(r->exoid);
 }
 
 /* An error about the file's content, naming the deck's `file` key and the file. */
 #define FILE_ERROR(r, ...) file_error_((r), __VA_ARGS__)
-static int file_error_(const sphere_reader *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static int file_error_(const sphere_reader *r, const char *fmt, ...) {
+static int file_error_(const exo_reader *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static int file_error_(const exo_reader *r, const char *fmt, ...) {
   char msg[1536];
   va_list ap;
   va_start(ap, fmt);
@@ -51,7 +66,7 @@ static int file_error_(const sphere_reader *r, const char *fmt, ...) {
   return pf_deck_error(r->d, r->file_node, "file", "%s: %s", r->path, msg);
 }
 
-static int exodus_call(const sphere_reader *r, int status, const char *call) {
+static int exodus_call(const exo_reader *r, int status, const char *call) {
   if (status >= 0) return 0;
   const char *msg = NULL, *where = NULL;
   int code = 0;
@@ -61,7 +76,7 @@ static int exodus_call(const sphere_reader *r, int status, const char *call) {
 #define EXO(r, call) PF_CALL(exodus_call((r), (call), #call))
 
 /* "'cylinder' (id 1), 'rings' (id 2)" */
-static void block_list(const sphere_reader *r, char *out, size_t len) {
+static void block_list(const exo_reader *r, char *out, size_t len) {
   out[0] = '\0';
   for (int64_t b = 0; b < r->nblk; b++) {
     size_t used = strlen(out);
@@ -69,13 +84,13 @@ static void block_list(const sphere_reader *r, char *out, size_t len) {
   }
 }
 
-static int read_header(sphere_reader *r) {
+static int read_header(exo_reader *r) {
   char title[MAX_LINE_LENGTH + 1];
   int64_t ndim = 0, nss = 0;
   EXO(r, ex_get_init(r->exoid, title, &ndim, &r->nnodes, &r->nelem, &r->nblk, &r->nns, &nss));
   if (ndim != 3) return FILE_ERROR(r, "a %" PRId64 "-D Exodus file; a discretization is 3-D", ndim);
   if (r->nblk == 0) return FILE_ERROR(r, "no element blocks");
-  if (nss) pf_log("%s: %" PRId64 " side set(s) ignored (SPHERE elements have no sides)\n", r->path, nss);
+  if (nss) pf_log("%s: %" PRId64 " side set(s) ignored (a Peridigm discretization reads node sets)\n", r->path, nss);
   PF_MALLOC(r->blk_id, r->nblk);
   PF_MALLOC(r->blk_name, r->nblk);
   PF_MALLOC(r->take, r->nblk);
@@ -96,7 +111,7 @@ static int read_header(sphere_reader *r) {
 }
 
 /* The deck's `blocks:` (names or ids), or every block. */
-static int choose_blocks(sphere_reader *r) {
+static int choose_blocks(exo_reader *r) {
   const pf_node *list = pf_node_get(r->g, "blocks");
   for (int64_t b = 0; b < r->nblk; b++) r->take[b] = !list;
   for (int i = 0; list && i < pf_node_count(list); i++) {
@@ -121,7 +136,7 @@ static int choose_blocks(sphere_reader *r) {
 }
 
 /* The index of the attribute that holds the volume, or an error. */
-static int volume_attribute(sphere_reader *r, int64_t b, int64_t nattr, int64_t *which) {
+static int volume_attribute(exo_reader *r, int64_t b, int64_t nattr, int64_t *which) {
   char **names = NULL, *store = NULL;
   PF_MALLOC(names, nattr + 1);
   store = calloc((size_t)nattr + 1, NAME_LEN + 1);
@@ -164,45 +179,112 @@ static int cloud_alloc(pf_point_cloud *pc, int64_t n) {
   return 0;
 }
 
-/* One block's elements into the cloud from point pc->n on; e0: the file's number of its first
- * element less one. */
-static int read_block(sphere_reader *r, int64_t b, int64_t e0, pf_point_cloud *pc, int64_t *buf, double *attr) {
-  char type[MAX_STR_LENGTH + 1] = "";
-  int64_t ne = 0, npe = 0, nedge = 0, nface = 0, nattr = 0, which = -1;
-  EXO(r, ex_get_block(r->exoid, EX_ELEM_BLOCK, r->blk_id[b], type, &ne, &npe, &nedge, &nface, &nattr));
-  if (ne == 0) return 0;
-  if (strncasecmp(type, "SPHERE", 6) || npe != 1)
-    return FILE_ERROR(r,
-                      "block '%s' (id %" PRId64 ") holds %s elements of %" PRId64 " nodes, not SPHERE elements "
-                      "(one node each) as a Peridigm discretization does; a hexahedral mesh is an FE body's "
-                      "mesh:, or leave the block out with geometry.blocks",
-                      r->blk_name[b], r->blk_id[b], type, npe);
+typedef enum { ELEM_OTHER, ELEM_SPHERE, ELEM_TET, ELEM_HEX } elem_kind;
+static const char *const kind_name[] = {"other", "SPHERE", "TET4", "HEX8"};
+
+/* The kind of a block's elements from its type (any case) and nodes per element. */
+static elem_kind element_kind(const char *type, int64_t npe) {
+  static const struct {
+    const char *type;
+    elem_kind kind;
+  } types[] = {{"HEX", ELEM_HEX},  {"HEX8", ELEM_HEX},  {"HEXAHEDRON", ELEM_HEX}, {"TET", ELEM_TET},
+               {"TET4", ELEM_TET}, {"TETRA", ELEM_TET}, {"TETRA4", ELEM_TET}};
+  static const int64_t nodes[] = {0, 1, 4, 8};
+  if (!strncasecmp(type, "SPHERE", 6)) return npe == 1 ? ELEM_SPHERE : ELEM_OTHER;
+  for (size_t k = 0; k < sizeof types / sizeof types[0]; k++)
+    if (!strcasecmp(type, types[k].type)) return npe == nodes[types[k].kind] ? types[k].kind : ELEM_OTHER;
+  return ELEM_OTHER;
+}
+
+/* Every node the block's connectivity names exists. */
+static int check_nodes(const exo_reader *r, int64_t b, int64_t e0, const int64_t *conn, int64_t ne, int64_t npe) {
+  for (int64_t k = 0; k < ne * npe; k++)
+    if (conn[k] < 1 || conn[k] > r->nnodes)
+      return FILE_ERROR(r, "element %" PRId64 " (block '%s') names node %" PRId64 " (nodes 1..%" PRId64 ")",
+                        e0 + k / npe + 1, r->blk_name[b], conn[k], r->nnodes);
+  return 0;
+}
+
+/* Append a point; nodes: its element's npe nodes (1-based). */
+static pf_int add_point(exo_reader *r, int64_t b, pf_point_cloud *pc, const double x[3], double vol,
+                        const int64_t *nodes, int64_t npe) {
+  const pf_int i = pc->n++;
+  for (int c = 0; c < 3; c++) pc->X[3 * i + c] = x[c];
+  pc->vol[i] = vol;
+  pc->cell[i] = cbrt(vol);
+  pc->block[i] = (int32_t)r->blk_id[b];
+  for (int64_t a = 0; a < npe; a++) r->pt_node[8 * (size_t)i + a] = nodes[a] - 1;
+  return i;
+}
+
+/* A SPHERE block: each element a point at its node with its volume attribute. */
+static int read_spheres(exo_reader *r, int64_t b, int64_t e0, int64_t ne, int64_t nattr, pf_point_cloud *pc,
+                        const int64_t *conn, double *attr) {
+  int64_t which = -1;
   PF_CALL(volume_attribute(r, b, nattr, &which));
-  EXO(r, ex_get_conn(r->exoid, EX_ELEM_BLOCK, r->blk_id[b], buf, NULL, NULL));
   EXO(r, ex_get_attr(r->exoid, EX_ELEM_BLOCK, r->blk_id[b], attr));
   const double s3 = r->scale * r->scale * r->scale;
   for (int64_t e = 0; e < ne; e++) {
-    const int64_t node = buf[e];
+    const int64_t node = conn[e];
     const double vol = attr[e * nattr + which] * s3;
-    if (node < 1 || node > r->nnodes)
-      return FILE_ERROR(r, "element %" PRId64 " (block '%s') names node %" PRId64 " (nodes 1..%" PRId64 ")",
-                        e0 + e + 1, r->blk_name[b], node, r->nnodes);
     if (!(vol > 0 && isfinite(vol)))
       return FILE_ERROR(r, "element %" PRId64 " (block '%s') has volume %g (m^3 after scale); volumes must be "
                         "positive", e0 + e + 1, r->blk_name[b], vol);
-    const pf_int i = pc->n++;
-    for (int c = 0; c < 3; c++) pc->X[3 * i + c] = r->xyz[c * r->nnodes + node - 1] * r->scale;
-    if (!isfinite(pc->X[3 * i] + pc->X[3 * i + 1] + pc->X[3 * i + 2]))
+    double x[3];
+    for (int c = 0; c < 3; c++) x[c] = r->xyz[c * r->nnodes + node - 1] * r->scale;
+    if (!isfinite(x[0] + x[1] + x[2]))
       return FILE_ERROR(r, "node %" PRId64 " has a coordinate that is not a finite number", node);
-    pc->vol[i] = vol;
-    pc->cell[i] = cbrt(vol);
-    pc->block[i] = (int32_t)r->blk_id[b];
-    r->node_pt[node - 1] = i;
+    add_point(r, b, pc, x, vol, &conn[e], 1);
   }
   return 0;
 }
 
-static int read_blocks(sphere_reader *r, pf_point_cloud *pc) {
+/* A HEX8 or TET4 block: each element a point at its centroid with its volume (Peridigm's rule). */
+static int read_solids(exo_reader *r, int64_t b, int64_t e0, int64_t ne, elem_kind kind, pf_point_cloud *pc,
+                       const int64_t *conn) {
+  const int64_t npe = kind == ELEM_HEX ? 8 : 4;
+  for (int64_t e = 0; e < ne; e++) {
+    const int64_t *nodes = conn + e * npe;
+    double x[8][3], c[3], vol = 0;
+    for (int64_t a = 0; a < npe; a++) {
+      for (int i = 0; i < 3; i++) x[a][i] = r->xyz[i * r->nnodes + nodes[a] - 1] * r->scale;
+      if (!isfinite(x[a][0] + x[a][1] + x[a][2]))
+        return FILE_ERROR(r, "node %" PRId64 " has a coordinate that is not a finite number", nodes[a]);
+    }
+    const double least = kind == ELEM_HEX ? pf_mesh_hex_point((const double(*)[3])x, c, &vol)
+                                          : pf_mesh_tet_point((const double(*)[3])x, c, &vol);
+    if (!(least >= 0 && vol > 0 && isfinite(vol)))
+      return FILE_ERROR(r, "element %" PRId64 " (block '%s', %s) has volume %g with a tetrahedron of volume %g "
+                        "(m^3 after scale) in Peridigm's split: the element is inverted or flat, or its nodes "
+                        "are not in Exodus order", e0 + e + 1, r->blk_name[b], kind_name[kind], vol, least);
+    add_point(r, b, pc, c, vol, nodes, npe);
+  }
+  return 0;
+}
+
+/* One block's elements into the cloud from point pc->n on; e0: the file's number of its first
+ * element less one. */
+static int read_block(exo_reader *r, int64_t b, int64_t e0, pf_point_cloud *pc, int64_t *buf, double *attr) {
+  char type[MAX_STR_LENGTH + 1] = "";
+  int64_t ne = 0, npe = 0, nedge = 0, nface = 0, nattr = 0;
+  EXO(r, ex_get_block(r->exoid, EX_ELEM_BLOCK, r->blk_id[b], type, &ne, &npe, &nedge, &nface, &nattr));
+  if (ne == 0) return 0;
+  const elem_kind kind = element_kind(type, npe);
+  if (kind == ELEM_OTHER)
+    return FILE_ERROR(r,
+                      "block '%s' (id %" PRId64 ") holds %s elements of %" PRId64 " nodes; a Peridigm "
+                      "discretization is read from SPHERE (1 node), HEX8 (HEX, HEX8, HEXAHEDRON: 8 nodes) "
+                      "and TET4 (TET, TET4, TETRA, TETRA4: 4 nodes) blocks; leave the block out with "
+                      "geometry.blocks",
+                      r->blk_name[b], r->blk_id[b], type, npe);
+  EXO(r, ex_get_conn(r->exoid, EX_ELEM_BLOCK, r->blk_id[b], buf, NULL, NULL));
+  PF_CALL(check_nodes(r, b, e0, buf, ne, npe));
+  r->nkind[kind] += ne;
+  if (kind == ELEM_SPHERE) return read_spheres(r, b, e0, ne, nattr, pc, buf, attr);
+  return read_solids(r, b, e0, ne, kind, pc, buf);
+}
+
+static int read_blocks(exo_reader *r, pf_point_cloud *pc) {
   int64_t most = 0, total = 0;
   for (int64_t b = 0; b < r->nblk; b++) {
     char type[MAX_STR_LENGTH + 1];
@@ -212,8 +294,8 @@ static int read_blocks(sphere_reader *r, pf_point_cloud *pc) {
     total += r->take[b] ? ne : 0;
   }
   PF_CALL(cloud_alloc(pc, total));
-  PF_MALLOC(r->node_pt, r->nnodes);
-  for (int64_t k = 0; k < r->nnodes; k++) r->node_pt[k] = -1;
+  PF_MALLOC(r->pt_node, 8 * (size_t)total);
+  for (int64_t k = 0; k < 8 * total; k++) r->pt_node[k] = -1;
   int64_t *buf = malloc(sizeof *buf * (size_t)(most + 1));
   double *attr = malloc(sizeof *attr * (size_t)(most + 1));
   int ierr = buf && attr ? 0 : pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
@@ -235,11 +317,56 @@ static int read_blocks(sphere_reader *r, pf_point_cloud *pc) {
   return ierr;
 }
 
-/* Node sets: the points at their nodes (nodes of blocks not taken are left out). */
-static int read_node_sets(sphere_reader *r, pf_point_cloud *pc) {
+/* node -> the points of the elements on it (ascending), from each point's element nodes. */
+static int node_points(exo_reader *r, const pf_point_cloud *pc) {
+  PF_MALLOC(r->node_off, r->nnodes + 1);
+  for (size_t k = 0; k < 8 * (size_t)pc->n; k++)
+    if (r->pt_node[k] >= 0) r->node_off[r->pt_node[k] + 1]++;
+  for (int64_t k = 0; k < r->nnodes; k++) r->node_off[k + 1] += r->node_off[k];
+  int64_t *fill = NULL;
+  PF_MALLOC(fill, r->nnodes + 1);
+  r->node_pts = malloc(sizeof *r->node_pts * (size_t)(r->node_off[r->nnodes] + 1));
+  if (!r->node_pts) free(fill);
+  PF_CHECK(r->node_pts, PF_ERR_MEMORY, "out of memory");
+  for (pf_int i = 0; i < pc->n; i++)
+    for (int a = 0; a < 8; a++) {
+      const int64_t k = r->pt_node[8 * (size_t)i + a];
+      if (k >= 0) r->node_pts[r->node_off[k] + fill[k]++] = i;
+    }
+  free(fill);
+  return 0;
+}
+
+static int ascending(const void *a, const void *b) {
+  const pf_gid x = *(const pf_gid *)a, y = *(const pf_gid *)b;
+  return (x > y) - (x < y);
+}
+
+/* A node set's points: every element on one of its nodes, once (Peridigm's rule); mark[i] ==
+ * stamp: point i is in the set already. */
+static int map_node_set(const exo_reader *r, const char *name, const int64_t *list, int64_t n, int *mark,
+                        int stamp, pf_point_set *set) {
+  for (int64_t k = 0; k < n; k++) {
+    if (list[k] < 1 || list[k] > r->nnodes)
+      return FILE_ERROR(r, "node set '%s' names node %" PRId64 " (nodes 1..%" PRId64 ")", name, list[k], r->nnodes);
+    for (int64_t q = r->node_off[list[k] - 1]; q < r->node_off[list[k]]; q++)
+      if (mark[r->node_pts[q]] != stamp) mark[r->node_pts[q]] = stamp, set->gid[set->n++] = r->node_pts[q];
+  }
+  qsort(set->gid, (size_t)set->n, sizeof *set->gid, ascending);
+  return 0;
+}
+
+/* Node sets: the points of the elements on their nodes (elements of blocks not taken are left
+ * out). */
+static int read_node_sets(exo_reader *r, pf_point_cloud *pc) {
   if (r->nns == 0) return 0;
+  PF_CALL(node_points(r, pc));
   int64_t *ids = NULL;
-  PF_MALLOC(ids, r->nns);
+  int *mark = NULL;
+  PF_MALLOC(mark, pc->n);
+  ids = calloc((size_t)r->nns, sizeof *ids);
+  if (!ids) free(mark);
+  PF_CHECK(ids, PF_ERR_MEMORY, "out of memory");
   char(*names)[64] = NULL;
   char **np = NULL, *store = NULL;
   int ierr = exodus_call(r, ex_get_ids(r->exoid, EX_NODE_SET, ids), "ex_get_ids(EX_NODE_SET)");
@@ -259,7 +386,7 @@ static int read_node_sets(sphere_reader *r, pf_point_cloud *pc) {
       if (!strcmp(names[q], names[s])) ierr = FILE_ERROR(r, "two node sets named '%s'", names[s]);
     if (!ierr) ierr = exodus_call(r, ex_get_set_param(r->exoid, EX_NODE_SET, ids[s], &n, &ndf), "ex_get_set_param");
     int64_t *list = ierr ? NULL : calloc((size_t)n + 1, sizeof *list);
-    set->gid = ierr ? NULL : calloc((size_t)n + 1, sizeof *set->gid);
+    set->gid = ierr ? NULL : calloc((size_t)pc->n + 1, sizeof *set->gid);
     if (!ierr && !(list && set->gid)) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
     if (!ierr) {
       pc->nsets++;
@@ -267,20 +394,14 @@ static int read_node_sets(sphere_reader *r, pf_point_cloud *pc) {
       set->body = -1;
     }
     if (!ierr && n) ierr = exodus_call(r, ex_get_set(r->exoid, EX_NODE_SET, ids[s], list, NULL), "ex_get_set");
-    for (int64_t k = 0; !ierr && k < n; k++) {
-      if (list[k] < 1 || list[k] > r->nnodes)
-        ierr = FILE_ERROR(r, "node set '%s' names node %" PRId64 " (nodes 1..%" PRId64 ")", names[s], list[k],
-                          r->nnodes);
-      else if (r->node_pt[list[k] - 1] >= 0)
-        set->gid[set->n++] = r->node_pt[list[k] - 1];
-    }
+    if (!ierr) ierr = map_node_set(r, names[s], list, n, mark, (int)s + 1, set);
     free(list);
   }
-  free(ids), free(names), free(np), free(store);
+  free(ids), free(names), free(np), free(store), free(mark);
   return ierr;
 }
 
-static int read_file(sphere_reader *r, pf_point_cloud *pc) {
+static int read_file(exo_reader *r, pf_point_cloud *pc) {
   int cpu_ws = 8, io_ws = 0;
   float version = 0;
   r->exoid = ex_open(r->path, EX_READ, &cpu_ws, &io_ws, &version);
@@ -294,9 +415,9 @@ static int read_file(sphere_reader *r, pf_point_cloud *pc) {
   return pf_point_cloud_check_distinct(r->path, pc);
 }
 
-int pf_mesh_spheres_from_deck(const pf_deck *d, const pf_node *g, pf_point_cloud *pc) {
+int pf_mesh_exodus_points_from_deck(const pf_deck *d, const pf_node *g, pf_point_cloud *pc) {
   memset(pc, 0, sizeof *pc);
-  sphere_reader r;
+  exo_reader r;
   memset(&r, 0, sizeof r);
   r.exoid = -1;
   r.d = d, r.g = g, r.file_node = pf_node_get(g, "file");
@@ -316,7 +437,8 @@ int pf_mesh_spheres_from_deck(const pf_deck *d, const pf_node *g, pf_point_cloud
   fclose(probe);
   int ierr = read_file(&r, pc);
   if (!ierr)
-    pf_log("%s: %" PF_INT_FMT " points from SPHERE elements, %d node set(s)\n", r.path, pc->n, pc->nsets);
+    pf_log("%s: %" PF_INT_FMT " points from %" PRId64 " SPHERE, %" PRId64 " HEX8 and %" PRId64 " TET4 elements, "
+           "%d node set(s)\n", r.path, pc->n, r.nkind[ELEM_SPHERE], r.nkind[ELEM_HEX], r.nkind[ELEM_TET], pc->nsets);
   reader_free(&r);
   if (ierr) pf_point_cloud_free(pc);
   return ierr;
