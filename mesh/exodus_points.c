@@ -401,6 +401,17 @@ static int read_node_sets(exo_reader *r, pf_point_cloud *pc) {
   return ierr;
 }
 
+/* "cyl.g: 4560 points from 4560 HEX8 elements, 4 node set(s)" */
+static void log_read(const exo_reader *r, const pf_point_cloud *pc) {
+  char kinds[160] = "";
+  for (int k = ELEM_SPHERE; k <= ELEM_HEX; k++) {
+    size_t used = strlen(kinds);
+    if (r->nkind[k])
+      snprintf(kinds + used, sizeof kinds - used, "%s%" PRId64 " %s", used ? ", " : "", r->nkind[k], kind_name[k]);
+  }
+  pf_log("%s: %" PF_INT_FMT " points from %s elements, %d node set(s)\n", r->path, pc->n, kinds, pc->nsets);
+}
+
 static int read_file(exo_reader *r, pf_point_cloud *pc) {
   int cpu_ws = 8, io_ws = 0;
   float version = 0;
@@ -437,8 +448,7 @@ int pf_mesh_exodus_points_from_deck(const pf_deck *d, const pf_node *g, pf_point
   fclose(probe);
   int ierr = read_file(&r, pc);
   if (!ierr)
-    pf_log("%s: %" PF_INT_FMT " points from %" PRId64 " SPHERE, %" PRId64 " HEX8 and %" PRId64 " TET4 elements, "
-           "%d node set(s)\n", r.path, pc->n, r.nkind[ELEM_SPHERE], r.nkind[ELEM_HEX], r.nkind[ELEM_TET], pc->nsets);
+    log_read(&r, pc);
   reader_free(&r);
   if (ierr) pf_point_cloud_free(pc);
   return ierr;

@@ -16,7 +16,8 @@
  *    on the hexahedra's and the tetrahedra's shared corner and a sphere's node (1 + 6 + 1
  *    points), blocks: taking some of the blocks (the set keeps only their elements);
  *  - refused, naming the file and the block or element, with nothing half-made: a WEDGE block, an
- *    inverted hexahedron. */
+ *    inverted hexahedron.
+ * Measured: the largest relative errors of the volumes and of the centroids' coordinates. */
 #include "test_common.h"
 
 #include <exodusII.h>
@@ -86,6 +87,14 @@ static int read_points(const char *path, const char *extra, pf_point_cloud *pc) 
   if (!ierr) ierr = pf_mesh_exodus_points_from_deck(d, pf_node_get(pf_deck_root(d), "geometry"), pc);
   pf_deck_destroy(&d);
   return ierr;
+}
+
+static double worst_volume, worst_centroid; /* largest relative errors against the closed forms */
+
+/* got against the closed form want (1e-12 relative), keeping the largest error in *worst. */
+static void closed_form(double got, double want, double *worst) {
+  PF_TEST_CLOSE(got, want, 1e-12, 0);
+  *worst = fmax(*worst, fabs(got - want) / fabs(want));
 }
 
 static const pf_point_set *find_set(const pf_point_cloud *pc, const char *name) {
@@ -164,8 +173,8 @@ static void test_leaning_box(void) {
       for (int i = 0; i < NX && q < pc.n; i++, q++) {
         double c[3], V;
         prism(i, j, k, c, &V);
-        PF_TEST_CLOSE(pc.vol[q], V, 1e-12, 0);
-        for (int a = 0; a < 3; a++) PF_TEST_CLOSE(pc.X[3 * q + a], c[a], 1e-12, 0);
+        closed_form(pc.vol[q], V, &worst_volume);
+        for (int a = 0; a < 3; a++) closed_form(pc.X[3 * q + a], c[a], &worst_centroid);
         PF_TEST_TRUE(pc.block[q] == 7);
       }
   PF_TEST_CLOSE(total_volume(&pc), NX * NY * NZ, 1e-12, 0);
@@ -186,7 +195,7 @@ static void test_warped_hex(void) {
   pf_point_cloud pc;
   PF_TEST_OK(read_points(path, NULL, &pc));
   PF_TEST_TRUE(pc.n == 1);
-  if (pc.n == 1) PF_TEST_CLOSE(pc.vol[0], 1 + h / 3, 1e-12, 0);
+  if (pc.n == 1) closed_form(pc.vol[0], 1 + h / 3, &worst_volume);
   double x[8][3];
   for (int a = 0; a < 8; a++) x[a][0] = p.x[a], x[a][1] = p.y[a], x[a][2] = p.z[a];
   PF_TEST_CLOSE(pf_mesh_hex_volume((const double(*)[3])x), 1 + h / 4, 1e-12, 0); /* not Peridigm's */
@@ -238,8 +247,8 @@ static void test_tetrahedra(void) {
     const double corner[3] = {i * hc, j * hc, k * hc};
     double c[3];
     kuhn_centroid(corner, hc, q % 6, c);
-    PF_TEST_CLOSE(pc.vol[q], hc * hc * hc / 6, 1e-12, 0);
-    for (int a = 0; a < 3; a++) PF_TEST_CLOSE(pc.X[3 * q + a], c[a], 1e-12, 0);
+    closed_form(pc.vol[q], hc * hc * hc / 6, &worst_volume);
+    for (int a = 0; a < 3; a++) closed_form(pc.X[3 * q + a], c[a], &worst_centroid);
   }
   PF_TEST_CLOSE(total_volume(&pc), 1.0, 1e-12, 0);
   pf_point_cloud_free(&pc);
@@ -338,5 +347,7 @@ int main(int argc, char **argv) {
   test_tetrahedra();
   test_mixed();
   test_refusals();
+  pf_test_measure("volume_error", worst_volume, NULL);
+  pf_test_measure("centroid_error", worst_centroid, NULL);
   return pf_test_finish();
 }
