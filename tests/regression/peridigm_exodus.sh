@@ -50,6 +50,15 @@ time: {steps: ${3:-20}}
 output: {interval: 10}
 DECK
 }
+digests_are() { # WHAT REF WHO DECK RANKS...: the deck's digest on each number of ranks is REF (WHO's)
+  local what=$1 ref=$2 who=$3 d=$4 np got
+  shift 4
+  for np in "$@"; do
+    got=$(digest_of "$(run $np "$exe" --quiet $d.yaml --output-dir o_${d}_$np 2>&1)")
+    [ -n "$ref" ] && [ "$got" = "$ref" ] && ok "$what on $np rank(s): digest $ref, as $who" ||
+      bad "$what on $np rank(s): digest '$got', $who gives '$ref'"
+  done
+}
 points_of() { "$exe" --check "$1" 2>&1 | sed -n 's/.*deck is valid (\([0-9]*\) points.*/\1/p'; }
 bc_points() { "$exe" --check "$1" 2>&1 | sed -n "s/^boundary condition 'bc0' .*: \([0-9]*\) points$/\1/p"; }
 
@@ -99,11 +108,7 @@ ke_is cyl.g "$(val 'e["volume_exact"]')" "pi (r_o^2 - r_i^2) L"
 dz=$(val 'e["spacing"]')
 deck "{shape: points_file, file: cyl.txt, columns: peridigm}" "{shape: box, lo: [-1, -1, -1], hi: [1, 1, $dz]}" > text.yaml
 ref=$(digest_of "$(run 1 "$exe" --quiet text.yaml --output-dir o_text 2>&1)")
-for np in 1 2 3; do
-  got=$(digest_of "$(run $np "$exe" --quiet all.yaml --output-dir o_all$np 2>&1)")
-  [ -n "$ref" ] && [ "$got" = "$ref" ] && ok "exodus + node set on $np rank(s): the text format's digest $ref" ||
-    bad "exodus + node set on $np rank(s): digest '$got', the text format with a box gives '$ref'"
-done
+digests_are "exodus + node set" "$ref" "the text format with a box" all 1 2 3
 
 # the HEX8 file: node sets of nodes select the SPHERE file's cells; volumes; digests on 1, 2, 3 ranks
 for s in bottom top inner_wall all; do
@@ -113,11 +118,7 @@ for s in bottom top inner_wall all; do
 done
 ke_is cyl_hex.g "$(val 'e["hex_volume_exact"]')" "(N_theta / 2) sin(dtheta) (r_o^2 - r_i^2) L"
 ref=$(digest_of "$(run 1 "$exe" --quiet hex_bottom.yaml --output-dir o_hex1 2>&1)")
-for np in 2 3; do
-  got=$(digest_of "$(run $np "$exe" --quiet hex_bottom.yaml --output-dir o_hex$np 2>&1)")
-  [ -n "$ref" ] && [ "$got" = "$ref" ] && ok "HEX8 + node set on $np ranks: the 1-rank digest $ref" ||
-    bad "HEX8 + node set on $np ranks: digest '$got', 1 rank gives '$ref'"
-done
+digests_are "HEX8 + node set" "$ref" "1 rank" hex_bottom 2 3
 
 # an FE body: a Pamgen brick of 3 x 4 x 5 elements over [0, 0.3] x [0, 0.2] x [0, 0.1] with a
 # node set on x = 0 and a side set on x = 0.3, each (4 + 1)(5 + 1) = 30 nodes
@@ -158,11 +159,7 @@ brick "{shape: box, lo: [-1, -1, -1], hi: [0, 1, 1]}" "{shape: box, lo: [0.3, -1
 got=$("$exe" --check brick_sets.yaml 2>&1 | sed -n "s/^boundary condition 'bc[01]' .*: \([0-9]*\) points$/\1/p" | tr '\n' ' ')
 [ "$got" = "30 30 " ] && ok "pamgen node set and side set: $got points" || bad "pamgen sets select '$got' points, want 30 and 30"
 ref=$(digest_of "$(run 1 "$exe" --quiet brick_boxes.yaml --output-dir o_bb 2>&1)")
-for np in 1 3; do
-  got=$(digest_of "$(run $np "$exe" --quiet brick_sets.yaml --output-dir o_bs$np 2>&1)")
-  [ -n "$ref" ] && [ "$got" = "$ref" ] && ok "pamgen sets on $np rank(s): the boxes' digest $ref" ||
-    bad "pamgen sets on $np rank(s): digest '$got', the same conditions as boxes give '$ref'"
-done
+digests_are "pamgen sets" "$ref" "the same conditions as boxes" brick_sets 1 3
 
 # refusals
 refuse() { # WHAT DECK EXPECTED...
