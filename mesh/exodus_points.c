@@ -206,15 +206,14 @@ static int check_nodes(const exo_reader *r, int64_t b, int64_t e0, const int64_t
 }
 
 /* Append a point; nodes: its element's npe nodes (1-based). */
-static pf_int add_point(exo_reader *r, int64_t b, pf_point_cloud *pc, const double x[3], double vol,
-                        const int64_t *nodes, int64_t npe) {
+static void add_point(exo_reader *r, int64_t b, pf_point_cloud *pc, const double x[3], double vol,
+                      const int64_t *nodes, int64_t npe) {
   const pf_int i = pc->n++;
   for (int c = 0; c < 3; c++) pc->X[3 * i + c] = x[c];
   pc->vol[i] = vol;
   pc->cell[i] = cbrt(vol);
   pc->block[i] = (int32_t)r->blk_id[b];
   for (int64_t a = 0; a < npe; a++) r->pt_node[8 * (size_t)i + a] = nodes[a] - 1;
-  return i;
 }
 
 /* A SPHERE block: each element a point at its node with its volume attribute. */
