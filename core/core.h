@@ -297,7 +297,7 @@ double pf_nearest_distance(const pf_nearest *q, const double x[3]);
 void pf_nearest_destroy(pf_nearest **q);
 
 /* ---- named point sets of the bodies (core/point_sets.c) ---------------------------
- * A mesh's node set, the nodes of a side set's faces, or an Exodus SPHERE file's node set, as
+ * A mesh's node set, the nodes of a side set's faces, or a Peridigm Exodus discretization's node set, as
  * the global ids of the points it holds (global ids are the generation order, so a set does not
  * depend on the ranks and follows its points through migration and restart). */
 typedef struct {
@@ -356,7 +356,7 @@ typedef struct {
   double *cell;  /* [n] edge of the cube cell of each point */
   int32_t *block; /* [n] block id from a point file (0 for lattices) */
   pf_int n;
-  int nsets;          /* named sets of the cloud's points (an Exodus SPHERE file's node sets) */
+  int nsets;          /* named sets of the cloud's points (an Exodus discretization's node sets) */
   pf_point_set *sets; /* [nsets] ids are indices into the cloud; body -1 */
 } pf_point_cloud;
 extern const pf_key pf_geometry_keys[];

@@ -1,7 +1,7 @@
 /* Point generation for a body: a simple cubic lattice inside a shape (with an optional
  * seeded random perturbation, as Peridigm's and Ruestes et al.'s decks do), or a plain-text
  * point file "x y z volume block" like Peridigm's text discretization. (Peridigm's Exodus
- * discretization, shape: exodus, is read by mesh/exodus_spheres.c; its keys are listed here
+ * discretization, shape: exodus, is read by mesh/exodus_points.c; its keys are listed here
  * with the others of `geometry:`.) */
 #include "core/core.h"
 
@@ -12,8 +12,8 @@
 
 const pf_key pf_geometry_keys[] = {
     {"shape", PF_KEY_STRING, 1, NULL, "",
-     "box | cylinder | sphere | points_file | exodus (Peridigm's Exodus discretization: SPHERE "
-     "elements, one point each)", NULL},
+     "box | cylinder | sphere | points_file | exodus (Peridigm's Exodus discretization: SPHERE, "
+     "HEX8 and TET4 elements, one point each)", NULL},
     {"lo", PF_KEY_VEC3, 0, NULL, "m", "box: lower corner", NULL},
     {"hi", PF_KEY_VEC3, 0, NULL, "m", "box: upper corner", NULL},
     {"center", PF_KEY_VEC3, 0, "[0, 0, 0]", "m", "cylinder: centre of the base; sphere: centre",
@@ -43,7 +43,7 @@ const pf_key pf_geometry_keys[] = {
     {"block", PF_KEY_INT, 0, NULL, "", "points_file: take only the points of this block", NULL},
     {"blocks", PF_KEY_STRLIST, 0, NULL, "",
      "exodus: take only these element blocks, by name or id (default: every block); each must hold "
-     "SPHERE elements with a 'volume' attribute", NULL},
+     "SPHERE elements with a 'volume' attribute, HEX8 or TET4 elements", NULL},
     PF_KEY_END};
 
 static int cloud_grow(pf_point_cloud *pc, pf_int *cap) {

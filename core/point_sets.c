@@ -1,5 +1,5 @@
 /* Named point sets of the bodies: a mesh's node sets, the nodes of its side sets' faces, an
- * Exodus SPHERE file's node sets, each held as the ascending global ids of its points. Every
+ * Exodus discretization's node sets, each held as the ascending global ids of its points. Every
  * rank holds the whole table (the meshes are whole on every rank at set-up), so a region that
  * names a set selects its owned points by global id wherever the partition put them. */
 #include "core/core.h"

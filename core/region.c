@@ -9,7 +9,7 @@
 const pf_key pf_region_keys[] = {
     {"shape", PF_KEY_STRING, 1, NULL, "",
      "box | cylinder | sphere | all | node_set | side_set (a named set of a body's mesh or Exodus "
-     "SPHERE file; a side set selects the nodes of its faces)", NULL},
+     "discretization; a side set selects the nodes of its faces)", NULL},
     {"set", PF_KEY_STRING, 0, NULL, "", "node_set or side_set: the set's name", NULL},
     {"lo", PF_KEY_VEC3, 0, NULL, "m", "box: lower corner", NULL},
     {"hi", PF_KEY_VEC3, 0, NULL, "m", "box: upper corner", NULL},

@@ -42,11 +42,17 @@ int pf_mesh_read(const pf_deck *d, const pf_node *mesh, pf_mesh *m);
 int pf_mesh_free(pf_mesh *m);
 /* Volume of hexahedron e (exact for trilinear hexahedra: 2x2x2 Gauss of det J). */
 double pf_mesh_hex_volume(const double x[8][3]);
-/* Peridigm's Exodus discretization (mesh/exodus_spheres.c): a peridynamic body's points from the
- * SPHERE element blocks of the Exodus file its `geometry: {shape: exodus}` mapping names (one
- * point per element, the `volume` attribute its volume), with the file's node sets as sets of the
- * cloud. Errors name the deck key and the file. */
-int pf_mesh_spheres_from_deck(const pf_deck *d, const pf_node *geometry, pf_point_cloud *pc);
+/* Peridigm's Exodus discretization (mesh/exodus_points.c): a peridynamic body's points from the
+ * SPHERE, HEX8 and TET4 element blocks of the Exodus file its `geometry: {shape: exodus}` mapping
+ * names (one point per element: a SPHERE's node and `volume` attribute, a solid element's
+ * centroid and volume), with the file's node sets as sets of the cloud (a node brings in every
+ * element on it). Errors name the deck key, the file and the block or element. */
+int pf_mesh_exodus_points_from_deck(const pf_deck *d, const pf_node *geometry, pf_point_cloud *pc);
+/* A solid element as Peridigm's point (mesh/element_point.c): its centroid c and volume vol;
+ * returns the least volume of the tetrahedra it is computed from (below 0: an inverted element or
+ * nodes out of Exodus order). x: the nodes in Exodus order. */
+double pf_mesh_tet_point(const double x[4][3], double c[3], double *vol);
+double pf_mesh_hex_point(const double x[8][3], double c[3], double *vol);
 /* Write a mesh as an Exodus II file (blocks, node sets, side sets): tests and conversions. */
 int pf_mesh_write_exodus(const char *path, const pf_mesh *m);
 

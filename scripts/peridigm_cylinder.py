@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Peridigm's fragmenting cylinder as a Peridigm discretization: an Exodus II file of SPHERE
 elements (one node each, attributes 'radius' and 'volume'), the same points in Peridigm's text
-format, and the numbers a test checks them against.
+format, the same cells as HEX8 elements, and the numbers a test checks them against.
 
     /usr/bin/python3 scripts/peridigm_cylinder.py OUT_PREFIX [--wall N] [--perturb A]
 
@@ -17,11 +17,18 @@ half-angle a lies at the radius
 Positions may be perturbed by up to A h per component (a fixed linear congruential stream; 0 by
 default) to break the symmetry, as Peridigm's example does.
 
+The HEX8 file holds the same cells with straight edges: the nodes at (r_i, theta_j, z_k) on the
+cells' corners (not perturbed), each cell a prism over the trapezoid of its four corners in a
+cross-section, of volume (sin(dtheta) / 2) (r2^2 - r1^2) dz, the tube's
+(N_theta / 2) sin(dtheta) (r_o^2 - r_i^2) L. Its node sets are of nodes: 'bottom' (z = 0),
+'top' (z = L), 'inner_wall' (r = r_i), 'all'; Peridigm maps a node set onto the points of every
+element on its nodes, which are the cells of the SPHERE file's sets of the same names.
+
 Blocks: 'lower' (id 1, z < L/2) and 'upper' (id 2). Node sets: 'bottom' (the first layer of
 cells), 'top' (the last layer), 'inner_wall' (the innermost ring of cells), 'all'. The files:
 OUT_PREFIX.g (Exodus, written with netCDF4 in the Exodus II layout), OUT_PREFIX.txt (x y z
-block_id volume), OUT_PREFIX.json (counts, the volume sums, the set sizes and set volumes, each
-summed here from the cells' own formulas).
+block_id volume), OUT_PREFIX_hex.g (the HEX8 cells), OUT_PREFIX.json (counts, the volume sums,
+the set sizes and set volumes, each summed here from the cells' own formulas).
 """
 import argparse
 import json
@@ -64,10 +71,11 @@ def char_array(names, n):
     return out
 
 
-def write_exodus(path, pts, sets):
-    """The Exodus II netCDF layout (Schoof & Yarberry, SAND92-2137; 'large model' coordinates)."""
+def write_exodus(path, title, xyz, blocks, sets):
+    """The Exodus II netCDF layout (Schoof & Yarberry, SAND92-2137; 'large model' coordinates).
+    xyz: [nodes][3]; blocks: (id, name, type, conn [elements][nodes] 1-based, attributes
+    [elements][radius, volume] or None); sets: {name: [nodes, 0-based]}."""
     len_name = 33
-    blocks = [(1, "lower"), (2, "upper")]
     ds = netCDF4.Dataset(path, "w", format="NETCDF3_64BIT_OFFSET")
     ds.api_version = np.float32(8.03)
     ds.version = np.float32(2.0)
@@ -75,31 +83,32 @@ def write_exodus(path, pts, sets):
     ds.file_size = np.int32(1)
     ds.maximum_name_length = np.int32(32)
     ds.int64_status = np.int32(0)
-    ds.title = "Peridigm fragmenting cylinder, SPHERE elements"
-    n = len(pts)
+    ds.title = title
     for name, size in [("len_string", 33), ("len_line", 81), ("four", 4), ("len_name", len_name),
-                       ("time_step", None), ("num_dim", 3), ("num_nodes", n), ("num_elem", n),
+                       ("time_step", None), ("num_dim", 3), ("num_nodes", len(xyz)),
+                       ("num_elem", sum(len(b[3]) for b in blocks)),
                        ("num_el_blk", len(blocks)), ("num_node_sets", len(sets))]:
         ds.createDimension(name, size)
     ds.createVariable("time_whole", "f8", ("time_step",))
     for c, axis in enumerate("xyz"):
-        ds.createVariable("coord" + axis, "f8", ("num_nodes",))[:] = [p["x"][c] for p in pts]
+        ds.createVariable("coord" + axis, "f8", ("num_nodes",))[:] = [x[c] for x in xyz]
     ds.createVariable("coor_names", "S1", ("num_dim", "len_name"))[:] = char_array(["x", "y", "z"], len_name)
     ds.createVariable("eb_status", "i4", ("num_el_blk",))[:] = [1] * len(blocks)
     prop = ds.createVariable("eb_prop1", "i4", ("num_el_blk",))
     prop.setncattr("name", "ID")
-    prop[:] = [b for b, _ in blocks]
-    ds.createVariable("eb_names", "S1", ("num_el_blk", "len_name"))[:] = char_array([nm for _, nm in blocks], len_name)
-    for e, (bid, _) in enumerate(blocks, start=1):
-        members = [q for q, p in enumerate(pts) if p["block"] == bid]  # nodes numbered as the points
+    prop[:] = [b[0] for b in blocks]
+    ds.createVariable("eb_names", "S1", ("num_el_blk", "len_name"))[:] = char_array([b[1] for b in blocks], len_name)
+    for e, (_, _, kind, members, attrib) in enumerate(blocks, start=1):
         ds.createDimension("num_el_in_blk%d" % e, len(members))
-        ds.createDimension("num_nod_per_el%d" % e, 1)
-        ds.createDimension("num_att_in_blk%d" % e, 2)
+        ds.createDimension("num_nod_per_el%d" % e, len(members[0]))
         conn = ds.createVariable("connect%d" % e, "i4", ("num_el_in_blk%d" % e, "num_nod_per_el%d" % e))
-        conn.elem_type = "SPHERE"
-        conn[:] = np.array(members, dtype=np.int32).reshape(-1, 1) + 1
+        conn.elem_type = kind
+        conn[:] = np.array(members, dtype=np.int32)
+        if attrib is None:
+            continue
+        ds.createDimension("num_att_in_blk%d" % e, 2)
         attr = ds.createVariable("attrib%d" % e, "f8", ("num_el_in_blk%d" % e, "num_att_in_blk%d" % e))
-        attr[:] = [[(3 * pts[q]["vol"] / (4 * math.pi)) ** (1 / 3), pts[q]["vol"]] for q in members]
+        attr[:] = attrib
         ds.createVariable("attrib_name%d" % e, "S1", ("num_att_in_blk%d" % e, "len_name"))[:] = \
             char_array(["radius", "volume"], len_name)
     ds.createVariable("ns_status", "i4", ("num_node_sets",))[:] = [1] * len(sets)
@@ -111,6 +120,43 @@ def write_exodus(path, pts, sets):
         ds.createDimension("num_nod_ns%d" % s, len(members))
         ds.createVariable("node_ns%d" % s, "i4", ("num_nod_ns%d" % s,))[:] = np.array(members, dtype=np.int32) + 1
     ds.close()
+
+
+def write_spheres(path, pts, sets):
+    """One SPHERE element a point, its node numbered as the point."""
+    blocks = []
+    for bid, name in [(1, "lower"), (2, "upper")]:
+        members = [q for q, p in enumerate(pts) if p["block"] == bid]
+        blocks.append((bid, name, "SPHERE", [[q + 1] for q in members],
+                       [[(3 * pts[q]["vol"] / (4 * math.pi)) ** (1 / 3), pts[q]["vol"]] for q in members]))
+    write_exodus(path, "Peridigm fragmenting cylinder, SPHERE elements", [p["x"] for p in pts], blocks, sets)
+
+
+def write_hexes(path, shape):
+    """The cells as HEX8 elements (Exodus node order: the inner-to-outer, counter-clockwise
+    quadrilateral at z_k, then the same at z_k+1), in the points' order; returns the volume."""
+    wall, n_theta, n_z = shape
+    h, dtheta, dz = (R_OUT - R_IN) / wall, 2 * math.pi / n_theta, LENGTH / n_z
+    def node(i, j, k):  # 1-based
+        return 1 + i + (wall + 1) * (j % n_theta + n_theta * k)
+    xyz = [[(R_IN + i * h) * math.cos(j * dtheta), (R_IN + i * h) * math.sin(j * dtheta), k * dz]
+           for k in range(n_z + 1) for j in range(n_theta) for i in range(wall + 1)]
+    conn = {1: [], 2: []}
+    for k in range(n_z):
+        for j in range(n_theta):
+            for i in range(wall):
+                quad = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)]
+                conn[1 if k < n_z // 2 else 2].append([node(a, b, k + c) for c in (0, 1) for a, b in quad])
+    nodes = [(i, k) for k in range(n_z + 1) for j in range(n_theta) for i in range(wall + 1)]
+    sets = {
+        "bottom": [q for q, (i, k) in enumerate(nodes) if k == 0],
+        "top": [q for q, (i, k) in enumerate(nodes) if k == n_z],
+        "inner_wall": [q for q, (i, k) in enumerate(nodes) if i == 0],
+        "all": list(range(len(nodes))),
+    }
+    write_exodus(path, "Peridigm fragmenting cylinder, HEX8 elements", xyz,
+                 [(1, "lower", "HEX8", conn[1], None), (2, "upper", "HEX8", conn[2], None)], sets)
+    return n_theta / 2 * math.sin(dtheta) * (R_OUT ** 2 - R_IN ** 2) * LENGTH
 
 
 def main():
@@ -129,7 +175,8 @@ def main():
         "inner_wall": [q for q, p in enumerate(pts) if p["i"] == 0],
         "all": list(range(len(pts))),
     }
-    write_exodus(args.prefix + ".g", pts, sets)
+    write_spheres(args.prefix + ".g", pts, sets)
+    hex_volume = write_hexes(args.prefix + "_hex.g", (wall, n_theta, n_z))
     with open(args.prefix + ".txt", "w") as f:
         f.write("# x y z block_id volume (m, m^3): Peridigm's fragmenting cylinder, %d x %d x %d cells\n"
                 % (wall, n_theta, n_z))
@@ -139,6 +186,7 @@ def main():
         "cells": [wall, n_theta, n_z], "spacing": h, "points": len(pts),
         "volume": math.fsum(p["vol"] for p in pts),
         "volume_exact": math.pi * (R_OUT ** 2 - R_IN ** 2) * LENGTH,
+        "hex_volume_exact": hex_volume,
         "blocks": {str(b): sum(p["block"] == b for p in pts) for b in (1, 2)},
         "block_volume": {str(b): math.fsum(p["vol"] for p in pts if p["block"] == b) for b in (1, 2)},
         "sets": {name: len(m) for name, m in sets.items()},

@@ -88,7 +88,7 @@ static int cloud(const void *data, const pf_deck *d, const pf_node *body, pf_poi
   const pf_node *g = pf_node_get(body, "geometry");
   const char *shape = pf_node_text(pf_node_get(g, "shape"));
   PF_CALL(check_estimate(data, d, body));
-  if (shape && !strcmp(shape, "exodus")) PF_CALL(pf_mesh_spheres_from_deck(d, g, pc));
+  if (shape && !strcmp(shape, "exodus")) PF_CALL(pf_mesh_exodus_points_from_deck(d, g, pc));
   else PF_CALL(pf_point_cloud_from_deck(d, g, pc));
   return check_horizon(data, d, body, pc);
 }

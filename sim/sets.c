@@ -1,6 +1,6 @@
 /* The bodies' named point sets (core/point_sets.c), gathered once at set-up from what each body
  * was built from: an FE or coupled body's mesh (its node sets, and the nodes of its side sets'
- * faces), a peridynamic body's cloud (an Exodus SPHERE file's node sets). A point's global id is
+ * faces), a peridynamic body's cloud (the node sets of a Peridigm Exodus discretization). A point's global id is
  * the body's first id plus its index in the body's cloud (sim/distribute.c), and an FE body's
  * cloud is its mesh's nodes in mesh order (fem/), so a set's ids follow from its indices. */
 #include "sim/sim_impl.h"
