@@ -8,6 +8,7 @@
  * each node), as Peridigm reads it; side sets have no meaning for spheres and are ignored.
  * Exodus II format: Schoof & Yarberry, SAND92-2137 (1994); Peridigm's use of it: Parks,
  * Littlewood, Mitchell & Silling, Peridigm Users' Guide v1.0.0, SAND2012-7800 (2012). */
+#include "core/exodus_path.h"
 #include "mesh/mesh_impl.h"
 
 #include <errno.h>
@@ -283,7 +284,10 @@ static int read_node_sets(sphere_reader *r, pf_point_cloud *pc) {
 static int read_file(sphere_reader *r, pf_point_cloud *pc) {
   int cpu_ws = 8, io_ws = 0;
   float version = 0;
-  r->exoid = ex_open(r->path, EX_READ, &cpu_ws, &io_ws, &version);
+  pf_exodus_path at;
+  PF_CALL(pf_exodus_path_begin(r->path, PF_EXODUS_OPEN, &at));
+  r->exoid = ex_open(at.use, EX_READ, &cpu_ws, &io_ws, &version);
+  pf_exodus_path_end(&at);
   if (r->exoid < 0) return FILE_ERROR(r, "not an Exodus II file (ex_open failed)");
   EXO(r, ex_set_int64_status(r->exoid, EX_ALL_INT64_API));
   EXO(r, ex_set_max_name_length(r->exoid, NAME_LEN));
