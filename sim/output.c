@@ -188,6 +188,7 @@ static int open_exodus(pf_sim *sim, pf_sim_history_row *g) {
 
 int pf_sim_open_output(pf_sim *sim, pf_sim_history_row *g) {
   if (sim->opt.no_output) return 0;
+  PF_CALL(pf_sim_lock_outputs(sim));
   PF_CALL(pf_agree(open_exodus(sim, g), "creating the Exodus output %s", sim->exodus_path));
   int ierr = pf_history_create(sim->history_path, g->n + 2, (const char *const *)g->names, g->units, &sim->prov, &sim->hist);
   return pf_agree(ierr, "creating the history %s", sim->history_path);

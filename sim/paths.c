@@ -15,7 +15,8 @@
  *    writable when it exists; the message gives the system's reason;
  *  - has a path of at most PF_SIM_PATH_MAX bytes (sim/output.c; the Exodus library's own limits
  *    are core/exodus_path.c's).
- * A breach is an input error naming the key, the file and the reason. */
+ * A breach is an input error naming the key, the file and the reason. The lock that keeps two
+ * runs from writing the same files is sim/output_lock.c. */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "sim/sim_impl.h"
 

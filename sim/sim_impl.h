@@ -112,6 +112,8 @@ struct pf_sim {
   /* output */
   long output_interval, history_interval;
   char exodus_path[4096], history_path[4096];
+  char *lock_path[3];  /* the lock files this run holds (rank 0; sim/output_lock.c) */
+  int nlocks;
   pf_provenance prov; /* written into the outputs (sim/provenance.c) */
   pf_exodus_options exo_opt; /* output.fields, precision, compression (sim/output.c) */
   const char **exo_fields;
@@ -260,6 +262,11 @@ void pf_sim_fragments_name(pf_sim *sim);
 int pf_sim_check_paths(pf_sim *sim);
 /* The same rule for perifem_checkpoint's path: target (len bytes) gets the file to write. */
 int pf_sim_check_checkpoint_path(pf_sim *sim, const char *path, char *target, size_t len);
+/* sim/output_lock.c: <file>.lock for each output (rank 0 creates them; collective): a second run
+ * writing the same files is refused, naming the first; a lock of a process gone from this host
+ * is taken over with a warning. Unlock removes them (pf_sim_destroy). */
+int pf_sim_lock_outputs(pf_sim *sim);
+void pf_sim_unlock_outputs(pf_sim *sim);
 /* sim/unit_slips.c: warn (rank 0, with file:line:key) about material values that look like a
  * unit slip: a density outside [100, 1e5] kg/m^3, a modulus outside [1e6, 1e13] Pa. */
 void pf_sim_warn_unit_slips(const pf_deck *d, const pf_node *materials);
