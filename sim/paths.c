@@ -221,7 +221,7 @@ static int check_kind(const pf_sim *sim, const named_file *o) {
   char dir[4200];
   folder_of(o->path, dir, sizeof dir);
   if (stat(dir, &st)) {
-    if (errno == ENOENT && is_output_dir(sim, dir)) return 0;
+    if (is_output_dir(sim, dir)) return 0; /* (made when the run starts, which says why it cannot be) */
     return refuse(sim, o, "the folder '%s' of %s: %s", dir, o->what, strerror(errno));
   }
   if (!S_ISDIR(st.st_mode)) return refuse(sim, o, "'%s', the folder of %s, is %s", dir, o->what, kind_of(st.st_mode));
