@@ -212,20 +212,20 @@ static int is_output_dir(const pf_sim *sim, const char *dir) {
 
 /* Absent or a regular file that can be written, in a folder that can be written. */
 static int check_kind(const pf_sim *sim, const named_file *o) {
-  struct stat st;
-  if (!stat(o->path, &st)) {
-    if (!S_ISREG(st.st_mode))
-      return refuse(sim, o, "%s '%s' is %s; name a regular file", o->what, o->path, kind_of(st.st_mode));
-    if (access(o->path, W_OK)) return refuse(sim, o, "%s '%s' cannot be written: %s", o->what, o->path, strerror(errno));
-  } else if (errno != ENOENT) return refuse(sim, o, "%s '%s': %s", o->what, o->path, strerror(errno));
   char dir[4200];
+  struct stat st;
   folder_of(o->path, dir, sizeof dir);
-  if (stat(dir, &st)) {
-    if (is_output_dir(sim, dir)) return 0; /* (made when the run starts, which says why it cannot be) */
-    return refuse(sim, o, "the folder '%s' of %s: %s", dir, o->what, strerror(errno));
-  }
-  if (!S_ISDIR(st.st_mode)) return refuse(sim, o, "'%s', the folder of %s, is %s", dir, o->what, kind_of(st.st_mode));
+  const int no_dir = stat(dir, &st) ? errno : 0;
+  if (no_dir && is_output_dir(sim, dir)) return 0; /* (made when the run starts, which says why it cannot be) */
+  if (no_dir) return refuse(sim, o, "the folder '%s' of %s: %s", dir, o->what, strerror(no_dir));
+  if (!S_ISDIR(st.st_mode)) return refuse(sim, o, "the folder '%s' of %s: %s", dir, o->what, strerror(ENOTDIR));
   if (access(dir, W_OK | X_OK)) return refuse(sim, o, "cannot write into the folder '%s' of %s: %s", dir, o->what, strerror(errno));
+  if (stat(o->path, &st)) {
+    if (errno == ENOENT) return 0;
+    return refuse(sim, o, "%s '%s': %s", o->what, o->path, strerror(errno));
+  }
+  if (!S_ISREG(st.st_mode)) return refuse(sim, o, "%s '%s' is %s; name a regular file", o->what, o->path, kind_of(st.st_mode));
+  if (access(o->path, W_OK)) return refuse(sim, o, "%s '%s' cannot be written: %s", o->what, o->path, strerror(errno));
   return 0;
 }
 

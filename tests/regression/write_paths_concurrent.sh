@@ -15,6 +15,11 @@ first=$!
 for i in $(seq 100); do [ -f busy.restart.h5.lock ] && break; sleep 0.1; done
 [ -f busy.e.lock ] && [ -f busy.h5.lock ] && [ -f busy.restart.h5.lock ] ||
   { echo "FAIL: the first run holds no locks: $(ls)"; fail=1; }
+# (the first run's initial frame and history written: their sizes settled)
+for i in $(seq 60); do
+  size=$(stat -c %s busy.e busy.h5 2>/dev/null); sleep 0.5
+  [ -n "$size" ] && [ "$size" = "$(stat -c %s busy.e busy.h5 2>/dev/null)" ] && break
+done
 refused busy.yaml file "another run (process $first on $host)"
 out=$(run 2 "$exe" --quiet busy.yaml 2>&1)
 [ "$(echo "$out" | grep -c "key 'file'.*another run (process $first on $host)")" = 2 ] ||
