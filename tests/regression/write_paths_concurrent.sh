@@ -41,4 +41,5 @@ sleep 60 & live=$!
 echo "$host $live" > short.h5.lock
 refused short.yaml history_file "another run (process $live on $host)"
 kill $live
+rm -f short.h5.lock
 exit $fail
