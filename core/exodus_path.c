@@ -6,7 +6,6 @@
  * too long even so is refused, naming the limit. */
 #define _XOPEN_SOURCE 700 /* O_DIRECTORY */
 #include "core/core.h"
-#include "core/exodus_path.h"
 
 #include <errno.h>
 #include <fcntl.h>

@@ -10,7 +10,6 @@
  * name_0, name_1, ...),
  * and global variables. Each pf_exodus_write appends one time step and calls ex_update. */
 #include "core/core.h"
-#include "core/exodus_path.h"
 
 #include <exodusII.h>
 #include <stdlib.h>

@@ -3,7 +3,6 @@
  * elements 1..nelem block after block in block order, and the sides of a hexahedron 1..6 (the
  * side numbering of the Exodus II manual, Schoof & Yarberry, SAND92-2137, 1994); perifem keeps
  * 0-based indices and sides 0..5 (mesh/mesh_impl.h). Calls go through the int64 API. */
-#include "core/exodus_path.h"
 #include "mesh/mesh_impl.h"
 
 #include <exodusII.h>

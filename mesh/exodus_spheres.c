@@ -8,7 +8,6 @@
  * each node), as Peridigm reads it; side sets have no meaning for spheres and are ignored.
  * Exodus II format: Schoof & Yarberry, SAND92-2137 (1994); Peridigm's use of it: Parks,
  * Littlewood, Mitchell & Silling, Peridigm Users' Guide v1.0.0, SAND2012-7800 (2012). */
-#include "core/exodus_path.h"
 #include "mesh/mesh_impl.h"
 
 #include <errno.h>
