@@ -674,6 +674,18 @@ int pf_exodus_create_mixed(const char *path, const pf_points *pts, int nbodies,
                            const char *const *body_names, const pf_int *body_start,
                            const pf_exodus_hexes *hexes, int nglobals,
                            const char *const *global_names, const pf_exodus_options *o, pf_exodus **ex);
+/* The path to hand to the Exodus library for a file (core/exodus_path.c), for core's writer and
+ * mesh's readers and writer: p->use is the path itself, or for a long one a short alias through a
+ * descriptor of its folder, which stays open until pf_exodus_path_end. An error names the path
+ * and the limit. */
+typedef enum { PF_EXODUS_CREATE, PF_EXODUS_CREATE4, PF_EXODUS_OPEN } pf_exodus_call; /* (4: a netCDF-4 file) */
+typedef struct {
+  const char *use;
+  char alias[320];
+  int dirfd;
+} pf_exodus_path;
+int pf_exodus_path_begin(const char *path, pf_exodus_call call, pf_exodus_path *p);
+void pf_exodus_path_end(pf_exodus_path *p);
 /* The joined view: rank 0 gets (*all, created on the first call) a copy of every owned point
  * in global-id order — X, u, v, f, body and the PF_FIELD_OUTPUT fields; other ranks get NULL.
  * Collective. */

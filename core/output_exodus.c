@@ -233,7 +233,10 @@ static int open_file(pf_exodus *ex, int nbodies, const pf_int *body_start, const
   int cpu_ws = 8, io_ws = o && o->single ? 4 : 8; /* (Exodus converts the doubles given to it) */
   int mode = EX_CLOBBER | EX_MAPS_INT64_API | EX_BULK_INT64_API;
   mode |= o && o->compression > 0 ? EX_NETCDF4 : EX_LARGE_MODEL;
-  ex->exoid = ex_create(ex->path, mode, &cpu_ws, &io_ws);
+  pf_exodus_path at;
+  PF_CALL(pf_exodus_path_begin(ex->path, mode & EX_NETCDF4 ? PF_EXODUS_CREATE4 : PF_EXODUS_CREATE, &at));
+  ex->exoid = ex_create(at.use, mode, &cpu_ws, &io_ws);
+  pf_exodus_path_end(&at);
   PF_EX_TRY(ex, ex->exoid, "ex_create");
   if (o && o->compression > 0) {
     PF_EX_TRY(ex, ex_set_option(ex->exoid, EX_OPT_COMPRESSION_LEVEL, o->compression), "ex_set_option(compression)");

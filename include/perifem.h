@@ -183,7 +183,10 @@ int perifem_history_value(const perifem_sim *sim, const char *name, double *valu
 /* ---- checkpoint and digest ------------------------------------------------------------------- */
 /* Write a checkpoint of the current state to path (HDF5; written to path.tmp and renamed, so a
  * failed write keeps the file there before); perifem_options.restart_from continues from it on
- * any number of ranks. Collective. */
+ * any number of ranks. path follows the rule for every file a run writes (docs/user_guide.md,
+ * "What a run may write"): the deck, another input or output, a device, a FIFO or an unwritable
+ * folder gives PERIFEM_ERR_INPUT and writes nothing; a symbolic link is written through.
+ * Collective. */
 int perifem_checkpoint(perifem_sim *sim, const char *path);
 /* The state digest (a hash of every point's state in global-id order, independent of the number
  * of ranks): the value `perifem` prints as "state digest: %016llx". Collective. */

@@ -216,7 +216,10 @@ static int read_side_sets(exo_reader *r, pf_mesh_raw *raw) {
 static int read_file(exo_reader *r, pf_mesh_raw *raw) {
   int cpu_ws = 8, io_ws = 0;
   float version = 0;
-  r->exoid = ex_open(r->src->path, EX_READ, &cpu_ws, &io_ws, &version);
+  pf_exodus_path at;
+  PF_CALL(pf_exodus_path_begin(r->src->path, PF_EXODUS_OPEN, &at));
+  r->exoid = ex_open(at.use, EX_READ, &cpu_ws, &io_ws, &version);
+  pf_exodus_path_end(&at);
   EX_TRY(r->src->path, r->exoid, "ex_open (is it an Exodus II file?)");
   EX_TRY(r->src->path, ex_set_int64_status(r->exoid, EX_ALL_INT64_API), "ex_set_int64_status");
   EX_TRY(r->src->path, ex_set_max_name_length(r->exoid, NAME_LEN), "ex_set_max_name_length");
@@ -333,7 +336,10 @@ static int write_file(int exoid, const char *path, const pf_mesh *m, int64_t *ex
 int pf_mesh_write_exodus(const char *path, const pf_mesh *m) {
   PF_CHECK(m && m->nnodes > 0 && m->nelem > 0, PF_ERR_INPUT, "%s: no mesh to write", path);
   int cpu_ws = 8, io_ws = 8;
-  int exoid = ex_create(path, EX_CLOBBER | EX_LARGE_MODEL | EX_ALL_INT64_API, &cpu_ws, &io_ws);
+  pf_exodus_path at;
+  PF_CALL(pf_exodus_path_begin(path, PF_EXODUS_CREATE, &at));
+  int exoid = ex_create(at.use, EX_CLOBBER | EX_LARGE_MODEL | EX_ALL_INT64_API, &cpu_ws, &io_ws);
+  pf_exodus_path_end(&at);
   EX_TRY_WRITE(path, exoid, "ex_create");
   int64_t *exo_elem = calloc((size_t)m->nelem, sizeof *exo_elem);
   int ierr = exo_elem

@@ -414,7 +414,10 @@ static void log_read(const exo_reader *r, const pf_point_cloud *pc) {
 static int read_file(exo_reader *r, pf_point_cloud *pc) {
   int cpu_ws = 8, io_ws = 0;
   float version = 0;
-  r->exoid = ex_open(r->path, EX_READ, &cpu_ws, &io_ws, &version);
+  pf_exodus_path at;
+  PF_CALL(pf_exodus_path_begin(r->path, PF_EXODUS_OPEN, &at));
+  r->exoid = ex_open(at.use, EX_READ, &cpu_ws, &io_ws, &version);
+  pf_exodus_path_end(&at);
   if (r->exoid < 0) return FILE_ERROR(r, "not an Exodus II file (ex_open failed)");
   EXO(r, ex_set_int64_status(r->exoid, EX_ALL_INT64_API));
   EXO(r, ex_set_max_name_length(r->exoid, NAME_LEN));

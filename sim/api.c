@@ -366,12 +366,11 @@ int perifem_checkpoint(perifem_sim *sim, const char *path) {
   PF_CALL(need_sim(sim, "perifem_checkpoint"));
   PF_CHECK(path && path[0], PF_ERR_INPUT, "perifem_checkpoint: no path given");
   pf_sim *s = sim->sim;
-  PF_CHECK(strlen(path) < sizeof s->restart_path, PF_ERR_INPUT, "perifem_checkpoint: the path is longer than %zu bytes",
-           sizeof s->restart_path - 1);
   if (!s->run) PF_CALL(status(advance(sim, 0), "perifem_checkpoint")); /* the forces at t = 0 */
-  char deck_path[sizeof s->restart_path];
+  char target[sizeof s->restart_path], deck_path[sizeof s->restart_path];
+  PF_CALL(status(pf_sim_check_checkpoint_path(s, path, target, sizeof target), "perifem_checkpoint"));
   memcpy(deck_path, s->restart_path, sizeof deck_path);
-  snprintf(s->restart_path, sizeof s->restart_path, "%s", path);
+  memcpy(s->restart_path, target, sizeof target);
   const int ierr = pf_sim_checkpoint(s);
   memcpy(s->restart_path, deck_path, sizeof deck_path);
   return status(ierr, "perifem_checkpoint");

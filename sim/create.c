@@ -296,6 +296,7 @@ int pf_sim_destroy(pf_sim **s) {
   if (!sim) return 0;
   pf_exodus_destroy(&sim->exo);
   pf_history_destroy(&sim->hist);
+  pf_sim_unlock_outputs(sim);
   pf_sim_provenance_free(sim);
   free(sim->exo_fields);
   for (int b = 0; b < sim->nbodies; b++)

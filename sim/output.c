@@ -4,20 +4,23 @@
 #include "sim/sim_impl.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-void pf_sim_output_name(const pf_sim *sim, const char *given, const char *ext, char *out, size_t len) {
-  char base[2048];
-  if (given) snprintf(base, sizeof base, "%s", given);
-  else {
-    const char *p = pf_deck_path(sim->deck), *slash = strrchr(p, '/'), *name = slash ? slash + 1 : p;
-    const char *dot = strrchr(name, '.');
-    snprintf(base, sizeof base, "%.*s%s", (int)(dot ? dot - name : (long)strlen(name)), name, ext);
-  }
-  if (sim->opt.output_dir && base[0] != '/') snprintf(out, len, "%s/%s", sim->opt.output_dir, base);
-  else snprintf(out, len, "%s", base);
+int pf_sim_output_name(const pf_sim *sim, const pf_node *node, const char *key, const char *given, const char *ext,
+                       char *out, size_t len) {
+  const char *p = pf_deck_path(sim->deck), *slash = strrchr(p, '/'), *name = slash ? slash + 1 : p;
+  const char *dot = strrchr(name, '.');
+  const int stem = (int)(dot ? dot - name : (long)strlen(name));
+  const char *dir = sim->opt.output_dir && (!given || given[0] != '/') ? sim->opt.output_dir : NULL;
+  const size_t n = given ? (size_t)snprintf(out, len, "%s%s%s", dir ? dir : "", dir ? "/" : "", given)
+                         : (size_t)snprintf(out, len, "%s%s%.*s%s", dir ? dir : "", dir ? "/" : "", stem, name, ext);
+  if (n <= PF_SIM_PATH_MAX) return 0;
+  out[0] = '\0';
+  return pf_deck_error(sim->deck, node, key, "the path is %zu bytes long; at most %d (the system's PATH_MAX, %d, less "
+                       "room for the suffixes a run adds: -restart<step>, .tmp, .lock)", n, PF_SIM_PATH_MAX, PATH_MAX);
 }
 
 int pf_sim_setup_output(pf_sim *sim) {
@@ -37,8 +40,10 @@ int pf_sim_setup_output(pf_sim *sim) {
     return pf_deck_error(d, pf_node_get(out, "interval"), "interval", "must not be negative");
   if (sim->history_interval < 1)
     return pf_deck_error(d, pf_node_get(out, "history_interval"), "history_interval", "must be at least 1");
-  pf_sim_output_name(sim, file, ".e", sim->exodus_path, sizeof sim->exodus_path);
-  pf_sim_output_name(sim, hfile, ".h5", sim->history_path, sizeof sim->history_path);
+  PF_CALL(pf_sim_output_name(sim, pf_node_get(out, "file"), "file", file, ".e", sim->exodus_path,
+                             sizeof sim->exodus_path));
+  PF_CALL(pf_sim_output_name(sim, pf_node_get(out, "history_file"), "history_file", hfile, ".h5", sim->history_path,
+                             sizeof sim->history_path));
   return pf_sim_setup_exodus_format(sim, out);
 }
 
@@ -183,6 +188,7 @@ static int open_exodus(pf_sim *sim, pf_sim_history_row *g) {
 
 int pf_sim_open_output(pf_sim *sim, pf_sim_history_row *g) {
   if (sim->opt.no_output) return 0;
+  PF_CALL(pf_sim_lock_outputs(sim));
   PF_CALL(pf_agree(open_exodus(sim, g), "creating the Exodus output %s", sim->exodus_path));
   int ierr = pf_history_create(sim->history_path, g->n + 2, (const char *const *)g->names, g->units, &sim->prov, &sim->hist);
   return pf_agree(ierr, "creating the history %s", sim->history_path);

@@ -105,8 +105,8 @@ int pf_sim_setup_restart(pf_sim *sim) {
   PF_CALL(pf_deck_int(d, r, "interval", &sim->restart_interval));
   if (sim->restart_interval < 0)
     return pf_deck_error(d, pf_node_get(r, "interval"), "interval", "must not be negative");
-  pf_sim_output_name(sim, file, ".restart.h5", sim->restart_path, sizeof sim->restart_path);
-  return 0;
+  return pf_sim_output_name(sim, pf_node_get(r, "file"), "file", file, ".restart.h5", sim->restart_path,
+                            sizeof sim->restart_path);
 }
 
 int pf_sim_checkpoint(pf_sim *sim) {

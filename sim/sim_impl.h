@@ -11,6 +11,9 @@
 #include "sim/solver.h"
 
 #define PF_MAX_BODIES 64
+/* The longest output path: the 4096-byte (PATH_MAX) path buffers less room for what a run
+ * appends (-restart<step>, .tmp, .lock, .<ranks>.<rank>). */
+enum { PF_SIM_PATH_MAX = 4000 };
 
 /* The run's totals in the ledger: the history's first columns, each the sum of its parts (the
  * bodies' and interactions' accounts), in this order. */
@@ -109,6 +112,8 @@ struct pf_sim {
   /* output */
   long output_interval, history_interval;
   char exodus_path[4096], history_path[4096];
+  char *lock_path[3];  /* the lock files this run holds (rank 0; sim/output_lock.c) */
+  int nlocks;
   pf_provenance prov; /* written into the outputs (sim/provenance.c) */
   pf_exodus_options exo_opt; /* output.fields, precision, compression (sim/output.c) */
   const char **exo_fields;
@@ -171,8 +176,11 @@ int pf_sim_setup_time(pf_sim *sim);
 /* Partition, migrate, add ghosts and attach the bodies; fresh: initial state (set-up). The rows'
  * bonds are given back at the end (the bodies hold them then); the caller frees the rows. */
 int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh);
-/* Output file name: the deck's `given` or <deck name><ext>, under --output-dir. */
-void pf_sim_output_name(const pf_sim *sim, const char *given, const char *ext, char *out, size_t len);
+/* An output's path: given (or <deck name less its extension><ext>), under --output-dir unless
+ * absolute. A path longer than PF_SIM_PATH_MAX is an error naming key (node: where the deck
+ * gives it). */
+int pf_sim_output_name(const pf_sim *sim, const pf_node *node, const char *key, const char *given, const char *ext,
+                       char *out, size_t len);
 extern const pf_key pf_restart_keys[];
 int pf_sim_setup_restart(pf_sim *sim);
 int pf_sim_checkpoint(pf_sim *sim);
@@ -247,9 +255,18 @@ int pf_sim_spread_output(const pf_sim *sim);
 int pf_sim_fragments_setup(pf_sim *sim);
 /* The fragments table's name, <Exodus file less .e>.fragments.csv (after the output names). */
 void pf_sim_fragments_name(pf_sim *sim);
-/* sim/paths.c: no output may be an input (deck, meshes, point files, the checkpoint restarted
- * from) or another output, compared through the file system; an input error naming the key. */
+/* sim/paths.c: the rule for every file a run writes (an input error naming the key): no output
+ * is an input (deck, meshes, point files, the checkpoint restarted from) or another output or
+ * temporary file, compared through the file system; each is absent or a regular file in a
+ * writable folder; a symbolic link is replaced by its target in the sim's paths (and logged). */
 int pf_sim_check_paths(pf_sim *sim);
+/* The same rule for perifem_checkpoint's path: target (len bytes) gets the file to write. */
+int pf_sim_check_checkpoint_path(pf_sim *sim, const char *path, char *target, size_t len);
+/* sim/output_lock.c: <file>.lock for each output (rank 0 creates them; collective): a second run
+ * writing the same files is refused, naming the first; a lock of a process gone from this host
+ * is taken over with a warning. Unlock removes them (pf_sim_destroy). */
+int pf_sim_lock_outputs(pf_sim *sim);
+void pf_sim_unlock_outputs(pf_sim *sim);
 /* sim/unit_slips.c: warn (rank 0, with file:line:key) about material values that look like a
  * unit slip: a density outside [100, 1e5] kg/m^3, a modulus outside [1e6, 1e13] Pa. */
 void pf_sim_warn_unit_slips(const pf_deck *d, const pf_node *materials);

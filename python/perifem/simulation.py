@@ -270,7 +270,8 @@ class Simulation:
     # ---- checkpoint and digest ----
     def checkpoint(self, path):
         """Write a checkpoint of the current state to path (restart_from= continues from it).
-        Collective."""
+        A path the run may not write (the deck, another input or output, a device, a FIFO, an
+        unwritable folder) raises PerifemError (code 2) and writes nothing. Collective."""
         _check(lib.perifem_checkpoint(self._h(), os.fsencode(path)))
 
     def digest(self):

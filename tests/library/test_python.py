@@ -4,8 +4,9 @@
   - the history file the run wrote (HDF5) ends with the row the library gives;
   - with a uniform velocity given as an override (a dict) on the deck's text, u = v t everywhere;
   - a field view shares the library's memory (no copy) and equals the copy;
-  - bad input raises PerifemError with the deck's name and line; a communicator that is not
-    MPI_COMM_WORLD's ranks (COMM_SELF on 2 ranks) is refused.
+  - bad input raises PerifemError with the deck's name and line; a checkpoint over the deck is
+    refused (the deck unchanged); a communicator that is not MPI_COMM_WORLD's ranks (COMM_SELF
+    on 2 ranks) is refused.
 Prints "state digest: X" (rank 0), which the calling test compares with perifem's.
 usage: python3 test_python.py DECK [--mpi]   (under mpirun with --mpi: mpi4py gives the comm)"""
 import os
@@ -90,6 +91,15 @@ try:
     check(False, "a broken deck was accepted")
 except perifem.PerifemError as e:
     check(e.code == 2 and "broken.yaml:" in str(e), "a YAML error: %d %s" % (e.code, e))
+before = open(deck, "rb").read()
+with perifem.Simulation(deck, output_dir=out, quiet=True, comm=comm) as sim:
+    sim.step(1)
+    try:
+        sim.checkpoint(deck)
+        check(False, "a checkpoint over the deck was written")
+    except perifem.PerifemError as e:
+        check(e.code == 2 and "would overwrite the deck" in str(e), "a checkpoint over the deck: %d %s" % (e.code, e))
+check(open(deck, "rb").read() == before, "the deck is unchanged")
 if mpi and size > 1:
     try:
         perifem.Simulation(deck, output=False, quiet=True, comm=MPI.COMM_SELF)
