@@ -593,12 +593,6 @@ static int mesh_geo(gmsh_reader *r) {
   return 0;
 }
 
-/* Bytes one element costs at its peak while gmsh meshes it and perifem reads it: measured
- * 1.3 KB per hexahedron on meshes/bar.geo (1.25 million transfinite hexahedra, 1.6 GB peak
- * resident); 2 KB allows for the tetrahedra of an unstructured mesh before its subdivision. */
-#define PF_GMSH_BYTES_PER_ELEMENT 2048.0
-#define PF_GMSH_MAX_ELEMENTS 2.6e8 /* pf_mesh's 32-bit connectivity: 8 nelem <= INT32_MAX */
-
 /* Before meshing a .geo with element_size h: the number of elements estimated from the
  * geometry's bounding box, prod_i max(1, ceil(L_i / h)), refused beyond the 32-bit limit or
  * beyond what the memory this process may use (pf_memory_limit) would hold. */
@@ -615,8 +609,8 @@ static int check_estimate(gmsh_reader *r) {
     div[c] = isfinite(L) && L > 0 ? fmax(1, ceil(L / h - 1e-6)) : 1;
     n *= div[c];
   }
-  const double bytes = n * PF_GMSH_BYTES_PER_ELEMENT, limit = pf_memory_limit();
-  if (n <= PF_GMSH_MAX_ELEMENTS && bytes <= limit) return 0;
+  const double bytes = n * PF_MESH_BYTES_PER_ELEMENT, limit = pf_memory_limit();
+  if (n <= PF_MESH_MAX_ELEMENTS && bytes <= limit) return 0;
   return pf_error_raise(
       PF_ERR_INPUT, __FILE__, __LINE__, __func__,
       "%s: %s: element_size %g (in the file's units) would make about %.3g elements "
@@ -624,7 +618,7 @@ static int check_estimate(gmsh_reader *r) {
       "%s (this process may use %.3g GB); use a larger element_size",
       r->src->size_key ? r->src->size_key : "mesh", r->src->label, h, n, div[0], div[1], div[2],
       bytes / 1e9,
-      n > PF_GMSH_MAX_ELEMENTS ? "perifem's meshes hold at most 2.6e8 elements"
+      n > PF_MESH_MAX_ELEMENTS ? "perifem's meshes hold at most 2.6e8 elements"
                                : "more than the memory available",
       limit / 1e9);
 }

@@ -5,6 +5,7 @@
  * Exodus II interface (im_ex_get_*), which numbers things as Exodus does (mesh/exodus.c).
  * Pamgen keeps one mesh in static storage, so this reader is not reentrant. */
 #include "mesh/mesh_impl.h"
+#include "mesh/pamgen_guard.h"
 
 #include <create_inline_mesh.h>
 #include <limits.h>
@@ -191,9 +192,29 @@ static int read_mesh(pamgen_reader *r, pf_mesh_raw *raw) {
   return 0;
 }
 
+/* The text checked, and the estimated mesh held against perifem's limit and the memory. */
+static int check_text(const pf_mesh_source *src) {
+  char msg[512];
+  double n = 0;
+  if (pf_pamgen_check(src->text, &n, msg, sizeof msg)) return PF_MESH_ERROR(src, "%s", msg);
+  const double bytes = n * PF_MESH_BYTES_PER_ELEMENT, limit = pf_memory_limit();
+  if (n <= PF_MESH_MAX_ELEMENTS && bytes <= limit) return 0;
+  return PF_MESH_ERROR(src,
+                       "the Pamgen text asks for about %.3g elements, needing about %.3g GB; %s "
+                       "(this process may use %.3g GB); use fewer intervals",
+                       n, bytes / 1e9,
+                       n > PF_MESH_MAX_ELEMENTS ? "perifem's meshes hold at most 2.6e8 elements"
+                                                : "more than the memory available",
+                       limit / 1e9);
+}
+
 static int pamgen_read(const pf_mesh_source *src, pf_mesh_raw *raw) {
+  PF_CALL(check_text(src));
   long long echo_start = getPamgenEchoStreamSize();
-  long long status = Create_Pamgen_Mesh(src->text, 3, 0, 1, INT_MAX);
+  char thrown[256] = "";
+  long long status = pf_pamgen_create(src->text, thrown, sizeof thrown);
+  if (status == PF_PAMGEN_THREW)
+    return PF_MESH_ERROR(src, "Pamgen failed while building the mesh (it threw: %s)", thrown);
   if (status != ERROR_FREE_CREATION) {
     char msg[1024];
     pamgen_message(status, echo_start, msg, sizeof msg);
