@@ -519,7 +519,7 @@ static int bond_fields_present(const h5io *io, const pf_bond_rows *rows) {
   return 0;
 }
 
-/* Each restart field the rows register (the others keep their init), checked not NaN. */
+/* Each restart field the rows register (the others keep their init), checked: not NaN, flags 0 or 1. */
 static int read_bond_fields(const h5io *io, pf_bond_rows *rows) {
   for (int k = 0; k < rows->nfields; k++) {
     const pf_bond_field *f = &rows->field[k];
@@ -530,6 +530,7 @@ static int read_bond_fields(const h5io *io, pf_bond_rows *rows) {
     const size_t n = io->count * (size_t)f->ncomp;
     if (f->type == PF_BOND_DOUBLE) PF_CALL(pf_ckpt_check_values(io->path, name, f->data, n, -INFINITY, 1));
     if (f->type == PF_BOND_FLOAT) PF_CALL(pf_ckpt_check_floats(io->path, name, f->data, n));
+    if (f->type == PF_BOND_UINT8) PF_CALL(pf_ckpt_check_flags(io->path, name, f->data, n));
   }
   return 0;
 }

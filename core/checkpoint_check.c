@@ -68,6 +68,19 @@ int pf_ckpt_check_floats(const char *path, const char *dset, const float *x, siz
   return 0;
 }
 
+int pf_ckpt_check_flags(const char *path, const char *dset, const uint8_t *x, size_t n) {
+  char msg[512] = "";
+  int ok = 1;
+  for (size_t i = 0; i < n && ok; i++)
+    if (x[i] > 1) {
+      ok = 0;
+      snprintf(msg, sizeof msg, "checkpoint %s: dataset %s: entry %zu of this rank's slice is %d, not a flag (0 or 1): "
+               "the file is damaged", path, dset, i, x[i]);
+    }
+  PF_AGREE(ok, PF_ERR_INPUT, msg);
+  return 0;
+}
+
 /* Body indices not negative (the caller, who knows the bodies, bounds them above). */
 int pf_ckpt_check_bodies(const char *path, const int32_t *body, int64_t n) {
   char msg[512] = "";

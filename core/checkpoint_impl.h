@@ -12,6 +12,8 @@ int pf_ckpt_check_ids(const char *path, const char *dset, const pf_gid *id, int6
 int pf_ckpt_check_values(const char *path, const char *dset, const double *x, size_t n, double lo, int allow_inf);
 /* Every x[n] not NaN. */
 int pf_ckpt_check_floats(const char *path, const char *dset, const float *x, size_t n);
+/* Every flag x[n] 0 or 1. */
+int pf_ckpt_check_flags(const char *path, const char *dset, const uint8_t *x, size_t n);
 /* Every body[n] not negative. */
 int pf_ckpt_check_bodies(const char *path, const int32_t *body, int64_t n);
 /* Every bond count[n] in [0, total]; all ranks' adding up to nbonds. */

@@ -406,6 +406,7 @@ void pf_memory_trim(void);
  * row ascending, with the per-bond quantities that travel with them as registered bond fields
  * (core/bond_fields.c): a model registers a field by name once, and migration, checkpoints and
  * the row operations below carry it without naming it. */
+/* PF_BOND_UINT8 holds flags, 0 or 1 (a checkpoint's other values are refused). */
 typedef enum { PF_BOND_UINT8, PF_BOND_FLOAT, PF_BOND_DOUBLE } pf_bond_type;
 /* Bytes of one component of the type: 1, 4, 8. */
 size_t pf_bond_type_size(pf_bond_type type);

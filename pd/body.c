@@ -470,6 +470,22 @@ static int set_regions(pf_pd_body *b, pf_points *pts) {
   return pf_points_exchange(pts, b->region, 1);
 }
 
+/* Masses that came with the points (a re-partition, a checkpoint) are density x volume, as the
+ * fresh set-up made them, bit for bit. Collective. */
+static int check_masses(const pf_pd_body *b, const pf_points *pts, pf_int first, pf_int n) {
+  char msg[400] = "";
+  int ok = 1;
+  for (pf_int i = first; i < first + n && ok; i++)
+    if (pts->m[i] != b->density * pts->vol[i]) {
+      ok = 0;
+      snprintf(msg, sizeof msg, "body '%s': point %" PF_GID_FMT " carries mass %.17g kg, not density x volume = "
+               "%.17g kg: the checkpoint it came from is damaged", b->name, pts->gid[i], pts->m[i],
+               b->density * pts->vol[i]);
+    }
+  PF_AGREE(ok, PF_ERR_INPUT, msg);
+  return 0;
+}
+
 int pf_pd_body_attach(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n,
                       const pf_bond_rows *rows, const pf_int *local, int fresh) {
   b->first = first;
@@ -484,9 +500,11 @@ int pf_pd_body_attach(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n,
   free(b->lost);
   PF_MALLOC(b->lost, n);
   PF_CALL(set_regions(b, pts));
-  if (fresh) { /* (after a re-partition the masses came with the points and their ghosts) */
+  if (fresh) { /* (after a re-partition or a restart the masses came with the points) */
     for (pf_int i = first; i < first + n; i++) pts->m[i] = b->density * pts->vol[i];
     PF_CALL(pf_points_exchange(pts, pts->m, 1));
+  } else {
+    PF_CALL(check_masses(b, pts, first, n));
   }
   PF_CALL(pf_pd_damage_setup(b, pts, fresh));
   b->fresh = fresh;

@@ -223,9 +223,10 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
     ierr = sim->body[b].ops->cloud(sim->body[b].data, sim->deck, pf_node_item(bodies, b), &pc[b]);
   if (!ierr) pf_sim_geometry_take(sim, pc); /* (checkpoints record it; a restart compares) */
   if (!ierr) ierr = pf_sim_sets_build(sim, pc);
-  if (!ierr && sim->opt.restart_from) {      /* points and velocities from the file */
+  if (!ierr && sim->opt.restart_from) { /* points and velocities from the file */
+    ierr = pf_sim_restore_points(sim, pc);
     for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
-    return pf_sim_restore_points(sim);
+    return ierr;
   }
   if (!ierr) ierr = check_overlap(sim, pc, bodies);
   if (!ierr) ierr = pf_sim_distribute(sim, pc);

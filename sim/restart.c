@@ -157,7 +157,7 @@ static void body_gids(pf_sim *sim) {
   pf_sim_number_bodies(sim, count);
 }
 
-int pf_sim_restore_points(pf_sim *sim) {
+int pf_sim_restore_points(pf_sim *sim, const pf_point_cloud *pc) {
   pf_bond_rows rows;
   PF_CALL(pf_bond_rows_init(&rows));
   PF_CALL(scalars_make(sim, 0, &sim->restart_scalars));
@@ -170,6 +170,8 @@ int pf_sim_restore_points(pf_sim *sim) {
   if (!ierr) ierr = pf_sim_check_restart_bodies(sim);
   if (!ierr) body_gids(sim);
   if (!ierr) ierr = pf_sim_check_restart_gids(sim);
+  if (!ierr) ierr = pf_sim_check_restart_reference(sim, pc);
+  sim->restart_nfields = sim->pts ? sim->pts->nfields : 0;
   if (!ierr) ierr = pf_sim_settle(sim, &rows, 0);
   pf_bond_rows_free(&rows);
   for (int b = 0; b < sim->nbodies && !ierr; b++) { /* the elements' state, whole on every rank */
@@ -219,6 +221,7 @@ int pf_sim_restore_state(pf_sim *sim) {
   if (ierr) return ierr;
   const double *v = saved->value;
   PF_CALL(pf_sim_check_restart_time(sim, v));
+  PF_CALL(pf_sim_check_restart_fields(sim));
   if (sim->adaptive) sim->dt = v[2]; /* the step follows the elements: the last one taken */
   PF_CHECK(v[2] == sim->dt, PF_ERR_INPUT, "the checkpoint %s was written with dt = %.17g s, this set-up gives %.17g s",
            sim->opt.restart_from, v[2], sim->dt);

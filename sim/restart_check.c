@@ -3,7 +3,8 @@
  * global id in its body's range, and time, step and step size in range and consistent with
  * each other and with this run. Each failure is one message naming the checkpoint and the
  * dataset or attribute, on every rank (the points' checks are agreed; the scalars are the
- * same on every rank). */
+ * same on every rank). Then by meaning: each point's reference position, volume and cell size
+ * against the set-up's, and, after the set-up, every point field the models keep present. */
 #include "sim/sim_impl.h"
 
 #include <math.h>
@@ -73,5 +74,40 @@ int pf_sim_check_restart_time(const pf_sim *sim, const double *v) {
   PF_CHECK(!by_time || t <= sim->final_time + dt, PF_ERR_INPUT,
            "checkpoint %s: attribute 'time' is %.17g s, past this run's final_time %.17g s (nothing to do; a damaged "
            "file?)", path, t, sim->final_time);
+  return 0;
+}
+
+int pf_sim_check_restart_reference(const pf_sim *sim, const pf_point_cloud *pc) {
+  const pf_points *p = sim->pts;
+  char msg[600] = "";
+  int ok = 1;
+  for (pf_int i = 0; i < p->n_owned && ok; i++) {
+    const int b = p->body[i];
+    const pf_int j = (pf_int)(p->gid[i] - sim->gid0[b]);
+    const double *X = &pc[b].X[3 * (size_t)j], *Y = &p->X[3 * (size_t)i];
+    const char *what = X[0] != Y[0] || X[1] != Y[1] || X[2] != Y[2] ? "reference position"
+                       : pc[b].vol[j] != p->vol[i]                   ? "volume"
+                       : pc[b].cell[j] != p->cell[i]                 ? "cell size"
+                                                                     : NULL;
+    if (!what) continue;
+    ok = 0;
+    snprintf(msg, sizeof msg, "checkpoint %s: point %" PF_GID_FMT " (body '%s', its point %" PF_GID_FMT "): its %s in "
+             "/points/%s is not the set-up's (position %.17g %.17g %.17g m, volume %.17g m^3 in the file; %.17g %.17g "
+             "%.17g m, %.17g m^3 made from the deck): the file is damaged or was written for other geometry",
+             sim->opt.restart_from, p->gid[i], sim->body_name[b], (pf_gid)j, what,
+             what[0] == 'r' ? "X" : what[0] == 'v' ? "vol" : "cell", Y[0], Y[1], Y[2], p->vol[i], X[0], X[1], X[2],
+             pc[b].vol[j]);
+  }
+  PF_AGREE(ok, PF_ERR_INPUT, msg);
+  return 0;
+}
+
+int pf_sim_check_restart_fields(const pf_sim *sim) {
+  const pf_points *p = sim->pts;
+  for (int k = sim->restart_nfields; k < p->nfields; k++)
+    PF_CHECK(!(p->fields[k].flags & PF_FIELD_RESTART), PF_ERR_INPUT,
+             "checkpoint %s has no point field '%s' (%d per point), which this run's models keep: it was written by "
+             "another model or another version of perifem, or is damaged",
+             sim->opt.restart_from, p->fields[k].name, p->fields[k].ncomp);
   return 0;
 }

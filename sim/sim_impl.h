@@ -103,6 +103,7 @@ struct pf_sim {
   double max_motion;    /* guard: largest step motion, as a fraction of horizon (PD) or cell (FE) */
   double pd_stable;     /* the PD bodies' stable step (fixed) */
   int restart_format;  /* the format of the checkpoint restarted from */
+  int restart_nfields; /* the point fields it held (registered first) */
   /* checkpoints */
   char restart_path[4096];
   long restart_interval;
@@ -184,7 +185,7 @@ int pf_sim_output_name(const pf_sim *sim, const pf_node *node, const char *key, 
 extern const pf_key pf_restart_keys[];
 int pf_sim_setup_restart(pf_sim *sim);
 int pf_sim_checkpoint(pf_sim *sim);
-int pf_sim_restore_points(pf_sim *sim);
+int pf_sim_restore_points(pf_sim *sim, const pf_point_cloud *pc);
 int pf_sim_restore_state(pf_sim *sim);
 void pf_sim_restart_free(pf_sim *sim);
 /* A checkpoint's content checked against the deck (sim/restart_check.c): bodies (collective),
@@ -195,6 +196,12 @@ int pf_sim_check_restart_bodies(const pf_sim *sim);
 int pf_sim_check_restart_gids(const pf_sim *sim);
 int pf_sim_check_restart_scalars(const pf_sim *sim, const double *v, const double *stable);
 int pf_sim_check_restart_time(const pf_sim *sim, const double *v);
+/* Each owned point's reference position, volume and cell equal to its set-up's in the clouds
+ * pc[nbodies] (bitwise: the set-up copies them), after the ids are checked. Collective. */
+int pf_sim_check_restart_reference(const pf_sim *sim, const pf_point_cloud *pc);
+/* After the set-up: every point field the run's models keep in checkpoints was in the file
+ * (one registered by the set-up alone would start from nothing). */
+int pf_sim_check_restart_fields(const pf_sim *sim);
 /* sim/restart_geometry.c: each body's geometry from its set-up cloud pc[nbodies] (and mesh);
  * as checkpoint scalars v[PF_GEOMETRY_SCALARS nbodies] (points, elements, hash halves); a
  * checkpoint's saved[PF_GEOMETRY_SCALARS nbodies] against this set-up's, refused naming the body, its mesh or point file and what

@@ -9,6 +9,9 @@
 #      dataset rewritten without its checksum, and the file truncated. Each, on 1 and 2 ranks
 #      (3 for a few), exits non-zero within 60 s, not by a signal, with a "perifem error" message
 #      naming the file and the dataset or attribute.
+#  (c) By meaning (valid numbers, checksums holding): a moved reference position, a changed
+#      volume, a changed mass, a bond flag of 2, the point field critical_stretch deleted; each
+#      refused on 1 and 2 ranks naming what differs.
 #  (b) 30 copies with 1 to 4 random bytes flipped (seed 2024; in the first 4 KiB, the
 #      superblock and the root group's header with the scalars, for the first 10): each either restarts to exactly
 #      the reference digest, or is refused (non-zero exit, message naming the file); never a
@@ -95,6 +98,13 @@ with copy("no_checksum") as f:  # /points/v rewritten contiguous, without Fletch
     f.create_dataset("/points/v", data=v)
 data = open("clean.h5", "rb").read()
 open("truncated.h5", "wb").write(data[: len(data) // 2])
+# (c) damage that only the meaning finds: each value a valid number
+edit("moved", "/points/X", (4, 1), lambda a: a[4, 1] + 1e-4)
+edit("vol_changed", "/points/vol", 4, lambda a: a[4] * 1.1)
+edit("mass_changed", "/points/m", 3, lambda a: a[3] * 1.01)
+edit("flag_two", "/bonds/broken", 10, 2)
+with copy("field_gone") as f:
+    del f["/fields/critical_stretch"]
 EOF
 cases="body_neg:/points/body body_big:/points/body gid_range:/points/gid gid_twice:/points/gid
        count_neg:/bonds/count count_sum:/bonds/count bond_gid:/bonds/gid x_nan:/points/X time_nan:time
@@ -110,6 +120,25 @@ for c in $cases; do
   for np in $(ranks_of $name); do refused $np $name.h5 "$what" $name; nref=$((nref + 1)); done
 done
 echo "targeted: $nref refusals checked in $(( $(date +%s) - start )) s"
+
+# (c) by meaning: a moved reference position, a changed volume or mass, a bond flag of 2, a point
+# field the model keeps deleted; each refused naming what differs (before: a restart with exit 0
+# and another result, or a message about the time step)
+meaning="moved:reference_position vol_changed:its_volume mass_changed:carries_mass flag_two:not_a_flag
+         field_gone:no_point_field"
+for c in $meaning; do for np in 1 2; do launch $np ${c%%:*}.h5; done; done
+wait
+for c in $meaning; do
+  name=${c%%:*} what=${c#*:}
+  for np in 1 2; do
+    result $np $name.h5
+    if [ $status -eq 0 ] || [ $status -eq 124 ] || crashed || ! echo "$out" | grep "perifem error" | grep -qF "${what//_/ }"; then
+      echo "FAIL $name on $np ranks: exit $status, expected a refusal saying '${what//_/ }':"
+      echo "$out" | head -8
+      fail=1
+    fi
+  done
+done
 
 # (b) random byte flips
 $PY - << 'EOF' || { echo "could not write the flipped copies"; exit 1; }
