@@ -87,6 +87,8 @@ _PROTOTYPES = {
     "perifem_step_count": (c_long, [_SIM]),
     "perifem_dt": (c_double, [_SIM]),
     "perifem_total_steps": (c_long, [_SIM]),
+    "perifem_catch_signals": (c_int, [c_int]),
+    "perifem_signal_caught": (c_int, []),
     "perifem_print_check": (c_int, [_SIM]),
     "perifem_body_count": (c_int, [_SIM]),
     "perifem_body_name": (c_char_p, [_SIM, c_int]),

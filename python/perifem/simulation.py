@@ -2,6 +2,7 @@
 import atexit
 import ctypes
 import os
+import signal
 import weakref
 
 import numpy as np
@@ -147,14 +148,32 @@ class Simulation:
         return self._handle
 
     # ---- running ----
+    def _advance(self, call, *args):
+        """call(*args) with SIGINT and SIGTERM taken by the library as the command line takes them
+        (the run checkpoints at the end of the current step and stops), then the signal handed
+        to Python's handler: Ctrl-C raises KeyboardInterrupt as soon as the step is done."""
+        _check(lib.perifem_catch_signals(1))
+        try:
+            status = call(*args)
+            error = PerifemError(status, lib.perifem_last_error().decode(errors="replace")) if status else None
+        finally:
+            lib.perifem_catch_signals(0)
+        caught = lib.perifem_signal_caught()
+        if caught:
+            signal.raise_signal(caught)  # Python's handler: KeyboardInterrupt for SIGINT
+        if error:
+            raise error
+
     def step(self, n=1):
         """Take n steps (n = 0: start the run: forces at t = 0, first output and history row), with
-        output, history and checkpoints at the deck's intervals. Collective."""
-        _check(lib.perifem_step(self._h(), int(n)))
+        output, history and checkpoints at the deck's intervals. Collective. Ctrl-C (SIGINT)
+        stops the run at the end of the current step with a checkpoint, then raises
+        KeyboardInterrupt; the run cannot go on (continue with restart_from=)."""
+        self._advance(lib.perifem_step, self._h(), int(n))
 
     def run(self):
-        """Run to the deck's final time. Collective."""
-        _check(lib.perifem_run(self._h()))
+        """Run to the deck's final time. Collective. Ctrl-C as in step()."""
+        self._advance(lib.perifem_run, self._h())
 
     def check(self):
         """Print the set-up report of perifem --check (rank 0). Collective."""
