@@ -1,4 +1,8 @@
 """The Python package at its boundary, on tests/library/free_body.yaml (a free block):
+  - wrong argument types raise TypeError before anything runs: step(2.7), step("2"), step(True)
+    (before: 2.7 took 2 steps), a field name or body of the wrong type, a number as a path,
+    overrides neither a dict, a list of strings nor a string, a list holding a number; a single
+    string "key.path=value" is one override (before: split into characters);
   - a checkpoint into a folder that does not exist, or one HDF5 cannot create (/proc), raises
     PerifemError and fails that call only: the run goes on, the next checkpoint is written, and
     perifem.finalize() succeeds (before, after /proc: the interpreter ended with status 1 after
@@ -6,6 +10,8 @@
 usage: python3 test_python_api.py DECK   (the package importable: PYTHONPATH, PERIFEM_LIBRARY)"""
 import os
 import sys
+
+import numpy as np
 
 import perifem
 
@@ -34,6 +40,30 @@ def raises(exc, call, what, text=None):
 def make(**kw):
     return perifem.Simulation(deck, output=False, quiet=True, **kw)
 
+
+# 1. types
+with make(overrides="time.steps=7") as sim:
+    check(sim.total_steps == 7, "one string as one override: %d steps, expected 7" % sim.total_steps)
+    raises(TypeError, lambda: sim.step(2.7), "step(2.7)", "an integer")
+    raises(TypeError, lambda: sim.step("2"), "step('2')")
+    raises(TypeError, lambda: sim.step(True), "step(True)")
+    raises(ValueError, lambda: sim.step(-1), "step(-1)")
+    check(sim.step_count == 0, "refused steps took %d steps" % sim.step_count)
+    sim.step(np.int64(2))
+    check(sim.step_count == 2, "step(np.int64(2)): %d steps" % sim.step_count)
+    raises(TypeError, lambda: sim.field("block", 3), "field('block', 3)", "field's name")
+    raises(TypeError, lambda: sim.field_view(0.0, "mass"), "field_view(0.0, 'mass')", "body")
+    raises(perifem.PerifemError, lambda: sim.field(5, "mass"), "field(5, 'mass')", "no body 5")
+    raises(TypeError, lambda: sim.checkpoint(3), "checkpoint(3)", "path")
+    check(np.array_equal(sim.field(0, "mass"), sim.field("block", "mass")), "a body by index and by name")
+raises(TypeError, lambda: make(overrides=5), "overrides=5", "overrides")
+raises(TypeError, lambda: make(overrides=["time.steps=3", 4]), "overrides=[..., 4]", "an override")
+raises(TypeError, lambda: make(overrides={3: 1}), "overrides={3: 1}", "key")
+raises(TypeError, lambda: perifem.Simulation(3), "Simulation(3)", "deck")
+raises(TypeError, lambda: perifem.Simulation(text=b"x: 1"), "text=bytes", "text")
+raises(TypeError, lambda: make(output_dir=3), "output_dir=3", "output_dir")
+raises(TypeError, lambda: make(comm="world"), "comm='world'", "mpi4py")
+raises(ValueError, lambda: make(progress="bar"), "progress='bar'", "progress")
 
 # 2. a failed checkpoint fails that call only
 with make() as sim:
