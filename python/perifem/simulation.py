@@ -11,6 +11,7 @@ import numpy as np
 from ._library import Options, lib
 
 _live = weakref.WeakSet()  # simulations not yet closed: closed at exit, before MPI ends
+_pending = set()  # closed simulations whose memory field views still show: freed with the last view
 
 
 class PerifemError(RuntimeError):
@@ -40,13 +41,19 @@ def version_numbers():
 
 
 def finalize():
-    """Close every open simulation and end MPI if perifem started it (also done at exit)."""
+    """Close every open simulation and end MPI if perifem started it (also done at exit). Field
+    views of closed simulations must be gone first (they show the library's memory)."""
     for sim in list(_live):
         sim.close()
+    if _pending:
+        raise PerifemError(2, "finalize: field views of %d closed simulation(s) are still referenced; delete them "
+                              "first (they show memory that finalize would free)" % len(_pending))
     _check(lib.perifem_finalize())
 
 
 def _at_exit():
+    for handle in list(_pending):  # the interpreter is ending: no view will be read again
+        handle.destroy()
     try:
         finalize()
     except PerifemError as e:  # a file could not be closed: MPI cannot end cleanly
@@ -122,6 +129,39 @@ def _flag(value, what):
     raise _type_error(what, "a bool", value)
 
 
+class _Handle:
+    """The library's simulation, freed once it is closed and no field view of its memory is left
+    (a view keeps it alive: reading a view after close() reads memory still there)."""
+
+    def __init__(self):
+        self.ptr = ctypes.c_void_p()
+        self.closed = False
+        self.views = 0  # the _ViewMemory objects alive
+
+    def view_gone(self):
+        self.views -= 1
+        if self.closed and not self.views:
+            try:
+                self.destroy()
+            except PerifemError:
+                pass
+
+    def destroy(self):
+        _pending.discard(self)
+        if self.ptr:
+            _check(lib.perifem_destroy(ctypes.byref(self.ptr)))
+
+
+class _ViewMemory:
+    """The memory a field view shows (numpy's base of the view), holding the simulation's handle."""
+
+    def __init__(self, handle, address, count):
+        self.handle = handle
+        self.__array_interface__ = {"data": (address, True), "shape": (count,), "typestr": "<f8", "version": 3}
+        handle.views += 1
+        weakref.finalize(self, handle.view_gone)
+
+
 class Simulation:
     """A perifem simulation built from a deck.
 
@@ -153,7 +193,8 @@ class Simulation:
             raise ValueError("progress must be \"auto\", \"plain\" or \"line\", not %r" % (progress,))
         if comm is not None and not hasattr(comm, "py2f"):
             raise _type_error("comm", "an mpi4py communicator", comm)
-        self._handle = ctypes.c_void_p()
+        self._handle = None
+        handle = _Handle()
         sets = [s.encode() for s in _override_list(overrides)]
         self._sets = (ctypes.c_char_p * max(len(sets), 1))(*sets)
         opt = Options()
@@ -170,17 +211,26 @@ class Simulation:
             opt.use_comm, opt.comm = 1, comm.py2f()
         if text is not None:
             _check(lib.perifem_create_from_string(text.encode(), _path(name, "name") if name is not None else None,
-                                                  ctypes.byref(opt), ctypes.byref(self._handle)))
+                                                  ctypes.byref(opt), ctypes.byref(handle.ptr)))
         else:
-            _check(lib.perifem_create(_path(deck, "deck"), ctypes.byref(opt), ctypes.byref(self._handle)))
+            _check(lib.perifem_create(_path(deck, "deck"), ctypes.byref(opt), ctypes.byref(handle.ptr)))
+        self._handle = handle
         _live.add(self)
 
     # ---- life ----
     def close(self):
-        """Free the simulation (output files still open are closed). Collective."""
-        if self._handle:
-            _live.discard(self)
-            _check(lib.perifem_destroy(ctypes.byref(self._handle)))
+        """Free the simulation (output files still open are closed). Collective. Field views still
+        referenced keep its memory (and files) until the last of them is gone, or the exit: under
+        MPI delete them before close(), so that every rank frees it at the same call."""
+        handle = getattr(self, "_handle", None)
+        if handle is None or handle.closed:
+            return
+        _live.discard(self)
+        handle.closed = True
+        if handle.views:
+            _pending.add(handle)
+        else:
+            handle.destroy()
 
     def __enter__(self):
         return self
@@ -195,9 +245,10 @@ class Simulation:
             pass
 
     def _h(self):
-        if not self._handle:
+        handle = getattr(self, "_handle", None)
+        if handle is None or handle.closed:
             raise PerifemError(2, "the simulation is closed")
-        return self._handle
+        return handle.ptr
 
     # ---- running ----
     def _advance(self, call, *args):
@@ -310,8 +361,9 @@ class Simulation:
 
     def field_view(self, body, name):
         """Field name of the body's points on this rank without a copy: a read-only numpy array
-        over the library's memory, valid until the next step, run or close (a step may move the
-        points between ranks). Use field() to keep values."""
+        over the library's memory, valid until the next step or run (a step may move the points
+        between ranks). The view keeps that memory after close() (the simulation is freed once
+        the last view is gone). Use field() to keep values."""
         b = self._body(body)
         data, ncomp = ctypes.POINTER(ctypes.c_double)(), ctypes.c_int()
         _check(lib.perifem_field_view(self._h(), b, _name(name, "the field's name"), ctypes.byref(data),
@@ -319,7 +371,7 @@ class Simulation:
         n, c = max(self.points(b), 0), ncomp.value
         if n == 0:
             return np.empty((0, c) if c > 1 else 0)
-        a = np.ctypeslib.as_array(data, shape=(n * c,))
+        a = np.asarray(_ViewMemory(self._handle, ctypes.cast(data, ctypes.c_void_p).value, n * c))
         a.flags.writeable = False
         return a.reshape(n, c) if c > 1 else a
 

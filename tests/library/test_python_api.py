@@ -7,13 +7,18 @@
     PerifemError and fails that call only: the run goes on, the next checkpoint is written, and
     perifem.finalize() succeeds (before, after /proc: the interpreter ended with status 1 after
     the run, "a file could not be closed");
+  - a field view read after close() shows the values it showed before (before: SIGSEGV, on a
+    block of 17 325 points whose arrays are unmapped when freed); the
+    closed simulation refuses further calls; it is freed once the last view is gone.
 usage: python3 test_python_api.py DECK   (the package importable: PYTHONPATH, PERIFEM_LIBRARY)"""
+import gc
 import os
 import sys
 
 import numpy as np
 
 import perifem
+from perifem import simulation
 
 deck = sys.argv[1]
 failures = []
@@ -76,6 +81,33 @@ with make() as sim:
     check(sim.step_count == 5, "steps after a failed checkpoint: %d" % sim.step_count)
     sim.checkpoint("after_failure.h5")
     check(os.path.getsize("after_failure.h5") > 0, "the checkpoint after the failed one is written")
+
+# 3. a field view outlives close(); a block of 17 325 points, whose arrays (over 128 kB) the C
+# library's malloc maps apart and unmaps when they are freed: reading them then was SIGSEGV
+sim = make(overrides={"bodies.block.geometry.spacing": 0.25e-3, "bodies.block.horizon": 0.76e-3})
+sim.step(4)
+view, copy = sim.field_view("block", "displacement"), sim.field("block", "displacement")
+mass = sim.field_view("block", "mass")
+sim.close()
+check(np.array_equal(view, copy) and float(np.abs(view).max()) > 0, "a view read after close() shows its values")
+check(float(mass.sum()) > 0, "a scalar view read after close()")
+raises(perifem.PerifemError, lambda: sim.step(1), "step() after close()", "closed")
+raises(perifem.PerifemError, lambda: sim.field_view("block", "mass"), "field_view() after close()", "closed")
+check(len(simulation._pending) == 1, "a closed simulation with views is kept (%d kept)" % len(simulation._pending))
+del view
+gc.collect()
+check(len(simulation._pending) == 1, "kept while one view is left")
+del mass
+gc.collect()
+check(len(simulation._pending) == 0, "freed with its last view (%d kept)" % len(simulation._pending))
+tmp = make()
+tmp.step(1)
+orphan = tmp.field_view(0, "velocity")
+del tmp  # a simulation dropped without close() while its view is used
+gc.collect()
+check(orphan.shape[1] == 3 and np.isfinite(orphan).all(), "a view of a dropped simulation")
+del orphan
+gc.collect()
 
 perifem.finalize()  # raises PerifemError when MPI cannot end (before: after the failed checkpoint)
 print("python api: %d failures" % len(failures))
