@@ -343,9 +343,11 @@ static off_t data_bytes(const pf_points *pts, const pf_bond_rows *rows, int ntab
   return (off_t)(1.02 * (pf_sum_all(local) + table)) + PF_CHECKPOINT_MARGIN;
 }
 
-/* Every rank agreed that the write failed: leave the file open (see the top), remove path.tmp. */
+/* Every rank agreed that the write failed: leave the file open (see the top), remove path.tmp.
+ * Only a file some rank holds open is left for MPI_Abort: when no rank could create it (a folder
+ * that does not exist), HDF5 holds nothing and the process may go on and finalize. */
 static int discard(const h5io *io, int ierr) {
-  pf_io_abandon();
+  if (pf_max_all(io->file >= 0) > 0) pf_io_abandon();
   if (pf_comm_rank() == 0) unlink(io->path);
   return ierr;
 }

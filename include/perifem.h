@@ -131,6 +131,18 @@ double perifem_time(const perifem_sim *sim);
 long perifem_step_count(const perifem_sim *sim);
 double perifem_dt(const perifem_sim *sim);
 long perifem_total_steps(const perifem_sim *sim);
+/* SIGINT and SIGTERM from now on (on = 1) as the command line takes them during a run: the run
+ * stops at the end of the current step of perifem_step or perifem_run, writes a checkpoint (the
+ * deck's restart file), prints where it stopped and closes its files (the ranks agree on the step);
+ * the call returns PERIFEM_OK and perifem_signal_caught() gives the signal. Nothing ends the
+ * process, during a set-up either; a signal the process ignores stays ignored. on = 0 puts back
+ * the handlers there were before. For a caller whose own handler would act only once the call
+ * returns (Python's KeyboardInterrupt). A signal caught before is forgotten when catching starts.
+ * Process-wide. */
+int perifem_catch_signals(int on);
+/* The signal caught (SIGINT 2, SIGTERM 15) since perifem_catch_signals(1) or, with
+ * perifem_options.catch_signals, since the set-up; 0: none. */
+int perifem_signal_caught(void);
 /* Print the set-up report of `perifem --check` (rank 0, standard output): bodies, points, bonds,
  * elements, the step, memory, output sizes, a rough run time. Collective. */
 int perifem_print_check(perifem_sim *sim);

@@ -213,6 +213,15 @@ int perifem_print_check(perifem_sim *sim) {
   return status(pf_sim_check_report(sim->sim), "perifem_print_check");
 }
 
+int perifem_catch_signals(int on) {
+  pf_error_clear();
+  if (on != 0 && on != 1) return RAISE(PF_ERR_INPUT, "perifem_catch_signals: on must be 0 or 1 (got %d)", on);
+  pf_sim_catch_run_signals(on);
+  return 0;
+}
+
+int perifem_signal_caught(void) { return pf_sim_signal_here(); }
+
 /* ---- bodies and fields ------------------------------------------------------------------------ */
 
 int perifem_body_count(const perifem_sim *sim) { return sim && sim->sim ? sim->sim->nbodies : 0; }

@@ -45,3 +45,28 @@ void pf_sim_catch_signals(void) {
 void pf_sim_setup_done(void) { in_setup = 0; }
 
 int pf_sim_signal_here(void) { return (int)stop_signal; }
+
+/* The library's caller (perifem_catch_signals): the run's handler only (no set-up exit), and the
+ * caller's handlers kept to be put back. */
+static struct sigaction caller_action[2];
+static int caller_saved = 0;
+
+void pf_sim_catch_run_signals(int on) {
+  const int sigs[2] = {SIGTERM, SIGINT};
+  if (on && !caller_saved) {
+    in_setup = 0, stop_signal = 0;
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;
+    for (int k = 0; k < 2; k++) {
+      sigaction(sigs[k], &sa, &caller_action[k]);
+      if (caller_action[k].sa_handler == SIG_IGN) sigaction(sigs[k], &caller_action[k], NULL); /* (stays ignored) */
+    }
+    caller_saved = 1;
+  } else if (!on && caller_saved) {
+    for (int k = 0; k < 2; k++) sigaction(sigs[k], &caller_action[k], NULL);
+    caller_saved = 0;
+  }
+}

@@ -218,6 +218,10 @@ void pf_sim_setup_done(void);
 /* The signal this rank received (0: none); the step's guard reduction (pf_sim_guard_check) makes
  * it the largest over the ranks, in sim->signal. */
 int pf_sim_signal_here(void);
+/* on = 1: SIGTERM / SIGINT stop the run at the end of the current step with a checkpoint (the
+ * set-up's exit is not armed), the signal caught so far forgotten; on = 0: the handlers there were
+ * before put back (perifem_catch_signals). */
+void pf_sim_catch_run_signals(int on);
 int pf_sim_setup_output(pf_sim *sim);
 /* sim/output.c: the history's columns (time, step, then the ledger's columns: the run's totals,
  * each body's, each interaction's, the probes') and one row of them; the Exodus file; output at a

@@ -15,28 +15,58 @@ class Options(ctypes.Structure):
                 ("comm", c_int), ("command_line", c_char_p)]
 
 
-def _candidates():
-    """Where to look for the library, first to last: $PERIFEM_LIBRARY, the library cmake --install
-    put beside this package, the dynamic loader's search path."""
-    if os.environ.get("PERIFEM_LIBRARY"):
-        yield os.environ["PERIFEM_LIBRARY"]
+# The CMake install prefix's default (cmake --install, scripts/setup.sh).
+_DEFAULT_PREFIX_LIBRARY = "/usr/local/lib/libperifem.so.0"
+
+
+def _pkg_config_library():
+    """libperifem.so.0 in the libdir of `pkg-config perifem` (PKG_CONFIG_PATH), or None."""
+    import shutil
+    import subprocess
+    exe = shutil.which("pkg-config")
+    if not exe:
+        return None
     try:
-        from ._library_path import LIBRARY  # written by cmake --install
-        yield LIBRARY
+        out = subprocess.run([exe, "--variable=libdir", "perifem"], capture_output=True, text=True, timeout=10)
+    except (OSError, subprocess.SubprocessError):
+        return None
+    libdir = out.stdout.strip()
+    return os.path.join(libdir, "libperifem.so.0") if out.returncode == 0 and libdir else None
+
+
+def _candidates():
+    """Where to look for the library, first to last (docs/library.md):
+      1. $PERIFEM_LIBRARY, when set (then the only place);
+      2. the path recorded when the package was installed (_library_path.py: written by
+         cmake --install, or by pip from pkg-config or $PERIFEM_LIBRARY at that time);
+      3. the libdir of `pkg-config perifem`;
+      4. the dynamic loader's search path (LD_LIBRARY_PATH, ldconfig's cache);
+      5. the CMake install prefix's default, /usr/local/lib."""
+    if os.environ.get("PERIFEM_LIBRARY"):
+        yield "$PERIFEM_LIBRARY", os.environ["PERIFEM_LIBRARY"]
+        return
+    try:
+        from ._library_path import LIBRARY  # written at install time
+        yield "the path recorded at install time", LIBRARY
     except ImportError:
         pass
-    yield "libperifem.so.0"
+    found = _pkg_config_library()
+    if found:
+        yield "pkg-config perifem", found
+    yield "the dynamic loader's path", "libperifem.so.0"
+    yield "the default install prefix", _DEFAULT_PREFIX_LIBRARY
 
 
 def _load():
     errors = []
-    for path in _candidates():
+    for where, path in _candidates():
         try:
             # RTLD_GLOBAL: Open MPI's plug-ins look up MPI's own symbols in the global namespace
             return ctypes.CDLL(path, mode=ctypes.RTLD_GLOBAL)
         except OSError as e:
-            errors.append("%s: %s" % (path, e))
-    raise ImportError("perifem: cannot load libperifem.so.0 (set PERIFEM_LIBRARY to its path):\n  " + "\n  ".join(errors))
+            errors.append("%s: %s" % (where, e))
+    raise ImportError("perifem: cannot load libperifem.so.0; looked at, in order:\n  " + "\n  ".join(errors) +
+                      "\nset PERIFEM_LIBRARY to its path, or PKG_CONFIG_PATH to the folder of perifem.pc")
 
 
 lib = _load()
@@ -57,6 +87,8 @@ _PROTOTYPES = {
     "perifem_step_count": (c_long, [_SIM]),
     "perifem_dt": (c_double, [_SIM]),
     "perifem_total_steps": (c_long, [_SIM]),
+    "perifem_catch_signals": (c_int, [c_int]),
+    "perifem_signal_caught": (c_int, []),
     "perifem_print_check": (c_int, [_SIM]),
     "perifem_body_count": (c_int, [_SIM]),
     "perifem_body_name": (c_char_p, [_SIM, c_int]),

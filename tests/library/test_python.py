@@ -65,6 +65,7 @@ with perifem.Simulation(deck, output_dir=out, quiet=True, comm=comm) as sim:
     check(np.array_equal(view, copy) and not view.flags.writeable and not np.shares_memory(view, copy),
           "field_view equals field(), read-only")
     check(np.shares_memory(view, sim.field_view("block", "displacement")), "field_view is the library's memory")
+    del view  # (a view keeps the simulation, its output files and their locks, after close())
     digest = sim.digest()
     names = sim.history_names
 if rank == 0:

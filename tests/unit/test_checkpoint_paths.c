@@ -4,7 +4,9 @@
  *    device (/dev/null) are refused: a non-zero status, a message naming the file, and the deck
  *    and point file left byte for byte as they were;
  *  - a checkpoint through a symbolic link writes the link's target (a regular file) and keeps
- *    the link; a plain new name is written, without a temporary file left beside it.
+ *    the link; a plain new name is written, without a temporary file left beside it;
+ *  - a checkpoint into a folder that does not exist, or one HDF5 cannot create (in /proc), fails
+ *    alone: the run goes on, a checkpoint is written after it, and perifem_finalize succeeds.
  * Rank 0 prints only on failure. */
 #include "test_common.h"
 
@@ -100,7 +102,24 @@ int main(int argc, char **argv) {
   PF_TEST_TRUE(is_link(in_dir(2, "link.h5")) && is_file(in_dir(3, "sub/target.h5")));
   PF_TEST_OK(perifem_checkpoint(sim, in_dir(2, "ok.h5")));
   PF_TEST_TRUE(is_file(in_dir(2, "ok.h5")) && access(in_dir(3, "ok.h5.tmp"), F_OK));
+
+  /* A failed checkpoint fails that call only: a folder that does not exist (refused by the path
+   * check) and a file HDF5 cannot create (/proc: the check passes for root, H5Fcreate fails); the
+   * run goes on, the next checkpoint is written, and perifem_finalize succeeds (before, after
+   * H5Fcreate failed: PERIFEM_ERR_RUN "a file could not be closed", the command line's exit 1). */
+  const char *bad[2] = {in_dir(2, "no_such_folder/c.h5"), "/proc/perifem_checkpoint.h5"};
+  for (int k = 0; k < 2; k++) {
+    const int st = perifem_checkpoint(sim, bad[k]);
+    const int named = strstr(perifem_last_error(), k ? "/proc" : "no_such_folder") != NULL;
+    PF_TEST_TRUE(st != PERIFEM_OK && named);
+    if (st == PERIFEM_OK || !named)
+      fprintf(stderr, "  checkpoint %s: status %d, message: %s\n", bad[k], st, perifem_last_error());
+    PF_TEST_OK(perifem_step(sim, 1));
+    PF_TEST_TRUE(perifem_last_error()[0] == '\0');
+  }
+  PF_TEST_OK(perifem_checkpoint(sim, in_dir(2, "ok.h5")));
   PF_TEST_OK(perifem_destroy(&sim));
+  PF_TEST_OK(perifem_finalize()); /* (MPI is the test's: left running) */
 
   const char *names[] = {"sub/target.h5", "link.h5", "ok.h5", "d.e", "d.h5", "deck_link.yaml", "d.yaml", "pts.txt"};
   for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) unlink(in_dir(0, names[k]));
