@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every --set form is applied or refused (issue 49):
+# Every --set form is applied or refused (issue 49), and what it says names the override:
 #  1. --set parameters.NAME applies to a parameter the deck declares (the point count of --check
 #     follows the spacing) and refuses one it does not (a sweep over a misspelt name would give N
 #     identical runs), listing the deck's parameters and the nearest one; a deck without
@@ -7,6 +7,9 @@
 #  2. a key path with an empty part (.a, a..b, a.), an empty key (=3), include: (merged before the
 #     overrides, so a new value would be dropped), a path below a single value: exit 2 with the
 #     reason, none of them applied in silence;
+#  3. a warning about a value given by --set names the override ("--set materials.glass.density=50:
+#     key 'density'"), one about a value in an included file names that file and line, never
+#     "deck.yaml:0:0".
 # usage: cli_overrides.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
@@ -68,4 +71,23 @@ refuse "--set below a single value" plain.yaml \
 refuse "--set below a list item's single value" plain.yaml \
   "--set bodies.bar.horizon.x=1: 'x' is below a single value" --set bodies.bar.horizon.x=1
 
+# 3. where a warning points
+warn_at() { # WHAT DECK WANT [ARGS...]: --check passes and its warning starts with WANT
+  local what=$1 deck=$2 want=$3 err
+  shift 3
+  err=$("$exe" --check "$deck" "$@" 2>&1 >/dev/null)
+  if [ $? -ne 0 ] || ! grep -qF -- "perifem warning: $want" <<<"$err" || grep -q ':0:0' <<<"$err"; then
+    echo "FAIL $what: stderr lacks 'perifem warning: $want' (or says :0:0): $err"; fail=1
+  else echo "ok   $what: $err"; fi
+}
+warn_at "a warning about a --set value" plain.yaml \
+  "--set materials.glass.density=50: key 'density': material 'glass': 50 kg/m^3 is below" \
+  --set materials.glass.density=50
+warn_at "a warning about a --set value in a list item" plain.yaml "--set bodies.0.horizon=0.012: key 'horizon':" \
+  --set bodies.bar.geometry.spacing=0.001 --set bodies.0.horizon=0.012
+sed 's/density: 2200/density: 50/' "$src" > light_own.yaml
+warn_at "a warning about the deck's own value" light_own.yaml "light_own.yaml:10:14: key 'density'"
+printf 'materials:\n  glass:\n    model: pmb\n    density: 50\n    bulk_modulus: 14.9e9\n' > light.yaml
+sed '/^materials:/,/^$/d; s/^title: /include: [light.yaml]\ntitle: /' "$src" > included.yaml
+warn_at "a warning about an included value" included.yaml "light.yaml:4:14: key 'density'"
 exit $fail
