@@ -246,6 +246,8 @@ static int check_parameter(const pf_deck *d, const char *name, const char *origi
 static int apply_override(pf_deck *d, const char *set) {
   char origin[600];
   snprintf(origin, sizeof origin, "--set %s", set);
+  for (char *c = origin; *c; c++) /* (a value of several lines: its name in messages stays one line) */
+    if (*c == '\n' || *c == '\r' || *c == '\t') *c = ' ';
   const char *eq = strchr(set, '=');
   PF_CHECK(eq && eq > set && eq[1], PF_ERR_INPUT, "%s: expected KEY.PATH=VALUE (e.g. --set time.final_time=5e-6)",
            origin);
