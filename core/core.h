@@ -234,6 +234,10 @@ int pf_key_table_add(pf_key_table *t, const pf_key *part);
 int pf_deck_validate(const pf_deck *deck, const pf_node *map, const pf_key *table,
                      const char *where);
 
+/* The edit (Levenshtein) distance between two names, 99 when either is longer than 63
+ * characters: the nearest known name is the one suggested for a misspelt one. */
+int pf_edit_distance(const char *a, const char *b);
+
 /* Lookups on a validated mapping; a missing optional key leaves *out untouched (callers set
  * the default first) and returns 0. */
 const pf_node *pf_node_get(const pf_node *map, const char *key);

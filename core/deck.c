@@ -312,9 +312,10 @@ void pf_deck_warn(const pf_deck *d, const pf_node *n, const char *key, const cha
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
+  char where[512];
+  pf_node_where(d, n, where, sizeof where);
   fflush(stdout);
-  fprintf(stderr, "perifem warning: %s:%d:%d: key '%s': %s\n", d->path, pf_node_line(n), pf_node_column(n), key,
-          msg);
+  fprintf(stderr, "perifem warning: %s: key '%s': %s\n", where, key, msg);
   fflush(stderr);
 }
 

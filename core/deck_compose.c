@@ -3,7 +3,8 @@
  *     include, 8 levels at most, no cycles) is merged in, in order, then the including file:
  *     mappings merge key by key, lists are joined (the included items first), and a value given
  *     twice is an error naming both places;
- *  2. --set a.b.c=value overrides from the command line (a list item by its index or its name:);
+ *  2. --set a.b.c=value overrides from the command line (a list item by its index or its name:),
+ *     each applied or refused: a parameter must be one the deck declares, include: cannot be set;
  *  3. parameters: {name: value or expression of the earlier ones}, then every ${expression} in a
  *     value is replaced by its value (written back exactly, %.17g), so a deck with parameters
  *     reads the same numbers as the deck written out; inside x, y, z, t expressions the names
@@ -187,30 +188,31 @@ static int list_index(const pf_node *seq, const char *part) {
   return -1;
 }
 
-/* Put value at the dotted path below root: a missing mapping key is added (mappings on the
- * way too), a list item must exist. */
-static int set_path(pf_node *root, char *path, pf_node **value, const char *origin) {
+/* Put value at the path parts[0..nparts) below root: a missing mapping key is added (mappings
+ * on the way too), a list item must exist, a single value has nothing below it. */
+static int set_path(pf_node *root, char **parts, int nparts, pf_node **value, const char *origin) {
   pf_node *at = root;
-  for (char *part = strtok(path, "."), *next; part; part = next) {
-    next = strtok(NULL, ".");
+  for (int p = 0; p < nparts; p++) {
+    const char *part = parts[p];
+    const int last = p == nparts - 1;
     if (at->kind == NODE_SEQ) {
       const int k = list_index(at, part);
       PF_CHECK(k >= 0, PF_ERR_INPUT, "%s: '%s' names no item of the list (give its index, 0 to %d, or its name)",
                origin, part, at->n - 1);
-      if (!next) pf_deck_node_free(at->items[k]), at->items[k] = *value, *value = NULL;
+      if (last) pf_deck_node_free(at->items[k]), at->items[k] = *value, *value = NULL;
       else at = at->items[k];
       continue;
     }
-    PF_CHECK(at->kind == NODE_MAP, PF_ERR_INPUT, "%s: '%s' is below a single value, not a mapping or a list", origin,
-             part);
+    PF_CHECK(at->kind == NODE_MAP, PF_ERR_INPUT, "%s: '%s' is below a single value ('%s'), not a mapping or a list",
+             origin, part, at->text ? at->text : "");
     int j = 0;
     while (j < at->n && strcmp(at->keys[j], part)) j++;
     if (j == at->n) {
-      pf_node *fresh = next ? new_node(NODE_MAP, origin) : *value;
+      pf_node *fresh = last ? *value : new_node(NODE_MAP, origin);
       PF_CHECK(fresh, PF_ERR_MEMORY, "out of memory composing the deck");
-      if (!next) *value = NULL;
+      if (last) *value = NULL;
       PF_CALL(map_append(at, part, 0, 0, fresh));
-    } else if (!next) {
+    } else if (last) {
       pf_deck_node_free(at->items[j]), at->items[j] = *value, *value = NULL;
     }
     at = at->items[j];
@@ -218,17 +220,61 @@ static int set_path(pf_node *root, char *path, pf_node **value, const char *orig
   return 0;
 }
 
+/* A parameter set by --set must be one the deck declares: a misspelt name would otherwise add
+ * an unused parameter and leave the run unchanged. */
+static int check_parameter(const pf_deck *d, const char *name, const char *origin) {
+  const pf_node *map = pf_node_get(d->root, "parameters");
+  PF_CHECK(map && map->kind == NODE_MAP && map->n > 0, PF_ERR_INPUT,
+           "%s: the deck declares no parameters: (a parameter set from the command line must be declared in "
+           "the deck, with its default value)", origin);
+  const char *best = NULL;
+  int bestd = 1 << 30;
+  char known[1024] = "";
+  size_t len = 0;
+  for (int i = 0; i < map->n; i++) {
+    if (!strcmp(map->keys[i], name)) return 0;
+    const int dist = pf_edit_distance(name, map->keys[i]);
+    if (dist < bestd) bestd = dist, best = map->keys[i];
+    if (len < sizeof known) len += (size_t)snprintf(known + len, sizeof known - len, "%s%s", i ? ", " : "", map->keys[i]);
+  }
+  char hint[256] = "";
+  if (bestd <= 3) snprintf(hint, sizeof hint, " — did you mean '%s'?", best);
+  return pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__, "%s: '%s' is not one of the deck's parameters (%s)%s",
+                        origin, name, known, hint);
+}
+
 static int apply_override(pf_deck *d, const char *set) {
   char origin[600];
   snprintf(origin, sizeof origin, "--set %s", set);
+  for (char *c = origin; *c; c++) /* (a value of several lines: its name in messages stays one line) */
+    if (*c == '\n' || *c == '\r' || *c == '\t') *c = ' ';
   const char *eq = strchr(set, '=');
   PF_CHECK(eq && eq > set && eq[1], PF_ERR_INPUT, "%s: expected KEY.PATH=VALUE (e.g. --set time.final_time=5e-6)",
            origin);
-  char *path = strndup(set, (size_t)(eq - set));
+  enum { MAX_PARTS = 64 };
+  char *path = strndup(set, (size_t)(eq - set)), *parts[MAX_PARTS];
   PF_CHECK(path, PF_ERR_MEMORY, "out of memory");
+  int nparts = 0, ierr = 0;
+  for (char *part = path, *dot;; part = dot + 1) {
+    dot = strchr(part, '.');
+    if (dot) *dot = '\0';
+    if (!*part || nparts == MAX_PARTS) {
+      ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
+                            "%s: %s in the key path (KEY.PATH is keys and list items joined by single dots, "
+                            "e.g. bodies.0.horizon)", origin, *part ? "more than 64 parts" : "an empty part");
+      break;
+    }
+    parts[nparts++] = part;
+    if (!dot) break;
+  }
+  if (!ierr && !strcmp(parts[0], "include"))
+    ierr = pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
+                          "%s: include: cannot be set from the command line: the included files are merged "
+                          "before the overrides are applied (write a deck whose include: names the files)", origin);
+  if (!ierr && !strcmp(parts[0], "parameters") && nparts > 1) ierr = check_parameter(d, parts[1], origin);
   pf_node *value = NULL;
-  int ierr = pf_deck_parse_value(d, origin, eq + 1, &value);
-  if (!ierr) ierr = set_path(d->root, path, &value, d->names[d->nnames - 1]);
+  if (!ierr) ierr = pf_deck_parse_value(d, origin, eq + 1, &value);
+  if (!ierr) ierr = set_path(d->root, parts, nparts, &value, d->names[d->nnames - 1]);
   pf_deck_node_free(value);
   free(path);
   return ierr;

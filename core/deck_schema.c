@@ -8,7 +8,7 @@
 #include <string.h>
 #include <strings.h>
 
-static int edit_distance(const char *a, const char *b) {
+int pf_edit_distance(const char *a, const char *b) {
   size_t la = strlen(a), lb = strlen(b);
   if (la > 63 || lb > 63) return 99;
   int row[64];
@@ -47,7 +47,7 @@ static int unknown_key(const pf_deck *d, const pf_node *map, int i, const pf_key
   int bestd = 1 << 30;
   char known[1024] = "";
   for (const pf_key *k = table; k->name; k++) {
-    int dist = edit_distance(map->keys[i], k->name);
+    int dist = pf_edit_distance(map->keys[i], k->name);
     if (dist < bestd) bestd = dist, best = k->name;
     if (strlen(known) + strlen(k->name) + 3 < sizeof known) {
       strcat(known, known[0] ? ", " : "");

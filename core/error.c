@@ -84,13 +84,25 @@ void pf_error_set_quiet(int quiet) { error_quiet = quiet; }
 
 void pf_log_set_quiet(int quiet) { log_quiet = quiet; }
 
+/* One message, one line: a message that does not end its line is given its newline, so that the
+ * next message never continues it. */
 void pf_log(const char *fmt, ...) {
   if (log_quiet || pf_comm_rank() != 0) return;
   close_status();
-  va_list ap;
+  char text[1024], *line = text;
+  va_list ap, again;
   va_start(ap, fmt);
-  vfprintf(stdout, fmt, ap);
+  va_copy(again, ap);
+  const int len = vsnprintf(text, sizeof text, fmt, ap);
   va_end(ap);
+  if (len >= (int)sizeof text && (line = malloc((size_t)len + 1))) vsnprintf(line, (size_t)len + 1, fmt, again);
+  va_end(again);
+  if (len > 0) {
+    if (!line) line = text; /* (out of memory: the message cut short) */
+    fputs(line, stdout);
+    if (line[strlen(line) - 1] != '\n') fputc('\n', stdout);
+  }
+  if (line != text) free(line);
   fflush(stdout);
 }
 

@@ -72,11 +72,13 @@ static void body_counts(const pf_sim *sim, int b, body_row *r) {
   r->rate = pf_body_bond_rate(bd);
 }
 
-static void print_size(const char *label, double bytes) {
+/* bytes as "1.73 MB" in out (at least 16 characters); returns out. */
+static const char *size_text(char *out, double bytes) {
   const char *unit[] = {"B", "KB", "MB", "GB", "TB"};
   int k = 0;
   while (bytes >= 1000 && k < 4) bytes /= 1000, k++;
-  pf_log("%s%.3g %s", label, bytes, unit[k]);
+  snprintf(out, 16, "%.3g %s", bytes, unit[k]);
+  return out;
 }
 
 /* Exodus: coordinates, connectivity and the frames of every nodal variable (9 built-in, then
@@ -93,13 +95,14 @@ static void print_output(const pf_sim *sim, double points, double bonds, double 
   pf_sim_history_row g = {0};
   const double columns = pf_sim_globals_init(sim, &g) ? 0 : g.n + 2;
   pf_sim_globals_free(&g);
-  print_size("  output: Exodus ", points * 8 * (3 + frames * vars) + elements * 8 * 4);
-  pf_log(" (%.0f frames x %d nodal variables x %.0f points x 8 bytes), history ", frames, vars, points);
-  print_size("", rows * columns * 8);
-  pf_log(" (%.0f rows x %.0f columns)\n", rows, columns);
-  print_size("  checkpoint: ", points * keep * 8 + bonds * (8 + bond_bytes));
-  if (sim->restart_interval > 0) pf_log(" each, every %ld steps\n", sim->restart_interval);
-  else pf_log(" each (none written: restart.interval is 0)\n");
+  char exodus[16], history[16], checkpoint[16];
+  pf_log("  output: Exodus %s (%.0f frames x %d nodal variables x %.0f points x 8 bytes), history %s (%.0f rows x "
+         "%.0f columns)\n",
+         size_text(exodus, points * 8 * (3 + frames * vars) + elements * 8 * 4), frames, vars, points,
+         size_text(history, rows * columns * 8), rows, columns);
+  size_text(checkpoint, points * keep * 8 + bonds * (8 + bond_bytes));
+  if (sim->restart_interval > 0) pf_log("  checkpoint: %s each, every %ld steps\n", checkpoint, sim->restart_interval);
+  else pf_log("  checkpoint: %s each (none written: restart.interval is 0)\n", checkpoint);
 }
 
 /* The estimate against the peak the set-up reached, both beyond the process's own before the
@@ -108,27 +111,26 @@ static void print_memory(const pf_sim *sim, double bytes) {
   const int ranks = pf_comm_size();
   double peak[2] = {pf_memory_peak(), sim->rss0};
   MPI_Allreduce(MPI_IN_PLACE, peak, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-  print_size("  memory per rank: estimated ", bytes / ranks);
-  pf_log(" before allocating (%.0f KB a point, %.0f bytes a bond, %.0f KB an element, over %d rank(s)); "
-         "measured ",
-         PF_BYTES_PER_NODE / 1024, PF_PD_BYTES_PER_BOND, PF_BYTES_PER_ELEMENT / 1024, ranks);
-  print_size("", peak[0] - peak[1]);
-  print_size(" (peak ", peak[0]);
-  print_size(" less ", peak[1]);
-  print_size(" before the set-up, largest over the ranks); a rank may use ", pf_memory_limit());
-  pf_log("\n");
+  char estimate[16], used[16], top[16], before[16], limit[16];
+  pf_log("  memory per rank: estimated %s before allocating (%.0f KB a point, %.0f bytes a bond, %.0f KB an element, "
+         "over %d rank(s)); measured %s (peak %s less %s before the set-up, largest over the ranks); a rank may use "
+         "%s\n",
+         size_text(estimate, bytes / ranks), PF_BYTES_PER_NODE / 1024, PF_PD_BYTES_PER_BOND,
+         PF_BYTES_PER_ELEMENT / 1024, ranks, size_text(used, peak[0] - peak[1]), size_text(top, peak[0]),
+         size_text(before, peak[1]), size_text(limit, pf_memory_limit()));
 }
 
 /* bond_rate: the bodies' bond rates, weighted by their bonds (0: no bonds). */
 static void print_time(double bond_seconds, double element_seconds, double bond_rate) {
   const int ranks = pf_comm_size();
   const double s = (bond_seconds + element_seconds) / ranks;
-  if (s < 120) pf_log("  rough run time: %.2g s", s);
-  else if (s < 7200) pf_log("  rough run time: %.2g min", s / 60);
-  else pf_log("  rough run time: %.3g h", s / 3600);
-  pf_log(" on %d rank(s) (at %.2g directed bond evaluations/s per rank for these models, %.2g element cycles/s, "
-         "measured on a 2-core Xeon; contact and output not counted)\n",
-         ranks, bond_rate, PF_RATE_ELEMENTS);
+  char when[32];
+  if (s < 120) snprintf(when, sizeof when, "%.2g s", s);
+  else if (s < 7200) snprintf(when, sizeof when, "%.2g min", s / 60);
+  else snprintf(when, sizeof when, "%.3g h", s / 3600);
+  pf_log("  rough run time: %s on %d rank(s) (at %.2g directed bond evaluations/s per rank for these models, %.2g "
+         "element cycles/s, measured on a 2-core Xeon; contact and output not counted)\n",
+         when, ranks, bond_rate, PF_RATE_ELEMENTS);
 }
 
 int pf_sim_check_report(pf_sim *sim) {
@@ -155,11 +157,11 @@ int pf_sim_check_report(pf_sim *sim) {
   for (int k = 0; k < sim->ninter; k++) /* rigid surfaces, contact, walls, conditions */
     pf_log("  %-16s %-8s %12s %15s %10s %16s  -\n", pf_sim_interaction_name(sim, k), sim->inter[k].ops->kind, "-", "-",
            "-", "-");
-  pf_log("  time step: %.4e s (%s), %s%ld steps", sim->dt,
+  char until[48] = "";
+  if (isfinite(sim->final_time)) snprintf(until, sizeof until, " to %.4g s", sim->final_time);
+  pf_log("  time step: %.4e s (%s), %s%ld steps%s\n", sim->dt,
          sim->adaptive ? "at the start: the step follows the deformation" : "fixed", sim->adaptive ? "about " : "",
-         sim->nsteps);
-  if (isfinite(sim->final_time)) pf_log(" to %.4g s", sim->final_time);
-  pf_log("\n");
+         sim->nsteps, until);
   print_memory(sim, bytes);
   print_output(sim, points, bonds, elements, bond_bytes);
   print_time(tb, elements * (double)sim->nsteps / PF_RATE_ELEMENTS, tb > 0 ? bonds * (double)sim->nsteps / tb : 0);

@@ -6,6 +6,7 @@
 
 #include <errno.h>
 #include <exodusII.h>
+#include <getopt.h>
 #include <hdf5.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -17,7 +18,7 @@
 
 static void usage(FILE *fp) {
   fprintf(fp,
-          "usage: perifem [options] DECK.yaml\n"
+          "usage: perifem [options] DECK.yaml   (a value as --opt VALUE or --opt=VALUE)\n"
           "  --check            validate the deck and build the model; print the bodies, step, memory,\n"
           "                     output size and a rough run time; run nothing\n"
           "  --output-dir DIR   write output files into DIR (created when missing)\n"
@@ -34,7 +35,7 @@ static void usage(FILE *fp) {
           "                     when mpirun's output goes to a file: use plain there\n"
           "  --version          print the version and the libraries it was built with\n"
           "  --deck-keys        print every deck key with its type, default and units (Markdown)\n"
-          "  --help             this text\n"
+          "  --help, -h         this text\n"
           "exit status: 0 success, 1 run failure, 2 bad input, 128+N stopped by signal N during\n"
           "the set-up\n");
 }
@@ -68,45 +69,112 @@ typedef struct {
   char command[8192];
 } cli;
 
-/* Returns -1 to go on, or an exit status. */
+enum { OPT_CHECK = 256, OPT_OUTPUT_DIR, OPT_RESTART, OPT_SET, OPT_QUIET, OPT_STRICT, OPT_PROGRESS, OPT_VERSION,
+       OPT_DECK_KEYS, OPT_HELP = 'h' };
+
+/* Every option, as --name VALUE or --name=VALUE; only --help has a short form (-h). */
+static const struct option options[] = {
+    {"check", no_argument, NULL, OPT_CHECK},          {"output-dir", required_argument, NULL, OPT_OUTPUT_DIR},
+    {"restart", required_argument, NULL, OPT_RESTART}, {"set", required_argument, NULL, OPT_SET},
+    {"quiet", no_argument, NULL, OPT_QUIET},          {"strict", no_argument, NULL, OPT_STRICT},
+    {"progress", required_argument, NULL, OPT_PROGRESS}, {"version", no_argument, NULL, OPT_VERSION},
+    {"deck-keys", no_argument, NULL, OPT_DECK_KEYS},  {"help", no_argument, NULL, OPT_HELP},
+    {NULL, 0, NULL, 0}};
+
+/* The option whose name is the token's (its dashes and any "=value" left out), or NULL. */
+static const struct option *option_named(const char *token) {
+  token += strspn(token, "-");
+  const size_t len = strcspn(token, "=");
+  for (const struct option *o = options; o->name; o++)
+    if (strlen(o->name) == len && !strncmp(o->name, token, len)) return o;
+  return NULL;
+}
+
+/* An unknown option: say so with the nearest known one (a name it begins, or one a few
+ * letters away), then the usage, on stderr. */
+static int unknown_option(const char *token) {
+  char name[64];
+  snprintf(name, sizeof name, "%.*s", (int)strcspn(token + strspn(token, "-"), "="), token + strspn(token, "-"));
+  const size_t len = strlen(name);
+  const char *best = NULL;
+  int bestd = 1 << 30;
+  for (const struct option *o = options; o->name; o++) {
+    const int d = len && !strncmp(o->name, name, len) ? 0 : pf_edit_distance(name, o->name);
+    if (d < bestd) bestd = d, best = o->name;
+  }
+  if (best && bestd <= 3 && (size_t)bestd < len)
+    fprintf(stderr, "perifem error: unknown option '%s' (did you mean --%s?)\n", token, best);
+  else fprintf(stderr, "perifem error: unknown option '%s'\n", token);
+  usage(stderr);
+  return PF_ERR_INPUT;
+}
+
+/* What an option with a value needs, for the message when it is missing. */
+static int missing_value(int opt) {
+  switch (opt) {
+  case OPT_SET: fprintf(stderr, "perifem error: --set needs KEY.PATH=VALUE\n"); break;
+  case OPT_OUTPUT_DIR: fprintf(stderr, "perifem error: --output-dir needs a directory\n"); break;
+  case OPT_RESTART: fprintf(stderr, "perifem error: --restart needs a checkpoint file\n"); break;
+  default: fprintf(stderr, "perifem error: --progress needs auto, plain or line (got '')\n"); break;
+  }
+  return PF_ERR_INPUT;
+}
+
+/* Returns -1 to go on, or an exit status. Options and the deck in any order; "--" ends the
+ * options. */
 static int parse_args(int argc, char **argv, cli *c) {
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) return usage(stdout), 0;
-    if (!strcmp(a, "--version")) return version(), 0;
-    if (!strcmp(a, "--deck-keys")) return pf_deck_reference(stdout);
-    if (!strcmp(a, "--check")) c->check = 1;
-    else if (!strcmp(a, "--quiet")) c->quiet = 1;
-    else if (!strcmp(a, "--strict")) c->strict = 1;
-    else if (!strcmp(a, "--progress")) {
-      const char *m = i + 1 < argc ? argv[++i] : "";
-      if (strcmp(m, "auto") && strcmp(m, "plain") && strcmp(m, "line")) {
-        fprintf(stderr, "perifem error: --progress needs auto, plain or line (got '%s')\n", m);
-        return PF_ERR_INPUT;
-      }
-      c->progress = !strcmp(m, "auto") ? 0 : !strcmp(m, "plain") ? 1 : 2;
-    } else if (!strcmp(a, "--set")) {
-      if (i + 1 >= argc || c->nsets == MAX_SETS) {
-        fprintf(stderr, "perifem error: --set needs KEY.PATH=VALUE%s\n", i + 1 < argc ? " (at most 256 of them)" : "");
-        return PF_ERR_INPUT;
-      }
-      c->sets[c->nsets++] = argv[++i];
-    } else if (!strcmp(a, "--output-dir") || !strcmp(a, "--restart")) {
-      if (i + 1 >= argc) {
-        fprintf(stderr, "perifem error: %s needs a %s\n", a, a[2] == 'o' ? "directory" : "checkpoint file");
-        return PF_ERR_INPUT;
-      }
-      if (a[2] == 'o') c->output_dir = argv[++i];
-      else c->restart = argv[++i];
+  opterr = 0; /* (the messages are ours) */
+  for (;;) {
+    const int at = optind; /* the argument getopt_long reads: "-" keeps them in order */
+    int o = getopt_long(argc, argv, "-:h", options, NULL);
+    if (o == -1) break;
+    const char *token = at < argc ? argv[at] : "";
+    if (o == '?' || o == ':') {
+      const struct option *known = option_named(token);
+      if (!known || strncmp(token, "--", 2)) return unknown_option(token);
+      if (o == ':') return missing_value(known->val);
+      fprintf(stderr, "perifem error: --%s takes no value (got '%s')\n", known->name, token);
+      return PF_ERR_INPUT;
     }
-    else if (a[0] == '-') {
-      fprintf(stderr, "perifem error: unknown option '%s'\n", a);
-      usage(stderr);
+    if (o != 1 && token[0] == '-' && token[1] == '-' && !option_named(token)) return unknown_option(token);
+    if (o == 1 && c->deck) {
+      fprintf(stderr, "perifem error: more than one deck given ('%s' and '%s')\n", c->deck, optarg);
       return PF_ERR_INPUT;
-    } else if (c->deck) {
-      fprintf(stderr, "perifem error: more than one deck given ('%s' and '%s')\n", c->deck, a);
+    }
+    if ((o == OPT_SET || o == OPT_OUTPUT_DIR || o == OPT_RESTART) && !*optarg) return missing_value(o);
+    switch (o) {
+    case 1: c->deck = optarg; break;
+    case OPT_HELP: return usage(stdout), 0;
+    case OPT_VERSION: return version(), 0;
+    case OPT_DECK_KEYS: return pf_deck_reference(stdout);
+    case OPT_CHECK: c->check = 1; break;
+    case OPT_QUIET: c->quiet = 1; break;
+    case OPT_STRICT: c->strict = 1; break;
+    case OPT_PROGRESS:
+      if (strcmp(optarg, "auto") && strcmp(optarg, "plain") && strcmp(optarg, "line")) {
+        fprintf(stderr, "perifem error: --progress needs auto, plain or line (got '%s')\n", optarg);
+        return PF_ERR_INPUT;
+      }
+      c->progress = !strcmp(optarg, "auto") ? 0 : !strcmp(optarg, "plain") ? 1 : 2;
+      break;
+    case OPT_SET:
+      if (c->nsets == MAX_SETS) {
+        fprintf(stderr, "perifem error: --set: at most %d overrides\n", MAX_SETS);
+        return PF_ERR_INPUT;
+      }
+      c->sets[c->nsets++] = optarg;
+      break;
+    case OPT_OUTPUT_DIR: c->output_dir = optarg; break;
+    case OPT_RESTART: c->restart = optarg; break;
+    default: return unknown_option(token);
+    }
+  }
+  for (int i = optind; i < argc; i++) { /* (after "--") */
+    if (c->deck) {
+      fprintf(stderr, "perifem error: more than one deck given ('%s' and '%s')\n", c->deck, argv[i]);
       return PF_ERR_INPUT;
-    } else c->deck = a;
+    }
+    c->deck = argv[i];
   }
   if (!c->deck) {
     usage(stderr);
