@@ -129,6 +129,28 @@ static int by_position_body(const void *a, const void *b) {
   return (p->body > q->body) - (p->body < q->body);
 }
 
+/* Each body's points finite and within 1e6 m of the origin (the bound the deck's lengths keep):
+ * a mesh or point file in millimetres or with a corrupt coordinate is refused here, before any
+ * output is written, not at the first step. Collective. */
+static int check_extent(const pf_sim *sim, const pf_point_cloud *pc, const pf_node *bodies) {
+  for (int b = 0; b < sim->nbodies; b++) {
+    double far = 0;
+    for (pf_int i = 0; i < 3 * pc[b].n; i++) {
+      const double a = fabs(pc[b].X[i]);
+      far = isnan(a) ? INFINITY : fmax(far, a);
+    }
+    far = pf_max_all(far);
+    if (far <= 1e6) continue;
+    const pf_node *body = pf_node_item(bodies, b);
+    const char *key = pf_node_get(body, "mesh") ? "mesh" : "geometry";
+    return pf_deck_error(sim->deck, pf_node_get(body, key) ? pf_node_get(body, key) : body, key,
+                         "%s coordinates of body '%s' reach %g m: at most 1e6 m from the origin (a length in the "
+                         "wrong units, or a corrupt file?)",
+                         key, sim->body_name[b], far);
+  }
+  return 0;
+}
+
 static int check_overlap(const pf_sim *sim, const pf_point_cloud *pc, const pf_node *bodies) {
   const int nb = sim->nbodies;
   double lo[PF_MAX_BODIES][3], hi[PF_MAX_BODIES][3];
@@ -227,6 +249,7 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
     for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
     return pf_sim_restore_points(sim);
   }
+  if (!ierr) ierr = check_extent(sim, pc, bodies);
   if (!ierr) ierr = check_overlap(sim, pc, bodies);
   if (!ierr) ierr = pf_sim_distribute(sim, pc);
   for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
