@@ -261,6 +261,14 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
   return 0;
 }
 
+/* The prescribed motions and loads finite over the run, before any output (an infinite indenter
+ * velocity would otherwise run to the end with a NaN energy): sampled at 101 times over
+ * [0, final_time] (a run given by steps: [0, steps x dt]). Collective. */
+static int check_expressions(pf_sim *sim) {
+  const double t_end = isfinite(sim->final_time) ? sim->final_time : (double)sim->nsteps * sim->dt;
+  return pf_sim_interactions_check_finite(sim, t_end, 100);
+}
+
 static int check_units(const pf_sim *sim, const pf_node *root) {
   const char *units = "SI";
   PF_CALL(pf_deck_string(sim->deck, root, "units", &units));
@@ -288,6 +296,7 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   PF_CALL(pf_sim_setup_time(sim));
   PF_CALL(pf_sim_setup_output(sim));
   PF_CALL(pf_sim_setup_solver(sim));
+  PF_CALL(check_expressions(sim));
   PF_CALL(pf_sim_accounts_open(sim));
   PF_CALL(pf_sim_setup_restart(sim));
   if (sim->opt.restart_from) PF_CALL(pf_sim_restore_state(sim)); /* (renames the outputs) */
