@@ -44,6 +44,8 @@ int pf_rigid_force(pf_rigid *r, pf_points *pts, double dt, double reaction[3], d
  * motion dt v(t + dt/2), m (the work it does on the points is booked by the caller: the
  * trapezoidal rule of sim/ledger.h). */
 void pf_rigid_advance(pf_rigid *r, double t, double dt, double dx[3]);
+/* Refuse a velocity expression that is not finite over [0, t_end] (nt + 1 times). Collective. */
+int pf_rigid_check_finite(const pf_rigid *r, double t_end, int nt);
 /* The stable step the penalty allows the owned points it may touch, 2 sqrt(m_min / k) for the
  * linear law (INFINITY for the quadratic law, whose stiffness grows from zero with the depth,
  * and when it touches no body). Collective. */

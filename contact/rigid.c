@@ -279,6 +279,12 @@ int pf_rigid_force(pf_rigid *r, pf_points *pts, double dt, double reaction[3], d
   return 0;
 }
 
+int pf_rigid_check_finite(const pf_rigid *r, double t_end, int nt) {
+  for (int a = 0; a < 3; a++)
+    if (r->vel[a]) PF_CALL(pf_expr_check_finite(r->vel[a], NULL, 0, t_end, nt)); /* (evaluated at the origin) */
+  return 0;
+}
+
 void pf_rigid_advance(pf_rigid *r, double t, double dt, double dx[3]) {
   for (int a = 0; a < 3; a++) {
     r->v[a] = r->vel[a] ? pf_expr_eval(r->vel[a], 0, 0, 0, t + 0.5 * dt) : 0.0;

@@ -47,6 +47,18 @@ static int read_exprs(const pf_deck *d, const pf_node *map, const char *key, pf_
   return 0;
 }
 
+int pf_bc_check_finite(const pf_bc *bc, const pf_points *pts, double t_end, int nt) {
+  double *X;
+  PF_MALLOC(X, 3 * (size_t)bc->n + 3);
+  for (pf_int k = 0; k < bc->n; k++)
+    for (int c = 0; c < 3; c++) X[3 * k + c] = pts->X[3 * bc->points[k] + c];
+  int ierr = 0;
+  for (int c = 0; c < 3 && !ierr; c++) /* (every rank reaches the same verdict: the check reduces) */
+    if (bc->e[c]) ierr = pf_expr_check_finite(bc->e[c], X, bc->n, t_end, nt);
+  free(X);
+  return ierr;
+}
+
 int pf_bc_select(pf_bc *bc, const pf_points *pts) {
   PF_FREE(bc->points);
   bc->n = 0;

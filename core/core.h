@@ -290,6 +290,12 @@ double pf_expr_eval_vars(pf_expr *e, double x, double y, double z, double t, con
 /* A constant expression of the deck's parameters (no x, y, z, t), evaluated; errors name the
  * deck position given by (deck, node, key). */
 int pf_expr_constant(const pf_deck *d, const pf_node *n, const char *key, const char *text, double *v);
+/* Refuse a value of e that is not finite at one of the n positions X[3n] (NULL: the origin) at
+ * the nt + 1 times k t_end / nt, k = 0 .. nt (every position at every time up to 1e5 evaluations,
+ * beyond that every position at 0 and t_end and the first one at every time): an error naming the
+ * deck position and key e was compiled from and the earliest such time. Collective (each rank
+ * gives its own positions). */
+int pf_expr_check_finite(pf_expr *e, const double *X, pf_int n, double t_end, int nt);
 /* Three expressions from a PF_KEY_EXPR3 node. */
 int pf_expr3_create(const pf_deck *d, const pf_node *map, const char *key, pf_expr *e[3]);
 void pf_expr3_destroy(pf_expr *e[3]);
@@ -537,6 +543,9 @@ int pf_bc_create(const pf_deck *d, const pf_node *map, const pf_points *pts, int
 int pf_bc_destroy(pf_bc **bc);
 /* (Re)select the owned points of the condition's region and body (after a re-partition). */
 int pf_bc_select(pf_bc *bc, const pf_points *pts);
+/* Refuse a prescribed value or load that is not finite at the selected points' reference
+ * positions over [0, t_end] (pf_expr_check_finite with nt + 1 times). Collective. */
+int pf_bc_check_finite(const pf_bc *bc, const pf_points *pts, double t_end, int nt);
 pf_int pf_bc_npoints(const pf_bc *bc);
 const char *pf_bc_name(const pf_bc *bc);
 /* This rank's impulse of the condition's reaction on its owned points (N s, the momentum the

@@ -307,31 +307,62 @@ static int read_parameters(pf_deck *d) {
   return 0;
 }
 
-/* Replace each ${expression} in a scalar by its value. */
+/* Append the n characters at s to the text *buf of length *len in *cap bytes, growing it. */
+static int append(char **buf, size_t *len, size_t *cap, const char *s, size_t n) {
+  if (*len + n + 1 > *cap) {
+    const size_t want = 2 * (*len + n + 1);
+    char *b = realloc(*buf, want);
+    PF_CHECK(b, PF_ERR_MEMORY, "out of memory substituting ${...} (%zu bytes)", want);
+    *buf = b, *cap = want;
+  }
+  memcpy(*buf + *len, s, n);
+  *len += n;
+  (*buf)[*len] = '\0';
+  return 0;
+}
+
+/* Replace each ${expression} in a scalar by its value; expressions and values of any length. */
 static int substitute_scalar(pf_deck *d, pf_node *n, const char *key) {
-  char *mark = strstr(n->text, "${");
+  const char *mark = strstr(n->text, "${");
   if (!mark) return 0;
   const int whole = mark == n->text;
-  char out[4096] = "", expr[1024];
-  size_t len = 0;
+  char *out = NULL, *expr = NULL;
+  size_t len = 0, cap = 0;
   const char *from = n->text;
+  int ierr = 0;
   for (; mark; mark = strstr(from, "${")) {
     const char *close = strchr(mark, '}');
-    if (!close) return pf_deck_error(d, n, key, "'${' without its closing '}' in '%s'", n->text);
-    snprintf(expr, sizeof expr, "%.*s", (int)(close - mark - 2), mark + 2);
+    if (!close) {
+      ierr = pf_deck_error(d, n, key, "'${' without its closing '}' in '%s'", n->text);
+      break;
+    }
+    const size_t elen = (size_t)(close - mark - 2);
+    char *e = realloc(expr, elen + 1);
+    if (!e) {
+      ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory for a ${...} of %zu characters",
+                            elen);
+      break;
+    }
+    expr = e;
+    memcpy(expr, mark + 2, elen);
+    expr[elen] = '\0';
     double v;
-    PF_CALL(pf_expr_constant(d, n, key, expr, &v));
-    len += (size_t)snprintf(out + len, sizeof out - len, "%.*s%.17g", (int)(mark - from), from, v);
+    char num[32];
+    if ((ierr = pf_expr_constant(d, n, key, expr, &v))) break;
+    snprintf(num, sizeof num, "%.17g", v);
+    if ((ierr = append(&out, &len, &cap, from, (size_t)(mark - from)))) break;
+    if ((ierr = append(&out, &len, &cap, num, strlen(num)))) break;
     from = close + 1;
-    if (len >= sizeof out) return pf_deck_error(d, n, key, "the value is too long after substitution");
   }
-  len += (size_t)snprintf(out + len, sizeof out - len, "%s", from);
-  if (len >= sizeof out) return pf_deck_error(d, n, key, "the value is too long after substitution");
+  if (!ierr) ierr = append(&out, &len, &cap, from, strlen(from));
+  free(expr);
+  if (ierr) {
+    free(out);
+    return ierr;
+  }
   const int alone = whole && !*from; /* "${v0}" alone is the number (from points into the old text) */
-  char *text = strdup(out);
-  PF_CHECK(text, PF_ERR_MEMORY, "out of memory");
   free(n->text);
-  n->text = text;
+  n->text = out;
   if (alone) n->quoted = 0;
   return 0;
 }

@@ -112,6 +112,32 @@ static int check_seq(const pf_node *v, pf_key_type t) {
   return 1;
 }
 
+/* The largest magnitude a length, a stress or modulus, a density and a speed may have: well beyond
+ * any body or material (10^4 times diamond's modulus, 40 times osmium's density, light's speed),
+ * so that a typing error such as 1e300 is refused here, not at the first step after the output
+ * files are written (the step, wave speeds and forces of such a value overflow). */
+static const struct {
+  const char *units, *what;
+  double limit;
+} magnitude_limits[] = {{"m", "a length beyond 1e6 m", 1e6},
+                        {"Pa", "a stress or modulus beyond 1e16 Pa", 1e16},
+                        {"kg/m^3", "a density beyond 1e6 kg/m^3", 1e6},
+                        {"m/s", "a speed beyond light's, 3e8 m/s", 3e8}};
+
+static int check_magnitude(const pf_deck *d, const pf_node *v, const pf_key *k) {
+  if (!k->units) return 0;
+  for (size_t j = 0; j < sizeof magnitude_limits / sizeof magnitude_limits[0]; j++) {
+    if (strcmp(k->units, magnitude_limits[j].units)) continue;
+    for (int c = 0; c < (v->kind == NODE_SEQ ? v->n : 1); c++) {
+      const pf_node *x = v->kind == NODE_SEQ ? v->items[c] : v;
+      double r;
+      if (parse_real(x->text, &r) && !(fabs(r) <= magnitude_limits[j].limit))
+        return pf_deck_error(d, x, k->name, "%g %s is %s: a typing error?", r, k->units, magnitude_limits[j].what);
+    }
+  }
+  return 0;
+}
+
 static int check_value(const pf_deck *d, const pf_node *map, int i, const pf_key *k,
                        const char *where) {
   const pf_node *v = map->items[i];
@@ -131,6 +157,7 @@ static int check_value(const pf_deck *d, const pf_node *map, int i, const pf_key
              v->kind == NODE_SCALAR ? "'" : "");
     return key_error(d, map, i, "expected ", type_name(k->type), got);
   }
+  if (k->type == PF_KEY_REAL || k->type == PF_KEY_VEC3) PF_CALL(check_magnitude(d, v, k));
   if (k->type == PF_KEY_MAP) {
     snprintf(sub, sizeof sub, "%s.%s", where, k->name);
     return pf_deck_validate(d, v, k->sub, sub);

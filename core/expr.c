@@ -13,6 +13,9 @@ struct pf_expr {
   double x, y, z, t;            /* the variables the parser reads */
   double var[PF_EXPR_MAXVARS]; /* and the extra ones */
   int nvars;
+  const pf_deck *d;    /* where it was given (for pf_expr_check_finite's error) */
+  const pf_node *node;
+  const char *key;
 };
 
 int pf_expr_create(const char *text, const pf_deck *d, const pf_node *n, const char *key,
@@ -38,6 +41,7 @@ int pf_expr_create_vars(const char *text, const pf_deck *d, const pf_node *n, co
   for (int k = 0; k < nnames; k++) mupDefineVar(e->parser, names[k], &e->var[k]);
   for (int k = 0; d && k < d->nparams; k++) mupDefineConst(e->parser, d->param_name[k], d->param_value[k]);
   e->nvars = nnames;
+  e->d = d, e->node = n, e->key = key;
   mupSetExpr(e->parser, text);
   (void)mupEval(e->parser); /* compiles; syntax and unknown names show up here */
   if (mupError(e->parser)) {
@@ -92,6 +96,32 @@ double pf_expr_eval(pf_expr *e, double x, double y, double z, double t) {
   e->z = z;
   e->t = t;
   return mupEval(e->parser);
+}
+
+int pf_expr_check_finite(pf_expr *e, const double *X, pf_int n, double t_end, int nt) {
+  static const double origin[3] = {0, 0, 0};
+  if (!X) X = origin, n = 1;
+  if (!(t_end >= 0 && isfinite(t_end))) t_end = 0;
+  if (nt < 1) nt = 1;
+  /* every position at every time while that is cheap (1e5 evaluations); beyond it, every
+   * position at the first and last times and the first position at every time */
+  const int all = (double)n * (nt + 1) <= 1e5;
+  double bad = INFINITY;
+  for (int k = 0; k <= nt && !(bad < INFINITY); k++) {
+    const double t = k == nt ? t_end : t_end * k / nt;
+    const pf_int np = all || k == 0 || k == nt ? n : (n > 0);
+    for (pf_int i = 0; i < np; i++)
+      if (!isfinite(pf_expr_eval(e, X[3 * i], X[3 * i + 1], X[3 * i + 2], t))) {
+        bad = t;
+        break;
+      }
+  }
+  bad = pf_min_all(bad); /* the earliest over the ranks, so that every rank refuses */
+  if (!(bad < INFINITY)) return 0;
+  return pf_deck_error(e->d, e->node, e->key,
+                       "the expression is not finite at t = %g s (checked before the first step at %d times over "
+                       "[0, %g] s, at the points it acts on)",
+                       bad, nt + 1, t_end);
 }
 
 int pf_expr3_create(const pf_deck *d, const pf_node *map, const char *key, pf_expr *e[3]) {

@@ -146,13 +146,25 @@ static int read_cracks(const pf_deck *d, const pf_node *list, int *n, pf_precrac
       PF_CALL(pf_deck_vec3(d, c, "corner", pc->p0));
       PF_CALL(pf_deck_vec3(d, c, "edge_a", pc->a));
       PF_CALL(pf_deck_vec3(d, c, "edge_b", pc->b));
+      const double an[3] = {pc->a[1] * pc->b[2] - pc->a[2] * pc->b[1], pc->a[2] * pc->b[0] - pc->a[0] * pc->b[2],
+                           pc->a[0] * pc->b[1] - pc->a[1] * pc->b[0]};
+      const double area = sqrt(an[0] * an[0] + an[1] * an[1] + an[2] * an[2]);
+      const double la = sqrt(pc->a[0] * pc->a[0] + pc->a[1] * pc->a[1] + pc->a[2] * pc->a[2]);
+      const double lb = sqrt(pc->b[0] * pc->b[0] + pc->b[1] * pc->b[1] + pc->b[2] * pc->b[2]);
+      if (!(area > 1e-12 * la * lb)) /* (a crack that cuts no bond would pass without a word) */
+        return pf_deck_error(d, pf_node_get(c, "edge_b"), "edge_b",
+                             "the rectangle has no area: edge_a and edge_b are zero or parallel (|edge_a x edge_b| = "
+                             "%g m^2)",
+                             area);
     } else if (!strcmp(shape, "disk")) {
       pc->kind = PF_CRACK_DISK;
       if (!pf_node_get(c, "center") || !pf_node_get(c, "normal") || !pf_node_get(c, "radius"))
         return pf_deck_error(d, c, "center", "a disk needs center, normal and radius");
       PF_CALL(pf_deck_vec3(d, c, "center", pc->center));
       PF_CALL(pf_deck_vec3(d, c, "normal", pc->normal));
-      PF_CALL(pf_deck_real(d, c, "radius", &pc->radius));
+      const double nn = pc->normal[0] * pc->normal[0] + pc->normal[1] * pc->normal[1] + pc->normal[2] * pc->normal[2];
+      if (!(nn > 0)) return pf_deck_error(d, pf_node_get(c, "normal"), "normal", "must not be zero");
+      PF_CALL(pf_deck_positive(d, c, "radius", &pc->radius)); /* (a crack that cuts no bond would pass without a word) */
     } else {
       return pf_deck_error(d, pf_node_get(c, "shape"), "shape",
                            "unknown pre-crack shape '%s' (known: rectangle, disk)", shape);

@@ -129,6 +129,28 @@ static int by_position_body(const void *a, const void *b) {
   return (p->body > q->body) - (p->body < q->body);
 }
 
+/* Each body's points finite and within 1e6 m of the origin (the bound the deck's lengths keep):
+ * a mesh or point file in millimetres or with a corrupt coordinate is refused here, before any
+ * output is written, not at the first step. Collective. */
+static int check_extent(const pf_sim *sim, const pf_point_cloud *pc, const pf_node *bodies) {
+  for (int b = 0; b < sim->nbodies; b++) {
+    double far = 0;
+    for (pf_int i = 0; i < 3 * pc[b].n; i++) {
+      const double a = fabs(pc[b].X[i]);
+      far = isnan(a) ? INFINITY : fmax(far, a);
+    }
+    far = pf_max_all(far);
+    if (far <= 1e6) continue;
+    const pf_node *body = pf_node_item(bodies, b);
+    const char *key = pf_node_get(body, "mesh") ? "mesh" : "geometry";
+    return pf_deck_error(sim->deck, pf_node_get(body, key) ? pf_node_get(body, key) : body, key,
+                         "%s coordinates of body '%s' reach %g m: at most 1e6 m from the origin (a length in the "
+                         "wrong units, or a corrupt file?)",
+                         key, sim->body_name[b], far);
+  }
+  return 0;
+}
+
 static int check_overlap(const pf_sim *sim, const pf_point_cloud *pc, const pf_node *bodies) {
   const int nb = sim->nbodies;
   double lo[PF_MAX_BODIES][3], hi[PF_MAX_BODIES][3];
@@ -228,6 +250,7 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
     for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
     return ierr;
   }
+  if (!ierr) ierr = check_extent(sim, pc, bodies);
   if (!ierr) ierr = check_overlap(sim, pc, bodies);
   if (!ierr) ierr = pf_sim_distribute(sim, pc);
   for (int b = 0; b < sim->nbodies; b++) pf_point_cloud_free(&pc[b]);
@@ -237,6 +260,14 @@ static int build_bodies(pf_sim *sim, const pf_node *root) {
     PF_CALL(set_initial_field(sim, b, pf_node_item(bodies, b), "initial_displacement"));
   }
   return 0;
+}
+
+/* The prescribed motions and loads finite over the run, before any output (an infinite indenter
+ * velocity would otherwise run to the end with a NaN energy): sampled at 101 times over
+ * [0, final_time] (a run given by steps: [0, steps x dt]). Collective. */
+static int check_expressions(pf_sim *sim) {
+  const double t_end = isfinite(sim->final_time) ? sim->final_time : (double)sim->nsteps * sim->dt;
+  return pf_sim_interactions_check_finite(sim, t_end, 100);
 }
 
 static int check_units(const pf_sim *sim, const pf_node *root) {
@@ -266,6 +297,7 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   PF_CALL(pf_sim_setup_time(sim));
   PF_CALL(pf_sim_setup_output(sim));
   PF_CALL(pf_sim_setup_solver(sim));
+  PF_CALL(check_expressions(sim));
   PF_CALL(pf_sim_accounts_open(sim));
   PF_CALL(pf_sim_setup_restart(sim));
   if (sim->opt.restart_from) PF_CALL(pf_sim_restore_state(sim)); /* (renames the outputs) */

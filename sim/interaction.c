@@ -136,6 +136,13 @@ int pf_sim_interactions_restored(pf_sim *sim) {
   return 0;
 }
 
+int pf_sim_interactions_check_finite(pf_sim *sim, double t_end, int nt) {
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->check_finite)
+      PF_CALL(sim->inter[k].ops->check_finite(sim->inter[k].data, sim, t_end, nt));
+  return 0;
+}
+
 int pf_sim_interactions_health(pf_sim *sim) {
   for (int k = 0; k < sim->ninter; k++)
     if (sim->inter[k].ops->health) PF_CALL(sim->inter[k].ops->health(sim->inter[k].data, sim));

@@ -65,6 +65,9 @@ typedef struct {
   void (*state_get)(const void *data, double *v);
   void (*state_set)(void *data, const double *v);
   int (*restored)(void *data);
+  /* Before the first step: refuse an expression it evaluates (a prescribed motion, a load) that is
+   * not finite at some time of [0, t_end] (nt + 1 times); collective [nothing]. */
+  int (*check_finite)(void *data, pf_sim *sim, double t_end, int nt);
   /* At each history row: run-health checks, warning through pf_sim_health_warn; collective
    * [nothing]. */
   int (*health)(void *data, pf_sim *sim);
@@ -115,6 +118,7 @@ void pf_sim_interactions_state_get(const pf_sim *sim, double *v);
 void pf_sim_interactions_state_set(pf_sim *sim, const double *v);
 int pf_sim_interactions_restored(pf_sim *sim);
 int pf_sim_interactions_health(pf_sim *sim);
+int pf_sim_interactions_check_finite(pf_sim *sim, double t_end, int nt);
 void pf_sim_interactions_summary(pf_sim *sim);
 void pf_sim_interactions_masses_changed(pf_sim *sim);
 /* Interaction k's name and kind (--check). */

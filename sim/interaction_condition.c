@@ -126,6 +126,10 @@ static int settled(void *data, const pf_interaction_step *s, const double *g0, c
   return 0;
 }
 
+static int check_finite(void *data, pf_sim *sim, double t_end, int nt) {
+  return pf_bc_check_finite(((condition *)data)->bc, sim->pts, t_end, nt);
+}
+
 static const char *name(const void *data) { return pf_bc_name(((const condition *)data)->bc); }
 
 const pf_interaction_ops pf_interaction_kind_condition = {
@@ -140,5 +144,6 @@ const pf_interaction_ops pf_interaction_kind_condition = {
     .endstep = endstep,
     .place = place,
     .settled = settled,
+    .check_finite = check_finite,
     .name = name,
 };

@@ -117,6 +117,11 @@ static void state_names(const void *data, char (*names)[96]) {
 
 static void state_get(const void *data, double *v) { pf_rigid_position(((const rigid *)data)->r, v); }
 static void state_set(void *data, const double *v) { pf_rigid_set_position(((rigid *)data)->r, v); }
+static int check_finite(void *data, pf_sim *sim, double t_end, int nt) {
+  (void)sim;
+  return pf_rigid_check_finite(((rigid *)data)->r, t_end, nt);
+}
+
 static const char *name(const void *data) { return pf_rigid_name(((const rigid *)data)->r); }
 
 const pf_interaction_ops pf_interaction_kind_rigid = {
@@ -135,5 +140,6 @@ const pf_interaction_ops pf_interaction_kind_rigid = {
     .state_names = state_names,
     .state_get = state_get,
     .state_set = state_set,
+    .check_finite = check_finite,
     .name = name,
 };

@@ -34,6 +34,10 @@ int pf_sim_refresh_fixed_step(pf_sim *sim) {
   return 0;
 }
 
+/* The most steps a run may take: far beyond any run that ends, and well inside a long and a
+ * double's exact integers, so that the step count and step * dt neither overflow nor round. */
+#define PF_MAX_STEPS 1e12
+
 int pf_sim_setup_time(pf_sim *sim) {
   const pf_deck *d = sim->deck;
   const pf_node *tm = pf_node_get(pf_deck_root(d), "time");
@@ -57,17 +61,39 @@ int pf_sim_setup_time(pf_sim *sim) {
     if (sim->dt > stable)
       pf_log("warning: dt = %g s exceeds the stable step %g s\n", sim->dt, stable);
   }
+  if (!(sim->dt > 0 && isfinite(sim->dt))) {
+    const char *key = pf_node_get(tm, "dt") ? "dt" : "safety_factor";
+    return pf_deck_error(d, pf_node_get(tm, key) ? pf_node_get(tm, key) : tm, key,
+                         "the time step is %g s (the stable step %g s): it must be a positive finite number; check the "
+                         "materials' moduli and densities, or give time.dt",
+                         sim->dt, stable);
+  }
   int hf = pf_node_get(tm, "final_time") != NULL, hs = pf_node_get(tm, "steps") != NULL;
   if (hf == hs) return pf_deck_error(d, tm, "final_time", "give exactly one of 'final_time' and 'steps'");
   if (hs) {
     PF_CALL(pf_deck_int(d, tm, "steps", &sim->nsteps));
     if (sim->nsteps < 0) return pf_deck_error(d, pf_node_get(tm, "steps"), "steps", "must not be negative");
+    if (sim->nsteps > PF_MAX_STEPS)
+      return pf_deck_error(d, pf_node_get(tm, "steps"), "steps", "%ld steps: at most %.0e are allowed", sim->nsteps,
+                           PF_MAX_STEPS);
     sim->final_time = sim->nsteps * sim->dt;
   } else {
     PF_CALL(pf_deck_real(d, tm, "final_time", &sim->final_time));
-    if (!(sim->final_time >= 0))
-      return pf_deck_error(d, pf_node_get(tm, "final_time"), "final_time", "must not be negative");
-    sim->nsteps = (long)ceil(sim->final_time / sim->dt - 1e-9);
+    if (!(sim->final_time >= 0 && isfinite(sim->final_time)))
+      return pf_deck_error(d, pf_node_get(tm, "final_time"), "final_time", "must be finite and not negative (got %g)",
+                           sim->final_time);
+    const double n = ceil(sim->final_time / sim->dt - 1e-9);
+    /* (a quasi-static run takes solver.load_steps steps over its pseudo-time, whatever the stable step) */
+    const char *solver = "explicit";
+    PF_CALL(pf_deck_string(d, pf_node_get(pf_deck_root(d), "solver"), "type", &solver));
+    if (!(n <= PF_MAX_STEPS) && strcmp(solver, "quasi_static")) {
+      /* blame the key that made the count large: a tiny step given or chosen, else the end time */
+      const char *key = pf_node_get(tm, "dt") ? "dt" : (safety < 1e-6 ? "safety_factor" : "final_time");
+      return pf_deck_error(d, pf_node_get(tm, key), key,
+                           "the run would take %.3g steps (final_time / dt = %g s / %g s): at most %.0e are allowed",
+                           n, sim->final_time, sim->dt, PF_MAX_STEPS);
+    }
+    sim->nsteps = n <= PF_MAX_STEPS ? (long)n : 0; /* (quasi-static: set from load_steps later) */
   }
   if (hs) sim->final_time = INFINITY; /* a step count: adaptive steps end by count */
   return 0;

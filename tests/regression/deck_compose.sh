@@ -5,7 +5,8 @@
 # composed deck must give its state digest, on 1 and on 2 ranks.
 #  1. a deck that includes its materials from another file and takes density, modulus, spacing
 #     and the pulse's speed from parameters (one of them used bare inside an x expression);
-#  2. --set of a material's value, of a body's value by the body's name and by its index, of a
+#  2. a ${...} of 300 terms (1.9 kB) gives its value, not the value of its first 1023 characters;
+#     --set of a material's value, of a body's value by the body's name and by its index, of a
 #     parameter, of a key the deck does not give (time.dt), and a list value;
 #  3. errors name where the bad value was given, with exit 2: an unknown key given by --set (with
 #     the suggestion), --set without '=', an unknown list item, an unknown name in ${...}, a
@@ -90,6 +91,14 @@ same "--set time.dt (a key the deck lacks)" "$(digest 1 ref_dt.yaml)" "$(digest 
 same "--set a list" "$(digest 1 ref_v.yaml)" \
   "$(digest 1 ref.yaml --set 'bodies.bar.initial_velocity=["x < 0.0003 ? 50 : 0", "0", "0"]')"
 [ "$ref" != "$(digest 1 ref_rho.yaml)" ] || { echo "FAIL: the density edit does not change the digest"; fail=1; }
+# a ${...} of any length: 2200 - 200 and 300 terms "+ 1.0" (1.9 kB, once cut at 1023 characters
+# to a smaller density without a word) is the density 2300 of the written-out deck
+terms=$(printf ' + 1.0%.0s' $(seq 300))
+sed "s/    density: \${rho}/    density: \${rho - 200$terms}/" materials.yaml > materials_long.yaml
+sed 's/\[materials.yaml\]/[materials_long.yaml]/' composed.yaml > composed_long.yaml
+[ "$(grep -c ' + 1.0' materials_long.yaml)" = 1 ] && [ "$(wc -c < materials_long.yaml)" -gt 1800 ] ||
+  { echo "FAIL: the long expression was not written"; fail=1; }
+same "a \${...} of 1.9 kB (300 terms)" "$(digest 1 ref_rho.yaml)" "$(digest 1 composed_long.yaml)"
 
 refuse() { # WHAT DECK EXPECTED-TEXT [ARGS...]: exit 2 and the text on stderr
   local what=$1 deck=$2 want=$3 err st
