@@ -47,12 +47,14 @@ typedef struct {
   int (*force)(void *data, const pf_interaction_step *s, double *sums);
   void (*take_sums)(void *data, const pf_interaction_step *s, const double *sums);
   void (*endstep)(void *data, const pf_interaction_step *s);
-  /* Quasi-static loading (sim/solver_relaxation.c): put the components it prescribes at their
-   * values at s->t, s->dt the load step [nothing]. */
+  /* Quasi-static loading (sim/solver_relaxation.c): put the components it prescribes (a rigid
+   * surface: itself) at their values at s->t, s->dt the load step; s->dt < 0: the load step is
+   * abandoned, go back to its start (the solver then puts the points back) [nothing]. */
   void (*place)(void *data, const pf_interaction_step *s);
   /* Quasi-static loading: the load step from s->t - s->dt to s->t has reached equilibrium; g0,
    * u0: [3 n_owned] the force from outside on each owned component (on a prescribed one its
-   * reaction, minus the point's force; on a free one the loads) and the displacement at the load
+   * reaction, minus the point's force; on a free one the loads, without the forces of the
+   * interactions that book their own work) and the displacement at the load
    * step's start: book its reactions and work. Collective [nothing]. */
   int (*settled)(void *data, const pf_interaction_step *s, const double *g0, const double *u0);
   /* Quasi-static loading: add to k[i] (N/m, over the owned points) a bound of the row sums of the
