@@ -1,6 +1,7 @@
 /* One load step of the quasi-static solver by adaptive dynamic relaxation (Underwood 1983; Kilic &
  * Madenci 2010; docs/theory/quasi_static.md). With the fictitious time step 1 and a diagonal
- * fictitious mass lambda_i >= (1/4) sum_j |K_ij| (Gershgorin, from the bodies' stiffness bounds):
+ * fictitious mass lambda_i >= (1/4) sum_j |K_ij| (Gershgorin, from the bodies' stiffness bounds
+ * plus the rigid surfaces' penalty stiffness, theory §8):
  *   u-dot^(1/2)   = F^0 / (2 lambda)
  *   u^(n+1)       = u^n + u-dot^(n+1/2)
  *   u-dot^(n+1/2) = ((2 - c^n) u-dot^(n-1/2) + 2 F^n / lambda) / (2 + c^n)
