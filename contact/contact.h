@@ -50,6 +50,14 @@ int pf_rigid_check_finite(const pf_rigid *r, double t_end, int nt);
  * linear law (INFINITY for the quadratic law, whose stiffness grows from zero with the depth,
  * and when it touches no body). Collective. */
 double pf_rigid_stable_dt(const pf_rigid *r, const pf_points *pts);
+/* Quasi-static loading: add to k[i] (N/m) a bound of the row sums of the 3 x 3 penalty stiffness
+ * H = k_n n n^T - k_t (I - n n^T) on each owned point it acts on within one cell edge c_i of the
+ * surface, at the depth d_b = max(d_i, 0) + c_i (d_i at the current positions): k_n = dF/dd
+ * (2 k d_b V_i quadratic, k linear) and k_t = F / rho, the normal's turn over the distance rho
+ * = max(R - d_b, R/2) from the centre or axis (0 on a plane); a row of n n^T sums to at most
+ * |n|_inf |n|_1 <= sqrt(3), of I - n n^T to at most 1 + sqrt(3):
+ *   k_i += sqrt(3) k_n + (1 + sqrt(3)) k_t. */
+void pf_rigid_stiffness_bounds(const pf_rigid *r, const pf_points *pts, double *k);
 /* Current position (sphere centre, plane point, point of the cylinder axis); restart. */
 void pf_rigid_position(const pf_rigid *r, double x[3]);
 void pf_rigid_set_position(pf_rigid *r, const double x[3]);

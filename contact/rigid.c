@@ -293,6 +293,19 @@ void pf_rigid_advance(pf_rigid *r, double t, double dt, double dx[3]) {
   }
 }
 
+void pf_rigid_stiffness_bounds(const pf_rigid *r, const pf_points *pts, double *k) {
+  for (pf_int i = 0; i < pts->n_owned; i++) {
+    double depth = -INFINITY, dir[3];
+    (void)penetration(r, &pts->y[3 * (size_t)i], &depth, dir);
+    if (!acts_on(r, pts, i) || !(depth > -pts->cell[i])) continue;
+    const double db = fmax(depth, 0) + pts->cell[i];
+    const double kn = r->law == LAW_QUADRATIC ? 2 * r->stiffness * db * pts->vol[i] : r->stiffness;
+    const double F = r->law == LAW_QUADRATIC ? r->stiffness * db * db * pts->vol[i] : r->stiffness * db;
+    const double kt = r->shape == RIGID_PLANE ? 0 : F / fmax(r->radius - db, 0.5 * r->radius);
+    k[i] += sqrt(3.0) * kn + (1 + sqrt(3.0)) * kt;
+  }
+}
+
 double pf_rigid_stable_dt(const pf_rigid *r, const pf_points *pts) {
   if (r->law == LAW_QUADRATIC) return INFINITY;
   double m = INFINITY;

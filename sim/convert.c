@@ -59,7 +59,7 @@ static int book_overlap(pf_sim *sim, pf_fem_particles *first_p) {
   memcpy(f, p->f, sizeof(double) * 3 * (size_t)p->n_owned);
   memcpy(books, l->a, sizeof *books * (size_t)l->n);
   const double U0 = contact_energy(sim);
-  int ierr = pf_sim_interactions_force(sim, 0.0); /* (dt 0: no friction, no work) */
+  int ierr = pf_sim_interactions_force(sim, 0.0, NULL); /* (dt 0: no friction, no work) */
   const double U = contact_energy(sim);
   memcpy(p->f, f, sizeof(double) * 3 * (size_t)p->n_owned);
   memcpy(l->a, books, sizeof *books * (size_t)l->n);

@@ -76,7 +76,31 @@ static int nsums(const pf_interaction *x) { return x->ops->nsums ? x->ops->nsums
 
 /* Each interaction's forces and its part of the sums, one reduction for all, then each takes its
  * summed part (reactions, penalty energies). */
-int pf_sim_interactions_force(pf_sim *sim, double dt) {
+void pf_sim_interactions_stiffness_bounds(const pf_sim *sim, double *k) {
+  for (int j = 0; j < sim->ninter; j++)
+    if (sim->inter[j].ops->stiffness_bounds) sim->inter[j].ops->stiffness_bounds(sim->inter[j].data, sim->pts, k);
+}
+
+void pf_sim_interactions_project(const pf_sim *sim) {
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->project) sim->inter[k].ops->project(sim->inter[k].data, sim->pts);
+}
+
+/* Interaction k's forces (and, with own, their part that books its own work: f after - f before). */
+static int force_of(pf_sim *sim, int k, const pf_interaction_step *s, double *sums, double *own) {
+  const pf_interaction *x = &sim->inter[k];
+  if (!x->ops->force) return 0;
+  const pf_int n3 = 3 * sim->pts->n_owned;
+  const int mine = own && x->ops->books_own_work;
+  if (mine)
+    for (pf_int d = 0; d < n3; d++) own[d] -= sim->pts->f[d];
+  PF_CALL(x->ops->force(x->data, s, sums));
+  if (mine)
+    for (pf_int d = 0; d < n3; d++) own[d] += sim->pts->f[d];
+  return 0;
+}
+
+int pf_sim_interactions_force(pf_sim *sim, double dt, double *own) {
   const pf_interaction_step s = step_of(sim, dt);
   int n = 0;
   for (int k = 0; k < sim->ninter; k++) n += nsums(&sim->inter[k]);
@@ -84,8 +108,9 @@ int pf_sim_interactions_force(pf_sim *sim, double dt) {
   PF_MALLOC(local, 2 * (size_t)n + 1);
   double *sum = local + n;
   int ierr = 0;
+  if (own) memset(own, 0, sizeof(double) * 3 * (size_t)sim->pts->n_owned);
   for (int k = 0, at = 0; k < sim->ninter && !ierr; at += nsums(&sim->inter[k]), k++)
-    if (sim->inter[k].ops->force) ierr = sim->inter[k].ops->force(sim->inter[k].data, &s, &local[at]);
+    ierr = force_of(sim, k, &s, &local[at], own);
   if (!ierr && n > 0 && MPI_Allreduce(local, sum, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) != MPI_SUCCESS)
     ierr = pf_error_raise(PF_ERR_LIB, __FILE__, __LINE__, __func__, "MPI_Allreduce failed summing the interactions' forces");
   for (int k = 0, at = 0; k < sim->ninter && !ierr; at += nsums(&sim->inter[k]), k++)

@@ -47,14 +47,28 @@ typedef struct {
   int (*force)(void *data, const pf_interaction_step *s, double *sums);
   void (*take_sums)(void *data, const pf_interaction_step *s, const double *sums);
   void (*endstep)(void *data, const pf_interaction_step *s);
-  /* Quasi-static loading (sim/solver_relaxation.c): put the components it prescribes at their
-   * values at s->t, s->dt the load step [nothing]. */
+  /* Quasi-static loading (sim/solver_relaxation.c): put the components it prescribes (a rigid
+   * surface: itself) at their values at s->t, s->dt the load step; s->dt < 0: the load step is
+   * abandoned, go back to its start (the solver then puts the points back) [nothing]. */
   void (*place)(void *data, const pf_interaction_step *s);
   /* Quasi-static loading: the load step from s->t - s->dt to s->t has reached equilibrium; g0,
    * u0: [3 n_owned] the force from outside on each owned component (on a prescribed one its
-   * reaction, minus the point's force; on a free one the loads) and the displacement at the load
+   * reaction, minus the point's force; on a free one the loads, without the forces of the
+   * interactions that book their own work) and the displacement at the load
    * step's start: book its reactions and work. Collective [nothing]. */
   int (*settled)(void *data, const pf_interaction_step *s, const double *g0, const double *u0);
+  /* Quasi-static loading: add to k[i] (N/m, over the owned points) a bound of the row sums of the
+   * stiffness its forces add to point i, over the states the load step placed at s->t can reach
+   * (the fictitious masses bound the interactions' stiffness with the bodies') [nothing]. */
+  void (*stiffness_bounds)(const void *data, const pf_points *pts, double *k);
+  /* Quasi-static loading: after each relaxation iteration moved the points, put back on its
+   * constraint a point that went through it, with no inward velocity left in pts->v (the
+   * relaxation's) [nothing]. */
+  void (*project)(const void *data, pf_points *pts);
+  /* 1: the work of its forces on the points is booked by the interaction itself (a moving rigid
+   * surface's work, a fixed wall's none; its penalty energy is a potential), so the quasi-static
+   * solver leaves its forces out of the trapezoid of the loads' work [0]. */
+  int books_own_work;
   /* The stable step its penalties allow; collective [INFINITY]. */
   double (*stable_dt)(const void *data, const pf_points *pts);
   /* Checkpoint state besides the ledger's accounts (a surface's position): count, names
@@ -106,11 +120,14 @@ void pf_sim_interactions_mark(const pf_sim *sim, uint8_t *fixed);
 void pf_sim_interactions_midstep(pf_sim *sim, double dt);
 void pf_sim_interactions_after_drift(pf_sim *sim, double dt);
 /* Forces of every interaction at the current positions with one reduction of their sums;
- * dt: the step just taken. Collective. */
-int pf_sim_interactions_force(pf_sim *sim, double dt);
+ * dt: the step just taken; own: NULL, or [3 n_owned] set to the part of the forces from the
+ * interactions that book their own work (books_own_work). Collective. */
+int pf_sim_interactions_force(pf_sim *sim, double dt, double *own);
 void pf_sim_interactions_endstep(pf_sim *sim, double dt);
 void pf_sim_interactions_place(pf_sim *sim, double dt);
 int pf_sim_interactions_settled(pf_sim *sim, double dt, const double *g0, const double *u0);
+void pf_sim_interactions_stiffness_bounds(const pf_sim *sim, double *k);
+void pf_sim_interactions_project(const pf_sim *sim);
 double pf_sim_interactions_stable_dt(const pf_sim *sim);
 int pf_sim_interactions_nstate(const pf_sim *sim);
 void pf_sim_interactions_state_names(const pf_sim *sim, char (*names)[96]);

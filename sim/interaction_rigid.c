@@ -6,7 +6,11 @@
  * contact_dissipation), and over a step in which the surface moves by dx = v(t + dt/2) dt the
  * work on the points -(R^n + R^(n+1))/2 . dx (<name>_work, in external_work) and the impulse
  * -(R^n + R^(n+1)) dt/2 (<name>_impulse): the trapezoidal rule of the ledger, second order in
- * the step, since d(K + W_el + U)/dt = -R . v. */
+ * the step, since d(K + W_el + U)/dt = -R . v.
+ * Under the quasi-static solver (docs/theory/quasi_static.md §8) the surface is placed at each
+ * load step's pseudo-time t (moved by dx = v(t - dt/2) dt) and its work booked at the load step's
+ * equilibrium by the same rule, -(R_start + R_end)/2 . dx, with R_start the force of the points
+ * at the load step's start; its penalty stiffness bounds the fictitious masses. */
 #include "sim/sim_impl.h"
 
 #include <stdlib.h>
@@ -17,6 +21,7 @@ typedef struct {
   int force, energy, dissipation, work, impulse; /* accounts */
   double r_old[3]; /* R at the step's start */
   double dx[3];    /* the step's motion */
+  double x_start[3]; /* quasi-static: the position at the load step's start */
 } rigid;
 
 static int add(pf_sim *sim, const pf_node *list) {
@@ -102,6 +107,32 @@ static void endstep(void *data, const pf_interaction_step *s) {
   pf_ledger_book_impulse(s->ledger, x->impulse, x->r_old, r_new, s->dt);
 }
 
+/* Quasi-static: to the load step's end s->t (dt < 0: back to its start, the load step abandoned). */
+static void place(void *data, const pf_interaction_step *s) {
+  rigid *x = data;
+  if (s->dt < 0) {
+    pf_rigid_set_position(x->r, x->x_start);
+    return;
+  }
+  pf_ledger_get(s->ledger, x->force, x->r_old);
+  pf_rigid_position(x->r, x->x_start);
+  pf_rigid_advance(x->r, s->t - s->dt, s->dt, x->dx);
+}
+
+/* Quasi-static: the load step's work at its equilibrium. */
+static int settled(void *data, const pf_interaction_step *s, const double *g0, const double *u0) {
+  (void)g0, (void)u0;
+  rigid *x = data;
+  double r_new[3];
+  pf_ledger_get(s->ledger, x->force, r_new);
+  pf_ledger_book_centred(s->ledger, x->work, x->r_old, r_new, x->dx);
+  return 0;
+}
+
+static void stiffness_bounds(const void *data, const pf_points *pts, double *k) {
+  pf_rigid_stiffness_bounds(((const rigid *)data)->r, pts, k);
+}
+
 static double stable_dt(const void *data, const pf_points *pts) {
   return pf_rigid_stable_dt(((const rigid *)data)->r, pts);
 }
@@ -135,6 +166,10 @@ const pf_interaction_ops pf_interaction_kind_rigid = {
     .force = force,
     .take_sums = take_sums,
     .endstep = endstep,
+    .place = place,
+    .settled = settled,
+    .stiffness_bounds = stiffness_bounds,
+    .books_own_work = 1,
     .stable_dt = stable_dt,
     .nstate = nstate,
     .state_names = state_names,

@@ -2,7 +2,10 @@
  * the force of the points on the wall (<name>_force), the kinetic energy it removes from points
  * it puts back on its plane (<name>_energy_loss, in wall_dissipation), and its impulse on the
  * points (<name>_impulse): the momentum it removes then, and over each step the ledger's rule
- * -(R^n + R^(n+1)) dt/2 for the normal force it takes off the points on it. */
+ * -(R^n + R^(n+1)) dt/2 for the normal force it takes off the points on it.
+ * Under the quasi-static solver a point that a relaxation iteration moved through the plane goes
+ * back onto it, its inward relaxation velocity dropped (no energy booked: that velocity is
+ * fictitious); the wall does no work (it is fixed) and its force is a reaction. */
 #include "sim/sim_impl.h"
 
 #include <stdlib.h>
@@ -86,6 +89,11 @@ static void endstep(void *data, const pf_interaction_step *s) {
   pf_ledger_book_impulse(s->ledger, x->impulse, x->r_old, r_new, s->dt);
 }
 
+static void project(const void *data, pf_points *pts) {
+  double loss = 0, impulse[3] = {0, 0, 0};
+  pf_wall_enforce_position(((const wall *)data)->w, pts, &loss, impulse);
+}
+
 static const char *name(const void *data) { return pf_wall_name(((const wall *)data)->w); }
 
 const pf_interaction_ops pf_interaction_kind_wall = {
@@ -99,5 +107,7 @@ const pf_interaction_ops pf_interaction_kind_wall = {
     .force = force,
     .take_sums = take_sums,
     .endstep = endstep,
+    .project = project,
+    .books_own_work = 1,
     .name = name,
 };

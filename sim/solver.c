@@ -25,22 +25,45 @@ const pf_key pf_sim_solver_keys[] = {
      "many times per load step, then the run stops with an error", NULL},
     PF_KEY_END};
 
-/* Deck sections the first quasi-static solver does not take: the first one given, or NULL. */
+/* Deck sections the quasi-static solver does not take yet: the first one given, or NULL. */
 static const char *unsupported(const pf_node *root, const pf_node **where) {
-  static const char *const keys[] = {"contact", "walls", "indenters"};
-  for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
-    if ((*where = pf_node_get(root, keys[k]))) return keys[k];
-  return NULL;
+  *where = pf_node_get(pf_node_get(root, "contact"), "pairs");
+  return *where && pf_node_count(*where) > 0 ? "contact.pairs" : NULL;
+}
+
+/* The rigid surfaces of the deck (`indenters:` and `contact: rigid_surfaces:`): list k of 2. */
+static const pf_node *surfaces(const pf_node *root, int k) {
+  return k == 0 ? pf_node_get(root, "indenters") : pf_node_get(pf_node_get(root, "contact"), "rigid_surfaces");
+}
+
+/* A rigid surface with a velocity is a load; friction needs a step in time (refused). */
+static int check_surfaces(const pf_deck *d, const pf_node *root, int *moving) {
+  *moving = 0;
+  for (int k = 0; k < 2; k++)
+    for (int j = 0; j < pf_node_count(surfaces(root, k)); j++) {
+      const pf_node *item = pf_node_item(surfaces(root, k), j);
+      double mu = 0;
+      PF_CALL(pf_deck_real(d, item, "friction", &mu));
+      if (mu != 0)
+        return pf_deck_error(d, pf_node_get(item, "friction"), "friction",
+                             "a rigid surface's friction is not yet supported with the quasi_static solver (the "
+                             "regularized Coulomb force needs a time step)");
+      *moving |= pf_node_get(item, "velocity") != NULL;
+    }
+  return 0;
 }
 
 /* What a quasi-static run needs of the rest of the deck. */
 static int check_deck(const pf_sim *sim, const pf_node *sv) {
   const pf_deck *d = sim->deck;
   const pf_node *root = pf_deck_root(d), *n;
-  if (pf_node_count(pf_node_get(root, "boundary_conditions")) == 0)
+  int moving = 0;
+  PF_CALL(check_surfaces(d, root, &moving));
+  if (pf_node_count(pf_node_get(root, "boundary_conditions")) == 0 && !moving)
     return pf_deck_error(d, pf_node_get(sv, "type"), "type",
                          "a quasi_static solver needs a load: give boundary_conditions (displacement, velocity or "
-                         "body_force)");
+                         "body_force) or a rigid surface that moves (indenters or contact.rigid_surfaces with a "
+                         "velocity)");
   const char *what = unsupported(root, &n);
   if (what)
     return pf_deck_error(d, n, what, "'%s' is not yet supported with the quasi_static solver", what);
@@ -113,9 +136,9 @@ void pf_sim_solver_summary(const pf_sim *sim) {
 void pf_sim_solver_free(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   free(s->lambda), free(s->vel), free(s->f_old), free(s->u_last), free(s->f_body), free(s->u0), free(s->g0);
-  free(s->fixed), free(s->terms);
+  free(s->fixed), free(s->terms), free(s->f_own);
   s->terms = NULL;
-  s->lambda = s->vel = s->f_old = s->u_last = s->f_body = s->u0 = s->g0 = NULL;
+  s->lambda = s->vel = s->f_old = s->u_last = s->f_body = s->f_own = s->u0 = s->g0 = NULL;
   s->fixed = NULL;
   s->n = 0;
 }

@@ -28,7 +28,8 @@ typedef struct {
   double *vel;     /* the relaxation's velocity u-dot^(n-1/2), m per iteration */
   double *f_old;   /* F^(n-1), the force of the previous iteration */
   double *u_last;  /* u at the last force evaluation (the bodies read v = u - u_last, dt = 1) */
-  double *f_body;  /* the bodies' part of the last evaluation (the rest is the loads') */
+  double *f_body;  /* the bodies' part of the last evaluation (the rest is the interactions') */
+  double *f_own;   /* the part of the interactions that book their own work (rigid surfaces, walls) */
   double *u0, *g0; /* u and the applied force (reaction or load) at the load step's start */
   double *terms;   /* [PF_SOLVER_SUMS 3 n] each iteration's terms of its sums */
   uint8_t *fixed;  /* [3 n] prescribed components */
@@ -41,8 +42,8 @@ typedef struct {
 /* sim/solver.c: the `solver:` keys; read the section (after the time and output set-up: the
  * load steps replace time.dt and the step count, history rows come at every load step unless
  * output.history_interval says otherwise); refuse decks the quasi-static solver cannot run (no
- * boundary condition, an initial velocity, contact, walls or indenters) as input errors naming
- * file:line and key; the summary line; free the scratch. */
+ * load: neither a boundary condition nor a moving rigid surface; an initial velocity; contact
+ * between bodies; friction on a rigid surface) as input errors naming file:line and key; the summary line; free the scratch. */
 extern const pf_key pf_sim_solver_keys[];
 int pf_sim_setup_solver(pf_sim *sim);
 void pf_sim_solver_summary(const pf_sim *sim);

@@ -1,6 +1,7 @@
 /* One load step of the quasi-static solver by adaptive dynamic relaxation (Underwood 1983; Kilic &
  * Madenci 2010; docs/theory/quasi_static.md). With the fictitious time step 1 and a diagonal
- * fictitious mass lambda_i >= (1/4) sum_j |K_ij| (Gershgorin, from the bodies' stiffness bounds):
+ * fictitious mass lambda_i >= (1/4) sum_j |K_ij| (Gershgorin, from the bodies' stiffness bounds
+ * plus the rigid surfaces' penalty stiffness, theory §8):
  *   u-dot^(1/2)   = F^0 / (2 lambda)
  *   u^(n+1)       = u^n + u-dot^(n+1/2)
  *   u-dot^(n+1/2) = ((2 - c^n) u-dot^(n-1/2) + 2 F^n / lambda) / (2 + c^n)
@@ -25,16 +26,17 @@ enum { S_RESIDUAL, S_REFERENCE, S_INTERNAL, S_UKU, S_UU, S_TRIPPED, S_SIGNAL }; 
 static int scratch(pf_sim_solver *s, pf_int n) {
   if (s->n == n && s->lambda) return 0;
   free(s->lambda), free(s->vel), free(s->f_old), free(s->u_last), free(s->f_body), free(s->u0), free(s->g0);
-  free(s->fixed), free(s->terms);
+  free(s->fixed), free(s->terms), free(s->f_own);
   const size_t n3 = 3 * (size_t)n + 1;
   s->lambda = calloc((size_t)n + 1, sizeof(double));
   s->vel = calloc(n3, sizeof(double)), s->f_old = calloc(n3, sizeof(double));
   s->u_last = calloc(n3, sizeof(double)), s->f_body = calloc(n3, sizeof(double));
+  s->f_own = calloc(n3, sizeof(double));
   s->u0 = calloc(n3, sizeof(double)), s->g0 = calloc(n3, sizeof(double));
   s->terms = calloc(PF_SOLVER_SUMS * n3, sizeof(double));
   s->fixed = calloc(n3, 1);
   s->n = n;
-  PF_CHECK(s->lambda && s->vel && s->f_old && s->u_last && s->f_body && s->u0 && s->g0 && s->terms && s->fixed,
+  PF_CHECK(s->lambda && s->vel && s->f_old && s->u_last && s->f_body && s->f_own && s->u0 && s->g0 && s->terms && s->fixed,
            PF_ERR_MEMORY, "out of memory for the quasi-static solver's arrays (%" PF_INT_FMT " points)", n);
   return 0;
 }
@@ -67,15 +69,23 @@ int pf_sim_solver_sums(const double *x, pf_int n, int m, double *out) {
 
 static int is_free(const pf_sim_solver *s, pf_int d) { return !s->fixed[d] && s->lambda[d / 3] > 0; }
 
-/* The fictitious masses: lambda_i = k_i / (4 safety^2), k_i the point's stiffness bound. */
-static int masses(pf_sim *sim) {
+/* The bodies' stiffness bounds k_i into lambda (at the load step's start). */
+static int body_bounds(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   for (int b = 0; b < sim->nbodies; b++) {
     const pf_int first = sim->body_start[b];
     PF_CALL(pf_body_stiffness_bounds(&sim->body[b], sim->pts, first, sim->body_start[b + 1] - first, &s->lambda[first]));
   }
-  for (pf_int i = 0; i < sim->pts->n_owned; i++) s->lambda[i] /= 4 * sim->safety * sim->safety;
   return 0;
+}
+
+/* The fictitious masses lambda_i = (k_i + k^c_i) / (4 safety^2): the bodies' bound k_i and the
+ * interactions' k^c_i (a rigid surface's penalty; Gershgorin: the row sums of a sum of
+ * stiffnesses are at most the sums of theirs), with the load step placed. */
+static void masses(pf_sim *sim) {
+  pf_sim_solver *s = &sim->solver;
+  pf_sim_interactions_stiffness_bounds(sim, s->lambda);
+  for (pf_int i = 0; i < sim->pts->n_owned; i++) s->lambda[i] /= 4 * sim->safety * sim->safety;
 }
 
 /* Each body's velocity for its force op over a step of 1: a body that keeps history (sim/body.h)
@@ -103,15 +113,22 @@ static int evaluate(pf_sim *sim) {
   PF_CALL(velocities(sim));
   PF_CALL(pf_sim_body_forces(sim, 1.0));
   memcpy(s->f_body, p->f, sizeof(double) * (size_t)n3);
-  PF_CALL(pf_sim_interactions_force(sim, 0.0));
+  PF_CALL(pf_sim_interactions_force(sim, 0.0, s->f_own));
   memcpy(s->u_last, p->u, sizeof(double) * (size_t)n3);
   s->evaluations++;
   return 0;
 }
 
-/* The force from outside on component d: the reaction on a prescribed one, the load on a free one. */
+/* The force from outside on component d: the reaction on a prescribed one, the interactions' force
+ * on a free one. */
 static double applied(const pf_sim_solver *s, const pf_points *p, pf_int d) {
   return s->fixed[d] ? -p->f[d] : p->f[d] - s->f_body[d];
+}
+
+/* The same without the forces of the interactions that book their own work (a rigid surface's, a
+ * wall's): the force whose work the solver books. */
+static double loads(const pf_sim_solver *s, const pf_points *p, pf_int d) {
+  return s->fixed[d] ? -p->f[d] : p->f[d] - s->f_body[d] - s->f_own[d];
 }
 
 /* The iteration's sums: the residual, the reference force and the internal forces (squared
@@ -157,6 +174,18 @@ static void advance(pf_sim *sim, const double *q, int first) {
   }
 }
 
+/* Points that went through a constraint (a wall) go back onto it, their inward relaxation
+ * velocity dropped (pts->v carries it to the interactions). */
+static void project(pf_sim *sim) {
+  pf_sim_solver *s = &sim->solver;
+  pf_points *p = sim->pts;
+  const pf_int n3 = 3 * p->n_owned;
+  for (pf_int d = 0; d < n3; d++) p->v[d] = is_free(s, d) ? s->vel[d] : 0;
+  pf_sim_interactions_project(sim);
+  for (pf_int d = 0; d < n3; d++)
+    if (is_free(s, d)) s->vel[d] = p->v[d];
+}
+
 enum { STOP_GUARD = 1, STOP_SIGNAL = 2 }; /* why a relaxation stopped before equilibrium */
 
 static int not_converged(const pf_sim *sim, long it, double res) {
@@ -182,6 +211,7 @@ static int relax(pf_sim *sim, long *it, double *res, int *stop) {
     if (*stop || *res <= s->tolerance) return 0;
     if (*it == s->max_iterations) return not_converged(sim, *it, *res);
     advance(sim, q, *it == 0);
+    project(sim);
     PF_CALL(evaluate(sim));
     PF_CALL(measure(sim, q));
   }
@@ -244,12 +274,12 @@ static int begin(pf_sim *sim) {
   PF_CALL(scratch(s, p->n_owned));
   memset(s->fixed, 0, 3 * (size_t)p->n_owned);
   pf_sim_interactions_mark(sim, s->fixed);
-  PF_CALL(masses(sim));
+  PF_CALL(body_bounds(sim));
   for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_history(&sim->body[b], sim->pts, PF_HISTORY_COMMIT));
   memcpy(s->u_last, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
   memcpy(s->u0, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
   PF_CALL(evaluate(sim));
-  for (pf_int d = 0; d < 3 * p->n_owned; d++) s->g0[d] = applied(s, p, d);
+  for (pf_int d = 0; d < 3 * p->n_owned; d++) s->g0[d] = loads(s, p, d);
   return 0;
 }
 
@@ -273,7 +303,7 @@ static int finish(pf_sim *sim) {
   double w[PF_MAX_BODIES] = {0}, *inc = pf_points_field_get(p, PF_SOLVER_INCREMENT);
   PF_CALL(pf_sim_interactions_settled(sim, sim->dt, s->g0, s->u0));
   for (pf_int d = 0; d < 3 * p->n_owned; d++) {
-    w[p->body[d / 3]] += 0.5 * (s->g0[d] + applied(s, p, d)) * (p->u[d] - s->u0[d]);
+    w[p->body[d / 3]] += 0.5 * (s->g0[d] + loads(s, p, d)) * (p->u[d] - s->u0[d]);
     inc[d] = p->u[d] - s->u0[d];
     p->v[d] = 0;
   }
@@ -290,6 +320,7 @@ static int finish(pf_sim *sim) {
 static int abandon(pf_sim *sim, long it) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
+  pf_sim_interactions_place(sim, -sim->dt); /* (dt < 0: the surfaces go back) */
   for (pf_int d = 0; d < 3 * p->n_owned; d++) p->u[d] = s->u0[d], p->y[d] = p->X[d] + p->u[d];
   PF_CALL(evaluate(sim));
   PF_CALL(freeze_damage(sim, 0));
@@ -319,7 +350,9 @@ int pf_sim_solver_load_step(pf_sim *sim) {
   sim->step++;
   sim->t = (double)sim->step / (double)s->load_steps * sim->final_time;
   pf_sim_interactions_place(sim, sim->dt);
+  masses(sim);
   predict(sim);
+  project(sim);
   long it = 0, passes = 0;
   double res = 0;
   int stop = 0;

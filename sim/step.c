@@ -166,7 +166,7 @@ int pf_sim_body_forces(pf_sim *sim, double dt) {
 /* Forces at the current positions: the bodies', then the interactions'. */
 static int compute_forces(pf_sim *sim, double dt) {
   PF_CALL(pf_sim_body_forces(sim, dt));
-  return pf_sim_interactions_force(sim, dt);
+  return pf_sim_interactions_force(sim, dt, NULL);
 }
 
 /* One velocity-Verlet step; the interactions' hooks in their places (sim/interaction.h). */

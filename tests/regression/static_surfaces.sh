@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# Rigid surfaces under the quasi-static solver (sim/solver_relaxation.c; docs/theory/
+# quasi_static.md §8). Two decks, each checked against a closed form:
+#  - tests/data/static_wall_bar.yaml: an FE bar on a fixed wall pushed at its other end by a
+#    displacement, and an FE bar held at one end and pushed by a rigid plane (linear penalty law),
+#    in 4 load steps. The wall's reaction against E A d / L at each load step: 1e-3 (measured
+#    7.3e-5: the neo-Hookean response at strain 1e-4); the plane's force against the penalty
+#    springs in series with the bar, d / (L / (E A) + 1 / (n k)) = 0.8 E A d / L: 1e-3 (measured
+#    4.6e-5); the held end's reaction equal and opposite to the plane's within 1e-6; the ledger's
+#    energy error at the end within 1e-3 of the external work (measured 1.3e-6: both responses
+#    are linear in the load, for which the trapezoidal rule of the work is exact).
+#  - tests/data/static_hertz.yaml: a rigid sphere pressed into the PD block of the dynamic Hertz
+#    test (tests/verification/test_hertz.c) in 6 load steps. The force on the sphere against
+#    Hertz F = 4/3 E* sqrt(R) d^(3/2) (Johnson 1985, §4.2) at the load steps where the contact
+#    radius sqrt(R d) is at least 2 lattice spacings: within 10 %, the band of the dynamic test
+#    (measured -6.4 % at a = 2 h to +2.1 % at a = 3.5 h; the lattice's few contact points at the
+#    shallow end, the block's finite size W = 6.9 a at the deep end, as the dynamic test's
+#    +2.9 %); the sphere's force balanced by the base's reaction within 1e-3 (measured 6.4e-5:
+#    the tolerance 1e-6 of the residual); the energy error within twice the trapezoidal rule's
+#    own error on the Hertz curve over the same load steps (8e-3 of the work; measured 9.0e-3).
+#  - the same state digest on 1, 2 and 3 ranks for each deck (2 load steps);
+#  - no load (no boundary condition, the indenter at rest), friction on a rigid surface and
+#    contact pairs: a message naming the key and a non-zero exit.
+# usage: static_surfaces.sh PERIFEM SCRATCH   (from the tests/ folder)
+set -u
+exe=$1 scratch=$2 fail=0
+data=$(cd data && pwd)
+source common/mpi_env.sh
+rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch"
+for deck in static_wall_bar static_hertz; do
+  out=$("$exe" --quiet "$data/$deck.yaml" 2>&1) || { echo "FAIL: $deck: $out"; fail=1; }
+done
+"$PY" - static_wall_bar.h5 static_hertz.h5 <<'PYEOF' || fail=1
+import sys
+import h5py
+import numpy as np
+ok = True
+h = h5py.File(sys.argv[1], "r")
+E, A, L, d, T = 200e9, 1e-4, 0.1, 1e-5, 1e-3
+n, k = 4, 2e8
+s = h["time"][1:] / T
+wall = -h["floor_force_x"][1:] / (E * A * d / L * s)
+plate = h["plate_force_x"][1:] / (d * s / (L / (E * A) + 1 / (n * k)))
+held = np.abs(h["held_reaction_x"][1:] / h["plate_force_x"][1:] - 1).max()
+err = abs(h["energy_error"][-1]) / h["external_work"][-1]
+print("wall bar: reaction / (E A d/L) - 1 = %s" % np.array2string(wall - 1, precision=3))
+print("plane bar: force / (d / (L/EA + 1/(n k))) - 1 = %s, held / plane - 1 = %.2g" % (np.array2string(plate - 1, precision=3), held))
+print("bars: energy error %.3g of the external work %.6g J" % (err, h["external_work"][-1]))
+if not (np.abs(wall - 1) < 1e-3).all(): print("FAIL: the wall's reaction"); ok = False
+if not (np.abs(plate - 1) < 1e-3).all(): print("FAIL: the rigid plane's force"); ok = False
+if not held < 1e-6: print("FAIL: the held end does not balance the plane"); ok = False
+if not err < 1e-3: print("FAIL: the bars' energy balance"); ok = False
+if np.abs(h["kinetic_energy"][:]).max() != 0: print("FAIL: kinetic energy"); ok = False
+h = h5py.File(sys.argv[2], "r")
+E, nu, R, D, hs = 70e9, 0.25, 0.02, 0.6e-3, 1e-3
+Es = E / (1 - nu * nu)
+t = h["time"][1:]
+dep = D * t
+F = h["ball_force_z"][1:]  # the force of the points on the sphere, up
+hertz = 4.0 / 3.0 * Es * np.sqrt(R) * dep ** 1.5
+use = np.sqrt(R * dep) >= 2 * hs - 1e-12
+ratio = F / hertz
+print("hertz: a / h = %s" % np.array2string(np.sqrt(R * dep) / hs, precision=2))
+print("hertz: F / F_Hertz - 1 = %s (checked where a >= 2 h)" % np.array2string(ratio - 1, precision=4))
+if not (np.abs(ratio[use] - 1) < 0.10).all(): print("FAIL: the indenter's force is off Hertz by more than 10 %"); ok = False
+bal = np.abs(h["base_reaction_z"][1:] / F - 1).max()
+print("hertz: base reaction / indenter force - 1: %.2g" % bal)
+if not bal < 1e-3: print("FAIL: the base's reaction does not balance the indenter"); ok = False
+# the trapezoidal rule's own error on the Hertz curve F = c d^1.5 over the same load steps
+dd = np.concatenate(([0.0], dep))
+rule = sum((dd[j] ** 1.5 + dd[j + 1] ** 1.5) / 2 * (dd[j + 1] - dd[j]) for j in range(len(dep)))
+defect = rule / (dd[-1] ** 2.5 / 2.5) - 1
+err = abs(h["energy_error"][-1]) / h["external_work"][-1]
+print("hertz: energy error %.3g of the work %.6g J (the rule's defect on Hertz %.3g)" % (err, h["external_work"][-1], defect))
+if not err < 2 * defect: print("FAIL: the indenter's energy balance"); ok = False
+sys.exit(0 if ok else 1)
+PYEOF
+for deck in static_wall_bar static_hertz; do
+  digests=""
+  for np in 1 2 3; do
+    mkdir -p $deck$np
+    o=$(cd $deck$np && run $np "$exe" --quiet --set solver.load_steps=2 "$data/$deck.yaml" 2>&1) || { echo "FAIL: $deck on $np ranks: $o"; fail=1; }
+    digests="$digests $(digest_of "$o")"
+  done
+  set -- $digests
+  [ $# = 3 ] && [ "$1" = "$2" ] && [ "$1" = "$3" ] || { echo "FAIL: $deck: digests on 1, 2, 3 ranks:$digests"; fail=1; }
+  echo "$deck: digests on 1, 2, 3 ranks:$digests"
+done
+expect() { # expect STATUS PATTERN ARGS...: the run exits with STATUS, its output matches PATTERN
+  local want=$1 pattern=$2; shift 2
+  local msg rc
+  msg=$("$exe" "$@" 2>&1); rc=$?
+  [ $rc -eq "$want" ] && echo "$msg" | grep -q "$pattern" || { echo "FAIL: $*: exit $rc: $msg"; fail=1; }
+}
+sed -e '/^boundary_conditions:/,/^solver:/{/^solver:/!d}' -e '/velocity: \["0", "0", "-0.6e-3"\]/d' "$data/static_hertz.yaml" > still.yaml
+expect 2 "still.yaml:.*key 'type': a quasi_static solver needs a load" still.yaml
+sed 's/    law: linear/    law: linear\n    friction: 0.3/' "$data/static_hertz.yaml" > friction.yaml
+expect 2 "friction.yaml:.*key 'friction': a rigid surface's friction is not yet supported" friction.yaml
+cat "$data/static_hertz.yaml" > pairs.yaml
+printf 'contact:\n  pairs:\n    - {bodies: [block, block]}\n' >> pairs.yaml
+expect 2 "pairs.yaml:.*'contact.pairs' is not yet supported with the quasi_static solver" pairs.yaml
+exit $fail
