@@ -2,10 +2,10 @@
  * O_EXCL) next to each of its outputs, the Exodus file, the history and the checkpoint, holding
  * its host name and process id; a second run that would write one of them finds the lock and is
  * refused, naming the first (its process and host). The locks go when the run ends, on an error
- * and after a signal stopped it (pf_sim_destroy); a lock whose process has ended on this host (a
- * killed run) is taken over with a warning. Rank 0 takes and removes them and every rank returns
- * its verdict. */
-#define _XOPEN_SOURCE 700 /* gethostname, kill */
+ * and after a signal stopped it (pf_sim_destroy); a lock whose process has ended on this host, or
+ * ends within a few seconds (a killed run going down, a zombie), is taken over with a warning.
+ * Rank 0 takes and removes them and every rank returns its verdict. */
+#define _XOPEN_SOURCE 700 /* gethostname, kill, nanosleep */
 #include "sim/sim_impl.h"
 
 #include <errno.h>
@@ -14,6 +14,7 @@
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 /* The host and process id a lock file holds (pid 0 when it holds none). */
@@ -42,6 +43,31 @@ static int write_lock(const char *lock, const char *host, char *why, size_t len)
   return -1;
 }
 
+/* Whether process pid of this host has ended: gone, or a zombie nobody has reaped yet. */
+static int process_ended(long pid) {
+  if (kill((pid_t)pid, 0) != 0) return errno == ESRCH;
+  char path[64], stat[256] = "";
+  snprintf(path, sizeof path, "/proc/%ld/stat", pid);
+  FILE *f = fopen(path, "r");
+  if (!f) return 0;
+  const size_t n = fread(stat, 1, sizeof stat - 1, f);
+  fclose(f);
+  stat[n] = '\0';
+  const char *paren = strrchr(stat, ')'); /* "pid (name) state ..." */
+  return paren && (paren[2] == 'Z' || paren[2] == 'X');
+}
+
+/* Whether the holder has ended or ends within LOCK_WAIT_S seconds (a killed run's processes
+ * may still be going down when the next run, a restart, starts). */
+enum { LOCK_WAIT_S = 3 };
+static int holder_ends(long pid) {
+  for (int k = 0; k < 20 * LOCK_WAIT_S; k++) {
+    if (process_ended(pid)) return 1;
+    nanosleep(&(struct timespec){.tv_nsec = 50000000}, NULL);
+  }
+  return process_ended(pid);
+}
+
 /* 0: lock taken; else why (a message) not. */
 static int take(const char *lock, char *why, size_t len) {
   char host[256] = "", other[256];
@@ -51,7 +77,7 @@ static int take(const char *lock, char *why, size_t len) {
     const int st = write_lock(lock, host, why, len);
     if (st <= 0) return st;
     holder(lock, other, sizeof other, &pid);
-    if (attempt || pid <= 0 || strcmp(other, host) || !kill((pid_t)pid, 0) || errno != ESRCH) break;
+    if (attempt || pid <= 0 || strcmp(other, host) || !holder_ends(pid)) break;
     fprintf(stderr, "perifem warning: the lock file '%s' was left by process %ld on %s, which has ended: taken over\n",
             lock, pid, other);
     unlink(lock);

@@ -133,11 +133,13 @@ int pf_sim_checkpoint(pf_sim *sim) {
   return ierr;
 }
 
-/* Refuse a checkpoint written with a deck whose physics differs, naming the part. */
-static int check_deck(const pf_sim *sim, const pf_sim_scalars *saved, const pf_sim_scalars *now) {
+/* Refuse a checkpoint written with a deck whose physics differs, naming the part (first: a changed
+ * density would otherwise be reported as damaged masses). */
+static int check_deck(const pf_sim *sim, const double *saved) {
   for (int p = 0; p < NPARTS; p++) {
-    int k = NFIXED + 2 * p;
-    if (saved->value[k] == now->value[k] && saved->value[k + 1] == now->value[k + 1]) continue;
+    const uint64_t h = part_hash(sim->deck, physics_parts[p]);
+    const int k = NFIXED + 2 * p;
+    if (saved[k] == (double)(h >> 32) && saved[k + 1] == (double)(h & 0xffffffffu)) continue;
     PF_CHECK(0, PF_ERR_INPUT,
              "%s: '%s' differs from the deck the checkpoint %s was written with; a restart may change "
              "only output, restart, parallel, title and the run length (time.final_time/steps)",
@@ -165,6 +167,7 @@ int pf_sim_restore_points(pf_sim *sim, const pf_point_cloud *pc) {
   int ierr = pf_sim_bond_fields(sim, &rows);
   if (!ierr) ierr = pf_checkpoint_read(sim->opt.restart_from, &sim->pts, &rows, s->n, s->names, s->value, s->n,
                                        &sim->restart_format);
+  if (!ierr) ierr = check_deck(sim, s->value);
   if (!ierr) ierr = pf_sim_check_restart_geometry(sim, &s->value[at_geometry(sim)]);
   if (!ierr) ierr = pf_sim_check_restart_scalars(sim, s->value, &s->value[at_stable()]);
   if (!ierr) ierr = pf_sim_check_restart_bodies(sim);
@@ -211,15 +214,9 @@ static int restore_books(pf_sim *sim) {
   return ierr;
 }
 
-/* After the set-up: check the deck and take time and the books from the file. */
+/* After the set-up: take time and the books from the file. */
 int pf_sim_restore_state(pf_sim *sim) {
-  pf_sim_scalars now = {0}, *saved = &sim->restart_scalars;
-  PF_CALL(scalars_make(sim, 0, &now));
-  int ierr = scalars_fill(sim, 0, &now);
-  if (!ierr) ierr = check_deck(sim, saved, &now);
-  scalars_free(&now);
-  if (ierr) return ierr;
-  const double *v = saved->value;
+  const double *v = sim->restart_scalars.value;
   PF_CALL(pf_sim_check_restart_time(sim, v));
   PF_CALL(pf_sim_check_restart_fields(sim));
   if (sim->adaptive) sim->dt = v[2]; /* the step follows the elements: the last one taken */

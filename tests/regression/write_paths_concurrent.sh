@@ -3,8 +3,8 @@
 # of the same deck in the same folder, started while the first runs (on 1 and on 2 ranks), is
 # refused (exit 2, "another run (process <first's pid> on <host>)", on every rank), writes nothing
 # and leaves the first's files alone; the first, stopped by SIGTERM, ends with exit 0 and removes
-# its locks. A lock left by a process that has ended (a killed run) is taken over with a
-# warning; a lock held by a live process is not.
+# its locks. A lock left by a process that has ended (a killed run, a zombie) is taken over
+# with a warning; a lock held by a live process is not.
 # usage: write_paths_concurrent.sh PERIFEM SCRATCH   (from the tests/ folder)
 source common/write_paths_env.sh
 host=$(hostname)
@@ -37,6 +37,16 @@ out=$("$exe" --quiet short.yaml 2>&1) || { echo "$out"; echo "FAIL: a stale lock
 echo "$out" | grep -q "o.e.lock' was left by process $dead on $host, which has ended: taken over" ||
   { echo "$out"; echo "FAIL: no warning about the stale lock"; fail=1; }
 ls ./*.lock > /dev/null 2>&1 && { echo "FAIL: locks left after the run: $(ls ./*.lock)"; fail=1; }
+# a zombie (ended, never reaped: its parent does not wait) is ended too, as a killed MPI rank
+# can be for a while
+sh -c 'sleep 0.1 & exec sleep 60' & parent=$!
+sleep 0.5
+zombie=$(pgrep -P $parent)
+echo "$host $zombie" > o.e.lock
+out=$("$exe" --quiet short.yaml 2>&1) || { echo "$out"; echo "FAIL: a zombie's lock was not taken over"; fail=1; }
+echo "$out" | grep -q "o.e.lock' was left by process $zombie on $host, which has ended: taken over" ||
+  { echo "$out"; echo "FAIL: no warning about the zombie's lock"; fail=1; }
+kill $parent
 sleep 60 & live=$!
 echo "$host $live" > short.h5.lock
 refused short.yaml history_file "another run (process $live on $host)"
