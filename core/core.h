@@ -366,7 +366,8 @@ typedef struct {
   double *cell;  /* [n] edge of the cube cell of each point */
   int32_t *block; /* [n] block id from a point file (0 for lattices) */
   pf_int n;
-  int nsets;          /* named sets of the cloud's points (an Exodus discretization's node sets) */
+  int nsets;          /* named sets of the cloud's points (an Exodus discretization's node sets,
+                        a point file's node-set files) */
   pf_point_set *sets; /* [nsets] ids are indices into the cloud; body -1 */
 } pf_point_cloud;
 extern const pf_key pf_geometry_keys[];
@@ -384,6 +385,10 @@ int pf_lattice_fill(const pf_region *r, double h, const double origin[3], pf_poi
  * of edge about h tiling the shape, a point at each cell's centre with the cell's volume. */
 int pf_polar_fill(const pf_region *r, double h, pf_point_cloud *pc);
 int pf_point_file_read(const char *path, int peridigm, pf_point_cloud *pc);
+/* geometry.node_set_files (Peridigm's node-set text files) as sets of the point file's cloud
+ * (core/point_file_sets.c); after a block filter, keep the points whose new_index is >= 0. */
+int pf_point_file_sets(const pf_deck *d, const pf_node *geometry, pf_point_cloud *pc);
+void pf_point_file_sets_keep(pf_point_cloud *pc, const pf_int *new_index);
 /* Refuse two points of a cloud at one position (a bond of zero length), naming label. */
 int pf_point_cloud_check_distinct(const char *label, const pf_point_cloud *pc);
 /* Permutation that orders points along a Morton (Z-order) curve. */

@@ -41,6 +41,9 @@ const pf_key pf_geometry_keys[] = {
      "points_file, exodus: the file's length unit in metres (x, y, z times scale, volume times "
      "scale^3)", NULL},
     {"block", PF_KEY_INT, 0, NULL, "", "points_file: take only the points of this block", NULL},
+    {"node_set_files", PF_KEY_STRLIST, 0, NULL, "",
+     "points_file: Peridigm node-set text files (point numbers counting from 1 in the point file's order); "
+     "each is a node set named after its file without folder and extension, for regions {shape: node_set}", NULL},
     {"blocks", PF_KEY_STRLIST, 0, NULL, "",
      "exodus: take only these element blocks, by name or id (default: every block); each must hold "
      "SPHERE elements with a 'volume' attribute, HEX8 or TET4 elements", NULL},
@@ -266,17 +269,22 @@ static int cloud_from_file(const pf_deck *d, const pf_node *g, pf_point_cloud *p
     pc->cell[i] *= scale;
   }
   PF_CALL(pf_point_cloud_check_distinct(path, pc));
+  PF_CALL(pf_point_file_sets(d, g, pc));
   long block = -1;
   PF_CALL(pf_deck_int(d, g, "block", &block));
   if (block < 0) return 0;
-  pf_int k = 0;
+  pf_int k = 0, *new_index;
+  PF_MALLOC(new_index, pc->n);
   for (pf_int i = 0; i < pc->n; i++) {
+    new_index[i] = pc->block[i] == block ? k : -1;
     if (pc->block[i] != block) continue;
     memmove(&pc->X[3 * k], &pc->X[3 * i], 3 * sizeof(double));
     pc->vol[k] = pc->vol[i];
     pc->cell[k] = pc->cell[i];
     pc->block[k++] = pc->block[i];
   }
+  pf_point_file_sets_keep(pc, new_index);
+  free(new_index);
   pc->n = k;
   if (k == 0) return pf_deck_error(d, pf_node_get(g, "block"), "block", "no point of block %ld in '%s'", block, path);
   return 0;

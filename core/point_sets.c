@@ -65,12 +65,15 @@ int pf_point_sets_find(const pf_point_sets *t, const pf_deck *d, const pf_node *
                        const char *name, int side, int body, const pf_point_set **out) {
   *out = NULL;
   int found = 0, other = -1;
-  for (int k = 0; t && k < t->n; k++) {
-    const pf_point_set *s = &t->set[k];
-    if (s->side != side || strcmp(s->name, name) || (body >= 0 && s->body != body)) continue;
-    if (found++) other = s->body;
-    else *out = s;
-  }
+  /* with no body named, an empty set (a Peridigm node set on another block's points, read
+   * with each body's blocks) gives way to a set of the same name that holds points */
+  for (int pass = body >= 0; pass < 2 && !found; pass++)
+    for (int k = 0; t && k < t->n; k++) {
+      const pf_point_set *s = &t->set[k];
+      if (s->side != side || strcmp(s->name, name) || (body >= 0 && s->body != body) || (!pass && !s->n)) continue;
+      if (found++) other = s->body;
+      else *out = s;
+    }
   if (found == 1) return 0;
   char known[2048];
   known_sets(t, side, body, known, sizeof known);

@@ -69,6 +69,9 @@ static const pf_key body_keys[] = {
     {"damage", PF_KEY_MAP, 0, "law: none", "", "bond failure law", pf_pd_damage_key_rows},
     {"precracks", PF_KEY_LIST, 0, NULL, "", "planar cracks: bonds crossing them are not created", crack_keys},
     {"initial_velocity", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m/s", "expressions in x, y, z", NULL},
+    {"initial_velocity_set", PF_KEY_STRING, 0, NULL, "",
+     "the initial velocity on this node set of the body only (as Peridigm's Initial Velocity on a node set); "
+     "its other points start at rest", NULL},
     {"initial_displacement", PF_KEY_EXPR3, 0, "[0, 0, 0]", "m", "expressions in x, y, z; the stress follows it in hyperelastic and PD models (rate-form models start unstressed)", NULL},
     {"hourglass", PF_KEY_MAP, 0, "type: stiffness, coefficient: 0.05", "",
      "correspondence (material with a continuum model): zero-energy-mode control", pf_pd_hourglass_keys},

@@ -92,17 +92,27 @@ static int body_kind(const pf_deck *d, const pf_node *body, int b, const pf_body
   return pf_deck_validate(d, body, (*ops)->keys(), where);
 }
 
+/* The node set a body's initial velocity is limited to (initial_velocity_set), or NULL. */
+static int initial_set(pf_sim *sim, int b, const pf_node *body, const char *key, const pf_point_set **set) {
+  const pf_node *n = pf_node_get(body, "initial_velocity_set");
+  *set = NULL;
+  if (!n || strcmp(key, "initial_velocity")) return 0;
+  return pf_point_sets_find(&sim->sets, sim->deck, n, "initial_velocity_set", pf_node_text(n), 0, b, set);
+}
+
 /* initial_velocity or initial_displacement (key) of body b's owned points into v, or into u
  * (and y = X + u). */
 static int set_initial_field(pf_sim *sim, int b, const pf_node *body, const char *key) {
   if (!pf_node_get(body, key)) return 0;
+  const pf_point_set *set;
+  PF_CALL(initial_set(sim, b, body, key, &set));
   pf_expr *e[3];
   PF_CALL(pf_expr3_create(sim->deck, body, key, e));
   pf_points *p = sim->pts;
   const int disp = !strcmp(key, "initial_displacement");
   double *out = disp ? p->u : p->v;
   for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++)
-    for (int c = 0; c < 3; c++) { /* owned points only: an error here may be one rank's */
+    for (int c = 0; c < 3 && (!set || pf_point_set_has(set, p->gid[i])); c++) { /* owned points only: an error here may be one rank's */
       const double *x = &p->X[3 * i];
       out[3 * i + c] = pf_expr_eval(e[c], x[0], x[1], x[2], 0.0);
       if (disp) p->y[3 * i + c] = x[c] + out[3 * i + c];
