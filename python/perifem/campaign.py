@@ -117,8 +117,18 @@ class minimum(final):
 # ---- running ----
 def _run_replica(job):
     """Run one replica in this process: {index, folder, overrides, outputs: {name: value},
-    digest, steps}. job = (index, deck, folder, overrides, outputs, every, output)."""
+    digest, steps, error}; a replica that fails (perifem refuses a drawn value, an output
+    function raises) has error set to the message, its outputs nan and digest "".
+    job = (index, deck, folder, overrides, outputs, every, output)."""
     index, deck, folder, overrides, outputs, every, output = job
+    try:
+        return _simulate(index, deck, folder, overrides, outputs, every, output)
+    except Exception as e:  # the campaign goes on; the replica is reported as failed
+        return {"index": index, "folder": folder, "overrides": overrides, "outputs": dict.fromkeys(outputs, math.nan),
+                "digest": "", "steps": 0, "error": "%s: %s" % (type(e).__name__, e)}
+
+
+def _simulate(index, deck, folder, overrides, outputs, every, output):
     import perifem
     os.makedirs(folder, exist_ok=True)
     rows = []
@@ -140,7 +150,7 @@ def _run_replica(job):
         w.writerows([[repr(float(v)) for v in row] for row in table])
     values = {name: float(fn(history)) for name, fn in outputs.items()}
     return {"index": index, "folder": folder, "overrides": overrides, "outputs": values, "digest": digest,
-            "steps": steps}
+            "steps": steps, "error": None}
 
 
 def run(deck, replicas, scatter=None, seed=0, outputs=None, folder="campaign", workers=None, perturbation=None,
@@ -184,25 +194,35 @@ def run(deck, replicas, scatter=None, seed=0, outputs=None, folder="campaign", w
 
 class Result:
     """A campaign's replicas: .replicas (list of dicts: index, folder, overrides, outputs,
-    digest, steps), .values(name), .statistics(name), .report(), .write_csv(path),
-    .plot(name, path)."""
+    digest, steps, error), .failed, .values(name), .statistics(name), .report(),
+    .write_csv(path), .plot(name, path)."""
 
     def __init__(self, replicas, scattered, outputs):
         self.replicas = sorted(replicas, key=lambda r: r["index"])
         self.scattered = list(scattered)
         self.output_names = list(outputs)
 
-    def values(self, name):
-        """The replicas' values of an output, or of a scattered input key, as a numpy array."""
+    @property
+    def failed(self):
+        """The replicas that failed (their "error" says why)."""
+        return [r for r in self.replicas if r["error"]]
+
+    def values(self, name, finished=True):
+        """The replicas' values of an output, or of a scattered input key, as a numpy array: of
+        the finished replicas (finished=False: of all, nan for the failed ones' outputs)."""
+        rows = [r for r in self.replicas if not (finished and r["error"])]
         if name in self.output_names:
-            return np.array([r["outputs"][name] for r in self.replicas])
-        return np.array([float(r["overrides"][name]) for r in self.replicas])
+            return np.array([r["outputs"][name] for r in rows])
+        return np.array([float(r["overrides"][name]) for r in rows])
 
     def statistics(self, name):
+        """basis.summary of the finished replicas' values."""
         return basis.summary(self.values(name))
 
     def report(self):
-        lines = ["%-24s %5s %12s %12s %8s %12s %12s %12s %12s" % ("quantity", "n", "mean", "std", "CoV",
+        lines = ["%d replicas, %d failed" % (len(self.replicas), len(self.failed))]
+        lines += ["  replica %d: %s" % (r["index"], r["error"]) for r in self.failed]
+        lines += ["%-24s %5s %12s %12s %8s %12s %12s %12s %12s" % ("quantity", "n", "mean", "std", "CoV",
                                                                    "B normal", "A normal", "B Weibull", "A Weibull")]
         for name in self.scattered + self.output_names:
             s = self.statistics(name)
@@ -215,10 +235,10 @@ class Result:
         """One row a replica: index, the scattered inputs, the outputs, the state digest."""
         with open(path, "w", newline="") as f:
             w = csv.writer(f)
-            w.writerow(["replica"] + self.scattered + self.output_names + ["digest"])
+            w.writerow(["replica"] + self.scattered + self.output_names + ["digest", "error"])
             for r in self.replicas:
                 w.writerow([r["index"]] + [repr(float(r["overrides"][k])) for k in self.scattered]
-                           + [repr(r["outputs"][k]) for k in self.output_names] + [r["digest"]])
+                           + [repr(r["outputs"][k]) for k in self.output_names] + [r["digest"], r["error"] or ""])
 
     def plot(self, name, path):
         """A histogram of an output with its mean and basis values (matplotlib; returns False

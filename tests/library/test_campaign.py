@@ -8,7 +8,11 @@ python/examples/campaign_disk.py wrote example.csv (6 replicas, seed 3, s00 norm
     and 1 (values, outputs and digests);
   - the spread: with the same seed (the same normal deviates), s00's CoV 0.2 gives a standard
     deviation of the damage fraction more than twice that of CoV 0.02;
-  - the lattice perturbation (amplitude 0.05 h): each replica its own seed, digests all different.
+  - the lattice perturbation (amplitude 0.05 h): each replica its own seed, digests all different;
+  - the distributions: 2000 draws of each give back its parameters (the Weibull ones by
+    perifem.basis' fit);
+  - a replica whose drawn s00 is not positive fails alone (perifem refuses the value), the
+    statistics are those of the others.
 usage: python3 test_campaign.py DECK example.csv   (PYTHONPATH holds the package)"""
 import csv
 import os
@@ -16,7 +20,7 @@ import sys
 
 import numpy as np
 
-from perifem import campaign
+from perifem import basis, campaign
 
 deck, example = sys.argv[1], sys.argv[2]
 SMALL = {"bodies.disk.geometry.radius": 0.004, "time.final_time": 1.5e-5}
@@ -48,6 +52,26 @@ if __name__ == "__main__":
           "breaks fewer bonds (%d pairs)" % (np.round(damage, 4).tolist(), len(pairs)))
     check(all(os.path.isfile("campaign_disk/replica_%04d/history.csv" % i) for i in range(6)),
           "each replica has its folder and its history.csv")
+
+    draws = {name: np.array([p["x"] for p in campaign.plan(2000, {"x": spec}, seed=1)])
+             for name, spec in (("normal", ("normal", 5e-4, 5e-5)), ("lognormal", ("lognormal", -7.6, 0.1)),
+                                ("weibull", ("weibull", 12.0, 5e-4)), ("uniform", ("uniform", 1.0, 3.0)))}
+    shape, scale = basis.weibull_fit(draws["weibull"])
+    ln = np.log(draws["lognormal"])
+    check(abs(draws["normal"].mean() / 5e-4 - 1) < 0.01 and abs(draws["normal"].std() / 5e-5 - 1) < 0.05
+          and abs(ln.mean() / -7.6 - 1) < 0.001 and abs(ln.std() / 0.1 - 1) < 0.05
+          and abs(shape / 12 - 1) < 0.05 and abs(scale / 5e-4 - 1) < 0.01
+          and 1 <= draws["uniform"].min() and draws["uniform"].max() <= 3 and abs(draws["uniform"].mean() - 2) < 0.05,
+          "2000 draws: normal mean %.4g sd %.4g; lognormal ln mean %.4f sd %.4f; Weibull fit shape %.2f scale %.4g; "
+          "uniform in [%.3f, %.3f]" % (draws["normal"].mean(), draws["normal"].std(), ln.mean(), ln.std(), shape, scale,
+                                       draws["uniform"].min(), draws["uniform"].max()))
+
+    mixed = run("mixed", 3, {S00: ("uniform", -5e-4, 6e-4)}, seed=2)
+    negative = [i for i, p in enumerate(campaign.plan(3, {S00: ("uniform", -5e-4, 6e-4)}, seed=2)) if p[S00] <= 0]
+    check(negative and [r["index"] for r in mixed.failed] == negative and "must be positive" in mixed.failed[0]["error"]
+          and mixed.statistics("damage_fraction")["n"] == 3 - len(negative),
+          "a drawn s00 <= 0 (replicas %s) fails its replica only (\"%s\"); the others finish"
+          % (negative, mixed.failed[0]["error"][:60] if mixed.failed else ""))
 
     zero = run("zero", 3, {S00: ("fixed", 5e-4)}, seed=1)
     digests = {r["digest"] for r in zero.replicas}
