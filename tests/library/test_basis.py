@@ -56,7 +56,8 @@ else:
 # 2. the closed forms
 worst = max(max(abs(basis.k_factor_approx(n, basis.B_BASIS) / k[n][0] - 1),
                 abs(basis.k_factor_approx(n, basis.A_BASIS) / k[n][1] - 1)) for n in k if n >= 15)
-check(worst < 0.0025, "CMH-17-1G's closed-form k_B, k_A within 0.25 %% of k for n >= 15 (largest %.3f %%)" % (100 * worst))
+check(worst < 0.0025,
+      "CMH-17-1G's closed-form k_B, k_A within 0.25 %% of k for n >= 15 (largest %.3f %%)" % (100 * worst))
 
 # 3. STAT-17's basis values of one sample
 SAMPLE = [137.4438, 139.5395, 150.89, 141.4474, 141.8203, 151.8821, 143.9245, 132.9732, 136.6419, 138.1723,
@@ -87,14 +88,16 @@ kb, ka = k[n]
 m, sd = x.mean(axis=1), x.std(axis=1, ddof=1)
 for name, kk, p in (("B", kb, 0.10), ("A", ka, 0.01)):
     cover = float(np.mean(m - kk * sd < mu + sigma * basis.normal_quantile(p)))
-    check(abs(cover - 0.95) <= 0.015, "normal, n = %d: %s-basis below the population's %g %% point in %.2f %% of 2000 samples"
+    check(abs(cover - 0.95) <= 0.015,
+          "normal, n = %d: %s-basis below the population's %g %% point in %.2f %% of 2000 samples"
           % (n, name, 100 * p, 100 * cover))
 n, shape, scale = 15, 20.0, 100.0
 fits = [basis.weibull_fit(scale * rng.weibull(shape, n)) for _ in range(2000)]
 for name, p in (("B", 0.90), ("A", 0.99)):
     truth = scale * (-math.log(p)) ** (1 / shape)
     cover = float(np.mean([basis.weibull_basis_of_fit(a, b, n, p) < truth for a, b in fits]))
-    check(abs(cover - 0.95) <= 0.015, "Weibull, n = %d: %s-basis below the population's %g %% point in %.2f %% of 2000 samples"
+    check(abs(cover - 0.95) <= 0.015,
+          "Weibull, n = %d: %s-basis below the population's %g %% point in %.2f %% of 2000 samples"
           % (n, name, 100 * (1 - p), 100 * cover))
 
 # degenerate samples

@@ -77,22 +77,26 @@ if __name__ == "__main__":
     digests = {r["digest"] for r in zero.replicas}
     d = zero.statistics("damage_fraction")
     check(len(digests) == 1 and len({r["outputs"]["damage_fraction"] for r in zero.replicas}) == 1
-          and d["std"] == 0 and d["cov"] == 0, "zero scatter: one digest %s, damage CoV %g" % (sorted(digests), d["cov"]))
+          and d["std"] == 0 and d["cov"] == 0,
+          "zero scatter: one digest %s, damage CoV %g" % (sorted(digests), d["cov"]))
 
     again = run("again", 2, {S00: ("normal", 5e-4, 5e-5)}, seed=3)
     same = all(r["digest"] == rows[i]["digest"] and r["overrides"][S00] == s00[i]
-               and repr(r["outputs"]["damage_fraction"]) == rows[i]["damage_fraction"] for i, r in enumerate(again.replicas))
+               and repr(r["outputs"]["damage_fraction"]) == rows[i]["damage_fraction"]
+               for i, r in enumerate(again.replicas))
     check(same, "seed 3, 2 replicas: the example's replicas 0 and 1 again (digests %s)"
           % [r["digest"] for r in again.replicas])
 
     narrow = run("narrow", 4, {S00: ("normal", 5e-4, 1e-5)}, seed=5).statistics("damage_fraction")
     wide = run("wide", 4, {S00: ("normal", 5e-4, 1e-4)}, seed=5).statistics("damage_fraction")
-    check(wide["std"] > 2 * narrow["std"] > 0, "damage fraction's std %.4g for s00 CoV 0.2, %.4g for CoV 0.02 (ratio %.1f)"
+    check(wide["std"] > 2 * narrow["std"] > 0,
+          "damage fraction's std %.4g for s00 CoV 0.2, %.4g for CoV 0.02 (ratio %.1f)"
           % (wide["std"], narrow["std"], wide["std"] / narrow["std"] if narrow["std"] else float("inf")))
 
     shaken = run("perturbed", 2, {S00: ("fixed", 5e-4)}, seed=1, perturbation={"disk": 0.05})
     seeds = [r["overrides"]["bodies.disk.geometry.seed"] for r in shaken.replicas]
     shaken_digests = {r["digest"] for r in shaken.replicas}
     check(len(set(seeds)) == 2 and len(shaken_digests) == 2 and not shaken_digests & digests,
-          "lattice perturbation 0.05 h, seeds %s: digests %s, unlike the unperturbed run's" % (seeds, sorted(shaken_digests)))
+          "lattice perturbation 0.05 h, seeds %s: digests %s, unlike the unperturbed run's"
+          % (seeds, sorted(shaken_digests)))
     sys.exit(1 if failures else 0)
