@@ -18,6 +18,7 @@ import csv
 import math
 import multiprocessing
 import os
+import pickle
 
 import numpy as np
 
@@ -153,6 +154,16 @@ def _simulate(index, deck, folder, overrides, outputs, every, output):
             "steps": steps, "error": None}
 
 
+def _check_picklable(outputs):
+    """The worker processes get the output functions by name: a lambda or a nested function cannot go."""
+    for name, fn in outputs.items():
+        try:
+            pickle.dumps(fn)
+        except Exception as e:
+            raise TypeError("output %r: %r cannot be sent to the worker processes (%s); define the function at "
+                            "module level" % (name, fn, e)) from None
+
+
 def run(deck, replicas, scatter=None, seed=0, outputs=None, folder="campaign", workers=None, perturbation=None,
         overrides=None, every=1, output=False, threads=1):
     """Run replicas copies of deck and return a Result.
@@ -174,6 +185,7 @@ def run(deck, replicas, scatter=None, seed=0, outputs=None, folder="campaign", w
     workers      processes at once (default: the CPUs); threads OpenMP threads of each"""
     deck = os.path.abspath(deck)
     outputs = dict(outputs or {})
+    _check_picklable(outputs)
     jobs = []
     for i, values in enumerate(plan(replicas, scatter, seed, perturbation, overrides)):
         jobs.append((i, deck, os.path.abspath(os.path.join(folder, "replica_%04d" % i)), values, outputs, every,

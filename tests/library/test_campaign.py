@@ -12,7 +12,8 @@ python/examples/campaign_disk.py wrote example.csv (6 replicas, seed 3, s00 norm
   - the distributions: 2000 draws of each give back its parameters (the Weibull ones by
     perifem.basis' fit);
   - a replica whose drawn s00 is not positive fails alone (perifem refuses the value), the
-    statistics are those of the others.
+    statistics are those of the others; a lambda as an output (the workers cannot import it) is
+    refused before any replica starts.
 usage: python3 test_campaign.py DECK example.csv   (PYTHONPATH holds the package)"""
 import csv
 import os
@@ -72,6 +73,14 @@ if __name__ == "__main__":
           and mixed.statistics("damage_fraction")["n"] == 3 - len(negative),
           "a drawn s00 <= 0 (replicas %s) fails its replica only (\"%s\"); the others finish"
           % (negative, mixed.failed[0]["error"][:60] if mixed.failed else ""))
+
+    try:
+        campaign.run(deck, 2, outputs={"x": lambda history: 1.0}, folder="lambda")
+        refused = ""
+    except TypeError as e:
+        refused = str(e)
+    check("module level" in refused and not os.path.exists("lambda"),
+          "a lambda as an output function is refused before any replica starts")
 
     zero = run("zero", 3, {S00: ("fixed", 5e-4)}, seed=1)
     digests = {r["digest"] for r in zero.replicas}
