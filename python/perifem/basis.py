@@ -4,7 +4,7 @@ variation, and the B-basis (90 % of the population above it, with 95 % confidenc
 Weibull distribution, as the Composite Materials Handbook CMH-17-1G (Vol. 1, Ch. 8, §8.3.4 and
 §8.3.5) defines them. numpy and the standard library only (docs/library.md, "Campaigns").
 
-Normal:  basis = mean - k s,  k = t'_{conf}(n - 1, z_p sqrt(n)) / sqrt(n), the quantile of the
+Normal:  basis = mean - k s (lognormal: the same of ln x, back-transformed),  k = t'_{conf}(n - 1, z_p sqrt(n)) / sqrt(n), the quantile of the
          noncentral t distribution, computed here by quadrature and bisection (Owen 1968;
          Natrella 1963, Table A-7).
 Weibull: maximum-likelihood shape a and scale b; basis = q exp(-V / (a sqrt(n))),
@@ -153,6 +153,11 @@ def normal_basis(x, p=B_BASIS, conf=CONFIDENCE):
     return float(np.mean(x) - k_factor(x.size, p, conf) * np.std(x, ddof=1))
 
 
+def lognormal_basis(x, p=B_BASIS, conf=CONFIDENCE):
+    """The normal basis value of ln x, back-transformed (positive values)."""
+    return math.exp(normal_basis(np.log(np.asarray(x, dtype=float)), p, conf))
+
+
 def weibull_basis_of_fit(shape, scale, n, p=B_BASIS):
     """CMH-17-1G's Weibull basis value of a sample of n values whose ML fit is (shape, scale)."""
     if math.isinf(shape):
@@ -168,22 +173,22 @@ def weibull_basis(x, p=B_BASIS):
 
 
 def summary(x):
-    """{n, mean, std, cov, normal_B, normal_A, weibull_shape, weibull_scale, weibull_B, weibull_A}
-    of a sample (std with n - 1; cov = std / |mean|, nan at mean 0; Weibull entries nan unless
-    every value is positive)."""
+    """{n, mean, std, cov, normal_B, normal_A, lognormal_B, lognormal_A, weibull_shape,
+    weibull_scale, weibull_B, weibull_A} of a sample (std with n - 1; cov = std / |mean|, nan at
+    mean 0; lognormal and Weibull entries nan unless every value is positive)."""
     x = np.asarray(x, dtype=float)
     n = x.size
     mean = float(np.mean(x)) if n else math.nan
     std = float(np.std(x, ddof=1)) if n > 1 else math.nan
     out = {"n": n, "mean": mean, "std": std, "cov": std / abs(mean) if mean else math.nan}
-    nan4 = dict.fromkeys(("normal_B", "normal_A", "weibull_shape", "weibull_scale", "weibull_B", "weibull_A"),
-                         math.nan)
-    out.update(nan4)
+    out.update(dict.fromkeys(("normal_B", "normal_A", "lognormal_B", "lognormal_A", "weibull_shape", "weibull_scale",
+                              "weibull_B", "weibull_A"), math.nan))
     if n < 2:
         return out
     out["normal_B"] = mean - k_factor(n, B_BASIS) * std
     out["normal_A"] = mean - k_factor(n, A_BASIS) * std
     if np.all(x > 0):
+        out["lognormal_B"], out["lognormal_A"] = lognormal_basis(x, B_BASIS), lognormal_basis(x, A_BASIS)
         out["weibull_shape"], out["weibull_scale"] = weibull_fit(x)
         out["weibull_B"] = weibull_basis(x, B_BASIS)
         out["weibull_A"] = weibull_basis(x, A_BASIS)

@@ -5,7 +5,7 @@
      scipy's noncentral t quantile (Boost) within 1e-6 when scipy is there;
   2. CMH-17-1G's closed-form k approximations within 0.25 % of k for n >= 15;
   3. the B- and A-basis values STAT-17 (the handbook's program) gives for an 18-value sample,
-     normal and Weibull (quoted in cmstatr's test suite);
+     normal, lognormal and Weibull (quoted in cmstatr's test suite);
   4. the Weibull maximum-likelihood fit: the likelihood's gradient is 0 at the fit, and a large
      sample gives back the shape and scale it was drawn with;
   5. Monte Carlo: of 2000 samples (fixed seed) of a normal population (n = 10) and of a Weibull
@@ -64,6 +64,7 @@ SAMPLE = [137.4438, 139.5395, 150.89, 141.4474, 141.8203, 151.8821, 143.9245, 13
           148.7668, 143.283, 143.5429, 141.7023, 137.4732, 152.338, 144.1589, 128.5218]
 s = basis.summary(SAMPLE)
 for key, published, tol in (("normal_B", 129.287, 0.0005), ("normal_A", 120.336, 0.0005),
+                            ("lognormal_B", 129.664, 0.0005), ("lognormal_A", 121.710, 0.0005),
                             ("weibull_B", 125.441, 0.00001), ("weibull_A", 109.150, 0.00001)):
     check(abs(s[key] / published - 1) <= tol, "%s of the 18-value sample %.4f, STAT-17 %.3f (relative tolerance %g)"
           % (key, s[key], published, tol))
@@ -102,6 +103,7 @@ for name, p in (("B", 0.90), ("A", 0.99)):
 
 # degenerate samples
 s = basis.summary([3.0, 3.0, 3.0])
-check(s["std"] == 0 and s["cov"] == 0 and s["normal_B"] == 3 and s["weibull_B"] == 3,
+check(s["std"] == 0 and s["cov"] == 0 and s["normal_B"] == 3 and abs(s["lognormal_B"] - 3) < 1e-12
+      and s["weibull_B"] == 3,
       "equal values: std 0, CoV 0, every basis value the value")
 sys.exit(1 if failures else 0)
