@@ -234,12 +234,14 @@ class Result:
     def report(self):
         lines = ["%d replicas, %d failed" % (len(self.replicas), len(self.failed))]
         lines += ["  replica %d: %s" % (r["index"], r["error"]) for r in self.failed]
-        lines += ["%-24s %5s %12s %12s %8s %12s %12s %12s %12s" % ("quantity", "n", "mean", "std", "CoV",
-                                                                   "B normal", "A normal", "B Weibull", "A Weibull")]
-        for name in self.scattered + self.output_names:
+        names = self.scattered + self.output_names
+        width = max([len("quantity")] + [len(name) for name in names])
+        lines += ["%-*s %5s %12s %12s %8s %12s %12s %12s %12s" % (width, "quantity", "n", "mean", "std", "CoV",
+                                                                  "B normal", "A normal", "B Weibull", "A Weibull")]
+        for name in names:
             s = self.statistics(name)
-            lines.append("%-24s %5d %12.5g %12.5g %8.4f %12.5g %12.5g %12.5g %12.5g"
-                         % (name[-24:], s["n"], s["mean"], s["std"], s["cov"], s["normal_B"], s["normal_A"],
+            lines.append("%-*s %5d %12.5g %12.5g %8.4f %12.5g %12.5g %12.5g %12.5g"
+                         % (width, name, s["n"], s["mean"], s["std"], s["cov"], s["normal_B"], s["normal_A"],
                             s["weibull_B"], s["weibull_A"]))
         return "\n".join(lines)
 
