@@ -2,9 +2,9 @@
 # Every deck the documentation shows is a deck perifem accepts, and every command line of
 # README.md and docs/user_guide.md that calls perifem or a script in scripts/ is exercised.
 #
-# Decks: every ```yaml block of README.md, docs/*.md, docs/examples/*.md and docs/theory/*.md
-# is checked with `perifem --check` (validates the deck and builds the model, runs nothing),
-# which must exit 0. A block is one of:
+# Decks: every ```yaml (or ```yml) block of README.md, docs/*.md, docs/examples/*.md and
+# docs/theory/*.md, at any indentation, is checked with `perifem --check` (which validates the
+# deck and builds the model, and runs nothing): it must exit 0. A block is one of:
 #  - a whole deck: a mapping with `bodies`, `time` and `materials` (or `include`). It is checked
 #    as if it were a deck in inputs/ (so `../meshes/...` is found as from a shipped deck);
 #  - a fragment, marked by an HTML comment on the line before the block (blank lines between
@@ -24,14 +24,15 @@
 #    whole decks), before any deck is checked; it is checked itself when it is a whole deck.
 # A yaml block that is none of these fails: nothing is skipped silently.
 #
-# Commands: each line of a ```sh block of README.md and docs/user_guide.md that calls
-# build/perifem, perifem or scripts/... must be in the table COMMANDS below, which says how it is
-# exercised: `check` runs it with --check added (a run's deck validated, cheaply), `help` runs it
-# with --help, `run` runs it as it is (from the top folder, in a scratch copy where it writes;
-# a perifem run must end with `health: ok` and print no warning; commands run in page order),
-# `test NAME` names the test that runs it (which must exist), `ci` a mode of scripts/setup.sh
-# (the CI, .ci/run, runs `setup.sh --test`: the same installation and build). A line not in the
-# table fails.
+# Commands: each command of a ```sh (```bash, ```shell) block of README.md and
+# docs/user_guide.md that calls build/perifem, perifem or scripts/... (a line; one ending in a
+# backslash goes on on the next) must be in the table COMMANDS below, which says how it is
+# exercised: `check` runs it with --check added (a run's deck validated, cheaply); `help` runs
+# the script with --help; `run` runs it as it is, from the top folder of the scratch tree (a
+# perifem run must end with `health: ok` and print no warning; commands run in page order);
+# `test NAME` names the test that runs it (which must exist); `ci` is a mode of
+# scripts/setup.sh (the CI, .ci/run, runs `setup.sh --test`: the same installation and build).
+# A command not in the table fails.
 # usage: docs_snippets.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$(realpath "$1") scratch=$2 fail=0
@@ -67,19 +68,21 @@ def blocks(path):
     lines = open(path, encoding="utf-8").read().split("\n")
     i = 0
     while i < len(lines):
-        m = re.match(r"^```(\w*)\s*$", lines[i])
+        m = re.match(r"^(\s*)```(\w*)\s*$", lines[i])
         if not m:
             i += 1
             continue
-        lang, start = m.group(1), i
+        indent, lang, start = len(m.group(1)), m.group(2).lower(), i
+        lang = "yaml" if lang == "yml" else lang
         j = i + 1
-        while j < len(lines) and not re.match(r"^```\s*$", lines[j]):
+        while j < len(lines) and not re.match(r"^\s*```\s*$", lines[j]):
             j += 1
         k = start - 1
         while k >= 0 and not lines[k].strip():
             k -= 1
-        mk = marker.match(lines[k]) if k >= 0 else None
-        yield start + 1, lang, "\n".join(lines[start + 1:j]) + "\n", mk.group(1) if mk else None
+        mk = marker.match(lines[k].strip()) if k >= 0 else None
+        text = "\n".join(l[indent:] for l in lines[start + 1:j]) + "\n"
+        yield start + 1, lang, text, mk.group(1) if mk else None
         i = j + 1
 
 def key_of(node):
@@ -236,13 +239,18 @@ declare -A COMMANDS=(
 import os, re, sys
 top = sys.argv[1]
 for rel in ("README.md", "docs/user_guide.md"):
-    inside = False
+    inside, pending = False, ""
     for n, line in enumerate(open(os.path.join(top, rel), encoding="utf-8"), 1):
-        if re.match(r"^```sh\s*$", line):
+        if re.match(r"^\s*```(sh|bash|shell)\s*$", line):
             inside = True
-        elif re.match(r"^```", line):
+        elif re.match(r"^\s*```", line):
             inside = False
         elif inside:
+            if pending:
+                line, pending = pending + " " + line.strip(), ""
+            if line.rstrip("\n").endswith("\\"):
+                pending = line.rstrip("\n")[:-1].strip()
+                continue
             cmd = re.sub(r"\s+#.*$", "", line.rstrip("\n")).strip()
             if re.search(r"(^|[\s/])perifem(\s|$)|scripts/", cmd):
                 print(f"{rel}:{n}\t{cmd}")
