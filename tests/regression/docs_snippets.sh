@@ -4,7 +4,8 @@
 #
 # Decks: every ```yaml (or ```yml) block of README.md, docs/*.md, docs/examples/*.md and
 # docs/theory/*.md, at any indentation, is checked with `perifem --check` (which validates the
-# deck and builds the model, and runs nothing): it must exit 0. A block is one of:
+# deck and builds the model, and runs nothing): it must exit 0 and print no warning. A block is
+# one of:
 #  - a whole deck: a mapping with `bodies`, `time` and `materials` (or `include`). It is checked
 #    as if it were a deck in inputs/ (so `../meshes/...` is found as from a shipped deck);
 #  - a fragment, marked by an HTML comment on the line before the block (blank lines between
@@ -218,6 +219,8 @@ while IFS=$'\t' read -r deck where; do
   if [ $rc -ne 0 ]; then
     bad "$where: perifem --check exited $rc (deck $deck):"
     sed 's/^/  /' "$scratch/check_$n.log" | head -20
+  elif grep -q 'warning' "$scratch/check_$n.log"; then
+    bad "$where: perifem --check warns (deck $deck): $(grep -m1 warning "$scratch/check_$n.log")"
   fi
 done < "$scratch/decks.tsv"
 
