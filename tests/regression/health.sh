@@ -8,8 +8,8 @@
 #     at t = 0, the energy error (1 % and 5 %) and the box's hourglass energy; the summary counts
 #     them; with --strict it exits 1 at t = 0 with the interpenetration as the error, and no
 #     state digest;
-#  3. the user guide's minimal deck (taken from docs/user_guide.md) at 4 m/s instead of 20 m/s
-#     breaks some bonds (12 %) and ends between 1 % and 5 % of energy error (2.1 %; at 2 m/s it
+#  3. the user guide's unhealthy deck (taken from docs/user_guide.md, "Run health") at 4 m/s
+#     instead of 20 m/s breaks some bonds (12 %) and ends between 1 % and 5 % of energy error (2.1 %; at 2 m/s it
 #     ended at 0.4 % once failures were booked at mid-step): exactly the 1 % warning;
 #     the deck as the guide prints it passes 5 %: both energy warnings;
 #  4. on 2 ranks case 2 gives each warning once (not once per rank), the same summary as on one
@@ -48,11 +48,11 @@ has strict.log "perifem error: bodies 'box' and 'block' interpenetrate at t = 0.
 has strict.log "stopped by --strict"
 grep -q "state digest:" strict.log && bad "--strict: the stopped run printed a state digest"
 
-# 3. the user guide's minimal deck: at 4 m/s one energy warning, as printed two
-awk '/^A minimal deck:/ {on = 1; next} on && /^```yaml/ {copy = 1; next} copy && /^```/ {exit} copy' \
+# 3. the user guide's unhealthy deck: at 4 m/s one energy warning, as printed two
+awk '/^A run to see the monitor at work:/ {on = 1; next} on && /^```yaml/ {copy = 1; next} copy && /^```/ {exit} copy' \
   "$here/../docs/user_guide.md" > guide.yaml
 grep -q "initial_velocity: \[\"0\", \"0\", \"z > 0.0015 ? -20 : 0\"\]" guide.yaml ||
-  bad "docs/user_guide.md: the minimal deck changed; update this test ($(wc -l < guide.yaml) lines read)"
+  bad "docs/user_guide.md: the unhealthy deck of \"Run health\" changed; update this test ($(wc -l < guide.yaml) lines read)"
 sed 's/? -20 : 0/? -4 : 0/; s/final_time: 2.0e-6/final_time: 4.0e-6/' guide.yaml > slow.yaml
 printf 'output: {history_interval: 2}\n' >> slow.yaml
 "$exe" --output-dir o3 slow.yaml > slow.log 2>&1 || bad "minimal deck at 4 m/s: exit $?"
