@@ -46,7 +46,7 @@ def read_xml(path):
                 out[name] = value
         return out
     root = ET.parse(path).getroot()
-    return params(root) if root.get("name") != "Peridigm" else params(root)
+    return params(root)
 
 
 def read_deck(path):

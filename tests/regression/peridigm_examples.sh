@@ -15,6 +15,7 @@
 #    and the kinetic energy is 1/2 rho v^2 times the sphere's tetrahedra's volumes computed here
 #    from the Exodus file (1e-12), which are a 5 mm sphere's to 3 % (the faceted surface lies
 #    inside the sphere: 2.3 % less).
+# The same wave_in_bar deck as an XML parameter list translates to the same perifem deck.
 # And the translator's refusals: an unknown material model, two solvers, an undefined node set
 # (exit 2, naming the key, nothing written), the input named as the output; perifem's
 # node_set_files: a point number beyond the point file, and not a number (exit 2, file:line).
@@ -31,6 +32,27 @@ for e in wave_in_bar fragmenting_cylinder disk_impact; do
   $translate $e/$e.yaml $e/perifem.yaml 2> $e/left_out.txt || { cat $e/left_out.txt; echo "FAIL: $e not translated"; fail=1; }
   grep -q "left out: .*Output Variables" $e/left_out.txt || { echo "FAIL: $e: the output variables left out are not named"; fail=1; }
 done
+
+# the XML parameter list of the same deck (written here from the YAML, as Peridigm's
+# ParameterList: doubles, ints and strings typed) translates to the same perifem deck
+"$PY" - wave_in_bar/wave_in_bar.yaml wave_in_bar/wave_in_bar.xml <<'EOF'
+import sys, yaml
+from xml.sax.saxutils import quoteattr
+def plist(name, d, pad):
+    out = [f'{pad}<ParameterList name={quoteattr(name)}>']
+    for k, v in d.items():
+        if isinstance(v, dict):
+            out += plist(k, v, pad + "  ")
+            continue
+        t = "bool" if isinstance(v, bool) else "int" if isinstance(v, int) else "double" if isinstance(v, float) else "string"
+        out.append(f'{pad}  <Parameter name={quoteattr(k)} type="{t}" value={quoteattr(str(v).lower() if t == "bool" else str(v))}/>')
+    return out + [f"{pad}</ParameterList>"]
+d = yaml.safe_load(open(sys.argv[1]))["Peridigm"]
+open(sys.argv[2], "w").write("\n".join(plist("Peridigm", d, "")) + "\n")
+EOF
+$translate wave_in_bar/wave_in_bar.xml wave_in_bar/from_xml.yaml 2> /dev/null &&
+  diff <(sed 1d wave_in_bar/perifem.yaml) <(sed 1d wave_in_bar/from_xml.yaml) ||
+  { echo "FAIL: the XML parameter list translates to another deck"; fail=1; }
 
 # wave_in_bar, whole, on 1 and 2 ranks
 (cd wave_in_bar && run 1 "$exe" --quiet --set output.interval=0 --set output.history_interval=1 perifem.yaml > run1.log 2>&1 &&
