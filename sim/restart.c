@@ -133,8 +133,9 @@ int pf_sim_checkpoint(pf_sim *sim) {
   return ierr;
 }
 
-/* Refuse a checkpoint written with a deck whose physics differs, naming the part (first: a changed
- * density would otherwise be reported as damaged masses). */
+/* Refuse a checkpoint written with a deck whose physics differs, naming the part: after the
+ * geometry checks (which name what moved), before the masses are checked (a changed density
+ * would otherwise be reported as damaged masses). */
 static int check_deck(const pf_sim *sim, const double *saved) {
   for (int p = 0; p < NPARTS; p++) {
     const uint64_t h = part_hash(sim->deck, physics_parts[p]);
@@ -167,13 +168,13 @@ int pf_sim_restore_points(pf_sim *sim, const pf_point_cloud *pc) {
   int ierr = pf_sim_bond_fields(sim, &rows);
   if (!ierr) ierr = pf_checkpoint_read(sim->opt.restart_from, &sim->pts, &rows, s->n, s->names, s->value, s->n,
                                        &sim->restart_format);
-  if (!ierr) ierr = check_deck(sim, s->value);
   if (!ierr) ierr = pf_sim_check_restart_geometry(sim, &s->value[at_geometry(sim)]);
   if (!ierr) ierr = pf_sim_check_restart_scalars(sim, s->value, &s->value[at_stable()]);
   if (!ierr) ierr = pf_sim_check_restart_bodies(sim);
   if (!ierr) body_gids(sim);
   if (!ierr) ierr = pf_sim_check_restart_gids(sim);
   if (!ierr) ierr = pf_sim_check_restart_reference(sim, pc);
+  if (!ierr) ierr = check_deck(sim, s->value); /* (the geometry named first; then the deck, before the masses) */
   sim->restart_nfields = sim->pts ? sim->pts->nfields : 0;
   if (!ierr) ierr = pf_sim_settle(sim, &rows, 0);
   pf_bond_rows_free(&rows);
