@@ -90,8 +90,13 @@ static void print_output(const pf_sim *sim, double points, double bonds, double 
     if (sim->pts->fields[k].flags & PF_FIELD_RESTART) keep += sim->pts->fields[k].ncomp;
   }
   const long n = sim->nsteps, every = sim->output_interval, hevery = sim->history_interval;
-  const double frames = every > 0 ? 1 + ceil((double)n / (double)every) : 2;
-  const double rows = hevery > 0 ? 1 + ceil((double)n / (double)hevery) : 2;
+  const double span = isfinite(sim->final_time) ? sim->final_time : (double)n * sim->dt; /* (by time: of the run) */
+  const double frames = sim->output_period > 0 ? 1 + ceil(span / sim->output_period - 1e-9)
+                        : every > 0            ? 1 + ceil((double)n / (double)every)
+                                               : 2;
+  const double rows = sim->history_period > 0 ? 1 + ceil(span / sim->history_period - 1e-9)
+                      : hevery > 0            ? 1 + ceil((double)n / (double)hevery)
+                                              : 2;
   pf_sim_history_row g = {0};
   const double columns = pf_sim_globals_init(sim, &g) ? 0 : g.n + 2;
   pf_sim_globals_free(&g);
