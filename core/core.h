@@ -115,6 +115,7 @@ enum pf_field_flags {
   PF_FIELD_GHOST = 1,   /* exchanged with ghosts */
   PF_FIELD_RESTART = 2, /* written to restart files */
   PF_FIELD_OUTPUT = 4,  /* written to Exodus output */
+  PF_FIELD_CONSTANT = 8, /* set up once and never changed in a run: an output field written once */
 };
 
 #define PF_MAX_FIELDS 32
