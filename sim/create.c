@@ -34,7 +34,8 @@ static const pf_key output_keys[] = {
     {"history_frames", PF_KEY_INT, 0, NULL, "", "history rows over the run after the first, as frames", NULL},
     {"fields", PF_KEY_STRLIST, 0, "all", "",
      "the nodal variables of the Exodus file: displacement, velocity, force and any of the output fields "
-     "(damage, stress, ...; an unknown name is an error listing the known ones)", NULL},
+     "(damage, stress, ...; an unknown name is an error listing the known ones); horizon, region and "
+     "blending_weight, constant in a run, are written once as nodal attributes", NULL},
     {"precision", PF_KEY_STRING, 0, "double", "", "double | single: the Exodus file's values in 8 or 4 bytes", NULL},
     {"compression", PF_KEY_INT, 0, "0", "",
      "0 (none) or 1-9: the Exodus file written as netCDF-4 and deflated at that level", NULL},
