@@ -418,7 +418,8 @@ static int field_shape(const h5io *io, const char *full, int *ncomp, int *flags)
   int ok = d >= 0 && !int_attr(io, d, "ncomp", ncomp, 0) && !int_attr(io, d, "flags", flags, 0);
   if (d >= 0) H5Dclose(d);
   char msg[512] = "";
-  ok = ok && *ncomp >= 1 && *ncomp <= 64 && *flags >= 0 && *flags <= 7;
+  const int known = PF_FIELD_GHOST | PF_FIELD_RESTART | PF_FIELD_OUTPUT | PF_FIELD_CONSTANT;
+  ok = ok && *ncomp >= 1 && *ncomp <= 64 && *flags >= 0 && (*flags & ~known) == 0;
   if (!ok) snprintf(msg, sizeof msg, "checkpoint %s: dataset %s: attributes ncomp %d, flags %d missing or out of "
                     "range: the file is damaged", io->path, full, *ncomp, *flags);
   PF_AGREE(ok, PF_ERR_INPUT, msg);

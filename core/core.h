@@ -115,6 +115,7 @@ enum pf_field_flags {
   PF_FIELD_GHOST = 1,   /* exchanged with ghosts */
   PF_FIELD_RESTART = 2, /* written to restart files */
   PF_FIELD_OUTPUT = 4,  /* written to Exodus output */
+  PF_FIELD_CONSTANT = 8, /* set up once and never changed in a run: an output field written once */
 };
 
 #define PF_MAX_FIELDS 32
@@ -675,7 +676,8 @@ typedef struct {
  * (body_start has nbodies + 1 entries from 0 to n_owned: points are grouped by body, body b
  * owning [body_start[b], body_start[b+1])), nodal variables displacement_{x,y,z},
  * velocity_{x,y,z}, force_{x,y,z} and every field flagged PF_FIELD_OUTPUT (a field with ncomp 3
- * gets _x/_y/_z, ncomp 6 _xx/_yy/_zz/_xy/_yz/_zx), and global variables named by global_names;
+ * gets _x/_y/_z, ncomp 6 _xx/_yy/_zz/_xy/_yz/_zx; one also flagged PF_FIELD_CONSTANT is a nodal
+ * attribute instead, written with the first time step), and global variables named by global_names;
  * o->prov (or NULL) gives the title, a QA record (code, version, date, time) and the info records
  * (its lines, folded at 80 characters). */
 int pf_exodus_create(const char *path, const pf_points *pts, int nbodies,

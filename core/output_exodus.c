@@ -8,7 +8,11 @@
  * Voigt order xx, yy, zz, yz, xz, xy): name_{xx,yy,zz,xy,yz,zx} in that order, the suffixes and
  * order by which ParaView's Exodus readers join six variables into one symmetric tensor; else
  * name_0, name_1, ...),
- * and global variables. Each pf_exodus_write appends one time step and calls ex_update. */
+ * and global variables. An output field flagged PF_FIELD_CONSTANT (horizon, region, blending
+ * weight: set at the set-up, never changed) is no nodal variable but a nodal attribute of the
+ * same name, written once with the first time step: not repeated in every frame, and read by
+ * ParaView's IOSS reader as a point array at every time. Each pf_exodus_write appends one time
+ * step and calls ex_update. */
 #include "core/core.h"
 
 #include <exodusII.h>
@@ -28,6 +32,8 @@ struct pf_exodus {
   int nglobals;   /* global variables */
   int *var_field; /* [nvars]: field index in pts->fields, or -1 - b for built-in b (u, v, f) */
   int *var_comp;  /* [nvars]: component in that field */
+  int natts;      /* nodal attributes: the constant output fields' components */
+  int *att_field, *att_comp;
   double *buf;    /* [n] one component of one variable */
 };
 
@@ -79,27 +85,37 @@ static int selected(const pf_exodus_options *o, const char *name) {
   return 0;
 }
 
-static void add_source(pf_exodus *ex, int field, int ncomp) {
+static int field_is_constant(const pf_field *fld) { return (fld->flags & PF_FIELD_CONSTANT) != 0; }
+
+/* Append a field's components to a list of (source, component): *n grows by ncomp. */
+static void add_source(int *field_of, int *comp_of, int *n, int field, int ncomp) {
   static const int tensor_order[6] = {0, 1, 2, 5, 3, 4}; /* xx yy zz xy yz zx from Voigt */
-  for (int c = 0; c < ncomp; c++, ex->nvars++) {
-    ex->var_field[ex->nvars] = field;
-    ex->var_comp[ex->nvars] = ncomp == 6 ? tensor_order[c] : c;
+  for (int c = 0; c < ncomp; c++, (*n)++) {
+    field_of[*n] = field;
+    comp_of[*n] = ncomp == 6 ? tensor_order[c] : c;
   }
 }
 
-/* The nodal variables: the selected built-ins, then the selected output fields; for each, its
- * source (a field index, or -1 - b for built-in b) and component. */
+/* The nodal variables: the selected built-ins, then the selected output fields that change; for
+ * each, its source (a field index, or -1 - b for built-in b) and component. The selected
+ * constant fields are the nodal attributes. */
 static int plan_variables(pf_exodus *ex, const pf_points *pts, const pf_exodus_options *o) {
   int max = 9;
   for (int k = 0; k < pts->nfields; k++)
     if (field_is_output(&pts->fields[k])) max += pts->fields[k].ncomp;
   PF_MALLOC(ex->var_field, max);
   PF_MALLOC(ex->var_comp, max);
-  ex->nvars = 0;
+  PF_MALLOC(ex->att_field, max);
+  PF_MALLOC(ex->att_comp, max);
+  ex->nvars = ex->natts = 0;
   for (int b = 0; b < 3; b++)
-    if (selected(o, builtin_name[b])) add_source(ex, -1 - b, 3);
-  for (int k = 0; k < pts->nfields; k++)
-    if (field_is_output(&pts->fields[k]) && selected(o, pts->fields[k].name)) add_source(ex, k, pts->fields[k].ncomp);
+    if (selected(o, builtin_name[b])) add_source(ex->var_field, ex->var_comp, &ex->nvars, -1 - b, 3);
+  for (int k = 0; k < pts->nfields; k++) {
+    const pf_field *f = &pts->fields[k];
+    if (!field_is_output(f) || !selected(o, f->name)) continue;
+    if (field_is_constant(f)) add_source(ex->att_field, ex->att_comp, &ex->natts, k, f->ncomp);
+    else add_source(ex->var_field, ex->var_comp, &ex->nvars, k, f->ncomp);
+  }
   return PF_SUCCESS;
 }
 
@@ -115,25 +131,36 @@ static void variable_name(const char *base, int ncomp, int comp, char *out) {
     snprintf(out, PF_EX_NAME_LEN + 1, "%s_%d", base, comp);
 }
 
-static int put_variable_names(pf_exodus *ex, const pf_points *pts) {
+/* The nodal variables' names (attributes: 0) or the nodal attributes' (1). */
+static int put_variable_names(pf_exodus *ex, const pf_points *pts, int attributes) {
+  const int n = attributes ? ex->natts : ex->nvars;
+  const int *field_of = attributes ? ex->att_field : ex->var_field, *comp_of = attributes ? ex->att_comp : ex->var_comp;
+  if (n == 0) return PF_SUCCESS;
   char(*store)[PF_EX_NAME_LEN + 1] = NULL;
   char **names = NULL;
-  PF_MALLOC(store, ex->nvars);
-  memset(store, 0, sizeof(*store) * (size_t)ex->nvars); /* (the file takes each name's whole buffer) */
-  names = calloc((size_t)ex->nvars, sizeof(*names));
+  PF_MALLOC(store, n);
+  memset(store, 0, sizeof(*store) * (size_t)n); /* (the file takes each name's whole buffer) */
+  names = calloc((size_t)n, sizeof(*names));
   if (!names) {
     PF_FREE(store);
-    return pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__,
-                          "out of memory for %d Exodus variable names", ex->nvars);
+    return pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory for %d Exodus variable names", n);
   }
-  for (int j = 0; j < ex->nvars; j++) {
-    const int k = ex->var_field[j];
+  for (int j = 0; j < n; j++) {
+    const int k = field_of[j];
     names[j] = store[j];
-    if (k < 0) variable_name(builtin_name[-1 - k], 3, ex->var_comp[j], store[j]);
-    else variable_name(pts->fields[k].name, pts->fields[k].ncomp, ex->var_comp[j], store[j]);
+    if (k < 0) variable_name(builtin_name[-1 - k], 3, comp_of[j], store[j]);
+    else variable_name(pts->fields[k].name, pts->fields[k].ncomp, comp_of[j], store[j]);
   }
-  int st = ex_put_variable_param(ex->exoid, EX_NODAL, ex->nvars);
-  if (st >= 0) st = ex_put_variable_names(ex->exoid, EX_NODAL, ex->nvars, names);
+  int st;
+  if (attributes) {
+    st = ex_put_attr_param(ex->exoid, EX_NODAL, 0, n);
+    if (st >= 0) st = ex_put_attr_names(ex->exoid, EX_NODAL, 0, names);
+    free(names), free(store);
+    PF_EX_TRY(ex, st, "ex_put_attr_param/ex_put_attr_names(EX_NODAL)");
+    return PF_SUCCESS;
+  }
+  st = ex_put_variable_param(ex->exoid, EX_NODAL, n);
+  if (st >= 0) st = ex_put_variable_names(ex->exoid, EX_NODAL, n, names);
   free(names);
   PF_FREE(store);
   PF_EX_TRY(ex, st, "ex_put_variable_param/ex_put_variable_names(EX_NODAL)");
@@ -301,7 +328,8 @@ static int setup(pf_exodus *ex, const pf_points *pts, int nbodies, const char *c
   PF_CALL(put_coordinates(ex, pts));
   PF_CALL(put_blocks(ex, nbodies, body_names, body_start, hexes));
   PF_CALL(put_id_maps(ex, pts, nbodies, body_start, hexes));
-  if (ex->n > 0) PF_CALL(put_variable_names(ex, pts)); /* Exodus refuses nodal variables without nodes */
+  if (ex->n > 0) PF_CALL(put_variable_names(ex, pts, 0)); /* Exodus refuses nodal variables without nodes */
+  if (ex->n > 0) PF_CALL(put_variable_names(ex, pts, 1));
   PF_CALL(put_global_names(ex, nglobals, global_names));
   PF_EX_TRY(ex, ex_update(ex->exoid), "ex_update");
   return PF_SUCCESS;
@@ -363,13 +391,24 @@ static int check_fields(const pf_exodus *ex, const pf_points *pts) {
   PF_CHECK(pts->n_owned == ex->n, PF_ERR_RUN,
            "Exodus output %s: %" PF_INT_FMT " points, the file was created with %" PF_INT_FMT,
            ex->path, pts->n_owned, ex->n);
-  for (int j = 0; j < ex->nvars; j++) {
-    int k = ex->var_field[j];
+  for (int j = 0; j < ex->nvars + ex->natts; j++) {
+    const int k = j < ex->nvars ? ex->var_field[j] : ex->att_field[j - ex->nvars];
+    const int c = j < ex->nvars ? ex->var_comp[j] : ex->att_comp[j - ex->nvars];
     if (k < 0) continue;
-    PF_CHECK(k < pts->nfields && field_is_output(&pts->fields[k]) &&
-                 ex->var_comp[j] < pts->fields[k].ncomp,
+    PF_CHECK(k < pts->nfields && field_is_output(&pts->fields[k]) && c < pts->fields[k].ncomp,
              PF_ERR_RUN, "Exodus output %s: the output fields changed since the file was created",
              ex->path);
+  }
+  return PF_SUCCESS;
+}
+
+/* The nodal attributes (the constant fields), with the first time step. */
+static int put_attributes(pf_exodus *ex, const pf_points *pts) {
+  if (ex->n == 0) return PF_SUCCESS;
+  for (int j = 0; j < ex->natts; j++) {
+    const pf_field *f = &pts->fields[ex->att_field[j]];
+    gather(ex, f->data, f->ncomp, ex->att_comp[j]);
+    PF_EX_TRY(ex, ex_put_one_attr(ex->exoid, EX_NODAL, 0, j + 1, ex->buf), "ex_put_one_attr(EX_NODAL)");
   }
   return PF_SUCCESS;
 }
@@ -379,6 +418,7 @@ int pf_exodus_write(pf_exodus *ex, double time, const pf_points *pts, const doub
   PF_CALL(check_fields(ex, pts));
   ex->step++;
   PF_EX_TRY(ex, ex_put_time(ex->exoid, ex->step, &time), "ex_put_time");
+  if (ex->step == 1) PF_CALL(put_attributes(ex, pts));
   const double *vec[3] = {pts->u, pts->v, pts->f};
   for (int j = 0; j < ex->nvars; j++) {
     const int k = ex->var_field[j];
@@ -405,6 +445,8 @@ int pf_exodus_destroy(pf_exodus **ex) {
   int err = st < 0 ? pf_exodus_fail_(e->path, "ex_close", __LINE__, __func__) : PF_SUCCESS;
   PF_FREE(e->var_field);
   PF_FREE(e->var_comp);
+  PF_FREE(e->att_field);
+  PF_FREE(e->att_comp);
   PF_FREE(e->buf);
   PF_FREE(e->path);
   PF_FREE(e);

@@ -198,7 +198,7 @@ int pf_coupled_body_rows(const pf_coupled_body *c, const pf_points *pts, pf_int 
 /* The blending field and the masses: every node carries rho V (the PD operator's mass). */
 static int attach_blending(pf_coupled_body *c, pf_points *pts) {
   int idx;
-  PF_CALL(pf_points_field_register(pts, "blending_weight", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT, &idx));
+  PF_CALL(pf_points_field_register(pts, "blending_weight", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT | PF_FIELD_CONSTANT, &idx));
   c->beta = pts->fields[idx].data;
   for (pf_int i = c->first; i < c->first + c->n; i++) c->beta[i] = beta_at(c, &pts->X[3 * (size_t)i]);
   PF_CALL(pf_points_exchange(pts, c->beta, 1));

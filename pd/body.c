@@ -449,9 +449,9 @@ static void standard_in_overlap(const pf_pd_body *b) {
  * §2.4). */
 static int set_regions(pf_pd_body *b, pf_points *pts) {
   int idx;
-  PF_CALL(pf_points_field_register(pts, "horizon", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT, &idx));
+  PF_CALL(pf_points_field_register(pts, "horizon", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT | PF_FIELD_CONSTANT, &idx));
   b->hz = pts->fields[idx].data;
-  PF_CALL(pf_points_field_register(pts, "region", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT, &idx));
+  PF_CALL(pf_points_field_register(pts, "region", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT | PF_FIELD_CONSTANT, &idx));
   b->region = pts->fields[idx].data;
   double hmax = b->horizon;
   for (pf_int i = b->first; i < b->first + b->n; i++) {

@@ -47,8 +47,11 @@ def read_exodus(path):
         var = lambda n: np.asarray(d["vals_nod_var%d" % (names.index(n) + 1)][-1], dtype=float)
         u = np.stack([var("displacement_" + c) for c in "xyz"], axis=1)
         sxx = var("stress_xx")
-        beta = var("blending_weight") if "blending_weight" in names else np.zeros(len(X))
-        hor = var("horizon") if "horizon" in names else np.zeros(len(X))
+        # the constant fields are nodal attributes, written once (core/output_exodus.c)
+        anames = [b"".join(n).decode().strip("\x00") for n in d["nattrib_name"][:]] if "nattrib_name" in d.variables else []
+        att = lambda n: np.asarray(d["nattrb"][:, anames.index(n)], dtype=float)
+        beta = att("blending_weight") if "blending_weight" in anames else np.zeros(len(X))
+        hor = att("horizon") if "horizon" in anames else np.zeros(len(X))
         fx = var("force_x")
     # the ends' reaction: minus the internal force on the prescribed nodes, as a mean stress
     right, left = X[:, 0] > L / 2 - 1e-9, X[:, 0] < -L / 2 + 1e-9

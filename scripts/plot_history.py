@@ -5,7 +5,9 @@
 
 Writes, into DIR (default: the history's folder), <stem>_<plot>.png for each plot the history
 has data for:
-  energies        kinetic, stored and dissipated energies and the external work
+  energies        the kinetic energy, the internal energies (elastic energy plus plastic work),
+                  the contact penalty energy, the dissipated energies and the external work,
+                  each labelled by what its history column holds
   energy_error    the balance error relative to the largest energy in play (the run's summary)
   damage          the fraction of broken bonds
   velocity        each body's mass-averaged velocity (a projectile's velocity history)
@@ -28,6 +30,20 @@ import numpy as np
 STORED = ["kinetic_energy", "elastic_energy", "fe_internal_energy", "contact_energy"]
 DISSIPATED = ["hourglass_energy", "bulk_viscosity_work", "wall_dissipation", "contact_dissipation",
               "damage_dissipation"]
+# What each energy column holds (docs/user_guide.md §3.4), as the energies plot's legend says it:
+# the column named elastic_energy is the PD bodies' internal energy, plastic work included.
+LABELS = {
+    "kinetic_energy": "kinetic",
+    "elastic_energy": "PD internal (bond elastic + plastic work)",
+    "fe_internal_energy": "FE internal (elastic + plastic work)",
+    "contact_energy": "contact penalty (stored)",
+    "hourglass_energy": "hourglass work",
+    "bulk_viscosity_work": "bulk viscosity work (dissipated)",
+    "wall_dissipation": "wall impacts (dissipated)",
+    "contact_dissipation": "friction work (dissipated)",
+    "damage_dissipation": "broken bonds (dissipated)",
+    "external_work": "external work",
+}
 
 
 def read(path):
@@ -58,10 +74,9 @@ def plots(c):
     """(name, title, ylabel, [(label, y)], logy) for each plot there is data for."""
     t = c["time"]
     out = []
-    lines = [(k.replace("_", " "), c[k]) for k in STORED + DISSIPATED + ["external_work"]
-             if k in c and np.any(c[k] != 0)]
+    lines = [(LABELS[k], c[k]) for k in STORED + DISSIPATED + ["external_work"] if k in c and np.any(c[k] != 0)]
     total = sum(c[k] for k in STORED + DISSIPATED if k in c) - c.get("external_work", 0)
-    lines.append(("total - external work", total))
+    lines.append(("sum of the above - external work", total))
     out.append(("energies", "Energy balance", "energy (J)", lines, False))
     out.append(("energy_error", "Energy balance error", "relative error", [("|error| / scale", relative_error(c))],
                 True))

@@ -84,21 +84,28 @@ static const char *size_text(char *out, double bytes) {
 /* Exodus: coordinates, connectivity and the frames of every nodal variable (9 built-in, then
  * the output fields' components); the history's rows; a checkpoint's points and bonds. */
 static void print_output(const pf_sim *sim, double points, double bonds, double elements, double bond_bytes) {
-  int vars = 9, keep = 16; /* restart: X, u, v, f, y, m, vol, cell, gid, body */
+  int vars = 9, once = 0, keep = 16; /* restart: X, u, v, f, y, m, vol, cell, gid, body */
   for (int k = 0; k < sim->pts->nfields; k++) {
-    if (sim->pts->fields[k].flags & PF_FIELD_OUTPUT) vars += sim->pts->fields[k].ncomp;
+    const int flags = sim->pts->fields[k].flags;
+    if ((flags & PF_FIELD_OUTPUT) && (flags & PF_FIELD_CONSTANT)) once += sim->pts->fields[k].ncomp;
+    else if (flags & PF_FIELD_OUTPUT) vars += sim->pts->fields[k].ncomp;
     if (sim->pts->fields[k].flags & PF_FIELD_RESTART) keep += sim->pts->fields[k].ncomp;
   }
   const long n = sim->nsteps, every = sim->output_interval, hevery = sim->history_interval;
-  const double frames = every > 0 ? 1 + ceil((double)n / (double)every) : 2;
-  const double rows = hevery > 0 ? 1 + ceil((double)n / (double)hevery) : 2;
+  const double span = isfinite(sim->final_time) ? sim->final_time : (double)n * sim->dt; /* (by time: of the run) */
+  const double frames = sim->output_period > 0 ? 1 + ceil(span / sim->output_period - 1e-9)
+                        : every > 0            ? 1 + ceil((double)n / (double)every)
+                                               : 2;
+  const double rows = sim->history_period > 0 ? 1 + ceil(span / sim->history_period - 1e-9)
+                      : hevery > 0            ? 1 + ceil((double)n / (double)hevery)
+                                              : 2;
   pf_sim_history_row g = {0};
   const double columns = pf_sim_globals_init(sim, &g) ? 0 : g.n + 2;
   pf_sim_globals_free(&g);
   char exodus[16], history[16], checkpoint[16];
-  pf_log("  output: Exodus %s (%.0f frames x %d nodal variables x %.0f points x 8 bytes), history %s (%.0f rows x "
-         "%.0f columns)\n",
-         size_text(exodus, points * 8 * (3 + frames * vars) + elements * 8 * 4), frames, vars, points,
+  pf_log("  output: Exodus %s (%.0f frames x %d nodal variables x %.0f points x 8 bytes, and %d written once), "
+         "history %s (%.0f rows x %.0f columns)\n",
+         size_text(exodus, points * 8 * (3 + frames * vars + once) + elements * 8 * 4), frames, vars, points, once,
          size_text(history, rows * columns * 8), rows, columns);
   size_text(checkpoint, points * keep * 8 + bonds * (8 + bond_bytes));
   if (sim->restart_interval > 0) pf_log("  checkpoint: %s each, every %ld steps\n", checkpoint, sim->restart_interval);

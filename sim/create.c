@@ -19,12 +19,23 @@ static const pf_key time_keys[] = {
 
 static const pf_key output_keys[] = {
     {"file", PF_KEY_STRING, 0, "<deck name>.e", "", "Exodus II output file", NULL},
-    {"interval", PF_KEY_INT, 0, "100", "", "steps between Exodus outputs (0: first and last only)", NULL},
+    {"interval", PF_KEY_INT, 0, "100", "", "steps between Exodus outputs (0: first and last only); give at most one "
+     "of interval, time_interval, frames", NULL},
+    {"time_interval", PF_KEY_REAL, 0, NULL, "s",
+     "time between Exodus outputs: a frame at the first step whose time reaches each multiple (quasi-static: "
+     "pseudo-time)", NULL},
+    {"frames", PF_KEY_INT, 0, NULL, "",
+     "Exodus outputs over the run after the first: time_interval = time.final_time / frames (a run given by steps: "
+     "steps x the first step)", NULL},
     {"history_file", PF_KEY_STRING, 0, "<deck name>.h5", "", "HDF5 history of global quantities", NULL},
-    {"history_interval", PF_KEY_INT, 0, "10", "", "steps between history rows", NULL},
+    {"history_interval", PF_KEY_INT, 0, "10", "", "steps between history rows (quasi-static: 1); give at most one of "
+     "history_interval, history_time_interval, history_frames", NULL},
+    {"history_time_interval", PF_KEY_REAL, 0, NULL, "s", "time between history rows, as time_interval", NULL},
+    {"history_frames", PF_KEY_INT, 0, NULL, "", "history rows over the run after the first, as frames", NULL},
     {"fields", PF_KEY_STRLIST, 0, "all", "",
      "the nodal variables of the Exodus file: displacement, velocity, force and any of the output fields "
-     "(damage, stress, ...; an unknown name is an error listing the known ones)", NULL},
+     "(damage, stress, ...; an unknown name is an error listing the known ones); horizon, region and "
+     "blending_weight, constant in a run, are written once as nodal attributes", NULL},
     {"precision", PF_KEY_STRING, 0, "double", "", "double | single: the Exodus file's values in 8 or 4 bytes", NULL},
     {"compression", PF_KEY_INT, 0, "0", "",
      "0 (none) or 1-9: the Exodus file written as netCDF-4 and deflated at that level", NULL},

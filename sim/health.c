@@ -106,13 +106,14 @@ static int damage(pf_sim *sim) {
     const double d = body_damage(sim, b), before = sim->health.damage[b];
     sim->health.damage[b] = d;
     if (!(d - before > PF_HEALTH_DAMAGE_JUMP)) continue;
-    char what[96];
+    char what[96], every[48];
     snprintf(what, sizeof what, "damage jump '%.60s'", sim->body_name[b]);
+    if (sim->history_period > 0) snprintf(every, sizeof every, "%.4g s", sim->history_period);
+    else snprintf(every, sizeof every, "%ld steps", sim->history_interval);
     PF_CALL(pf_sim_health_warn(sim, what,
                                "body '%s': damaged fraction jumped from %.4g to %.4g (more than %g) between two "
-                               "history rows, at t = %.4e s (step %ld; rows every %ld steps)",
-                               sim->body_name[b], before, d, PF_HEALTH_DAMAGE_JUMP, sim->t, sim->step,
-                               sim->history_interval));
+                               "history rows, at t = %.4e s (step %ld; rows every %s)",
+                               sim->body_name[b], before, d, PF_HEALTH_DAMAGE_JUMP, sim->t, sim->step, every));
   }
   return 0;
 }

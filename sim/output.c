@@ -23,16 +23,59 @@ int pf_sim_output_name(const pf_sim *sim, const pf_node *node, const char *key, 
                        "room for the suffixes a run adds: -restart<step>, .tmp, .lock)", n, PF_SIM_PATH_MAX, PATH_MAX);
 }
 
+/* The run's end for output.frames: time.final_time, or for a run given by steps, the steps
+ * times the first step (the step of a quasi-static run is final_time / load steps). */
+static double frames_span(const pf_sim *sim) {
+  return isfinite(sim->final_time) ? sim->final_time : (double)sim->nsteps * sim->dt;
+}
+
+/* One schedule of the output: keys[0] steps between writes, keys[1] seconds between them,
+ * keys[2] a count over the run; at most one given. *period > 0 when by time. */
+static int read_schedule(pf_sim *sim, const pf_node *out, const char *const keys[3], long *every, double *period) {
+  const pf_deck *d = sim->deck;
+  const char *first = NULL;
+  for (int k = 0; k < 3; k++) {
+    if (!pf_node_get(out, keys[k])) continue;
+    if (first)
+      return pf_deck_error(d, pf_node_get(out, keys[k]), keys[k], "give at most one of '%s', '%s' and '%s' (also "
+                           "given: '%s')", keys[0], keys[1], keys[2], first);
+    first = keys[k];
+  }
+  *period = 0;
+  if (pf_node_get(out, keys[1])) {
+    PF_CALL(pf_deck_real(d, out, keys[1], period));
+    if (!(*period > 0 && isfinite(*period)))
+      return pf_deck_error(d, pf_node_get(out, keys[1]), keys[1], "must be a positive finite time (got %g)", *period);
+  } else if (pf_node_get(out, keys[2])) {
+    long n = 0;
+    PF_CALL(pf_deck_int(d, out, keys[2], &n));
+    if (n < 1) return pf_deck_error(d, pf_node_get(out, keys[2]), keys[2], "must be at least 1 (got %ld)", n);
+    *period = frames_span(sim) / (double)n;
+    if (!(*period > 0 && isfinite(*period)))
+      return pf_deck_error(d, pf_node_get(out, keys[2]), keys[2], "the run's end time is %g s: no time to divide",
+                           frames_span(sim));
+  } else PF_CALL(pf_deck_int(d, out, keys[0], every));
+  return 0;
+}
+
+int pf_sim_output_due(long every, double period, long step, double t_before, double t) {
+  /* (1e-9 of a period: a step that lands on a multiple but for rounding counts as reaching it) */
+  if (period > 0) return floor(t / period + 1e-9) > floor(t_before / period + 1e-9);
+  return every > 0 && step % every == 0;
+}
+
 int pf_sim_setup_output(pf_sim *sim) {
   const pf_deck *d = sim->deck;
   const pf_node *out = pf_node_get(pf_deck_root(d), "output");
   const char *file = NULL, *hfile = NULL;
+  static const char *const frames[3] = {"interval", "time_interval", "frames"};
+  static const char *const rows[3] = {"history_interval", "history_time_interval", "history_frames"};
   sim->output_interval = 100;
   sim->history_interval = 10;
   PF_CALL(pf_deck_string(d, out, "file", &file));
   PF_CALL(pf_deck_string(d, out, "history_file", &hfile));
-  PF_CALL(pf_deck_int(d, out, "interval", &sim->output_interval));
-  PF_CALL(pf_deck_int(d, out, "history_interval", &sim->history_interval));
+  PF_CALL(read_schedule(sim, out, frames, &sim->output_interval, &sim->output_period));
+  PF_CALL(read_schedule(sim, out, rows, &sim->history_interval, &sim->history_period));
   PF_CALL(pf_deck_bool(d, out, "fragments", &sim->fragments));
   PF_CALL(pf_sim_fragments_setup(sim));
   PF_CALL(pf_sim_setup_probes(sim));

@@ -123,13 +123,14 @@ static int run_loop(pf_sim *sim, long n) {
   const int status = pf_log_terminal();
   double loop0 = pf_wtime();
   for (long s = 0; (n < 0 || s < n) && !pf_sim_finished(sim) && !sim->stopped; s++) {
+    const double t_before = sim->t;
     int ierr = pf_sim_step(sim, 1);
     if (ierr && sim->last_good) ierr = pf_sim_write_last_good(sim, g, ierr);
     if (ierr) return sim->wall_loop += pf_wtime() - loop0, ierr;
     PF_CALL(checkpoints(sim, &sim->stopped));
     int last = pf_sim_finished(sim) || sim->stopped;
-    int exo = last || (sim->output_interval > 0 && sim->step % sim->output_interval == 0);
-    int his = last || sim->step % sim->history_interval == 0;
+    int exo = last || pf_sim_output_due(sim->output_interval, sim->output_period, sim->step, t_before, sim->t);
+    int his = last || pf_sim_output_due(sim->history_interval, sim->history_period, sim->step, t_before, sim->t);
     if (exo || his) {
       double t0 = pf_wtime();
       if (exo) PF_CALL(pf_sim_rebalance(sim));

@@ -111,7 +111,8 @@ struct pf_sim {
   int signal;  /* the largest signal any rank received by the last step's end (0: none) */
   pf_sim_scalars restart_scalars; /* read from the checkpoint we restart from */
   /* output */
-  long output_interval, history_interval;
+  long output_interval, history_interval; /* steps between frames / rows (0 frames: first and last only) */
+  double output_period, history_period;    /* or seconds between them (0: by steps; sim/output.c) */
   char exodus_path[4096], history_path[4096];
   char *lock_path[3];  /* the lock files this run holds (rank 0; sim/output_lock.c) */
   int nlocks;
@@ -223,6 +224,10 @@ int pf_sim_signal_here(void);
  * before put back (perifem_catch_signals). */
 void pf_sim_catch_run_signals(int on);
 int pf_sim_setup_output(pf_sim *sim);
+/* Whether a step (from t_before to t) writes a frame or a history row: by time (period > 0) when
+ * t reaches the next multiple of the period, else every `every` steps (0: never). Depends on
+ * the step's times only, so a restarted run keeps the schedule. */
+int pf_sim_output_due(long every, double period, long step, double t_before, double t);
 /* sim/output.c: the history's columns (time, step, then the ledger's columns: the run's totals,
  * each body's, each interaction's, the probes') and one row of them; the Exodus file; output at a
  * step; the last good state. Collective. */

@@ -117,7 +117,10 @@ int pf_sim_setup_solver(pf_sim *sim) {
   sim->nsteps = s->load_steps; /* one step of the time loop per load step */
   sim->dt = sim->final_time / (double)s->load_steps;
   sim->adaptive = 0;
-  if (!pf_node_get(pf_node_get(root, "output"), "history_interval")) sim->history_interval = 1;
+  const pf_node *out = pf_node_get(root, "output");
+  if (!pf_node_get(out, "history_interval") && !pf_node_get(out, "history_time_interval") &&
+      !pf_node_get(out, "history_frames"))
+    sim->history_interval = 1;
   pf_log("solver: quasi-static, %ld load steps of %g s (pseudo-time), tolerance %g, at most %ld iterations each\n",
          s->load_steps, sim->dt, s->tolerance, s->max_iterations);
   return 0;
