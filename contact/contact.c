@@ -47,7 +47,7 @@ int pf_contact_method_side_rebuilt(const pf_contact_method *m, const pf_contact_
 }
 
 const pf_key pf_contact_pair_keys[] = {
-    {"bodies", PF_KEY_STRLIST, 1, NULL, "", "the two bodies (the same name twice: self-contact of a PD body)", NULL},
+    {"bodies", PF_KEY_STRLIST, 1, NULL, "", "the two bodies (the same name twice: self-contact of a PD body); each pair once (the same two bodies over the same surfaces again, in either order, is refused)", NULL},
     {"name", PF_KEY_STRING, 0, NULL, "", "name in the history (default <a>_<b>)", NULL},
     {"method", PF_KEY_STRING, 0, "surface", "", "FE <-> PD: surface (closest point of the FE surface) | nodes (node-to-particle only)", NULL},
     {"surface", PF_KEY_STRING, 0, NULL, "", "FE <-> PD: side set of the FE mesh in contact (default: the whole boundary)", NULL},
@@ -238,6 +238,30 @@ static int follow_erosion(pf_contact *c) {
   return 0;
 }
 
+/* A pair's bodies and surfaces in a fixed order: the lower body index, the higher, and the side
+ * set each meets by (-1 the whole boundary, -2 none: a PD body). */
+static void pair_key(const pf_contact_pair *p, int key[4]) {
+  key[0] = p->a < p->b ? p->a : p->b, key[1] = p->a < p->b ? p->b : p->a;
+  key[2] = key[3] = -2;
+  for (int k = 0; k < p->nside; k++) key[2 + (p->side[k].body != key[0])] = p->side[k].sideset;
+}
+
+/* The same two bodies over the same surfaces twice, in either order, would push twice as hard. */
+static int check_repeated_pairs(const pf_deck *d, const pf_node *pairs, const pf_contact *c) {
+  for (int j = 1; j < c->npairs; j++)
+    for (int k = 0; k < j; k++) {
+      int kj[4], kk[4];
+      pair_key(&c->pair[j], kj), pair_key(&c->pair[k], kk);
+      if (memcmp(kj, kk, sizeof kj)) continue;
+      const pf_node *list = pf_node_get(pf_node_item(pairs, j), "bodies");
+      return pf_deck_error(d, list ? list : pf_node_item(pairs, j), "bodies",
+                           "pair %d repeats pair %d of contact.pairs (bodies '%s' and '%s'%s): the two would push "
+                           "twice as hard; list each pair once", j + 1, k + 1, c->body[kj[0]].name,
+                           c->body[kj[1]].name, c->pair[j].nside ? ", the same surfaces" : "");
+    }
+  return 0;
+}
+
 static int contact_setup(const pf_deck *d, const pf_node *map, pf_contact *c) {
   const pf_node *pairs = pf_node_get(map, "pairs");
   PF_MALLOC(c->pair, c->npairs);
@@ -249,6 +273,7 @@ static int contact_setup(const pf_deck *d, const pf_node *map, pf_contact *c) {
     rmax = fmax(rmax, c->pair[k].length);
     c->has_fe |= c->body[c->pair[k].a].is_fe || c->body[c->pair[k].b].is_fe;
   }
+  PF_CALL(check_repeated_pairs(d, pairs, c));
   c->skin = rmax;
   PF_CALL(pf_deck_positive(d, map, "skin", &c->skin));
   PF_CALL(mark_surfaces(c));

@@ -85,10 +85,13 @@ static int open_history(pf_history *h, const char *const *names, const char *con
   hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
   PF_CHECK(fcpl >= 0, PF_ERR_LIB, "HDF5: H5Pcreate failed (file %s)", h->path);
   herr_t st = H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
+  errno = 0;
   if (st >= 0) h->file = H5Fcreate(h->path, H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
+  const int err = errno; /* (the system's reason, when HDF5's open failed) */
   H5Pclose(fcpl);
   PF_CHECK(st >= 0, PF_ERR_LIB, "HDF5: H5Pset_link_creation_order failed (file %s)", h->path);
-  PF_CHECK(h->file >= 0, PF_ERR_LIB, "HDF5: H5Fcreate failed (file %s)", h->path);
+  PF_CHECK(h->file >= 0, PF_ERR_LIB, "output.history_file: the history '%s' cannot be created: %s (HDF5 H5Fcreate)",
+           h->path, err ? strerror(err) : "HDF5 gives no system reason");
   for (int i = 0; i < h->ncol; i++) PF_CALL(create_column(h, i, names[i], units ? units[i] : NULL));
   PF_CHECK(H5Fflush(h->file, H5F_SCOPE_LOCAL) >= 0, PF_ERR_LIB, "HDF5: H5Fflush failed (file %s)",
            h->path);

@@ -438,6 +438,47 @@ static int validate(pf_mesh_raw *raw, const char *key, const char *label) {
   return 0;
 }
 
+/* ---- duplicate hexahedra ------------------------------------------------------------------- */
+typedef struct {
+  pf_int node[8]; /* the element's nodes, sorted */
+  pf_int e;
+} sorted_hex;
+
+static int by_nodes(const void *pa, const void *pb) {
+  const sorted_hex *a = pa, *b = pb;
+  for (int k = 0; k < 8; k++)
+    if (a->node[k] != b->node[k]) return a->node[k] < b->node[k] ? -1 : 1;
+  return (a->e > b->e) - (a->e < b->e);
+}
+
+static int by_value(const void *pa, const void *pb) {
+  const pf_int a = *(const pf_int *)pa, b = *(const pf_int *)pb;
+  return (a > b) - (a < b);
+}
+
+/* No two elements on the same 8 nodes, in any order (twice the mass and stiffness there): sorted
+ * node tuples, sorted, then neighbours compared; O(n log n). */
+static int check_duplicates(const pf_mesh_raw *raw, const char *key, const char *label) {
+  const pf_mesh *m = &raw->mesh;
+  sorted_hex *h;
+  PF_MALLOC(h, m->nelem);
+  for (pf_int e = 0; e < m->nelem; e++) {
+    memcpy(h[e].node, &m->conn[8 * (size_t)e], sizeof h[e].node);
+    qsort(h[e].node, 8, sizeof(pf_int), by_value);
+    h[e].e = e;
+  }
+  qsort(h, (size_t)m->nelem, sizeof *h, by_nodes);
+  pf_int a = -1, b = -1;
+  for (pf_int k = 1; k < m->nelem && a < 0; k++)
+    if (!memcmp(h[k - 1].node, h[k].node, sizeof h[k].node)) a = h[k - 1].e, b = h[k].e;
+  free(h);
+  if (a < 0) return 0;
+  return pf_mesh_error_(key, label, __FILE__, __LINE__, __func__,
+                        "elements %" PRId64 " (block '%s') and %" PRId64 " (block '%s') have the same 8 nodes: "
+                        "a duplicated hexahedron would count its mass and stiffness twice; remove one",
+                        elem_id(raw, a), m->block_name[m->block[a]], elem_id(raw, b), m->block_name[m->block[b]]);
+}
+
 /* ---- pf_mesh_read ------------------------------------------------------------------------ */
 typedef struct {
   const pf_mesh_reader *reader;
@@ -534,6 +575,7 @@ int pf_mesh_read(const pf_deck *d, const pf_node *mn, pf_mesh *m) {
         raw.mesh.X[3 * (size_t)i + c] =
             rq->scale * raw.mesh.X[3 * (size_t)i + c] + rq->translate[c];
   if (!ierr) ierr = validate(&raw, rq->src.key, rq->label);
+  if (!ierr) ierr = check_duplicates(&raw, rq->src.key, rq->label);
   if (!ierr)
     pf_log("mesh %s: %" PF_INT_FMT " nodes, %" PF_INT_FMT " hexahedra in %d block(s), %d node "
            "set(s), %d side set(s)\n",

@@ -62,6 +62,10 @@ static const pf_key body_keys[] = {
      "its uniform-stress ghost force where the horizon varies; correspondence) | consistent (the "
      "standard energy form with ghost-force-free gradient weights where the horizon varies; "
      "correspondence)", NULL},
+    {"allow_in_dynamics", PF_KEY_BOOL, 0, "false", "",
+     "true: run the statics forms auto, partial_stress and corrected in an explicit run that takes steps, "
+     "which they do not conserve energy in (refused otherwise; docs/theory/coupling.md §2.2); no effect on "
+     "the standard and consistent forms", NULL},
     {"influence", PF_KEY_STRING, 0, "constant", "", "constant | inverse_distance | gaussian", NULL},
     {"influence_length", PF_KEY_REAL, 0, "horizon/2", "m", "gaussian: sigma in exp(-r^2/sigma^2)", NULL},
     {"partial_volumes", PF_KEY_BOOL, 0, "false", "",
@@ -354,6 +358,10 @@ static const pf_key coupled_keys[] = {
     {"formulation", PF_KEY_STRING, 0, "consistent", "",
      "consistent (for dynamics) | auto | partial_stress | corrected (statics and patch-test tools) | "
      "standard (no correction; docs/theory/coupling.md §2.2)", NULL},
+    {"allow_in_dynamics", PF_KEY_BOOL, 0, "false", "",
+     "true: run the statics forms auto, partial_stress and corrected in an explicit run that takes steps, "
+     "which they do not conserve energy in (refused otherwise; docs/theory/coupling.md §2.2); no effect on "
+     "the standard and consistent forms", NULL},
     {"influence", PF_KEY_STRING, 0, "constant", "", "constant | inverse_distance", NULL},
     {"hourglass", PF_KEY_MAP, 0, "type: stiffness, coefficient: 0.05", "", "zero-energy-mode control",
      pf_pd_hourglass_keys},

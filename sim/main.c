@@ -240,6 +240,7 @@ int main(int argc, char **argv) {
   /* A write past the file-size limit (ulimit -f) fails with EFBIG, like one on a full disk
    * fails with ENOSPC, and ends the run with a message instead of killing the process. */
   signal(SIGXFSZ, SIG_IGN);
+  pf_sim_catch_signals_early(); /* (MPI_Init takes a second or more: a signal then had no message) */
   MPI_Init(&argc, &argv);
   static cli c; /* (large: not on the stack) */
   command_line(argc, argv, c.command, sizeof c.command);

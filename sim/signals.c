@@ -3,6 +3,7 @@
 #include "sim/sim_impl.h"
 
 #include <signal.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -23,8 +24,7 @@ static void on_signal(int sig) {
   stop_signal = sig;
 }
 
-void pf_sim_catch_signals(void) {
-  const int rank0 = pf_comm_rank() == 0;
+static void catch_setup_signals(int rank0) {
   const int sigs[2] = {SIGTERM, SIGINT};
   for (int k = 0; k < 2; k++) {
     snprintf(setup_msg[k], sizeof setup_msg[k],
@@ -40,6 +40,19 @@ void pf_sim_catch_signals(void) {
   sigemptyset(&sa.sa_mask);
   sa.sa_flags = SA_RESTART;
   for (int k = 0; k < 2; k++) sigaction(sigs[k], &sa, NULL);
+}
+
+void pf_sim_catch_signals(void) { catch_setup_signals(pf_comm_rank() == 0); }
+
+/* Before MPI_Init (the command line): the same set-up handler, so that a signal arriving while
+ * MPI starts (a second or more) ends the process with the set-up's message instead of none. The
+ * rank is not known yet: the launcher's variables say it (rank 0 prints, as later). */
+void pf_sim_catch_signals_early(void) {
+  const char *vars[] = {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"};
+  int rank0 = 1;
+  for (int k = 0; k < 3; k++)
+    if (getenv(vars[k])) rank0 &= atoi(getenv(vars[k])) == 0;
+  catch_setup_signals(rank0);
 }
 
 void pf_sim_setup_done(void) { in_setup = 0; }

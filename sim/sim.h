@@ -93,5 +93,8 @@ int pf_deck_reference(FILE *out);
 /* mkdir -p dir on rank 0 (an output folder, before a run opens its files): 0 or an errno, the
  * same on every rank. Collective (sim/paths.c). */
 int pf_sim_make_dir(const char *dir);
+/* The command line, before MPI_Init: a SIGTERM or SIGINT from then on ends the process with the
+ * set-up's message (sim/signals.c), on the rank the launcher calls 0. */
+void pf_sim_catch_signals_early(void);
 
 #endif

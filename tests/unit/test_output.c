@@ -8,6 +8,7 @@
 #include <hdf5.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <errno.h>
 #include <string.h>
 
 #define EXO_PATH "test_output_points.e"
@@ -269,6 +270,9 @@ static void test_errors(void) {
   PF_TEST_TRUE(pf_history_create(bad_h5, 3, cols, units, NULL, &h) == PF_ERR_LIB);
   PF_TEST_TRUE(h == NULL && strstr(pf_error_message(), "H5Fcreate"));
   PF_TEST_TRUE(strstr(pf_error_message(), bad_h5) != NULL);
+  /* "Nothing silently wrong" (messages that name their cause): the key and the system's reason */
+  PF_TEST_TRUE(strstr(pf_error_message(), "output.history_file") != NULL);
+  PF_TEST_TRUE(strstr(pf_error_message(), strerror(ENOENT)) != NULL);
   pf_error_clear();
   pf_error_set_quiet(0);
   pf_points_destroy(&pts);

@@ -19,7 +19,8 @@
  *   one meshed body whose nodes carry the PD operator: beta = 1 everywhere (all PD); beta falling
  *     over [100, 120] mm (the overlap); beta = 0 (all FE); the horizon tapering over [80, 100] mm
  *     before the overlap, in the standard, auto (partial stress), corrected and consistent forms
- *     (the second run), these with force blending (overlap: force),
+ *     (the second run), these with force blending (overlap: force) and allow_in_dynamics (auto and
+ *     corrected are statics forms, refused in a dynamic run without it),
  * and the same with the energy overlap (the defaults: consistent form, energy overlap).
  * Asserted below 1 %: the overlap's, the consistent form's (both runs) and the FE bar's
  * reflection, the defaults' below 0.05 %; the standard form's above the consistent form's (the
@@ -101,7 +102,8 @@ static double coupled(const char *tag, const char *horizon, const char *beta, co
            "    material: steel\n"
            "    hourglass: {type: stiffness, coefficient: 0.05}\n"
            "    bulk_viscosity: {linear: 0, quadratic: 0}\n%s"
-           "    peridynamic: {horizon: %s, blending: %s, formulation: %s, overlap: %s, hourglass: {type: none}}\n"
+           "    peridynamic: {horizon: %s, blending: %s, formulation: %s, allow_in_dynamics: true, overlap: %s,\n"
+           "                  hourglass: {type: none}}\n"
            "%s"
            "time: {final_time: 24.0e-6, safety_factor: 0.8}\n",
            STEEL, PULSE, horizon, beta, form, overlap,
