@@ -10,6 +10,9 @@ const pf_key pf_sim_solver_keys[] = {
     {"type", PF_KEY_STRING, 0, "explicit", "",
      "explicit (velocity-Verlet dynamics) | quasi_static (load steps relaxed to equilibrium by adaptive "
      "dynamic relaxation; docs/theory/quasi_static.md)", NULL},
+    {"method", PF_KEY_STRING, 0, "relaxation", "",
+     "quasi_static: relaxation (adaptive dynamic relaxation) | newton_krylov (inexact Newton with a matrix-free "
+     "preconditioned conjugate-gradient step, relaxation where it gives up; no walls)", NULL},
     {"load_steps", PF_KEY_INT, 0, "10", "",
      "quasi_static: load steps N; load step k applies the boundary conditions at t = k / N time.final_time", NULL},
     {"tolerance", PF_KEY_REAL, 0, "1e-6", "",
@@ -84,6 +87,15 @@ static int read_numbers(const pf_deck *d, const pf_node *sv, pf_sim_solver *s) {
   PF_CALL(pf_deck_real(d, sv, "tolerance", &s->tolerance));
   PF_CALL(pf_deck_int(d, sv, "max_iterations", &s->max_iterations));
   PF_CALL(pf_deck_int(d, sv, "max_damage_passes", &s->max_damage_passes));
+  const char *method = "relaxation";
+  PF_CALL(pf_deck_string(d, sv, "method", &method));
+  if (strcmp(method, "relaxation") && strcmp(method, "newton_krylov"))
+    return pf_deck_error(d, pf_node_get(sv, "method"), "method", "relaxation or newton_krylov (got '%s')", method);
+  s->method = strcmp(method, "relaxation") ? PF_SOLVER_NEWTON_KRYLOV : PF_SOLVER_RELAXATION;
+  if (s->method == PF_SOLVER_NEWTON_KRYLOV && pf_node_count(pf_node_get(pf_deck_root(d), "walls")) > 0)
+    return pf_deck_error(d, pf_node_get(sv, "method"), "method",
+                         "newton_krylov does not take walls (their points are projected back between relaxation "
+                         "iterations): use method: relaxation, or a rigid plane (contact.rigid_surfaces)");
   if (s->load_steps < 1)
     return pf_deck_error(d, pf_node_get(sv, "load_steps"), "load_steps", "must be at least 1 (got %ld)", s->load_steps);
   if (!(s->tolerance > 0 && s->tolerance < 1))
@@ -160,17 +172,20 @@ void pf_sim_solver_summary(const pf_sim *sim) {
   const pf_sim_solver *s = &sim->solver;
   if (s->type != PF_SOLVER_QUASI_STATIC) return;
   /* (this run's: after a restart, the load steps since the checkpoint; the counters are not in it) */
-  pf_log("  quasi-static: load steps %ld to %ld of %ld, %ld relaxation iterations, %ld force evaluations, %ld damage "
+  pf_log("  quasi-static: load steps %ld to %ld of %ld, %ld iterations, %ld force evaluations, %ld damage "
          "passes in %.2f s\n",
          sim->step - sim->loop_steps + (sim->loop_steps > 0), sim->step, s->load_steps, s->iterations, s->evaluations,
          s->damage_passes, s->wall);
+  if (s->method == PF_SOLVER_NEWTON_KRYLOV)
+    pf_log("  newton_krylov: %ld Newton steps, %ld conjugate-gradient steps; %ld equilibria finished by relaxation\n",
+           s->newton_steps, s->krylov_steps, s->fallbacks);
 }
 
 void pf_sim_solver_free(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   free(s->lambda), free(s->vel), free(s->f_old), free(s->u_last), free(s->f_body), free(s->u0), free(s->g0);
-  free(s->fixed), free(s->terms), free(s->f_own);
-  s->terms = NULL;
+  free(s->fixed), free(s->terms), free(s->f_own), free(s->nk);
+  s->terms = NULL, s->nk = NULL;
   s->lambda = s->vel = s->f_old = s->u_last = s->f_body = s->f_own = s->u0 = s->g0 = NULL;
   s->fixed = NULL;
   s->n = 0;

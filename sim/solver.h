@@ -10,10 +10,14 @@
 #include "sim/sim.h"
 
 enum { PF_SOLVER_SUMS = 7 }; /* the sums of an iteration (sim/solver_relaxation.c) */
+enum { S_RESIDUAL, S_REFERENCE, S_INTERNAL, S_UKU, S_UU, S_TRIPPED, S_SIGNAL }; /* their order */
+enum { STOP_GUARD = 1, STOP_SIGNAL = 2 }; /* why a load step stopped before equilibrium */
 typedef enum { PF_SOLVER_EXPLICIT, PF_SOLVER_QUASI_STATIC } pf_solver_type;
+typedef enum { PF_SOLVER_RELAXATION, PF_SOLVER_NEWTON_KRYLOV } pf_solver_method;
 
 typedef struct {
   pf_solver_type type;
+  pf_solver_method method;
   int (*load_step)(pf_sim *sim); /* the step the time loop takes (NULL: the explicit one, sim/step.c) */
   long load_steps;     /* N */
   double tolerance;    /* the residual relative to the reference force at convergence */
@@ -21,6 +25,7 @@ typedef struct {
   long max_damage_passes; /* re-equilibrations after bonds failed, per load step */
   /* what the run did: iterations, force evaluations and damage passes over every load step */
   long iterations, evaluations, damage_passes;
+  long newton_steps, krylov_steps, fallbacks; /* newton_krylov: its iterations, and load steps relaxed after it */
   double wall; /* seconds in the load steps */
   /* the load step's scratch, [3 n] each over the owned points (n: as allocated) */
   pf_int n;
@@ -33,6 +38,8 @@ typedef struct {
   double *u0, *g0; /* u and the applied force (reaction or load) at the load step's start */
   double *terms;   /* [PF_SOLVER_SUMS 3 n] each iteration's terms of its sums */
   uint8_t *fixed;  /* [3 n] prescribed components */
+  double *nk;      /* newton_krylov: [NK_ARRAYS 3 n] (sim/solver_newton.c) */
+  pf_int nk_n;
 } pf_sim_solver;
 
 /* The point field of the last load step's displacement increment (the next load step's predictor;
@@ -53,6 +60,19 @@ void pf_sim_solver_free(pf_sim *sim);
  * not converge in max_iterations is a run error naming it, the residual and the iterations.
  * Collective. */
 int pf_sim_solver_load_step(pf_sim *sim);
+/* The pieces sim/solver_newton.c shares: whether component d is free; the forces at the current
+ * u (p->f: everything; s->f_body: the bodies'); the iteration's sums (q[PF_SOLVER_SUMS]); the
+ * residual relative to the reference force. */
+int pf_sim_solver_is_free(const pf_sim_solver *s, pf_int d);
+int pf_sim_solver_evaluate(pf_sim *sim);
+int pf_sim_solver_measure(pf_sim *sim, double *q);
+double pf_sim_solver_residual(const double *q);
+/* sim/solver_newton.c: equilibrium by inexact Newton with a matrix-free, Jacobi-preconditioned
+ * conjugate-gradient step and a backtracking line search, from the current state; *converged 0
+ * when it gave up (negative curvature, a line search that found no decrease, or its iteration
+ * limit), the state left at its best point for the relaxation to go on from. *it force
+ * evaluations. Collective. */
+int pf_sim_solver_newton(pf_sim *sim, long *it, double *res, int *stop, int *converged);
 /* A sum over every rank's terms x[0 .. n-1] that does not depend on how the terms are spread
  * over the ranks (each term rounded to a grid fixed by the largest |x| over the ranks, the
  * integers summed): the same bits on any number of ranks. m sums at once: x[j n .. j n + n-1]

@@ -21,7 +21,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { S_RESIDUAL, S_REFERENCE, S_INTERNAL, S_UKU, S_UU, S_TRIPPED, S_SIGNAL }; /* the sums (PF_SOLVER_SUMS) */
 
 static int scratch(pf_sim_solver *s, pf_int n) {
   if (s->n == n && s->lambda) return 0;
@@ -67,7 +66,7 @@ int pf_sim_solver_sums(const double *x, pf_int n, int m, double *out) {
   return 0;
 }
 
-static int is_free(const pf_sim_solver *s, pf_int d) { return !s->fixed[d] && s->lambda[d / 3] > 0; }
+int pf_sim_solver_is_free(const pf_sim_solver *s, pf_int d) { return !s->fixed[d] && s->lambda[d / 3] > 0; }
 
 /* The bodies' stiffness bounds k_i into lambda (at the load step's start). */
 static int body_bounds(pf_sim *sim) {
@@ -106,7 +105,7 @@ static int velocities(pf_sim *sim) {
 
 /* Forces at the current positions: the bodies' (with the velocities above, over a step of 1),
  * then the loads' (dt 0: no work booked here). */
-static int evaluate(pf_sim *sim) {
+int pf_sim_solver_evaluate(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
   const pf_int n3 = 3 * p->n_owned;
@@ -133,13 +132,13 @@ static double loads(const pf_sim_solver *s, const pf_points *p, pf_int d) {
 
 /* The iteration's sums: the residual, the reference force and the internal forces (squared
  * 2-norms), u^T 1K u and u^T u of the damping coefficient, and whether a body tripped. */
-static int measure(pf_sim *sim, double *q) {
+int pf_sim_solver_measure(pf_sim *sim, double *q) {
   pf_sim_solver *s = &sim->solver;
   const pf_points *p = sim->pts;
   const pf_int n3 = 3 * p->n_owned;
   double *t = s->terms;
   for (pf_int d = 0; d < n3; d++) {
-    const int fr = is_free(s, d);
+    const int fr = pf_sim_solver_is_free(s, d);
     const double g = applied(s, p, d), u = p->u[d], dv = s->vel[d] * s->lambda[d / 3];
     t[S_RESIDUAL * n3 + d] = fr ? p->f[d] * p->f[d] : 0;
     t[S_REFERENCE * n3 + d] = g * g;
@@ -153,7 +152,7 @@ static int measure(pf_sim *sim, double *q) {
 }
 
 /* The residual relative to the reference force (the loads' and reactions', else the internal). */
-static double relative_residual(const double *q) {
+double pf_sim_solver_residual(const double *q) {
   const double ref = q[S_REFERENCE] > 0 ? q[S_REFERENCE] : q[S_INTERNAL];
   return q[S_RESIDUAL] > 0 ? sqrt(q[S_RESIDUAL] / ref) : 0;
 }
@@ -165,7 +164,7 @@ static void advance(pf_sim *sim, const double *q, int first) {
   const double r = q[S_UU] > 0 ? q[S_UKU] / q[S_UU] : 0;
   const double c = first || !(r > 0) ? 0 : fmin(2 * sqrt(r), 2.0);
   for (pf_int d = 0; d < 3 * p->n_owned; d++) {
-    if (!is_free(s, d)) continue;
+    if (!pf_sim_solver_is_free(s, d)) continue;
     const double a = p->f[d] / s->lambda[d / 3];
     s->vel[d] = first ? 0.5 * a : ((2 - c) * s->vel[d] + 2 * a) / (2 + c);
     s->f_old[d] = p->f[d];
@@ -180,13 +179,11 @@ static void project(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
   const pf_int n3 = 3 * p->n_owned;
-  for (pf_int d = 0; d < n3; d++) p->v[d] = is_free(s, d) ? s->vel[d] : 0;
+  for (pf_int d = 0; d < n3; d++) p->v[d] = pf_sim_solver_is_free(s, d) ? s->vel[d] : 0;
   pf_sim_interactions_project(sim);
   for (pf_int d = 0; d < n3; d++)
-    if (is_free(s, d)) s->vel[d] = p->v[d];
+    if (pf_sim_solver_is_free(s, d)) s->vel[d] = p->v[d];
 }
-
-enum { STOP_GUARD = 1, STOP_SIGNAL = 2 }; /* why a relaxation stopped before equilibrium */
 
 static int not_converged(const pf_sim *sim, long it, double res) {
   return pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
@@ -203,18 +200,35 @@ static int relax(pf_sim *sim, long *it, double *res, int *stop) {
   pf_sim_solver *s = &sim->solver;
   double q[PF_SOLVER_SUMS];
   memset(s->vel, 0, sizeof(double) * 3 * (size_t)sim->pts->n_owned);
-  PF_CALL(evaluate(sim));
-  PF_CALL(measure(sim, q));
+  PF_CALL(pf_sim_solver_evaluate(sim));
+  PF_CALL(pf_sim_solver_measure(sim, q));
   for (*it = 0;; ++*it) {
-    *res = relative_residual(q);
+    *res = pf_sim_solver_residual(q);
     *stop = q[S_TRIPPED] > 0 || !isfinite(*res) ? STOP_GUARD : q[S_SIGNAL] > 0 ? STOP_SIGNAL : 0;
     if (*stop || *res <= s->tolerance) return 0;
     if (*it == s->max_iterations) return not_converged(sim, *it, *res);
     advance(sim, q, *it == 0);
     project(sim);
-    PF_CALL(evaluate(sim));
-    PF_CALL(measure(sim, q));
+    PF_CALL(pf_sim_solver_evaluate(sim));
+    PF_CALL(pf_sim_solver_measure(sim, q));
   }
+}
+
+/* Equilibrium by the deck's method: Newton-Krylov, falling back to relaxation from the state it
+ * reached when it does not converge (sim/solver_newton.c); or relaxation. */
+static int solve(pf_sim *sim, long *it, double *res, int *stop) {
+  long n = 0;
+  *it = 0;
+  if (sim->solver.method == PF_SOLVER_NEWTON_KRYLOV) {
+    int converged = 0;
+    PF_CALL(pf_sim_solver_newton(sim, &n, res, stop, &converged));
+    *it = n;
+    if (converged || *stop) return 0;
+    sim->solver.fallbacks++;
+  }
+  PF_CALL(relax(sim, &n, res, stop));
+  *it += n;
+  return 0;
 }
 
 /* Freeze (1) or thaw (0) every body's damage (sim/body.h). */
@@ -235,7 +249,7 @@ static double broken_bonds(const pf_sim *sim) {
 static int check_damage(pf_sim *sim, double *failed) {
   const double before = broken_bonds(sim);
   PF_CALL(freeze_damage(sim, 0));
-  PF_CALL(evaluate(sim));
+  PF_CALL(pf_sim_solver_evaluate(sim));
   PF_CALL(freeze_damage(sim, 1));
   *failed = broken_bonds(sim) - before;
   return 0;
@@ -257,7 +271,7 @@ static int equilibrate(pf_sim *sim, long *it, double *res, long *passes, int *st
   for (*passes = 0;; ++*passes) {
     long n = 0;
     double failed = 0;
-    PF_CALL(relax(sim, &n, res, stop));
+    PF_CALL(solve(sim, &n, res, stop));
     *it += n;
     if (*stop) return 0; /* (the guard check names a guard's stop; a signal abandons the load step) */
     PF_CALL(check_damage(sim, &failed));
@@ -278,7 +292,7 @@ static int begin(pf_sim *sim) {
   for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_history(&sim->body[b], sim->pts, PF_HISTORY_COMMIT));
   memcpy(s->u_last, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
   memcpy(s->u0, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
-  PF_CALL(evaluate(sim));
+  PF_CALL(pf_sim_solver_evaluate(sim));
   for (pf_int d = 0; d < 3 * p->n_owned; d++) s->g0[d] = loads(s, p, d);
   return 0;
 }
@@ -290,7 +304,7 @@ static void predict(pf_sim *sim) {
   pf_points *p = sim->pts;
   const double *inc = pf_points_field_get(p, PF_SOLVER_INCREMENT);
   for (pf_int d = 0; d < 3 * p->n_owned; d++)
-    if (is_free(s, d)) p->u[d] += inc[d], p->y[d] = p->X[d] + p->u[d];
+    if (pf_sim_solver_is_free(s, d)) p->u[d] += inc[d], p->y[d] = p->X[d] + p->u[d];
 }
 
 /* The load step's end: the work of the reactions and loads over it into each body's external
@@ -322,7 +336,7 @@ static int abandon(pf_sim *sim, long it) {
   pf_points *p = sim->pts;
   pf_sim_interactions_place(sim, -sim->dt); /* (dt < 0: the surfaces go back) */
   for (pf_int d = 0; d < 3 * p->n_owned; d++) p->u[d] = s->u0[d], p->y[d] = p->X[d] + p->u[d];
-  PF_CALL(evaluate(sim));
+  PF_CALL(pf_sim_solver_evaluate(sim));
   PF_CALL(freeze_damage(sim, 0));
   memset(p->v, 0, sizeof(double) * 3 * (size_t)p->n_owned);
   sim->step--;
