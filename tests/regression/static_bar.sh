@@ -16,13 +16,15 @@
 #  - the same state digest on 1, 2 and 3 ranks (2 load steps);
 #  - no boundary condition, an initial velocity and a load step that cannot converge in
 #    max_iterations: a message naming the key or the load step and a non-zero exit.
-# usage: static_bar.sh PERIFEM SCRATCH   (from the tests/ folder)
+# usage: static_bar.sh PERIFEM SCRATCH   (from the tests/ folder; the options in
+# STATIC_BAR_OPTIONS go to every run: static_newton.sh runs it all with newton_krylov)
 set -u
 exe=$1 scratch=$2 fail=0
+read -r -a opts <<< "${STATIC_BAR_OPTIONS:-}"
 deck=$(cd .. && pwd)/inputs/static_bar.yaml
 source common/mpi_env.sh
 rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch"
-out=$("$exe" "$deck" 2>&1) || { echo "FAIL: the deck: $out"; exit 1; }
+out=$("$exe" "${opts[@]}" "$deck" 2>&1) || { echo "FAIL: the deck: $out"; exit 1; }
 [ "$(echo "$out" | grep -c '^load step [1-4]/4 ')" = 4 ] || { echo "FAIL: not 4 progress lines: $out"; fail=1; }
 "$PY" - static_bar.e static_bar.h5 <<'PYEOF' || fail=1
 import sys
@@ -114,7 +116,7 @@ PYEOF
 digests=""
 for np in 1 2 3; do
   mkdir -p np$np
-  o=$(cd np$np && run $np "$exe" --quiet --set solver.load_steps=2 "$deck" 2>&1) || { echo "FAIL: $np ranks: $o"; fail=1; }
+  o=$(cd np$np && run $np "$exe" --quiet "${opts[@]}" --set solver.load_steps=2 "$deck" 2>&1) || { echo "FAIL: $np ranks: $o"; fail=1; }
   digests="$digests $(digest_of "$o")"
 done
 set -- $digests
@@ -150,7 +152,7 @@ solver: {type: quasi_static, load_steps: 4, tolerance: 1.0e-9}
 time: {final_time: 1.0}
 output: {interval: 0}
 DECK
-o=$("$exe" force.yaml 2>&1) || { echo "FAIL: force control: $o"; fail=1; }
+o=$("$exe" "${opts[@]}" force.yaml 2>&1) || { echo "FAIL: force control: $o"; fail=1; }
 "$PY" - force.e force.h5 <<'PYEOF' || fail=1
 import sys
 import h5py
@@ -179,7 +181,7 @@ PYEOF
 expect() { # expect STATUS PATTERN ARGS...: the run exits with STATUS, its output matches PATTERN
   local want=$1 pattern=$2; shift 2
   local msg rc
-  msg=$("$exe" "$@" 2>&1); rc=$?
+  msg=$("$exe" "${opts[@]}" "$@" 2>&1); rc=$?
   [ $rc -eq "$want" ] && echo "$msg" | grep -q "$pattern" || { echo "FAIL: $*: exit $rc: $msg"; fail=1; }
 }
 sed '/^boundary_conditions:/,/^solver:/{/^solver:/!d}' "$deck" > nobc.yaml
