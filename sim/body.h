@@ -136,6 +136,10 @@ typedef struct {
 /* The kind of the deck's body mapping (by `type:`, default peridynamic, then by claims); an
  * unknown type is an input error listing the known ones. */
 int pf_body_kind(const pf_deck *d, const pf_node *body, const pf_body_ops **ops);
+/* An explicit run of nsteps > 0 steps refuses the statics-only transition forms (auto,
+ * partial_stress, corrected) of a PD body or of an FE body's peridynamic: map unless the same
+ * map says allow_in_dynamics: true (sim/body_kinds.c). names: the bodies' names. */
+int pf_body_kinds_check_dynamic_forms(const pf_deck *d, long nsteps, const char *const *names);
 /* The registered kinds in list order; is kind k the first of its type (whose keys are the
  * type's: the kinds of one type share one key table)? */
 int pf_body_kind_count(void);

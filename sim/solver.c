@@ -109,36 +109,6 @@ static int read_numbers(const pf_deck *d, const pf_node *sv, pf_sim_solver *s) {
   return 0;
 }
 
-/* The transition forms auto, partial_stress and corrected are statics and patch-test tools: the
- * partial-stress force is a strong form and the corrected force a non-symmetric term, so neither
- * conserves energy (docs/theory/coupling.md §2.4-2.5; a tapered coupled bar gains 136 times its
- * energy in 25 us). An explicit run that takes a step refuses them unless the same map says
- * allow_in_dynamics: true. map: a PD body, or an FE body's `peridynamic:` map. */
-static int check_dynamic_form(const pf_deck *d, const pf_node *map, const char *body) {
-  const char *form = NULL;
-  int allow = 0;
-  PF_CALL(pf_deck_string(d, map, "formulation", &form));
-  PF_CALL(pf_deck_bool(d, map, "allow_in_dynamics", &allow));
-  if (!form || allow || (strcmp(form, "auto") && strcmp(form, "partial_stress") && strcmp(form, "corrected")))
-    return 0;
-  return pf_deck_error(d, pf_node_get(map, "formulation"), "formulation",
-                       "body '%s': formulation %s is a statics form that conserves no energy in an explicit run "
-                       "(docs/theory/coupling.md §2.4-2.5); use formulation: consistent (correspondence) or "
-                       "standard, which conserve it, the solver type quasi_static, or say allow_in_dynamics: "
-                       "true beside it to run it anyway", body, form);
-}
-
-static int check_dynamic_forms(const pf_sim *sim) {
-  const pf_deck *d = sim->deck;
-  const pf_node *bodies = pf_node_get(pf_deck_root(d), "bodies");
-  if (sim->nsteps == 0) return 0; /* forces at t = 0 only (patch tests): no energy to gain */
-  for (int b = 0; b < pf_node_count(bodies); b++) {
-    const pf_node *body = pf_node_item(bodies, b), *pd = pf_node_get(body, "peridynamic");
-    PF_CALL(check_dynamic_form(d, pd ? pd : body, sim->body_name[b]));
-  }
-  return 0;
-}
-
 int pf_sim_setup_solver(pf_sim *sim) {
   const pf_deck *d = sim->deck;
   const pf_node *root = pf_deck_root(d), *sv = pf_node_get(root, "solver");
@@ -147,7 +117,8 @@ int pf_sim_setup_solver(pf_sim *sim) {
                         .max_damage_passes = 1000};
   const char *chosen = "explicit";
   PF_CALL(pf_deck_string(d, sv, "type", &chosen));
-  if (!strcmp(chosen, "explicit")) return check_dynamic_forms(sim);
+  if (!strcmp(chosen, "explicit"))
+    return pf_body_kinds_check_dynamic_forms(d, sim->nsteps, sim->body_name);
   if (strcmp(chosen, "quasi_static"))
     return pf_deck_error(d, pf_node_get(sv, "type"), "type", "explicit or quasi_static (got '%s')", chosen);
   s->type = PF_SOLVER_QUASI_STATIC;

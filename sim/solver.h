@@ -1,5 +1,6 @@
 /* The solver the deck selects (`solver:`): explicit dynamics (velocity Verlet, sim/step.c; the
- * default) or quasi-static loading by adaptive dynamic relaxation (sim/solver_relaxation.c; docs/
+ * default) or quasi-static loading by adaptive dynamic relaxation (sim/solver_relaxation.c) or
+ * Newton-Krylov (sim/solver_newton.c), over sim/solver_forces.c (docs/
  * theory/quasi_static.md). The quasi-static solver takes a "step" of the time loop as one load
  * step: the boundary conditions at pseudo-time t_k = k / N final_time, relaxed to equilibrium over
  * the same force evaluation as the explicit step. Private to sim/. */
@@ -60,7 +61,7 @@ void pf_sim_solver_free(pf_sim *sim);
  * not converge in max_iterations is a run error naming it, the residual and the iterations.
  * Collective. */
 int pf_sim_solver_load_step(pf_sim *sim);
-/* The pieces sim/solver_newton.c shares: whether component d is free; the forces at the current
+/* sim/solver_forces.c, what both methods use: whether component d is free; the forces at the current
  * u (p->f: everything; s->f_body: the bodies'); the iteration's sums (q[PF_SOLVER_SUMS]); the
  * residual relative to the reference force. */
 int pf_sim_solver_is_free(const pf_sim_solver *s, pf_int d);
