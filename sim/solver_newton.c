@@ -181,8 +181,9 @@ int pf_sim_solver_newton(pf_sim *sim, long *it, double *res, int *stop, int *con
     *stop = stopped(q, *res);
     if (*stop || (*converged = *res <= s->tolerance) || k == NK_MAX_NEWTON) break;
     keep_base(&nk);
-    PF_CALL(krylov(&nk, s->max_iterations - nk.evaluations, &failed));
-    failed = !failed; /* (u is u0 + a probe: back to u0 below) */
+    int ok;
+    PF_CALL(krylov(&nk, s->max_iterations - nk.evaluations, &ok));
+    failed = !ok; /* (u is u0 + a probe: back to u0 below) */
     s->newton_steps++;
     const double before = *res;
     double step = 1;

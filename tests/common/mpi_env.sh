@@ -18,4 +18,11 @@ crash_in() {
   echo "$1" | grep -qiE "segmentation|core dumped|double free" && return 0
   echo "$1" | grep -iE "signal [0-9]+|Signal:" | grep -qvE "signal 15\b|Terminated"
 }
-
+# digests_agree LABEL D1 D2 D3: the state digests of one deck on 1, 2 and 3 ranks are one (printed;
+# status 1 and a FAIL line when not)
+digests_agree() {
+  local label=$1
+  shift
+  echo "$label: digests on 1, 2, 3 ranks: $*"
+  [ $# = 3 ] && [ "$1" = "$2" ] && [ "$1" = "$3" ] || { echo "FAIL: $label: the digests differ"; return 1; }
+}

@@ -82,9 +82,7 @@ for deck in static_wall_bar static_hertz; do
     o=$(cd $deck$np && run $np "$exe" --quiet --set solver.load_steps=2 "$data/$deck.yaml" 2>&1) || { echo "FAIL: $deck on $np ranks: $o"; fail=1; }
     digests="$digests $(digest_of "$o")"
   done
-  set -- $digests
-  [ $# = 3 ] && [ "$1" = "$2" ] && [ "$1" = "$3" ] || { echo "FAIL: $deck: digests on 1, 2, 3 ranks:$digests"; fail=1; }
-  echo "$deck: digests on 1, 2, 3 ranks:$digests"
+  digests_agree "$deck" $digests || fail=1
 done
 expect() { # expect STATUS PATTERN ARGS...: the run exits with STATUS, its output matches PATTERN
   local want=$1 pattern=$2; shift 2
