@@ -53,10 +53,21 @@ static const pf_key part_keys[] = {
     {"region", PF_KEY_MAP, 1, NULL, "", "the points (reference positions) that take it", pf_region_keys},
     PF_KEY_END};
 
+static const pf_key interface_damage_keys[] = {
+    {"law", PF_KEY_STRING, 1, NULL, "", "critical_stretch | critical_energy", NULL},
+    {"critical_stretch", PF_KEY_REAL, 0, NULL, "", "critical_stretch: the stretch limit of the interface's bonds",
+     NULL},
+    {"energy_release_rate", PF_KEY_REAL, 0, NULL, "J/m^2",
+     "critical_energy: the interface's G0, its bonds' energy limit w_c = 4 G0 / (pi delta^4)", NULL},
+    PF_KEY_END};
+
 static const pf_key interface_keys[] = {
     {"micromodulus", PF_KEY_STRING, 0, "series", "",
      "pmb: a bond between two materials takes series (2 c_i c_j / (c_i + c_j), its two halves as springs in "
      "series) | mean ((c_i + c_j) / 2)", NULL},
+    {"damage", PF_KEY_MAP, 0, NULL, "",
+     "the interface's own failure law: the bonds between two materials take it instead of the body's",
+     interface_damage_keys},
     PF_KEY_END};
 
 static const pf_key body_keys[] = {

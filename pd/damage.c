@@ -148,6 +148,7 @@ int pf_pd_body_freeze_damage(pf_pd_body *b, const pf_points *pts, int frozen) {
   if (!frozen) {
     b->s0 = b->frozen.s0, b->s0_init = b->frozen.s0_init;
     b->critical_energy = b->frozen.critical_energy, b->wc_bond = b->frozen.wc_bond;
+    b->interface_s0 = b->frozen.interface_s0;
     b->frozen.on = 0;
     return 0;
   }
@@ -160,7 +161,9 @@ int pf_pd_body_freeze_damage(pf_pd_body *b, const pf_points *pts, int frozen) {
   for (pf_int i = 0; i < pts->n_total; i++) b->frozen.none_s0[i] = INFINITY;
   b->frozen.s0 = b->s0, b->frozen.s0_init = b->s0_init;
   b->frozen.critical_energy = b->critical_energy, b->frozen.wc_bond = b->wc_bond;
+  b->frozen.interface_s0 = b->interface_s0;
   b->s0 = b->frozen.none_s0, b->s0_init = b->critical_energy = INFINITY, b->wc_bond = NULL;
+  b->interface_s0 = INFINITY;
   b->frozen.on = 1;
   return 0;
 }

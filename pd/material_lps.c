@@ -61,7 +61,7 @@ static int lps_setup(pf_pd_body *b, pf_points *pts) {
   }
   double special = 0; /* points of the transition, the overlap or the corrected force */
   for (pf_int i = b->first; i < b->first + b->n; i++) special += b->region[i] != 0;
-  p->batched = !b->one_sided && pf_sum_all(special) == 0; /* (the same on every rank) */
+  p->batched = !b->one_sided && !b->interface_law && pf_sum_all(special) == 0; /* (the same on every rank) */
   PF_CALL(pf_pd_weighted_volumes(b, pts, p->m));
   free(p->rm); /* (m is fixed, ghosts included, until the next set-up) */
   p->rm_n = pts->n_total;

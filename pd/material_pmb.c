@@ -92,18 +92,22 @@ pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, do
   const int64_t end = fam->offset[i - fam->first + 1];
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
     const int n = end - k0 < L ? (int)(end - k0) : L;
-    double a[PF_REC][L], live[L], fails[L], cb[L];
+    double a[PF_REC][L], live[L], fails[L], cb[L], slim_if[L];
     pf_batch_lengths g;
     pf_batch_live(broken + k0, n, live);
     pf_batch_gather(rec, nb + k0, a);
     pf_batch_lengths_of(ri, a, &g);
-    for (int l = 0; mixed && l < L; l++) cb[l] = bond_c(b, i, nb[k0 + l], c);
+    for (int l = 0; mixed && l < L; l++) { /* each bond's micromodulus; the interface's stretch limit */
+      cb[l] = bond_c(b, i, nb[k0 + l], c);
+      slim_if[l] = b->interface_law && b->part[nb[k0 + l]] != b->part[i] ? b->interface_s0 : NAN;
+    }
 #pragma omp simd
     for (int l = 0; l < L; l++) {
       const double r0 = g.r0[l], s = (g.r[l] - r0) * g.ir0[l];
       const double om = weighted ? pf_pd_omega(&b->influence, r0) : 1.0;
-      const double slim = s0i < a[REC_S0][l] ? s0i : a[REC_S0][l];
-      const double wl = energy && wlb ? 2.0 * wlb[k0 + l] / c : wlim;
+      const double slim0 = s0i < a[REC_S0][l] ? s0i : a[REC_S0][l];
+      const double slim = mixed && !isnan(slim_if[l]) ? slim_if[l] : slim0;
+      const double wl = energy && wlb ? 2.0 * wlb[k0 + l] / (mixed ? cb[l] : c) : wlim;
       const int fail = (s > slim) | (energy ? (s > 0) & (om * s * s * r0 > wl) : 0);
       fails[l] = live[l] > 0 && fail ? 1.0 : 0.0;
       const double alive = fail ? 0.0 : live[l];
@@ -204,9 +208,13 @@ static __attribute__((noinline)) int pmb_force_energy(pf_pd_body *b, pf_points *
 #undef PF_PMB_LOOP
 }
 
-/* Several materials (no energy limit: pf_pd_parts_read refuses it), any influence function. */
+/* Several materials, any influence function; an energy limit only on the interface's bonds
+ * (wc_bond; pf_pd_parts_read refuses the body's own). */
 static __attribute__((noinline)) int pmb_force_mixed(pf_pd_body *b, pf_points *pts, double c, pf_int lo,
-                                                     pf_int hi, int partial) {
+                                                     pf_int hi, int partial, int energy) {
+  if (energy)
+    return partial ? pmb_loop(b, pts, c, lo, hi, PF_INFLUENCE_GAUSSIAN, 1, 1, 1)
+                   : pmb_loop(b, pts, c, lo, hi, PF_INFLUENCE_GAUSSIAN, 0, 1, 1);
   return partial ? pmb_loop(b, pts, c, lo, hi, PF_INFLUENCE_GAUSSIAN, 1, 0, 1)
                  : pmb_loop(b, pts, c, lo, hi, PF_INFLUENCE_GAUSSIAN, 0, 0, 1);
 }
@@ -225,7 +233,7 @@ static int pmb_force(pf_pd_body *b, pf_points *pts) {
     pf_int lo, hi;
     pf_thread_range(b->first, b->n, &lo, &hi);
 #define PF_PMB_LOOP(K) any = partial ? pmb_loop(b, pts, c, lo, hi, K, 1, 0, 0) : pmb_loop(b, pts, c, lo, hi, K, 0, 0, 0)
-    if (b->part) any = pmb_force_mixed(b, pts, c, lo, hi, partial);
+    if (b->part) any = pmb_force_mixed(b, pts, c, lo, hi, partial, energy);
     else if (energy) any = pmb_force_energy(b, pts, c, lo, hi, partial);
     else if (kind == PF_INFLUENCE_CONSTANT) PF_PMB_LOOP(PF_INFLUENCE_CONSTANT);
     else if (kind == PF_INFLUENCE_INVERSE_DISTANCE) PF_PMB_LOOP(PF_INFLUENCE_INVERSE_DISTANCE);

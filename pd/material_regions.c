@@ -57,16 +57,53 @@ static int check_body(const pf_deck *d, const pf_node *list, const pf_node *body
   return 0;
 }
 
+/* The interface's own damage law: critical_stretch (its stretch limit) or critical_energy (its
+ * energy limit w_c = 4 G0 / (pi delta^4) from its G0, Foster, Silling & Chen 2011, as the body
+ * law's: docs/theory/materials.md §4.3). */
+static int read_interface_damage(const pf_deck *d, const pf_node *map, pf_pd_body *b) {
+  const char *law = "";
+  PF_CALL(pf_deck_string(d, map, "law", &law));
+  const int stretch = !strcmp(law, "critical_stretch"), energy = !strcmp(law, "critical_energy");
+  if (!stretch && !energy)
+    return pf_deck_error(d, pf_node_get(map, "law"), "law",
+                         "unknown interface law '%s' (known: critical_stretch, critical_energy)", law);
+  const char *need = stretch ? "critical_stretch" : "energy_release_rate", *other = stretch ? "energy_release_rate" : "critical_stretch";
+  if (!pf_node_get(map, need) || pf_node_get(map, other))
+    return pf_deck_error(d, map, need, "interface law '%s' takes '%s' (and not '%s')", law, need, other);
+  double v;
+  PF_CALL(pf_deck_positive(d, map, need, &v));
+  b->interface_law = 1;
+  b->interface_s0 = stretch ? v : INFINITY;
+  b->interface_wc = energy ? pf_pd_critical_energy(v, b->horizon) : INFINITY;
+  return 0;
+}
+
 static int read_interface(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
   const pf_node *map = pf_node_get(body, "interface");
   const char *rule = "series";
   b->interface = PF_PD_INTERFACE_SERIES;
+  b->interface_s0 = b->interface_wc = INFINITY;
   if (!map) return 0;
   PF_CALL(pf_deck_string(d, map, "micromodulus", &rule));
   if (!strcmp(rule, "mean")) b->interface = PF_PD_INTERFACE_MEAN;
   else if (strcmp(rule, "series"))
     return pf_deck_error(d, pf_node_get(map, "micromodulus"), "micromodulus",
                          "unknown interface rule '%s' (known: series, mean)", rule);
+  const pf_node *dmg = pf_node_get(map, "damage");
+  return dmg ? read_interface_damage(d, dmg, b) : 0;
+}
+
+/* The interface's energy limit on the bonds between two materials, none on the others
+ * (b->wc_bond, with the rows' slack, which the batched loops read). */
+static int fill_interface_energy(pf_pd_body *b) {
+  const pf_family *fam = &b->fam;
+  const int64_t nb = pf_pd_family_nbonds(fam);
+  free(b->wc_bond);
+  PF_MALLOC(b->wc_bond, nb + PF_FAMILY_SLACK);
+  for (int64_t k = 0; k < nb + PF_FAMILY_SLACK; k++) b->wc_bond[k] = INFINITY;
+  for (pf_int i = b->first; i < b->first + b->n; i++)
+    for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++)
+      if (b->part[fam->neighbor[k]] != b->part[i]) b->wc_bond[k] = b->interface_wc;
   return 0;
 }
 
@@ -122,5 +159,6 @@ int pf_pd_parts_attach(pf_pd_body *b, pf_points *pts, int fresh) {
   }
   PF_CALL(pf_points_exchange(pts, part, 1));
   b->part = part;
+  if (isfinite(b->interface_wc)) PF_CALL(fill_interface_energy(b));
   return fresh ? check_claims(b) : 0;
 }

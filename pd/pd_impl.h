@@ -78,6 +78,12 @@ struct pf_pd_body {
   pf_pd_part parts[PF_PD_MAX_PARTS];
   double *part;
   pf_pd_interface_rule interface;
+  /* the interface's own damage law (interface: damage:), for the bonds between two materials,
+   * which then take it instead of the body's: */
+  int interface_law;        /* 1: there is one */
+  double interface_s0;      /* critical_stretch: their stretch limit (INFINITY: none) */
+  double interface_wc;      /* critical_energy: their energy limit w_c, J/m^6 (INFINITY: none),
+                               filled into wc_bond at attach (INFINITY for the other bonds) */
   pf_influence influence;
   pf_family fam;
   const pf_pd_material_ops *ops;
@@ -115,7 +121,7 @@ struct pf_pd_body {
    * none (s0 the all-INFINITY none_s0 [none_n], no energy limit), so no kernel fails a bond. */
   struct {
     int on;
-    double *s0, s0_init, critical_energy, *wc_bond;
+    double *s0, s0_init, critical_energy, *wc_bond, interface_s0;
     double *none_s0;
     pf_int none_n;
   } frozen;
@@ -208,9 +214,11 @@ struct pf_pd_damage_ops {
 /* The limits as the kernels read them, once per call (to choose a specialized loop): has the
  * body a stretch limit, an energy limit? */
 static inline int pf_pd_stretch_limited(const pf_pd_body *b) { return isfinite(b->s0_init); }
-static inline int pf_pd_energy_limited(const pf_pd_body *b) { return isfinite(b->critical_energy); }
-/* Does the bond i - j of stretch s exceed its stretch limit min(s0_i, s0_j)? */
+static inline int pf_pd_energy_limited(const pf_pd_body *b) { return isfinite(b->critical_energy) || b->wc_bond; }
+/* Does the bond i - j of stretch s exceed its stretch limit min(s0_i, s0_j), or, between two
+ * materials of a body whose interface has its own law, the interface's? */
 static inline int pf_pd_stretch_fails(const pf_pd_body *b, pf_int i, pf_int j, double s) {
+  if (b->interface_law && b->part[i] != b->part[j]) return s > b->interface_s0;
   return s > fmin(b->s0[i], b->s0[j]);
 }
 /* The energy limit of bond k (per V_i V_j, J/m^6): its own, or the body's. */

@@ -140,7 +140,17 @@ static void lattice_sums(double delta_h, double *pairs, double *lengths) {
 enum { NX = 12, NY = 16, LIG = 8 };
 
 /* Part 2: one separation; law "critical_energy" or "critical_stretch". */
-static separation separate(const char *model, const char *law, double safety) {
+/* K of the second material of the interface separations (the same Poisson's ratio), and the
+ * series modulus 2 K K2 / (K + K2) of the bonds across the interface (pmb: their micromodulus is
+ * c of that modulus, docs/theory/interfaces.md §2). */
+static const double K2_RATIO = 2.0;
+static double series_modulus(void) { return 2 * K * (K2_RATIO * K) / (K + K2_RATIO * K); }
+
+/* With `interface`, the half x > xm is a second material (K and G times K2_RATIO) of the same
+ * body (material_regions), the body has no damage law and the interface has `law` with G0: its
+ * own critical_energy, or PMB's critical stretch of the series modulus, s0 = sqrt(5 G0 / (9 K_s
+ * delta)); the plane that separates is the interface. */
+static separation separate(const char *model, const char *law, double safety, int interface) {
   const double h = 0.5e-3, delta = 3.015 * h, xm = (NX / 2 - 0.5) * h;
   const double Lx = (NX - 1) * h, Ly = (NY - 1) * h;
   /* the square y, z in [y0, y1]: its edges off every crossing point of a bond (those lie on
@@ -164,19 +174,34 @@ static separation separate(const char *model, const char *law, double safety) {
       snprintf(one, sizeof one, fmt, xm, y0 + (2 * (q - 4) + 1) * h, y0, h, y1 - y0);
     strcat(rects, one);
   }
-  char deck[8192];
+  char deck[8192], damage[512], second[256] = "";
+  /* the interface cases hold the grips laterally: with the bulk unbreakable, the halves would
+   * otherwise slide sideways on the last oblique bonds (|xi_x| = h, |xi_y| = 2h), which then turn
+   * instead of stretching and never fail */
+  const char *lat = interface ? "\"0\"" : "free";
+  const double s0_int = sqrt(5 * G0 / (9 * series_modulus() * delta));
+  if (!interface) snprintf(damage, sizeof damage, "    damage: {law: %s, energy_release_rate: %g}\n", law, G0);
+  else {
+    snprintf(second, sizeof second, ", m2: {model: %s, density: %g, bulk_modulus: %g, shear_modulus: %g}", model,
+             RHO, K2_RATIO * K, K2_RATIO * G);
+    snprintf(damage, sizeof damage,
+             "    material_regions: [{material: m2, region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]}}]\n"
+             "    interface: {damage: {law: %s, %s: %.17g}}\n", xm, law,
+             strcmp(law, "critical_energy") ? "critical_stretch" : "energy_release_rate",
+             strcmp(law, "critical_energy") ? s0_int : G0);
+  }
   snprintf(deck, sizeof deck,
-           "materials: {m: {model: %s, density: %g, bulk_modulus: %g, shear_modulus: %g}}\n"
+           "materials: {m: {model: %s, density: %g, bulk_modulus: %g, shear_modulus: %g}%s}\n"
            "bodies:\n  - name: bar\n    material: m\n    horizon: %.17g\n"
            "    geometry: {shape: box, lo: [0, 0, 0], hi: [%.17g, %.17g, %.17g], spacing: %.17g}\n"
-           "    damage: {law: %s, energy_release_rate: %g}\n"
+           "%s"
            "    precracks:\n%s"
            "boundary_conditions:\n"
-           "  - {region: {shape: box, lo: [-1, -1, -1], hi: [%.17g, 1, 1]}, velocity: [\"-%g * min(t / %g, 1)\", free, free]}\n"
-           "  - {region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]}, velocity: [\"%g * min(t / %g, 1)\", free, free]}\n"
+           "  - {region: {shape: box, lo: [-1, -1, -1], hi: [%.17g, 1, 1]}, velocity: [\"-%g * min(t / %g, 1)\", %s, %s]}\n"
+           "  - {region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]}, velocity: [\"%g * min(t / %g, 1)\", %s, %s]}\n"
            "time: {final_time: %g, safety_factor: %g}\n",
-           model, RHO, K, G, delta, Lx, Ly, Ly, h, law, G0, rects, 2.5 * h, V, tr, Lx - 2.5 * h, V,
-           tr, tend, safety);
+           model, RHO, K, G, second, delta, Lx, Ly, Ly, h, damage, rects, 2.5 * h, V, tr, lat, lat, Lx - 2.5 * h, V,
+           tr, lat, lat, tend, safety);
   pf_sim *sim = pf_test_sim("critical_energy_bar", deck);
   separation r = {0};
   pf_sim_globals g;
@@ -200,14 +225,37 @@ static separation separate(const char *model, const char *law, double safety) {
   if (!strcmp(law, "critical_energy"))
     r.lattice = pairs * pow(h, 4) * 4 * G0 / (PF_PI * pow(delta, 4));
   else {
-    double c = 18 * K / (PF_PI * pow(delta, 4)), s0 = sqrt(5 * G0 / (9 * K * delta));
+    const double Kb = interface ? series_modulus() : K;
+    double c = 18 * Kb / (PF_PI * pow(delta, 4)), s0 = sqrt(5 * G0 / (9 * Kb * delta));
     r.lattice = 0.5 * c * s0 * s0 * pow(h, 5) * lengths;
   }
   char tag[64];
-  snprintf(tag, sizeof tag, "%s %s", model, law);
+  snprintf(tag, sizeof tag, "%s %s%s", model, law, interface ? " interface" : "");
   pf_test_print_digest(tag, sim);
   pf_sim_destroy(&sim);
   return r;
+}
+
+/* The interface's own law (docs/theory/interfaces.md §6): the plane between two materials of one
+ * body separates with the interface's G0, the bulk unbroken (no law of its own). PMB with both
+ * laws (G0 within 15 %, within 3 % of the lattice sum of its bonds' energies at failure), LPS with
+ * critical_energy (G0 within 15 %). */
+static void interface_separations(int verbose) {
+  const char *cases[3][2] = {{"pmb", "critical_energy"}, {"pmb", "critical_stretch"}, {"lps", "critical_energy"}};
+  for (int q = 0; q < 3; q++) {
+    separation r = separate(cases[q][0], cases[q][1], 0.8, 1);
+    PF_TEST_TRUE(r.broken_other == 0); /* only interface bonds failed */
+    PF_TEST_CLOSE(r.G, G0, 0.15, 0);
+    if (q < 2) PF_TEST_CLOSE(r.G, r.lattice, 0.03, 0);
+    char key[64];
+    snprintf(key, sizeof key, "interface_%s_%s_G", cases[q][0], cases[q][1]);
+    pf_test_measure(key, r.G, "J/m^2");
+    if (verbose)
+      printf("interface %s %-16s G = %6.3f J/m^2 (%+5.1f %% of G0; PMB lattice sum %.3f) after %ld steps; broken: %lld "
+             "crossing of %lld, %lld others\n", cases[q][0], cases[q][1], r.G, 100 * (r.G / G0 - 1),
+             q < 2 ? r.lattice : NAN, r.steps, (long long)r.broken_crossing, (long long)r.crossing,
+             (long long)r.broken_other);
+  }
 }
 
 int main(int argc, char **argv) {
@@ -226,7 +274,7 @@ int main(int argc, char **argv) {
   const char *laws[2] = {"critical_energy", "critical_stretch"};
   for (int m = 0; m < 2; m++)
     for (int l = 0; l < 2; l++) {
-      separation r = separate(models[m], laws[l], 0.8);
+      separation r = separate(models[m], laws[l], 0.8, 0);
       PF_TEST_CLOSE(r.G, G0, 0.15, 0);
       if (m == 0) PF_TEST_CLOSE(r.G, r.lattice, 0.03, 0);
       /* the dissipation the kernels booked bond by bond (each bond's energy when it is removed)
@@ -235,7 +283,7 @@ int main(int argc, char **argv) {
       PF_TEST_CLOSE(r.booked, r.G, 0.08, 0);
       if (m == 0 && l == 0) { /* ... which is first order in dt: a quarter of the step */
         pf_test_measure("pmb_critical_energy_gap", r.booked - r.G, "J/m^2");
-        separation q = separate(models[m], laws[l], 0.2);
+        separation q = separate(models[m], laws[l], 0.2, 0);
         PF_TEST_TRUE(fabs(q.booked - q.G) < 0.35 * fabs(r.booked - r.G));
         PF_TEST_CLOSE(q.booked, q.G, 0.02, 0);
         pf_test_measure("pmb_critical_energy_quarter_step_gap", q.booked - q.G, "J/m^2");
@@ -253,5 +301,6 @@ int main(int argc, char **argv) {
                r.wext, r.kin, r.elastic, (long long)r.broken_crossing, (long long)r.crossing,
                (long long)r.broken_other);
     }
+  interface_separations(verbose);
   return pf_test_finish();
 }
