@@ -48,11 +48,28 @@ static const pf_key crack_keys[] = {
     {"radius", PF_KEY_REAL, 0, NULL, "m", "disk: radius", NULL},
     PF_KEY_END};
 
+static const pf_key part_keys[] = {
+    {"material", PF_KEY_STRING, 1, NULL, "", "a name under materials:, of the body material's model", NULL},
+    {"region", PF_KEY_MAP, 1, NULL, "", "the points (reference positions) that take it", pf_region_keys},
+    PF_KEY_END};
+
+static const pf_key interface_keys[] = {
+    {"micromodulus", PF_KEY_STRING, 0, "series", "",
+     "pmb: a bond between two materials takes series (2 c_i c_j / (c_i + c_j), its two halves as springs in "
+     "series) | mean ((c_i + c_j) / 2)", NULL},
+    PF_KEY_END};
+
 static const pf_key body_keys[] = {
     {"name", PF_KEY_STRING, 1, NULL, "", "body name (the Exodus block name)", NULL},
     {"type", PF_KEY_STRING, 0, "peridynamic", "", "peridynamic", NULL},
     {"material", PF_KEY_STRING, 1, NULL, "", "a name under materials:", NULL},
     {"geometry", PF_KEY_MAP, 1, NULL, "", "where the points are", pf_geometry_keys},
+    {"material_regions", PF_KEY_LIST, 0, NULL, "",
+     "several materials in one body (pmb, lps; constant horizon): each entry's region takes its material, "
+     "later entries over earlier ones; the other points keep `material` (docs/theory/interfaces.md)",
+     part_keys},
+    {"interface", PF_KEY_MAP, 0, "micromodulus: series", "", "how a bond between two materials is formed",
+     interface_keys},
     {"horizon", PF_KEY_EXPR, 1, NULL, "m",
      "horizon delta (bonds with |xi| <= delta): a number, or an expression in x, y, z (a variable "
      "horizon; lps and correspondence materials)", NULL},
@@ -310,7 +327,8 @@ static int body_read(const pf_deck *d, const pf_node *owner, const pf_node *body
   PF_CALL(pf_deck_bool(d, body, "partial_volumes", &b->partial));
   PF_CALL(read_cracks(d, pf_node_get(body, "precracks"), &b->ncracks, &b->cracks));
   PF_CALL(pf_pd_damage_read(d, pf_node_get(body, "damage"), b));
-  return check_variable_horizon(d, body, b);
+  PF_CALL(check_variable_horizon(d, body, b));
+  return pf_pd_parts_read(d, body, materials, b);
 }
 
 static int create(const pf_deck *d, const pf_node *owner, const pf_node *map, const pf_node *materials,
@@ -499,11 +517,11 @@ static int check_masses(const pf_pd_body *b, const pf_points *pts, pf_int first,
   char msg[400] = "";
   int ok = 1;
   for (pf_int i = first; i < first + n && ok; i++)
-    if (pts->m[i] != b->density * pts->vol[i]) {
+    if (pts->m[i] != pf_pd_density(b, i) * pts->vol[i]) {
       ok = 0;
       snprintf(msg, sizeof msg, "body '%s': point %" PF_GID_FMT " carries mass %.17g kg, not density x volume = "
                "%.17g kg: the checkpoint it came from is damaged", b->name, pts->gid[i], pts->m[i],
-               b->density * pts->vol[i]);
+               pf_pd_density(b, i) * pts->vol[i]);
     }
   PF_AGREE(ok, PF_ERR_INPUT, msg);
   return 0;
@@ -523,8 +541,9 @@ int pf_pd_body_attach(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n,
   free(b->lost);
   PF_MALLOC(b->lost, n);
   PF_CALL(set_regions(b, pts));
+  PF_CALL(pf_pd_parts_attach(b, pts, fresh));
   if (fresh) { /* (after a re-partition or a restart the masses came with the points) */
-    for (pf_int i = first; i < first + n; i++) pts->m[i] = b->density * pts->vol[i];
+    for (pf_int i = first; i < first + n; i++) pts->m[i] = pf_pd_density(b, i) * pts->vol[i];
     PF_CALL(pf_points_exchange(pts, pts->m, 1));
   } else {
     PF_CALL(check_masses(b, pts, first, n));
@@ -710,9 +729,10 @@ double pf_pd_stable_dt_point(const pf_pd_body *b, const pf_points *pts, pf_int i
     for (int a = 0; a < 3; a++) r2 += pow(pts->X[3 * j + a] - pts->X[3 * i + a], 2);
     double r0 = sqrt(r2);
     if (!pf_pd_in_family(b, i, r0)) continue;
-    sum += pf_pd_bond_volume(fam, pts->vol, k, j) * c * pf_pd_omega(&b->influence, r0) / r0;
+    const double cb = b->part ? c * fmax(pf_pd_part_at(b, i)->mscale, pf_pd_part_at(b, j)->mscale) : c;
+    sum += pf_pd_bond_volume(fam, pts->vol, k, j) * cb * pf_pd_omega(&b->influence, r0) / r0;
   }
-  return sum > 0 ? sqrt(2.0 * b->density / sum) : INFINITY;
+  return sum > 0 ? sqrt(2.0 * pf_pd_density(b, i) / sum) : INFINITY;
 }
 
 int pf_pd_body_step_varies(const pf_pd_body *b) { return b->ops->stable_dt != NULL; }

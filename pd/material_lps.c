@@ -66,7 +66,7 @@ static int lps_setup(pf_pd_body *b, pf_points *pts) {
   free(p->rm); /* (m is fixed, ghosts included, until the next set-up) */
   p->rm_n = pts->n_total;
   PF_MALLOC(p->rm, p->rm_n);
-  for (pf_int j = 0; j < p->rm_n; j++) p->rm[j] = 1.0 / p->m[j];
+  for (pf_int j = 0; j < p->rm_n; j++) p->rm[j] = (b->part ? pf_pd_G(b, j) / b->shear_modulus : 1.0) / p->m[j];
   return 0;
 }
 
@@ -125,8 +125,8 @@ static int lps_partial_stress(pf_pd_body *b, pf_points *pts) {
   const pf_family *fam = &b->fam;
   for (pf_int i = b->first; i < b->first + b->n; i++) {
     double *nu = &p->nu[9 * i], e[3], r0, r;
-    const double thi = p->theta[i], bi = 15 * b->shear_modulus / p->m[i];
-    const double ai = pf_pd_lps_volumetric(b->bulk_modulus, b->shear_modulus, thi, p->mom[i], p->m[i]);
+    const double thi = p->theta[i], bi = 15 * pf_pd_G(b, i) / p->m[i];
+    const double ai = pf_pd_lps_volumetric(pf_pd_K(b, i), pf_pd_G(b, i), thi, p->mom[i], p->m[i]);
     for (int k = 0; k < 9; k++) nu[k] = 0.0;
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
       if (fam->broken[k]) continue;
@@ -151,8 +151,13 @@ static int lps_force_batched(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
   PF_CALL(lps_moments(b, pts));
   PF_CHECK(p->rm_n == pts->n_total, PF_ERR_RUN, "LPS body '%s': the store changed since the set-up", b->name);
   const double q = 3 * b->bulk_modulus - 5 * b->shear_modulus, g15 = 15 * b->shear_modulus;
-  for (size_t j = 0; j < n; j++) /* Q = m (a - 5 G theta / m) (pf_pd_lps_volumetric) */
+  for (size_t j = 0; j < n && !b->part; j++) /* Q = m (a - 5 G theta / m) (pf_pd_lps_volumetric) */
     p->rec.rec[PF_REC * j + REC_AUX] = p->mom[j] == 0.0 ? q * p->theta[j] : q * p->theta[j] - g15 * p->mom[j] / p->m[j];
+  for (pf_int j = 0; j < (pf_int)n && b->part; j++) { /* several materials: Q_j / g_j with rm_j = g_j / m_j,
+                                                         g_j = G_j / G (docs/theory/interfaces.md §3) */
+    const double Kj = pf_pd_K(b, j), Gj = pf_pd_G(b, j), qj = (3 * Kj - 5 * Gj) * p->theta[j];
+    p->rec.rec[PF_REC * j + REC_AUX] = (p->mom[j] == 0.0 ? qj : qj - 15 * Gj * p->mom[j] / p->m[j]) * (b->shear_modulus / Gj);
+  }
   *nfailed = pf_pd_lps_batched_force(b, pts, p->rec.rec, p->rm);
   return 0;
 }
@@ -160,7 +165,6 @@ static int lps_force_batched(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
 /* The general passes (any horizon, partial stress, overlap): dilatations, then forces. */
 static int lps_force_general(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
   lps *p = b->mat;
-  const double K = b->bulk_modulus, G = b->shear_modulus;
   const int energy = pf_pd_energy_limited(b);
   const pf_family *fam = &b->fam;
   for (pf_int i = b->first; i < b->first + b->n; i++) p->theta[i] = lps_dilatation(b, pts, i, p->m[i]);
@@ -172,13 +176,15 @@ static int lps_force_general(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
       continue;
     }
     double f[3] = {0, 0, 0}, e[3], r0, r;
-    const double thi = p->theta[i], ai = pf_pd_lps_volumetric(K, G, thi, p->mom[i], p->m[i]), bi = 15 * G / p->m[i];
+    const double Ki = pf_pd_K(b, i), Gi = pf_pd_G(b, i), thi = p->theta[i];
+    const double ai = pf_pd_lps_volumetric(Ki, Gi, thi, p->mom[i], p->m[i]), bi = 15 * Gi / p->m[i];
     for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
       if (fam->broken[k]) continue;
       pf_int j = fam->neighbor[k];
       pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
       const double ext = r - r0, w = pf_pd_omega(&b->influence, r0);
-      const double thj = p->theta[j], aj = pf_pd_lps_volumetric(K, G, thj, p->mom[j], p->m[j]), bj = 15 * G / p->m[j];
+      const double Kj = pf_pd_K(b, j), Gj = pf_pd_G(b, j), thj = p->theta[j];
+      const double aj = pf_pd_lps_volumetric(Kj, Gj, thj, p->mom[j], p->m[j]), bj = 15 * Gj / p->m[j];
       const double tij = pf_pd_in_family(b, i, r0) ? lps_t(ai, bi, thi, w, r0, ext) : 0.0;
       const double tji = pf_pd_in_family(b, j, r0) ? lps_t(aj, bj, thj, w, r0, ext) : 0.0;
       if (energy && ext > 0 && 0.5 * (tij + tji) * ext > pf_pd_energy_limit(b, k)) {
@@ -221,7 +227,7 @@ static double energy_density(const pf_pd_body *b, const pf_points *pts, pf_int i
     double ed = (r - r0) - theta * r0 / 3 - (ep ? ep[stride * k] : 0.0);
     dev += pf_pd_omega(&b->influence, r0) * ed * ed * pf_pd_bond_volume(fam, pts->vol, k, j);
   }
-  return 0.5 * b->bulk_modulus * theta * theta + 7.5 * b->shear_modulus / m * dev;
+  return 0.5 * pf_pd_K(b, i) * theta * theta + 7.5 * pf_pd_G(b, i) / m * dev;
 }
 
 double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_int i, double theta, double m,
@@ -244,7 +250,7 @@ static void release_at(const pf_pd_body *b, const pf_points *pts, const double *
                        const double *ep, int stride, double q[3]) {
   const pf_family *fam = &b->fam;
   const int64_t k0 = fam->offset[i - b->first], k1 = fam->offset[i - b->first + 1];
-  const double K = b->bulk_modulus, a = 15.0 * b->shear_modulus / m;
+  const double K = pf_pd_K(b, i), a = 15.0 * pf_pd_G(b, i) / m;
   double sum_s = 0, sum_f = 0, m_s = 0, e[3], r0, r;
   q[2] = 0.0;
   for (int64_t k = k0; k < k1; k++) { /* the dilatation sums of S and F, their weighted volumes */
@@ -348,4 +354,5 @@ const pf_pd_material_ops pf_pd_material_lps = {
     .destroy = lps_destroy,
     .partial_stress = 1,
     .bond_energy = 1,
+    .several_materials = 1,
 };

@@ -25,6 +25,12 @@ static int pmb_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
   return 0;
 }
 
+/* The micromodulus of the bond i - j: c, or across two materials c times the interface rule's
+ * factor (pf_pd_bond_stiffness; docs/theory/interfaces.md §2). */
+static inline double bond_c(const pf_pd_body *b, pf_int i, pf_int j, double c) {
+  return b->part ? c * pf_pd_bond_stiffness(b, i, j) : c;
+}
+
 /* The micropotential share of the directed bond k of point i, per V_i, at the positions y:
  * (1/4) c omega s^2 |xi| V_j (Silling & Askari 2005, eq. 6, half of the pair's to each end). */
 static double pmb_bond_energy(const pf_pd_body *b, const pf_points *pts, const double *y, pf_int i, int64_t k,
@@ -34,7 +40,7 @@ static double pmb_bond_energy(const pf_pd_body *b, const pf_points *pts, const d
   double r0, r, e[3];
   pf_pd_bond_lengths(pts->X, y, i, j, &r0, &r, e);
   const double s = (r - r0) / r0;
-  return 0.25 * c * pf_pd_omega(&b->influence, r0) * s * s * r0 * pf_pd_bond_volume(fam, pts->vol, k, j);
+  return 0.25 * bond_c(b, i, j, c) * pf_pd_omega(&b->influence, r0) * s * s * r0 * pf_pd_bond_volume(fam, pts->vol, k, j);
 }
 
 /* The energy (J) point i's bonds that failed in this pass held at the middle of the step: the
@@ -67,10 +73,11 @@ static __attribute__((noinline)) double pmb_release(const pf_pd_body *b, const p
  * the batch (pd/bond_batch.h), then branch-free passes over the batch, in vector registers,
  * add into per-lane sums, which are summed at the end. The empty lanes of a row's last batch
  * read the rows' slack (pd/pd.h) and are dead. The order of the sums depends only on the
- * bond order, so results do not depend on the partition. */
+ * bond order, so results do not depend on the partition. With `mixed` (several materials) each
+ * bond's micromodulus is c times its interface factor (bond_c). */
 static inline __attribute__((always_inline)) double
 pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, double c, double wlim,
-          const int weighted, const int partial, const int energy, double f[3], int *nfresh) {
+          const int weighted, const int partial, const int energy, const int mixed, double f[3], int *nfresh) {
   enum { L = PF_BATCH };
   const pf_family *fam = &b->fam;
   const float *restrict vfrac = fam->vfrac;
@@ -85,11 +92,12 @@ pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, do
   const int64_t end = fam->offset[i - fam->first + 1];
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
     const int n = end - k0 < L ? (int)(end - k0) : L;
-    double a[PF_REC][L], live[L], fails[L];
+    double a[PF_REC][L], live[L], fails[L], cb[L];
     pf_batch_lengths g;
     pf_batch_live(broken + k0, n, live);
     pf_batch_gather(rec, nb + k0, a);
     pf_batch_lengths_of(ri, a, &g);
+    for (int l = 0; mixed && l < L; l++) cb[l] = bond_c(b, i, nb[k0 + l], c);
 #pragma omp simd
     for (int l = 0; l < L; l++) {
       const double r0 = g.r0[l], s = (g.r[l] - r0) * g.ir0[l];
@@ -101,7 +109,7 @@ pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, do
       const double alive = fail ? 0.0 : live[l];
       sm[l] = alive > 0 && s < sm[l] ? s : sm[l];
       const double vj = partial ? a[REC_V][l] * vfrac[k0 + l] : a[REC_V][l];
-      const double fs = alive > 0 ? c * s * g.ir[l] * vj * om : 0.0;
+      const double fs = alive > 0 ? (mixed ? cb[l] : c) * s * g.ir[l] * vj * om : 0.0;
       f0[l] += fs * g.e[0][l];
       f1[l] += fs * g.e[1][l];
       f2[l] += fs * g.e[2][l];
@@ -160,7 +168,7 @@ static inline __attribute__((always_inline)) double pmb_point_avx512(const pf_pd
  * when some point lost bonds (its lost flag is set). */
 static inline __attribute__((always_inline)) int pmb_loop(pf_pd_body *b, pf_points *pts, double c, pf_int lo,
                                                           pf_int hi, const int kind, const int partial,
-                                                          const int energy) {
+                                                          const int energy, const int mixed) {
   const int weighted = kind != PF_INFLUENCE_CONSTANT;
   double *restrict F = pts->f;
   const double *restrict vol = pts->vol;
@@ -171,10 +179,10 @@ static inline __attribute__((always_inline)) int pmb_loop(pf_pd_body *b, pf_poin
     double f[3];
     int fresh;
 #if defined(PF_BATCH_AVX512)
-    if (!energy) b->smin[i - b->first] = pmb_point_avx512(b, rec, i, c, kind, partial, f, &fresh);
+    if (!energy && !mixed) b->smin[i - b->first] = pmb_point_avx512(b, rec, i, c, kind, partial, f, &fresh);
     else
 #endif
-      b->smin[i - b->first] = pmb_point(b, rec, i, c, wlim, weighted, partial, energy, f, &fresh);
+      b->smin[i - b->first] = pmb_point(b, rec, i, c, wlim, weighted, partial, energy, mixed, f, &fresh);
     b->lost[i - b->first] = fresh > 0;
     any |= fresh > 0;
     F[3 * i] += vol[i] * f[0];
@@ -189,11 +197,18 @@ static inline __attribute__((always_inline)) int pmb_loop(pf_pd_body *b, pf_poin
 static __attribute__((noinline)) int pmb_force_energy(pf_pd_body *b, pf_points *pts, double c, pf_int lo,
                                                       pf_int hi, int partial) {
   const pf_influence_kind kind = b->influence.kind;
-#define PF_PMB_LOOP(K) return partial ? pmb_loop(b, pts, c, lo, hi, K, 1, 1) : pmb_loop(b, pts, c, lo, hi, K, 0, 1)
+#define PF_PMB_LOOP(K) return partial ? pmb_loop(b, pts, c, lo, hi, K, 1, 1, 0) : pmb_loop(b, pts, c, lo, hi, K, 0, 1, 0)
   if (kind == PF_INFLUENCE_CONSTANT) PF_PMB_LOOP(PF_INFLUENCE_CONSTANT);
   if (kind == PF_INFLUENCE_INVERSE_DISTANCE) PF_PMB_LOOP(PF_INFLUENCE_INVERSE_DISTANCE);
   PF_PMB_LOOP(PF_INFLUENCE_GAUSSIAN);
 #undef PF_PMB_LOOP
+}
+
+/* Several materials (no energy limit: pf_pd_parts_read refuses it), any influence function. */
+static __attribute__((noinline)) int pmb_force_mixed(pf_pd_body *b, pf_points *pts, double c, pf_int lo,
+                                                     pf_int hi, int partial) {
+  return partial ? pmb_loop(b, pts, c, lo, hi, PF_INFLUENCE_GAUSSIAN, 1, 0, 1)
+                 : pmb_loop(b, pts, c, lo, hi, PF_INFLUENCE_GAUSSIAN, 0, 0, 1);
 }
 
 /* Owner computes: a point writes only its own force, smin and row, so the threads (each a
@@ -209,8 +224,9 @@ static int pmb_force(pf_pd_body *b, pf_points *pts) {
   {
     pf_int lo, hi;
     pf_thread_range(b->first, b->n, &lo, &hi);
-#define PF_PMB_LOOP(K) any = partial ? pmb_loop(b, pts, c, lo, hi, K, 1, 0) : pmb_loop(b, pts, c, lo, hi, K, 0, 0)
-    if (energy) any = pmb_force_energy(b, pts, c, lo, hi, partial);
+#define PF_PMB_LOOP(K) any = partial ? pmb_loop(b, pts, c, lo, hi, K, 1, 0, 0) : pmb_loop(b, pts, c, lo, hi, K, 0, 0, 0)
+    if (b->part) any = pmb_force_mixed(b, pts, c, lo, hi, partial);
+    else if (energy) any = pmb_force_energy(b, pts, c, lo, hi, partial);
     else if (kind == PF_INFLUENCE_CONSTANT) PF_PMB_LOOP(PF_INFLUENCE_CONSTANT);
     else if (kind == PF_INFLUENCE_INVERSE_DISTANCE) PF_PMB_LOOP(PF_INFLUENCE_INVERSE_DISTANCE);
     else PF_PMB_LOOP(PF_INFLUENCE_GAUSSIAN);
@@ -231,16 +247,17 @@ static double pmb_point_energy(const pf_pd_body *b, const double *rec, pf_int i,
   const int64_t end = fam->offset[i - fam->first + 1];
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
     const int n = end - k0 < L ? (int)(end - k0) : L;
-    double a[PF_REC][L], live[L];
+    double a[PF_REC][L], live[L], cb[L];
     pf_batch_lengths g;
     pf_batch_live(fam->broken + k0, n, live);
     pf_batch_gather(rec, fam->neighbor + k0, a);
     pf_batch_lengths_of(ri, a, &g);
+    for (int l = 0; l < L; l++) cb[l] = bond_c(b, i, fam->neighbor[k0 + l], c);
 #pragma omp simd
     for (int l = 0; l < L; l++) {
       const double r0 = g.r0[l], s = (g.r[l] - r0) * g.ir0[l];
       const double vj = fam->vfrac ? a[REC_V][l] * fam->vfrac[k0 + l] : a[REC_V][l];
-      const double wl = 0.25 * c * pf_pd_omega(&b->influence, r0) * s * s * r0 * vj;
+      const double wl = 0.25 * cb[l] * pf_pd_omega(&b->influence, r0) * s * s * r0 * vj;
       w[l] += live[l] > 0 ? wl : 0.0;
     }
   }
@@ -283,5 +300,6 @@ const pf_pd_material_ops pf_pd_material_pmb = {
     .critical_stretch = pmb_critical_stretch,
     .destroy = pmb_destroy,
     .bond_energy = 1,
+    .several_materials = 1,
     .bond_rate = 2.3e8,
 };

@@ -22,6 +22,23 @@ typedef enum { PF_PD_AUTO, PF_PD_STANDARD, PF_PD_PARTIAL_STRESS, PF_PD_CORRECTED
 
 enum { PF_PD_MAX_HISTORY_FIELDS = 8 };
 
+/* Several materials in one body (the body's material_regions, pd/material_regions.c,
+ * docs/theory/interfaces.md): part 0 is the body's own material, part q >= 1 the q-th entry's,
+ * whose region claims the points it holds (later entries win). */
+enum { PF_PD_MAX_PARTS = 16 };
+typedef struct {
+  char material[64]; /* its name under materials: */
+  double density, K, G; /* kg/m^3, Pa, Pa */
+  double kscale;     /* K / K of part 0: a bond-based micromodulus scales with it */
+  double mscale;     /* P-wave modulus K + 4G/3 (K where G is not given) over part 0's: the
+                        stable step's micromodulus scales with it */
+  pf_region region;  /* the points it claims (part 0: none) */
+  const pf_node *node; /* its entry of material_regions (part 0: the body's `material`) */
+} pf_pd_part;
+
+/* How a bond-based micromodulus is formed across two materials (the body's interface map). */
+typedef enum { PF_PD_INTERFACE_SERIES, PF_PD_INTERFACE_MEAN } pf_pd_interface_rule;
+
 struct pf_pd_body {
   char name[64];
   char material[64];   /* its name under materials: */
@@ -55,6 +72,12 @@ struct pf_pd_body {
   int fresh;           /* set by attach for the material's setup: 1 at t = 0, 0 after a re-partition
                           or a restart (the material's restart fields came with the points) */
   double bulk_modulus, shear_modulus;
+  /* several materials: nparts >= 2 with material_regions, and then part (field "material",
+   * ghosted: each store point's part index) is set at attach; nparts 1 and part NULL otherwise */
+  int nparts;
+  pf_pd_part parts[PF_PD_MAX_PARTS];
+  double *part;
+  pf_pd_interface_rule interface;
   pf_influence influence;
   pf_family fam;
   const pf_pd_material_ops *ops;
@@ -128,6 +151,8 @@ struct pf_pd_material_ops {
   int gradient_forms; /* 1: takes the corrected and consistent forms (a deformation gradient) */
   int uses_velocity;  /* 1: its forces read the neighbours' velocities (a rate form) */
   int bond_energy;    /* 1: its force kernel evaluates each bond's energy (critical_energy law) */
+  int several_materials; /* 1: its kernels read each point's constants (pf_pd_K, pf_pd_G,
+                            pf_pd_bond_stiffness): the body may have material_regions */
   /* directed bond evaluations per second and rank measured on the project's 2-core benchmark
    * machine (87 451-point target, 150 steps), for perifem --check's run-time estimate; 0: the
    * rate of the other models, 1.5e8 */
@@ -241,6 +266,28 @@ static inline int pf_pd_may_fail(const pf_pd_body *b, pf_int i, pf_int j) {
 static inline double pf_pd_energy_weight(const pf_pd_body *b, pf_int i) {
   return b->blend && b->blend_states ? b->blend[i] : 1.0;
 }
+
+/* The material constants of store point i: its part's (several materials), else the body's. */
+static inline const pf_pd_part *pf_pd_part_at(const pf_pd_body *b, pf_int i) {
+  return &b->parts[b->part ? (int)b->part[i] : 0];
+}
+static inline double pf_pd_K(const pf_pd_body *b, pf_int i) { return b->part ? pf_pd_part_at(b, i)->K : b->bulk_modulus; }
+static inline double pf_pd_G(const pf_pd_body *b, pf_int i) { return b->part ? pf_pd_part_at(b, i)->G : b->shear_modulus; }
+static inline double pf_pd_density(const pf_pd_body *b, pf_int i) {
+  return b->part ? pf_pd_part_at(b, i)->density : b->density;
+}
+/* The bond-based micromodulus factor of the bond i - j across materials, c_ij = c k (k the
+ * parts' kscale): series 2 k_i k_j / (k_i + k_j) (the two half-bonds as springs in series) or
+ * the mean (k_i + k_j) / 2; the same bits from either end. 1 within one material. */
+static inline double pf_pd_bond_stiffness(const pf_pd_body *b, pf_int i, pf_int j) {
+  const double ki = pf_pd_part_at(b, i)->kscale, kj = pf_pd_part_at(b, j)->kscale;
+  if (ki == kj) return ki;
+  return b->interface == PF_PD_INTERFACE_SERIES ? 2 * ki * kj / (ki + kj) : 0.5 * (ki + kj);
+}
+/* pd/material_regions.c: read the body's material_regions and interface (after its own material
+ * and its damage law); at attach, each store point's part into the field "material". */
+int pf_pd_parts_read(const pf_deck *d, const pf_node *body, const pf_node *materials, pf_pd_body *b);
+int pf_pd_parts_attach(pf_pd_body *b, pf_points *pts, int fresh);
 
 /* omega(r), inlined in the bond loops. */
 static inline double pf_pd_omega(const pf_influence *w, double r) {

@@ -4,7 +4,7 @@
  * one-dimensional bar, whose wave speed is c = sqrt(E / rho) (at nu = 0 the bar speed and the
  * P-wave speed sqrt((lambda + 2 mu) / rho) are one). The end x = 0 is driven by the velocity
  * v(t) = v0 (1 - cos(2 pi t / tau)) / 2 for t < tau, then held; no bulk viscosity.
- * Closed forms (Graff 1975, ch. 2; docs/theory/fem.md §9c), Z = rho c:
+ * Closed forms (Graff 1975; docs/theory/fem.md §9c), Z = rho c:
  *   - the momentum the transmitted pulse carries into material 2, once the pulse has passed the
  *     interface, is T = 2 Z2 / (Z1 + Z2) times the incident pulse's momentum (momentum is
  *     -int sigma dt of the pulse, and the transmitted stress is T times the incident);

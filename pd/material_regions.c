@@ -1,0 +1,126 @@
+/* Several materials in one peridynamic body (docs/theory/interfaces.md): the body's
+ * `material_regions` give regions of its points their own material of the body's model; each
+ * point keeps its part's constants (pd/pd_impl.h, pf_pd_K, pf_pd_G, pf_pd_density). A state-based
+ * point keeps its own material's state across an interface, as the theory allows (each end's
+ * force state is its own material's, Silling et al. 2007, eq. 94); a bond-based bond between two
+ * materials takes the interface rule's micromodulus (pf_pd_bond_stiffness). */
+#include "pd/pd_impl.h"
+
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+
+/* The constants of the material named by entry's `material` into part: its model must be the
+ * body's, its density and bulk modulus positive, and its shear modulus given when the body's
+ * material gives one (lps). */
+static int read_part(const pf_deck *d, const pf_node *entry, const pf_node *materials, const pf_pd_body *b,
+                     pf_pd_part *part) {
+  const char *name = "", *model = "";
+  PF_CALL(pf_deck_string(d, entry, "material", &name));
+  const pf_node *key = pf_node_get(entry, "material"), *mat = pf_node_get(materials, name);
+  if (!mat) return pf_deck_error(d, key, "material", "no material named '%s' under materials:", name);
+  snprintf(part->material, sizeof part->material, "%s", name);
+  PF_CALL(pf_deck_string(d, mat, "model", &model));
+  if (strcmp(model, b->ops->name))
+    return pf_deck_error(d, key, "material", "material '%s' is model '%s', body '%s''s material '%s' is '%s': the "
+                         "materials of one body share a model", name, model, b->name, b->material, b->ops->name);
+  part->density = part->K = part->G = 0;
+  PF_CALL(pf_deck_real(d, mat, "density", &part->density));
+  PF_CALL(pf_deck_real(d, mat, "bulk_modulus", &part->K));
+  PF_CALL(pf_deck_real(d, mat, "shear_modulus", &part->G));
+  if (!(part->density > 0) || !(part->K > 0))
+    return pf_deck_error(d, key, "material", "material '%s' needs a positive density and bulk_modulus", name);
+  if (b->shear_modulus > 0 && !(part->G > 0))
+    return pf_deck_error(d, key, "material", "material '%s' needs a positive shear_modulus, as body '%s''s "
+                         "material '%s' gives", name, b->name, b->material);
+  const double M0 = b->bulk_modulus + 4 * b->shear_modulus / 3, M = part->K + 4 * part->G / 3;
+  part->kscale = part->K / b->bulk_modulus;
+  part->mscale = fmax(part->kscale, M / M0); /* (safe for the step whichever modulus sets it) */
+  part->node = entry;
+  return 0;
+}
+
+/* What several materials do not take yet, refused by name. */
+static int check_body(const pf_deck *d, const pf_node *list, const pf_node *body, const pf_pd_body *b) {
+  if (!b->ops->several_materials)
+    return pf_deck_error(d, list, "material_regions", "body '%s' has model '%s'; several materials in one body "
+                         "take %s", b->name, b->ops->name,
+                         pf_pd_material_names_with(offsetof(pf_pd_material_ops, several_materials)));
+  if (b->coupled || b->hz_expr)
+    return pf_deck_error(d, list, "material_regions", "body '%s': several materials take a constant horizon and "
+                         "no elements (one material in a coupled or variable-horizon body)", b->name);
+  const pf_node *dmg = pf_node_get(body, "damage");
+  if (pf_pd_energy_limited(b) || (dmg && pf_node_get(dmg, "energy_release_rate")))
+    return pf_deck_error(d, dmg, "damage", "body '%s' has several materials: a critical stretch from an energy "
+                         "release rate, or an energy limit, would be one material's; give critical_stretch",
+                         b->name);
+  return 0;
+}
+
+static int read_interface(const pf_deck *d, const pf_node *body, pf_pd_body *b) {
+  const pf_node *map = pf_node_get(body, "interface");
+  const char *rule = "series";
+  b->interface = PF_PD_INTERFACE_SERIES;
+  if (!map) return 0;
+  PF_CALL(pf_deck_string(d, map, "micromodulus", &rule));
+  if (!strcmp(rule, "mean")) b->interface = PF_PD_INTERFACE_MEAN;
+  else if (strcmp(rule, "series"))
+    return pf_deck_error(d, pf_node_get(map, "micromodulus"), "micromodulus",
+                         "unknown interface rule '%s' (known: series, mean)", rule);
+  return 0;
+}
+
+int pf_pd_parts_read(const pf_deck *d, const pf_node *body, const pf_node *materials, pf_pd_body *b) {
+  pf_pd_part *p0 = &b->parts[0];
+  snprintf(p0->material, sizeof p0->material, "%s", b->material);
+  p0->density = b->density, p0->K = b->bulk_modulus, p0->G = b->shear_modulus;
+  p0->kscale = p0->mscale = 1.0;
+  p0->node = pf_node_get(body, "material");
+  b->nparts = 1;
+  const pf_node *list = pf_node_get(body, "material_regions");
+  if (!list && pf_node_get(body, "interface"))
+    return pf_deck_error(d, pf_node_get(body, "interface"), "interface", "an interface rule needs "
+                         "material_regions (body '%s' has one material)", b->name);
+  if (!list) return 0;
+  const int n = pf_node_count(list);
+  if (n < 1 || n >= PF_PD_MAX_PARTS)
+    return pf_deck_error(d, list, "material_regions", "give 1 to %d entries (got %d)", PF_PD_MAX_PARTS - 1, n);
+  PF_CALL(check_body(d, list, body, b));
+  for (int q = 1; q <= n; q++) {
+    const pf_node *entry = pf_node_item(list, q - 1);
+    if (!pf_node_get(entry, "region"))
+      return pf_deck_error(d, entry, "region", "each entry of material_regions needs a region and a material");
+    PF_CALL(read_part(d, entry, materials, b, &b->parts[q]));
+    PF_CALL(pf_region_from_deck(d, pf_node_get(entry, "region"), NULL, -1, &b->parts[q].region));
+  }
+  b->nparts = n + 1;
+  return read_interface(d, body, b);
+}
+
+/* A region that claims no point of the body is an error naming its entry (collective). */
+static int check_claims(const pf_pd_body *b) {
+  double count[PF_PD_MAX_PARTS] = {0};
+  for (pf_int i = b->first; i < b->first + b->n; i++) count[(int)b->part[i]] += 1;
+  for (int q = 1; q < b->nparts; q++)
+    if (pf_sum_all(count[q]) == 0)
+      return pf_deck_error(b->deck, b->parts[q].node, "region", "body '%s': the region of material '%s' "
+                           "holds none of its points (or later entries claim them all)", b->name,
+                           b->parts[q].material);
+  return 0;
+}
+
+int pf_pd_parts_attach(pf_pd_body *b, pf_points *pts, int fresh) {
+  b->part = NULL;
+  if (b->nparts < 2) return 0;
+  int idx;
+  PF_CALL(pf_points_field_register(pts, "material", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT | PF_FIELD_CONSTANT, &idx));
+  double *part = pts->fields[idx].data;
+  for (pf_int i = b->first; i < b->first + b->n; i++) { /* (from reference positions: the same on any partition) */
+    part[i] = 0;
+    for (int q = 1; q < b->nparts; q++)
+      if (pf_region_selects(&b->parts[q].region, pts, i)) part[i] = q;
+  }
+  PF_CALL(pf_points_exchange(pts, part, 1));
+  b->part = part;
+  return fresh ? check_claims(b) : 0;
+}
