@@ -25,6 +25,9 @@ const pf_key pf_fem_body_keys[] = {
     {"name", PF_KEY_STRING, 1, NULL, "", "body name (the Exodus block name)", NULL},
     {"type", PF_KEY_STRING, 1, NULL, "", "finite_element", NULL},
     {"material", PF_KEY_STRING, 1, NULL, "", "a name under materials: (an FE model)", NULL},
+    {"material_regions", PF_KEY_LIST, 0, NULL, "",
+     "other materials on some elements: each entry a material and a block or region (later entries take precedence; "
+     "not in a body with a peridynamic: operator)", pf_fem_material_region_keys},
     {"mesh", PF_KEY_MAP, 1, NULL, "", "the hexahedral mesh", pf_mesh_keys},
     {"element", PF_KEY_STRING, 0, "reduced", "",
      "reduced (one point, hourglass control) | bbar (2x2x2 selective-reduced)", NULL},
@@ -58,25 +61,6 @@ static int read_options(const pf_deck *d, const pf_node *body, pf_fem_body *b) {
   PF_CALL(pf_deck_real(d, bv, "quadratic", &b->bv_quadratic));
   if (!(b->bv_linear >= 0)) return pf_deck_error(d, pf_node_get(bv, "linear"), "linear", "must not be negative");
   if (!(b->bv_quadratic >= 0)) return pf_deck_error(d, pf_node_get(bv, "quadratic"), "quadratic", "must not be negative");
-  return 0;
-}
-
-static int read_material(const pf_deck *d, const pf_node *body, const pf_node *materials, pf_fem_body *b) {
-  const char *mname = NULL;
-  PF_CALL(pf_deck_string(d, body, "material", &mname));
-  const pf_node *mat = pf_node_get(materials, mname);
-  if (!mat) return pf_deck_error(d, pf_node_get(body, "material"), "material", "no material named '%s' under materials:", mname);
-  const char *model = "";
-  PF_CALL(pf_deck_string(d, mat, "model", &model));
-  if (!pf_material_known(model))
-    return pf_deck_error(d, pf_node_get(body, "material"), "material",
-                         "material '%s' has model '%s', which is not a finite-element model (known: %s)", mname,
-                         model, pf_material_names());
-  PF_CALL(pf_material_create(d, mat, mname, &b->mat));
-  b->rho = pf_material_density(b->mat);
-  b->K = pf_material_bulk_modulus(b->mat);
-  b->G = pf_material_shear_modulus(b->mat);
-  b->nstate = pf_material_nstate(b->mat);
   return 0;
 }
 
@@ -123,12 +107,12 @@ int pf_fem_body_create(const pf_deck *d, const pf_node *body, const pf_node *mat
   snprintf(b->name, sizeof b->name, "%s", name);
   b->deck = d, b->node = body;
   if (!ierr) ierr = read_options(d, body, b);
-  if (!ierr) ierr = read_material(d, body, materials, b);
+  if (!ierr) ierr = pf_fem_materials_read(b, d, body, materials);
   if (!ierr) ierr = pf_mesh_read(d, pf_node_get(body, "mesh"), &b->mesh);
+  if (!ierr) ierr = pf_fem_materials_regions(b, d, body, materials);
   if (!ierr) ierr = pf_fem_erosion_read(b, d, body);
   if (!ierr) ierr = nodal_volumes(b);
   if (!ierr) ierr = mesh_node_elements(&b->mesh, &b->mesh_node_off, &b->mesh_node_item);
-  (void)materials;
   if (ierr) {
     pf_fem_body_destroy(&b);
     return ierr;
@@ -141,7 +125,7 @@ int pf_fem_body_destroy(pf_fem_body **pb) {
   pf_fem_body *b = *pb;
   if (!b) return 0;
   pf_mesh_free(&b->mesh);
-  pf_material_destroy(&b->mat);
+  pf_fem_materials_destroy(b);
   free(b->node_volume), free(b->mesh_node_off), free(b->mesh_node_item), free(b->eid), free(b->conn), free(b->own), free(b->sigma), free(b->state);
   free(b->hgq), free(b->bvq), free(b->ref), free(b->share), free(b->fe), free(b->energy), free(b->node_off), free(b->node_item), free(b->buf);
   free(b->mesh_eroded), free(b->due), free(b->mesh_converted), free(b->wmass), free(b->committed);

@@ -89,7 +89,7 @@ static void element_reference(const pf_fem_body *b, const pf_points *p, pf_int e
     for (int i = 0; i < 3; i++) x[I][i] = p->X[3 * (size_t)b->conn[8 * (size_t)e + I] + i];
 }
 
-/* Lumped masses m_I = sum_e rho int N_I dV: each element's 8 contributions once (kept in wmass,
+/* Lumped masses m_I = sum_e rho_e int N_I dV (rho_e the element's material's): each element's 8 contributions once (kept in wmass,
  * the shares a converted element takes with it), then each node sums its elements in order,
  * leaving out the elements converted into particles (fem/particles.c): the same sum on any rank
  * and after any history of conversions, restarts and re-partitions. */
@@ -99,7 +99,7 @@ static int element_shares(pf_fem_body *b, const pf_points *p) {
   for (pf_int e = 0; e < b->nel; e++) {
     double x[8][3];
     element_reference(b, p, e, x);
-    pf_hex8_lumped_mass(x, b->rho, &b->wmass[8 * (size_t)e]);
+    pf_hex8_lumped_mass(x, pf_fem_element_material(b, e)->rho, &b->wmass[8 * (size_t)e]);
   }
   return 0;
 }
@@ -115,10 +115,13 @@ void pf_fem_lumped_masses(const pf_fem_body *b, pf_points *p) {
   }
 }
 
+/* The reference elements' step l / c, c = sqrt((K + 4G/3) / rho) of each element's material. */
 static double reference_stable_dt(const pf_fem_body *b, const pf_points *p) {
-  double c = sqrt((b->K + 4.0 * b->G / 3.0) / b->rho), dt = INFINITY;
+  double dt = INFINITY;
   for (pf_int e = 0; e < b->nel; e++) {
     double x[8][3], B[8][3];
+    const pf_fem_material *fm = pf_fem_element_material(b, e);
+    const double c = sqrt((fm->K + 4.0 * fm->G / 3.0) / fm->rho);
     element_reference(b, p, e, x);
     dt = fmin(dt, pf_hex8_char_length(x, pf_hex8_mean_gradient(x, B)) / c);
   }
@@ -128,8 +131,7 @@ static double reference_stable_dt(const pf_fem_body *b, const pf_points *p) {
 static int register_fields(const pf_fem_body *b, pf_points *pts) {
   int idx;
   PF_CALL(pf_points_field_register(pts, "stress", 6, PF_FIELD_OUTPUT, &idx));
-  for (int k = 0; k < b->nstate; k++)
-    PF_CALL(pf_points_field_register(pts, pf_material_state_name(b->mat, k), 1, PF_FIELD_OUTPUT, &idx));
+  for (int k = 0; k < b->nnames; k++) PF_CALL(pf_points_field_register(pts, b->names[k], 1, PF_FIELD_OUTPUT, &idx));
   return 0;
 }
 
@@ -162,7 +164,7 @@ int pf_fem_body_attach(pf_fem_body *b, int body, pf_points *pts, pf_int first, p
   free(b->due);
   b->due = NULL, b->n_due = 0;
   if (b->erosion) PF_MALLOC(b->due, b->nel);
-  pf_material_init(b->mat, (pf_int)nq, b->state);
+  PF_CALL(pf_fem_materials_init(b));
   b->stable_dt = reference_stable_dt(b, pts);
   return b->beta_fn ? 0 : register_fields(b, pts); /* (a blended body's stress is the other operator's) */
 }
@@ -216,14 +218,14 @@ void pf_fem_body_energies(const pf_fem_body *b, double e[3]) {
 }
 
 const pf_mesh *pf_fem_body_mesh(const pf_fem_body *b) { return &b->mesh; }
-const pf_material *pf_fem_body_material(const pf_fem_body *b) { return b->mat; }
+const pf_material *pf_fem_body_material(const pf_fem_body *b) { return b->mats[0].mat; }
 
 int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts) {
   if (b->beta_fn) return 0; /* blended: the nodes' stress and history are the other operator's */
   double *stress = pf_points_field_get(pts, "stress");
   PF_CHECK(stress, PF_ERR_RUN, "body '%s': no stress field", b->name);
-  double *st[16], *vq = NULL;
-  for (int k = 0; k < b->nstate && k < 16; k++) st[k] = pf_points_field_get(pts, pf_material_state_name(b->mat, k));
+  double *st[PF_FEM_MAX_STATE_NAMES], *vq = NULL;
+  for (int k = 0; k < b->nnames; k++) st[k] = pf_points_field_get(pts, b->names[k]);
   const int nq = b->nqp;
   PF_MALLOC(vq, b->nel); /* each element's current volume per quadrature point, once */
 #pragma omp parallel for schedule(static)
@@ -235,18 +237,20 @@ int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts) {
   }
 #pragma omp parallel for schedule(static)
   for (pf_int i = 0; i < b->n; i++) { /* (each node its own sums, in its element order) */
-    double w = 0, s[6] = {0}, h[16] = {0};
+    double w = 0, s[6] = {0}, h[PF_FEM_MAX_STATE_NAMES] = {0};
     for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
       pf_int e = b->node_item[q] / 8;
+      const int8_t *slot = b->slot[b->mesh_mat ? b->mesh_mat[b->eid[e]] : 0]; /* (-1: none, counts 0) */
       for (int g = 0; g < nq && !pf_fem_element_eroded(b, e); g++) {
         for (int c = 0; c < 6; c++) s[c] += vq[e] * b->sigma[6 * ((size_t)nq * e + g) + c];
-        for (int k = 0; k < b->nstate && k < 16; k++) h[k] += vq[e] * b->state[(size_t)b->nstate * (nq * (size_t)e + g) + k];
+        for (int k = 0; k < b->nnames; k++)
+          if (slot[k] >= 0) h[k] += vq[e] * b->state[(size_t)b->nstate * (nq * (size_t)e + g) + slot[k]];
         w += vq[e];
       }
     }
     pf_int p = b->first + i;
     for (int c = 0; c < 6; c++) stress[6 * (size_t)p + c] = w > 0 ? s[c] / w : 0;
-    for (int k = 0; k < b->nstate && k < 16; k++) st[k][p] = w > 0 ? h[k] / w : 0;
+    for (int k = 0; k < b->nnames; k++) st[k][p] = w > 0 ? h[k] / w : 0;
   }
   free(vq);
   return 0;

@@ -36,9 +36,9 @@ typedef struct {
   double B[8][3], V;  /* mean gradient and volume at the end of the step */
 } scratch;
 
+/* F, D, c, the scratch, and the states of a material with fewer than the body's (fem/materials.c). */
 size_t pf_fem_chunk_doubles(int nqp, int nstate) {
-  (void)nstate;
-  return (size_t)PF_FEM_CHUNK * (16 * (size_t)nqp + sizeof(scratch) / sizeof(double) + 1);
+  return (size_t)PF_FEM_CHUNK * ((16 + (size_t)nstate) * nqp + sizeof(scratch) / sizeof(double) + 1);
 }
 
 static void gather_nodes(const pf_fem_body *b, const pf_points *p, pf_int e, double dt, double X[8][3],
@@ -171,7 +171,8 @@ static void hourglass_force(pf_fem_body *b, pf_int e, double x[8][3], double v[8
    * integrated element (docs/theory/fem.md §4). */
   double bb = 0;
   for (int I = 0; I < 8; I++) bb += B[I][0] * B[I][0] + B[I][1] * B[I][1] + B[I][2] * B[I][2];
-  double k = b->hg_coef * (b->K + 4.0 * b->G / 3.0) * V * bb / 48.0, *Q = &b->hgq[12 * (size_t)e];
+  const pf_fem_material *fm = pf_fem_element_material(b, e); /* (the element's moduli) */
+  double k = b->hg_coef * (fm->K + 4.0 * fm->G / 3.0) * V * bb / 48.0, *Q = &b->hgq[12 * (size_t)e];
   for (int a = 0; a < 4; a++)
     for (int i = 0; i < 3; i++) {
       Q[3 * a + i] = s->Q_old[3 * a + i] + dt * k * qd[a][i];
@@ -188,7 +189,7 @@ static int element_forces(pf_fem_body *b, const pf_points *p, pf_int e, double d
   double(*B)[3] = (double(*)[3])s->B;
   gather_nodes(b, p, e, dt, X, x, xm, v);
   double V = s->V, l = pf_hex8_char_length(x, V), cmax = 0;
-  double rho = b->rho * s->V0 / V, Vmid = 0;
+  double rho = pf_fem_element_material(b, e)->rho * s->V0 / V, Vmid = 0;
   for (int g = 0; g < b->nqp; g++) cmax = fmax(cmax, c[g]);
   double q = 0;
   if (s->trD < 0) q = rho * l * (b->bv_quadratic * l * s->trD * s->trD - b->bv_linear * cmax * s->trD);
@@ -243,8 +244,7 @@ static int evaluate_chunk(pf_fem_body *b, const pf_points *pts, double dt, pf_in
   for (pf_int k = 0; k < ne; k++)
     if (pf_fem_element_eroded(b, e0 + k)) at_rest(nq, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k]);
     else PF_CALL(kinematics(b, pts, e0 + k, dt, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
-  pf_material_update(b->mat, ne * nq, dt, F, D, &b->sigma[6 * (size_t)nq * e0],
-                         &b->state[(size_t)b->nstate * nq * e0], c);
+  pf_fem_materials_update(b, e0, ne, dt, F, D, c, (double *)(s + PF_FEM_CHUNK));
   for (pf_int k = 0; k < ne; k++) {
     const pf_int e = e0 + k;
     if (b->erosion) b->due[e] = -1;

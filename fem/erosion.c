@@ -24,7 +24,7 @@ const pf_key pf_fem_erosion_keys[] = {
 
 int pf_fem_erosion_read(pf_fem_body *b, const pf_deck *d, const pf_node *body) {
   const pf_node *map = pf_node_get(body, "erosion");
-  b->erode_eqps = b->erode_jmax = INFINITY, b->erode_jmin = -INFINITY, b->eqps_slot = -1;
+  b->erode_eqps = b->erode_jmax = INFINITY, b->erode_jmin = -INFINITY;
   if (!map) return 0;
   if (pf_node_get(body, "peridynamic"))
     return pf_deck_error(d, map, "erosion", "body '%s': erosion of a body with a peridynamic: operator is not supported",
@@ -32,10 +32,10 @@ int pf_fem_erosion_read(pf_fem_body *b, const pf_deck *d, const pf_node *body) {
   PF_CALL(pf_deck_real(d, map, "plastic_strain", &b->erode_eqps));
   PF_CALL(pf_deck_real(d, map, "min_volume_ratio", &b->erode_jmin));
   PF_CALL(pf_deck_real(d, map, "max_volume_ratio", &b->erode_jmax));
-  if (pf_node_get(map, "plastic_strain")) {
-    for (int k = 0; k < b->nstate; k++)
-      if (!strcmp(pf_material_state_name(b->mat, k), "eqps")) b->eqps_slot = k;
-    if (b->eqps_slot < 0)
+  if (pf_node_get(map, "plastic_strain")) { /* (an element of a material without one is not tested) */
+    int some = 0;
+    for (int m = 0; m < b->nmat; m++) some |= b->mats[m].eqps >= 0;
+    if (!some)
       return pf_deck_error(d, pf_node_get(map, "plastic_strain"), "plastic_strain",
                            "the material of body '%s' has no equivalent plastic strain", b->name);
     if (!(b->erode_eqps > 0))
@@ -48,6 +48,9 @@ int pf_fem_erosion_read(pf_fem_body *b, const pf_deck *d, const pf_node *body) {
     return pf_deck_error(d, pf_node_get(map, "max_volume_ratio"), "max_volume_ratio", "must exceed 1 (got %g)",
                          b->erode_jmax);
   PF_CALL(pf_deck_bool(d, map, "convert_to_particles", &b->convert));
+  if (b->convert && b->mesh_mat)
+    return pf_deck_error(d, pf_node_get(map, "convert_to_particles"), "convert_to_particles",
+                         "body '%s': converting the elements of a body with material_regions is not supported", b->name);
   if (pf_node_count(map) == !!pf_node_get(map, "convert_to_particles"))
     return pf_deck_error(d, map, "erosion", "give at least one of plastic_strain, min_volume_ratio, max_volume_ratio");
   b->erosion = 1;
@@ -59,8 +62,9 @@ int pf_fem_erosion_read(pf_fem_body *b, const pf_deck *d, const pf_node *body) {
 /* After element e's forces: 1 when it reached a limit (its volume ratio J at the step's end). */
 int pf_fem_erosion_due(const pf_fem_body *b, pf_int e, double J) {
   if (!(J > b->erode_jmin && J < b->erode_jmax)) return 1;
-  for (int g = 0; g < b->nqp && b->eqps_slot >= 0; g++)
-    if (b->state[(size_t)b->nstate * ((size_t)b->nqp * e + g) + b->eqps_slot] >= b->erode_eqps) return 1;
+  const int eqps = pf_fem_element_material(b, e)->eqps;
+  for (int g = 0; g < b->nqp && eqps >= 0; g++)
+    if (b->state[(size_t)b->nstate * ((size_t)b->nqp * e + g) + eqps] >= b->erode_eqps) return 1;
   return 0;
 }
 

@@ -48,7 +48,11 @@ void pf_fem_body_energies(const pf_fem_body *b, double e[3]);
 const uint8_t *pf_fem_body_eroded(const pf_fem_body *b, long *count);
 /* Element count of the mesh; the mesh (for output connectivity). */
 const pf_mesh *pf_fem_body_mesh(const pf_fem_body *b);
+/* The body's `material` (material_regions may give some elements others). */
 const pf_material *pf_fem_body_material(const pf_fem_body *b);
+/* The least reference density and the largest bulk modulus of the body's materials (contact's
+ * penalty constants; the one material's for a body of one), kg/m^3 and Pa (fem/materials.c). */
+void pf_fem_body_material_bounds(const pf_fem_body *b, double *density, double *bulk_modulus);
 /* Element state as table rows (checkpoints, re-partitioning): ncomp doubles per element. */
 int pf_fem_body_state_ncomp(const pf_fem_body *b);
 /* Elements evaluated on this rank (those with an owned node). */

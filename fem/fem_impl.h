@@ -11,17 +11,31 @@ void pf_hex8_hourglass_vectors(double x[8][3], double B[8][3], double gamma[4][8
 
 /* ---- FE bodies ---- */
 #define PF_FEM_CHUNK 64 /* elements per batched material call */
+#define PF_FEM_MAX_MATERIALS 32 /* materials of one body (`material` and `material_regions`) */
+#define PF_FEM_MAX_STATE_NAMES 16 /* the output's state fields of one body */
+
+/* One material of an FE body and the constants its elements read (fem/materials.c). */
+typedef struct {
+  pf_material *mat;
+  double rho, K, G; /* reference density, small-strain bulk and shear moduli */
+  int nstate;       /* its history variables per quadrature point (<= the body's stride) */
+  int eqps;         /* the index of its "eqps" state, or -1 */
+} pf_fem_material;
 
 struct pf_fem_body {
   char name[64];
   const pf_deck *deck;
   const pf_node *node;
   pf_mesh mesh; /* the whole mesh, read on every rank */
-  pf_material *mat;
-  double rho, K, G;
+  int nmat;                /* materials: [0] the body's `material`, then those `material_regions` add */
+  pf_fem_material mats[PF_FEM_MAX_MATERIALS];
+  uint8_t *mesh_mat;       /* [mesh.nelem] each element's material, or NULL (one material) */
+  int nnames;              /* the output's state fields: the union of the materials' state names */
+  const char *names[PF_FEM_MAX_STATE_NAMES];
+  int8_t slot[PF_FEM_MAX_MATERIALS][PF_FEM_MAX_STATE_NAMES]; /* material m's index of name k, or -1 */
   int bbar; /* 0: one-point + hourglass control; 1: selective-reduced 2x2x2 (B-bar) */
   int nqp;  /* quadrature points per element: 1 or 8 */
-  int nstate;
+  int nstate; /* state stride per quadrature point: the largest of the materials' nstate */
   pf_hourglass_kind hg;
   double hg_coef;
   double bv_linear, bv_quadratic; /* bulk viscosity C_l, C_q */
@@ -55,7 +69,6 @@ struct pf_fem_body {
   /* erosion (fem/erosion.c) */
   int erosion;          /* some limit is set */
   double erode_eqps, erode_jmin, erode_jmax;
-  int eqps_slot;        /* material state index of "eqps", or -1 */
   uint8_t *mesh_eroded; /* [mesh.nelem] deleted elements, the same on every rank */
   long n_eroded;
   pf_gid *due;          /* [nel] elements found due at the last evaluation, mesh indices */
@@ -71,6 +84,22 @@ struct pf_fem_body {
   double t;          /* time and step of the evaluation, for error messages */
   long step;
 };
+
+/* fem/materials.c: the body's `material` and `material_regions` (each element's material, the
+ * union of the state names); element e's (local) material; the initial state of the local
+ * elements; the batched constitutive update of chunk elements [e0, e0 + ne), one
+ * pf_material_update per run of elements of one material (scratch: room for
+ * PF_FEM_CHUNK nqp nstate doubles). */
+extern const pf_key pf_fem_material_region_keys[];
+int pf_fem_materials_read(pf_fem_body *b, const pf_deck *d, const pf_node *body, const pf_node *materials);
+int pf_fem_materials_regions(pf_fem_body *b, const pf_deck *d, const pf_node *body, const pf_node *materials);
+void pf_fem_materials_destroy(pf_fem_body *b);
+static inline const pf_fem_material *pf_fem_element_material(const pf_fem_body *b, pf_int e) {
+  return &b->mats[b->mesh_mat ? b->mesh_mat[b->eid[e]] : 0];
+}
+int pf_fem_materials_init(pf_fem_body *b);
+void pf_fem_materials_update(pf_fem_body *b, pf_int e0, pf_int ne, double dt, const double *F, const double *D,
+                             double *c, double *scratch);
 
 /* fem/erosion.c: the `erosion:` map; whether element e (local) has reached a limit at volume
  * ratio J; every rank's due elements merged into mesh_eroded (collective). */

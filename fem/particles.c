@@ -141,7 +141,8 @@ int pf_fem_particles_attach(pf_fem_particles *p, pf_points *pts, pf_int first, p
 }
 
 void pf_fem_particles_material(const pf_fem_particles *p, double *density, double *bulk_modulus) {
-  *density = pf_material_density(p->fe->mat), *bulk_modulus = pf_material_bulk_modulus(p->fe->mat);
+  const pf_fem_material *fm = &p->fe->mats[0]; /* (a converting body has one material: fem/erosion.c) */
+  *density = fm->rho, *bulk_modulus = fm->K;
 }
 
 double pf_fem_particles_horizon(const pf_fem_particles *p) { return 3 * p->cell_max; }

@@ -47,9 +47,9 @@ static void energies(const void *data, pf_points *pts, pf_body_energies *e) {
   pf_fem_body_energies(data, e->fe);
 }
 
+/* Contact's constants: with several materials, the lightest density and the stiffest modulus. */
 static void material(const void *data, double *density, double *bulk_modulus) {
-  const pf_material *m = pf_fem_body_material(data);
-  *density = pf_material_density(m), *bulk_modulus = pf_material_bulk_modulus(m);
+  pf_fem_body_material_bounds(data, density, bulk_modulus);
 }
 
 static const pf_mesh *mesh(const void *data) { return pf_fem_body_mesh(data); }

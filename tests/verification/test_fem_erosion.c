@@ -122,7 +122,7 @@ int main(int argc, char **argv) {
   for (pf_int e = 0; e < plate->nel; e++) {
     double emax = 0;
     for (int q = 0; q < plate->nqp; q++)
-      emax = fmax(emax, plate->state[(size_t)plate->nstate * ((size_t)plate->nqp * e + q) + plate->eqps_slot]);
+      emax = fmax(emax, plate->state[(size_t)plate->nstate * ((size_t)plate->nqp * e + q) + pf_fem_element_material(plate, e)->eqps]);
     wrong += (emax >= limit) != (dead[plate->eid[e]] != 0);
     for (int k = 0; k < 24 && dead[plate->eid[e]]; k++) forced += plate->fe[24 * (size_t)e + k] != 0;
   }
