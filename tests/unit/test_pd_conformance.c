@@ -107,6 +107,10 @@ static const mat_case cases[] = {
      "density: 2700, youngs_modulus: 72e9, poissons_ratio: 0.343, modified_johnson_cook: "
      "{sigma0: 250e6, B: 365e6, n: 0.04, C: 0.002, reference_strain_rate: 1}, damage: {d1: 0.875, "
      "d2: 0.13, d3: -1.5, d4: 0, reference_strain_rate: 1}", 0, NULL, 0, 0},
+    /* a T300/5208 ply (docs/theory/fem_materials.md §8) at a general orientation */
+    {"orthotropic",
+     "density: 1600, E1: 181e9, E2: 10.3e9, E3: 10.3e9, G12: 7.17e9, G13: 7.17e9, G23: 3.68e9, "
+     "nu12: 0.28, nu13: 0.28, nu23: 0.4, angles: [30, 20, 10]", 0, NULL, 0, 0},
 };
 enum { NCASES = sizeof cases / sizeof cases[0] };
 
