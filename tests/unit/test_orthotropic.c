@@ -191,8 +191,8 @@ static void isotropic(void) {
  * of the stiffness inverted here from S; K + 4G/3 = M, the fastest quasi-longitudinal modulus.
  * Whatever the constants, M >= C11, C22, C33 (the P waves along the axes, whose Christoffel
  * tensors are diag(C11, C66, C55) etc.); for this ply the fibre P wave is the fastest (a search
- * over directions outside this test, 2-degree grid, found none faster): M = C11. The wave speed at F = I is sqrt(M / rho). The same at another
- * orientation (both are invariants). */
+ * over directions outside this test, 1-degree grid, found none faster): M = C11. The wave speed
+ * at F = I is sqrt(M / rho). The same at another orientation (both are invariants). */
 static void moduli(void) {
   double S[6][6], C[6][6];
   compliance(S);
