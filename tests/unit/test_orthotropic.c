@@ -4,8 +4,8 @@
  * 3 swaps E1 and E2; the off-axis modulus and shear coupling of a rotation theta about axis 3
  * follow Jones's transformed compliances (Jones 1999, sec. 2.6); the Z-X-Z Euler convention and
  * the axes form agree; isotropic constants give the isotropic stiffness and K, G; K is the Voigt
- * bulk modulus and K + 4G/3 the fastest quasi-longitudinal modulus; bad decks are refused naming
- * the key. Every expected value is computed here from the engineering constants. */
+ * bulk modulus and K + 4G/3 the fastest quasi-longitudinal modulus, along the fibres of a ply and
+ * along [111] of a cubic crystal; bad decks are refused naming the key. Every expected value is computed here from the engineering constants. */
 #include "test_common.h"
 
 #include <math.h>
@@ -214,6 +214,31 @@ static void moduli(void) {
   }
 }
 
+/* 7. A cubic crystal (E1 = E2 = E3, one nu, one G unrelated to E / 2(1 + nu)): copper, C11 = 168.4,
+ * C12 = 121.4, C44 = 75.4 GPa (Kittel 2005, ch. 3), whose anisotropy 2 C44 / (C11 - C12) = 3.2 > 1
+ * makes the longitudinal wave along [111] the fastest, rho c^2 = (C11 + 2 C12 + 4 C44) / 3 = 237.6
+ * GPa against C11 along the axes (Kittel 2005, ch. 3): the search must leave the axes. Engineering
+ * constants of a cubic crystal: E = (C11 - C12)(C11 + 2 C12) / (C11 + C12), nu = C12 / (C11 +
+ * C12), G = C44; K = (C11 + 2 C12) / 3. At two orientations. */
+static void cubic(void) {
+  const double c11 = 168.4e9, c12 = 121.4e9, c44 = 75.4e9;
+  const double E = (c11 - c12) * (c11 + 2 * c12) / (c11 + c12), nu = c12 / (c11 + c12);
+  for (int k = 0; k < 2; k++) {
+    char text[512];
+    snprintf(text, sizeof text,
+             "model: orthotropic\ndensity: 8960\nE1: %.17g\nE2: %.17g\nE3: %.17g\nG12: %.17g\nG13: %.17g\n"
+             "G23: %.17g\nnu12: %.17g\nnu13: %.17g\nnu23: %.17g\nangles: [%d, %d, %d]\n",
+             E, E, E, c44, c44, c44, nu, nu, nu, 10 * k, 20 * k, 30 * k);
+    pf_material *m = pf_test_material_must_load(text, "copper");
+    if (!m) return;
+    const double K = pf_material_bulk_modulus(m), M = K + 4 * pf_material_shear_modulus(m) / 3;
+    printf("cubic: K + 4G/3 %.6e Pa ([111]: %.6e, C11 %.6e)\n", M, (c11 + 2 * c12 + 4 * c44) / 3, c11);
+    PF_TEST_CLOSE(K, (c11 + 2 * c12) / 3, 1e-12, 0);
+    PF_TEST_CLOSE(M, (c11 + 2 * c12 + 4 * c44) / 3, 1e-10, 0);
+    pf_material_destroy(&m);
+  }
+}
+
 static void bad(const char *text, const char *must_mention) { pf_test_material_bad(text, "ply", 1, must_mention); }
 
 #define BASE "model: orthotropic\ndensity: 1600\nE1: 181e9\nE3: 10.3e9\nG12: 7.17e9\nG13: 7.17e9\nG23: 3.7e9\nnu12: 0.28\nnu13: 0.28\n"
@@ -244,6 +269,7 @@ int main(int argc, char **argv) {
   euler_and_axes();
   isotropic();
   moduli();
+  cubic();
   bad_inputs();
   return pf_test_finish();
 }
