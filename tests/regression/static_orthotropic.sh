@@ -10,6 +10,8 @@
 #    compliances; -1.3515 and +0.4016 for the coupling, whose sign the angle's sign sets;
 #    measured -8.3e-4 and -7.2e-4; the contraction within 5e-5);
 #  - the same state digest on 1, 2 and 3 ranks;
+#  - the same deck run explicitly: the first time step is 0.8 h / sqrt(C11 / rho), the fastest
+#    wave being the fibres' P wave (K + 4G/3 = C11, theory §8; 0.8 the default safety factor);
 #  - tests/data/static_orthotropic_pd.yaml: a correspondence bar of the ply along x (E_x = E1)
 #    and across (angles [90, 0, 0], E_x = E2): the mean sigma_xx over the points of the middle
 #    8 mm over their strain (the slope of u_x there) within 2 % of E1 and E2 (measured +1.0 %
@@ -29,6 +31,22 @@ for np in 1 2 3; do
 done
 # shellcheck disable=SC2086
 digests_agree "FE bars" $digests || fail=1
+# explicit dynamics on the same deck: the first step is the safety factor 0.8 times the element
+# size (5 mm cubes: V / A_max = 5 mm) over the fastest wave speed, sqrt(C11 / rho) for this ply
+o=$("$exe" --output-dir dynamic --set solver.type=explicit --set time.final_time=1e-6 "$deck" 2>&1) ||
+  { echo "FAIL: the explicit run: $o"; fail=1; }
+t1=$(echo "$o" | sed -n 's/^step 1 .* t = \([0-9.e+-]*\) .*/\1/p')
+"$PY" - "$t1" <<'PYEOF' || fail=1
+import sys
+E1, E2, nu12, nu23 = 181e9, 10.3e9, 0.28, 0.4  # E3 = E2, nu13 = nu12 (transversely isotropic)
+n21, n32 = nu12 * E2 / E1, nu23            # nu32 = nu23 E3 / E2 = nu23; nu31 = nu21
+delta = 1 - nu12 * n21 - nu23 * n32 - n21 * nu12 - 2 * n21 * n32 * nu12
+C11 = E1 * (1 - nu23 * n32) / delta       # Jones 1999, sec. 2.3
+want = 0.8 * 0.005 / (C11 / 1600) ** 0.5
+got = float(sys.argv[1]) if sys.argv[1] else float("nan")
+print("explicit: first step %.5g s, 0.8 h / sqrt(C11 / rho) %.5g s" % (got, want))
+if not abs(got / want - 1) < 1e-4: print("FAIL: the first step is not 0.8 h / sqrt(C11 / rho)"); sys.exit(1)
+PYEOF
 for a in 0 90; do
   o=$("$exe" --output-dir pd$a --set "materials.ply.angles=[$a, 0, 0]" "$deck_pd" 2>&1) ||
     { echo "FAIL: the correspondence bar at $a degrees: $o"; fail=1; }
