@@ -48,25 +48,25 @@ static const pf_key ortho_keys[] = {
      "orthotropic: material axes 1, 2, 3 as the rows, in global coordinates (a rotation); or angles", NULL},
     PF_KEY_END};
 
-enum { NCONST = 9 };
-static const char *const const_key[NCONST] = {"E1", "E2", "E3", "G12", "G13", "G23", "nu12", "nu13", "nu23"};
+enum { NCONST = 9 }; /* the first nine rows of ortho_keys: E1 E2 E3 G12 G13 G23 nu12 nu13 nu23 */
+static const char *const_key(int k) { return ortho_keys[k].name; }
 
 /* The nine constants, each required; moduli positive, |nu_ij| < sqrt(E_i / E_j), Delta > 0. */
 static int read_constants(const pf_deck *d, const pf_node *mat, double v[NCONST]) {
   for (int k = 0; k < NCONST; k++) {
-    const pf_node *n = pf_node_get(mat, const_key[k]);
-    if (!n) return pf_deck_error(d, mat, const_key[k], "model 'orthotropic' needs '%s' (E1, E2, E3, G12, G13, "
-                                 "G23 in Pa; nu12, nu13, nu23)", const_key[k]);
-    PF_CALL(pf_deck_real(d, mat, const_key[k], &v[k]));
-    if (k < 6 && !(v[k] > 0)) return pf_deck_error(d, n, const_key[k], "must be positive (got %g)", v[k]);
+    const pf_node *n = pf_node_get(mat, const_key(k));
+    if (!n) return pf_deck_error(d, mat, const_key(k), "model 'orthotropic' needs '%s' (E1, E2, E3, G12, G13, "
+                                 "G23 in Pa; nu12, nu13, nu23)", const_key(k));
+    PF_CALL(pf_deck_real(d, mat, const_key(k), &v[k]));
+    if (k < 6 && !(v[k] > 0)) return pf_deck_error(d, n, const_key(k), "must be positive (got %g)", v[k]);
   }
   static const int ei[3] = {0, 0, 1}, ej[3] = {1, 2, 2}; /* nu12, nu13, nu23: E_i, E_j */
   for (int k = 0; k < 3; k++) {
     const double lim = sqrt(v[ei[k]] / v[ej[k]]);
     if (!(fabs(v[6 + k]) < lim))
-      return pf_deck_error(d, pf_node_get(mat, const_key[6 + k]), const_key[6 + k],
+      return pf_deck_error(d, pf_node_get(mat, const_key(6 + k)), const_key(6 + k),
                            "|%s| = %g must be below sqrt(E%d/E%d) = %g (a positive-definite compliance)",
-                           const_key[6 + k], fabs(v[6 + k]), ei[k] + 1, ej[k] + 1, lim);
+                           const_key(6 + k), fabs(v[6 + k]), ei[k] + 1, ej[k] + 1, lim);
   }
   const double n21 = v[6] * v[1] / v[0], n31 = v[7] * v[2] / v[0], n32 = v[8] * v[2] / v[1];
   const double delta = 1.0 - v[6] * n21 - v[8] * n32 - n31 * v[7] - 2.0 * n21 * n32 * v[7];
