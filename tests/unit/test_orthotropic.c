@@ -18,13 +18,20 @@
 static const double E1 = 181e9, E2 = 10.3e9, E3 = 9.5e9, G12 = 7.17e9, G13 = 6.5e9, G23 = 3.7e9,
                     NU12 = 0.28, NU13 = 0.30, NU23 = 0.42, RHO = 1600;
 
-static const char *deck(const char *orientation) {
+/* A material mapping: density rho, c = {E1, E2, E3, G12, G13, G23, nu12, nu13, nu23}, then the
+ * orientation's line (static storage, valid until the next call). */
+static const char *ortho_deck(double rho, const double c[9], const char *orientation) {
   static char text[1024];
   snprintf(text, sizeof text,
            "model: orthotropic\ndensity: %g\nE1: %.17g\nE2: %.17g\nE3: %.17g\nG12: %.17g\nG13: %.17g\n"
            "G23: %.17g\nnu12: %.17g\nnu13: %.17g\nnu23: %.17g\n%s",
-           RHO, E1, E2, E3, G12, G13, G23, NU12, NU13, NU23, orientation);
+           rho, c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8], orientation);
   return text;
+}
+
+static const char *deck(const char *orientation) {
+  const double c[9] = {E1, E2, E3, G12, G13, G23, NU12, NU13, NU23};
+  return ortho_deck(RHO, c, orientation);
 }
 
 /* The compliance in the material axes, engineering shear strain (Jones 1999, sec. 2.3). */
@@ -169,11 +176,8 @@ static void euler_and_axes(void) {
  * direction). */
 static void isotropic(void) {
   const double E = 200e9, nu = 0.3, mu = E / (2 * (1 + nu)), lam = E * nu / ((1 + nu) * (1 - 2 * nu));
-  char text[512];
-  snprintf(text, sizeof text,
-           "model: orthotropic\ndensity: 7800\nE1: %.17g\nE2: %.17g\nE3: %.17g\nG12: %.17g\nG13: %.17g\n"
-           "G23: %.17g\nnu12: 0.3\nnu13: 0.3\nnu23: 0.3\nangles: [20, 35, 50]\n", E, E, E, mu, mu, mu);
-  pf_material *m = pf_test_material_must_load(text, "iso");
+  const double c[9] = {E, E, E, mu, mu, mu, nu, nu, nu};
+  pf_material *m = pf_test_material_must_load(ortho_deck(7800, c, "angles: [20, 35, 50]\n"), "iso");
   if (!m) return;
   double C[6][6];
   stiffness_of(m, C);
@@ -224,12 +228,8 @@ static void cubic(void) {
   const double c11 = 168.4e9, c12 = 121.4e9, c44 = 75.4e9;
   const double E = (c11 - c12) * (c11 + 2 * c12) / (c11 + c12), nu = c12 / (c11 + c12);
   for (int k = 0; k < 2; k++) {
-    char text[512];
-    snprintf(text, sizeof text,
-             "model: orthotropic\ndensity: 8960\nE1: %.17g\nE2: %.17g\nE3: %.17g\nG12: %.17g\nG13: %.17g\n"
-             "G23: %.17g\nnu12: %.17g\nnu13: %.17g\nnu23: %.17g\nangles: [%d, %d, %d]\n",
-             E, E, E, c44, c44, c44, nu, nu, nu, 10 * k, 20 * k, 30 * k);
-    pf_material *m = pf_test_material_must_load(text, "copper");
+    const double c[9] = {E, E, E, c44, c44, c44, nu, nu, nu};
+    pf_material *m = pf_test_material_must_load(ortho_deck(8960, c, k ? "angles: [10, 20, 30]\n" : ""), "copper");
     if (!m) return;
     const double K = pf_material_bulk_modulus(m), M = K + 4 * pf_material_shear_modulus(m) / 3;
     printf("cubic: K + 4G/3 %.6e Pa ([111]: %.6e, C11 %.6e)\n", M, (c11 + 2 * c12 + 4 * c44) / 3, c11);
