@@ -199,6 +199,7 @@ typedef enum {
   PF_KEY_LIST,    /* a sequence of mappings, each checked by its own table */
   PF_KEY_STRLIST, /* a sequence of strings */
   PF_KEY_ANYMAP,  /* a mapping whose keys are user names (e.g. materials) */
+  PF_KEY_MAT3,    /* [[a, b, c], [d, e, f], [g, h, i]]: three rows of three reals */
 } pf_key_type;
 
 /* One row of a schema table: the single source for validation and for docs. */
@@ -253,6 +254,8 @@ int pf_deck_int(const pf_deck *d, const pf_node *map, const char *key, long *out
 int pf_deck_bool(const pf_deck *d, const pf_node *map, const char *key, int *out);
 int pf_deck_string(const pf_deck *d, const pf_node *map, const char *key, const char **out);
 int pf_deck_vec3(const pf_deck *d, const pf_node *map, const char *key, double out[3]);
+/* A 3 x 3 matrix given as three rows [[a, b, c], [d, e, f], [g, h, i]]. */
+int pf_deck_mat3(const pf_deck *d, const pf_node *map, const char *key, double out[3][3]);
 /* An optional real that must be positive: the value given (or the default left in *out). */
 int pf_deck_positive(const pf_deck *d, const pf_node *map, const char *key, double *out);
 /* A direction: the vector given, scaled to unit length; zero is an error. */

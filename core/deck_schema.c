@@ -82,7 +82,8 @@ static const char *type_name(pf_key_type t) {
                                 "a list of 3 expressions in x, y, z, t",
                                 "a real or an expression in x, y, z",
                                 "a mapping", "a list of mappings", "a list of strings",
-                                "a mapping of names"};
+                                "a mapping of names",
+                                "three rows of 3 reals [[a, b, c], [d, e, f], [g, h, i]]"};
   return names[t];
 }
 
@@ -103,6 +104,12 @@ static int check_scalar_type(const pf_node *v, pf_key_type t) {
 
 static int check_seq(const pf_node *v, pf_key_type t) {
   if (v->kind != NODE_SEQ) return 0;
+  if (t == PF_KEY_MAT3) {
+    if (v->n != 3) return 0;
+    for (int j = 0; j < 3; j++)
+      if (!check_seq(v->items[j], PF_KEY_VEC3)) return 0;
+    return 1;
+  }
   if ((t == PF_KEY_VEC3 || t == PF_KEY_EXPR3) && v->n != 3) return 0;
   for (int j = 0; j < v->n; j++) {
     const pf_node *it = v->items[j];
@@ -241,6 +248,20 @@ int pf_deck_vec3(const pf_deck *d, const pf_node *map, const char *key, double o
   for (int c = 0; c < 3; c++)
     if (v->items[c]->kind != NODE_SCALAR || !parse_real(v->items[c]->text, &out[c]))
       return pf_deck_error(d, v->items[c], key, "component %d is not a real number", c);
+  return 0;
+}
+
+int pf_deck_mat3(const pf_deck *d, const pf_node *map, const char *key, double out[3][3]) {
+  const pf_node *v = pf_node_get(map, key);
+  if (!v) return 0;
+  if (v->kind != NODE_SEQ || v->n != 3) return pf_deck_error(d, v, key, "expected three rows [[a, b, c], [d, e, f], [g, h, i]]");
+  for (int r = 0; r < 3; r++) {
+    const pf_node *row = v->items[r];
+    if (row->kind != NODE_SEQ || row->n != 3) return pf_deck_error(d, row, key, "row %d is not a list of 3 reals", r);
+    for (int c = 0; c < 3; c++)
+      if (row->items[c]->kind != NODE_SCALAR || !parse_real(row->items[c]->text, &out[r][c]))
+        return pf_deck_error(d, row->items[c], key, "row %d, component %d is not a real number", r, c);
+  }
   return 0;
 }
 

@@ -33,9 +33,9 @@ static const pf_key elastic_keys[] = {
 /* pf_material_keys: `model` (naming the list), `density`, the elastic constants, then each
  * model's own rows (pf_material_ops.keys) in list order, assembled at first use. */
 const pf_key *pf_material_key_table(void) {
-  enum { MAX_KEYS = 48 };
+  enum { MAX_KEYS = 64 };
   static pf_key rows[MAX_KEYS + 1];
-  static char text[2048], model[256];
+  static char text[4096], model[256];
   if (rows[0].name) return rows;
   snprintf(model, sizeof model, "constitutive model: ");
   for (int k = 0; k < NMODELS; k++) strcat(strcat(model, k ? " | " : ""), model_list[k]->name);
@@ -58,18 +58,18 @@ int pf_material_known(const char *model) { return find_model(model) != NULL; }
 const char *pf_material_names(void) { return model_names + 2; }
 
 /* Every key of the mapping must be one the model reads (a key that would be
- * silently ignored is an error naming it). */
+ * silently ignored is an error naming it; the isotropic constants for a model with its own). */
 static int check_keys(const pf_deck *d, const pf_node *mat, const pf_material_ops *ops) {
   for (int i = 0; i < pf_node_count(mat); i++) {
     const char *key = NULL;
     const pf_node *v = pf_node_map_item(mat, i, &key);
     if (!strcmp(key, "model") || !strcmp(key, "density")) continue;
     int used = 0;
-    for (const pf_key *k = elastic_keys; k->name && !used; k++) used = !strcmp(k->name, key);
+    for (const pf_key *k = elastic_keys; k->name && !used && !ops->own_elastic; k++) used = !strcmp(k->name, key);
     for (const pf_key *k = ops->keys; k && k->name && !used; k++) used = !strcmp(k->name, key);
     if (used) continue;
     char list[512] = "model, density";
-    for (const pf_key *k = elastic_keys; k->name; k++) strcat(strcat(list, ", "), k->name);
+    for (const pf_key *k = elastic_keys; k->name && !ops->own_elastic; k++) strcat(strcat(list, ", "), k->name);
     for (const pf_key *k = ops->keys; k && k->name; k++)
       if (strlen(list) + strlen(k->name) + 3 < sizeof list) strcat(strcat(list, ", "), k->name);
     return pf_deck_error(d, v, key, "not used by model '%s' (its keys: %s)", ops->name, list);
@@ -126,7 +126,7 @@ static int material_read(const pf_deck *d, const pf_node *mat, const char *name,
   PF_CALL(pf_deck_real(d, mat, "density", &m->density));
   if (!(m->density > 0))
     return pf_deck_error(d, pf_node_get(mat, "density"), "density", "must be positive (got %g)", m->density);
-  PF_CALL(read_elastic(d, mat, m));
+  if (!ops->own_elastic) PF_CALL(read_elastic(d, mat, m));
   PF_CALL(ops->create(d, mat, m));
   return 0;
 }

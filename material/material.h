@@ -1,5 +1,5 @@
-/* perifem constitutive library: elastic, neo-Hookean, J2, Johnson-Cook and modified
- * Johnson-Cook models with a Mie-Gruneisen equation of state, shared by the hexahedral elements
+/* perifem constitutive library: elastic, neo-Hookean, J2, Johnson-Cook, modified Johnson-Cook
+ * and orthotropic elastic models with a Mie-Gruneisen equation of state, shared by the hexahedral elements
  * (fem/) and correspondence peridynamics (pd/). Depends on core/ only. */
 #ifndef PF_MATERIAL_H
 #define PF_MATERIAL_H
@@ -20,7 +20,7 @@ typedef struct pf_material pf_material;
  * adding a model edits no table here. The name reads as the table. */
 const pf_key *pf_material_key_table(void);
 #define pf_material_keys (pf_material_key_table())
-/* 1 when model names an FE/continuum model (elastic, neo_hookean, j2, johnson_cook). */
+/* 1 when model names an FE/continuum model (elastic, neo_hookean, j2, johnson_cook, ...). */
 int pf_material_known(const char *model);
 /* The known model names, comma separated (for error messages). */
 const char *pf_material_names(void);

@@ -31,9 +31,14 @@ struct pf_material {
  * init (NULL: state zero), wave_speed (NULL: the hypoelastic estimate
  * pf_material_hypo_wave_speed with the small-strain K and G), destroy (NULL: free(data)).
  * Before create is called, material.c has read density and the elastic constants into the
- * material (every model is elastic at small strain) and rejected any other key not in keys. */
+ * material (every model is elastic at small strain) and rejected any other key not in keys;
+ * for a model with own_elastic it reads density only, refuses the isotropic constants, and the
+ * model's create sets E, nu, K, G and lambda (an anisotropic model: K and G are then the pair
+ * that hourglass control, bulk viscosity, contact and the stable step read, which the model
+ * documents). */
 struct pf_material_ops {
   const char *name; /* the deck's `model:` name */
+  int own_elastic;  /* 1: its keys hold its elastic constants (no youngs_modulus, ...) */
   int nstate;
   const char *const *state_names; /* [nstate] output names */
   /* Its own rows of the material mapping besides model, density and the elastic constants

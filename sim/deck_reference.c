@@ -25,7 +25,7 @@ typedef struct {
 
 static const char *short_type(pf_key_type t) {
   static const char *names[] = {"real", "integer", "bool", "string", "vec3", "expr3", "expr",
-                                "mapping", "list", "list of strings", "named mappings"};
+                                "mapping", "list", "list of strings", "named mappings", "mat3"};
   return names[t];
 }
 
@@ -112,7 +112,8 @@ int pf_deck_reference(FILE *out) {
                "Types: real (an unquoted finite number), integer, bool (`true/false`, `yes/no`, `on/off`),\n"
                "string, vec3 (`[a, b, c]` of reals), expr3 (three expressions in `x, y, z, t`), expr (a\n"
                "real or an expression in `x, y, z`), mapping, list (a sequence of mappings), list of\n"
-               "strings, named mappings (a mapping whose keys are your own names).\n\n"
+               "strings, named mappings (a mapping whose keys are your own names), mat3 (three rows\n"
+               "`[[a, b, c], [d, e, f], [g, h, i]]` of reals).\n\n"
                "Sections:\n\n");
   for (int k = 0; k < all.n; k++) {
     fprintf(out, "%d. ", k + 1);

@@ -42,6 +42,14 @@
   "modified_johnson_cook: {sigma0: 250e6, B: 365e6, n: 0.04, C: 0.002, reference_strain_rate: 1}\n" \
   "damage: {d1: 0.875, d2: 0.13, d3: -1.5, d4: 0, reference_strain_rate: 1}\n"
 
+/* The orthotropic model with isotropic constants (E = 200 GPa, nu = 0.3, G = E / 2.6) at a general
+ * orientation: its stiffness, K and G are the isotropic ones (tests/unit/test_orthotropic.c), so
+ * the conformance loop's Lame closed forms hold. */
+#define ORTHO_ISO_DECK                                                                             \
+  "model: orthotropic\ndensity: 7800\nE1: 200e9\nE2: 200e9\nE3: 200e9\nG12: 76.923076923076923e9\n"  \
+  "G13: 76.923076923076923e9\nG23: 76.923076923076923e9\nnu12: 0.3\nnu13: 0.3\nnu23: 0.3\n"        \
+  "angles: [20, 35, 50]\n"
+
 static pf_material *must_load(const char *text) { return pf_test_material_must_load(text, "test"); }
 
 /* ---- conformance suite over every registered model -------------------------------------- */
@@ -55,7 +63,7 @@ static const conf_case cases[] = {
     {"elastic", ELASTIC_DECK, 0, 1},      {"neo_hookean", NH_DECK, 1, 0},
     {"j2", J2_DECK, 0, 1},                {"j2", J2_POWER_DECK, 0, 1},
     {"johnson_cook", JC_DECK, 0, 1},      {"johnson_cook", LEXAN_DECK, 0, 0},
-    {"modified_johnson_cook", MJC_DECK, 1, 0},
+    {"modified_johnson_cook", MJC_DECK, 1, 0}, {"orthotropic", ORTHO_ISO_DECK, 0, 1},
 };
 enum { NCASES = sizeof cases / sizeof cases[0] };
 
