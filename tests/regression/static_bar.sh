@@ -25,6 +25,7 @@ deck=$(cd .. && pwd)/inputs/static_bar.yaml
 source common/mpi_env.sh
 rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch"
 out=$("$exe" "${opts[@]}" "$deck" 2>&1) || { echo "FAIL: the deck: $out"; exit 1; }
+echo "$out" > deck.log # (its force evaluations: static_newton.sh reads them)
 [ "$(echo "$out" | grep -c '^load step [1-4]/4 ')" = 4 ] || { echo "FAIL: not 4 progress lines: $out"; fail=1; }
 "$PY" - static_bar.e static_bar.h5 <<'PYEOF' || fail=1
 import sys
