@@ -96,6 +96,27 @@ struct pf_sim *pf_test_sim(const char *tag, const char *deck_text) {
   return sim;
 }
 
+const char *pf_test_bimaterial_bar(const char *model, double h, double delta, double xI, double L, double W) {
+  static char text[1024];
+  const double K1 = PF_TEST_K_SOFT, K2 = PF_TEST_K_STIFF;
+  const double r1 = PF_TEST_RHO_SOFT, r2 = PF_TEST_RHO_STIFF;
+  char mats[512];
+  if (!strcmp(model, "pmb"))
+    snprintf(mats, sizeof mats, "{soft: {model: pmb, density: %g, bulk_modulus: %g}, "
+             "stiff: {model: pmb, density: %g, bulk_modulus: %g}}", r1, K1, r2, K2);
+  else
+    snprintf(mats, sizeof mats, "{soft: {model: %s, density: %g, bulk_modulus: %g, shear_modulus: %g}, "
+             "stiff: {model: %s, density: %g, bulk_modulus: %g, shear_modulus: %g}}",
+             model, r1, K1, 0.6 * K1, model, r2, K2, 0.6 * K2);
+  snprintf(text, sizeof text,
+           "materials: %s\n"
+           "bodies:\n  - {name: bar, material: soft, horizon: %.17g,\n"
+           "     material_regions: [{material: stiff, region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]}}],\n"
+           "     geometry: {shape: box, lo: [0, 0, 0], hi: [%.17g, %.17g, %.17g], spacing: %.17g}}\n",
+           mats, delta, xI, L, W, W, h);
+  return text;
+}
+
 struct pf_sim *pf_test_bond_lattice(const char *model) {
   char deck[1024];
   snprintf(deck, sizeof deck,

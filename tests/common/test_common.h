@@ -38,6 +38,15 @@ struct pf_sim *pf_test_sim(const char *tag, const char *deck_text);
  * reproducible random displacements of up to 0.5e-6 m (test_bond_loop_speed,
  * bench/bond_variants.c). */
 struct pf_sim *pf_test_bond_lattice(const char *model);
+/* The materials and the body of the bi-material bars (test_bimaterial_wave, _static): a PD bar
+ * `bar` on a lattice of spacing h over [0, L] x [0, W]^2, horizon delta, its points of x < xI of
+ * material `soft` (aluminium-like, rho 2700 kg/m^3, K 70 GPa), the others (material_regions) of
+ * `stiff` (steel-like, 7800 kg/m^3, 160 GPa), model "pmb" or "lps" (then G = 0.6 K: Poisson's
+ * ratio 1/4 in both); deck text ending in a newline, static storage. */
+enum { PF_TEST_RHO_SOFT = 2700, PF_TEST_RHO_STIFF = 7800 };
+#define PF_TEST_K_SOFT 70e9
+#define PF_TEST_K_STIFF 160e9
+const char *pf_test_bimaterial_bar(const char *model, double h, double delta, double xI, double L, double W);
 /* Deck text written to a scratch file and loaded, its root validated against keys (`where` names
  * the section in messages) when keys is not NULL. *d is the deck (pf_deck_destroy it), NULL on
  * an error; returns the first error. */

@@ -22,7 +22,7 @@
 
 #include "sim/sim.h"
 
-static const double RHO1 = 2700, K1 = 70e9, RHO2 = 7800, K2 = 160e9, EPS1 = 1e-3;
+static const double RHO1 = PF_TEST_RHO_SOFT, K1 = PF_TEST_K_SOFT, RHO2 = PF_TEST_RHO_STIFF, K2 = PF_TEST_K_STIFF, EPS1 = 1e-3;
 
 static double closed_form(double x, double xI) {
   const double eps2 = EPS1 * K1 / K2;
@@ -43,19 +43,9 @@ static double run(const char *model, double h, const char *name) {
   const double delta = 3.015 * h, L = 0.06, W = 2e-3;
   const int n = (int)lround(L / h) + 1;
   const double xI = (n / 2 - 0.5) * h, xend = (n - 1) * h, eps2 = EPS1 * K1 / K2;
-  char mats[512], deck[4096];
-  if (!strcmp(model, "pmb"))
-    snprintf(mats, sizeof mats, "{soft: {model: pmb, density: %g, bulk_modulus: %g}, "
-             "stiff: {model: pmb, density: %g, bulk_modulus: %g}}", RHO1, K1, RHO2, K2);
-  else
-    snprintf(mats, sizeof mats, "{soft: {model: lps, density: %g, bulk_modulus: %g, shear_modulus: %g}, "
-             "stiff: {model: lps, density: %g, bulk_modulus: %g, shear_modulus: %g}}",
-             RHO1, K1, 0.6 * K1, RHO2, K2, 0.6 * K2);
+  char deck[4096];
   snprintf(deck, sizeof deck,
-           "materials: %s\n"
-           "bodies:\n  - {name: bar, material: soft, horizon: %.17g,\n"
-           "     material_regions: [{material: stiff, region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]}}],\n"
-           "     geometry: {shape: box, lo: [0, 0, 0], hi: [%.17g, %.17g, %.17g], spacing: %.17g}}\n"
+           "%s"
            "boundary_conditions:\n"
            "  - {displacement: [free, \"0\", \"0\"]}\n"
            "  - {region: {shape: box, lo: [-1, -1, -1], hi: [%.17g, 1, 1]}, displacement: [\"%.17g * x * t\", \"0\", \"0\"]}\n"
@@ -63,7 +53,7 @@ static double run(const char *model, double h, const char *name) {
            "     displacement: [\"(%.17g + %.17g * (x - %.17g)) * t\", \"0\", \"0\"]}\n"
            "solver: {type: quasi_static, method: newton_krylov, load_steps: 1, tolerance: 1.0e-10, max_iterations: 200000}\n"
            "time: {final_time: 1}\n",
-           mats, delta, xI, xend, W, W, h, delta, EPS1, xend - delta, EPS1 * xI, eps2, xI);
+           pf_test_bimaterial_bar(model, h, delta, xI, xend, W), delta, EPS1, xend - delta, EPS1 * xI, eps2, xI);
   pf_sim *sim = pf_test_sim("bimaterial_static", deck);
   if (!sim) return NAN;
   PF_TEST_OK(pf_sim_run_begin(sim));

@@ -26,7 +26,7 @@
 
 #include "sim/sim.h"
 
-static const double RHO1 = 2700, K1 = 70e9, RHO2 = 7800, K2 = 160e9, V = 0.1;
+static const double RHO1 = PF_TEST_RHO_SOFT, K1 = PF_TEST_K_SOFT, RHO2 = PF_TEST_RHO_STIFF, K2 = PF_TEST_K_STIFF, V = 0.1;
 
 typedef struct {
   double p1, p2, k1, k2, k_near, k_ends; /* momenta, kinetic energies, KE near the interface, at the ends */
@@ -51,25 +51,15 @@ static void run(const char *model, double h, const char *name) {
   const int n1 = (int)lround(L1 / h), n = (int)lround((L1 + L2) / h), nw = (int)lround(W / h) + 1;
   const double xI = (n1 - 0.5) * h, xend = (n - 1) * h;
   const double c1 = sqrt(1.8 * K1 / RHO1), tau = 30 * h / c1; /* a pulse of about 30 spacings */
-  char mats[512], deck[4096];
-  if (!strcmp(model, "pmb"))
-    snprintf(mats, sizeof mats, "{soft: {model: pmb, density: %g, bulk_modulus: %g}, "
-             "stiff: {model: pmb, density: %g, bulk_modulus: %g}}", RHO1, K1, RHO2, K2);
-  else
-    snprintf(mats, sizeof mats, "{soft: {model: lps, density: %g, bulk_modulus: %g, shear_modulus: %g}, "
-             "stiff: {model: lps, density: %g, bulk_modulus: %g, shear_modulus: %g}}",
-             RHO1, K1, 0.6 * K1, RHO2, K2, 0.6 * K2);
+  char deck[4096];
   snprintf(deck, sizeof deck,
-           "materials: %s\n"
-           "bodies:\n  - {name: bar, material: soft, horizon: %.17g,\n"
-           "     material_regions: [{material: stiff, region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]}}],\n"
-           "     geometry: {shape: box, lo: [0, 0, 0], hi: [%.17g, %.17g, %.17g], spacing: %.17g}}\n"
+           "%s"
            "boundary_conditions:\n"
            "  - {velocity: [free, \"0\", \"0\"]}\n"
            "  - {region: {shape: box, lo: [-1, -1, -1], hi: [%.17g, 1, 1]},\n"
            "     velocity: [\"t < %.17g ? %g * sin(%.17g * t)^2 : 0\", \"0\", \"0\"]}\n"
            "time: {steps: 100000}\n",
-           mats, delta, xI, xend, (nw - 1) * h, (nw - 1) * h, h, 2.5 * h, tau, V, PF_PI / tau);
+           pf_test_bimaterial_bar(model, h, delta, xI, xend, (nw - 1) * h), 2.5 * h, tau, V, PF_PI / tau);
   pf_sim *sim = pf_test_sim("bimaterial_wave", deck);
   if (!sim) return;
   const pf_points *p = pf_sim_points(sim);
