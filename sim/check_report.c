@@ -1,9 +1,11 @@
-/* What `perifem --check` prints about the run a deck makes, once the model is built and before
- * any step: per body its kind, points, directed bonds, elements, horizon/spacing ratio and
- * material; the time step and the number of steps; the memory per rank, estimated from the point
- * counts and horizons with the constants the set-up refuses PD bodies by (sim/body_pd.c) and an
- * element's measured here, and beside it the set-up's measured growth; the output and checkpoint sizes; and a rough run time
- * from bond and element rates measured on a 2-core Xeon (stated in the output). Collective. */
+/* What `perifem --check` prints about the run a deck makes, once the model is built: per body
+ * its kind, points, directed bonds, elements, horizon/spacing ratio and material; the time step
+ * and the number of steps; the memory per rank, estimated from the point counts and horizons
+ * with the constants the set-up refuses PD bodies by (sim/body_pd.c) and an element's measured
+ * here, and beside it the set-up's measured growth; the output and checkpoint sizes in the
+ * deck's precision and compression; and the run time from a few timed steps
+ * (sim/check_calibrate.c), or, when none can be timed, a rough one from bond and element rates
+ * measured on a 2-core Xeon. Collective; the model is spent afterwards. */
 #include "sim/sim_impl.h"
 
 #include <math.h>
@@ -19,6 +21,14 @@
  * 10 206 elements (1 KB a node, 0.3 and 1.1 KB an element). */
 #define PF_BYTES_PER_NODE PF_PD_BYTES_PER_POINT
 #define PF_BYTES_PER_ELEMENT 1024.0
+/* The share of its bytes an Exodus file keeps at output.compression > 0 (deflate on the
+ * frames): measured 0.20 (wave_in_bar), 0.43 (panel_impact), 0.64 (fragmenting_cylinder to
+ * 25 us), single precision, compression 1; their middle, so each within a factor 2. The rates
+ * a frame's bytes (before compression) are written at, bytes of CPU time per second, without
+ * and with compression: from fragmenting_cylinder to 25 us with 2 and 13 frames. */
+#define PF_COMPRESSED_SHARE 0.35
+#define PF_WRITE_RATE 100e6
+#define PF_WRITE_RATE_COMPRESSED 25e6
 
 typedef struct {
   double points, bonds, elements, cell, m, bytes, rate;
@@ -81,32 +91,62 @@ static const char *size_text(char *out, double bytes) {
   return out;
 }
 
-/* Exodus: coordinates, connectivity and the frames of every nodal variable (9 built-in, then
- * the output fields' components); the history's rows; a checkpoint's points and bonds. */
-static void print_output(const pf_sim *sim, double points, double bonds, double elements, double bond_bytes) {
-  int vars = 9, once = 0, keep = 16; /* restart: X, u, v, f, y, m, vol, cell, gid, body */
-  for (int k = 0; k < sim->pts->nfields; k++) {
-    const int flags = sim->pts->fields[k].flags;
-    if ((flags & PF_FIELD_OUTPUT) && (flags & PF_FIELD_CONSTANT)) once += sim->pts->fields[k].ncomp;
-    else if (flags & PF_FIELD_OUTPUT) vars += sim->pts->fields[k].ncomp;
-    if (sim->pts->fields[k].flags & PF_FIELD_RESTART) keep += sim->pts->fields[k].ncomp;
-  }
+/* The frames of the Exodus file and the rows of the history the run writes. */
+static void output_counts(const pf_sim *sim, double *frames, double *rows) {
   const long n = sim->nsteps, every = sim->output_interval, hevery = sim->history_interval;
   const double span = isfinite(sim->final_time) ? sim->final_time : (double)n * sim->dt; /* (by time: of the run) */
-  const double frames = sim->output_period > 0 ? 1 + ceil(span / sim->output_period - 1e-9)
-                        : every > 0            ? 1 + ceil((double)n / (double)every)
-                                               : 2;
-  const double rows = sim->history_period > 0 ? 1 + ceil(span / sim->history_period - 1e-9)
-                      : hevery > 0            ? 1 + ceil((double)n / (double)hevery)
-                                              : 2;
+  *frames = sim->output_period > 0 ? 1 + ceil(span / sim->output_period - 1e-9)
+            : every > 0            ? 1 + ceil((double)n / (double)every)
+                                   : 2;
+  *rows = sim->history_period > 0 ? 1 + ceil(span / sim->history_period - 1e-9)
+          : hevery > 0            ? 1 + ceil((double)n / (double)hevery)
+                                  : 2;
+}
+
+/* output.fields names the field (every field when it is not given). */
+static int selected(const pf_sim *sim, const char *name) {
+  if (!sim->exo_opt.fields) return 1;
+  for (int k = 0; k < sim->exo_opt.nfields; k++)
+    if (!strcmp(sim->exo_opt.fields[k], name)) return 1;
+  return 0;
+}
+
+/* The Exodus file's nodal variables (*vars, in every frame) and attributes (*once). */
+static void exodus_variables(const pf_sim *sim, int *vars, int *once) {
+  *vars = 3 * (selected(sim, "displacement") + selected(sim, "velocity") + selected(sim, "force"));
+  *once = 0;
+  for (int k = 0; k < sim->pts->nfields; k++) {
+    const pf_field *f = &sim->pts->fields[k];
+    if (!(f->flags & PF_FIELD_OUTPUT) || !selected(sim, f->name)) continue;
+    if (f->flags & PF_FIELD_CONSTANT) *once += f->ncomp;
+    else *vars += f->ncomp;
+  }
+}
+
+/* Exodus: coordinates, connectivity, the attributes and the frames of every nodal variable, in
+ * the deck's precision, times the share deflate leaves at compression > 0; the history's rows;
+ * a checkpoint's points and bonds. *frame_bytes: one frame's values before compression. */
+static void print_output(const pf_sim *sim, double points, double bonds, double elements, double bond_bytes,
+                         double *frame_bytes) {
+  int vars, once, keep = 16; /* restart: X, u, v, f, y, m, vol, cell, gid, body */
+  exodus_variables(sim, &vars, &once);
+  for (int k = 0; k < sim->pts->nfields; k++)
+    if (sim->pts->fields[k].flags & PF_FIELD_RESTART) keep += sim->pts->fields[k].ncomp;
+  double frames, rows;
+  output_counts(sim, &frames, &rows);
+  const int ws = sim->exo_opt.single ? 4 : 8, level = sim->exo_opt.compression;
+  const double share = level > 0 ? PF_COMPRESSED_SHARE : 1;
+  *frame_bytes = points * vars * ws;
+  const double exodus = share * (points * ws * (3 + once) + frames * *frame_bytes) + elements * 8 * 4;
   pf_sim_history_row g = {0};
   const double columns = pf_sim_globals_init(sim, &g) ? 0 : g.n + 2;
   pf_sim_globals_free(&g);
-  char exodus[16], history[16], checkpoint[16];
-  pf_log("  output: Exodus %s (%.0f frames x %d nodal variables x %.0f points x 8 bytes, and %d written once), "
+  char exo[16], history[16], checkpoint[16], how[64] = "";
+  if (level > 0) snprintf(how, sizeof how, " x %.2g (compression %d: the share deflate leaves)", share, level);
+  pf_log("  output: Exodus %s (%.0f frames x %d nodal variables x %.0f points x %d bytes%s, and %d written once), "
          "history %s (%.0f rows x %.0f columns)\n",
-         size_text(exodus, points * 8 * (3 + frames * vars + once) + elements * 8 * 4), frames, vars, points, once,
-         size_text(history, rows * columns * 8), rows, columns);
+         size_text(exo, exodus), frames, vars, points, ws, how, once, size_text(history, rows * columns * 8), rows,
+         columns);
   size_text(checkpoint, points * keep * 8 + bonds * (8 + bond_bytes));
   if (sim->restart_interval > 0) pf_log("  checkpoint: %s each, every %ld steps\n", checkpoint, sim->restart_interval);
   else pf_log("  checkpoint: %s each (none written: restart.interval is 0)\n", checkpoint);
@@ -127,24 +167,49 @@ static void print_memory(const pf_sim *sim, double bytes) {
          size_text(before, peak[1]), size_text(limit, pf_memory_limit()));
 }
 
-/* bond_rate: the bodies' bond rates, weighted by their bonds (0: no bonds). */
-static void print_time(double bond_seconds, double element_seconds, double bond_rate) {
-  const int ranks = pf_comm_size();
-  const double s = (bond_seconds + element_seconds) / ranks;
-  char when[32];
-  if (s < 120) snprintf(when, sizeof when, "%.2g s", s);
-  else if (s < 7200) snprintf(when, sizeof when, "%.2g min", s / 60);
-  else snprintf(when, sizeof when, "%.3g h", s / 3600);
-  pf_log("  rough run time: %s on %d rank(s) (at %.2g directed bond evaluations/s per rank for these models, %.2g "
-         "element cycles/s, measured on a 2-core Xeon; contact and output not counted)\n",
-         when, ranks, bond_rate, PF_RATE_ELEMENTS);
+/* seconds as "42 s", "4.6 min" or "2.31 h" in out (at least 32 characters); returns out. */
+static const char *time_text(char *out, double s) {
+  if (s < 120) snprintf(out, 32, "%.2g s", s);
+  else if (s < 7200) snprintf(out, 32, "%.2g min", s / 60);
+  else snprintf(out, 32, "%.3g h", s / 3600);
+  return out;
 }
 
-int pf_sim_check_report(pf_sim *sim) {
-  double points = 0, bonds = 0, elements = 0, bytes = 0, tb = 0, bond_bytes = 0;
-  pf_log("%s: deck is valid (%" PF_GID_FMT " points, %s%ld steps of %.4e s%s)\n", pf_deck_path(sim->deck),
-         sim->pts->n_global, sim->adaptive ? "about " : "", sim->nsteps, sim->dt,
-         sim->adaptive ? " at the start; the step follows the deformation" : "");
+/* No step was timed: bonds and elements at the rates measured on a 2-core Xeon.
+ * bond_rate: the bodies' bond rates, weighted by their bonds (0: no bonds). */
+static void print_rough_time(double bond_seconds, double element_seconds, double bond_rate, const char *why) {
+  const int ranks = pf_comm_size();
+  char when[32];
+  pf_log("  rough run time: %s on %d rank(s) (at %.2g directed bond evaluations/s per rank for these models, %.2g "
+         "element cycles/s, measured on a 2-core Xeon; contact and output not counted; %s)\n",
+         time_text(when, (bond_seconds + element_seconds) / ranks), ranks, bond_rate, PF_RATE_ELEMENTS, why);
+}
+
+/* The run time from the calibration: the set-up as this one took, the forces at t = 0, the
+ * steps left at the median step, a history row and a frame's fields at their counts, and the
+ * frames' bytes at the write rate. */
+static void print_time(const pf_sim *sim, const pf_sim_calibration *c, double frame_bytes) {
+  double frames, rows;
+  output_counts(sim, &frames, &rows);
+  const double steps = (double)(sim->nsteps - c->from);
+  const double rate = sim->exo_opt.compression > 0 ? PF_WRITE_RATE_COMPRESSED : PF_WRITE_RATE;
+  const double out = rows * c->row + frames * (c->frame + frame_bytes / rate / pf_comm_size());
+  const double total = c->setup + c->first + steps * c->step + out;
+  char when[32], set[32], step[32], put[32];
+  pf_log("  run time: about %s on %d rank(s) (CPU time per rank: set-up %s, %.0f steps x %s (the median of %d steps "
+         "timed here after %d warm-up), output %s; an estimate: contact and damage that grow later in the run cost "
+         "more than these first steps)\n",
+         time_text(when, total), pf_comm_size(), time_text(set, c->setup), steps, time_text(step, c->step), c->steps,
+         c->warmup, time_text(put, out));
+}
+
+typedef struct {
+  double points, bonds, elements, bytes, bond_seconds, bond_bytes;
+} totals;
+
+/* The body table (and the interactions' rows); their sums in *t. */
+static void print_bodies(const pf_sim *sim, totals *t) {
+  *t = (totals){0};
   pf_log("  %-16s %-8s %12s %15s %10s %16s  %s\n", "body", "kind", "points", "directed bonds", "elements",
          "horizon/spacing", "material (model)");
   for (int b = 0; b < sim->nbodies; b++) {
@@ -156,21 +221,48 @@ int pf_sim_check_report(pf_sim *sim) {
     else
       pf_log("  %-16s %-8s %12.0f %15.0f %10.0f %16s  %s (%s)\n", sim->body_name[b], r.kind, r.points, r.bonds,
              r.elements, "-", r.material, r.model);
-    points += r.points, bonds += r.bonds, elements += r.elements, bytes += r.bytes;
-    tb += r.bonds * (double)sim->nsteps / r.rate;
-    const pf_body *bd = &sim->body[b];
-    if (r.bonds > 0) bond_bytes = fmax(bond_bytes, pf_body_bytes_per_bond(bd));
+    t->points += r.points, t->bonds += r.bonds, t->elements += r.elements, t->bytes += r.bytes;
+    t->bond_seconds += r.bonds * (double)sim->nsteps / r.rate;
+    if (r.bonds > 0) t->bond_bytes = fmax(t->bond_bytes, pf_body_bytes_per_bond(&sim->body[b]));
   }
   for (int k = 0; k < sim->ninter; k++) /* rigid surfaces, contact, walls, conditions */
     pf_log("  %-16s %-8s %12s %15s %10s %16s  -\n", pf_sim_interaction_name(sim, k), sim->inter[k].ops->kind, "-", "-",
            "-", "-");
+}
+
+/* The calibration's steps and the run time from them; without them (or when they failed) the
+ * rough estimate from the rates. */
+static void estimate_time(pf_sim *sim, const totals *t, double frame_bytes) {
+  pf_sim_calibration c;
+  const int ierr = pf_sim_check_calibrate(sim, &c);
+  if (!ierr && c.steps > 0) {
+    print_time(sim, &c, frame_bytes);
+    return;
+  }
+  const char *why = ierr ? "the calibration steps stopped on the error above, as the run would"
+                    : sim->solver.load_step ? "a quasi-static run's load steps are not timed"
+                    : sim->nsteps > 0      ? "the run had begun: no step was timed"
+                                           : "no step to time";
+  if (ierr) pf_error_clear();
+  const double tb = t->bond_seconds;
+  print_rough_time(tb, t->elements * (double)sim->nsteps / PF_RATE_ELEMENTS,
+                   tb > 0 ? t->bonds * (double)sim->nsteps / tb : 0, why);
+}
+
+int pf_sim_check_report(pf_sim *sim) {
+  pf_log("%s: deck is valid (%" PF_GID_FMT " points, %s%ld steps of %.4e s%s)\n", pf_deck_path(sim->deck),
+         sim->pts->n_global, sim->adaptive ? "about " : "", sim->nsteps, sim->dt,
+         sim->adaptive ? " at the start; the step follows the deformation" : "");
+  totals t;
+  print_bodies(sim, &t);
   char until[48] = "";
   if (isfinite(sim->final_time)) snprintf(until, sizeof until, " to %.4g s", sim->final_time);
   pf_log("  time step: %.4e s (%s), %s%ld steps%s\n", sim->dt,
          sim->adaptive ? "at the start: the step follows the deformation" : "fixed", sim->adaptive ? "about " : "",
          sim->nsteps, until);
-  print_memory(sim, bytes);
-  print_output(sim, points, bonds, elements, bond_bytes);
-  print_time(tb, elements * (double)sim->nsteps / PF_RATE_ELEMENTS, tb > 0 ? bonds * (double)sim->nsteps / tb : 0);
+  print_memory(sim, t.bytes);
+  double frame_bytes;
+  print_output(sim, t.points, t.bonds, t.elements, t.bond_bytes, &frame_bytes);
+  estimate_time(sim, &t, frame_bytes);
   return 0;
 }

@@ -160,6 +160,10 @@ static void run_close(pf_sim *sim, int state) {
 
 int pf_sim_run_begin(pf_sim *sim) {
   if (sim->run) return sim->run->state == RUN_FAILED ? run_failed() : 0;
+  if (sim->calibrated)
+    return pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
+                          "the --check report (perifem_print_check) took calibration steps: this model is spent; create "
+                          "it again to run");
   PF_MALLOC(sim->run, 1);
   pf_sim_run_state *r = sim->run;
   r->wall0 = pf_wtime();

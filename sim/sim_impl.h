@@ -133,6 +133,7 @@ struct pf_sim {
   long loop_steps;    /* steps this run took (after a restart: since the checkpoint) */
   double rss0; /* the process's peak resident memory before the set-up, bytes (--check) */
   double rss_setup; /* the same at the end of the set-up (the run summary) */
+  int calibrated;   /* --check took calibration steps: the model is spent (sim/check_calibrate.c) */
   /* instability guards (sim/guard.c) */
   int guard_tripped;    /* this rank found a NaN, a runaway point or an inverted element */
   int last_good;        /* the run stopped and the points hold the last good state */
@@ -203,6 +204,22 @@ int pf_sim_check_restart_reference(const pf_sim *sim, const pf_point_cloud *pc);
 /* After the set-up: every point field the run's models keep in checkpoints was in the file
  * (one registered by the set-up alone would start from nothing). */
 int pf_sim_check_restart_fields(const pf_sim *sim);
+
+/* The timed calibration of --check (sim/check_calibrate.c): CPU seconds per rank (per thread of
+ * a rank), each the largest over the ranks; steps 0 when none was taken (the run began, or a
+ * quasi-static solver's load step). Collective; the model is spent afterwards. */
+typedef struct {
+  int steps;    /* steps timed (after the warm-up) */
+  int warmup;   /* steps taken before them */
+  long from;    /* the step the calibration started from */
+  double setup; /* the process so far: start, deck, mesh, points, bonds */
+  double first; /* the forces at t = 0 */
+  double step;  /* the median of the timed steps */
+  double row;   /* a history row (the energy ledger's totals) */
+  double frame; /* a frame's output fields and fragments, short of the file */
+} pf_sim_calibration;
+int pf_sim_check_calibrate(pf_sim *sim, pf_sim_calibration *c);
+double pf_sim_cpu_seconds(void);
 /* sim/restart_geometry.c: each body's geometry from its set-up cloud pc[nbodies] (and mesh);
  * as checkpoint scalars v[PF_GEOMETRY_SCALARS nbodies] (points, elements, hash halves); a
  * checkpoint's saved[PF_GEOMETRY_SCALARS nbodies] against this set-up's, refused naming the body, its mesh or point file and what
