@@ -4,12 +4,15 @@
 #     --set, --progress, --restart), before or after the deck, and "--" ends the options;
 #  2. an unknown option, a shortened one or one a few letters off, exits 2 with the nearest known
 #     option ("did you mean --output-dir?") and the usage on stderr; an option without a value
-#     takes none (--check=yes); a missing or empty value is named.
+#     takes none (--check=yes); a missing or empty value is named;
+#  3. the --set examples --help gives are keys of the deck it names: --check takes them (exit 0,
+#     no warning) and a key that is none is refused (exit 2).
 # usage: cli_options.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 src=$(cd .. && pwd)/inputs/wave_in_bar.yaml
 scratch=$2 fail=0
+here=$(pwd)
 rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch" || exit 1
 sed 's/final_time: 5.0e-6/final_time: 2.0e-8/' "$src" > bar.yaml
 grep -q 'final_time: 2.0e-8' bar.yaml || { echo "FAIL: the shipped deck changed; the sed edit no longer applies"; exit 1; }
@@ -54,4 +57,22 @@ refuse "--restart with no value" "--restart needs a checkpoint file" 0 bar.yaml 
 refuse "--progress=sometimes" "--progress needs auto, plain or line (got 'sometimes')" 0 --progress=sometimes bar.yaml
 refuse "two decks" "more than one deck given ('bar.yaml' and 'other.yaml')" 0 bar.yaml -- other.yaml
 refuse "--restart=FILE reads FILE" "checkpoint no_such.ckpt" 0 --restart=no_such.ckpt bar.yaml
+
+# ---- 3. --help's --set examples, on the deck it names ----
+help=$("$exe" --help)
+example=$(grep -o 'inputs/[a-z_]*\.yaml' <<<"$help" | head -1)
+sets=$(grep -o -- '--set [a-z_.]*=[^ ]*' <<<"$help" | grep -v KEY)
+if [ -z "$example" ] || [ "$(wc -l <<<"$sets")" -lt 2 ]; then
+  echo "FAIL: --help names no example deck and two --set examples: $example / $sets"; fail=1
+else
+  args=()
+  while read -r opt kv; do args+=("$opt" "$kv"); done <<<"$sets"
+  out=$("$exe" --check "$here/../$example" "${args[@]}" 2>&1)
+  st=$?
+  if [ $st -ne 0 ] || grep -qi "warning\|error" <<<"$out"; then
+    echo "FAIL: --help's examples ${args[*]} on $example: exit $st: $(grep -i 'warning\|error' <<<"$out" | head -2)"; fail=1
+  else echo "ok   --help's examples ${args[*]} on $example"; fi
+  out=$("$exe" --check "$here/../$example" --set bodies.sphere.velocity=[0,0,-900] 2>&1)
+  [ $? -eq 2 ] || { echo "FAIL: the old example bodies.sphere.velocity was taken: $(head -2 <<<"$out")"; fail=1; }
+fi
 exit $fail
