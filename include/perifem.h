@@ -144,7 +144,9 @@ int perifem_catch_signals(int on);
  * perifem_options.catch_signals, since the set-up; 0: none. */
 int perifem_signal_caught(void);
 /* Print the set-up report of `perifem --check` (rank 0, standard output): bodies, points, bonds,
- * elements, the step, memory, output sizes, a rough run time. Collective. */
+ * elements, the step, memory, output sizes, and the run time from a few steps it times (no
+ * output written). Before the run has begun those steps spend the model: perifem_step and
+ * perifem_run then fail; create it again to run. Collective. */
 int perifem_print_check(perifem_sim *sim);
 
 /* ---- bodies and fields ----------------------------------------------------------------------

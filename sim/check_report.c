@@ -137,7 +137,8 @@ static void print_output(const pf_sim *sim, double points, double bonds, double 
   const int ws = sim->exo_opt.single ? 4 : 8, level = sim->exo_opt.compression;
   const double share = level > 0 ? PF_COMPRESSED_SHARE : 1;
   *frame_bytes = points * vars * ws;
-  const double exodus = share * (points * ws * (3 + once) + frames * *frame_bytes) + elements * 8 * 4;
+  const double ids = points * 3 * 4 + elements * (8 + 1) * 4; /* maps and connectivity, 4-byte integers */
+  const double exodus = share * (points * ws * (3 + once) + frames * *frame_bytes) + ids;
   pf_sim_history_row g = {0};
   const double columns = pf_sim_globals_init(sim, &g) ? 0 : g.n + 2;
   pf_sim_globals_free(&g);
@@ -198,9 +199,10 @@ static void print_time(const pf_sim *sim, const pf_sim_calibration *c, double fr
   char when[32], set[32], step[32], put[32];
   pf_log("  run time: about %s on %d rank(s) (CPU time per rank: set-up %s, %.0f steps x %s (the median of %d steps "
          "timed here after %d warm-up), output %s; an estimate: contact and damage that grow later in the run cost "
-         "more than these first steps)\n",
+         "more than these first steps%s)\n",
          time_text(when, total), pf_comm_size(), time_text(set, c->setup), steps, time_text(step, c->step), c->steps,
-         c->warmup, time_text(put, out));
+         c->warmup, time_text(put, out),
+         sim->adaptive ? ", and elements that deform shorten the step: more steps than at the start's step" : "");
 }
 
 typedef struct {
@@ -232,11 +234,10 @@ static void print_bodies(const pf_sim *sim, totals *t) {
 
 /* The calibration's steps and the run time from them; without them (or when they failed) the
  * rough estimate from the rates. */
-static void estimate_time(pf_sim *sim, const totals *t, double frame_bytes) {
-  pf_sim_calibration c;
-  const int ierr = pf_sim_check_calibrate(sim, &c);
-  if (!ierr && c.steps > 0) {
-    print_time(sim, &c, frame_bytes);
+static void estimate_time(const pf_sim *sim, const totals *t, const pf_sim_calibration *c, int ierr,
+                          double frame_bytes) {
+  if (!ierr && c->steps > 0) {
+    print_time(sim, c, frame_bytes);
     return;
   }
   const char *why = ierr ? "the calibration steps stopped on the error above, as the run would"
@@ -261,8 +262,10 @@ int pf_sim_check_report(pf_sim *sim) {
          sim->adaptive ? "at the start: the step follows the deformation" : "fixed", sim->adaptive ? "about " : "",
          sim->nsteps, until);
   print_memory(sim, t.bytes);
+  pf_sim_calibration c; /* (before the output's count: the fields the first forces register count) */
+  const int ierr = pf_sim_check_calibrate(sim, &c);
   double frame_bytes;
   print_output(sim, t.points, t.bonds, t.elements, t.bond_bytes, &frame_bytes);
-  estimate_time(sim, &t, frame_bytes);
+  estimate_time(sim, &t, &c, ierr, frame_bytes);
   return 0;
 }

@@ -38,7 +38,8 @@ static const pf_key output_keys[] = {
      "blending_weight, constant in a run, are written once as nodal attributes", NULL},
     {"precision", PF_KEY_STRING, 0, "double", "", "double | single: the Exodus file's values in 8 or 4 bytes", NULL},
     {"compression", PF_KEY_INT, 0, "0", "",
-     "0 (none) or 1-9: the Exodus file written as netCDF-4 and deflated at that level", NULL},
+     "0 (none) or 1-9: the Exodus file written as netCDF-4 and deflated at that level (--check counts "
+     "0.35 of its bytes)", NULL},
     {"layout", PF_KEY_STRING, 0, "joined", "",
      "on several ranks: joined (one Exodus file, written by rank 0) | spread (one file per rank, "
      "<file>.<ranks>.<rank>, which ParaView opens as one data set)", NULL},

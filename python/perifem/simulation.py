@@ -282,7 +282,8 @@ class Simulation:
         self._advance(lib.perifem_run, self._h())
 
     def check(self):
-        """Print the set-up report of perifem --check (rank 0). Collective."""
+        """Print the set-up report of perifem --check (rank 0). Collective. Before the run
+        has begun it times a few steps, which spend the model: step() and run() then fail."""
         _check(lib.perifem_print_check(self._h()))
 
     @property
