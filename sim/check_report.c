@@ -22,7 +22,7 @@
 #define PF_BYTES_PER_NODE PF_PD_BYTES_PER_POINT
 #define PF_BYTES_PER_ELEMENT 1024.0
 /* The share of its bytes an Exodus file keeps at output.compression > 0 (deflate on the
- * frames): measured 0.20 (wave_in_bar), 0.43 (panel_impact), 0.64 (fragmenting_cylinder to
+ * frames): measured 0.20 (wave_in_bar), 0.33 (panel_impact), 0.64 (fragmenting_cylinder to
  * 25 us), single precision, compression 1; their middle, so each within a factor 2. The rates
  * a frame's bytes (before compression) are written at, bytes of CPU time per second, without
  * and with compression: from fragmenting_cylinder to 25 us with 2 and 13 frames. */
@@ -138,7 +138,7 @@ static void print_output(const pf_sim *sim, double points, double bonds, double 
   const double share = level > 0 ? PF_COMPRESSED_SHARE : 1;
   *frame_bytes = points * vars * ws;
   const double ids = points * 3 * 4 + elements * (8 + 1) * 4; /* maps and connectivity, 4-byte integers */
-  const double exodus = share * (points * ws * (3 + once) + frames * *frame_bytes) + ids;
+  const double exodus = share * (points * ws * (3 + once) + frames * *frame_bytes + ids);
   pf_sim_history_row g = {0};
   const double columns = pf_sim_globals_init(sim, &g) ? 0 : g.n + 2;
   pf_sim_globals_free(&g);
