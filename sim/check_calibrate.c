@@ -21,19 +21,30 @@ double pf_sim_cpu_seconds(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* The CPU time of f(sim) on this rank, the largest over the ranks, per thread of a rank. */
+/* The CPU time since c0 on this rank, per thread of a rank, the largest over the ranks. */
+static double since(double c0) { return pf_max_all((pf_sim_cpu_seconds() - c0) / pf_threads_per_rank()); }
+
+/* The CPU time of f(sim), as since(); an error on any rank is every rank's. */
 static int timed(pf_sim *sim, int (*f)(pf_sim *), double *seconds) {
   const double c0 = pf_sim_cpu_seconds();
   const int ierr = pf_agree(f(sim), "a calibration step of --check");
-  *seconds = pf_max_all((pf_sim_cpu_seconds() - c0) / pf_threads_per_rank());
+  *seconds = since(c0);
   return ierr;
 }
 
 static int forces_at_zero(pf_sim *sim) { return pf_sim_step(sim, 0); }
 static int one_step(pf_sim *sim) { return pf_sim_step(sim, 1); }
 
-static pf_sim_history_row row; /* (the columns, made before the row is timed) */
-static int history_row(pf_sim *sim) { return pf_sim_globals_eval(sim, &row, 0); }
+/* A history row (the ledger's totals), its columns made before the clock starts. */
+static int time_row(pf_sim *sim, double *seconds) {
+  pf_sim_history_row g = {0};
+  int ierr = pf_sim_globals_init(sim, &g);
+  const double c0 = pf_sim_cpu_seconds();
+  if (!ierr) ierr = pf_sim_globals_eval(sim, &g, 0);
+  *seconds = since(c0);
+  pf_sim_globals_free(&g);
+  return pf_agree(ierr, "a history row of --check");
+}
 
 /* A frame's work short of the file: the bodies' output fields and the fragments' labels. */
 static int frame_fields(pf_sim *sim) {
@@ -71,9 +82,7 @@ int pf_sim_check_calibrate(pf_sim *sim, pf_sim_calibration *c) {
   sim->calibrated = 1;
   int ierr = sim->step == 0 && sim->t == 0 ? timed(sim, forces_at_zero, &c->first) : 0;
   if (!ierr) ierr = time_steps(sim, c);
-  if (!ierr) ierr = pf_sim_globals_init(sim, &row);
-  if (!ierr) ierr = timed(sim, history_row, &c->row);
-  pf_sim_globals_free(&row);
+  if (!ierr) ierr = time_row(sim, &c->row);
   if (!ierr) ierr = timed(sim, frame_fields, &c->frame);
   sim->opt.no_output = no_output;
   return ierr;

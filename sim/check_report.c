@@ -242,7 +242,7 @@ static void estimate_time(const pf_sim *sim, const totals *t, const pf_sim_calib
   }
   const char *why = ierr ? "the calibration steps stopped on the error above, as the run would"
                     : sim->solver.load_step ? "a quasi-static run's load steps are not timed"
-                    : sim->nsteps > 0      ? "the run had begun: no step was timed"
+                    : sim->run             ? "the run had begun: no step was timed"
                                            : "no step to time";
   if (ierr) pf_error_clear();
   const double tb = t->bond_seconds;
