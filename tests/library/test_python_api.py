@@ -7,6 +7,8 @@
     PerifemError and fails that call only: the run goes on, the next checkpoint is written, and
     perifem.finalize() succeeds (before, after /proc: the interpreter ended with status 1 after
     the run, "a file could not be closed");
+  - check() (the --check report) times a few steps and spends the model: step() then raises
+    PerifemError naming the calibration, and a new simulation of the deck runs;
   - a field view read after close() shows the values it showed before (before: SIGSEGV, on a
     block of 17 325 points whose arrays are unmapped when freed); the
     closed simulation refuses further calls; it is freed once the last view is gone.
@@ -61,6 +63,13 @@ with make(overrides="time.steps=7") as sim:
     raises(perifem.PerifemError, lambda: sim.field(5, "mass"), "field(5, 'mass')", "no body 5")
     raises(TypeError, lambda: sim.checkpoint(3), "checkpoint(3)", "path")
     check(np.array_equal(sim.field(0, "mass"), sim.field("block", "mass")), "a body by index and by name")
+# 2b. check() spends the model it times
+with make(overrides="time.steps=20") as sim:
+    sim.check()
+    raises(perifem.PerifemError, lambda: sim.step(1), "step() after check()", "calibration steps")
+with make(overrides="time.steps=20") as sim:
+    sim.step(1)
+    check(sim.step_count == 1, "a new simulation after check(): %d steps" % sim.step_count)
 raises(TypeError, lambda: make(overrides=5), "overrides=5", "overrides")
 raises(TypeError, lambda: make(overrides=["time.steps=3", 4]), "overrides=[..., 4]", "an override")
 raises(TypeError, lambda: make(overrides={3: 1}), "overrides={3: 1}", "key")
