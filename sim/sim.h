@@ -58,7 +58,8 @@ int pf_sim_adaptive(const pf_sim *sim);
 /* perifem --check (sim/check_report.c): print on rank 0 what the run will be: per body its kind,
  * points, directed bonds, elements, horizon/spacing and material; the step and the number of
  * steps; the memory per rank (the estimate and the measured peak); the output and checkpoint
- * sizes; a rough run time. Collective. */
+ * sizes; the run time from a few steps it takes and times (sim/check_calibrate.c), after
+ * which the run refuses to begin. Collective. */
 int pf_sim_check_report(pf_sim *sim);
 /* Global quantities of the current state. */
 typedef struct {
