@@ -14,7 +14,7 @@
  * numbered by ascending gmsh node tag, elements block by block by ascending gmsh element tag. */
 #include "mesh/mesh_impl.h"
 
-#include <gmshc.h>
+#include "mesh/gmsh_library.h"
 #include <locale.h>
 #include <math.h>
 #include <signal.h>
@@ -679,6 +679,8 @@ static int gmsh_read(const pf_mesh_source *src, pf_mesh_raw *raw) {
   struct rlimit stack;
   int have_stack = getrlimit(RLIMIT_STACK, &stack) == 0;
   int ierr = 0, code = 0;
+  char why[512] = "";
+  if (pf_gmsh_load(why, sizeof why)) return PF_MESH_ERROR(src, "cannot load gmsh: %s", why);
   guard_start(src);
   gmshInitialize(0, NULL, 0, &ierr);
   if (ierr)

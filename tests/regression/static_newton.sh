@@ -11,7 +11,8 @@
 #  - plasticity (the necking bar of elements, 8 elements along, to 2 % in 2 load steps; past the
 #    peak, to 8 % in 4, was measured the same on 1, 2 and 3 ranks too, 20 s a run) and
 #    correspondence (the PD necking bar to 3 % in 2 load steps): the same digest on 1, 2 and 3
-#    ranks.
+#    ranks (tolerance 1e-4: the digests are compared, not the equilibrium; fewer iterations, each
+#    a round of reductions that three ranks on two busy cores wait for).
 # usage: static_newton.sh PERIFEM SCRATCH TESTS_BINARY_DIR   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
@@ -43,7 +44,8 @@ for deck in necking necking_pd; do
   digests=""
   for np in 1 2 3; do
     mkdir -p "$scratch/$deck$np"
-    o=$(cd "$scratch/$deck$np" && run $np "$exe" --quiet --set solver.method=newton_krylov "${args[@]}" \
+    o=$(cd "$scratch/$deck$np" && run $np "$exe" --quiet --set solver.method=newton_krylov \
+        --set solver.tolerance=1e-4 "${args[@]}" \
         "$root/inputs/$deck.yaml" 2>&1) || { echo "FAIL: $deck on $np ranks: $o"; fail=1; }
     digests="$digests $(digest_of "$o")"
   done

@@ -18,7 +18,8 @@
 #    +2.9 %); the sphere's force balanced by the base's reaction within 1e-3 (measured 6.4e-5:
 #    the tolerance 1e-6 of the residual); the energy error within twice the trapezoidal rule's
 #    own error on the Hertz curve over the same load steps (8e-3 of the work; measured 9.0e-3).
-#  - the same state digest on 1, 2 and 3 ranks for each deck (2 load steps);
+#  - the same state digest on 1, 2 and 3 ranks for each deck (2 load steps, tolerance 1e-4: the
+#    digests are compared, not the equilibrium);
 #  - no load (no boundary condition, the indenter at rest), friction on a rigid surface and
 #    contact pairs: a message naming the key and a non-zero exit.
 # usage: static_surfaces.sh PERIFEM SCRATCH   (from the tests/ folder)
@@ -79,7 +80,7 @@ for deck in static_wall_bar static_hertz; do
   digests=""
   for np in 1 2 3; do
     mkdir -p $deck$np
-    o=$(cd $deck$np && run $np "$exe" --quiet --set solver.load_steps=2 "$data/$deck.yaml" 2>&1) || { echo "FAIL: $deck on $np ranks: $o"; fail=1; }
+    o=$(cd $deck$np && run $np "$exe" --quiet --set solver.load_steps=2 --set solver.tolerance=1e-4 "$data/$deck.yaml" 2>&1) || { echo "FAIL: $deck on $np ranks: $o"; fail=1; }
     digests="$digests $(digest_of "$o")"
   done
   digests_agree "$deck" $digests || fail=1
