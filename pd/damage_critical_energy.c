@@ -7,13 +7,13 @@
  *   G0 = int_0^delta dz int_0^2pi dtheta int_z^delta dxi int_0^acos(z/xi) w_c xi^2 sin(phi) dphi
  *      = 2 pi w_c int_0^delta dz int_z^delta (xi^2 - z xi) dxi = 2 pi w_c int_0^delta xi^3/2 dxi
  *      = pi w_c delta^4 / 4
- * (docs/theory/materials.md, section 4). The bond energy is the material's, evaluated in its
+ * (docs/theory/bond_failure.md). The bond energy is the material's, evaluated in its
  * force kernel where the critical-stretch test sits:
  *   PMB: w = (1/2) c omega s^2 |xi|       (the pair micropotential; pmb_energy gives each end half)
  *   LPS: w = (1/2) (t_ij + t_ji) e        (lps_energy = sum_i V_i sum_j (1/2) t_ij e V_j exactly)
  * Both ends compute the same w from the same operands, so they take the same decision.
  *
- * calibration: family (docs/theory/materials.md §4.7). w_c above counts the continuum's whole
+ * calibration: family (docs/theory/bond_failure.md §7). w_c above counts the continuum's whole
  * family; a point near a free face, or on a lattice whose cells straddle the horizon, has fewer
  * bonds across a plane, and a crack there takes less than G0 (down to 0.69 G0 in the double
  * cantilever beam, docs/examples/dcb.md). With the family's directional moment

@@ -59,7 +59,7 @@ static int check_body(const pf_deck *d, const pf_node *list, const pf_node *body
 
 /* The interface's own damage law: critical_stretch (its stretch limit) or critical_energy (its
  * energy limit w_c = 4 G0 / (pi delta^4) from its G0, Foster, Silling & Chen 2011, as the body
- * law's: docs/theory/materials.md §4.3). */
+ * law's: docs/theory/bond_failure.md §3). */
 static int read_interface_damage(const pf_deck *d, const pf_node *map, pf_pd_body *b) {
   const char *law = "";
   PF_CALL(pf_deck_string(d, map, "law", &law));

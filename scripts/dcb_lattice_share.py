@@ -4,7 +4,7 @@
         [--layers 6 9 12 0] [--horizons 2.01 3.015 4.01 5.01]
 
 The law fails a bond once it holds w_c = 4 G0 / (pi delta^4) per V_i V_j, whatever its length
-(docs/theory/materials.md section 4.3); G0 = pi w_c delta^4 / 4 is the continuum's count of the
+(docs/theory/bond_failure.md section 3); G0 = pi w_c delta^4 / 4 is the continuum's count of the
 bonds that cross a unit area of a plane, each bond of length xi in the direction n counted
 |xi . n| / A times (section 4.1). On the cell-centred lattice of spacing dx with the crack plane
 halfway between two layers, an offset (i, j, k) with j > 0 crosses the plane j times per dx^2,
@@ -19,7 +19,7 @@ lattice). The critical energy then gives G = S G0 (plus what the failing step ov
 the bonds that fail off the plane; docs/examples/dcb.md). Counted here from the lattice alone,
 independently of the code.
 
-With --calibration family (docs/theory/materials.md section 4.7) a bond of direction n between
+With --calibration family (docs/theory/bond_failure.md section 7) a bond of direction n between
 a point of layer a and one of layer b has w_c,ij = w_c / s_ij, with
 s_ij = (mu_a(n) + mu_b(n)) / 2 / (pi m^4 / 3) and mu_a(n) = sum_offsets beta (o . n)^2 / |o| over
 the offsets o whose neighbour is in the body, so each crossing bond counts 1 / s_ij instead of 1.

@@ -21,7 +21,7 @@ traction-separation curve, G = sum over the intervals between breaks of k (Delta
 Delta_n^2) / 2. Printed is G / G0 for s0 from G0 by
 
     closed:   s0 = sqrt(8 G0 / (15 K delta))   (perifem's closed form, exact for nu = 1/4 with
-              no dilatation and a whole family; docs/theory/materials.md section 4.2)
+              no dilatation and a whole family; docs/theory/bond_failure.md section 2)
     willberg: s_c = sqrt(G0 / ([3 G + (3/4)^4 (K - 5 G / 3)] delta))   (the DLR slides)
 
 With --no-dilatation the theta terms are left out (the closed form's assumption): then, for

@@ -6,7 +6,7 @@
 # 2.01, 3.015 and 4.01 spacings:
 #  - critical energy (w_c = 4 G0 / (pi delta^4) per bond, whatever its length): |G / G_lattice - 1|
 #    < 10 % at every horizon, G_lattice = G0 S, S the bonds crossing a unit area of the plane on
-#    this lattice over the continuum's pi delta^4 / 4 (docs/theory/materials.md section 4.1;
+#    this lattice over the continuum's pi delta^4 / 4 (docs/theory/bond_failure.md section 1;
 #    scripts/dcb_lattice_share.py), its 6 layers through the thickness included (the mean over the
 #    layers of the sum of j over the offsets (i, j, k), j > 0, within m spacings whose other end
 #    is in the beam): 0.780 at m = 2.01, 0.889 at 3.015, 0.717 at 4.01; and with partial volumes at
@@ -14,7 +14,7 @@
 #    |G / G0 - 1| < 10 % at 3.015 (Willberg's DCB table: 11.1 to 13.1 J/m^2) and at 2.01 with
 #    partial volumes.
 #  - critical energy calibrated to each bond's families (calibration: family; each bond's w_c from
-#    its two ends' moment tensors, docs/theory/materials.md section 4.7) at 2.01, 3.015, 4.01 and
+#    its two ends' moment tensors, docs/theory/bond_failure.md section 7) at 2.01, 3.015, 4.01 and
 #    5.01 spacings: |G / G0 - 1| < 10 % at every horizon, and |G / G_lattice - 1| < 10 % with
 #    G_lattice = G0 S_family, each crossing bond weighed by its w_c,ij / w_c on the lattice
 #    (scripts/dcb_lattice_share.py --calibration family: 0.903, 0.979, 0.989, 1.007 on 6 layers).

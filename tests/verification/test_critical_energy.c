@@ -9,7 +9,7 @@
  *    e^d = 0, t_ij = t_ji = 9 K e / (|xi|^2 V)) w = (1/2)(t_ij + t_ji) e = 9 K e^2 / (|xi|^2 V),
  *    which is also the LPS energy of the pair over V^2 (so the factor 1/2 is that of the
  *    code's energy, not of the slide's 1/4).
- *    With `calibration: family` (docs/theory/materials.md section 4.7) each end's family is the
+ *    With `calibration: family` (docs/theory/bond_failure.md section 7) each end's family is the
  *    one bond, whose moment along it is mu = sum (xi . n)^2 / |xi| V = |xi| V, so
  *    w_c,ij = 8 G0 / (3 (mu_i + mu_j)) = 4 G0 / (3 |xi| V): PMB breaks at
  *    s = sqrt(8 G0 / (3 c |xi|^2 V)), LPS at s = sqrt(4 G0 / (27 K |xi|)).
@@ -45,7 +45,7 @@
  *    to under 0.35 of the first (the gap is velocity-Verlet's, first order in dt; 0.75, 0.38,
  *    0.18 J/m^2 at 0.8, 0.4, 0.2 when failing bonds were booked at the end of the step, 0.03
  *    and 0.002 at 0.8 and 0.2 with them booked at mid-step). With PF_TEST_VERBOSE the measured
- *    values are printed (docs/theory/materials.md, section 4); docs/verification.md quotes
+ *    values are printed (docs/theory/bond_failure.md); docs/verification.md quotes
  *    the values this test records. */
 #include "test_common.h"
 
