@@ -309,7 +309,7 @@ static int check_thickness(const pf_deck *d, const pf_node *g, const pf_region *
 
 /* Bytes a point costs at the peak of the set-up without its bonds (the clouds, the points'
  * fields, the Morton order and the partition): measured about 1 KB per point on a 227 000-point
- * PMB box (docs/user_guide.md §4.4); the bonds add their share in the PD body (sim/body_pd.c). */
+ * PMB box (docs/deck_guide.md §4); the bonds add their share in the PD body (sim/body_pd.c). */
 #define PF_LATTICE_BYTES_PER_POINT 1024.0
 
 /* Before filling: the points the lattice would make, estimated as the lattice cells covering

@@ -108,7 +108,7 @@ int pf_deck_reference(FILE *out) {
                "output of `perifem --deck-keys`, printed from the tables the loader checks a deck against;\n"
                "the test `regression/docs_in_sync` fails when the two differ (regenerate with\n"
                "`build/perifem --deck-keys > docs/deck_keys.md`). How the keys fit together, with\n"
-               "examples: [user_guide.md](user_guide.md) §4.\n\n"
+               "examples: [deck_guide.md](deck_guide.md).\n\n"
                "Types: real (an unquoted finite number), integer, bool (`true/false`, `yes/no`, `on/off`),\n"
                "string, vec3 (`[a, b, c]` of reals), expr3 (three expressions in `x, y, z, t`), expr (a\n"
                "real or an expression in `x, y, z`), mapping, list (a sequence of mappings), list of\n"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every deck the documentation shows is a deck perifem accepts, and every command line of
-# README.md and docs/user_guide.md that calls perifem or a script in scripts/ is exercised.
+# README.md, docs/user_guide.md and docs/deck_guide.md that calls perifem or a script in scripts/
+# is exercised.
 #
 # Decks: every ```yaml (or ```yml) block of README.md, docs/*.md, docs/examples/*.md and
 # docs/theory/*.md, at any indentation, is checked with `perifem --check` (which validates the
@@ -25,8 +26,8 @@
 #    whole decks), before any deck is checked; it is checked itself when it is a whole deck.
 # A yaml block that is none of these fails: nothing is skipped silently.
 #
-# Commands: each command of a ```sh (```bash, ```shell) block of README.md and
-# docs/user_guide.md that calls build/perifem, perifem or scripts/... (a line; one ending in a
+# Commands: each command of a ```sh (```bash, ```shell) block of README.md, docs/user_guide.md
+# and docs/deck_guide.md that calls build/perifem, perifem or scripts/... (a line; one ending in a
 # backslash goes on on the next) must be in the table COMMANDS below, which says how it is
 # exercised: `check` runs it with --check added (a run's deck validated, cheaply); `help` runs
 # the script with --help; `run` runs it as it is, from the top folder of the scratch tree (a
@@ -241,7 +242,7 @@ declare -A COMMANDS=(
 "$PY" - "$top" > "$scratch/commands.txt" <<'EOF'
 import os, re, sys
 top = sys.argv[1]
-for rel in ("README.md", "docs/user_guide.md"):
+for rel in ("README.md", "docs/user_guide.md", "docs/deck_guide.md"):
     inside, pending = False, ""
     for n, line in enumerate(open(os.path.join(top, rel), encoding="utf-8"), 1):
         if re.match(r"^\s*```(sh|bash|shell)\s*$", line):
