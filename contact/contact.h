@@ -30,6 +30,10 @@ int pf_rigid_create(const pf_deck *d, const pf_node *map, int nbodies,
                     const char *const *body_names, pf_rigid **r);
 int pf_rigid_destroy(pf_rigid **r);
 const char *pf_rigid_name(const pf_rigid *r);
+/* 1 when a and b are one surface given twice: the same shape at the same place (centre or point,
+ * radius, normal or axis, length) with the same motion (the deck's velocity, as written), pushing
+ * at least one body in common; they would push it twice as hard. */
+int pf_rigid_same_surface(const pf_rigid *a, const pf_rigid *b);
 /* Add the surface's forces to the owned points it penetrates (pts->f), with friction from the
  * mid-step velocities pts->v over the step dt (dt 0: no friction). reaction[3] gets the total
  * force of the points on the surface (N) and *energy the penalty energy (J), both summed over

@@ -29,6 +29,7 @@
 #include "contact/contact_impl.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -51,6 +52,7 @@ struct pf_rigid {
   double friction;   /* Coulomb coefficient mu */
   double v[3];       /* velocity of the last advance (m/s; 0 before the first) */
   pf_expr *vel[3];
+  uint64_t motion;   /* the deck's velocity node, hashed (pf_node_hash; 0: none) */
   int nbodies;
   unsigned char *acts; /* [nbodies] 1: the surface pushes that body; NULL: every body */
 };
@@ -172,6 +174,7 @@ static int rigid_setup(const pf_deck *d, const pf_node *map, int nbodies,
   PF_CALL(read_law(d, map, r));
   PF_CALL(read_bodies(d, map, nbodies, body_names, r));
   if (pf_node_get(map, "velocity")) PF_CALL(pf_expr3_create(d, map, "velocity", r->vel));
+  r->motion = pf_node_hash(pf_node_get(map, "velocity"));
   return 0;
 }
 
@@ -198,6 +201,21 @@ int pf_rigid_destroy(pf_rigid **r) {
 }
 
 const char *pf_rigid_name(const pf_rigid *r) { return r->name; }
+
+static int common_body(const pf_rigid *a, const pf_rigid *b) {
+  if (!a->acts || !b->acts) return 1;
+  for (int k = 0; k < a->nbodies && k < b->nbodies; k++)
+    if (a->acts[k] && b->acts[k]) return 1;
+  return 0;
+}
+
+int pf_rigid_same_surface(const pf_rigid *a, const pf_rigid *b) {
+  const double *ga[] = {a->x, a->normal, a->axis}, *gb[] = {b->x, b->normal, b->axis};
+  for (int k = 0; k < 3; k++)
+    if (memcmp(ga[k], gb[k], 3 * sizeof(double))) return 0;
+  return a->shape == b->shape && a->radius == b->radius && a->half_length == b->half_length &&
+         a->motion == b->motion && common_body(a, b);
+}
 
 void pf_rigid_position(const pf_rigid *r, double x[3]) { memcpy(x, r->x, 3 * sizeof(double)); }
 

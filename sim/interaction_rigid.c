@@ -18,17 +18,37 @@
 
 typedef struct {
   pf_rigid *r;
+  const pf_node *map; /* its deck entry */
   int force, energy, dissipation, work, impulse; /* accounts */
   double r_old[3]; /* R at the step's start */
   double dx[3];    /* the step's motion */
   double x_start[3]; /* quasi-static: the position at the load step's start */
 } rigid;
 
+/* A surface that repeats one given before it (the same shape, place and motion, on a body both
+ * push) would push twice as hard: refused, naming both. */
+static int check_repeat(const pf_sim *sim, const rigid *x) {
+  for (int k = 0; k < sim->ninter; k++) {
+    if (sim->inter[k].ops != &pf_interaction_kind_rigid) continue;
+    const rigid *y = sim->inter[k].data;
+    if (!pf_rigid_same_surface(y->r, x->r)) continue;
+    char where[256];
+    pf_node_where(sim->deck, y->map, where, sizeof where);
+    return pf_deck_error(sim->deck, x->map, "shape",
+                         "rigid surface '%s' repeats '%s' (%s): the same shape at the same place with the "
+                         "same motion, pushing a body both push, would push it twice as hard; give each "
+                         "surface once", pf_rigid_name(x->r), pf_rigid_name(y->r), where);
+  }
+  return 0;
+}
+
 static int add(pf_sim *sim, const pf_node *list) {
   for (int k = 0; k < pf_node_count(list); k++) {
     rigid *x;
     PF_MALLOC(x, 1);
-    int ierr = pf_rigid_create(sim->deck, pf_node_item(list, k), sim->nbodies, sim->body_name, &x->r);
+    x->map = pf_node_item(list, k);
+    int ierr = pf_rigid_create(sim->deck, x->map, sim->nbodies, sim->body_name, &x->r);
+    if (!ierr) ierr = check_repeat(sim, x);
     if (!ierr) ierr = pf_sim_interaction_add(sim, &pf_interaction_kind_rigid, x);
     if (ierr) {
       pf_rigid_destroy(&x->r);
