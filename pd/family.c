@@ -84,6 +84,32 @@ static long cell_of(const cell_list *cl, const double x[3], long idx[3]) {
   return (idx[2] * cl->dim[1] + idx[1]) * cl->dim[0] + idx[0];
 }
 
+/* A point far from the others (a typo in a points file) makes the grid mostly empty and huge:
+ * more than 64 cells a point (and 2^20) is refused before it is allocated, naming the extent and
+ * the point farthest from the centroid. Every body's search comes here (a constant horizon is
+ * checked earlier against its deck key, sim/body_pd.c; a variable horizon or a coupled body's
+ * points only here). */
+#define PF_MAX_SEARCH_CELLS_PER_POINT 64.0
+static int check_grid(const double *X, pf_int n, double size, const double lo[3], const double hi[3],
+                      double ncell) {
+  if (ncell <= fmax(PF_MAX_SEARCH_CELLS_PER_POINT * (double)n, 1048576.0)) return 0;
+  double c[3] = {0, 0, 0}, dmax = -1;
+  for (pf_int i = 0; i < n; i++)
+    for (int a = 0; a < 3; a++) c[a] += X[3 * i + a] / (double)n;
+  pf_int far = 0;
+  for (pf_int i = 0; i < n; i++) {
+    const double r = hypot(hypot(X[3 * i] - c[0], X[3 * i + 1] - c[1]), X[3 * i + 2] - c[2]);
+    if (r > dmax) dmax = r, far = i;
+  }
+  const double *x = &X[3 * (size_t)far];
+  return pf_error_raise(PF_ERR_INPUT, __FILE__, __LINE__, __func__,
+                        "the neighbour search of %" PF_INT_FMT " points spanning %g x %g x %g m takes %.3g cells "
+                        "of the largest horizon (%g m), about %.3g GB, %.0f a point: a point far from the others? "
+                        "point %" PF_INT_FMT " at (%g, %g, %g) is %g m from the centroid (%g, %g, %g)",
+                        n, hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], ncell, size, ncell * 8 / 1e9,
+                        ncell / (double)n, far + 1, x[0], x[1], x[2], dmax, c[0], c[1], c[2]);
+}
+
 static int cell_list_build(const double *X, pf_int n, double size, cell_list *cl) {
   double hi[3];
   for (int a = 0; a < 3; a++) cl->lo[a] = INFINITY, hi[a] = -INFINITY;
@@ -99,6 +125,7 @@ static int cell_list_build(const double *X, pf_int n, double size, cell_list *cl
     if (cl->dim[a] > 2048) cl->dim[a] = 2048; /* clamp: coarser bins, same neighbours */
     ncell *= cl->dim[a];
   }
+  PF_CALL(check_grid(X, n, size, cl->lo, hi, (double)ncell));
   if (cl->dim[0] == 2048 || cl->dim[1] == 2048 || cl->dim[2] == 2048)
     for (int a = 0; a < 3; a++) cl->size = fmax(cl->size, (hi[a] - cl->lo[a]) / 2047.0);
   PF_MALLOC(cl->start, ncell + 1);

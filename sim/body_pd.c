@@ -56,35 +56,6 @@ static int check_estimate(const void *data, const pf_deck *d, const pf_node *bod
   return refuse_memory(d, body, points, delta / h, "the lattice would make about");
 }
 
-/* The neighbour search bins the body's points in cells of one horizon, at most 2048 along each
- * axis (pd/family.c): a point far from the others (a typo in a points file) makes that grid
- * mostly empty and huge. More than 64 cells a point (and 2^20) is refused before it is
- * allocated, naming the extent and the point farthest from the centroid. */
-#define PF_MAX_SEARCH_CELLS_PER_POINT 64.0
-static int check_search_grid(const pf_deck *d, const pf_node *body, const pf_point_cloud *pc, double delta,
-                             const double lo[3], const double hi[3]) {
-  double cells = 1, c[3] = {0, 0, 0};
-  for (int a = 0; a < 3; a++) cells *= fmin(floor((hi[a] - lo[a]) / delta) + 1, 2048);
-  if (cells <= fmax(PF_MAX_SEARCH_CELLS_PER_POINT * (double)pc->n, 1048576.0)) return 0;
-  for (pf_int i = 0; i < pc->n; i++)
-    for (int a = 0; a < 3; a++) c[a] += pc->X[3 * i + a] / (double)pc->n;
-  pf_int far = 0;
-  double dmax = -1;
-  for (pf_int i = 0; i < pc->n; i++) {
-    const double *x = &pc->X[3 * i];
-    const double r = hypot(hypot(x[0] - c[0], x[1] - c[1]), x[2] - c[2]);
-    if (r > dmax) dmax = r, far = i;
-  }
-  const double *x = &pc->X[3 * (size_t)far];
-  return pf_deck_error(d, pf_node_get(body, "geometry"), "geometry",
-                       "body '%s': its %" PF_INT_FMT " points span %g x %g x %g m, %.3g cells of a horizon (%g m) "
-                       "for the neighbour search (about %.3g GB), %.0f a point: a point far from the others? "
-                       "point %" PF_INT_FMT " at (%g, %g, %g) is %g m from the centroid (%g, %g, %g)",
-                       pf_node_text(pf_node_get(body, "name")), pc->n, hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2],
-                       cells, delta, cells * 8 / 1e9, cells / (double)pc->n, far + 1, x[0], x[1], x[2], dmax, c[0],
-                       c[1], c[2]);
-}
-
 static int check_horizon(const void *data, const pf_deck *d, const pf_node *body, const pf_point_cloud *pc) {
   const double delta = pf_pd_body_horizon(data); /* 0: an expression, known once the points are */
   if (!(delta > 0) || pc->n == 0) return 0;
@@ -108,7 +79,7 @@ static int check_horizon(const void *data, const pf_deck *d, const pf_node *body
                  "the horizon %g m is larger than the body's largest extent (%g m): every point "
                  "is bonded to every other (a length in millimetres typed as metres? units are SI)",
                  delta, extent);
-  PF_CALL(check_search_grid(d, body, pc, delta, lo, hi));
+  /* a point far from the others: refused by the neighbour search itself (pd/family.c) */
   return refuse_memory(d, body, (double)pc->n, m, "the body's");
 }
 

@@ -108,7 +108,11 @@ int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc) {
     while (first + n < sim->pts->n_owned && sim->pts->body[first + n] == b) n++;
     const pf_body_span s = {b, gid0[b], first, n};
     const pf_body *body = &sim->body[b];
+    char where[512];
+    pf_node_where(sim->deck, pf_node_item(pf_node_get(pf_deck_root(sim->deck), "bodies"), b), where, sizeof where);
+    pf_error_context("(body '%s', %s)", sim->body_name[b], where);
     ierr = pf_body_find_rows(body, &pc[b], sim->pts, &s, &rows);
+    pf_error_context(NULL);
     first += n;
   }
   if (!ierr) ierr = pf_sim_settle(sim, &rows, 1);
