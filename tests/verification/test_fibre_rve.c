@@ -89,26 +89,32 @@ static int run_deck(const char *deck, const char *const names[3], double F[3], p
   return 0;
 }
 
+/* The finite-element cell's conditions: the nodes of each near face (n<axis>) held along the
+ * normal, those of each far face (f<axis>) moved by eps times the cell's size along the normal
+ * when it is the loaded axis, else held; tangentially free. */
+static void fe_conditions(double h, const double hi[3], int axis, char *out, size_t cap) {
+  out[0] = 0;
+  for (int a = 0; a < 3; a++) {
+    const char *c0[3] = {"free", "free", "free"}, *c1[3] = {"free", "free", "free"};
+    char d[64];
+    snprintf(d, sizeof d, "\"%.17g * t\"", a == axis ? EPS * hi[a] : 0.0);
+    c0[a] = "\"0\"", c1[a] = d;
+    double h0[3] = {1, 1, 1}, l1[3] = {-1, -1, -1};
+    h0[a] = 0.5 * h, l1[a] = hi[a] - 0.5 * h;
+    size_t len = strlen(out);
+    snprintf(out + len, cap - len,
+             "  - {name: n%c, region: {shape: box, lo: [-1, -1, -1], hi: [%.17g, %.17g, %.17g]}, displacement: [%s, %s, %s]}\n"
+             "  - {name: f%c, region: {shape: box, lo: [%.17g, %.17g, %.17g], hi: [1, 1, 1]}, displacement: [%s, %s, %s]}\n",
+             'x' + a, h0[0], h0[1], h0[2], c0[0], c0[1], c0[2], 'x' + a, l1[0], l1[1], l1[2], c1[0], c1[1], c1[2]);
+  }
+}
+
 /* The finite-element cell: n x n x 1 bbar hexahedra, the fibre by material_regions (an element
  * is the fibre's when its centroid is in the cylinder, as fibre_map). axis: the moved face. */
 static int fe_run(int n, int axis, double F[3]) {
-  const double h = A / n, t = h, hi[3] = {A, A, t}, lo[3] = {0, 0, 0};
-  char deck[8192], bcs[2048] = "";
-  for (int a = 0; a < 3; a++) {
-    const char *c[3] = {"free", "free", "free"}, *c1[3] = {"free", "free", "free"};
-    char d[64];
-    snprintf(d, sizeof d, "\"%.17g * t\"", a == axis ? EPS * hi[a] : 0.0);
-    c[a] = "\"0\"", c1[a] = d;
-    double l0[3] = {-1, -1, -1}, h0[3] = {1, 1, 1}, l1[3] = {-1, -1, -1};
-    h0[a] = 0.5 * h, l1[a] = hi[a] - 0.5 * (a == 2 ? t : h);
-    char line[512];
-    snprintf(line, sizeof line,
-             "  - {name: n%c, region: {shape: box, lo: [%g, %g, %g], hi: [%.17g, %.17g, %.17g]}, displacement: [%s, %s, %s]}\n"
-             "  - {name: f%c, region: {shape: box, lo: [%.17g, %.17g, %.17g], hi: [1, 1, 1]}, displacement: [%s, %s, %s]}\n",
-             'x' + a, l0[0], l0[1], l0[2], h0[0], h0[1], h0[2], c[0], c[1], c[2], 'x' + a, l1[0], l1[1], l1[2],
-             c1[0], c1[1], c1[2]);
-    strcat(bcs, line);
-  }
+  const double h = A / n, hi[3] = {A, A, h}, lo[3] = {0, 0, 0};
+  char deck[8192], bcs[4096];
+  fe_conditions(h, hi, axis, bcs, sizeof bcs);
   snprintf(deck, sizeof deck,
            "materials:\n"
            "  epoxy: {model: elastic, density: 1200, youngs_modulus: %.17g, poissons_ratio: %.17g}\n"
