@@ -1,9 +1,21 @@
 /* Global reductions and rank queries over MPI_COMM_WORLD, the threads per rank, and the wall clock. */
 #include "core/core.h"
 
+#include <stdlib.h>
+
 #if defined(_OPENMP)
 #include <omp.h>
 #endif
+
+void pf_mpi_defaults(void) {
+  /* Open MPI (4.1) asks each of its shared-file-pointer components about every file MPI-IO opens
+   * (HDF5's checkpoints and history); `lockedfile` formats the file's path into a fixed buffer and
+   * aborts the process for a path of a few hundred characters ("buffer overflow detected", in
+   * mca_sharedfp_lockedfile_component_file_query), and `sm` maps a segment in the session folder.
+   * perifem never moves a shared file pointer: `individual` answers alone. A value the user set is
+   * kept; other MPI libraries ignore the variable. */
+  setenv("OMPI_MCA_sharedfp", "^lockedfile,sm", 0);
+}
 
 static int mpi_ready(void) {
   int init = 0, fin = 0;

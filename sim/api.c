@@ -62,6 +62,7 @@ static int start_mpi(void) {
   MPI_Finalized(&fin);
   PF_CHECK(!fin, PF_ERR_LIB, "MPI has been finalized in this process; perifem needs it running");
   if (init) return 0;
+  pf_mpi_defaults();
   PF_CHECK(MPI_Init(NULL, NULL) == MPI_SUCCESS, PF_ERR_LIB, "MPI_Init failed");
   started_mpi = 1;
   return 0;

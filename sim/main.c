@@ -243,6 +243,7 @@ int main(int argc, char **argv) {
    * fails with ENOSPC, and ends the run with a message instead of killing the process. */
   signal(SIGXFSZ, SIG_IGN);
   pf_sim_catch_signals_early(); /* (MPI_Init takes a second or more: a signal then had no message) */
+  pf_mpi_defaults();
   MPI_Init(&argc, &argv);
   static cli c; /* (large: not on the stack) */
   command_line(argc, argv, c.command, sizeof c.command);
