@@ -4,7 +4,7 @@
 # stepped, closed, dropped and collected, views read after their simulation is gone, checkpoints
 # to a fresh path, the deck or a folder, finalize() in the middle - each in a fresh interpreter;
 # every call works or raises PerifemError, TypeError or ValueError, never a crash, and the deck is
-# unchanged. Its default run: at most 15 s of cases (seed 1; FUZZ_SEED and FUZZ_BUDGET change them).
+# unchanged. Its default run: at most 10 s of cases (seed 1; FUZZ_SEED and FUZZ_BUDGET change them).
 # The package from the source tree, the build's library.
 #   bash tests/regression/fuzz_lifetimes.sh PERIFEM SCRATCH_DIR TESTS_BINARY_DIR
 set -u
@@ -15,4 +15,4 @@ source "$here/common/mpi_env.sh"
 rm -rf -- "$2" && mkdir -p -- "$2" || exit 1
 PYTHONPATH="$here/../python" PERIFEM_LIBRARY="$build/libperifem.so.0" \
   $PY "$here/fuzz/fuzz_lifetimes.py" "$here/library/free_body.yaml" "$2" --seed "${FUZZ_SEED:-1}" \
-  --budget "${FUZZ_BUDGET:-15}"
+  --budget "${FUZZ_BUDGET:-10}"
