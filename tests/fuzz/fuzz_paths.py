@@ -10,7 +10,8 @@ path of several hundred characters in folders that do not exist, or a plain file
 A case passes when perifem
   - refuses (exit 2, naming a deck key or the path) every path that is not absent, a regular file
     or a link to a place a regular file may be written (FIFO, device, folder, an input, another
-    output or its temporary file), and writes nothing then (no file appears in the case folder);
+    output or its temporary file; for --output-dir, anything but a folder or nothing), and writes
+    nothing then (no file appears in the case folder);
   - otherwise exits 0, or exits 1 or 2 with a "perifem error" message;
   - never crashes, hangs (--timeout seconds) or changes the deck, a FIFO, a device or a folder it
     was given.
@@ -36,6 +37,8 @@ KEYS = ["output.file", "output.history_file", "restart.file", "--output-dir"]
 KINDS = ["fifo", "device", "folder", "the_deck", "link_to_deck", "other_output", "checkpoint_tmp",
          "dangling_link", "long_missing", "existing_file"]
 BAD = {"fifo", "device", "folder", "the_deck", "link_to_deck", "other_output", "checkpoint_tmp"}
+# for --output-dir a folder is what it names, and a plain file is of the wrong kind
+BAD_DIR = {"fifo", "device", "the_deck", "link_to_deck", "existing_file"}
 CRASH = re.compile(r"Segmentation|Abort|core dumped|Bus error|Floating point exception|Illegal instruction|"
                    r"AddressSanitizer|runtime error:|stack smashing|double free|malloc\(\): |buffer overflow")
 
@@ -137,7 +140,7 @@ def run_case(exe, scratch, number, case, timeout):
     problems = []
     if status < 0 or CRASH.search(out):
         problems.append("crashed (status %d)" % status)
-    bad = [k for k in case if k[1] in BAD]
+    bad = [k for k in case if k[1] in (BAD_DIR if k[0] == "--output-dir" else BAD)]
     if bad and status != 2:
         problems.append("exit %d for %s (expected 2: refused)" % (status, ", ".join("%s -> %s" % k for k in bad)))
     if status == 2:
