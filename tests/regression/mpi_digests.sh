@@ -100,6 +100,31 @@ cp coupled_bar.yaml coupled_rebalance.yaml
 printf 'parallel:\n  rebalance_threshold: 1.0\n' >> coupled_rebalance.yaml
 # (the consistent form is the default: coupled_bar runs it; a separate variant would repeat it)
 
+# two materials in one PD body (material_regions), pulled apart across their interface until the
+# interface's own law breaks its bonds: PMB with the series micromodulus and the critical stretch,
+# LPS (each end its own material's state) with the critical energy
+cat > interface_pmb.yaml <<'DECK'
+materials:
+  soft: {model: pmb, density: 2000, bulk_modulus: 2.0e9}
+  hard: {model: pmb, density: 2700, bulk_modulus: 8.0e9}
+bodies:
+  - name: bar
+    material: soft
+    material_regions: [{material: hard, region: {shape: box, lo: [0.0125, -1, -1], hi: [1, 1, 1]}}]
+    interface: {damage: {law: critical_stretch, critical_stretch: 0.004}}
+    damage: {law: critical_stretch, critical_stretch: 0.05}
+    geometry: {shape: box, lo: [0, 0, 0], hi: [0.024, 0.006, 0.006], spacing: 0.001}
+    horizon: 0.003015
+boundary_conditions:
+  - {name: left, region: {shape: box, lo: [-1, -1, -1], hi: [0.0025, 1, 1]}, velocity: ["-20", "0", "0"]}
+  - {name: right, region: {shape: box, lo: [0.0215, -1, -1], hi: [1, 1, 1]}, velocity: ["20", "0", "0"]}
+time: {steps: 80}
+output: {interval: 40}
+DECK
+sed -E 's/model: pmb, density: 2000, bulk_modulus: 2.0e9/model: lps, density: 2000, bulk_modulus: 2.0e9, shear_modulus: 1.2e9/;
+        s/model: pmb, density: 2700, bulk_modulus: 8.0e9/model: lps, density: 2700, bulk_modulus: 8.0e9, shear_modulus: 4.8e9/;
+        s/law: critical_stretch, critical_stretch: 0.004/law: critical_energy, energy_release_rate: 5.0/' interface_pmb.yaml > interface_lps.yaml
+
 not_on_2=" cylinder_rebalance mixed_rebalance sphere_on_block_rebalance coupled_rebalance horizon_consistent wave_spread disk_rigid_surface "
 # (and the decks whose uninterrupted 2-rank runs mpi_restart.sh compares with their 1-rank runs,
 # as the runs that write its checkpoints: the Taylor bar (200 steps), the indenter (60 steps),
@@ -114,7 +139,7 @@ declare -A plain_of=([cylinder_rebalance]=fragmenting_cylinder [mixed_rebalance]
                      [wave_spread]=wave_in_bar [disk_rigid_surface]=disk_impact_rigid)
 declare -A one_rank=()
 rebalanced="cylinder_rebalance mixed_rebalance sphere_on_block_rebalance cylinder_contact tube_ep coupled_rebalance horizon_consistent dcb_family" # (the other two split evenly on 2 ranks)
-for deck in disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar wave_variable_horizon wave_pd_to_fe cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block sphere_on_block_rebalance cylinder_contact tube_ep taylor_corr damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance dcb_family; do
+for deck in disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar wave_variable_horizon wave_pd_to_fe cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block sphere_on_block_rebalance cylinder_contact tube_ep taylor_corr damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance dcb_family interface_pmb interface_lps; do
   ref="" own=""
   ranks="1 2 3"
   [[ "$not_on_2" == *" $deck "* ]] && ranks="1 3"
