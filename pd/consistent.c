@@ -38,6 +38,8 @@ typedef struct {
   double *P;           /* [9 np] projector of (C): I, or I - s s^T at a surface point */
   double *Minv, *sinv; /* block-Jacobi: [9 np] inverse moments, [np] 1 / sum w V_k V_i^2 */
   double *tau;         /* [np] the soft rows' weight: tau s_n mu added to (C) at surface points */
+  double *bw;          /* [4 nbonds] each bond's xi and weight w V_q (bond_weights), read by
+                        * every iteration of the solve */
   const pf_influence *infl;
 } problem;
 
@@ -130,6 +132,12 @@ static double bond(const problem *q, pf_int p, pf_int n, double xi[3]) {
   return pf_pd_omega(q->infl, sqrt(r2)) * q->rec[RN * n + R_V];
 }
 
+/* The bonds' xi and w V_q, once: the solve applies the operator hundreds of times. */
+static void bond_weights(problem *q) {
+  for (pf_int p = 0; p < q->np; p++)
+    for (int64_t k = q->off[p]; k < q->off[p + 1]; k++) q->bw[4 * k + 3] = bond(q, p, q->nb[k], &q->bw[4 * k]);
+}
+
 /* out = (A W A^T + T) lambda: lambda = (Lambda [9 np], mu [3 np]), out the (B) and (C) residuals
  * alike; T the soft surface rows' diagonal (diagonal_blocks). */
 static void apply(const problem *q, const double *lam, double *out) {
@@ -146,8 +154,8 @@ static void apply(const problem *q, const double *lam, double *out) {
     const double Vp = q->rec[RN * p + R_BV];
     for (int64_t k = q->off[p]; k < q->off[p + 1]; k++) {
       const pf_int n = q->nb[k];
-      double xi[3], h[3];
-      const double c = bond(q, p, n, xi);
+      const double *xi = &q->bw[4 * k], c = xi[3];
+      double h[3];
       for (int a = 0; a < 3; a++) {
         h[a] = c * (L[9 * p + 3 * a] * xi[0] + L[9 * p + 3 * a + 1] * xi[1] + L[9 * p + 3 * a + 2] * xi[2] +
                     Vp * (mt[3 * n + a] - mt[3 * p + a]));
@@ -193,8 +201,7 @@ static void diagonal_blocks(problem *q) {
     const double Vp = q->rec[RN * p + R_BV];
     double M[3][3] = {{0}}, Mi[3][3];
     for (int64_t k = q->off[p]; k < q->off[p + 1]; k++) {
-      double xi[3];
-      const double c = bond(q, p, q->nb[k], xi);
+      const double *xi = &q->bw[4 * k], c = xi[3];
       for (int a = 0; a < 3; a++)
         for (int e = 0; e < 3; e++) M[a][e] += c * xi[a] * xi[e];
       s[q->nb[k]] += c * Vp * Vp, s[p] += c * Vp * Vp;
@@ -262,6 +269,7 @@ static int assemble(problem *q, double *rec, int nrec, int64_t *pairs, int npair
   PF_MALLOC(q->Minv, 9 * (size_t)nrec + 1);
   PF_MALLOC(q->sinv, (size_t)nrec + 1);
   PF_MALLOC(q->tau, (size_t)nrec + 1);
+  PF_MALLOC(q->bw, 4 * (size_t)npairs + 1);
   int64_t k = 0;
   for (pf_int p = 0; p < nrec; p++) {
     const int64_t g = (int64_t)rec[RN * p + R_GID];
@@ -279,6 +287,7 @@ static int assemble(problem *q, double *rec, int nrec, int64_t *pairs, int npair
   q->off[nrec] = k;
   PF_CHECK(k == npairs, PF_ERR_RUN, "consistent form: %lld bonds of points outside the transition",
            (long long)(npairs - k));
+  bond_weights(q);
   diagonal_blocks(q);
   return 0;
 }
@@ -318,6 +327,6 @@ int pf_pd_consistent_solve(const pf_pd_body *b, const pf_points *pts, const doub
       o[9 + a] = q.P[9 * p + 3 * a] * mu[0] + q.P[9 * p + 3 * a + 1] * mu[1] + q.P[9 * p + 3 * a + 2] * mu[2];
   }
   free(rhs), free(lam), free(rec), free(pairs);
-  free(q.off), free(q.nb), free(q.P), free(q.Minv), free(q.sinv), free(q.tau);
+  free(q.off), free(q.nb), free(q.P), free(q.Minv), free(q.sinv), free(q.tau), free(q.bw);
   return 0;
 }
