@@ -58,41 +58,44 @@ int pf_nearest_create(const double *X, pf_int n, pf_nearest **out) {
   return 0;
 }
 
-static double cell_min(const pf_nearest *q, const double x[3], long i, long j, long k, double best) {
+/* The searches keep the squared distance: the square root is correctly rounded and monotone, so
+ * the root of the smallest square is bitwise the smallest root. */
+static double cell_min(const pf_nearest *q, const double x[3], long i, long j, long k, double best2) {
   const long cell = (k * q->dim[1] + j) * q->dim[0] + i;
   for (pf_int p = q->start[cell]; p < q->start[cell + 1]; p++) {
     const double *y = &q->X[3 * (size_t)p];
-    best = fmin(best, sqrt((y[0] - x[0]) * (y[0] - x[0]) + (y[1] - x[1]) * (y[1] - x[1]) + (y[2] - x[2]) * (y[2] - x[2])));
+    const double d2 = (y[0] - x[0]) * (y[0] - x[0]) + (y[1] - x[1]) * (y[1] - x[1]) + (y[2] - x[2]) * (y[2] - x[2]);
+    best2 = d2 < best2 ? d2 : best2;
   }
-  return best;
+  return best2;
 }
 
 /* Ring r of cells about c: every cell of the grid at Chebyshev index distance exactly r. */
-static double ring_min(const pf_nearest *q, const double x[3], const long c[3], long r, double best) {
+static double ring_min(const pf_nearest *q, const double x[3], const long c[3], long r, double best2) {
   const long k0 = c[2] - r < 0 ? 0 : c[2] - r, k1 = c[2] + r >= q->dim[2] ? q->dim[2] - 1 : c[2] + r;
   const long j0 = c[1] - r < 0 ? 0 : c[1] - r, j1 = c[1] + r >= q->dim[1] ? q->dim[1] - 1 : c[1] + r;
   const long i0 = c[0] - r < 0 ? 0 : c[0] - r, i1 = c[0] + r >= q->dim[0] ? q->dim[0] - 1 : c[0] + r;
   for (long k = k0; k <= k1; k++)
     for (long j = j0; j <= j1; j++) {
       if (labs(k - c[2]) == r || labs(j - c[1]) == r) { /* a face of the shell: the whole row */
-        for (long i = i0; i <= i1; i++) best = cell_min(q, x, i, j, k, best);
+        for (long i = i0; i <= i1; i++) best2 = cell_min(q, x, i, j, k, best2);
       } else { /* inside the shell's faces: its two ends only */
-        if (c[0] - r >= 0) best = cell_min(q, x, c[0] - r, j, k, best);
-        if (r > 0 && c[0] + r < q->dim[0]) best = cell_min(q, x, c[0] + r, j, k, best);
+        if (c[0] - r >= 0) best2 = cell_min(q, x, c[0] - r, j, k, best2);
+        if (r > 0 && c[0] + r < q->dim[0]) best2 = cell_min(q, x, c[0] + r, j, k, best2);
       }
     }
-  return best;
+  return best2;
 }
 
 double pf_nearest_distance(const pf_nearest *q, const double x[3]) {
   long c[3], rmax = 0;
   cell_index(q, x, c);
   for (int a = 0; a < 3; a++) rmax = c[a] > rmax ? c[a] : rmax, rmax = q->dim[a] - 1 - c[a] > rmax ? q->dim[a] - 1 - c[a] : rmax;
-  double best = INFINITY;
+  double best = INFINITY, best2 = INFINITY;
   /* cells of ring r are at least (r - 1) h from the query's projection on the grid's box (which
    * lies in cell c), hence from the query itself: the projection on a convex set does not
    * lengthen distances */
-  for (long r = 0; r <= rmax && !(best <= (r - 1) * q->h); r++) best = ring_min(q, x, c, r, best);
+  for (long r = 0; r <= rmax && !(best <= (r - 1) * q->h); r++) best2 = ring_min(q, x, c, r, best2), best = sqrt(best2);
   return best;
 }
 
