@@ -17,10 +17,10 @@
 # in fe_material_regions.sh; and test_coupling_patch (16 s on 3 ranks), whose coupled bodies -
 # the consistent transition, the energy overlap and the blending - run on 1, 2 and 3 ranks in
 # mpi_digests.sh as coupled_bar and wave_pd_to_fe (the partial stress as horizon_corr).
-# test_laminate (eleven quasi-static runs; about 2 minutes on 3 ranks of 2 cores, 24 s for its
-# five FE runs alone): hexahedra with material_regions run on 1, 2 and 3 ranks in
+# test_laminate (fourteen quasi-static runs; about 2 minutes on 3 ranks of 2 cores, 24 s for its
+# FE runs alone): hexahedra with material_regions run on 1, 2 and 3 ranks in
 # fe_material_regions.sh, orthotropic hexahedra under newton_krylov in static_orthotropic.sh; its
-# own eleven digests on 3 ranks equal the 1-rank ones, as run by hand (docs/theory/laminate.md).
+# own fourteen digests on 3 ranks equal the 1-rank ones, as run by hand (docs/theory/laminate.md).
 # The tests this script runs do so on 1 and 3 ranks, not on 2: 3 ranks already split every
 # body the 2-rank run splits, and the same physics runs on 1, 2 and 3 ranks with equal digests in
 # mpi_digests.sh (PD contact: cylinder_contact, sphere_on_block; FE: taylor_impact, mixed,

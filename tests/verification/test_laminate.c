@@ -2,16 +2,19 @@
  * laminate.md). The lamina: T300/914C carbon/epoxy, E1 = 138 GPa, E2 = 11 GPa, G12 = 5.5 GPa,
  * nu12 = 0.28 (Soden, Hinton & Kaddour 1998, Table 3), model orthotropic.
  *
- * FE plies: a plate L x W x 4t of hexahedra, one element per ply through the thickness, the two
+ * FE plies: a plate L x L x 4t of hexahedra, one element per ply through the thickness, the two
  * outer plies at 0 degrees (the body's material), the two inner ones at 90 (material_regions),
- * free top and bottom faces. Three quasi-static runs, each one load step (Newton-Krylov):
- *  - run X: the faces x = 0, x = L (and y = 0, y = W) held along their normal only (rollers),
+ * free top and bottom faces. Quasi-static runs, each one load step (Newton-Krylov):
+ *  - run X: the faces x = 0, x = L (and y = 0, y = L) held along their normal only (rollers),
  *    the face x = L moved by eps L; run Y: the same along y. A symmetric cross-ply has no
  *    extension-shear coupling (A16 = A26 = 0, B = 0), so each ply's state is uniform: in-plane
  *    strains (eps_x, eps_y) everywhere, sigma_z = 0 and its own eps_z. The far faces' reactions
  *    give the laminate's A11, A21 (run X) and A12, A22 (run Y): N = A eps (Jones 1999, sec. 4.2);
  *  - run S: every lateral node moved as u = (gamma y, 0) (simple shear, a uniform gamma_xy), z
- *    free; the x reaction of the nodes of y = W is N_xy L = A66 gamma L.
+ *    free; the x reaction of the nodes of y = L is N_xy L = A66 gamma L.
+ *  - run U: run X with the face y = L free (a literal uniaxial pull, y = 0 a symmetry plane): E_x
+ *    = F / (L H eps) differs from CLT's by the free-edge effect (Pipes & Pagano 1970), asserted
+ *    within 2 % as well.
  * The laminate's engineering constants under a uniaxial N_x (N_y = 0):
  *   E_x = (A11 A22 - A12 A21) / (H A22), nu_xy = A21 / A22, G_xy = A66 / H   (H = 4t).
  * Reference: CLT computed here from E1, E2, G12, nu12 alone: Q of the lamina (Jones 1999, sec. 2.5),
@@ -21,12 +24,13 @@
  * model is finite-strain and the strain 1e-5, so the small-strain statement holds to O(eps)).
  *
  * PD plies: a correspondence plate of one ply orientation (several correspondence materials in
- * one body are not in this version), 0 or 90 degrees, the same three runs with the lateral
+ * one body are not in this version), 0 or 90 degrees, the same runs with the lateral
  * faces' rollers as layers of points beyond each face following the face's normal motion
  * (docs/theory/fibre_rve.md §2), free top and bottom. Each plate's A over its thickness is that
  * ply's Q, asserted within 2 % of Jones's Q (Q11, Q12, Q22, Q66); the laminate's A is then
  * assembled from the two measured plates as CLT does, and its E_x, nu_xy, G_xy asserted within
- * 2 % of CLT's.
+ * 2 % of CLT's. Run U on each plate (its lattice ends at the free edge y = L): E_x within 2 % of
+ * E1 (0 degrees) and E2 (90).
  * usage: test_laminate [N]: N PD points across the plate (default 8; 0: the FE plies only). */
 #include "test_common.h"
 
@@ -135,22 +139,26 @@ static const char *SOLVER = "solver: {type: quasi_static, method: newton_krylov,
 /* The FE plate's conditions. run 0 (X) and 1 (Y): on each lateral face the nodes held along its
  * normal (nx, ny) or moved by eps times the plate's size (fx, fy: x = L, y = L when it is the
  * run's axis); run 2 (S): the nodes of y = L (top) and the other lateral nodes (rest) moved as
- * u = (gamma y, 0). In every run the mid-plane's nodes are held in z (the laminate's symmetry
+ * u = (gamma y, 0); run 3 (U): run X with the face y = L free (uniaxial tension, a free edge).
+ * In every run the mid-plane's nodes are held in z (the laminate's symmetry
  * plane: it fixes the rigid translation along z only). h: the element size in x and y. */
 static void fe_conditions(int run, double h, char *out, size_t cap) {
   const double a = L - h / 2, b = h / 2;
   size_t len = 0;
-  if (run < 2)
+  if (run != 2)
     for (int ax = 0; ax < 2; ax++) {
       char c0[2][16] = {"free", "free"}, c1[2][64] = {"free", "free"};
       snprintf(c0[ax], sizeof c0[ax], "\"0\"");
-      snprintf(c1[ax], sizeof c1[ax], "\"%.17g * t\"", ax == run ? EPS * L : 0.0);
+      snprintf(c1[ax], sizeof c1[ax], "\"%.17g * t\"", ax == run % 3 ? EPS * L : 0.0);
       double hi0[2] = {1, 1}, lo1[2] = {-1, -1}; /* the near face x (y) < h/2, the far one > L - h/2 */
       hi0[ax] = b, lo1[ax] = a;
       len += snprintf(out + len, cap - len,
-                      "  - {name: n%c, region: {shape: box, lo: [-1, -1, -1], hi: [%.17g, %.17g, 1]}, displacement: [%s, %s, free]}\n"
+                      "  - {name: n%c, region: {shape: box, lo: [-1, -1, -1], hi: [%.17g, %.17g, 1]}, displacement: [%s, %s, free]}\n",
+                      'x' + ax, hi0[0], hi0[1], c0[0], c0[1]);
+      if (run == 3 && ax == 1) continue; /* run U: the edge y = L free */
+      len += snprintf(out + len, cap - len,
                       "  - {name: f%c, region: {shape: box, lo: [%.17g, %.17g, -1], hi: [1, 1, 1]}, displacement: [%s, %s, free]}\n",
-                      'x' + ax, hi0[0], hi0[1], c0[0], c0[1], 'x' + ax, lo1[0], lo1[1], c1[0], c1[1]);
+                      'x' + ax, lo1[0], lo1[1], c1[0], c1[1]);
     }
   else {
     char u[64];
@@ -169,7 +177,7 @@ static void fe_conditions(int run, double h, char *out, size_t cap) {
 
 /* The FE laminate, n x n x 4 B-bar hexahedra over [0, L]^2 x [-2t, 2t]: the outer plies 0
  * degrees, the inner (|z| < t, by centroid) 90. run: as fe_conditions; o: the out-of-plane set.
- * F: the reactions {fx_x, fy_y} (runs X, Y) or {top_x} (run S). */
+ * F: the reactions {fx_x, fy_y} (runs X, Y), {top_x} (run S) or {fx_x} (run U). */
 static int fe_run(int n, int run, int o, double F[2]) {
   const double lo[3] = {0, 0, -2 * T_PLY}, hi[3] = {L, L, 2 * T_PLY};
   char deck[8192], bcs[4096], m0[512], m90[512], tag[32];
@@ -183,9 +191,9 @@ static int fe_run(int n, int run, int o, double F[2]) {
            "      - {material: ply_90, region: {shape: box, lo: [-1, -1, %.17g], hi: [1, 1, %.17g]}}\n"
            "%sboundary_conditions:\n%s%s",
            m0, m90, -T_PLY, T_PLY, pf_test_pamgen_box(n, n, 4, lo, hi), bcs, SOLVER);
-  snprintf(tag, sizeof tag, "fe_%c_%d", "XYS"[run], o);
+  snprintf(tag, sizeof tag, "fe_%c_%d", "XYSU"[run], o);
   const char *xy[2] = {"fx_reaction_x", "fy_reaction_y"}, *s[1] = {"top_reaction_x"};
-  return run < 2 ? run_deck(tag, deck, 2, xy, F) : run_deck(tag, deck, 1, s, F);
+  return run == 2 ? run_deck(tag, deck, 1, s, F) : run_deck(tag, deck, run == 3 ? 1 : 2, xy, F);
 }
 
 /* The FE laminate's A = {A11, A12, A21, A22, A66} from runs X, Y, S: N = F / (side), over eps. */
@@ -204,19 +212,21 @@ static int fe_a(int n, int o, int shear, double A[5]) {
  * face's motion: runs X, Y the normal motion u_a = eps_a X_a (the mirror image of the plate's,
  * as a roller on a symmetry plane), tangentially free; run S u = (gamma y, 0), z free. Then the
  * measured sets, after the others (each its own condition): the points beyond the far face within
- * the plate's span (mx, my; top in run S). */
+ * the plate's span (mx, my; top in run S). Run U: run X without the layers beyond y = L (that
+ * edge free; the lattice ends there). */
 static void pd_conditions(int run, char *out, size_t cap) {
   size_t len = 0;
   for (int pass = 0; pass < 2; pass++)
     for (int ax = 0; ax < 2; ax++)
       for (int s = pass; s < 2; s++) {
         if (pass && run == 2 && ax == 0) continue; /* run S measures only the top */
+        if (run == 3 && ax == 1 && (s || pass)) continue; /* run U: the edge y = L free, mx only */
         double lo[2] = {-1, -1}, hi[2] = {1, 1};
         if (pass) lo[0] = lo[1] = 0, hi[0] = hi[1] = L; /* within the plate's span */
         if (s) lo[ax] = L, hi[ax] = 1;
         else lo[ax] = -1, hi[ax] = 0;
         char c[2][64] = {"free", "free"}, name[8];
-        if (run < 2) snprintf(c[ax], sizeof c[ax], "\"%.17g * %c * t\"", ax == run ? EPS : 0.0, 'x' + ax);
+        if (run != 2) snprintf(c[ax], sizeof c[ax], "\"%.17g * %c * t\"", ax == run % 3 ? EPS : 0.0, 'x' + ax);
         else snprintf(c[0], sizeof c[0], "\"%.17g * y * t\"", EPS), snprintf(c[1], sizeof c[1], "\"0\"");
         snprintf(name, sizeof name, pass ? (run == 2 ? "top" : "m%c") : "g%c%d", 'x' + ax, s);
         len += snprintf(out + len, cap - len,
@@ -228,7 +238,8 @@ static void pd_conditions(int run, char *out, size_t cap) {
 
 /* A correspondence plate of one ply at deg degrees: points at the centroids of an n x n x nz
  * grid over [0, L]^2 x [0, nz h] (h = L / n), horizon 3.015 h, the layers beyond the lateral
- * faces; free top and bottom. F: the measured reactions {mx_x, my_y} (runs X, Y), {top_x} (S). */
+ * faces; free top and bottom. F: the measured reactions {mx_x, my_y} (runs X, Y), {top_x} (S),
+ * {mx_x} (U, whose lattice ends at y = L). */
 static int pd_run(int n, int nz, double deg, int run, double F[2]) {
   const double h = L / n, delta = 3.015 * h, t = nz * h;
   const int k = 2 * (int)ceil(delta / h); /* twice a family's reach, in spacings */
@@ -242,10 +253,10 @@ static int pd_run(int n, int nz, double deg, int run, double F[2]) {
            "    geometry: {shape: box, lo: [%.17g, %.17g, 0], hi: [%.17g, %.17g, %.17g],\n"
            "               origin: [%.17g, %.17g, %.17g], spacing: %.17g}\n"
            "boundary_conditions:\n%s%s",
-           m, delta, -k * h, -k * h, L + k * h, L + k * h, t, h / 2, h / 2, h / 2, h, bcs, SOLVER);
-  snprintf(tag, sizeof tag, "pd%g_%c", deg, "XYS"[run]);
+           m, delta, -k * h, -k * h, L + k * h, run == 3 ? L : L + k * h, t, h / 2, h / 2, h / 2, h, bcs, SOLVER);
+  snprintf(tag, sizeof tag, "pd%g_%c", deg, "XYSU"[run]);
   const char *xy[2] = {"mx_reaction_x", "my_reaction_y"}, *s[1] = {"top_reaction_x"};
-  return run < 2 ? run_deck(tag, deck, 2, xy, F) : run_deck(tag, deck, 1, s, F);
+  return run == 2 ? run_deck(tag, deck, 1, s, F) : run_deck(tag, deck, run == 3 ? 1 : 2, xy, F);
 }
 
 /* The plate's Q = A / t = {Q11, Q12, Q21, Q22, Q66} from runs X, Y, S. */
@@ -292,6 +303,14 @@ int main(int argc, char **argv) {
   PF_TEST_OK(fe_a(4, 1, 0, Afe2));
   for (int k = 0; k < 4; k++) PF_TEST_CLOSE(Afe2[k], Afe[k], 1e-4, 0);
   pf_test_measure("fe_out_of_plane_dev", Afe2[0] / Afe[0] - 1, "1");
+  /* uniaxial tension with a free edge: E_x = N_x / (H eps), the free-edge effect included */
+  double FU[2];
+  PF_TEST_OK(fe_run(4, 3, 0, FU));
+  const double Ex_u = FU[0] / (L * H * EPS);
+  pf_test_measure("fe_uniaxial_Ex_dev", Ex_u / clt[0] - 1, "1");
+  PF_TEST_CLOSE(Ex_u, clt[0], 0.02, 0);
+  if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
+    printf("fe uniaxial with a free edge: Ex %.6g GPa (CLT %.6g, %+.2e)\n", Ex_u / 1e9, clt[0] / 1e9, Ex_u / clt[0] - 1);
   if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
     printf("fe A11 with the other out-of-plane set: %+.2e\n", Afe2[0] / Afe[0] - 1);
 
@@ -314,6 +333,19 @@ int main(int argc, char **argv) {
     }
   }
   pf_test_measure("pd_Q_dev", qdev, "1");
+  /* each plate in uniaxial tension with a free edge: E_x = E1 (0 degrees), E2 (90) */
+  double udev = 0;
+  for (int p = 0; p < 2; p++) {
+    double FU2[2];
+    PF_TEST_OK(pd_run(n, nz, 90.0 * p, 3, FU2));
+    const double Ex = FU2[0] / (L * nz * (L / n) * EPS), want = p ? E2 : E1;
+    PF_TEST_CLOSE(Ex, want, 0.02, 0);
+    udev = fmax(udev, fabs(Ex / want - 1));
+    if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
+      printf("pd %d deg uniaxial with a free edge: Ex %.6g GPa (%s %.6g, %+.2e)\n", 90 * p, Ex / 1e9, p ? "E2" : "E1",
+             want / 1e9, Ex / want - 1);
+  }
+  pf_test_measure("pd_uniaxial_dev", udev, "1");
   double Apd[5], pd[3];
   for (int k = 0; k < 5; k++) Apd[k] = 2 * T_PLY * (Qpd[0][k] + Qpd[1][k]); /* [0/90]s: two plies of each */
   engineering(Apd, H, pd);
