@@ -97,7 +97,8 @@ static void clt_a(double A[5]) {
 
 /* ---- runs -------------------------------------------------------------------------------- */
 
-/* One orthotropic material at angles [deg, 0, 0] with out-of-plane set o. */
+/* One orthotropic material at angles [deg, 0, 0] with out-of-plane set o (the density, a typical
+ * carbon/epoxy value, does not enter the statics). */
 static void material(char *out, size_t cap, const char *name, double deg, int o) {
   snprintf(out, cap,
            "  %s: {model: orthotropic, density: 1560, E1: %.17g, E2: %.17g, E3: %.17g, G12: %.17g, G13: %.17g,\n"
@@ -105,8 +106,9 @@ static void material(char *out, size_t cap, const char *name, double deg, int o)
            name, E1, E2, OUT[o][0], G12, OUT[o][1], OUT[o][2], NU12, OUT[o][3], OUT[o][4], deg);
 }
 
-/* A run's state digest (tests/regression/mpi_verify.sh compares them over rank counts), printed
- * with PF_TEST_DIGESTS and appended to PF_TEST_DIGEST_FILE as pf_test_print_digest does. */
+/* A run's state digest, printed with PF_TEST_DIGESTS and appended to PF_TEST_DIGEST_FILE as
+ * pf_test_print_digest does (mpi_verify.sh leaves this test out; its runs on 1 and 3 ranks by hand
+ * give the same digests: docs/theory/laminate.md). */
 static void print_digest(const char *tag, perifem_sim *sim) {
   uint64_t h = 0;
   if (perifem_digest(sim, &h)) fprintf(stderr, "perifem_digest: %s\n", perifem_last_error());
@@ -138,8 +140,8 @@ static const char *SOLVER = "solver: {type: quasi_static, method: newton_krylov,
 
 /* The FE plate's conditions. run 0 (X) and 1 (Y): on each lateral face the nodes held along its
  * normal (nx, ny) or moved by eps times the plate's size (fx, fy: x = L, y = L when it is the
- * run's axis); run 2 (S): the nodes of y = L (top) and the other lateral nodes (rest) moved as
- * u = (gamma y, 0); run 3 (U): run X with the face y = L free (uniaxial tension, a free edge).
+ * run's axis); run 2 (S): the nodes of y = L (top) and the other lateral nodes (x0, x1, y0) moved
+ * as u = (gamma y, 0), gamma = eps; run 3 (U): run X with the face y = L free (uniaxial tension, a free edge).
  * In every run the mid-plane's nodes are held in z (the laminate's symmetry
  * plane: it fixes the rigid translation along z only). h: the element size in x and y. */
 static void fe_conditions(int run, double h, char *out, size_t cap) {
