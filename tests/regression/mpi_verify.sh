@@ -19,7 +19,11 @@
 # mpi_digests.sh as coupled_bar and wave_pd_to_fe (the partial stress as horizon_corr); and
 # test_critical_energy (30 s of separations), whose laws run on 1, 2 and 3 ranks there - the
 # critical energy with family calibration as dcb_family, the critical stretch in the cylinders,
-# an interface's own law between two PD materials as interface_pmb and interface_lps.
+# an interface's own law between two PD materials as interface_pmb and interface_lps; and
+# test_laminate (fourteen quasi-static runs; about 2 minutes on 3 ranks of 2 cores, 24 s for its
+# FE runs alone): hexahedra with material_regions run on 1, 2 and 3 ranks in
+# fe_material_regions.sh, orthotropic hexahedra under newton_krylov in static_orthotropic.sh; its
+# own fourteen digests on 3 ranks equal the 1-rank ones, as run by hand (docs/theory/laminate.md).
 # The tests this script runs do so on 1 and 3 ranks, not on 2: 3 ranks already split every
 # body the 2-rank run splits, and the same physics runs on 1, 2 and 3 ranks with equal digests in
 # mpi_digests.sh (PD contact: cylinder_contact, sphere_on_block; FE: taylor_impact, mixed,
