@@ -435,6 +435,26 @@ double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts) {
   return dt;
 }
 
+/* Quasi-static: a bound of the row sums of the penalties' stiffness at each owned point of a
+ * pair's bodies. A pair's stable_w2 is at least k_i / m_i for the stiffest point of either body
+ * (the sum of its partners' penalties k_i over its mass m_i: a node k, a face node the shares of
+ * the nodes on its face, a particle its neighbours' C V_i V_j), so m_i w2 bounds k_i; a penalty
+ * between two points adds k_i to the diagonal and as much off it, along one direction n, whose
+ * 3 x 3 block n n^T has row sums of |n_a n_b| at most sqrt 3: 2 sqrt(3) m_i w2. Every point of the
+ * bodies takes it (contact may reach any of them), which slows the relaxation of a body in contact
+ * by at most that of its stiffest penalty. Collective (stable_w2 reduces). */
+void pf_contact_stiffness_bounds(const pf_contact *c, const pf_points *pts, double *k) {
+  for (int q = 0; q < c->npairs; q++) {
+    const pf_contact_pair *p = &c->pair[q];
+    const double w2 = p->method->stable_w2(c, p, pts);
+    for (int side = 0; side < (p->a == p->b ? 1 : 2); side++) {
+      const pf_contact_body *b = &c->body[side ? p->b : p->a];
+      for (pf_int i = b->first; i < b->first + b->n && i < pts->n_owned; i++)
+        k[i] += 2 * sqrt(3.0) * (pts->m[i] > 0 ? pts->m[i] : b->density * pts->vol[i]) * w2;
+    }
+  }
+}
+
 void pf_contact_stats(const pf_contact *c, long *rebuilds, double *seconds) {
   *rebuilds = c->rebuilds;
   *seconds = c->seconds;

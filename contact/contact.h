@@ -135,6 +135,9 @@ void pf_contact_sums_take(pf_contact *c, const double *sums, double *energy);
 /* The stable step the penalties allow (2 / omega of the stiffest contact a point can see).
  * Collective. */
 double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts);
+/* Quasi-static: add to k[i] (N/m, owned points) a bound of the row sums of the pairs' penalty
+ * stiffness at point i (the fictitious masses). Collective. */
+void pf_contact_stiffness_bounds(const pf_contact *c, const pf_points *pts, double *k);
 /* 1 when body b is in short-range contact with itself between unbonded points (the default, not
  * all_points): its broken bonds then need their rest lengths (pf_pd_body_record_breaks). */
 int pf_contact_self_pair(const pf_contact *c, int b);

@@ -2,7 +2,8 @@
  * node-to-particle, short-range forces between particles, FE <-> FE surfaces). Its books: each
  * pair's force on its first body (<pair>_force), the penalty energy (in contact_energy) and the
  * friction work (in contact_dissipation) of all pairs. At each history row it checks the pairs'
- * interpenetration for the run-health monitor. */
+ * interpenetration for the run-health monitor. Under the quasi-static solver the pairs act by their
+ * penalties (no friction) and bound the fictitious masses. */
 #include "sim/sim_impl.h"
 
 #include <math.h>
@@ -134,6 +135,10 @@ static double stable_dt(const void *data, const pf_points *pts) {
   return pf_contact_stable_dt(((const contact *)data)->c, pts);
 }
 
+static void stiffness_bounds(const void *data, const pf_points *pts, double *k) {
+  pf_contact_stiffness_bounds(((const contact *)data)->c, pts, k);
+}
+
 static int restored(void *data) { return pf_contact_restored(((contact *)data)->c); }
 static void masses_changed(void *data) { pf_contact_rebuild(((contact *)data)->c); }
 
@@ -195,6 +200,10 @@ const pf_interaction_ops pf_interaction_kind_contact = {
     .nsums = nsums,
     .force = force,
     .take_sums = take_sums,
+    .stiffness_bounds = stiffness_bounds,
+    /* (quasi-static: the pairs' forces are internal, their work is the change of their penalty
+     * energy, booked in contact_energy; none of it is a load's) */
+    .books_own_work = 1,
     .stable_dt = stable_dt,
     .restored = restored,
     .masses_changed = masses_changed,

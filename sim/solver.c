@@ -28,10 +28,19 @@ const pf_key pf_sim_solver_keys[] = {
      "many times per load step, then the run stops with an error", NULL},
     PF_KEY_END};
 
-/* Deck sections the quasi-static solver does not take yet: the first one given, or NULL. */
-static const char *unsupported(const pf_node *root, const pf_node **where) {
-  *where = pf_node_get(pf_node_get(root, "contact"), "pairs");
-  return *where && pf_node_count(*where) > 0 ? "contact.pairs" : NULL;
+/* Contact pairs act by their penalties alone: friction needs a step in time (refused). */
+static int check_pairs(const pf_deck *d, const pf_node *root) {
+  const pf_node *pairs = pf_node_get(pf_node_get(root, "contact"), "pairs");
+  for (int j = 0; j < pf_node_count(pairs); j++) {
+    const pf_node *item = pf_node_item(pairs, j);
+    double mu = 0;
+    PF_CALL(pf_deck_real(d, item, "friction", &mu));
+    if (mu != 0)
+      return pf_deck_error(d, pf_node_get(item, "friction"), "friction",
+                           "a contact pair's friction is not yet supported with the quasi_static solver (the "
+                           "regularized Coulomb force needs a time step)");
+  }
+  return 0;
 }
 
 /* The rigid surfaces of the deck (`indenters:` and `contact: rigid_surfaces:`): list k of 2. */
@@ -67,9 +76,7 @@ static int check_deck(const pf_sim *sim, const pf_node *sv) {
                          "a quasi_static solver needs a load: give boundary_conditions (displacement, velocity or "
                          "body_force) or a rigid surface that moves (indenters or contact.rigid_surfaces with a "
                          "velocity)");
-  const char *what = unsupported(root, &n);
-  if (what)
-    return pf_deck_error(d, n, what, "'%s' is not yet supported with the quasi_static solver", what);
+  PF_CALL(check_pairs(d, root));
   const pf_node *bodies = pf_node_get(root, "bodies");
   for (int b = 0; b < pf_node_count(bodies); b++)
     if ((n = pf_node_get(pf_node_item(bodies, b), "initial_velocity")))
