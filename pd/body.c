@@ -77,7 +77,8 @@ static const pf_key body_keys[] = {
     {"material", PF_KEY_STRING, 1, NULL, "", "a name under materials:", NULL},
     {"geometry", PF_KEY_MAP, 1, NULL, "", "where the points are", pf_geometry_keys},
     {"material_regions", PF_KEY_LIST, 0, NULL, "",
-     "several materials in one body (pmb, lps, and one continuum model as correspondence; constant horizon): "
+     "several materials in one body (pmb, lps, elastic_plastic, and one continuum model as correspondence; constant "
+     "horizon): "
      "each entry's region takes its material, later entries over earlier ones; the other points keep `material` "
      "(docs/theory/interfaces.md)",
      part_keys},

@@ -10,12 +10,25 @@
 #include <stdio.h>
 #include <string.h>
 
+int pf_pd_part_read_constants(const pf_deck *d, const pf_node *mat, const char *name, const pf_pd_body *b,
+                              pf_pd_part *part) {
+  const char *model = "";
+  PF_CALL(pf_deck_string(d, mat, "model", &model));
+  if (strcmp(model, b->ops->name))
+    return pf_deck_error(d, pf_node_get(part->node, "material"), "material", "material '%s' is model '%s', body "
+                         "'%s''s material '%s' is '%s': the materials of one body share a model", name, model, b->name,
+                         b->material, b->ops->name);
+  PF_CALL(pf_deck_real(d, mat, "density", &part->density));
+  PF_CALL(pf_deck_real(d, mat, "bulk_modulus", &part->K));
+  return pf_deck_real(d, mat, "shear_modulus", &part->G);
+}
+
 /* The constants of the material named by entry's `material` into part: its model must be the
  * body's, its density and bulk modulus positive, and its shear modulus given when the body's
  * material gives one (lps). */
 static int read_part(const pf_deck *d, const pf_node *entry, const pf_node *materials, pf_pd_body *b, int q) {
   pf_pd_part *part = &b->parts[q];
-  const char *name = "", *model = "";
+  const char *name = "";
   PF_CALL(pf_deck_string(d, entry, "material", &name));
   const pf_node *key = pf_node_get(entry, "material"), *mat = pf_node_get(materials, name);
   if (!mat) return pf_deck_error(d, key, "material", "no material named '%s' under materials:", name);
@@ -23,15 +36,7 @@ static int read_part(const pf_deck *d, const pf_node *entry, const pf_node *mate
   part->density = part->K = part->G = 0;
   part->node = entry;
   if (b->ops->read_part) PF_CALL(b->ops->read_part(d, mat, name, b, q, part)); /* (the material's own keys) */
-  else {
-    PF_CALL(pf_deck_string(d, mat, "model", &model));
-    if (strcmp(model, b->ops->name))
-      return pf_deck_error(d, key, "material", "material '%s' is model '%s', body '%s''s material '%s' is '%s': "
-                           "the materials of one body share a model", name, model, b->name, b->material, b->ops->name);
-    PF_CALL(pf_deck_real(d, mat, "density", &part->density));
-    PF_CALL(pf_deck_real(d, mat, "bulk_modulus", &part->K));
-    PF_CALL(pf_deck_real(d, mat, "shear_modulus", &part->G));
-  }
+  else PF_CALL(pf_pd_part_read_constants(d, mat, name, b, part));
   if (!(part->density > 0) || !(part->K > 0))
     return pf_deck_error(d, key, "material", "material '%s' needs a positive density and bulk_modulus", name);
   if (b->shear_modulus > 0 && !(part->G > 0))

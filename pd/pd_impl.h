@@ -300,6 +300,10 @@ static inline double pf_pd_bond_stiffness(const pf_pd_body *b, pf_int i, pf_int 
  * and its damage law); at attach, each store point's part into the field "material". */
 int pf_pd_parts_read(const pf_deck *d, const pf_node *body, const pf_node *materials, pf_pd_body *b);
 int pf_pd_parts_attach(pf_pd_body *b, pf_points *pts, int fresh);
+/* The default of pf_pd_material_ops.read_part: the material mapping mat (named name) must be of the
+ * body's model; its density, bulk_modulus and shear_modulus into part (checked by the caller). */
+int pf_pd_part_read_constants(const pf_deck *d, const pf_node *mat, const char *name, const pf_pd_body *b,
+                              pf_pd_part *part);
 
 /* omega(r), inlined in the bond loops. */
 static inline double pf_pd_omega(const pf_influence *w, double r) {
