@@ -49,7 +49,8 @@ static const pf_key crack_keys[] = {
     PF_KEY_END};
 
 static const pf_key part_keys[] = {
-    {"material", PF_KEY_STRING, 1, NULL, "", "a name under materials:, of the body material's model", NULL},
+    {"material", PF_KEY_STRING, 1, NULL, "", "a name under materials:, of the body material's model (a continuum model: its constants, an "
+     "orthotropic one its axes, may differ)", NULL},
     {"region", PF_KEY_MAP, 1, NULL, "", "the points (reference positions) that take it", pf_region_keys},
     PF_KEY_END};
 
@@ -76,8 +77,10 @@ static const pf_key body_keys[] = {
     {"material", PF_KEY_STRING, 1, NULL, "", "a name under materials:", NULL},
     {"geometry", PF_KEY_MAP, 1, NULL, "", "where the points are", pf_geometry_keys},
     {"material_regions", PF_KEY_LIST, 0, NULL, "",
-     "several materials in one body (pmb, lps; constant horizon): each entry's region takes its material, "
-     "later entries over earlier ones; the other points keep `material` (docs/theory/interfaces.md)",
+     "several materials in one body (pmb, lps, elastic_plastic, and one continuum model as correspondence; constant "
+     "horizon): "
+     "each entry's region takes its material, later entries over earlier ones; the other points keep `material` "
+     "(docs/theory/interfaces.md)",
      part_keys},
     {"interface", PF_KEY_MAP, 0, "micromodulus: series", "", "how a bond between two materials is formed",
      interface_keys},

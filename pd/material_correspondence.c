@@ -56,7 +56,12 @@ static inline v4d v4d_load(const double *q) {
 enum { G_PK = 0, G_F = 9, G_FDOT = 18, G_DETACHED = 27, G_DAMAGE = 28, G_C = 29, G_NU = 30, GX = 39 };
 
 typedef struct {
-  pf_material *cm; /* the continuum model */
+  pf_material *cm; /* the continuum model (of the body's material: part 0) */
+  /* several materials (docs/theory/interfaces.md §3a): part q's continuum model, of the body's
+   * model with its own constants (cms[0] = cm), and its initial P-wave speed */
+  pf_material *cms[PF_PD_MAX_PARTS];
+  double cls[PF_PD_MAX_PARTS];
+  char model[32]; /* the body's `model:` */
   int nstate, idamage; /* history variables; index of the one named "damage", or -1 */
   int viscous;         /* hourglass control on the velocity deviation instead of the position's */
   int keep_stress;     /* bond_loss: keep_stress (1) or jump (0) */
@@ -82,6 +87,8 @@ typedef struct {
   double *ghost;                      /* field "ghost_correction" [3]: the corrected form's d_i */
   double *lm;                         /* field "consistent_weights": the consistent form's multipliers */
   double *rate, *whg2, *cw; /* scratch [n]: beta / sigma_min(Fbar), omega_hg^2, wave speed */
+  double *mrow, *crow; /* [n] several materials: the largest P-wave modulus over the point's row over
+                          its own, and the largest hourglass micromodulus there (row_bounds) */
   /* The shape tensor of each owned point's intact own bonds, kept between steps (it depends only
    * on the reference positions and on which bonds are intact, and bonds only ever fail): valid
    * while the point's count of intact own bonds is kcount (-1: to compute). */
@@ -144,6 +151,10 @@ static int corr_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
   PF_MALLOC(p, 1);
   b->mat = p;
   PF_CALL(pf_material_create(d, mat, mname, &p->cm));
+  p->cms[0] = p->cm;
+  const char *model = "";
+  PF_CALL(pf_deck_string(d, mat, "model", &model));
+  snprintf(p->model, sizeof p->model, "%s", model);
   b->bulk_modulus = pf_material_bulk_modulus(p->cm);
   b->shear_modulus = pf_material_shear_modulus(p->cm);
   b->density = pf_material_density(p->cm);
@@ -166,7 +177,38 @@ static int corr_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
   if (!p->keep_stress && strcmp(loss, "jump"))
     return pf_deck_error(d, pf_node_get(b->node, "bond_loss"), "bond_loss", "unknown '%s' (known: keep_stress, jump)", loss);
   p->cl = sqrt((b->bulk_modulus + 4.0 * b->shear_modulus / 3.0) / b->density);
+  p->cls[0] = p->cl;
   return 0;
+}
+
+/* Part q's material (several materials): a continuum model of the body's model, with its own
+ * constants (an orthotropic part its own axes), created with the part; its density and small-strain
+ * K, G into the part (pf_pd_material_ops.read_part). */
+static int corr_read_part(const pf_deck *d, const pf_node *mat, const char *name, pf_pd_body *b, int q,
+                          pf_pd_part *part) {
+  corr *p = b->mat;
+  const char *model = "";
+  PF_CALL(pf_deck_string(d, mat, "model", &model));
+  if (strcmp(model, p->model))
+    return pf_deck_error(d, pf_node_get(part->node, "material"), "material", "material '%s' is model '%s', body "
+                         "'%s''s material '%s' is '%s': the materials of one correspondence body share a continuum "
+                         "model (their constants may differ)", name, model, b->name, b->material, p->model);
+  PF_CALL(pf_material_create(d, mat, name, &p->cms[q]));
+  part->density = pf_material_density(p->cms[q]);
+  part->K = pf_material_bulk_modulus(p->cms[q]);
+  part->G = pf_material_shear_modulus(p->cms[q]);
+  p->cls[q] = sqrt((part->K + 4.0 * part->G / 3.0) / part->density);
+  return 0;
+}
+
+/* Point i's continuum model and initial P-wave speed: its part's. */
+static inline const pf_material *model_at(const pf_pd_body *b, pf_int i) {
+  const corr *p = b->mat;
+  return b->part ? p->cms[(int)b->part[i]] : p->cm;
+}
+static inline double cl_at(const pf_pd_body *b, pf_int i) {
+  const corr *p = b->mat;
+  return b->part ? p->cls[(int)b->part[i]] : p->cl;
 }
 
 /* Register a field that a step advances: it is history, committed and restored by the
@@ -218,13 +260,33 @@ static void step_rates(const pf_pd_body *b, pf_int i, double lk, double Fb[3][3]
     for (int c = 0; c < 3; c++) C[r][c] = Fb[0][r] * Fb[0][c] + Fb[1][r] * Fb[1][c] + Fb[2][r] * Fb[2][c];
   const double lc = pf_sym3_min_eigenvalue(C); /* lk = lambda_min(K) */
   *rate = lk > 0 && lc > 0 ? p->gamma * sums[0] / (lk * sqrt(lc)) : 0.0;
-  *whg2 = p->viscous ? 0.0 : 4.0 * p->hg * p->gx[GX * i + G_C] * sums[1] / b->density;
+  const double chg = b->part ? p->crow[i - b->first] : p->gx[GX * i + G_C];
+  if (b->part) *rate *= sqrt(p->mrow[i - b->first]); /* (the row's stiffest neighbour: an upper bound) */
+  *whg2 = p->viscous ? 0.0 : 4.0 * p->hg * chg * sums[1] / pf_pd_density(b, i);
+}
+
+/* Several materials (docs/theory/interfaces.md §7): the force on point i takes its neighbours'
+ * force states and hourglass stiffnesses as well as its own, so its step is bounded with the
+ * largest of them over its row: the P-wave modulus M = K + 4G/3 relative to its own (the wave
+ * speed's factor sqrt(mrow)) and the hourglass micromodulus crow. */
+static void row_bounds(pf_pd_body *b) {
+  corr *p = b->mat;
+  for (pf_int li = 0; li < b->n; li++) {
+    const pf_int i = b->first + li;
+    const double Mi = pf_pd_K(b, i) + 4.0 * pf_pd_G(b, i) / 3.0;
+    double Kmax = pf_pd_K(b, i), Mmax = Mi;
+    for (int64_t k = b->fam.offset[li]; k < b->fam.offset[li + 1]; k++) {
+      const pf_int j = b->fam.neighbor[k];
+      Kmax = fmax(Kmax, pf_pd_K(b, j)), Mmax = fmax(Mmax, pf_pd_K(b, j) + 4.0 * pf_pd_G(b, j) / 3.0);
+    }
+    p->mrow[li] = Mmax / Mi;
+    p->crow[li] = pf_pd_pmb_micromodulus(Kmax, &b->influence, b->hz[i]);
+  }
 }
 
 /* A point's stable step in the reference configuration (Fbar = I, the model's initial P-wave
  * speed), before its first evaluation. */
 static double reference_step(const pf_pd_body *b, const pf_points *pts, pf_int i) {
-  const corr *p = b->mat;
   const pf_family *fam = &b->fam;
   double K[3][3] = {{0}}, I[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, sums[2] = {0, 0}, rate, whg2;
   for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
@@ -235,7 +297,8 @@ static double reference_step(const pf_pd_body *b, const pf_points *pts, pf_int i
     sums[0] += w * r0, sums[1] += w / r0;
   }
   step_rates(b, i, pf_sym3_min_eigenvalue(K), I, sums, &rate, &whg2);
-  return 2.0 / sqrt(p->cl * p->cl * rate * rate + whg2);
+  const double cl = cl_at(b, i);
+  return 2.0 / sqrt(cl * cl * rate * rate + whg2);
 }
 
 /* The uniform-stress ghost vector of the standard form (docs/theory/coupling.md §2.5): under a
@@ -381,8 +444,9 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
   if (b->n > p->cap) {
     free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm);
     free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam), free(p->lost);
-    free(p->kcount), free(p->kinv), free(p->kshape), free(p->nearz), free(p->jump);
+    free(p->kcount), free(p->kinv), free(p->kshape), free(p->nearz), free(p->jump), free(p->mrow), free(p->crow);
     p->lost = p->nearz = NULL;
+    p->mrow = p->crow = NULL;
     p->F = p->D = p->s_old = p->saved = p->Jm = p->rate = p->whg2 = p->cw = p->Ki = p->K0 = p->jump = NULL;
     p->kinv = p->kshape = NULL;
     p->nfam = p->kcount = NULL;
@@ -399,6 +463,8 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
     PF_MALLOC(p->rate, b->n);
     PF_MALLOC(p->whg2, b->n);
     PF_MALLOC(p->cw, b->n);
+    PF_MALLOC(p->mrow, b->n);
+    PF_MALLOC(p->crow, b->n);
     PF_MALLOC(p->F, 9 * (size_t)b->n);
     PF_MALLOC(p->D, 6 * (size_t)b->n);
     PF_MALLOC(p->s_old, 6 * (size_t)b->n);
@@ -413,15 +479,20 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
       p->work[i] = p->hgwork[i] = 0.0;
       for (int a = 0; a < 3; a++) p->hgforce[3 * i + a] = 0.0;
     }
-    if (p->nstate) pf_material_init(p->cm, b->n, &p->state[(size_t)p->nstate * b->first]);
+    for (pf_int a = 0, e; p->nstate && a < b->n; a = e) { /* (runs of one part's points) */
+      for (e = a + 1; e < b->n && (!b->part || b->part[b->first + e] == b->part[b->first + a]);) e++;
+      pf_material_init(model_at(b, b->first + a), e - a, &p->state[(size_t)p->nstate * (b->first + a)]);
+    }
   }
   p->gamma = wave_factor(&b->influence, b->horizon); /* (the largest horizon, once known) */
-  double h = NAN, c = 0; /* the PMB micromodulus of each point's horizon, for the hourglass force */
+  double h = NAN, K = NAN, c = 0; /* the PMB micromodulus of each point's horizon and bulk modulus, for the
+                                     hourglass force (each end its own, docs/theory/interfaces.md §3a) */
   for (pf_int i = b->first; i < b->first + b->n; i++) {
-    if (b->hz[i] != h) h = b->hz[i], c = pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, h);
+    if (b->hz[i] != h || pf_pd_K(b, i) != K) h = b->hz[i], K = pf_pd_K(b, i), c = pf_pd_pmb_micromodulus(K, &b->influence, h);
     p->gx[GX * i + G_C] = c;
   }
   whole_families(b, pts);
+  if (b->part) row_bounds(b);
   if (b->fresh)
     for (pf_int i = b->first; i < b->first + b->n; i++) p->step[i] = reference_step(b, pts, i);
   PF_CALL(ghost_vectors(b, pts));
@@ -659,7 +730,7 @@ static void rereference(pf_pd_body *b, pf_int i, double Fb[3][3], double L[3][3]
     }
   if (!p->nstate || g[G_DETACHED] || !(pf_mat3_det(Fn) > 0) || !(pf_mat3_inverse(Am, Ai) > 0)) return;
   mat_mul(Ai, Ap, T), mat_mul(T, Fn, Fs);
-  pf_material_rereference(p->cm, 1, &Fs[0][0], &Fb[0][0], &p->state[(size_t)p->nstate * i]);
+  pf_material_rereference(model_at(b, i), 1, &Fs[0][0], &Fb[0][0], &p->state[(size_t)p->nstate * i]);
 }
 
 /* K = sum_j w V_j xi (x) xi over the intact own bonds of owned point i (the order and terms of
@@ -822,9 +893,9 @@ static void update_block(pf_pd_body *b, int ns, pf_int lo, pf_int hi) {
       p->cw[a] = 0.0, e = a + 1;
       continue;
     }
-    for (e = a + 1; e < hi && !(b->idle && b->idle[e]);) e++;
-    double *state = ns ? &p->state[(size_t)ns * (b->first + a)] : NULL;
-    pf_material_update(p->cm, e - a, b->dt, &p->F[9 * a], &p->D[6 * a], &p->sigma[6 * (b->first + a)], state,
+    for (e = a + 1; e < hi && !(b->idle && b->idle[e]) && (!b->part || b->part[b->first + e] == b->part[b->first + a]);) e++;
+    double *state = ns ? &p->state[(size_t)ns * (b->first + a)] : NULL; /* (a run of one part's points) */
+    pf_material_update(model_at(b, b->first + a), e - a, b->dt, &p->F[9 * a], &p->D[6 * a], &p->sigma[6 * (b->first + a)], state,
                            &p->cw[a]);
   }
 }
@@ -931,7 +1002,7 @@ static inline __attribute__((always_inline)) void pair_row(const pf_pd_body *b, 
   const int consistent = general && p->lm && p->nearz[i - b->first];
   const int unit_w = !general || infl->kind == PF_INFLUENCE_CONSTANT;
   const double *gi = &gx[GX * i], bi = states ? blend[i] : 1.0, hg = p->hg, hzi = hz[i];
-  const double ki = hg * gi[G_C] * (viscous ? hzi / p->cl : 1.0);
+  const double ki = hg * gi[G_C] * (viscous ? hzi / cl_at(b, i) : 1.0);
   const double x0 = X[3 * i], x1 = X[3 * i + 1], x2 = X[3 * i + 2], y0 = y[3 * i], y1 = y[3 * i + 1], y2 = y[3 * i + 2];
   const double z0 = dev[3 * i], z1 = dev[3 * i + 1], z2 = dev[3 * i + 2];
   const int detached_i = gi[G_DETACHED] != 0;
@@ -951,7 +1022,7 @@ static inline __attribute__((always_inline)) void pair_row(const pf_pd_body *b, 
     const double bj = states ? blend[j] : 1.0;
     const double hi = bi * (!one_sided || r0 <= hzi), hj = bj * (!one_sided || r0 <= hz[j]);
     const double om = unit_w ? 1.0 : pf_pd_omega(infl, r0), w = om * (vfrac ? vol[j] * vfrac[k] : vol[j]);
-    const double kj = hg * gj[G_C] * (viscous ? hz[j] / p->cl : 1.0);
+    const double kj = hg * gj[G_C] * (viscous ? hz[j] / cl_at(b, j) : 1.0);
     v4d t = (hi * Pi0 + hj * v4d_load(gj + G_PK)) * xi[0] + zero;
     t = (hi * Pi1 + hj * v4d_load(gj + G_PK + 3)) * xi[1] + t;
     t = (hi * Pi2 + hj * v4d_load(gj + G_PK + 6)) * xi[2] + t;
@@ -1053,9 +1124,12 @@ static double corr_stable_dt(const pf_pd_body *b, const pf_points *pts) {
 static void corr_destroy(pf_pd_body *b) {
   corr *p = b->mat;
   pf_material_destroy(&p->cm);
+  for (int q = 1; q < PF_PD_MAX_PARTS; q++)
+    if (p->cms[q]) pf_material_destroy(&p->cms[q]);
   free(p->F), free(p->D), free(p->s_old), free(p->saved), free(p->Jm), free(p->out);
   free(p->rate), free(p->whg2), free(p->cw), free(p->Ki), free(p->K0), free(p->nfam), free(p->lost);
   free(p->kcount), free(p->kinv), free(p->kshape), free(p->nearz), free(p->fails), free(p->jump);
+  free(p->mrow), free(p->crow);
   PF_FREE(b->mat);
 }
 
@@ -1073,6 +1147,8 @@ const pf_pd_material_ops pf_pd_material_correspondence = {
     .partial_stress = 1,
     .gradient_forms = 1,
     .uses_velocity = 1,
+    .several_materials = 1,
+    .read_part = corr_read_part,
     .body_keys = body_keys,
 };
 

@@ -17,6 +17,8 @@
  *   M_i     = beta_i (theta_i m^lost_i / 3 - sum_j w |xi| e^dp_n V_j), m^lost_i = the weighted
  *             volume of i's failed bonds: the term that keeps t the gradient of the energy once
  *             bonds have failed (0 while none has; docs/theory/materials.md §1, "Failed bonds")
+ * Several materials (docs/theory/interfaces.md §3b): K, G, Y0 and H are each point's own
+ * material's (pf_pd_K, pf_pd_G, Y0q, Hq), so t_ij takes i's and t_ji j's, as LPS.
  * Per-bond state: each directed bond (i, j) of i's family keeps e^dp of i's end ([0]) and a
  * mirror of j's end, e^dp of bond (j, i) ([1]). j's owner updates its own copy with the same
  * operands (|y_j - y_i|, |xi|, theta_j, beta_j: ghosted per-point values), so the two copies
@@ -38,6 +40,7 @@ enum { NSTATE = 2 }; /* per directed bond: e^dp of the owner's end, of the neigh
 
 typedef struct {
   double Y0, H;  /* yield stress, linear hardening modulus dY/d eqps (Pa) */
+  double Y0q[PF_PD_MAX_PARTS], Hq[PF_PD_MAX_PARTS]; /* several materials: part q's (q = 0: Y0, H) */
   double *m;     /* field "weighted_volume" */
   double *theta; /* field "dilatation" */
   double *beta;  /* field "plastic_return": t^d / t^d_tr of the step (1: elastic) */
@@ -55,23 +58,39 @@ typedef struct {
   pf_int released_cap;
 } ep;
 
-static int ep_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
+/* The plastic constants of the material mapping mat: Y0 > 0 (required, as K and G), H >= 0. */
+static int read_plastic(const pf_deck *d, const pf_node *mat, double *Y0, double *H) {
   const char *need[] = {"bulk_modulus", "shear_modulus", "yield_stress"};
   for (int k = 0; k < 3; k++)
     if (!pf_node_get(mat, need[k]))
       return pf_deck_error(d, mat, need[k], "model 'elastic_plastic' needs '%s' (Pa)", need[k]);
+  *Y0 = *H = 0;
+  PF_CALL(pf_deck_real(d, mat, "yield_stress", Y0));
+  PF_CALL(pf_deck_real(d, mat, "hardening_modulus", H));
+  if (!(*Y0 > 0))
+    return pf_deck_error(d, pf_node_get(mat, "yield_stress"), "yield_stress", "must be positive (got %g)", *Y0);
+  if (!(*H >= 0))
+    return pf_deck_error(d, pf_node_get(mat, "hardening_modulus"), "hardening_modulus", "must be >= 0 (got %g)", *H);
+  return 0;
+}
+
+static int ep_create(const pf_deck *d, const pf_node *mat, pf_pd_body *b) {
   ep *p;
   PF_MALLOC(p, 1);
   b->mat = p;
-  PF_CALL(pf_deck_real(d, mat, "yield_stress", &p->Y0));
-  PF_CALL(pf_deck_real(d, mat, "hardening_modulus", &p->H));
-  if (!(p->Y0 > 0))
-    return pf_deck_error(d, pf_node_get(mat, "yield_stress"), "yield_stress", "must be positive (got %g)", p->Y0);
-  if (!(p->H >= 0))
-    return pf_deck_error(d, pf_node_get(mat, "hardening_modulus"), "hardening_modulus",
-                         "must be >= 0 (got %g)", p->H);
+  PF_CALL(read_plastic(d, mat, &p->Y0, &p->H));
+  p->Y0q[0] = p->Y0, p->Hq[0] = p->H;
   b->fam.nstate = NSTATE;
   return 0;
+}
+
+/* Part q's material (several materials, docs/theory/interfaces.md §3b): of this model, its own
+ * density, K, G, yield stress and hardening modulus (pf_pd_material_ops.read_part). */
+static int ep_read_part(const pf_deck *d, const pf_node *mat, const char *name, pf_pd_body *b, int q,
+                        pf_pd_part *part) {
+  ep *p = b->mat;
+  PF_CALL(pf_pd_part_read_constants(d, mat, name, b, part));
+  return read_plastic(d, mat, &p->Y0q[q], &p->Hq[q]);
 }
 
 /* Fields (a re-partition or a restart brings eqps with the points and e^dp with the rows). */
@@ -175,7 +194,7 @@ static inline __attribute__((always_inline)) void ep_point(pf_pd_body *b, const 
     }
   }
   b->smin[i - b->first] = smin;
-  const double m = p->m[i], th = 3.0 * sum / m, G = b->shear_modulus;
+  const double m = p->m[i], th = 3.0 * sum / m, G = pf_pd_G(b, i); /* (each point its own material's) */
   b->lost[i - b->first] = fresh > 0; /* (the release booked after the threads; plastic work stays) */
   if (fresh) p->released[2 * (i - b->first)] = pf_pd_lps_release_point(b, pts, i, m, fam->state, NSTATE,
                                                                          &p->released[2 * (i - b->first) + 1]);
@@ -187,11 +206,12 @@ static inline __attribute__((always_inline)) void ep_point(pf_pd_body *b, const 
     const double wv = wvs[k - k0];
     n2 += wv * tr * tr, pm += wv * r0 * fam->state[NSTATE * k];
   }
-  const double st = 3 * G * sqrt(5 * n2 / m), Y = p->Y0 + p->H * p->eqps[i];
+  const int q = b->part ? (int)b->part[i] : 0;
+  const double Y0 = p->Y0q[q], H = p->Hq[q], st = 3 * G * sqrt(5 * n2 / m), Y = Y0 + H * p->eqps[i];
   p->theta[i] = th;
   p->beta[i] = 1.0;
   if (st > Y) {
-    const double deq = (st - Y) / (3 * G + p->H);
+    const double deq = (st - Y) / (3 * G + H);
     p->beta[i] = 1.0 - 3 * G * deq / st;
     p->eqps[i] += deq;
   }
@@ -249,7 +269,6 @@ static inline __attribute__((always_inline)) void ep_point_force(const pf_pd_bod
 
 static int ep_force(pf_pd_body *b, pf_points *pts) {
   ep *p = b->mat;
-  const double K = b->bulk_modulus, G = b->shear_modulus;
   const pf_family *fam = &b->fam;
   int64_t longest = 0;
   for (pf_int i = 0; i < b->n; i++) longest = fam->offset[i + 1] - fam->offset[i] > longest ? fam->offset[i + 1] - fam->offset[i] : longest;
@@ -288,6 +307,7 @@ static int ep_force(pf_pd_body *b, pf_points *pts) {
 #pragma omp parallel for schedule(static)
   for (pf_int j = 0; j < nt; j++) { /* (each end's coefficients, as the bond-by-bond loop formed them) */
     p->rec.rec[(size_t)PF_REC * (size_t)j + REC_AUX] = p->theta[j];
+    const double K = pf_pd_K(b, j), G = pf_pd_G(b, j); /* (each end its own material's) */
     p->a[j] = pf_pd_lps_volumetric(K, G, p->theta[j], p->mom[j], p->m[j]);
     p->bc[j] = 15 * G / p->m[j] * p->beta[j];
   }
@@ -312,8 +332,9 @@ static int ep_force(pf_pd_body *b, pf_points *pts) {
 static double ep_point_energy(const pf_pd_body *b, const pf_points *pts, pf_int i) {
   const ep *p = b->mat;
   const double eq = p->eqps[i];
+  const int q = b->part ? (int)b->part[i] : 0;
   return pts->vol[i] * (pf_pd_lps_energy_density(b, pts, i, p->theta[i], p->m[i], b->fam.state, NSTATE) +
-                        p->Y0 * eq + 0.5 * p->H * eq * eq);
+                        p->Y0q[q] * eq + 0.5 * p->Hq[q] * eq * eq);
 }
 
 static double ep_energy(const pf_pd_body *b, const pf_points *pts) {
@@ -344,4 +365,6 @@ const pf_pd_material_ops pf_pd_material_elastic_plastic = {
     .micromodulus = pf_pd_lps_micromodulus,     /* elastic LPS: plastic flow only softens */
     .critical_stretch = pf_pd_lps_critical_stretch, /* LPS closed forms: elastic fracture */
     .destroy = ep_destroy,
+    .several_materials = 1,
+    .read_part = ep_read_part,
 };

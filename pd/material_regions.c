@@ -10,24 +10,33 @@
 #include <stdio.h>
 #include <string.h>
 
+int pf_pd_part_read_constants(const pf_deck *d, const pf_node *mat, const char *name, const pf_pd_body *b,
+                              pf_pd_part *part) {
+  const char *model = "";
+  PF_CALL(pf_deck_string(d, mat, "model", &model));
+  if (strcmp(model, b->ops->name))
+    return pf_deck_error(d, pf_node_get(part->node, "material"), "material", "material '%s' is model '%s', body "
+                         "'%s''s material '%s' is '%s': the materials of one body share a model", name, model, b->name,
+                         b->material, b->ops->name);
+  PF_CALL(pf_deck_real(d, mat, "density", &part->density));
+  PF_CALL(pf_deck_real(d, mat, "bulk_modulus", &part->K));
+  return pf_deck_real(d, mat, "shear_modulus", &part->G);
+}
+
 /* The constants of the material named by entry's `material` into part: its model must be the
  * body's, its density and bulk modulus positive, and its shear modulus given when the body's
  * material gives one (lps). */
-static int read_part(const pf_deck *d, const pf_node *entry, const pf_node *materials, const pf_pd_body *b,
-                     pf_pd_part *part) {
-  const char *name = "", *model = "";
+static int read_part(const pf_deck *d, const pf_node *entry, const pf_node *materials, pf_pd_body *b, int q) {
+  pf_pd_part *part = &b->parts[q];
+  const char *name = "";
   PF_CALL(pf_deck_string(d, entry, "material", &name));
   const pf_node *key = pf_node_get(entry, "material"), *mat = pf_node_get(materials, name);
   if (!mat) return pf_deck_error(d, key, "material", "no material named '%s' under materials:", name);
   snprintf(part->material, sizeof part->material, "%s", name);
-  PF_CALL(pf_deck_string(d, mat, "model", &model));
-  if (strcmp(model, b->ops->name))
-    return pf_deck_error(d, key, "material", "material '%s' is model '%s', body '%s''s material '%s' is '%s': the "
-                         "materials of one body share a model", name, model, b->name, b->material, b->ops->name);
   part->density = part->K = part->G = 0;
-  PF_CALL(pf_deck_real(d, mat, "density", &part->density));
-  PF_CALL(pf_deck_real(d, mat, "bulk_modulus", &part->K));
-  PF_CALL(pf_deck_real(d, mat, "shear_modulus", &part->G));
+  part->node = entry;
+  if (b->ops->read_part) PF_CALL(b->ops->read_part(d, mat, name, b, q, part)); /* (the material's own keys) */
+  else PF_CALL(pf_pd_part_read_constants(d, mat, name, b, part));
   if (!(part->density > 0) || !(part->K > 0))
     return pf_deck_error(d, key, "material", "material '%s' needs a positive density and bulk_modulus", name);
   if (b->shear_modulus > 0 && !(part->G > 0))
@@ -36,7 +45,6 @@ static int read_part(const pf_deck *d, const pf_node *entry, const pf_node *mate
   const double M0 = b->bulk_modulus + 4 * b->shear_modulus / 3, M = part->K + 4 * part->G / 3;
   part->kscale = part->K / b->bulk_modulus;
   part->mscale = fmax(part->kscale, M / M0); /* (safe for the step whichever modulus sets it) */
-  part->node = entry;
   return 0;
 }
 
@@ -44,7 +52,7 @@ static int read_part(const pf_deck *d, const pf_node *entry, const pf_node *mate
 static int check_body(const pf_deck *d, const pf_node *list, const pf_node *body, const pf_pd_body *b) {
   if (!b->ops->several_materials)
     return pf_deck_error(d, list, "material_regions", "body '%s' has model '%s'; several materials in one body "
-                         "take %s", b->name, b->ops->name,
+                         "take %s and the continuum models (correspondence)", b->name, b->ops->name,
                          pf_pd_material_names_with(offsetof(pf_pd_material_ops, several_materials)));
   if (b->coupled || b->hz_expr)
     return pf_deck_error(d, list, "material_regions", "body '%s': several materials take a constant horizon and "
@@ -127,7 +135,7 @@ int pf_pd_parts_read(const pf_deck *d, const pf_node *body, const pf_node *mater
     const pf_node *entry = pf_node_item(list, q - 1);
     if (!pf_node_get(entry, "region"))
       return pf_deck_error(d, entry, "region", "each entry of material_regions needs a region and a material");
-    PF_CALL(read_part(d, entry, materials, b, &b->parts[q]));
+    PF_CALL(read_part(d, entry, materials, b, q));
     PF_CALL(pf_region_from_deck(d, pf_node_get(entry, "region"), NULL, -1, &b->parts[q].region));
   }
   b->nparts = n + 1;

@@ -159,6 +159,10 @@ struct pf_pd_material_ops {
   int bond_energy;    /* 1: its force kernel evaluates each bond's energy (critical_energy law) */
   int several_materials; /* 1: its kernels read each point's constants (pf_pd_K, pf_pd_G,
                             pf_pd_bond_stiffness): the body may have material_regions */
+  /* Read part q's material, the mapping mat named name under materials: (several materials;
+   * optional, NULL: the keys density, bulk_modulus and shear_modulus of a model that must be the
+   * body's): fill part's density, K and G, keep what else the material needs of it. */
+  int (*read_part)(const pf_deck *d, const pf_node *mat, const char *name, pf_pd_body *b, int q, pf_pd_part *part);
   /* directed bond evaluations per second and rank measured on the project's 2-core benchmark
    * machine (87 451-point target, 150 steps), for perifem --check's run-time estimate; 0: the
    * rate of the other models, 1.5e8 */
@@ -296,6 +300,10 @@ static inline double pf_pd_bond_stiffness(const pf_pd_body *b, pf_int i, pf_int 
  * and its damage law); at attach, each store point's part into the field "material". */
 int pf_pd_parts_read(const pf_deck *d, const pf_node *body, const pf_node *materials, pf_pd_body *b);
 int pf_pd_parts_attach(pf_pd_body *b, pf_points *pts, int fresh);
+/* The default of pf_pd_material_ops.read_part: the material mapping mat (named name) must be of the
+ * body's model; its density, bulk_modulus and shear_modulus into part (checked by the caller). */
+int pf_pd_part_read_constants(const pf_deck *d, const pf_node *mat, const char *name, const pf_pd_body *b,
+                              pf_pd_part *part);
 
 /* omega(r), inlined in the bond loops. */
 static inline double pf_pd_omega(const pf_influence *w, double r) {

@@ -104,10 +104,11 @@ const char *pf_test_bimaterial_bar(const char *model, double h, double delta, do
   if (!strcmp(model, "pmb"))
     snprintf(mats, sizeof mats, "{soft: {model: pmb, density: %g, bulk_modulus: %g}, "
              "stiff: {model: pmb, density: %g, bulk_modulus: %g}}", r1, K1, r2, K2);
-  else
-    snprintf(mats, sizeof mats, "{soft: {model: %s, density: %g, bulk_modulus: %g, shear_modulus: %g}, "
-             "stiff: {model: %s, density: %g, bulk_modulus: %g, shear_modulus: %g}}",
-             model, r1, K1, 0.6 * K1, model, r2, K2, 0.6 * K2);
+  else /* (elastic_plastic: yield stresses of their own, far above the tests' stresses, 0.2 GPa) */
+    snprintf(mats, sizeof mats, "{soft: {model: %s, density: %g, bulk_modulus: %g, shear_modulus: %g%s}, "
+             "stiff: {model: %s, density: %g, bulk_modulus: %g, shear_modulus: %g%s}}",
+             model, r1, K1, 0.6 * K1, strcmp(model, "elastic_plastic") ? "" : ", yield_stress: 1.0e9", model, r2, K2,
+             0.6 * K2, strcmp(model, "elastic_plastic") ? "" : ", yield_stress: 2.0e9");
   snprintf(text, sizeof text,
            "materials: %s\n"
            "bodies:\n  - {name: bar, material: soft, horizon: %.17g,\n"

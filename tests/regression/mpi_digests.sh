@@ -82,6 +82,12 @@ sed -E 's/final_time: 80.0e-6, safety_factor: 0.8/steps: 60/; s/interval: 100, h
 sed -E 's/final_time: 4.5e-5/steps: 60/; s/d1: 0.1,/d1: 0.0,/; s/interval: 100/interval: 20/; s/"(-?)40 \* min/"\1400 * min/' \
   "$OLDPWD/data/damage_bar.yaml" > damage_bar.yaml
 printf 'parallel:\n  rebalance_threshold: 1.0\n' | tee -a taylor_corr.yaml >> damage_bar.yaml
+# several correspondence materials in one body (docs/theory/interfaces.md §3a): the reduced Taylor
+# bar, its upper half a harder J2 (its own density, moduli and yield), with the stiffness hourglass
+# control (each point's micromodulus from its own material), re-partitioned as taylor_corr
+sed -E 's/^  copper: \{/  hard: {model: j2, density: 8960, youngs_modulus: 130.0e9, poissons_ratio: 0.34, yield_stress: 800.0e6}\n  copper: {/;
+        s/hourglass: \{type: none\}/hourglass: {type: stiffness, coefficient: 0.05}\n    material_regions: [{material: hard, region: {shape: box, lo: [-1, -1, 0.016], hi: [1, 1, 1]}}]/' \
+  taylor_corr.yaml > taylor_corr_regions.yaml
 
 # a variable horizon (tests/data/variable_horizon_block.yaml): one-sided bonds and the partial-stress
 # form, correspondence and LPS (whose partial stress is a ghosted field)
@@ -139,7 +145,7 @@ declare -A plain_of=([cylinder_rebalance]=fragmenting_cylinder [mixed_rebalance]
                      [wave_spread]=wave_in_bar [disk_rigid_surface]=disk_impact_rigid)
 declare -A one_rank=()
 rebalanced="cylinder_rebalance mixed_rebalance sphere_on_block_rebalance cylinder_contact tube_ep coupled_rebalance horizon_consistent dcb_family" # (the other two split evenly on 2 ranks)
-decks="disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar wave_variable_horizon wave_pd_to_fe cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block sphere_on_block_rebalance cylinder_contact tube_ep taylor_corr damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance dcb_family interface_pmb interface_lps"
+decks="disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar wave_variable_horizon wave_pd_to_fe cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block sphere_on_block_rebalance cylinder_contact tube_ep taylor_corr taylor_corr_regions damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance dcb_family interface_pmb interface_lps"
 # The 1-rank runs first, two at a time (one process each: both cores busy; each deck writes files
 # of its own name), their output and status kept for the loop below.
 mkdir -p np1

@@ -23,7 +23,9 @@
 # test_laminate (fourteen quasi-static runs; about 2 minutes on 3 ranks of 2 cores, 24 s for its
 # FE runs alone): hexahedra with material_regions run on 1, 2 and 3 ranks in
 # fe_material_regions.sh, orthotropic hexahedra under newton_krylov in static_orthotropic.sh; its
-# own fourteen digests on 3 ranks equal the 1-rank ones, as run by hand (docs/theory/laminate.md).
+# own fourteen digests on 3 ranks equal the 1-rank ones, as run by hand (docs/theory/laminate.md); and
+# test_bimaterial_static_correspondence (four quasi-static bars), whose several correspondence
+# materials in one body run on 1, 2 and 3 ranks there as taylor_corr_regions.
 # The tests this script runs do so on 1 and 3 ranks, not on 2: 3 ranks already split every
 # body the 2-rank run splits, and the same physics runs on 1, 2 and 3 ranks with equal digests in
 # mpi_digests.sh (PD contact: cylinder_contact, sphere_on_block; FE: taylor_impact, mixed,

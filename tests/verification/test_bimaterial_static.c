@@ -1,5 +1,6 @@
 /* A statically loaded bar of two materials in one peridynamic body (material_regions,
- * docs/theory/interfaces.md §5), PMB (series interface micromodulus) and LPS, solved by the
+ * docs/theory/interfaces.md §5), PMB (series interface micromodulus), LPS and elastic_plastic (in
+ * its elastic range at h = 1 mm, and beyond the soft part's yield: run_plastic), solved by the
  * quasi-static solver: the patch test across the interface.
  *
  * A bar along x, lateral motion held (uniaxial strain), soft material for x < x_I, stiff beyond,
@@ -85,6 +86,87 @@ static double run(const char *model, double h, const char *name) {
   return fmax(fabs(e1 / EPS1 - 1), fabs(e2 / eps2 - 1));
 }
 
+/* Mitchell's (2011) plastic strain after one return, at a point of the bar (three points across, w = 1,
+ * V = h^3) at lateral indices (jy, kz) under the uniaxial strain e, from the lattice sums of its own
+ * family (docs/theory/materials.md §1): m = sum |xi|^2 V, theta = (3/m) sum |xi| ext V,
+ * sigma_tr = 3 G sqrt(5 sum (ext - theta |xi| / 3)^2 V / m), eqps = (sigma_tr - Y) / 3G when positive (H = 0).
+ * The bar's lateral faces truncate every family, so this is the model's own value there, not
+ * von Mises' 2 G e. */
+static double eqps_closed_form(double e, double h, double delta, int jy, int kz, double G, double Y) {
+  const int r = (int)floor(delta / h);
+  double m = 0, s = 0, n2 = 0;
+  for (int pass = 0; pass < 2; pass++)
+    for (int dx = -r; dx <= r; dx++)
+      for (int dy = -r; dy <= r; dy++)
+        for (int dz = -r; dz <= r; dz++) {
+          const double r0 = h * sqrt((double)(dx * dx + dy * dy + dz * dz));
+          if ((!dx && !dy && !dz) || jy + dy < 0 || jy + dy > 2 || kz + dz < 0 || kz + dz > 2 || r0 > delta) continue;
+          const double ext = h * sqrt(dx * dx * (1 + e) * (1 + e) + dy * dy + dz * dz) - r0, V = h * h * h;
+          if (pass == 0) m += r0 * r0 * V, s += r0 * ext * V;
+          else n2 += pow(ext - (3 * s / m) * r0 / 3, 2) * V;
+        }
+  const double st = 3 * G * sqrt(5 * n2 / m);
+  return st > Y ? (st - Y) / (3 * G) : 0.0;
+}
+
+/* elastic_plastic beyond the soft part's yield (each point its own K, G and yield stress,
+ * docs/theory/interfaces.md §3b): perfectly plastic, Y1 = 50 MPa soft, Y2 = 2 GPa stiff, the
+ * bar of run() at h = 1 mm loaded by the soft part's strain 1e-3 (the stiff part's end layer at the
+ * elastic strain that carries the soft part's stress in the continuum, (K1 e1 + 2 Y1 / 3) / M2).
+ * Asserted: every soft point three horizons from the interface and the held layers has the plastic
+ * strain of its own family under the part's strain, measured between layers two horizons from
+ * them (eqps_closed_form with G1, Y1), within 1e-3 (measured 2e-4: the interface and end zones
+ * reach a little further in the yielded part, whose tangent is K alone; at two horizons 4e-3), and
+ * no stiff point yields (its own Y2; the soft Y1 would yield it). */
+static void run_plastic(double h) {
+  const double delta = 3.015 * h, L = 0.06, W = 2 * h, G1 = 0.6 * K1, G2 = 0.6 * K2, Y1 = 50e6;
+  const int n = (int)lround(L / h) + 1;
+  const double xI = (n / 2 - 0.5) * h, xend = (n - 1) * h, eps2 = (K1 * EPS1 + 2 * Y1 / 3) / (K2 + 4 * G2 / 3);
+  char deck[4096];
+  snprintf(deck, sizeof deck,
+           "materials: {soft: {model: elastic_plastic, density: %g, bulk_modulus: %g, shear_modulus: %g, yield_stress: %g},\n"
+           "            stiff: {model: elastic_plastic, density: %g, bulk_modulus: %g, shear_modulus: %g, yield_stress: 2.0e9}}\n"
+           "bodies:\n  - {name: bar, material: soft, horizon: %.17g,\n"
+           "     material_regions: [{material: stiff, region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]}}],\n"
+           "     geometry: {shape: box, lo: [0, 0, 0], hi: [%.17g, %.17g, %.17g], spacing: %.17g}}\n"
+           "boundary_conditions:\n"
+           "  - {displacement: [free, \"0\", \"0\"]}\n"
+           "  - {region: {shape: box, lo: [-1, -1, -1], hi: [%.17g, 1, 1]}, displacement: [\"%.17g * x * t\", \"0\", \"0\"]}\n"
+           "  - {region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]},\n"
+           "     displacement: [\"(%.17g + %.17g * (x - %.17g)) * t\", \"0\", \"0\"]}\n"
+           "solver: {type: quasi_static, method: newton_krylov, load_steps: 1, tolerance: 1.0e-10, max_iterations: 200000}\n"
+           "time: {final_time: 1}\n",
+           RHO1, K1, G1, Y1, RHO2, K2, G2, delta, xI, xend, W, W, h, delta, EPS1, xend - delta, EPS1 * xI, eps2, xI);
+  pf_sim *sim = pf_test_sim("bimaterial_static_plastic", deck);
+  if (!sim) return;
+  PF_TEST_OK(pf_sim_run_begin(sim));
+  PF_TEST_OK(pf_sim_run_advance(sim, -1));
+  const pf_points *p = pf_sim_points(sim);
+  const double a1 = h * ceil(2 * delta / h), b1 = h * floor((xI - 2 * delta) / h);
+  const double e1 = (layer_u(p, b1, h) - layer_u(p, a1, h)) / (b1 - a1);
+  const double *eqps = pf_points_field_get(p, "eqps");
+  double worst = 0, stiff = 0, least = INFINITY;
+  for (pf_int i = 0; eqps && i < p->n_owned; i++) {
+    const double x = p->X[3 * i];
+    if (x > xI) stiff = fmax(stiff, eqps[i]);
+    if (x < a1 + delta || x > b1 - delta) continue; /* (three horizons in: the zones of the yielded part) */
+    const int jy = (int)lround(p->X[3 * i + 1] / h), kz = (int)lround(p->X[3 * i + 2] / h);
+    const double want = eqps_closed_form(e1, h, delta, jy, kz, G1, Y1);
+    worst = fmax(worst, fabs(eqps[i] / want - 1)), least = fmin(least, want);
+  }
+  worst = pf_max_all(worst), stiff = pf_max_all(stiff), least = -pf_max_all(-least);
+  PF_TEST_TRUE(eqps != NULL);
+  PF_TEST_TRUE(least > 0);       /* (every soft interior point has yielded) */
+  PF_TEST_TRUE(worst < 1e-3);    /* the soft part's own G and Y */
+  PF_TEST_TRUE(stiff == 0.0);    /* the stiff part's own Y: it stays elastic */
+  pf_test_measure("eqps_error_plastic", worst, "1");
+  if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
+    printf("elastic_plastic, soft part yielded (strain %.5e): eqps within %.2e of its family's closed form (smallest "
+           "%.4e); stiff eqps max %g\n", e1, worst, least, stiff);
+  pf_test_print_digest("elastic_plastic_yielded", sim);
+  pf_sim_destroy(&sim);
+}
+
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
   const char *models[] = {"pmb", "lps"};
@@ -94,5 +176,7 @@ int main(int argc, char **argv) {
      * bar's compliance, and so the strain error, halves with the horizon (docs/theory/interfaces.md §5) */
     if (m == 1) PF_TEST_TRUE(fine < 0.6 * coarse);
   }
+  run("elastic_plastic", 1e-3, "coarse"); /* in its elastic range: LPS, each end its own K and G */
+  run_plastic(1e-3);
   return pf_test_finish();
 }
