@@ -4,8 +4,8 @@
  * Hinton & Kaddour 1998, Tables 1 and 2, as docs/theory/fibre_rve.md takes them), both isotropic
  * and, PMB being bond-based, with Poisson's ratio 1/4 (their 0.2 and 0.35 are not available to
  * PMB; CalculiX takes the same 1/4). The interface's law (docs/theory/interfaces.md §6) is
- * evaluated on the elastic state, so the test itself fails no bond (see single_fibre.md §5 for the
- * damage runs, which are too slow for a test today).
+ * evaluated on the elastic state, so the default run fails no bond (the argument probe runs the
+ * code's law at the onsets; single_fibre.md §6 for the curve through the debond, too slow today).
  *
  * The cell [0, a]^2 x [0, t], fibre fraction 0.2 (radius r = a sqrt(0.2 / pi) about the centre),
  * the lattice n x n points across (default 16, a coarse lattice: the test takes about 14 s), one
@@ -32,8 +32,12 @@
  *    |xi| = delta, sqrt(4/5), and 5 %;
  *  - the critical stretch's onset changes less between the horizons than the critical energy's,
  *    and 1 + change_energy = (1 + change_stretch) sqrt(m1 / m2) within 2 % (the energy law's
- *    limiting stretch ~ delta^(-1/2) on top of the same field).
- * usage: test_single_fibre [n]: n points across the cell (16). */
+ *    limiting stretch ~ delta^(-1/2) on top of the same field);
+ *  - with the argument probe (verification/test_single_fibre_probe, label slow, about 61 s): the
+ *    code's interface law itself, the cell pulled in one load step to 0.98 and to 1.02 of each
+ *    onset (max_damage_passes 3): no bond fails at 0.98, some do at 1.02, for both laws at both
+ *    horizons (the onset of section 3 of single_fibre.md is where the code's bonds fail).
+ * usage: test_single_fibre [n [probe]]: n points across the cell (16). */
 #include "test_common.h"
 
 #include <math.h>
@@ -69,7 +73,7 @@ static unsigned char *fibre_map(int n, double *vf) {
 /* The rollers (as test_fibre_rve): every point beyond a face (a layer k spacings thick) follows
  * the face's normal motion u_a = eps_a X_a, free tangentially, eps_x = EPS1 t, the others 0;
  * then the points beyond the far x face within the cell's span, whose reaction is read (mx). */
-static void conditions(double t, char *out, size_t cap) {
+static void conditions(double t, double eps, char *out, size_t cap) {
   const double hi[3] = {A, A, t};
   out[0] = 0;
   for (int pass = 0; pass < 2; pass++)
@@ -83,7 +87,7 @@ static void conditions(double t, char *out, size_t cap) {
         else lo_b[a] = -1, hi_b[a] = 0;
         const char *c[3] = {"free", "free", "free"};
         char u[64], name[8];
-        snprintf(u, sizeof u, "\"%.17g * %c * t\"", a == 0 ? EPS1 : 0.0, 'x' + a);
+        snprintf(u, sizeof u, "\"%.17g * %c * t\"", a == 0 ? eps : 0.0, 'x' + a);
         c[a] = u;
         snprintf(name, sizeof name, pass ? "m%c" : "g%c%d", 'x' + a, s);
         size_t len = strlen(out);
@@ -127,25 +131,30 @@ static void onset(perifem_sim *sim, double h, double delta, double s, double Ks,
 
 /* The elastic cell (PMB, horizon m h, no bond fails): its stiffness k0 (the reaction over the
  * displacement EPS1 a) and the two laws' debond onset loads F[2]. */
-static int pull(int n, double m, double s, double Ks, double *k0, double F[2]) {
+static int pull_at(int n, double m, double s, double Ks, double *k0, double F[2], const char *law, double value,
+                   double factor, double *dmg) {
   const double h = A / n, t = h, delta = m * h;
   const int k = 2 * (int)ceil(delta / h + 0.8660254037844386); /* a family's reach, twice */
   static char deck[32768];
   char bcs[8192];
-  conditions(t, bcs, sizeof bcs);
+  conditions(t, factor * EPS1, bcs, sizeof bcs);
+  char iface[256] = "";
+  if (law)
+    snprintf(iface, sizeof iface, "    interface: {damage: {law: %s, %s: %.17g}}\n", law,
+             strcmp(law, "critical_stretch") ? "energy_release_rate" : "critical_stretch", value);
   snprintf(deck, sizeof deck,
            "materials:\n"
            "  epoxy: {model: pmb, density: 1200, bulk_modulus: %.17g}\n"
            "  fibre: {model: pmb, density: 1760, bulk_modulus: %.17g}\n"
            "bodies:\n  - name: cell\n    material: epoxy\n    horizon: %.17g\n    partial_volumes: true\n"
            "    material_regions:\n"
-           "      - {material: fibre, region: {shape: cylinder, axis: z, center: [%.17g, %.17g, -1], radius: %.17g, height: 2}}\n"
+           "      - {material: fibre, region: {shape: cylinder, axis: z, center: [%.17g, %.17g, -1], radius: %.17g, height: 2}}\n%s"
            "    geometry: {shape: box, lo: [%.17g, %.17g, %.17g], hi: [%.17g, %.17g, %.17g],\n"
            "               origin: [%.17g, %.17g, %.17g], spacing: %.17g}\n"
            "boundary_conditions:\n%s"
-           "solver: {type: quasi_static, method: newton_krylov, load_steps: 1, tolerance: 1.0e-8}\n"
+           "solver: {type: quasi_static, method: newton_krylov, load_steps: 1, tolerance: 1.0e-8, max_damage_passes: 3}\n"
            "time: {final_time: 1}\n",
-           bulk(E_M, NU), bulk(E_F, NU), delta, A / 2, A / 2, fibre_radius(), -k * h, -k * h, -k * h, A + k * h,
+           bulk(E_M, NU), bulk(E_F, NU), delta, A / 2, A / 2, fibre_radius(), iface, -k * h, -k * h, -k * h, A + k * h,
            A + k * h, t + k * h, h / 2, h / 2, h / 2, h, bcs);
   perifem_options opt = {0};
   opt.no_output = 1, opt.quiet = 1;
@@ -157,10 +166,17 @@ static int pull(int n, double m, double s, double Ks, double *k0, double F[2]) {
   }
   double R, ratio[2];
   perifem_history_value(sim, "mx_reaction_x", &R);
-  onset(sim, h, delta, s, Ks, ratio);
-  *k0 = R / (EPS1 * A), F[0] = ratio[0] * R, F[1] = ratio[1] * R;
+  if (dmg) perifem_history_value(sim, "damage_fraction", dmg);
+  if (k0) {
+    onset(sim, h, delta, s, Ks, ratio);
+    *k0 = R / (factor * EPS1 * A), F[0] = ratio[0] * R, F[1] = ratio[1] * R;
+  }
   perifem_destroy(&sim);
   return 0;
+}
+
+static int pull(int n, double m, double s, double Ks, double *k0, double F[2]) {
+  return pull_at(n, m, s, Ks, k0, F, NULL, 0, 1, NULL);
 }
 
 /* CalculiX on the lattice's grid: the reaction of the face x = a for eps_x = 1e-5. */
@@ -180,7 +196,7 @@ static int ccx_stiffness(int n, const unsigned char *in_fibre, double *k) {
 
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
-  const int n = argc > 1 ? atoi(argv[1]) : 16;
+  const int n = argc > 1 ? atoi(argv[1]) : 16, probe = argc > 2 && !strcmp(argv[2], "probe");
   const int verbose = getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0;
   if (!pf_test_ccx_path()) {
     if (pf_comm_rank() == 0) printf("SKIP: no CalculiX (ccx; Debian calculix-ccx, or set CCX)\n");
@@ -214,6 +230,15 @@ int main(int argc, char **argv) {
       printf("m %.3f: k0 %.4g N/m (ccx %.4g, %+.1f %%); debond onset: critical stretch %.4g N, critical energy %.4g N\n",
              M_HORIZON[hz], k0, k_ccx, 100 * excess[hz], Fh[0], Fh[1]);
     PF_TEST_CLOSE(k0, k_ccx, 0.1, 0);
+    if (probe) /* the code's law fails no bond at 0.98 of the onset and some at 1.02 */
+      for (int l = 0; l < 2; l++)
+        for (int side = 0; side < 2; side++) {
+          double dmg = -1;
+          const double f = Fh[l] / (k0 * EPS1 * A) * (side ? 1.02 : 0.98);
+          PF_TEST_OK(pull_at(n, M_HORIZON[hz], s, Ks, NULL, NULL, laws[l], l ? G0 : s, f, &dmg));
+          PF_TEST_TRUE(side ? dmg > 0 : dmg == 0);
+          if (verbose) printf("  %s at %.2f of the onset: damage fraction %.3g\n", laws[l], side ? 1.02 : 0.98, dmg);
+        }
   }
   pf_test_measure("ccx_k0", k_ccx / 1e6, "N/mm");
   pf_test_measure("vf", vf, "1");
