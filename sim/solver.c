@@ -28,17 +28,16 @@ const pf_key pf_sim_solver_keys[] = {
      "many times per load step, then the run stops with an error", NULL},
     PF_KEY_END};
 
-/* Contact pairs act by their penalties alone: friction needs a step in time (refused). */
-static int check_pairs(const pf_deck *d, const pf_node *root) {
-  const pf_node *pairs = pf_node_get(pf_node_get(root, "contact"), "pairs");
-  for (int j = 0; j < pf_node_count(pairs); j++) {
-    const pf_node *item = pf_node_item(pairs, j);
+/* Friction on the items of a list (rigid surfaces, contact pairs) needs a step in time: refused. */
+static int refuse_friction(const pf_deck *d, const pf_node *list, const char *what) {
+  for (int j = 0; j < pf_node_count(list); j++) {
+    const pf_node *item = pf_node_item(list, j);
     double mu = 0;
     PF_CALL(pf_deck_real(d, item, "friction", &mu));
     if (mu != 0)
       return pf_deck_error(d, pf_node_get(item, "friction"), "friction",
-                           "a contact pair's friction is not yet supported with the quasi_static solver (the "
-                           "regularized Coulomb force needs a time step)");
+                           "%s's friction is not yet supported with the quasi_static solver (the regularized "
+                           "Coulomb force needs a time step)", what);
   }
   return 0;
 }
@@ -48,20 +47,16 @@ static const pf_node *surfaces(const pf_node *root, int k) {
   return k == 0 ? pf_node_get(root, "indenters") : pf_node_get(pf_node_get(root, "contact"), "rigid_surfaces");
 }
 
-/* A rigid surface with a velocity is a load; friction needs a step in time (refused). */
+/* A rigid surface with a velocity is a load; friction, of a surface or of a contact pair (which
+ * acts by its penalty alone), is refused. */
 static int check_surfaces(const pf_deck *d, const pf_node *root, int *moving) {
   *moving = 0;
-  for (int k = 0; k < 2; k++)
-    for (int j = 0; j < pf_node_count(surfaces(root, k)); j++) {
-      const pf_node *item = pf_node_item(surfaces(root, k), j);
-      double mu = 0;
-      PF_CALL(pf_deck_real(d, item, "friction", &mu));
-      if (mu != 0)
-        return pf_deck_error(d, pf_node_get(item, "friction"), "friction",
-                             "a rigid surface's friction is not yet supported with the quasi_static solver (the "
-                             "regularized Coulomb force needs a time step)");
-      *moving |= pf_node_get(item, "velocity") != NULL;
-    }
+  PF_CALL(refuse_friction(d, pf_node_get(pf_node_get(root, "contact"), "pairs"), "a contact pair"));
+  for (int k = 0; k < 2; k++) {
+    PF_CALL(refuse_friction(d, surfaces(root, k), "a rigid surface"));
+    for (int j = 0; j < pf_node_count(surfaces(root, k)); j++)
+      *moving |= pf_node_get(pf_node_item(surfaces(root, k), j), "velocity") != NULL;
+  }
   return 0;
 }
 
@@ -76,7 +71,6 @@ static int check_deck(const pf_sim *sim, const pf_node *sv) {
                          "a quasi_static solver needs a load: give boundary_conditions (displacement, velocity or "
                          "body_force) or a rigid surface that moves (indenters or contact.rigid_surfaces with a "
                          "velocity)");
-  PF_CALL(check_pairs(d, root));
   const pf_node *bodies = pf_node_get(root, "bodies");
   for (int b = 0; b < pf_node_count(bodies); b++)
     if ((n = pf_node_get(pf_node_item(bodies, b), "initial_velocity")))

@@ -5,6 +5,7 @@
  * "total force (fx,fy,fz) for set NAME" lines in the .dat file give the reactions. */
 #include "calculix_grid.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -114,4 +115,16 @@ int pf_test_ccx_grid_solve(const pf_test_ccx_grid *g, const char *dir, const cha
   if (system(cmd) != 0) return fprintf(stderr, "ccx failed: see %s/%s.log\n", dir, name), -1;
   snprintf(path, sizeof path, "%s/%s.dat", dir, name);
   return read_totals(path, F);
+}
+
+unsigned char *pf_test_fibre_map(int n, double a, double r, double *vf) {
+  unsigned char *in = calloc((size_t)n * n, 1);
+  if (!in) return NULL;
+  const double h = a / n;
+  long count = 0;
+  for (int j = 0; j < n; j++)
+    for (int i = 0; i < n; i++)
+      count += in[i + n * j] = hypot((i + 0.5) * h - a / 2, (j + 0.5) * h - a / 2) <= r;
+  *vf = (double)count / ((double)n * n);
+  return in;
 }

@@ -23,4 +23,8 @@ const char *pf_test_ccx_path(void);
 /* Write <dir>/<name>.inp for g, run ccx there (one thread) and read the total reaction on each
  * far face along its normal into F[0..2] (N). Returns 0, or -1 after printing why not. */
 int pf_test_ccx_grid_solve(const pf_test_ccx_grid *g, const char *dir, const char *name, double F[3]);
+/* The fibre of a square cell [0, a]^2 around one fibre of radius r at its centre, on an n x n grid:
+ * [n^2] 1 where element (point) i + n j has its centroid inside the circle (free() it); its
+ * fibre fraction, the count over n^2, into *vf. */
+unsigned char *pf_test_fibre_map(int n, double a, double r, double *vf);
 #endif

@@ -57,18 +57,6 @@ static void moduli(const double FX[3], const double FZ[3], const double area[3],
   E[1] = det / (C[0][0] * C[1][1] - C[0][1] * C[1][0]);
 }
 
-/* Element (point) e of the n x n grid in the fibre: its centroid inside the circle. */
-static unsigned char *fibre_map(int n, double *vf) {
-  unsigned char *in = calloc((size_t)n * n, 1);
-  const double h = A / n, r = fibre_radius();
-  long count = 0;
-  for (int j = 0; j < n; j++)
-    for (int i = 0; i < n; i++)
-      count += in[i + n * j] = hypot((i + 0.5) * h - A / 2, (j + 0.5) * h - A / 2) <= r;
-  *vf = (double)count / ((double)n * n);
-  return in;
-}
-
 /* Build, run to the end and read the far faces' reactions <name>_reaction_<axis>. */
 static int run_deck(const char *deck, const char *const names[3], double F[3], perifem_sim **keep) {
   perifem_options opt = {0};
@@ -110,7 +98,7 @@ static void fe_conditions(double h, const double hi[3], int axis, char *out, siz
 }
 
 /* The finite-element cell: n x n x 1 bbar hexahedra, the fibre by material_regions (an element
- * is the fibre's when its centroid is in the cylinder, as fibre_map). axis: the moved face. */
+ * is the fibre's when its centroid is in the cylinder, as pf_test_fibre_map). axis: the moved face. */
 static int fe_run(int n, int axis, double F[3]) {
   const double h = A / n, hi[3] = {A, A, h}, lo[3] = {0, 0, 0};
   char deck[8192], bcs[4096];
@@ -262,7 +250,7 @@ int main(int argc, char **argv) {
     return 77;
   }
   double vf_fe, vf_pd, Eccx[2], Efe[2], Epd[2], FX[3], FZ[3];
-  unsigned char *in_fibre = fibre_map(n, &vf_fe);
+  unsigned char *in_fibre = pf_test_fibre_map(n, A, fibre_radius(), &vf_fe);
   int ierr = pf_comm_rank() == 0 ? ccx_moduli(n, in_fibre, Eccx) : 0; /* one CalculiX run */
   MPI_Bcast(&ierr, 1, MPI_INT, 0, MPI_COMM_WORLD);
   MPI_Bcast(Eccx, 2, MPI_DOUBLE, 0, MPI_COMM_WORLD);

@@ -58,18 +58,6 @@ static const double M_HORIZON[2] = {3.015, 2.015};
 static double fibre_radius(void) { return A * sqrt(VF / PF_PI); }
 static double bulk(double E, double nu) { return E / (3 * (1 - 2 * nu)); }
 
-/* Element (point) e of the n x n grid in the fibre: its centroid inside the circle. */
-static unsigned char *fibre_map(int n, double *vf) {
-  unsigned char *in = calloc((size_t)n * n, 1);
-  const double h = A / n, r = fibre_radius();
-  long count = 0;
-  for (int j = 0; j < n; j++)
-    for (int i = 0; i < n; i++)
-      count += in[i + n * j] = hypot((i + 0.5) * h - A / 2, (j + 0.5) * h - A / 2) <= r;
-  *vf = (double)count / ((double)n * n);
-  return in;
-}
-
 /* The rollers (as test_fibre_rve): every point beyond a face (a layer k spacings thick) follows
  * the face's normal motion u_a = eps_a X_a, free tangentially, eps_x = EPS1 t, the others 0;
  * then the points beyond the far x face within the cell's span, whose reaction is read (mx). */
@@ -204,7 +192,7 @@ int main(int argc, char **argv) {
     return 77;
   }
   double vf, k_ccx = 0;
-  unsigned char *in_fibre = fibre_map(n, &vf);
+  unsigned char *in_fibre = pf_test_fibre_map(n, A, fibre_radius(), &vf);
   int ierr = pf_comm_rank() == 0 ? ccx_stiffness(n, in_fibre, &k_ccx) : 0;
   MPI_Bcast(&ierr, 1, MPI_INT, 0, MPI_COMM_WORLD);
   MPI_Bcast(&k_ccx, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
