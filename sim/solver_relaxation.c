@@ -246,6 +246,11 @@ static int abandon(pf_sim *sim, long it) {
   pf_sim_interactions_place(sim, -sim->dt); /* (dt < 0: the surfaces go back) */
   for (pf_int d = 0; d < 3 * p->n_owned; d++) p->u[d] = s->u0[d], p->y[d] = p->X[d] + p->u[d];
   PF_CALL(pf_sim_solver_evaluate(sim));
+  /* the history as committed at the load step's start, bit for bit: the evaluation just made
+   * returned it through the model once more (a zero increment, round-off apart), and a restart
+   * commits what the checkpoint holds */
+  for (int b = 0; b < sim->nbodies; b++)
+    if (pf_body_keeps_history(&sim->body[b], p)) PF_CALL(pf_body_history(&sim->body[b], p, PF_HISTORY_RESTORE));
   PF_CALL(freeze_damage(sim, 0));
   memset(p->v, 0, sizeof(double) * 3 * (size_t)p->n_owned);
   sim->step--;

@@ -5,9 +5,11 @@
 # says so and exits 0; the restart takes the load step again and ends with the uninterrupted
 # run's state digest. The deck: tests/data/static_plastic_pd.yaml (elastic-plastic bar: PD
 # history) at tolerance 1e-10 with a checkpoint file. Checks:
-#  - 1 rank and 2 ranks: SIGTERM to every rank once load step 1 is reported;
-#    the run says "abandoned" and "stopped at step 1", exits 0, its history's last row is load
-#    step 1's (the energy balance as at load step 1: a row at the abandoned iterate had the
+#  - 1 rank: SIGTERM to every rank once load step 1 is reported, 2 ranks: once load step 2 is
+#    (the bar has yielded: the checkpoint holds plastic history); the run says "load step L/4
+#    abandoned" (L = 2 and 3 as a rule; later when the signal was slow to come: the test then
+#    checks L) and "stopped at step L - 1", exits 0, its history's last row is load step L - 1's
+#    (the energy balance as that load step's row: a row at the abandoned iterate had the
 #    centred kinetic energy of its residual forces, -7e7 J);
 #  - the checkpoint written on 1 rank restarted on 3, the one written on 2 restarted on 1: the
 #    reference digest.
@@ -25,18 +27,26 @@ echo "reference digest $ref"
 for np in 1 2; do
   rm -rf w$np && mkdir w$np && cd w$np
   ( run $np "$exe" ../bar.yaml > run.log 2>&1; echo "exit $?" >> run.log ) &
-  for _ in $(seq 600); do grep -q '^load step 1/' run.log 2>/dev/null && break; sleep 0.05; done
+  # (1 rank: once load step 1 is reported, 2 ranks: load step 2, when the bar has yielded, so that
+  # the checkpoint holds plastic history)
+  for _ in $(seq 600); do grep -q "^load step $np/" run.log 2>/dev/null && break; sleep 0.05; done
   pkill -TERM -f "^$exe ../bar.yaml" # (every rank, as a batch system signals them)
   wait
-  grep -q '^load step 2/4 abandoned' run.log && grep -q 'stopped at step 1,' run.log && grep -q '^exit 0' run.log ||
-    { echo "FAIL: $np ranks: not abandoned at load step 2 with exit 0:"; grep -vE '^step' run.log | tail -8; fail=1; cd ..; continue; }
-  "$PY" - <<'PYEOF' || fail=1
+  # (the load step the signal caught: 2 as a rule, a later one when this script was slow to send it)
+  L=$(sed -n 's|^load step \([0-9]\)/4 abandoned.*|\1|p' run.log)
+  [ -n "$L" ] && [ "$L" -ge 2 ] && grep -q "stopped at step $((L - 1))," run.log && grep -q '^exit 0' run.log ||
+    { echo "FAIL: $np ranks: not abandoned at a load step after the first with exit 0:"; grep -vE '^step' run.log | tail -8; fail=1; cd ..; continue; }
+  LAST=$((L - 1)) "$PY" - <<'PYEOF' || fail=1
+import os
 import h5py
 import numpy as np
+last = int(os.environ["LAST"])
 h = h5py.File("bar.h5", "r")
 step, err, w = (np.array(h[k]) for k in ("step", "energy_error", "external_work"))
-print("rows at steps %s, energy error / work at the last: %.3g" % (list(step.astype(int)), abs(err[-1]) / w[-1]))
-if not (step[-1] == 1 and abs(err[-1]) < 1e-3 * w[-1]): print("FAIL: the last row is not load step 1's"); raise SystemExit(1)
+print("abandoned at load step %d; rows at steps %s" % (last + 1, list(step.astype(int))))
+# the last row is at load step last's equilibrium, as that load step's own row (not at the
+# abandoned iterate, whose centred kinetic energy put the balance off by -7e7 J)
+if not (step[-1] == last and abs(err[-1] - err[step == last][0]) < 1e-3 * w[-1]): print("FAIL: the last row is not load step %d's" % last); raise SystemExit(1)
 PYEOF
   rp=$((np == 1 ? 3 : 1))
   {
