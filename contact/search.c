@@ -319,21 +319,58 @@ static void cand_sort(pf_candidate *v, int64_t n) {
   }
 }
 
-/* Partners of owned particle e in pair k among the view entities of body `other` (grid g). */
-static int point_candidates(const pf_contact *c, const pf_grid *g, pf_int e, int k, int other, cand_list *l) {
-  double reach = c->pair[k].radius + c->skin;
+/* The view entities in the grid's slot order (bin by bin): their positions, one array a
+ * coordinate, and bodies, so that the search reads each row of bins as one contiguous run. */
+typedef struct {
+  const pf_grid *g;
+  double *x[3];
+  int *body;
+} slot_view;
+
+static int slot_view_build(const pf_contact *c, const pf_grid *g, pf_int n, slot_view *sv) {
+  *sv = (slot_view){g, {NULL, NULL, NULL}, NULL};
+  for (int a = 0; a < 3; a++) PF_MALLOC(sv->x[a], n);
+  PF_MALLOC(sv->body, n);
+  for (pf_int s = 0; s < n; s++) {
+    const pf_int j = g->item[s];
+    for (int a = 0; a < 3; a++) sv->x[a][s] = c->y[3 * j + a];
+    sv->body[s] = c->vbody[j];
+  }
+  return 0;
+}
+
+static void slot_view_free(slot_view *sv) {
+  for (int a = 0; a < 3; a++) PF_FREE(sv->x[a]);
+  PF_FREE(sv->body);
+}
+
+/* Partners of owned particle e in pair k among the view entities of body `other` (the grid's
+ * slots sv). The bins of a row along x are consecutive slots: each row is one run, tested in
+ * blocks without a branch (the test dist2's, term by term), then its hits pushed in slot order. */
+static int point_candidates(const pf_contact *c, const slot_view *sv, pf_int e, int k, int other, cand_list *l) {
+  enum { B = 64 };
+  const pf_grid *g = sv->g;
+  const double reach = c->pair[k].radius + c->skin, r2 = reach * reach;
+  const double p0 = c->y[3 * e], p1 = c->y[3 * e + 1], p2 = c->y[3 * e + 2];
   int lo[3], hi[3];
   pf_contact_grid_range(g, &c->y[3 * e], reach, lo, hi);
   for (int z = lo[2]; z <= hi[2]; z++)
-    for (int y = lo[1]; y <= hi[1]; y++)
-      for (int x = lo[0]; x <= hi[0]; x++) {
-        pf_int bin = (z * g->dim[1] + y) * g->dim[0] + x;
-        for (pf_int s = g->start[bin]; s < g->start[bin + 1]; s++) {
-          pf_int j = g->item[s];
-          if (j == e || c->vbody[j] != other || dist2(&c->y[3 * e], &c->y[3 * j]) > reach * reach) continue;
-          PF_CALL(cand_push(l, k, j, c->gid[j]));
+    for (int y = lo[1]; y <= hi[1]; y++) {
+      const pf_int row = (z * g->dim[1] + y) * g->dim[0];
+      const pf_int s1 = g->start[row + hi[0] + 1];
+      for (pf_int s0 = g->start[row + lo[0]]; s0 < s1; s0 += B) {
+        const int n = s1 - s0 < B ? (int)(s1 - s0) : B;
+        uint8_t hit[B];
+        for (int q = 0; q < n; q++) {
+          const double d0 = p0 - sv->x[0][s0 + q], d1 = p1 - sv->x[1][s0 + q], d2 = p2 - sv->x[2][s0 + q];
+          hit[q] = (d0 * d0 + d1 * d1 + d2 * d2 <= r2) & (sv->body[s0 + q] == other);
+        }
+        for (int q = 0; q < n; q++) {
+          const pf_int j = g->item[s0 + q];
+          if (hit[q] && j != e) PF_CALL(cand_push(l, k, j, c->gid[j]));
         }
       }
+    }
   return 0;
 }
 
@@ -450,40 +487,65 @@ static int face_candidates(const pf_contact *c, const face_set *s, pf_int e, int
   return 0;
 }
 
-/* The m candidates v of owned particle e, sorted by (pair, partner gid): each short-range
- * candidate of e's own body gets the bond of e's family to it (-1: never bonded), found by
- * merging the pair's candidates with e's family row, both sorted by global id (pd/family.c);
- * every other candidate gets -1. Returns the family entries read. */
-static int64_t resolve_bonds(const pf_contact *c, const pf_points *pts, pf_int e, pf_candidate *v, int64_t m) {
-  const pf_family *fam = c->body[c->vbody[e]].fam;
-  const int64_t row0 = fam ? fam->offset[c->local[e] - fam->first] : 0;
-  const int64_t row1 = fam ? fam->offset[c->local[e] - fam->first + 1] : 0;
-  int64_t reads = 0;
-  for (int64_t q = 0; q < m;) {
-    const int32_t k = v[q].pair;
-    const int mine = c->pair[k].method->bonds && fam;
-    int64_t b = row0;
-    for (; q < m && v[q].pair == k; q++) {
-      pf_candidate *cd = &v[q];
-      const pf_gid g = cd->key;
-      cd->bond = -1;
-      if (!mine || c->vbody[cd->j] != c->vbody[e]) continue;
-      while (b < row1 && (reads++, pts->gid[fam->neighbor[b]] < g)) b++;
-      if (b < row1 && pts->gid[fam->neighbor[b]] == g) cd->bond = b;
-    }
-  }
-  return reads;
-}
-
-
 /* The last build's candidates, kept for the pairs not rebuilt: CSR over the owned entities
  * (which a build does not change), and the new view index of each of the last view's ghosts
- * (NULL on one rank: no ghosts). */
+ * (NULL on one rank: no ghosts), and the
+ * global ids of those ghosts. */
 typedef struct {
   const int64_t *off;
   const pf_candidate *cand;
   const pf_int *ghost; /* [last nview - nown] new view index, -1: not in the new view */
+  const pf_gid *gid;   /* [last nview - nown] the last view's ghosts' global ids */
 } kept_list;
+
+/* The partner's global id of candidate x of the last build (a candidate's key gives way to its
+ * bond once built): an owned entity keeps its view index from build to build. */
+static pf_gid kept_gid(const pf_contact *c, const kept_list *old, const pf_candidate *x) {
+  return x->j < c->nown ? c->gid[x->j] : old->gid[x->j - c->nown];
+}
+
+/* The first entry of the family row [lo, hi) (sorted by global id) whose neighbour's global id
+ * is not below g, by bisection; adds the entries read to *reads. */
+static int64_t row_lower_bound(const pf_points *pts, const pf_family *fam, int64_t lo, int64_t hi, pf_gid g,
+                               int64_t *reads) {
+  while (lo < hi) {
+    const int64_t mid = lo + (hi - lo) / 2;
+    ++*reads;
+    if (pts->gid[fam->neighbor[mid]] < g) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}
+
+/* The m candidates v of pair k of owned particle e, sorted by partner gid: each short-range
+ * candidate of e's own body gets the bond of e's family to it (-1: never bonded); every other
+ * candidate gets -1. A partner that was a candidate of the pair at the last build (o, no of
+ * them, sorted by gid) takes the bond found then; a new one's is found by bisection of e's
+ * family row (sorted by global id, pd/family.c) from the last one found on. Between two builds
+ * most partners stay, so a build reads a few family entries a particle, not half its row.
+ * Returns the family entries read. */
+static int64_t resolve_bonds(const pf_contact *c, const pf_points *pts, pf_int e, int k, pf_candidate *v, int64_t m,
+                             const kept_list *old, const pf_candidate *o, int64_t no) {
+  const pf_family *fam = c->body[c->vbody[e]].fam;
+  const int mine = c->pair[k].method->bonds && fam;
+  const int64_t row0 = mine ? fam->offset[c->local[e] - fam->first] : 0;
+  const int64_t row1 = mine ? fam->offset[c->local[e] - fam->first + 1] : 0;
+  int64_t reads = 0, b = row0, t = 0;
+  for (int64_t q = 0; q < m; q++) {
+    pf_candidate *cd = &v[q];
+    const pf_gid g = cd->key;
+    cd->bond = -1;
+    if (!mine || c->vbody[cd->j] != c->vbody[e]) continue;
+    while (t < no && kept_gid(c, old, &o[t]) < g) t++;
+    if (t < no && kept_gid(c, old, &o[t]) == g) {
+      cd->bond = o[t].bond;
+      continue;
+    }
+    b = row_lower_bound(pts, fam, b, row1, g, &reads);
+    if (b < row1 && (reads++, pts->gid[fam->neighbor[b]] == g)) cd->bond = b;
+  }
+  return reads;
+}
 
 /* Pair k's candidates of owned entity e from the last build (from *q on, the entity's list
  * sorted by pair) into l, their ghost partners renumbered; counts into *missed a partner no
@@ -512,7 +574,7 @@ static int kept_candidates(const pf_contact *c, const kept_list *old, pf_int e, 
  * interaction); a stale pair's searched, sorted by partner (gid or face index) and its bonds
  * resolved, another pair's kept from the last build (old). In pair order: the list is sorted
  * by (pair, partner). Adds the family entries read to *reads. */
-static int entity_candidates(const pf_contact *c, const pf_points *pts, const pf_grid *g, const face_set (*fs)[2],
+static int entity_candidates(const pf_contact *c, const pf_points *pts, const slot_view *sv, const face_set (*fs)[2],
                              const kept_list *old, pf_int e, cand_list *l, int64_t *reads, int64_t *missed) {
   const int b = c->vbody[e], fe = c->body[b].is_fe;
   int64_t q = old ? old->off[e] : 0;
@@ -527,23 +589,26 @@ static int entity_candidates(const pf_contact *c, const pf_points *pts, const pf
     if (p->method->partners == PF_CONTACT_PARTNER_FACES) {
       const pf_contact_side *sd = pf_contact_facing(p, b);
       PF_CALL(face_candidates(c, &fs[k][sd - p->side], e, k, l));
-    } else PF_CALL(point_candidates(c, g, e, k, p->a == b ? p->b : p->a, l));
+    } else PF_CALL(point_candidates(c, sv, e, k, p->a == b ? p->b : p->a, l));
     const int64_t m = l->n - s;
     if (m == 0) continue; /* (none yet: l->v may still be NULL, which qsort must not get) */
     if (m <= 64) cand_sort(&l->v[s], m);
     else qsort(&l->v[s], (size_t)m, sizeof *l->v, cand_cmp);
-    *reads += resolve_bonds(c, pts, e, &l->v[s], m);
+    int64_t o0 = old ? old->off[e] : 0, o1 = o0; /* the pair's candidates at the last build */
+    while (old && o0 < old->off[e + 1] && old->cand[o0].pair < k) o0++;
+    for (o1 = o0; old && o1 < old->off[e + 1] && old->cand[o1].pair == k; o1++) continue;
+    *reads += resolve_bonds(c, pts, e, k, &l->v[s], m, old, old ? &old->cand[o0] : NULL, o1 - o0);
   }
   return 0;
 }
 
 /* The candidates of owned entities [e0, e1) into l; off[e - e0] the start of entity e's. */
-static int chunk_candidates(const pf_contact *c, const pf_points *pts, const pf_grid *g, const face_set (*fs)[2],
+static int chunk_candidates(const pf_contact *c, const pf_points *pts, const slot_view *sv, const face_set (*fs)[2],
                             const kept_list *old, pf_int e0, pf_int e1, cand_list *l, int64_t *off, int64_t *reads,
                             int64_t *missed) {
   for (pf_int e = e0; e < e1; e++) {
     off[e - e0] = l->n;
-    PF_CALL(entity_candidates(c, pts, g, fs, old, e, l, reads, missed));
+    PF_CALL(entity_candidates(c, pts, sv, fs, old, e, l, reads, missed));
   }
   return 0;
 }
@@ -552,7 +617,7 @@ static int chunk_candidates(const pf_contact *c, const pf_points *pts, const pf_
  * fixed chunks of entities, each filling its own list, and the lists are joined in chunk order:
  * an entity's candidates depend on it alone, so the lists are the same bits on any number of
  * threads. Adds to *missed the kept partners no longer in the view. */
-static int chunked_candidates(pf_contact *c, const pf_points *pts, const pf_grid *g, const face_set (*fs)[2],
+static int chunked_candidates(pf_contact *c, const pf_points *pts, const slot_view *sv, const face_set (*fs)[2],
                               const kept_list *old, int64_t **off_out, pf_candidate **cand_out, int64_t *cap_out,
                               int64_t *missed) {
   enum { CHUNK = 1024 };
@@ -567,7 +632,7 @@ static int chunked_candidates(pf_contact *c, const pf_points *pts, const pf_grid
 #pragma omp parallel for schedule(dynamic, 1) reduction(max : ierr) reduction(+ : reads, miss)
   for (int64_t q = 0; q < nchunk; q++) {
     const pf_int e0 = (pf_int)(q * CHUNK), e1 = (pf_int)(q + 1 < nchunk ? (q + 1) * CHUNK : c->nown);
-    const int err = chunk_candidates(c, pts, g, fs, old, e0, e1, &list[q], &off[e0], &reads, &miss);
+    const int err = chunk_candidates(c, pts, sv, fs, old, e0, e1, &list[q], &off[e0], &reads, &miss);
     ierr = err > ierr ? err : ierr; /* (the reduction's private copy starts at INT_MIN) */
   }
   int64_t n = 0;
@@ -629,30 +694,34 @@ static int build_candidates(pf_contact *c, const pf_points *pts, const pf_gid *l
   for (int k = 0; k < c->npairs; k++)
     all &= c->stale[k], points |= c->stale[k] && c->pair[k].method->partners == PF_CONTACT_PARTNER_POINTS;
   pf_grid g = {{0, 0, 0}, 0, {0, 0, 0}, NULL, NULL};
+  slot_view sv = {&g, {NULL, NULL, NULL}, NULL};
   PF_CALL(pf_contact_grid_build(&g, points ? c->nview : 0, c->y, cell));
   face_set(*fs)[2];
   PF_MALLOC(fs, c->npairs);
-  int ierr = 0;
+  int ierr = slot_view_build(c, &g, points ? c->nview : 0, &sv);
   for (int k = 0; k < c->npairs && !ierr; k++)
     if (c->stale[k] && c->pair[k].method->partners == PF_CONTACT_PARTNER_FACES)
       for (int s = 0; s < c->pair[k].nside && !ierr; s++)
         ierr = face_set_build(c, &c->pair[k], &c->pair[k].side[s], &fs[k][s]);
   pf_int *ghost = NULL;
   if (!ierr && !all && nlast > 0) ierr = renumber_ghosts(c, last_gid, nlast, &ghost);
-  const kept_list old = {c->cand_off, c->cand, ghost};
+  const kept_list old = {c->cand_off, c->cand, ghost, last_gid};
+  const kept_list *prev = c->built ? &old : NULL; /* (kept for the pairs not stale; bonds of the others) */
   int64_t *off = NULL, cap = 0, missed = 0;
   pf_candidate *cand = NULL;
-  if (!ierr) ierr = chunked_candidates(c, pts, &g, (const face_set(*)[2])fs, all ? NULL : &old, &off, &cand, &cap, &missed);
+  if (!ierr) ierr = chunked_candidates(c, pts, &sv, (const face_set(*)[2])fs, prev, &off, &cand, &cap, &missed);
   if (!ierr && !all && pf_max_all((double)missed) > 0) { /* (collective: every rank takes the same way) */
     free(off), free(cand);
     for (int k = 0; k < c->npairs; k++) c->stale[k] = 1;
     pf_contact_grid_free(&g);
+    slot_view_free(&sv);
     ierr = pf_contact_grid_build(&g, c->nview, c->y, cell);
+    if (!ierr) ierr = slot_view_build(c, &g, c->nview, &sv);
     for (int k = 0; k < c->npairs && !ierr; k++)
       if (c->pair[k].method->partners == PF_CONTACT_PARTNER_FACES)
         for (int s = 0; s < c->pair[k].nside && !ierr; s++)
           if (!fs[k][s].face) ierr = face_set_build(c, &c->pair[k], &c->pair[k].side[s], &fs[k][s]);
-    if (!ierr) ierr = chunked_candidates(c, pts, &g, (const face_set(*)[2])fs, NULL, &off, &cand, &cap, &missed);
+    if (!ierr) ierr = chunked_candidates(c, pts, &sv, (const face_set(*)[2])fs, prev, &off, &cand, &cap, &missed);
   }
   if (!ierr) {
     free(c->cand_off), free(c->cand);
@@ -662,6 +731,7 @@ static int build_candidates(pf_contact *c, const pf_points *pts, const pf_gid *l
   for (int k = 0; k < c->npairs; k++) face_set_free(&fs[k][0]), face_set_free(&fs[k][1]);
   free(fs);
   pf_contact_grid_free(&g);
+  slot_view_free(&sv);
   return ierr;
 }
 

@@ -602,6 +602,7 @@ int pf_pd_family_free(pf_family *fam) {
   PF_FREE(fam->broken);
   PF_FREE(fam->vfrac);
   PF_FREE(fam->rest);
+  PF_FREE(fam->recorded);
   PF_FREE(fam->state);
   return 0;
 }
@@ -660,33 +661,65 @@ static pf_int row_of_bond(const int64_t *offset, pf_int n, int64_t k) {
   return lo;
 }
 
+/* Bit l of the result: byte l of the 8 bytes at p is not zero (bytes in memory order). The
+ * bytes' bits are folded into bit 0 of each byte, which one multiplication gathers into the top
+ * byte. */
+static inline unsigned nonzero_bytes(const uint8_t *p) {
+  uint64_t t;
+  memcpy(&t, p, sizeof t);
+  t |= t >> 4, t |= t >> 2, t |= t >> 1;
+  return (unsigned)(((t & 0x0101010101010101ull) * 0x0102040810204080ull) >> 56);
+}
+
+/* The broken bonds among bonds [64 w, 64 w + 64) of nb, as bits. */
+static uint64_t broken_bits(const uint8_t *broken, int64_t w, int64_t nb) {
+  uint64_t m = 0;
+  if (64 * w + 64 <= nb) {
+    for (int q = 0; q < 8; q++) m |= (uint64_t)nonzero_bytes(&broken[64 * w + 8 * q]) << (8 * q);
+  } else {
+    for (int64_t k = 64 * w; k < nb; k++) m |= (uint64_t)(broken[k] != 0) << (k - 64 * w);
+  }
+  return m;
+}
+
+/* Bond k of owned point i takes its current length as its rest length, never above it (no force
+ * at the break), and above 0 (0 means not recorded). */
+static void record_rest(const pf_family *fam, const pf_points *pts, pf_int i, int64_t k) {
+  const double *yi = &pts->y[3 * i], *yj = &pts->y[3 * fam->neighbor[k]];
+  const double d0 = yj[0] - yi[0], d1 = yj[1] - yi[1], d2 = yj[2] - yi[2], r = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+  float rest = (float)r;
+  if ((double)rest > r) rest = nextafterf(rest, 0.0f);
+  fam->rest[k] = fmaxf(rest, FLT_MIN);
+}
+
+void pf_pd_body_rest_at_break(const pf_pd_body *b, const pf_points *pts, pf_int i, int64_t k) {
+  const pf_family *fam = &b->fam;
+  const uint64_t bit = 1ull << (k % 64);
+  if (!b->rest_at_break || (__atomic_load_n(&fam->recorded[k / 64], __ATOMIC_RELAXED) & bit)) return;
+  __atomic_fetch_or(&fam->recorded[k / 64], bit, __ATOMIC_RELAXED); /* (a word spans rows of two threads) */
+  record_rest(fam, pts, i, k);
+}
+
 /* Each bond that broke since the last call takes its current length as its rest length. Called
- * every step when the body is in self-contact, so the scan reads the broken flags eight at a
- * time and skips a word of intact bonds at once (PF_FAMILY_SLACK zeros end the array): before,
- * testing every bond cost 15 % of a PMB step in which nothing broke. A word with broken bonds
- * finds its unrecorded ones by one mask (5.7 % of the expanding tube's run bond by bond). */
+ * every step when the body is in self-contact, so the scan reads only the broken flags, 64 at
+ * a time, against the bits of the bonds already recorded (fam->recorded): in the fragmenting
+ * cylinder, where most blocks of bonds hold a broken one, reading the rest lengths of every
+ * such block to find the new ones cost 17 % of the run. PMB and LPS record their failed bonds
+ * as they release them (pf_pd_body_rest_at_break), so that the scan finds none of theirs. */
 void pf_pd_body_record_breaks(pf_pd_body *b, const pf_points *pts) {
   pf_family *fam = &b->fam;
-  const int64_t nbonds = fam->offset[b->n], nwords = (nbonds + 7) / 8;
+  const int64_t nbonds = fam->offset[b->n], nwords = (nbonds + 63) / 64;
+  b->rest_at_break = 1; /* (from the next pass on; what it did not record, the scan finds) */
 #pragma omp parallel for schedule(static)
   for (int64_t w = 0; w < nwords; w++) {
-    uint64_t word;
-    memcpy(&word, &fam->broken[8 * w], sizeof word);
-    if (!word) continue;
-    /* the word's broken bonds not yet recorded, as bits, without a branch per bond (in a
-     * fragmenting body most words hold broken bonds; the slack past the last bond is zero) */
-    const uint8_t *bw = &fam->broken[8 * w];
-    const float *rw = &fam->rest[8 * w];
-    unsigned todo = 0;
-    for (int l = 0; l < 8; l++) todo |= (unsigned)((bw[l] != 0) & !(rw[l] > 0.0f)) << l;
+    uint64_t todo = broken_bits(fam->broken, w, nbonds) & ~fam->recorded[w];
+    if (!todo) continue;
+    fam->recorded[w] |= todo;
+    pf_int li = row_of_bond(fam->offset, b->n, 64 * w + __builtin_ctzll(todo));
     for (; todo; todo &= todo - 1) {
-      const int64_t k = 8 * w + __builtin_ctz(todo);
-      const pf_int i = b->first + row_of_bond(fam->offset, b->n, k);
-      const double *yi = &pts->y[3 * i], *yj = &pts->y[3 * fam->neighbor[k]];
-      const double d0 = yj[0] - yi[0], d1 = yj[1] - yi[1], d2 = yj[2] - yi[2], r = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-      float rest = (float)r;
-      if ((double)rest > r) rest = nextafterf(rest, 0.0f); /* never above: no force at the break */
-      fam->rest[k] = fmaxf(rest, FLT_MIN);                 /* (0 means not recorded) */
+      const int64_t k = 64 * w + __builtin_ctzll(todo);
+      while (fam->offset[li + 1] <= k) li++; /* (the word's rows, in order) */
+      record_rest(fam, pts, b->first + li, k);
     }
   }
 }

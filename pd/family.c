@@ -253,7 +253,8 @@ int pf_pd_family_from_rows(const pf_bond_rows *rows, const pf_int *local, pf_int
   PF_MALLOC(fam->neighbor, nb + PF_FAMILY_SLACK);
   PF_MALLOC(fam->broken, nb + PF_FAMILY_SLACK);
   if (partial_volumes) PF_MALLOC(fam->vfrac, nb + PF_FAMILY_SLACK);
-  PF_MALLOC(fam->rest, nb + PF_FAMILY_SLACK); /* (pf_pd_body_record_breaks reads whole words) */
+  PF_MALLOC(fam->rest, nb + PF_FAMILY_SLACK);
+  PF_MALLOC(fam->recorded, nb / 64 + 1);
   if (ns > 0) PF_MALLOC(fam->state, nb * ns);
   for (pf_int i = 0; i <= n; i++) fam->offset[i] = rows->offset[first + i] - o0;
   for (int64_t k = 0; k < nb; k++) fam->neighbor[k] = local[o0 + k];
@@ -261,6 +262,7 @@ int pf_pd_family_from_rows(const pf_bond_rows *rows, const pf_int *local, pf_int
   /* each array from the bond field of its name (left zero, or 1, where the rows lack it) */
   PF_CALL(pf_bond_rows_field_copy(rows, "broken", PF_BOND_UINT8, o0, nb, 1, fam->broken));
   PF_CALL(pf_bond_rows_field_copy(rows, "rest", PF_BOND_FLOAT, o0, nb, 1, fam->rest));
+  for (int64_t k = 0; k < nb; k++) fam->recorded[k / 64] |= (uint64_t)(fam->rest[k] > 0) << (k % 64);
   if (partial_volumes) PF_CALL(pf_bond_rows_field_copy(rows, "vfrac", PF_BOND_FLOAT, o0, nb, 1, fam->vfrac));
   if (ns > 0) PF_CALL(pf_bond_rows_field_copy(rows, "state", PF_BOND_DOUBLE, o0, nb, ns, fam->state));
   return 0;

@@ -283,7 +283,7 @@ static void release_at(const pf_pd_body *b, const pf_points *pts, const double *
 
 /* The energy (J) point i's PF_BOND_FRESH bonds release, booked at the middle of the step: the
  * mean of the change at this pass's positions and at the last pass's (docs/theory/pd.md §5.1,
- * "Time step"); marks them broken, and adds their weighted volume to i's lost_volume. Q + max(C, 0)
+ * "Time step"); marks them broken (with their rest length in self-contact), and adds their weighted volume to i's lost_volume. Q + max(C, 0)
  * is released (returned with C's negative part: the total change), min(C, 0) is booked as
  * redistribution. */
 double pf_pd_lps_release_point(pf_pd_body *b, const pf_points *pts, pf_int i, double m, const double *ep,
@@ -298,7 +298,7 @@ double pf_pd_lps_release_point(pf_pd_body *b, const pf_points *pts, pf_int i, do
   release_at(b, pts, pts->y, i, m, ep, stride, now);
   release_at(b, pts, pf_pd_previous_positions(pts), i, m, ep, stride, before);
   for (; k < k1; k++)
-    if (fam->broken[k] == PF_BOND_FRESH) fam->broken[k] = PF_BOND_BROKEN;
+    if (fam->broken[k] == PF_BOND_FRESH) fam->broken[k] = PF_BOND_BROKEN, pf_pd_body_rest_at_break(b, pts, i, k);
   b->lost_volume[i] += now[2];
   *redistribution = pts->vol[i] * 0.5 * (fmin(now[1], 0.0) + fmin(before[1], 0.0));
   return pts->vol[i] * 0.5 * (now[0] + now[1] + before[0] + before[1]);

@@ -45,7 +45,7 @@ static double pmb_bond_energy(const pf_pd_body *b, const pf_points *pts, const d
 
 /* The energy (J) point i's bonds that failed in this pass held at the middle of the step: the
  * mean of their energies at this pass's positions and at the last pass's (docs/theory/pd.md §5.1,
- * "Time step"); marks them broken. Out of line: a bond fails once. */
+ * "Time step"); marks them broken (with their rest length in self-contact). Out of line: a bond fails once. */
 static __attribute__((noinline)) double pmb_release(const pf_pd_body *b, const pf_points *pts, pf_int i,
                                                     double c) {
   const pf_family *fam = &b->fam;
@@ -55,6 +55,7 @@ static __attribute__((noinline)) double pmb_release(const pf_pd_body *b, const p
     if (fam->broken[k] == PF_BOND_FRESH) {
       w += 0.5 * (pmb_bond_energy(b, pts, pts->y, i, k, c) + pmb_bond_energy(b, pts, yp, i, k, c));
       fam->broken[k] = PF_BOND_BROKEN;
+      pf_pd_body_rest_at_break(b, pts, i, k);
     }
   return w * pts->vol[i];
 }

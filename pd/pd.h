@@ -26,6 +26,8 @@ typedef struct {
   float *vfrac;     /* [nbonds] partial-volume fraction of the neighbour, or NULL */
   float *rest;      /* [nbonds] a broken bond's length when it broke (the contact rest length of
                        its ends, pf_pd_body_record_breaks), 0 while intact or not recorded */
+  uint64_t *recorded; /* [nbonds / 64 + 1] bit k % 64 of word k / 64: rest[k] > 0, so that
+                         pf_pd_body_record_breaks finds the new breaks without reading rest */
   int nstate;       /* reals of material state per bond: set by the material's create (0: none) */
   double *state;    /* [nbonds * nstate] the material's per-bond state, or NULL; it travels with
                        the rows (re-partition, checkpoint). Freed by the material's destroy. */

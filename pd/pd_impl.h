@@ -104,6 +104,8 @@ struct pf_pd_body {
                           pf_pd_lps_release; NULL for the other materials */
   uint8_t *lost;     /* [n] scratch of the threaded bond loops: 1 where the point's row has
                         PF_BOND_FRESH bonds, whose energy a serial pass then books */
+  int rest_at_break; /* 1 once the body is in self-contact (pf_pd_body_record_breaks): the
+                        releases of PMB and LPS give a failing bond its rest length at once */
   double damage_work; /* change of the stored energy when this rank's points lost bonds (the
                          energy with them less without, at the same positions) since it was last
                          taken (pf_pd_body_take_damage_work), J */
@@ -347,6 +349,10 @@ int64_t pf_pd_lps_batched_force(pf_pd_body *b, pf_points *pts, const double *rec
 /* Ordinary state-based materials (LPS, elastic-plastic): the weighted volume
  * m_i = sum_j omega |xi|^2 V_j of the owned points (Silling et al. 2007, eq. 90) into m, then the
  * ghosts' values; an isolated point is an input error naming it (pd/body.c). */
+/* Bond k of owned point i, failed in this force pass: in a body in self-contact, its rest length
+ * now, the length pf_pd_body_record_breaks would give it at the contact's evaluation of the same
+ * positions, where the bond's neighbour is still in cache. Threads may call it for their own rows. */
+void pf_pd_body_rest_at_break(const pf_pd_body *b, const pf_points *pts, pf_int i, int64_t k);
 int pf_pd_weighted_volumes(const pf_pd_body *b, pf_points *pts, double *m);
 /* sum_i term(i) over the owned points, the terms evaluated by the threads and summed in point
  * order: the same bits for every thread count (NAN when out of memory). */
