@@ -368,8 +368,11 @@ typedef struct {
   double *X;   /* [3n] */
   double *vol; /* [n] */
   double *cell;  /* [n] edge of the cube cell of each point */
-  int32_t *block; /* [n] block id from a point file (0 for lattices) */
+  int32_t *block; /* [n] block id from a point file or an Exodus block (0 for lattices) */
   pf_int n;
+  int nnamed;            /* Exodus: the blocks taken, each an id and a name (0 for a point file) */
+  int32_t *named_id;     /* [nnamed] */
+  char (*named)[64];     /* [nnamed] */
   int nsets;          /* named sets of the cloud's points (an Exodus discretization's node sets,
                         a point file's node-set files) */
   pf_point_set *sets; /* [nsets] ids are indices into the cloud; body -1 */

@@ -83,7 +83,9 @@ int pf_point_cloud_free(pf_point_cloud *pc) {
   PF_FREE(pc->vol);
   PF_FREE(pc->cell);
   PF_FREE(pc->block);
-  pc->n = 0;
+  PF_FREE(pc->named_id);
+  PF_FREE(pc->named);
+  pc->n = pc->nnamed = 0;
   return 0;
 }
 

@@ -400,6 +400,18 @@ static int read_node_sets(exo_reader *r, pf_point_cloud *pc) {
   return ierr;
 }
 
+/* The ids and names of the blocks taken, for a body's material_regions by block name. */
+static int name_blocks(const exo_reader *r, pf_point_cloud *pc) {
+  PF_MALLOC(pc->named_id, r->nblk);
+  PF_MALLOC(pc->named, r->nblk);
+  for (int64_t b = 0; b < r->nblk; b++) {
+    if (!r->take[b]) continue;
+    pc->named_id[pc->nnamed] = (int32_t)r->blk_id[b];
+    memcpy(pc->named[pc->nnamed++], r->blk_name[b], sizeof pc->named[0]);
+  }
+  return 0;
+}
+
 /* "cyl.g: 4560 points from 4560 HEX8 elements, 4 node set(s)" */
 static void log_read(const exo_reader *r, const pf_point_cloud *pc) {
   char kinds[160] = "";
@@ -424,6 +436,7 @@ static int read_file(exo_reader *r, pf_point_cloud *pc) {
   PF_CALL(read_header(r));
   PF_CALL(choose_blocks(r));
   PF_CALL(read_blocks(r, pc));
+  PF_CALL(name_blocks(r, pc));
   PF_CALL(read_node_sets(r, pc));
   return pf_point_cloud_check_distinct(r->path, pc);
 }

@@ -51,7 +51,11 @@ static const pf_key crack_keys[] = {
 static const pf_key part_keys[] = {
     {"material", PF_KEY_STRING, 1, NULL, "", "a name under materials:, of the body material's model (a continuum model: its constants, an "
      "orthotropic one its axes, may differ)", NULL},
-    {"region", PF_KEY_MAP, 1, NULL, "", "the points (reference positions) that take it", pf_region_keys},
+    {"region", PF_KEY_MAP, 0, NULL, "", "the points (reference positions) that take it (give region or block)",
+     pf_region_keys},
+    {"block", PF_KEY_STRING, 0, NULL, "",
+     "the points of this block of the body's discretization that take it: a points_file's block id, an exodus "
+     "SPHERE, HEX8 or TET4 block's name or id (give region or block)", NULL},
     PF_KEY_END};
 
 static const pf_key interface_damage_keys[] = {
@@ -79,7 +83,8 @@ static const pf_key body_keys[] = {
     {"material_regions", PF_KEY_LIST, 0, NULL, "",
      "several materials in one body (pmb, lps, elastic_plastic, and one continuum model as correspondence; constant "
      "horizon): "
-     "each entry's region takes its material, later entries over earlier ones; the other points keep `material` "
+     "each entry's region, or block of the discretization, takes its material, later entries over earlier ones; "
+     "the other points keep `material` "
      "(docs/theory/interfaces.md)",
      part_keys},
     {"interface", PF_KEY_MAP, 0, "micromodulus: series", "", "how a bond between two materials is formed",
@@ -590,6 +595,7 @@ int pf_pd_body_destroy(pf_pd_body **b) {
   free((*b)->cracks);
   free((*b)->damage_data);
   free((*b)->wc_bond);
+  pf_pd_parts_free(*b);
   free((*b)->history.committed);
   pf_expr_destroy(&(*b)->hz_expr);
   PF_FREE(*b);

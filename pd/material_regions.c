@@ -6,8 +6,11 @@
  * materials takes the interface rule's micromodulus (pf_pd_bond_stiffness). */
 #include "pd/pd_impl.h"
 
+#include <math.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 int pf_pd_part_read_constants(const pf_deck *d, const pf_node *mat, const char *name, const pf_pd_body *b,
@@ -132,26 +135,36 @@ int pf_pd_parts_read(const pf_deck *d, const pf_node *body, const pf_node *mater
     return pf_deck_error(d, list, "material_regions", "give 1 to %d entries (got %d)", PF_PD_MAX_PARTS - 1, n);
   PF_CALL(check_body(d, list, body, b));
   for (int q = 1; q <= n; q++) {
-    const pf_node *entry = pf_node_item(list, q - 1);
-    if (!pf_node_get(entry, "region"))
-      return pf_deck_error(d, entry, "region", "each entry of material_regions needs a region and a material");
+    const pf_node *entry = pf_node_item(list, q - 1), *rn = pf_node_get(entry, "region"), *bn = pf_node_get(entry, "block");
+    if (!rn == !bn)
+      return pf_deck_error(d, bn ? bn : entry, bn ? "block" : "region", "body '%s': an entry of material_regions "
+                           "gives %s of block and region (give exactly one)", b->name, bn ? "both" : "neither");
     PF_CALL(read_part(d, entry, materials, b, q));
-    PF_CALL(pf_region_from_deck(d, pf_node_get(entry, "region"), NULL, -1, &b->parts[q].region));
+    b->parts[q].block = bn;
+    if (rn) PF_CALL(pf_region_from_deck(d, rn, NULL, -1, &b->parts[q].region));
   }
   b->nparts = n + 1;
   return read_interface(d, body, b);
 }
 
-/* A region that claims no point of the body is an error naming its entry (collective). */
+/* A region or block that claims no point of the body is an error naming its entry (collective). */
 static int check_claims(const pf_pd_body *b) {
   double count[PF_PD_MAX_PARTS] = {0};
   for (pf_int i = b->first; i < b->first + b->n; i++) count[(int)b->part[i]] += 1;
-  for (int q = 1; q < b->nparts; q++)
+  for (int q = 1; q < b->nparts; q++) {
+    const char *key = b->parts[q].block ? "block" : "region";
     if (pf_sum_all(count[q]) == 0)
-      return pf_deck_error(b->deck, b->parts[q].node, "region", "body '%s': the region of material '%s' "
-                           "holds none of its points (or later entries claim them all)", b->name,
-                           b->parts[q].material);
+      return pf_deck_error(b->deck, b->parts[q].node, key, "body '%s': the %s of material '%s' holds none of its "
+                           "points (or later entries claim them all)", b->name, key, b->parts[q].material);
+  }
   return 0;
+}
+
+/* The body's first global id (its points are numbered from it in cloud order; collective). */
+static pf_gid first_gid(const pf_pd_body *b, const pf_points *pts) {
+  double least = INFINITY;
+  for (pf_int i = b->first; i < b->first + b->n; i++) least = fmin(least, (double)pts->gid[i]);
+  return (pf_gid)pf_min_all(least);
 }
 
 int pf_pd_parts_attach(pf_pd_body *b, pf_points *pts, int fresh) {
@@ -160,13 +173,84 @@ int pf_pd_parts_attach(pf_pd_body *b, pf_points *pts, int fresh) {
   int idx;
   PF_CALL(pf_points_field_register(pts, "material", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT | PF_FIELD_CONSTANT, &idx));
   double *part = pts->fields[idx].data;
-  for (pf_int i = b->first; i < b->first + b->n; i++) { /* (from reference positions: the same on any partition) */
-    part[i] = 0;
-    for (int q = 1; q < b->nparts; q++)
-      if (pf_region_selects(&b->parts[q].region, pts, i)) part[i] = q;
+  const pf_gid g0 = b->block_part ? first_gid(b, pts) : 0;
+  for (pf_int i = b->first; i < b->first + b->n; i++) { /* (from reference positions and global ids: the same
+                                                           on any partition) */
+    const pf_gid j = pts->gid[i] - g0;
+    PF_CHECK(!b->block_part || (j >= 0 && j < b->nblock_part), PF_ERR_INPUT, "body '%s': point %" PF_GID_FMT
+             " is not in its cloud of %" PF_GID_FMT " points", b->name, pts->gid[i], b->nblock_part);
+    part[i] = b->block_part ? b->block_part[j] : 0; /* (the last block entry that claims it) */
+    for (int q = 1; q < b->nparts; q++) /* (later entries over earlier) */
+      if (!b->parts[q].block && q > part[i] && pf_region_selects(&b->parts[q].region, pts, i)) part[i] = q;
   }
   PF_CALL(pf_points_exchange(pts, part, 1));
   b->part = part;
   if (isfinite(b->interface_wc)) PF_CALL(fill_interface_energy(b));
   return fresh ? check_claims(b) : 0;
+}
+
+void pf_pd_parts_free(pf_pd_body *b) {
+  free(b->block_part);
+  b->block_part = NULL, b->nblock_part = 0;
+}
+
+/* "'left' (id 1), 'right' (id 2)" for an Exodus cloud; "1, 2" for a point file (its first 32 ids). */
+static void cloud_blocks(const pf_point_cloud *pc, char *out, size_t len) {
+  int32_t seen[32];
+  int nseen = 0;
+  out[0] = '\0';
+  for (int k = 0; k < pc->nnamed; k++) {
+    size_t used = strlen(out);
+    snprintf(out + used, len - used, "%s'%s' (id %d)", k ? ", " : "", pc->named[k], (int)pc->named_id[k]);
+  }
+  for (pf_int i = 0; !pc->nnamed && i < pc->n && nseen < 32; i++) {
+    int k = 0;
+    while (k < nseen && seen[k] != pc->block[i]) k++;
+    if (k < nseen) continue;
+    seen[nseen++] = pc->block[i];
+    size_t used = strlen(out);
+    snprintf(out + used, len - used, "%s%d", k ? ", " : "", (int)pc->block[i]);
+  }
+}
+
+/* The block id an entry's `block` names in the cloud: an Exodus block's name, else an integer id
+ * that some point of the cloud has; otherwise an error listing the cloud's blocks. */
+static int entry_block(const pf_pd_body *b, const pf_point_cloud *pc, const pf_node *key, int32_t *id) {
+  const char *want = pf_node_text(key);
+  for (int k = 0; want && k < pc->nnamed; k++)
+    if (!strcmp(pc->named[k], want)) return *id = pc->named_id[k], 0;
+  char *end = NULL;
+  const long v = want ? strtol(want, &end, 10) : 0;
+  pf_int count = 0;
+  if (want && end != want && *end == '\0' && v >= INT32_MIN && v <= INT32_MAX)
+    for (pf_int i = 0; i < pc->n; i++) count += pc->block[i] == v;
+  if (count) return *id = (int32_t)v, 0;
+  char known[1024];
+  cloud_blocks(pc, known, sizeof known);
+  return pf_deck_error(b->deck, key, "block", "body '%s': its geometry holds no block '%s' (its blocks: %s)", b->name,
+                       want ? want : "", known);
+}
+
+int pf_pd_body_take_blocks(pf_pd_body *b, const pf_point_cloud *pc) {
+  pf_pd_parts_free(b);
+  int any = 0;
+  for (int q = 1; q < b->nparts; q++) any |= b->parts[q].block != NULL;
+  if (!any) return 0;
+  const pf_node *g = pf_node_get(b->node, "geometry");
+  const char *shape = pf_node_text(pf_node_get(g, "shape"));
+  for (int q = 1; q < b->nparts; q++)
+    if (b->parts[q].block && !(shape && (!strcmp(shape, "points_file") || !strcmp(shape, "exodus"))))
+      return pf_deck_error(b->deck, b->parts[q].block, "block", "body '%s': a block is one of a discretization's "
+                           "(geometry shape points_file or exodus); its shape is '%s'", b->name, shape ? shape : "");
+  PF_MALLOC(b->block_part, pc->n + 1);
+  memset(b->block_part, 0, (size_t)pc->n + 1);
+  b->nblock_part = pc->n;
+  for (int q = 1; q < b->nparts; q++) {
+    int32_t id;
+    if (!b->parts[q].block) continue;
+    PF_CALL(entry_block(b, pc, b->parts[q].block, &id));
+    for (pf_int j = 0; j < pc->n; j++)
+      if (pc->block[j] == id) b->block_part[j] = (uint8_t)q;
+  }
+  return 0;
 }

@@ -125,6 +125,10 @@ int pf_pd_material_known(const char *model);
 const char *pf_pd_material_names(void);
 int pf_pd_body_create(const pf_deck *d, const pf_node *body, const pf_node *materials,
                       pf_pd_body **b);
+/* The body's points as its set-up cloud holds them (every point, in global-id order from the
+ * body's first): the material_regions entries that name a block (pd/material_regions.c) take the
+ * points of that block; an entry whose block the cloud does not hold is an error naming its key. */
+int pf_pd_body_take_blocks(pf_pd_body *b, const pf_point_cloud *pc);
 /* A peridynamic operator over the nodes of a finite-element body (docs/theory/coupling.md §3):
  * its keys from map (pf_pd_coupled_keys, an FE body's `peridynamic:`), its name and material from
  * the FE body's mapping owner: a correspondence body of the FE body's continuum model. */

@@ -32,7 +32,8 @@ typedef struct {
   double kscale;     /* K / K of part 0: a bond-based micromodulus scales with it */
   double mscale;     /* P-wave modulus K + 4G/3 (K where G is not given) over part 0's: the
                         stable step's micromodulus scales with it */
-  pf_region region;  /* the points it claims (part 0: none) */
+  pf_region region;  /* the points it claims (part 0 and a block's entry: none) */
+  const pf_node *block; /* its entry's `block` (the points of a block of the discretization), or NULL */
   const pf_node *node; /* its entry of material_regions (part 0: the body's `material`) */
 } pf_pd_part;
 
@@ -77,6 +78,10 @@ struct pf_pd_body {
   int nparts;
   pf_pd_part parts[PF_PD_MAX_PARTS];
   double *part;
+  uint8_t *block_part; /* [cloud size] by block entries: the part of each point of the body's cloud
+                          (index gid - the body's first gid), 0 where no block entry claims it; NULL
+                          without block entries */
+  pf_gid nblock_part;
   pf_pd_interface_rule interface;
   /* the interface's own damage law (interface: damage:), for the bonds between two materials,
    * which then take it instead of the body's: */
@@ -302,6 +307,7 @@ static inline double pf_pd_bond_stiffness(const pf_pd_body *b, pf_int i, pf_int 
  * and its damage law); at attach, each store point's part into the field "material". */
 int pf_pd_parts_read(const pf_deck *d, const pf_node *body, const pf_node *materials, pf_pd_body *b);
 int pf_pd_parts_attach(pf_pd_body *b, pf_points *pts, int fresh);
+void pf_pd_parts_free(pf_pd_body *b);
 /* The default of pf_pd_material_ops.read_part: the material mapping mat (named name) must be of the
  * body's model; its density, bulk_modulus and shear_modulus into part (checked by the caller). */
 int pf_pd_part_read_constants(const pf_deck *d, const pf_node *mat, const char *name, const pf_pd_body *b,

@@ -7,9 +7,11 @@ What is translated: the discretization (Text File: Peridigm's x y z block_id vol
 node-set text files; Exodus: HEX8, TET4 and SPHERE blocks with the file's node sets), the
 materials (Elastic -> lps, Elastic Plastic -> elastic_plastic, Elastic Correspondence ->
 correspondence with Littlewood's stiffness hourglass control), the critical-stretch damage
-model, the blocks (one perifem body each), short-range-force contact, initial velocities,
-prescribed displacements and velocities, the explicit (Verlet) or quasi-static solver, and the
-output file and frequency. Every key that is not translated is named on stderr, with the reason:
+model, the blocks (one perifem body for the blocks of one material model, horizon and damage
+model, its materials by block, so that bonds cross the blocks as in Peridigm; separate bodies
+otherwise, as said on stderr), short-range-force contact, initial velocities, prescribed
+displacements and velocities, the explicit (Verlet) or quasi-static solver, and the output file
+and frequency. Every key that is not translated is named on stderr, with the reason:
 a key that changes the model (an unknown material, a second solver) stops the translation
 (exit 2, nothing written); one that only changes output or bookkeeping is listed as left out
 (exit 0). Paths in the written deck are relative to its folder. The input is never overwritten.
@@ -83,6 +85,7 @@ class Translator:
     def __init__(self, deck, deck_dir, out_dir):
         self.p, self.deck_dir, self.out_dir = deck, deck_dir, out_dir
         self.left_out = []  # (key, why)
+        self.notes = []  # how the blocks became bodies
         self.out = {"title": "translated from Peridigm"}
 
     def leave(self, key, why):
@@ -166,6 +169,70 @@ class Translator:
             sets[k] = files[0]
         return sets
 
+    def block_entry(self, key, b):
+        """One entry of Blocks: its blocks, material, and the body it would make on its own."""
+        mkey = b["Material"]
+        m = self.p.get("Materials", {}).get(mkey)
+        if m is None:
+            raise Untranslatable(f"Blocks.{key}.Material: '{mkey}' is not under Materials")
+        for k in b:
+            if k not in ("Block Names", "Material", "Horizon", "Damage Model"):
+                raise Untranslatable(f"Blocks.{key}.{k} (not translated)")
+        material = self.material(mkey, m)
+        body = {"name": name_of(key), "material": name_of(mkey), "horizon": b["Horizon"]}
+        inf = self.influence(mkey, m)
+        if inf != "constant":
+            body["influence"] = inf
+        if m.get("Material Model") == "Elastic Correspondence":
+            body["hourglass"] = {"type": "stiffness", "coefficient": m.get("Hourglass Coefficient", 0.0)}
+        if "Damage Model" in b:
+            body["damage"] = self.damage(b["Damage Model"])
+        return str(b["Block Names"]).split(), name_of(mkey), material, body
+
+    def contact_blocks(self):
+        """The blocks a contact interaction names: each stays a body of its own."""
+        inter = (self.p.get("Contact") or {}).get("Interactions", {})
+        return {i.get(k) for i in inter.values() if isinstance(i, dict) for k in ("First Block", "Second Block")}
+
+    def groups(self, entries):
+        """Peridigm bonds the points of one discretization across its blocks; perifem bonds the points
+        of one body. The entries of one model (material model, influence, hourglass control), horizon
+        and damage model become one body, its materials by block; the others stay apart, as said."""
+        apart = self.contact_blocks()
+        groups = []
+        for e in entries:
+            blocks, _, material, body = e
+            same = (material["model"], body.get("influence"), body.get("hourglass"), body["horizon"], body.get("damage"))
+            g = next((g for g in groups if g[0] == same and not apart & set(blocks) and not apart & g[2]), None)
+            if g is None:
+                groups.append((same, [e], set(blocks)))
+            else:
+                g[1].append(e)
+                g[2].update(blocks)
+        if len(groups) > 1:
+            parts = [f"{', '.join(b for e in g[1] for b in e[0])} (body '{g[1][0][3]['name']}')" for g in groups]
+            self.notes.append("Blocks " + "; ".join(parts) + ": separate bodies (their material model, horizon or "
+                              "damage model differ, or a contact interaction names them); no bond joins two bodies, "
+                              "where Peridigm bonds points of different blocks within a horizon")
+        return [g[1] for g in groups]
+
+    def merged_body(self, group):
+        """One body of a group of Blocks entries: the first entry's, with a material_regions entry per
+        block when the blocks' materials differ."""
+        body = dict(group[0][3])
+        blocks = [blk for e in group for blk in e[0]]
+        if len({e[1] for e in group}) > 1:
+            body["material_regions"] = [{"block": self.block_key(blk), "material": e[1]} for e in group for blk in e[0]]
+        if len(group) > 1:
+            self.notes.append(f"Blocks: {', '.join(blocks)}: one body '{body['name']}' (one model, horizon and "
+                              "damage model; bonds cross the blocks, as in Peridigm)")
+        return blocks, body
+
+    def block_key(self, name):
+        """A block as material_regions names it: a text file's id (block_<id>), an Exodus block's name."""
+        m = re.fullmatch(r"block_(\d+)", name)
+        return int(m.group(1)) if self.kind == "Text File" and m else name
+
     def bodies(self):
         disc = self.p.get("Discretization", {})
         kind, mesh = disc.get("Type"), disc.get("Input Mesh File")
@@ -177,32 +244,21 @@ class Translator:
         self.kind, self.sets = kind, self.node_set_files() if kind == "Text File" else {}
         self.set_name = {k: os.path.splitext(os.path.basename(f))[0] for k, f in self.sets.items()}
         point_blocks = self.text_blocks(mesh) if kind == "Text File" else None
-        materials, bodies = {}, []
-        for key, b in self.p.get("Blocks", {}).items():
-            mkey = b["Material"]
-            m = self.p.get("Materials", {}).get(mkey)
-            if m is None:
-                raise Untranslatable(f"Blocks.{key}.Material: '{mkey}' is not under Materials")
-            materials[name_of(mkey)] = self.material(mkey, m)
-            blocks = str(b["Block Names"]).split()
-            body = {"name": name_of(key), "material": name_of(mkey), "horizon": b["Horizon"]}
-            if kind == "Exodus":
-                body["geometry"] = {"shape": "exodus", "file": self.path(mesh), "blocks": blocks}
-            else:
-                body["geometry"] = self.text_geometry(key, mesh, blocks, point_blocks)
-            inf = self.influence(mkey, m)
-            if inf != "constant":
-                body["influence"] = inf
-            if m.get("Material Model") == "Elastic Correspondence":
-                body["hourglass"] = {"type": "stiffness", "coefficient": m.get("Hourglass Coefficient", 0.0)}
-            if "Damage Model" in b:
-                body["damage"] = self.damage(b["Damage Model"])
-            for k in b:
-                if k not in ("Block Names", "Material", "Horizon", "Damage Model"):
-                    raise Untranslatable(f"Blocks.{key}.{k} (not translated)")
-            bodies.append((blocks, body))
-        if not bodies:
+        entries = [self.block_entry(key, b) for key, b in self.p.get("Blocks", {}).items()]
+        if not entries:
             raise Untranslatable("Blocks: no block")
+        materials = {e[1]: e[2] for e in entries}
+        bodies = []
+        for group in self.groups(entries):
+            blocks, body = self.merged_body(group)
+            if kind == "Exodus":
+                g = {"shape": "exodus", "file": self.path(mesh), "blocks": blocks}
+            else:
+                g = self.text_geometry(body["name"], mesh, blocks, point_blocks)
+            first = ("name", "material", "material_regions", "horizon")
+            body = {**{k: body[k] for k in first if k in body}, "geometry": g,
+                    **{k: v for k, v in body.items() if k not in first}}
+            bodies.append((blocks, body))
         self.out["materials"], self.blocks = materials, bodies
         self.out["bodies"] = [b for _, b in bodies]
 
@@ -211,15 +267,15 @@ class Translator:
         for name in blocks:
             m = re.fullmatch(r"block_(\d+)", name)
             if not m:
-                raise Untranslatable(f"Blocks.{key}.Block Names: '{name}' (a text discretization's blocks are block_<id>)")
+                raise Untranslatable(f"Blocks: '{name}' of body '{key}' (a text discretization's blocks are block_<id>)")
             ids.append(int(m.group(1)))
         g = {"shape": "points_file", "file": self.path(mesh), "columns": "peridigm"}
         present = set(point_blocks)
         if len(ids) == 1 and present != {ids[0]}:
             g["block"] = ids[0]
         elif set(ids) != present:
-            raise Untranslatable(f"Blocks.{key}.Block Names: {blocks} is part of the file's blocks {sorted(present)}: "
-                                 "perifem takes one block of a text file per body")
+            raise Untranslatable(f"Blocks: {blocks} (body '{key}') is part of the file's blocks {sorted(present)}: "
+                                 "perifem takes one block of a text file, or all of them, per body")
         if self.sets:
             g["node_set_files"] = [self.path(f) for f in self.sets.values()]
         return g
@@ -378,9 +434,13 @@ def main():
         sys.exit(2)
     for key, why in t.left_out:
         print(f"peridigm_to_perifem: left out: {key}: {why}", file=sys.stderr)
+    for note in t.notes:
+        print(f"peridigm_to_perifem: note: {note}", file=sys.stderr)
     tmp = a.out + ".tmp"
     with open(tmp, "w") as f:
         f.write(f"# translated from {os.path.relpath(os.path.abspath(a.deck), out_dir)} by scripts/peridigm_to_perifem.py\n")
+        for note in t.notes:
+            f.write(f"# {note}\n")
         yaml.safe_dump(deck, f, sort_keys=False, default_flow_style=None, width=110)
     os.replace(tmp, a.out)
     print(f"wrote {a.out}: {len(deck['bodies'])} bod{'y' if len(deck['bodies']) == 1 else 'ies'}, "

@@ -36,7 +36,7 @@ typedef struct {
   int (*create)(const pf_deck *d, const pf_node *body, const pf_node *materials, void **data);
   int (*destroy)(void **data);
   /* The body's points at set-up (every rank generates them all). */
-  int (*cloud)(const void *data, const pf_deck *d, const pf_node *body, pf_point_cloud *pc);
+  int (*cloud)(void *data, const pf_deck *d, const pf_node *body, pf_point_cloud *pc);
   /* The rows of the span's owned points: the current ones (rows: re-partitions, checkpoints)
    * and, optionally, at set-up those found in the whole cloud (find_rows; NULL: rows). */
   int (*rows)(const void *data, const pf_points *pts, const pf_body_span *s, pf_bond_rows *rows);

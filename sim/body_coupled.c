@@ -21,7 +21,7 @@ static int create(const pf_deck *d, const pf_node *body, const pf_node *material
 
 static int destroy(void **data) { return pf_coupled_body_destroy((pf_coupled_body **)data); }
 
-static int cloud(const void *data, const pf_deck *d, const pf_node *body, pf_point_cloud *pc) {
+static int cloud(void *data, const pf_deck *d, const pf_node *body, pf_point_cloud *pc) {
   return fe->cloud(fem_of(data), d, body, pc);
 }
 

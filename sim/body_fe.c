@@ -15,7 +15,7 @@ static int create(const pf_deck *d, const pf_node *body, const pf_node *material
 
 static int destroy(void **data) { return pf_fem_body_destroy((pf_fem_body **)data); }
 
-static int cloud(const void *data, const pf_deck *d, const pf_node *body, pf_point_cloud *pc) {
+static int cloud(void *data, const pf_deck *d, const pf_node *body, pf_point_cloud *pc) {
   (void)d, (void)body;
   return pf_fem_body_cloud(data, pc);
 }

@@ -85,13 +85,14 @@ static int check_horizon(const void *data, const pf_deck *d, const pf_node *body
 
 /* The body's points: a lattice or a point file (core/), or Peridigm's Exodus discretization
  * (mesh/). */
-static int cloud(const void *data, const pf_deck *d, const pf_node *body, pf_point_cloud *pc) {
+static int cloud(void *data, const pf_deck *d, const pf_node *body, pf_point_cloud *pc) {
   const pf_node *g = pf_node_get(body, "geometry");
   const char *shape = pf_node_text(pf_node_get(g, "shape"));
   PF_CALL(check_estimate(data, d, body));
   if (shape && !strcmp(shape, "exodus")) PF_CALL(pf_mesh_exodus_points_from_deck(d, g, pc));
   else PF_CALL(pf_point_cloud_from_deck(d, g, pc));
-  return check_horizon(data, d, body, pc);
+  PF_CALL(check_horizon(data, d, body, pc));
+  return pf_pd_body_take_blocks(data, pc);
 }
 
 static int find_rows(void *data, const pf_point_cloud *pc, const pf_points *pts, const pf_body_span *s,

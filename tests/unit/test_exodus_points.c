@@ -298,6 +298,10 @@ static void test_mixed(void) {
     PF_TEST_TRUE(pc.block[q] == blk[q]);
     PF_TEST_CLOSE(pc.vol[q], vol[q], 1e-12, 0);
   }
+  /* the blocks taken, by id and name (material_regions names them) */
+  PF_TEST_TRUE(pc.nnamed == 3 && pc.named_id[0] == 1 && pc.named_id[2] == 3);
+  PF_TEST_TRUE(pc.nnamed == 3 && !strcmp(pc.named[0], "bar") && !strcmp(pc.named[1], "tets") &&
+               !strcmp(pc.named[2], "balls"));
   PF_TEST_CLOSE(pc.X[0], 0.5, 1e-12, 0);
   PF_TEST_CLOSE(pc.X[3 * 9], 6.0, 0, 0);
   PF_TEST_CLOSE(total_volume(&pc), 2 + 1 + 1.4, 1e-12, 0);
