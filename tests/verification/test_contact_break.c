@@ -18,6 +18,11 @@
  *    r = 0.7 mm, and bounce as the harmonic oscillator of Peridigm's Contact_2x1x1 (see
  *    test_contact_pair.c): half period pi / sqrt(2 k / m), velocities reversed, kinetic energy
  *    back, largest overlap 2 v0 / omega below the rest length.
+ * 4. Bonds broken by the material, PMB and LPS: a line of 6 points 1 mm apart (horizon 2.5 mm:
+ *    bonds of 1 and 2 mm) stretched uniformly until every bond passes its critical stretch. A
+ *    bond's rest length is its length at the positions of the step it failed in, rounded down
+ *    to a float: on the x axis |x_j - x_i| exactly (the models record it as they release the
+ *    bond, pf_pd_body_rest_at_break; the contact's scan would give the same).
  * The points are owned by whichever rank; every check is reduced over the ranks. */
 #include "sim/sim.h"
 #include "pd/pd.h"
@@ -77,6 +82,48 @@ static double max_kinetic(pf_sim *sim, int n) {
     ke = fmax(ke, g.kinetic);
   }
   return ke;
+}
+
+/* Part 4 for model (its constants in mat): the bonds that failed, each checked at its step. */
+static void rest_at_break(const char *model, const char *mat) {
+  char tag[64], deck[2048];
+  snprintf(tag, sizeof tag, "contact_break_%s", model);
+  const char *pts = pf_test_write_file(0, tag, "0 0 0 1e-9 1\n0.001 0 0 1e-9 1\n0.002 0 0 1e-9 1\n"
+                                       "0.003 0 0 1e-9 1\n0.004 0 0 1e-9 1\n0.005 0 0 1e-9 1\n");
+  snprintf(deck, sizeof deck,
+           "materials: {m: {model: %s, density: 7800, %s}}\n"
+           "bodies:\n"
+           "  - {name: bar, material: m, horizon: 2.5e-3, geometry: {shape: points_file, file: %s, block: 1},\n"
+           "     damage: {law: critical_stretch, critical_stretch: 0.01}}\n"
+           "contact: {pairs: [{bodies: [bar, bar]}]}\n"
+           "time: {dt: 1e-8, final_time: 1}\n"
+           "output: {interval: 0}\n",
+           model, mat, pts);
+  pf_sim *sim = pf_test_sim(tag, deck);
+  remove(pts);
+  pf_points *p = pf_sim_points(sim);
+  for (pf_int i = 0; i < p->n_owned; i++) p->v[3 * i] = 1e5 * (p->X[3 * i] - 0.0025); /* strain rate 1e5 / s */
+  const pf_family *fam = pf_pd_body_family(pf_sim_body(sim, 0));
+  const int64_t nbonds = pf_pd_family_nbonds(fam);
+  uint8_t *seen = calloc((size_t)nbonds + 1, 1);
+  double checked = 0, wrong = 0;
+  PF_TEST_OK(pf_sim_step(sim, 0));
+  for (int s = 0; s < 2000 && pf_sum_all(checked) < 18; s++) {
+    PF_TEST_OK(pf_sim_step(sim, 1));
+    for (pf_int r = 0; r < fam->n; r++)
+      for (int64_t k = fam->offset[r]; k < fam->offset[r + 1]; k++) {
+        if (!fam->broken[k] || seen[k]) continue;
+        seen[k] = 1, checked++;
+        const double len = fabs(p->y[3 * fam->neighbor[k]] - p->y[3 * (fam->first + r)]);
+        float expect = (float)len;
+        if ((double)expect > len) expect = nextafterf(expect, 0.0f);
+        wrong += fam->rest[k] != expect;
+      }
+  }
+  free(seen);
+  PF_TEST_CLOSE(pf_sum_all(checked), 18, 0, 0); /* every bond, from both ends: 2 (5 + 4) */
+  PF_TEST_CLOSE(pf_sum_all(wrong), 0, 0, 0);
+  pf_sim_destroy(&sim);
 }
 
 int main(int argc, char **argv) {
@@ -140,5 +187,9 @@ int main(int argc, char **argv) {
            ke_unbonded, ke_broken, duration, half, (duration - half) / dt, vx[0], vx[1], rest - rmin, 2 * V0 / omega);
   pf_test_print_digest("contact_break", sim);
   pf_sim_destroy(&sim);
+
+  /* 4. bonds broken by the material */
+  rest_at_break("pmb", "bulk_modulus: 1.0e11");
+  rest_at_break("lps", "bulk_modulus: 1.0e11, shear_modulus: 7.0e10");
   return pf_test_finish();
 }
