@@ -319,41 +319,56 @@ static void cand_sort(pf_candidate *v, int64_t n) {
   }
 }
 
-/* The view entities in the grid's slot order (bin by bin): their positions, one array a
- * coordinate, and bodies, so that the search reads each row of bins as one contiguous run. */
+/* The view entities of one body in bins, in the grid's slot order (bin by bin): their view
+ * indices and positions, one array a coordinate, so that a search reads each row of bins as one
+ * contiguous run, and an entity looking for the partners of another body reads only that body's
+ * (two clusters far apart but for their contact zone find their few cross pairs at once). */
 typedef struct {
-  const pf_grid *g;
+  pf_grid g;
+  pf_int *view; /* [n] view index of each slot's entity */
   double *x[3];
-  int *body;
-} slot_view;
+} body_bins;
 
-static int slot_view_build(const pf_contact *c, const pf_grid *g, pf_int n, slot_view *sv) {
-  *sv = (slot_view){g, {NULL, NULL, NULL}, NULL};
-  for (int a = 0; a < 3; a++) PF_MALLOC(sv->x[a], n);
-  PF_MALLOC(sv->body, n);
-  for (pf_int s = 0; s < n; s++) {
-    const pf_int j = g->item[s];
-    for (int a = 0; a < 3; a++) sv->x[a][s] = c->y[3 * j + a];
-    sv->body[s] = c->vbody[j];
+static int body_bins_build(const pf_contact *c, int b, double cell, body_bins *bb) {
+  pf_int n = 0;
+  for (pf_int j = 0; j < c->nview; j++) n += c->vbody[j] == b;
+  double *pos;
+  pf_int *idx;
+  PF_MALLOC(pos, 3 * (size_t)n);
+  PF_MALLOC(idx, n);
+  for (pf_int j = 0, q = 0; j < c->nview; j++)
+    if (c->vbody[j] == b) memcpy(&pos[3 * (size_t)q], &c->y[3 * (size_t)j], sizeof(double) * 3), idx[q++] = j;
+  int ierr = pf_contact_grid_build(&bb->g, n, pos, cell);
+  bb->view = malloc(sizeof *bb->view * (size_t)(n + 1));
+  for (int a = 0; a < 3; a++) bb->x[a] = malloc(sizeof(double) * (size_t)(n + 1));
+  if (!ierr && !(bb->view && bb->x[0] && bb->x[1] && bb->x[2]))
+    ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory for the contact's bins");
+  for (pf_int s = 0; s < n && !ierr; s++) {
+    const pf_int q = bb->g.item[s];
+    bb->view[s] = idx[q];
+    for (int a = 0; a < 3; a++) bb->x[a][s] = pos[3 * (size_t)q + a];
   }
-  return 0;
+  free(pos), free(idx);
+  return ierr;
 }
 
-static void slot_view_free(slot_view *sv) {
-  for (int a = 0; a < 3; a++) PF_FREE(sv->x[a]);
-  PF_FREE(sv->body);
+static void body_bins_free(body_bins *bb) {
+  pf_contact_grid_free(&bb->g);
+  PF_FREE(bb->view);
+  for (int a = 0; a < 3; a++) PF_FREE(bb->x[a]);
 }
 
-/* Partners of owned particle e in pair k among the view entities of body `other` (the grid's
- * slots sv). The bins of a row along x are consecutive slots: each row is one run, tested in
- * blocks without a branch (the test dist2's, term by term), then its hits pushed in slot order. */
-static int point_candidates(const pf_contact *c, const slot_view *sv, pf_int e, int k, int other, cand_list *l) {
+/* Partners of owned particle e in pair k among the view entities of body `other` (its bins bb).
+ * The bins of a row along x are consecutive slots: each row is one run, tested in blocks without
+ * a branch (the distance as dist2 forms it), then its hits pushed in slot order. */
+static int point_candidates(const pf_contact *c, const body_bins *bb, pf_int e, int k, cand_list *l) {
   enum { B = 64 };
-  const pf_grid *g = sv->g;
+  const pf_grid *g = &bb->g;
   const double reach = c->pair[k].radius + c->skin, r2 = reach * reach;
   const double p0 = c->y[3 * e], p1 = c->y[3 * e + 1], p2 = c->y[3 * e + 2];
   int lo[3], hi[3];
   pf_contact_grid_range(g, &c->y[3 * e], reach, lo, hi);
+  if (lo[0] > hi[0]) return 0; /* (beyond the body's bins along x: no run) */
   for (int z = lo[2]; z <= hi[2]; z++)
     for (int y = lo[1]; y <= hi[1]; y++) {
       const pf_int row = (z * g->dim[1] + y) * g->dim[0];
@@ -362,11 +377,11 @@ static int point_candidates(const pf_contact *c, const slot_view *sv, pf_int e, 
         const int n = s1 - s0 < B ? (int)(s1 - s0) : B;
         uint8_t hit[B];
         for (int q = 0; q < n; q++) {
-          const double d0 = p0 - sv->x[0][s0 + q], d1 = p1 - sv->x[1][s0 + q], d2 = p2 - sv->x[2][s0 + q];
-          hit[q] = (d0 * d0 + d1 * d1 + d2 * d2 <= r2) & (sv->body[s0 + q] == other);
+          const double d0 = p0 - bb->x[0][s0 + q], d1 = p1 - bb->x[1][s0 + q], d2 = p2 - bb->x[2][s0 + q];
+          hit[q] = d0 * d0 + d1 * d1 + d2 * d2 <= r2;
         }
         for (int q = 0; q < n; q++) {
-          const pf_int j = g->item[s0 + q];
+          const pf_int j = bb->view[s0 + q];
           if (hit[q] && j != e) PF_CALL(cand_push(l, k, j, c->gid[j]));
         }
       }
@@ -574,7 +589,7 @@ static int kept_candidates(const pf_contact *c, const kept_list *old, pf_int e, 
  * interaction); a stale pair's searched, sorted by partner (gid or face index) and its bonds
  * resolved, another pair's kept from the last build (old). In pair order: the list is sorted
  * by (pair, partner). Adds the family entries read to *reads. */
-static int entity_candidates(const pf_contact *c, const pf_points *pts, const slot_view *sv, const face_set (*fs)[2],
+static int entity_candidates(const pf_contact *c, const pf_points *pts, const body_bins *bins, const face_set (*fs)[2],
                              const kept_list *old, pf_int e, cand_list *l, int64_t *reads, int64_t *missed) {
   const int b = c->vbody[e], fe = c->body[b].is_fe;
   int64_t q = old ? old->off[e] : 0;
@@ -589,7 +604,7 @@ static int entity_candidates(const pf_contact *c, const pf_points *pts, const sl
     if (p->method->partners == PF_CONTACT_PARTNER_FACES) {
       const pf_contact_side *sd = pf_contact_facing(p, b);
       PF_CALL(face_candidates(c, &fs[k][sd - p->side], e, k, l));
-    } else PF_CALL(point_candidates(c, sv, e, k, p->a == b ? p->b : p->a, l));
+    } else PF_CALL(point_candidates(c, &bins[p->a == b ? p->b : p->a], e, k, l));
     const int64_t m = l->n - s;
     if (m == 0) continue; /* (none yet: l->v may still be NULL, which qsort must not get) */
     if (m <= 64) cand_sort(&l->v[s], m);
@@ -603,12 +618,12 @@ static int entity_candidates(const pf_contact *c, const pf_points *pts, const sl
 }
 
 /* The candidates of owned entities [e0, e1) into l; off[e - e0] the start of entity e's. */
-static int chunk_candidates(const pf_contact *c, const pf_points *pts, const slot_view *sv, const face_set (*fs)[2],
+static int chunk_candidates(const pf_contact *c, const pf_points *pts, const body_bins *bins, const face_set (*fs)[2],
                             const kept_list *old, pf_int e0, pf_int e1, cand_list *l, int64_t *off, int64_t *reads,
                             int64_t *missed) {
   for (pf_int e = e0; e < e1; e++) {
     off[e - e0] = l->n;
-    PF_CALL(entity_candidates(c, pts, sv, fs, old, e, l, reads, missed));
+    PF_CALL(entity_candidates(c, pts, bins, fs, old, e, l, reads, missed));
   }
   return 0;
 }
@@ -617,7 +632,7 @@ static int chunk_candidates(const pf_contact *c, const pf_points *pts, const slo
  * fixed chunks of entities, each filling its own list, and the lists are joined in chunk order:
  * an entity's candidates depend on it alone, so the lists are the same bits on any number of
  * threads. Adds to *missed the kept partners no longer in the view. */
-static int chunked_candidates(pf_contact *c, const pf_points *pts, const slot_view *sv, const face_set (*fs)[2],
+static int chunked_candidates(pf_contact *c, const pf_points *pts, const body_bins *bins, const face_set (*fs)[2],
                               const kept_list *old, int64_t **off_out, pf_candidate **cand_out, int64_t *cap_out,
                               int64_t *missed) {
   enum { CHUNK = 1024 };
@@ -632,7 +647,7 @@ static int chunked_candidates(pf_contact *c, const pf_points *pts, const slot_vi
 #pragma omp parallel for schedule(dynamic, 1) reduction(max : ierr) reduction(+ : reads, miss)
   for (int64_t q = 0; q < nchunk; q++) {
     const pf_int e0 = (pf_int)(q * CHUNK), e1 = (pf_int)(q + 1 < nchunk ? (q + 1) * CHUNK : c->nown);
-    const int err = chunk_candidates(c, pts, sv, fs, old, e0, e1, &list[q], &off[e0], &reads, &miss);
+    const int err = chunk_candidates(c, pts, bins, fs, old, e0, e1, &list[q], &off[e0], &reads, &miss);
     ierr = err > ierr ? err : ierr; /* (the reduction's private copy starts at INT_MIN) */
   }
   int64_t n = 0;
@@ -684,44 +699,50 @@ static int renumber_ghosts(const pf_contact *c, const pf_gid *last_gid, pf_int n
   return 0;
 }
 
+/* The bins of every body whose points a stale point pair searches, and the face sets of the
+ * stale face pairs, those not made yet. */
+static int stale_bins(const pf_contact *c, double cell, body_bins *bins, face_set (*fs)[2]) {
+  for (int k = 0; k < c->npairs; k++) {
+    const pf_contact_pair *p = &c->pair[k];
+    if (!c->stale[k]) continue;
+    if (p->method->partners == PF_CONTACT_PARTNER_FACES) {
+      for (int s = 0; s < p->nside; s++)
+        if (!fs[k][s].face) PF_CALL(face_set_build(c, p, &p->side[s], &fs[k][s]));
+      continue;
+    }
+    for (int side = 0; side < 2; side++) {
+      const int b = side ? p->b : p->a;
+      if (!bins[b].g.start) PF_CALL(body_bins_build(c, b, cell, &bins[b]));
+    }
+  }
+  return 0;
+}
+
 /* The candidates of the stale pairs searched anew, the others' kept (last_gid: the last view's
  * ghosts, nlast of them). A kept partner missing from the new view (which pair_stale's rule
  * excludes) makes every pair stale and the whole list is built again, on every rank. */
 static int build_candidates(pf_contact *c, const pf_points *pts, const pf_gid *last_gid, pf_int nlast) {
   double cell = 0;
   for (int k = 0; k < c->npairs; k++) cell = fmax(cell, c->pair[k].radius + c->skin);
-  int all = 1, points = 0; /* every pair stale; some point pair stale (the bins of the view) */
-  for (int k = 0; k < c->npairs; k++)
-    all &= c->stale[k], points |= c->stale[k] && c->pair[k].method->partners == PF_CONTACT_PARTNER_POINTS;
-  pf_grid g = {{0, 0, 0}, 0, {0, 0, 0}, NULL, NULL};
-  slot_view sv = {&g, {NULL, NULL, NULL}, NULL};
-  PF_CALL(pf_contact_grid_build(&g, points ? c->nview : 0, c->y, cell));
-  face_set(*fs)[2];
-  PF_MALLOC(fs, c->npairs);
-  int ierr = slot_view_build(c, &g, points ? c->nview : 0, &sv);
-  for (int k = 0; k < c->npairs && !ierr; k++)
-    if (c->stale[k] && c->pair[k].method->partners == PF_CONTACT_PARTNER_FACES)
-      for (int s = 0; s < c->pair[k].nside && !ierr; s++)
-        ierr = face_set_build(c, &c->pair[k], &c->pair[k].side[s], &fs[k][s]);
+  int all = 1;
+  for (int k = 0; k < c->npairs; k++) all &= c->stale[k];
+  body_bins *bins = calloc((size_t)c->nbodies + 1, sizeof *bins);
+  face_set(*fs)[2] = calloc((size_t)c->npairs + 1, sizeof *fs);
+  if (!bins || !fs) free(bins), free(fs);
+  PF_CHECK(bins && fs, PF_ERR_MEMORY, "out of memory for the contact search");
+  int ierr = stale_bins(c, cell, bins, fs);
   pf_int *ghost = NULL;
   if (!ierr && !all && nlast > 0) ierr = renumber_ghosts(c, last_gid, nlast, &ghost);
   const kept_list old = {c->cand_off, c->cand, ghost, last_gid};
   const kept_list *prev = c->built ? &old : NULL; /* (kept for the pairs not stale; bonds of the others) */
   int64_t *off = NULL, cap = 0, missed = 0;
   pf_candidate *cand = NULL;
-  if (!ierr) ierr = chunked_candidates(c, pts, &sv, (const face_set(*)[2])fs, prev, &off, &cand, &cap, &missed);
+  if (!ierr) ierr = chunked_candidates(c, pts, bins, (const face_set(*)[2])fs, prev, &off, &cand, &cap, &missed);
   if (!ierr && !all && pf_max_all((double)missed) > 0) { /* (collective: every rank takes the same way) */
     free(off), free(cand);
     for (int k = 0; k < c->npairs; k++) c->stale[k] = 1;
-    pf_contact_grid_free(&g);
-    slot_view_free(&sv);
-    ierr = pf_contact_grid_build(&g, c->nview, c->y, cell);
-    if (!ierr) ierr = slot_view_build(c, &g, c->nview, &sv);
-    for (int k = 0; k < c->npairs && !ierr; k++)
-      if (c->pair[k].method->partners == PF_CONTACT_PARTNER_FACES)
-        for (int s = 0; s < c->pair[k].nside && !ierr; s++)
-          if (!fs[k][s].face) ierr = face_set_build(c, &c->pair[k], &c->pair[k].side[s], &fs[k][s]);
-    if (!ierr) ierr = chunked_candidates(c, pts, &sv, (const face_set(*)[2])fs, prev, &off, &cand, &cap, &missed);
+    ierr = stale_bins(c, cell, bins, fs);
+    if (!ierr) ierr = chunked_candidates(c, pts, bins, (const face_set(*)[2])fs, prev, &off, &cand, &cap, &missed);
   }
   if (!ierr) {
     free(c->cand_off), free(c->cand);
@@ -729,46 +750,81 @@ static int build_candidates(pf_contact *c, const pf_points *pts, const pf_gid *l
   }
   free(ghost);
   for (int k = 0; k < c->npairs; k++) face_set_free(&fs[k][0]), face_set_free(&fs[k][1]);
-  free(fs);
-  pf_contact_grid_free(&g);
-  slot_view_free(&sv);
+  for (int b = 0; b < c->nbodies; b++) body_bins_free(&bins[b]);
+  free(fs), free(bins);
   return ierr;
 }
 
-/* Marks the pairs whose candidates must be rebuilt: some entity of the pair's bodies moved more
- * than half the skin since the pair's last build. Two entities that come within r_c of each
- * other were then within r_c + skin at that build, whatever their speed (Verlet 1967), and each
- * pair's rule reads only the motion of its own bodies, whose entities are all its candidates
- * can be (the faces' nodes included: a point of a face moves no more than its nodes). A pair
- * not rebuilt keeps a list that holds every interaction within r_c, like a rebuilt one, and a
- * pair's forces depend only on those (a list sorted by partner, the rest passed over), so the
- * forces are the same bits as with a rebuild of every pair. Returns how many are stale.
- * Collective. */
+/* Per body of one build's positions: the largest squared move, and the box of the moves
+ * (-lo, hi per component, so that one MPI_MAX reduces all). */
+enum { MOVE_M2, MOVE_NLO, MOVE_HI = MOVE_NLO + 3, MOVE_N = MOVE_HI + 3 };
+
+static void body_moves(const pf_contact *c, const double *yb, double *mb) {
+  const int nb = c->nbodies;
+  for (int b = 0; b < nb * MOVE_N; b++) mb[b] = -INFINITY;
+#pragma omp parallel for schedule(static) reduction(max : mb[:nb * MOVE_N])
+  for (pf_int e = 0; e < c->nown; e++) {
+    double *m = &mb[MOVE_N * c->vbody[e]], d[3], d2 = 0;
+    for (int a = 0; a < 3; a++) d[a] = c->y[3 * e + a] - yb[3 * e + a], d2 += d[a] * d[a];
+    m[MOVE_M2] = d2 > m[MOVE_M2] ? d2 : m[MOVE_M2]; /* (NaN positions are the guard's to report) */
+    for (int a = 0; a < 3; a++) {
+      m[MOVE_NLO + a] = -d[a] > m[MOVE_NLO + a] ? -d[a] : m[MOVE_NLO + a];
+      m[MOVE_HI + a] = d[a] > m[MOVE_HI + a] ? d[a] : m[MOVE_HI + a];
+    }
+  }
+}
+
+/* 1 when the pair of bodies of reduced moves ma, mb (body_moves) keeps its candidates: every two
+ * of its entities moved relative to each other by at most the skin s. Either bound suffices:
+ * each moved at most s/2 (Verlet 1967); or, with the centres c and half-diagonals h of the
+ * bodies' boxes of moves, |d_i - d_j| <= h_a + h_b + |c_a - c_b| <= s (2 h_a <= s within one
+ * body), which holds however far the bodies moved as a whole: two clusters in flight. */
+static int pair_keeps(const double *ma, const double *mb, int self, double s) {
+  if (sqrt(fmax(ma[MOVE_M2], mb[MOVE_M2])) <= 0.5 * s) return 1;
+  double ha = 0, hb = 0, dc = 0;
+  for (int a = 0; a < 3; a++) {
+    const double wa = 0.5 * (ma[MOVE_HI + a] + ma[MOVE_NLO + a]), wb = 0.5 * (mb[MOVE_HI + a] + mb[MOVE_NLO + a]);
+    const double ca = 0.5 * (ma[MOVE_HI + a] - ma[MOVE_NLO + a]), cb = 0.5 * (mb[MOVE_HI + a] - mb[MOVE_NLO + a]);
+    ha += wa * wa, hb += wb * wb, dc += (ca - cb) * (ca - cb);
+  }
+  const double bound = self ? 2 * sqrt(ha) : sqrt(ha) + sqrt(hb) + sqrt(dc);
+  return bound <= s * (1 - 1e-12); /* (a margin for the rounding of the bound; NaN: rebuilt) */
+}
+
+/* Marks the pairs whose candidates must be rebuilt: two entities of the pair's bodies moved
+ * relative to each other by more than the skin since the pair's last build (pair_keeps). Two
+ * entities that come within r_c of each other were then within r_c + skin at that build,
+ * whatever their speed (Verlet 1967), and each pair's rule reads only the motion of its own
+ * bodies, whose entities are all its candidates can be (the faces' nodes included: a point of a
+ * face moves no more than its nodes). A pair not rebuilt keeps a list that holds every
+ * interaction within r_c, like a rebuilt one, and a pair's forces depend only on those (a list
+ * sorted by partner, the rest passed over), so the forces are the same bits as with a rebuild of
+ * every pair. The ghosts sent at the last build stay enough: one left out was farther than
+ * r_c + 2 skin from every owned entity. Returns how many are stale. Collective. */
 static int pair_stale(pf_contact *c, int *nstale) {
   const int np = c->npairs, nb = c->nbodies;
-  double *move, *mb; /* [np] each pair's largest move; [nb] each body's, from one build's positions */
-  PF_MALLOC(move, np + nb);
-  mb = move + np;
+  double *mv, *mb; /* [np][2][MOVE_N] each pair's two bodies' moves; [nb][MOVE_N] one build's */
+  PF_MALLOC(mv, (size_t)np * 2 * MOVE_N + (size_t)nb * MOVE_N);
+  mb = mv + (size_t)np * 2 * MOVE_N;
   /* one pass for each set of pairs built at the same build (the same positions at the build) */
   for (int k = 0; k < np; k++) {
     int first = 1;
     for (int q = 0; q < k; q++) first &= c->built_at[q] != c->built_at[k];
     if (!first) continue;
-    const double *yb = &c->y_build[3 * (size_t)c->nown * (size_t)k];
-    for (int b = 0; b < nb; b++) mb[b] = 0;
-#pragma omp parallel for schedule(static) reduction(max : mb[:nb])
-    for (pf_int e = 0; e < c->nown; e++) {
-      const double d2 = dist2(&c->y[3 * e], &yb[3 * e]);
-      const int b = c->vbody[e];
-      mb[b] = d2 > mb[b] ? d2 : mb[b]; /* (NaN positions are the guard's to report) */
-    }
+    body_moves(c, &c->y_build[3 * (size_t)c->nown * (size_t)k], mb);
     for (int q = k; q < np; q++)
-      if (c->built_at[q] == c->built_at[k]) move[q] = sqrt(fmax(mb[c->pair[q].a], mb[c->pair[q].b]));
+      if (c->built_at[q] == c->built_at[k]) {
+        memcpy(&mv[(size_t)q * 2 * MOVE_N], &mb[MOVE_N * c->pair[q].a], sizeof(double) * MOVE_N);
+        memcpy(&mv[(size_t)q * 2 * MOVE_N + MOVE_N], &mb[MOVE_N * c->pair[q].b], sizeof(double) * MOVE_N);
+      }
   }
-  const int ok = MPI_Allreduce(MPI_IN_PLACE, move, np, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS;
+  const int ok = MPI_Allreduce(MPI_IN_PLACE, mv, np * 2 * MOVE_N, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS;
   *nstale = 0;
-  for (int k = 0; k < np; k++) *nstale += c->stale[k] = !(move[k] <= 0.5 * c->skin);
-  free(move);
+  for (int k = 0; k < np; k++) {
+    const double *m = &mv[(size_t)k * 2 * MOVE_N];
+    *nstale += c->stale[k] = !pair_keeps(m, m + MOVE_N, c->pair[k].a == c->pair[k].b, c->skin);
+  }
+  free(mv);
   PF_CHECK(ok, PF_ERR_LIB, "MPI_Allreduce failed on the contact's displacements");
   return 0;
 }

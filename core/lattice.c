@@ -24,6 +24,9 @@ const pf_key pf_geometry_keys[] = {
     {"height", PF_KEY_REAL, 0, NULL, "m", "cylinder height along the axis", NULL},
     {"spacing", PF_KEY_REAL, 0, NULL, "m", "lattice spacing h (each point stands for an h^3 cell)",
      NULL},
+    {"point_volume", PF_KEY_REAL, 0, NULL, "m^3",
+     "lattice: each point's volume instead of its cell's h^3 (grains of a packing: spheres of diameter h on a "
+     "cubic lattice have (pi / 6) h^3, as in Ruestes et al. 2012's clusters)", NULL},
     {"lattice", PF_KEY_STRING, 0, "cubic", "",
      "cubic (origin + h (i, j, k) inside the shape) | polar (cylinder: rings of cells tiling it, core/lattice_polar.c)", NULL},
     {"origin", PF_KEY_VEC3, 0, "[0, 0, 0]", "m",
@@ -314,6 +317,20 @@ static int check_thickness(const pf_deck *d, const pf_node *g, const pf_region *
  * PMB box (docs/deck_guide.md §4); the bonds add their share in the PD body (sim/body_pd.c). */
 #define PF_LATTICE_BYTES_PER_POINT 1024.0
 
+/* The geometry's point_volume, when given, for every point of a lattice (at most the cell's h^3:
+ * a point stands for a grain inside its cell). */
+static int point_volume(const pf_deck *d, const pf_node *g, double h, pf_point_cloud *pc) {
+  const pf_node *key = pf_node_get(g, "point_volume");
+  if (!key) return 0;
+  double v = 0;
+  PF_CALL(pf_deck_real(d, g, "point_volume", &v));
+  if (!(v > 0 && v <= h * h * h * (1 + 1e-12)))
+    return pf_deck_error(d, key, "point_volume", "must be positive and at most the cell's h^3 = %g m^3 (got %g)",
+                         h * h * h, v);
+  for (pf_int i = 0; i < pc->n; i++) pc->vol[i] = v;
+  return 0;
+}
+
 /* Before filling: the points the lattice would make, estimated as the lattice cells covering
  * the shape's bounding box times the shape's share of that box, refused beyond the local index
  * range (pf_int) or beyond the memory each rank may use for its share. */
@@ -384,7 +401,7 @@ int pf_point_cloud_from_deck(const pf_deck *d, const pf_node *g, pf_point_cloud 
       return pf_deck_error(d, pf_node_get(g, "origin"), "origin", "a polar lattice has no origin (its rings start at the inner radius)");
     PF_CALL(pf_polar_fill(&r, h, pc));
     if (amp > 0) perturb(pc, amp * h, (uint64_t)seed);
-    return 0;
+    return point_volume(d, g, h, pc);
   }
   long i0[3], i1[3];
   double cells = lattice_range(&r, h, origin, i0, i1);
@@ -397,7 +414,7 @@ int pf_point_cloud_from_deck(const pf_deck *d, const pf_node *g, pf_point_cloud 
   PF_CALL(pf_lattice_fill(&r, h, origin, pc));
   if (pc->n == 0) return pf_deck_error(d, g, "shape", "the shape holds no lattice point (spacing %g m)", h);
   if (amp > 0) perturb(pc, amp * h, (uint64_t)seed);
-  return 0;
+  return point_volume(d, g, h, pc);
 }
 
 /* The reads in pf_point_cloud_from_deck's order, so that a bad value raises the same error
