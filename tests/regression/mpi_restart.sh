@@ -16,9 +16,9 @@
 #     2 -> 2, 2 -> 1): restarts, and the 2-rank runs that write their checkpoints, end with the
 #     uninterrupted 1-rank run's digest (these 2-rank runs are the decks' 2-rank runs:
 #     mpi_digests.sh runs taylor_impact, disk_impact_rigid, sphere_on_block and coupled_bar on
-#     1 and 3 ranks only). The uninterrupted 1-rank digests of the Taylor bar, the tube, the sphere
-#     on the block and the coupled bar are those of mpi_digests.sh's runs of the same decks when it
-#     left them.
+#     1 and 3 ranks only). The uninterrupted 1-rank digests of the Taylor bar, the tube, the
+#     Johnson-Cook bar, the sphere on the block and the coupled bar are those of mpi_digests.sh's
+#     runs of the same decks when it left them.
 # usage: mpi_restart.sh PERIFEM SCRATCH [TESTS_BINARY_DIR]   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 bindir=${3:-} fail=0
@@ -94,7 +94,8 @@ printf 'restart:\n  file: ckfe.h5\n  interval: 80\n' >> fe$tag.yaml
 # DEPENDS in tests/CMakeLists.txt), when that file is newer than this perifem and than SOURCE,
 # the deck both scripts copy unchanged or cut the same way (this script adds only its restart
 # section, which changes no bit: the 2-rank runs that write checkpoints end with the uninterrupted
-# run's digest)
+# run's digest; mpi_digests' output intervals and re-partitioning change none either: its 3-rank
+# runs end with the 1-rank digest)
 saved_digest() {
   local saved=$bindir/work_mpi_digests/one_rank.txt
   [ -n "$bindir" ] && [ -s "$saved" ] && [ "$saved" -nt "$exe" ] && [ "$saved" -nt "$2" ] &&
@@ -148,9 +149,10 @@ sed -E 's/^(\s*)damage: \{law/\1formulation: consistent\n\1damage: {law/' cb$tag
 # block, then the FE ball, FE <-> PD and PD self-contact pairs; its node ids start after the
 # block's, which the restart must number the same way), checkpointed at step 100 of 150
 sed -E 's#\.\./\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/data/sphere_on_block.yaml" > sb$tag.yaml
-# (ep, sb and cb are mpi_digests' tube_ep, sphere_on_block and coupled_bar with a restart section)
-declare -A twin=([ep]="tube_ep $OLDPWD/data/expanding_tube_ep.yaml" [sb]="sphere_on_block $OLDPWD/data/sphere_on_block.yaml"
-                 [cb]="coupled_bar $OLDPWD/data/coupled_bar.yaml")
+# (ep, jc, sb and cb are mpi_digests' tube_ep, damage_bar, sphere_on_block and coupled_bar with a
+# restart section; its damage_bar writes output every 20 steps and is re-partitioned there)
+declare -A twin=([ep]="tube_ep $OLDPWD/data/expanding_tube_ep.yaml" [jc]="damage_bar $OLDPWD/data/damage_bar.yaml"
+                 [sb]="sphere_on_block $OLDPWD/data/sphere_on_block.yaml" [cb]="coupled_bar $OLDPWD/data/coupled_bar.yaml")
 for m in ep jc cb cc cn sb; do
   printf 'restart:\n  file: ck%s.h5\n  interval: %d\n' $m $(case $m in ep) echo 60 ;; jc) echo 40 ;; sb) echo 100 ;; *) echo 25 ;; esac) >> $m$tag.yaml
   check_restart $m$tag.yaml ck$m.h5 $m ${twin[$m]:-}
