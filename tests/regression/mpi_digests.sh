@@ -133,7 +133,7 @@ sed -E 's/model: pmb, density: 2000, bulk_modulus: 2.0e9/model: lps, density: 20
 
 not_on_2=" cylinder_rebalance mixed_rebalance sphere_on_block_rebalance coupled_rebalance horizon_consistent wave_spread disk_rigid_surface "
 # (and the decks whose uninterrupted 2-rank runs mpi_restart.sh compares with their 1-rank runs,
-# as the runs that write its checkpoints: the Taylor bar (200 steps), the indenter (60 steps),
+# as the runs that write its checkpoints: the Taylor bar (the same 120 steps), the indenter (60 steps),
 # the sphere on the block and the coupled bar)
 not_on_2+="taylor_impact disk_impact_rigid sphere_on_block coupled_bar "
 # The variants that change only how the run is split, written or held - re-partitioning at every

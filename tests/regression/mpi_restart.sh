@@ -8,16 +8,17 @@
 #     checkpoint left behind always restarts to the reference digest.
 #  4. A deck whose physics differs (density) is refused naming the part; an output-only change
 #     (interval) is accepted (every restart here uses a deck with other output settings).
-#  5. Finite elements (the Taylor bar, cut to 200 steps: J2 history, viscous hourglass,
-#     adaptive step, rigid wall): a run with a checkpoint at step 160 on 2 ranks, restarted on
+#  5. Finite elements (the Taylor bar, cut to 120 steps: J2 history, viscous hourglass,
+#     adaptive step, rigid wall): a run with a checkpoint at step 80 on 2 ranks, restarted on
 #     3 and on 1, ends with the uninterrupted 1-rank run's digest, and so does the 2-rank run
 #     itself; the same with element erosion (elements deleted before and after the checkpoint).
 #  6. PD materials with history, the coupled bar, contact, and a rigid indenter (1 -> 1, 1 -> 3,
 #     2 -> 2, 2 -> 1): restarts, and the 2-rank runs that write their checkpoints, end with the
 #     uninterrupted 1-rank run's digest (these 2-rank runs are the decks' 2-rank runs:
 #     mpi_digests.sh runs taylor_impact, disk_impact_rigid, sphere_on_block and coupled_bar on
-#     1 and 3 ranks only). The uninterrupted 1-rank digests of the tube, the sphere on the block and
-#     the coupled bar are those of mpi_digests.sh's runs of the same decks when it left them.
+#     1 and 3 ranks only). The uninterrupted 1-rank digests of the Taylor bar, the tube, the
+#     Johnson-Cook bar, the sphere on the block and the coupled bar are those of mpi_digests.sh's
+#     runs of the same decks when it left them.
 # usage: mpi_restart.sh PERIFEM SCRATCH [TESTS_BINARY_DIR]   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 bindir=${3:-} fail=0
@@ -85,13 +86,16 @@ status=$?
 [ $status -eq 2 ] || { echo "changed density: exit $status, expected 2"; fail=1; }
 echo "$out" | grep -q "'materials' differs from the deck the checkpoint" || { echo "changed density: message: $out"; fail=1; }
 # finite elements
-sed -E 's/^(\s*)final_time:.*/\1steps: 200/; s#\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/../inputs/taylor_impact.yaml" > fe$tag.yaml
+# (the deck of mpi_digests' taylor_impact: 120 steps)
+sed -E 's/^(\s*)final_time:.*/\1steps: 120/; s#\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/../inputs/taylor_impact.yaml" > fe$tag.yaml
 printf 'restart:\n  file: ckfe.h5\n  interval: 80\n' >> fe$tag.yaml
 # saved_digest NAME SOURCE: the 1-rank digest mpi_digests.sh left for its deck NAME in this
 # ctest run (TESTS_BINARY_DIR/work_mpi_digests/one_rank.txt; ctest runs mpi_digests first:
 # DEPENDS in tests/CMakeLists.txt), when that file is newer than this perifem and than SOURCE,
-# the deck both scripts copy unchanged (this script adds only its restart section, which changes
-# no bit: the 2-rank runs that write checkpoints end with the uninterrupted run's digest)
+# the deck both scripts copy unchanged or cut the same way (this script adds only its restart
+# section, which changes no bit: the 2-rank runs that write checkpoints end with the uninterrupted
+# run's digest; mpi_digests' output intervals and re-partitioning change none either: its 3-rank
+# runs end with the 1-rank digest)
 saved_digest() {
   local saved=$bindir/work_mpi_digests/one_rank.txt
   [ -n "$bindir" ] && [ -s "$saved" ] && [ "$saved" -nt "$exe" ] && [ "$saved" -nt "$2" ] &&
@@ -114,9 +118,10 @@ check_restart() {
     [ -n "$ref" ] && [ "$d" = "$ref" ] || { echo "$3: restarted on $np ranks: digest '$d', uninterrupted '$ref'"; fail=1; }
   done
 }
-check_restart fe$tag.yaml ckfe.h5 FE
-# the same with element erosion at an eqps of 0.3 (259 elements deleted by step 80, 315 by the
-# checkpoint at step 160, 420 by step 200): the deleted elements travel with the checkpoint
+check_restart fe$tag.yaml ckfe.h5 FE taylor_impact "$OLDPWD/../inputs/taylor_impact.yaml"
+# the same with element erosion at an eqps of 0.3 (72 of the 10,206 elements deleted by step 40,
+# 430 by the checkpoint at step 80, 515 by step 120): the deleted elements travel with the
+# checkpoint
 sed -E 's/^(\s*)element: reduced/\1element: reduced\n\1erosion: {plastic_strain: 0.3}/; s/ckfe.h5/ckfer.h5/' fe$tag.yaml > fer$tag.yaml
 grep -q "erosion:" fer$tag.yaml || { echo "FE erosion: the deck was not made"; fail=1; }
 check_restart fer$tag.yaml ckfer.h5 "FE erosion"
@@ -131,23 +136,23 @@ cp "$OLDPWD/data/expanding_tube_ep.yaml" ep$tag.yaml
 sed -E 's/final_time: 4.5e-5/steps: 60/; s/d1: 0.1,/d1: 0.0,/; s/"(-?)40 \* min/"\1400 * min/' "$OLDPWD/data/damage_bar.yaml" > jc$tag.yaml
 grep -q '"400 \* min' jc$tag.yaml || { echo "jc: the deck was not made"; fail=1; }
 # and the coupled PD/FE bar (tests/data/coupled_bar.yaml: PD bonds with damage on FE nodes, J2
-# elements, blending), checkpointed at step 50 of 60
+# elements, blending), checkpointed at step 50 of 60, in the consistent form (the default), whose
+# multipliers, solved at t = 0 from the gathered transition, come back from the checkpoint instead
+# of being solved again
 # (cc: the same in the corrected form, whose ghost-correction vectors, set at t = 0 from the
 # neighbours' shape tensors, must survive the restart unchanged after bonds broke nearby; a
 # statics form, which an explicit run takes only with allow_in_dynamics)
 cp "$OLDPWD/data/coupled_bar.yaml" cb$tag.yaml
 sed -E 's/^(\s*)damage: \{law/\1formulation: corrected\n\1allow_in_dynamics: true\n\1damage: {law/' cb$tag.yaml > cc$tag.yaml
-# (cn: the consistent form, whose multipliers, solved at t = 0 from the gathered transition, come
-# back from the checkpoint instead of being solved again)
-sed -E 's/^(\s*)damage: \{law/\1formulation: consistent\n\1damage: {law/' cb$tag.yaml > cn$tag.yaml
 # and contact with an FE body that is not the first body (tests/data/sphere_on_block.yaml: PD
 # block, then the FE ball, FE <-> PD and PD self-contact pairs; its node ids start after the
 # block's, which the restart must number the same way), checkpointed at step 100 of 150
 sed -E 's#\.\./\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/data/sphere_on_block.yaml" > sb$tag.yaml
-# (ep, sb and cb are mpi_digests' tube_ep, sphere_on_block and coupled_bar with a restart section)
-declare -A twin=([ep]="tube_ep $OLDPWD/data/expanding_tube_ep.yaml" [sb]="sphere_on_block $OLDPWD/data/sphere_on_block.yaml"
-                 [cb]="coupled_bar $OLDPWD/data/coupled_bar.yaml")
-for m in ep jc cb cc cn sb; do
+# (ep, jc, sb and cb are mpi_digests' tube_ep, damage_bar, sphere_on_block and coupled_bar with a
+# restart section; its damage_bar writes output every 20 steps and is re-partitioned there)
+declare -A twin=([ep]="tube_ep $OLDPWD/data/expanding_tube_ep.yaml" [jc]="damage_bar $OLDPWD/data/damage_bar.yaml"
+                 [sb]="sphere_on_block $OLDPWD/data/sphere_on_block.yaml" [cb]="coupled_bar $OLDPWD/data/coupled_bar.yaml")
+for m in ep jc cb cc sb; do
   printf 'restart:\n  file: ck%s.h5\n  interval: %d\n' $m $(case $m in ep) echo 60 ;; jc) echo 40 ;; sb) echo 100 ;; *) echo 25 ;; esac) >> $m$tag.yaml
   check_restart $m$tag.yaml ck$m.h5 $m ${twin[$m]:-}
 done

@@ -17,7 +17,7 @@
 # in fe_material_regions.sh; and test_coupling_patch (16 s on 3 ranks), whose coupled bodies -
 # the consistent transition, the energy overlap and the blending - run on 1, 2 and 3 ranks in
 # mpi_digests.sh as coupled_bar and wave_pd_to_fe (the partial stress as horizon_corr); and
-# test_critical_energy (30 s of separations), whose laws run on 1, 2 and 3 ranks there - the
+# test_critical_energy (25 s of separations), whose laws run on 1, 2 and 3 ranks there - the
 # critical energy with family calibration as dcb_family, the critical stretch in the cylinders,
 # an interface's own law between two PD materials as interface_pmb and interface_lps; and
 # test_laminate (fourteen quasi-static runs; about 2 minutes on 3 ranks of 2 cores, 24 s for its

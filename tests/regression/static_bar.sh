@@ -13,7 +13,8 @@
 #    bits of those columns on 1, 2 and 3 ranks;
 #  - a progress line per load step;
 #  - force control (the FE bar alone under a body force on its end face): below;
-#  - the same state digest on 1, 2 and 3 ranks (2 load steps);
+#  - the same state digest on 1, 2 and 3 ranks (2 load steps, tolerance 1e-4: the digests are
+#    compared, not the equilibrium; 288 relaxation iterations instead of 788 at the deck's 1e-9);
 #  - no boundary condition, an initial velocity and a load step that cannot converge in
 #    max_iterations: a message naming the key or the load step and a non-zero exit.
 # usage: static_bar.sh PERIFEM SCRATCH   (from the tests/ folder; the options in
@@ -117,7 +118,7 @@ PYEOF
 digests=""
 for np in 1 2 3; do
   mkdir -p np$np
-  o=$(cd np$np && run $np "$exe" --quiet "${opts[@]}" --set solver.load_steps=2 "$deck" 2>&1) || { echo "FAIL: $np ranks: $o"; fail=1; }
+  o=$(cd np$np && run $np "$exe" --quiet "${opts[@]}" --set solver.load_steps=2 --set solver.tolerance=1e-4 "$deck" 2>&1) || { echo "FAIL: $np ranks: $o"; fail=1; }
   digests="$digests $(digest_of "$o")"
 done
 set -- $digests
