@@ -710,11 +710,13 @@ void pf_pd_body_rest_at_break(const pf_pd_body *b, const pf_points *pts, pf_int 
  * every step when the body is in self-contact, so the scan reads only the broken flags, 64 at
  * a time, against the bits of the bonds already recorded (fam->recorded): in the fragmenting
  * cylinder, where most blocks of bonds hold a broken one, reading the rest lengths of every
- * such block to find the new ones cost 17 % of the run. PMB and LPS record their failed bonds
- * as they release them (pf_pd_body_rest_at_break), so that the scan finds none of theirs. */
+ * such block to find the new ones cost 17 % of the run. PMB, LPS and elastic-plastic record
+ * their failed bonds as they release them (pf_pd_body_rest_at_break): their scan runs at the
+ * first call only (bonds broken before the body was in self-contact, or in a checkpoint). */
 void pf_pd_body_record_breaks(pf_pd_body *b, const pf_points *pts) {
   pf_family *fam = &b->fam;
   const int64_t nbonds = fam->offset[b->n], nwords = (nbonds + 63) / 64;
+  if (b->rest_at_break && b->ops->records_rest) return; /* (its releases recorded every break since) */
   b->rest_at_break = 1; /* (from the next pass on; what it did not record, the scan finds) */
 #pragma omp parallel for schedule(static)
   for (int64_t w = 0; w < nwords; w++) {

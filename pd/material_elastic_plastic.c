@@ -366,5 +366,6 @@ const pf_pd_material_ops pf_pd_material_elastic_plastic = {
     .critical_stretch = pf_pd_lps_critical_stretch, /* LPS closed forms: elastic fracture */
     .destroy = ep_destroy,
     .several_materials = 1,
+    .records_rest = 1,
     .read_part = ep_read_part,
 };

@@ -355,4 +355,5 @@ const pf_pd_material_ops pf_pd_material_lps = {
     .partial_stress = 1,
     .bond_energy = 1,
     .several_materials = 1,
+    .records_rest = 1,
 };

@@ -310,5 +310,6 @@ const pf_pd_material_ops pf_pd_material_pmb = {
     .destroy = pmb_destroy,
     .bond_energy = 1,
     .several_materials = 1,
+    .records_rest = 1,
     .bond_rate = 2.3e8,
 };

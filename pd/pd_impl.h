@@ -166,6 +166,9 @@ struct pf_pd_material_ops {
   int bond_energy;    /* 1: its force kernel evaluates each bond's energy (critical_energy law) */
   int several_materials; /* 1: its kernels read each point's constants (pf_pd_K, pf_pd_G,
                             pf_pd_bond_stiffness): the body may have material_regions */
+  int records_rest;   /* 1: every bond its kernels fail passes through its release, which gives
+                         it its rest length (pf_pd_body_rest_at_break): pf_pd_body_record_breaks
+                         scans only once */
   /* Read part q's material, the mapping mat named name under materials: (several materials;
    * optional, NULL: the keys density, bulk_modulus and shear_modulus of a model that must be the
    * body's): fill part's density, K and G, keep what else the material needs of it. */
