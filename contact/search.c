@@ -61,8 +61,8 @@ void pf_contact_grid_free(pf_grid *g) {
 void pf_contact_grid_range(const pf_grid *g, const double p[3], double r, int lo[3], int hi[3]) {
   for (int a = 0; a < 3; a++) {
     double l = floor((p[a] - r - g->lo[a]) / g->cell), h = floor((p[a] + r - g->lo[a]) / g->cell);
-    lo[a] = (int)fmax(0, l);
-    hi[a] = (int)fmin(g->dim[a] - 1, h);
+    lo[a] = l > 0 ? (int)l : 0; /* (as fmax(0, l) and fmin(dim - 1, h), NaN included, inlined) */
+    hi[a] = h < g->dim[a] - 1 ? (int)h : g->dim[a] - 1;
   }
 }
 
