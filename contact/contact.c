@@ -61,7 +61,7 @@ const pf_key pf_contact_pair_keys[] = {
     PF_KEY_END};
 
 const pf_key pf_contact_keys[] = {
-    {"skin", PF_KEY_REAL, 0, NULL, "m", "search skin: the search is rebuilt when a point has moved half of it (default: the largest contact radius, and half the finer nodal spacing of an FE <-> FE pair)", NULL},
+    {"skin", PF_KEY_REAL, 0, NULL, "m", "search skin: a pair's search is rebuilt when two of its points may have moved more than it relative to each other (docs/theory/contact.md §5; default: the largest contact radius, and half the finer nodal spacing of an FE <-> FE pair)", NULL},
     {"pairs", PF_KEY_LIST, 0, NULL, "", "bodies in contact", pf_contact_pair_keys},
     {"rigid_surfaces", PF_KEY_LIST, 0, NULL, "", "rigid spheres, planes, cylinders", pf_rigid_keys},
     PF_KEY_END};
