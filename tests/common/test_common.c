@@ -118,6 +118,20 @@ const char *pf_test_bimaterial_bar(const char *model, double h, double delta, do
   return text;
 }
 
+const char *pf_test_series_pull(double delta, double xI, double xend, double eps1, double eps2) {
+  static char text[1024];
+  snprintf(text, sizeof text,
+           "boundary_conditions:\n"
+           "  - {displacement: [free, \"0\", \"0\"]}\n"
+           "  - {region: {shape: box, lo: [-1, -1, -1], hi: [%.17g, 1, 1]}, displacement: [\"%.17g * x * t\", \"0\", \"0\"]}\n"
+           "  - {region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]},\n"
+           "     displacement: [\"(%.17g + %.17g * (x - %.17g)) * t\", \"0\", \"0\"]}\n"
+           "solver: {type: quasi_static, method: newton_krylov, load_steps: 1, tolerance: 1.0e-10, max_iterations: 200000}\n"
+           "time: {final_time: 1}\n",
+           delta, eps1, xend - delta, eps1 * xI, eps2, xI);
+  return text;
+}
+
 struct pf_sim *pf_test_bond_lattice(const char *model) {
   char deck[1024];
   snprintf(deck, sizeof deck,

@@ -47,6 +47,10 @@ enum { PF_TEST_RHO_SOFT = 2700, PF_TEST_RHO_STIFF = 7800 };
 #define PF_TEST_K_SOFT 70e9
 #define PF_TEST_K_STIFF 160e9
 const char *pf_test_bimaterial_bar(const char *model, double h, double delta, double xI, double L, double W);
+/* The static pull of a bi-material bar by its series-spring field (a static text): x held in a
+ * layer delta at each end to u = eps1 x (x < delta) and u = eps1 xI + eps2 (x - xI) (x > xend - delta),
+ * the other points free along x; one Newton-Krylov load step to tolerance 1e-10, final time 1. */
+const char *pf_test_series_pull(double delta, double xI, double xend, double eps1, double eps2);
 /* Deck text written to a scratch file and loaded, its root validated against keys (`where` names
  * the section in messages) when keys is not NULL. *d is the deck (pf_deck_destroy it), NULL on
  * an error; returns the first error. */

@@ -47,14 +47,8 @@ static double run(const char *model, double h, const char *name) {
   char deck[4096];
   snprintf(deck, sizeof deck,
            "%s"
-           "boundary_conditions:\n"
-           "  - {displacement: [free, \"0\", \"0\"]}\n"
-           "  - {region: {shape: box, lo: [-1, -1, -1], hi: [%.17g, 1, 1]}, displacement: [\"%.17g * x * t\", \"0\", \"0\"]}\n"
-           "  - {region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]},\n"
-           "     displacement: [\"(%.17g + %.17g * (x - %.17g)) * t\", \"0\", \"0\"]}\n"
-           "solver: {type: quasi_static, method: newton_krylov, load_steps: 1, tolerance: 1.0e-10, max_iterations: 200000}\n"
-           "time: {final_time: 1}\n",
-           pf_test_bimaterial_bar(model, h, delta, xI, xend, W), delta, EPS1, xend - delta, EPS1 * xI, eps2, xI);
+           "%s",
+           pf_test_bimaterial_bar(model, h, delta, xI, xend, W), pf_test_series_pull(delta, xI, xend, EPS1, eps2));
   pf_sim *sim = pf_test_sim("bimaterial_static", deck);
   if (!sim) return NAN;
   PF_TEST_OK(pf_sim_run_begin(sim));
@@ -129,14 +123,8 @@ static void run_plastic(double h) {
            "bodies:\n  - {name: bar, material: soft, horizon: %.17g,\n"
            "     material_regions: [{material: stiff, region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]}}],\n"
            "     geometry: {shape: box, lo: [0, 0, 0], hi: [%.17g, %.17g, %.17g], spacing: %.17g}}\n"
-           "boundary_conditions:\n"
-           "  - {displacement: [free, \"0\", \"0\"]}\n"
-           "  - {region: {shape: box, lo: [-1, -1, -1], hi: [%.17g, 1, 1]}, displacement: [\"%.17g * x * t\", \"0\", \"0\"]}\n"
-           "  - {region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]},\n"
-           "     displacement: [\"(%.17g + %.17g * (x - %.17g)) * t\", \"0\", \"0\"]}\n"
-           "solver: {type: quasi_static, method: newton_krylov, load_steps: 1, tolerance: 1.0e-10, max_iterations: 200000}\n"
-           "time: {final_time: 1}\n",
-           RHO1, K1, G1, Y1, RHO2, K2, G2, delta, xI, xend, W, W, h, delta, EPS1, xend - delta, EPS1 * xI, eps2, xI);
+           "%s",
+           RHO1, K1, G1, Y1, RHO2, K2, G2, delta, xI, xend, W, W, h, pf_test_series_pull(delta, xI, xend, EPS1, eps2));
   pf_sim *sim = pf_test_sim("bimaterial_static_plastic", deck);
   if (!sim) return;
   PF_TEST_OK(pf_sim_run_begin(sim));

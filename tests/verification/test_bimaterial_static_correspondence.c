@@ -99,14 +99,8 @@ static double run(const char *model, double h, const char *name, const double to
            "bodies:\n  - {name: bar, material: soft, horizon: %.17g,\n"
            "     material_regions: [{material: stiff, region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]}}],\n"
            "     hourglass: {coefficient: %.17g},\n     geometry: {shape: box, lo: [0, 0, 0], hi: [%.17g, %.17g, %.17g], spacing: %.17g}}\n"
-           "boundary_conditions:\n"
-           "  - {displacement: [free, \"0\", \"0\"]}\n"
-           "  - {region: {shape: box, lo: [-1, -1, -1], hi: [%.17g, 1, 1]}, displacement: [\"%.17g * x * t\", \"0\", \"0\"]}\n"
-           "  - {region: {shape: box, lo: [%.17g, -1, -1], hi: [1, 1, 1]},\n"
-           "     displacement: [\"(%.17g + %.17g * (x - %.17g)) * t\", \"0\", \"0\"]}\n"
-           "solver: {type: quasi_static, method: newton_krylov, load_steps: 1, tolerance: 1.0e-10, max_iterations: 200000}\n"
-           "time: {final_time: 1}\n",
-           mats, delta, xI, HG, xend, W, W, h, delta, EPS1, xend - delta, EPS1 * xI, eps2, xI);
+           "%s",
+           mats, delta, xI, HG, xend, W, W, h, pf_test_series_pull(delta, xI, xend, EPS1, eps2));
   pf_sim *sim = pf_test_sim("bimaterial_static_correspondence", deck);
   if (!sim) return NAN;
   PF_TEST_OK(pf_sim_run_begin(sim));
