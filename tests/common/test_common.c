@@ -132,6 +132,14 @@ const char *pf_test_series_pull(double delta, double xI, double xend, double eps
   return text;
 }
 
+double pf_test_layer_u(const pf_points *p, double x, double h) {
+  double s[2] = {0, 0};
+  for (pf_int i = 0; i < p->n_owned; i++)
+    if (fabs(p->X[3 * i] - x) < 0.5 * h) s[0] += p->y[3 * i] - p->X[3 * i], s[1] += 1;
+  MPI_Allreduce(MPI_IN_PLACE, s, 2, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  return s[0] / s[1];
+}
+
 struct pf_sim *pf_test_bond_lattice(const char *model) {
   char deck[1024];
   snprintf(deck, sizeof deck,

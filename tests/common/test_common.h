@@ -51,6 +51,8 @@ const char *pf_test_bimaterial_bar(const char *model, double h, double delta, do
  * layer delta at each end to u = eps1 x (x < delta) and u = eps1 xI + eps2 (x - xI) (x > xend - delta),
  * the other points free along x; one Newton-Krylov load step to tolerance 1e-10, final time 1. */
 const char *pf_test_series_pull(double delta, double xI, double xend, double eps1, double eps2);
+/* The mean x displacement of the points of the layer of spacing h nearest to x, over the ranks. */
+double pf_test_layer_u(const pf_points *p, double x, double h);
 /* Deck text written to a scratch file and loaded, its root validated against keys (`where` names
  * the section in messages) when keys is not NULL. *d is the deck (pf_deck_destroy it), NULL on
  * an error; returns the first error. */

@@ -30,15 +30,6 @@ static double closed_form(double x, double xI) {
   return x < xI ? EPS1 * x : EPS1 * xI + eps2 * (x - xI);
 }
 
-/* The mean displacement of the points of the layer nearest to x (mean over the section). */
-static double layer_u(const pf_points *p, double x, double h) {
-  double s[2] = {0, 0};
-  for (pf_int i = 0; i < p->n_owned; i++)
-    if (fabs(p->X[3 * i] - x) < 0.5 * h) s[0] += p->y[3 * i] - p->X[3 * i], s[1] += 1;
-  MPI_Allreduce(MPI_IN_PLACE, s, 2, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-  return s[0] / s[1];
-}
-
 /* One run at spacing h; returns the larger relative strain error of the two parts. */
 static double run(const char *model, double h, const char *name) {
   const double delta = 3.015 * h, L = 0.06, W = 2e-3;
@@ -61,8 +52,8 @@ static double run(const char *model, double h, const char *name) {
   /* the strains of the parts, between layers a horizon from the interface and the held layers */
   const double a1 = h * ceil(2 * delta / h), b1 = h * floor((xI - delta) / h); /* (lattice layers) */
   const double a2 = h * ceil((xI + delta) / h), b2 = h * floor((xend - 2 * delta) / h);
-  const double e1 = (layer_u(p, b1, h) - layer_u(p, a1, h)) / (b1 - a1);
-  const double e2 = (layer_u(p, b2, h) - layer_u(p, a2, h)) / (b2 - a2);
+  const double e1 = (pf_test_layer_u(p, b1, h) - pf_test_layer_u(p, a1, h)) / (b1 - a1);
+  const double e2 = (pf_test_layer_u(p, b2, h) - pf_test_layer_u(p, a2, h)) / (b2 - a2);
   PF_TEST_TRUE(worst < 0.01);
   PF_TEST_CLOSE(e1, EPS1, 0.01, 0);
   PF_TEST_CLOSE(e2, eps2, 0.01, 0);
@@ -131,7 +122,7 @@ static void run_plastic(double h) {
   PF_TEST_OK(pf_sim_run_advance(sim, -1));
   const pf_points *p = pf_sim_points(sim);
   const double a1 = h * ceil(2 * delta / h), b1 = h * floor((xI - 2 * delta) / h);
-  const double e1 = (layer_u(p, b1, h) - layer_u(p, a1, h)) / (b1 - a1);
+  const double e1 = (pf_test_layer_u(p, b1, h) - pf_test_layer_u(p, a1, h)) / (b1 - a1);
   const double *eqps = pf_points_field_get(p, "eqps");
   double worst = 0, stiff = 0, least = INFINITY;
   for (pf_int i = 0; eqps && i < p->n_owned; i++) {
