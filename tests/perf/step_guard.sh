@@ -6,7 +6,8 @@
 #
 # For each deck of tests/perf/decks (PMB; LPS with omega = 1/|xi|; correspondence with the
 # stiffness hourglass control; reduced hex8 finite elements; FE <-> PD penalty contact with the
-# PD block's self-contact), step_guard builds the simulation, takes WARMUP steps, and valgrind's
+# PD block's self-contact; two PMB blocks in collision whose bonds break, the contact of
+# fragments), step_guard builds the simulation, takes WARMUP steps, and valgrind's
 # callgrind counts the instructions of STEPS whole steps (pf_sim_step: forces, damage, contact,
 # integration, halo exchange, per-step records; no output files), then those of a fixed
 # reference workload written in step_guard.c (4 velocity-Verlet steps of a plain bond-based PMB
@@ -46,6 +47,7 @@ BASELINE=(
   "correspondence  correspondence.yaml       2 10 11.3331"
   "hex8            hex8.yaml                 2 10 16.6463"
   "contact         contact.yaml              2 10 5.7747"
+  "fragments       fragments.yaml           12 10 5.5916"
 )
 
 command -v valgrind >/dev/null 2>&1 || { echo "step_guard: valgrind not found (apt-get install valgrind); skipped"; exit 77; }
