@@ -21,6 +21,7 @@ static int open_totals(pf_sim *sim) {
   PF_CALL(pf_ledger_open_error(l));
   T->error = l->error_id;
   PF_CALL(pf_ledger_open(l, "momentum", "kg m/s", 3, 0, S, N, -1, &T->momentum));
+  PF_CALL(pf_ledger_open(l, "angular_momentum", "kg m^2/s", 3, 0, S, N, -1, &T->angular));
   PF_CALL(pf_ledger_open(l, "damage_fraction", "", 1, 0, S, N | PF_BOOK_SHARED, -1, &T->damage_fraction));
   PF_CALL(pf_ledger_open(l, "fe_internal_energy", "J", 1, 0, S, N, -1, &T->fe_internal));
   PF_CALL(pf_ledger_open(l, "hourglass_energy", "J", 1, 0, S, N, -1, &T->hourglass));
@@ -59,6 +60,7 @@ static int open_body(pf_sim *sim, int b) {
       {&A->redistribution, "damage_redistribution", "J", 1, 1, R, 0, T->redistribution},
       {&A->work, "external_work", "J", 1, -1, R, 0, T->work},
       {&A->momentum, "momentum", "kg m/s", 3, 0, S, 0, T->momentum},
+      {&A->angular, "angular_momentum", "kg m^2/s", 3, 0, S, 0, T->angular},
       {&A->conversion, "conversion_loss", "J", 1, 1, S, H, T->conversion},
       {&A->bonds, "bonds", "", 1, 0, S, H, -1},
       {&A->broken, "broken_bonds", "", 1, 0, S, H, -1},
@@ -95,7 +97,10 @@ int pf_sim_accounts_open(pf_sim *sim) {
   return open_probes(sim);
 }
 
-/* Body b's kinetic energy, momentum and the centred kinetic energy: a prescribed component's
+/* Body b's kinetic energy, momentum, angular momentum about the origin (sum m y x v at the current
+ * positions: velocity Verlet, a symplectic partitioned Runge-Kutta method, keeps this quadratic
+ * invariant exactly under forces of no total moment, Hairer, Lubich & Wanner 2006, sec. IV.2) and
+ * the centred kinetic energy: a prescribed component's
  * force (marked in fixed) is a reaction, not an acceleration, so it does not enter the centred
  * kinetic energy sum m (|v|^2 - (dt/2)^2 |a|^2) / 2 = sum m v(t - dt/2) . v(t + dt/2) / 2, the
  * kinetic part of the energy velocity Verlet conserves exactly for linear forces. Quasi-static,
@@ -105,17 +110,21 @@ static void body_motion(pf_sim *sim, int b, const uint8_t *fixed) {
   const pf_points *p = sim->pts;
   const pf_body_accounts *A = &sim->acc.body[b];
   const double h = sim->solver.type == PF_SOLVER_QUASI_STATIC ? 0.0 : 0.5 * sim->dt;
-  double ke = 0, kc = 0, mom[3] = {0, 0, 0};
-  for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++)
+  double ke = 0, kc = 0, mom[3] = {0, 0, 0}, ang[3] = {0, 0, 0};
+  for (pf_int i = sim->body_start[b]; i < sim->body_start[b + 1]; i++) {
+    const double *y = &p->y[3 * i], *v = &p->v[3 * i];
     for (int a = 0; a < 3; a++) {
-      double v = p->v[3 * i + a], acc = fixed[3 * i + a] || !(p->m[i] > 0) ? 0 : p->f[3 * i + a] / p->m[i];
-      ke += 0.5 * p->m[i] * v * v;
-      kc += 0.5 * p->m[i] * (v * v - h * h * acc * acc);
-      mom[a] += p->m[i] * v;
+      double acc = fixed[3 * i + a] || !(p->m[i] > 0) ? 0 : p->f[3 * i + a] / p->m[i];
+      ke += 0.5 * p->m[i] * v[a] * v[a];
+      kc += 0.5 * p->m[i] * (v[a] * v[a] - h * h * acc * acc);
+      mom[a] += p->m[i] * v[a];
+      ang[a] += p->m[i] * (y[(a + 1) % 3] * v[(a + 2) % 3] - y[(a + 2) % 3] * v[(a + 1) % 3]);
     }
+  }
   pf_ledger_set(&sim->ledger, A->kinetic, &ke);
   pf_ledger_set(&sim->ledger, A->centred, &kc);
   pf_ledger_set(&sim->ledger, A->momentum, mom);
+  pf_ledger_set(&sim->ledger, A->angular, ang);
 }
 
 /* Each body's first moment of mass (current positions) and mass, summed with the other accounts:

@@ -18,18 +18,19 @@ enum { PF_SIM_PATH_MAX = 4000 };
 /* The run's totals in the ledger: the history's first columns, each the sum of its parts (the
  * bodies' and interactions' accounts), in this order. */
 typedef struct {
-  int kinetic, elastic, contact, work, error, momentum, damage_fraction, fe_internal, hourglass, viscous, wall,
+  int kinetic, elastic, contact, work, error, momentum, angular, damage_fraction, fe_internal, hourglass, viscous, wall,
       contact_dissipation, damage, redistribution, conversion;
 } pf_sim_totals;
 /* A body's accounts (sim/accounts.c): its centre of mass and mean velocity, kinetic energy (and
  * the centred one the balance takes), internal energy (PD stored energy and element stress work,
  * also apart), hourglass energy, viscous work, damage dissipation and redistribution, external
- * work (the prescribed motions' and loads' on its points), momentum, the kinetic energy its
+ * work (the prescribed motions' and loads' on its points), momentum, angular momentum about the
+ * origin, the kinetic energy its
  * conversions removed, its bonds and broken bonds; hidden, its first moment of mass and its mass,
  * summed with the rest and divided into the centre and mean velocity after the reduction. */
 typedef struct {
   int position, velocity, kinetic, centred, internal, elastic, fe_internal, hourglass, viscous, damage,
-      redistribution, work, momentum, conversion, bonds, broken, moment, mass;
+      redistribution, work, momentum, angular, conversion, bonds, broken, moment, mass;
 } pf_body_accounts;
 typedef struct {
   pf_sim_totals totals;

@@ -10,7 +10,8 @@
 #  - the total momentum stays zero to round-off (below 1e-12 of one cluster's);
 #  - the angular momentum about the origin, sum m y x v over the grains from the first and last
 #    Exodus frames, changes by less than 1e-10 of itself (pair forces along the line of centres,
-#    velocity Verlet: the torque is zero to round-off);
+#    velocity Verlet: the torque is zero to round-off), and so does the history's
+#    angular_momentum at every row, which starts at the frames' value;
 #  - the energy balance closes within 1e-3 of the initial kinetic energy;
 # and the same state digest on 1, 2 and 3 ranks for the first 0.08 ms (the first contact
 # included). About 40 s on 2 cores (label slow).
@@ -64,6 +65,11 @@ for f in (0, last):
     L.append(m1 * np.cross(y.T, v.T).sum(axis=0))
 dL = np.linalg.norm(L[1] - L[0]) / np.linalg.norm(L[0])
 check(dL <= 1e-10, f"angular momentum {np.linalg.norm(L[0]):.6e} kg m^2/s, changed by {dL:.2e} of itself (< 1e-10)")
+Lh = np.array([h[f"angular_momentum_{c}"][:] for c in "xyz"])
+dLh = np.abs(Lh - Lh[:, :1]).max() / np.linalg.norm(Lh[:, 0])
+check(dLh <= 1e-10, f"the history's angular_momentum changes by at most {dLh:.2e} of itself over every row (< 1e-10)")
+agree = np.linalg.norm(Lh[:, 0] - L[0]) / np.linalg.norm(L[0])
+check(agree <= 1e-9, f"the history's angular_momentum at t = 0 is the frames' sum m y x v to {agree:.2e} (< 1e-9)")
 size = collections.Counter(nod("fragment", last))
 grains = sum(size.values())
 single = sum(1 for n in size.values() if n == 1) / grains
