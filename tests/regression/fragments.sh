@@ -93,5 +93,11 @@ done
 for np in 2 3; do
   cmp -s r1/bar.fragments.csv r$np/bar.fragments.csv || { echo "FAIL: CSV on $np ranks differs from 1 rank"; fail=1; }
 done
+# scripts/fragment_sizes.py on the same list: the thirds of 48 and 64 points in the class 33-64
+# (mass share (9.6e-5 + 1.28e-4) / 3.84e-4 = 0.5833), the third of 80 in 65-128 (0.4167)
+sizes=$($PY "$OLDPWD/../scripts/fragment_sizes.py" r1/bar.fragments.csv --body bar --png r1/sizes.png 2>&1)
+echo "$sizes" | grep -Eq '^ +33-64 +2 +0\.5833$' && echo "$sizes" | grep -Eq '^ +65-128 +1 +0\.4167$' &&
+  echo "$sizes" | grep -q 'largest ten: \[80, 64, 48\]' && [ -s r1/sizes.png ] ||
+  { echo "FAIL: fragment_sizes.py: $sizes"; fail=1; }
 [ $fail = 0 ] && echo "fragments: 3 fragments, masses and velocities exact, same on 1, 2 and 3 ranks"
 exit $fail
