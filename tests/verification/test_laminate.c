@@ -23,14 +23,17 @@
  * enter: a second material set with other values must give the same A (asserted within 1e-4: the
  * model is finite-strain and the strain 1e-5, so the small-strain statement holds to O(eps)).
  *
- * PD plies: a correspondence plate of one ply orientation (several correspondence materials in
- * one body are not in this version), 0 or 90 degrees, the same runs with the lateral
+ * PD plies: a correspondence plate of one ply orientation, 0 or 90 degrees, the same runs with the lateral
  * faces' rollers as layers of points beyond each face following the face's normal motion
  * (docs/theory/fibre_rve.md §2), free top and bottom. Each plate's A over its thickness is that
  * ply's Q, asserted within 2 % of Jones's Q (Q11, Q12, Q22, Q66); the laminate's A is then
  * assembled from the two measured plates as CLT does, and its E_x, nu_xy, G_xy asserted within
  * 2 % of CLT's. Run U on each plate (its lattice ends at the free edge y = L): E_x within 2 % of
- * E1 (0 degrees) and E2 (90).
+ * E1 (0 degrees) and E2 (90). Then the laminate in one correspondence body, its plies bonded: the
+ * plate's points in the inner half of its thickness a 90-degree material (material_regions), the
+ * outer ones 0, each end of a bond between plies with its own material's force state (docs/theory/
+ * interfaces.md sec. 3a): runs X, Y, S give its A, and E_x, nu_xy, G_xy are asserted within 2 % of
+ * CLT's.
  * usage: test_laminate [N]: N PD points across the plate (default 8; 0: the FE plies only). */
 #include "test_common.h"
 
@@ -240,23 +243,32 @@ static void pd_conditions(int run, char *out, size_t cap) {
 
 /* A correspondence plate of one ply at deg degrees: points at the centroids of an n x n x nz
  * grid over [0, L]^2 x [0, nz h] (h = L / n), horizon 3.015 h, the layers beyond the lateral
- * faces; free top and bottom. F: the measured reactions {mx_x, my_y} (runs X, Y), {top_x} (S),
- * {mx_x} (U, whose lattice ends at y = L). */
+ * faces; free top and bottom. deg < 0: the [0/90]s laminate in one body, the points of the inner
+ * half of the thickness (nz / 4 < z / h < 3 nz / 4) 90-degree plies (material_regions), the
+ * outer ones 0. F: the measured reactions {mx_x, my_y} (runs X, Y), {top_x} (S), {mx_x} (U,
+ * whose lattice ends at y = L). */
 static int pd_run(int n, int nz, double deg, int run, double F[2]) {
   const double h = L / n, delta = 3.015 * h, t = nz * h;
   const int k = 2 * (int)ceil(delta / h); /* twice a family's reach, in spacings */
   static char deck[16384];
-  char bcs[8192], m[512], tag[32];
-  material(m, sizeof m, "ply", deg, 0);
+  char bcs[8192], m[1024], regions[256] = "", tag[32];
+  material(m, sizeof m, "ply", deg < 0 ? 0.0 : deg, 0);
+  if (deg < 0) {
+    material(m + strlen(m), sizeof m - strlen(m), "cross", 90.0, 0);
+    snprintf(regions, sizeof regions,
+             "    material_regions: [{material: cross, region: {shape: box, lo: [-1, -1, %.17g], hi: [1, 1, %.17g]}}]\n",
+             t / 4, 3 * t / 4);
+  }
   pd_conditions(run, bcs, sizeof bcs);
   snprintf(deck, sizeof deck,
            "materials:\n%s"
-           "bodies:\n  - name: plate\n    material: ply\n    horizon: %.17g\n"
+           "bodies:\n  - name: plate\n    material: ply\n%s    horizon: %.17g\n"
            "    geometry: {shape: box, lo: [%.17g, %.17g, 0], hi: [%.17g, %.17g, %.17g],\n"
            "               origin: [%.17g, %.17g, %.17g], spacing: %.17g}\n"
            "boundary_conditions:\n%s%s",
-           m, delta, -k * h, -k * h, L + k * h, run == 3 ? L : L + k * h, t, h / 2, h / 2, h / 2, h, bcs, SOLVER);
-  snprintf(tag, sizeof tag, "pd%g_%c", deg, "XYSU"[run]);
+           m, regions, delta, -k * h, -k * h, L + k * h, run == 3 ? L : L + k * h, t, h / 2, h / 2, h / 2, h, bcs, SOLVER);
+  if (deg < 0) snprintf(tag, sizeof tag, "pdlam_%c", "XYSU"[run]);
+  else snprintf(tag, sizeof tag, "pd%g_%c", deg, "XYSU"[run]);
   const char *xy[2] = {"mx_reaction_x", "my_reaction_y"}, *s[1] = {"top_reaction_x"};
   return run == 2 ? run_deck(tag, deck, 1, s, F) : run_deck(tag, deck, run == 3 ? 1 : 2, xy, F);
 }
@@ -353,5 +365,12 @@ int main(int argc, char **argv) {
   engineering(Apd, H, pd);
   report("pd", pd, clt);
   for (int k = 0; k < 3; k++) PF_TEST_CLOSE(pd[k], clt[k], 0.02, 0);
+
+  /* PD plies bonded in one body: A = N / eps with N = F / L, over the plate's own thickness */
+  double Qlam[5], lam[3];
+  PF_TEST_OK(pd_q(n, nz, -1.0, Qlam)); /* (Q of the whole plate: A / t) */
+  engineering(Qlam, 1.0, lam);
+  report("pd_bonded", lam, clt);
+  for (int k = 0; k < 3; k++) PF_TEST_CLOSE(lam[k], clt[k], 0.02, 0);
   return pf_test_finish();
 }
