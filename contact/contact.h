@@ -44,6 +44,18 @@ int pf_rigid_same_surface(const pf_rigid *a, const pf_rigid *b);
 int pf_rigid_force_local(pf_rigid *r, pf_points *pts, double dt, double sums[4], double *dissipation);
 int pf_rigid_force(pf_rigid *r, pf_points *pts, double dt, double reaction[3], double *energy,
                    double *dissipation);
+/* Quasi-static loading with friction (docs/theory/quasi_static.md §8): the normal penalty as
+ * pf_rigid_force_local and the tangential penalty with its stick/slip return mapping from each
+ * owned point's committed slip slip[3 i] (m; the surface's motion since the start D = x - x0):
+ * terms NULL: add the forces to pts->f, sums[4] this rank's reaction (3) and energy (the normal
+ * penalty's and the elastic tangential part's, |F_t|^2 / (2 k_t)); terms [n_owned]: commit at
+ * an equilibrium, pts->f untouched: each point's new slip into slip and the work its slip
+ * increment dissipated, |F_t| |Delta s|, into terms[i]. */
+int pf_rigid_force_static(const pf_rigid *r, pf_points *pts, double *slip, double *terms, double sums[4]);
+/* The Coulomb coefficient; the tangential penalty k_t of the quasi-static solver (N/m; NAN: the
+ * quadratic law without tangential_stiffness). */
+double pf_rigid_friction(const pf_rigid *r);
+double pf_rigid_tangential_stiffness(const pf_rigid *r);
 /* Move the surface from t to t + dt with its prescribed velocity v(t + dt/2): dx[3] gets the
  * motion dt v(t + dt/2), m (the work it does on the points is booked by the caller: the
  * trapezoidal rule of sim/ledger.h). */

@@ -25,7 +25,17 @@
  * i.e. the Coulomb force mu |F| while sliding, capped by the stick limit of explicit codes:
  * never more than the force m_i |v_t| / dt that stops the relative tangential velocity in one
  * step (so friction cannot reverse the sliding within a step). The work dissipated over the
- * step is -F_t . v_t dt = |F_t| |v_t| dt >= 0. Frictionless when mu = 0, dt = 0 or v_t = 0. */
+ * step is -F_t . v_t dt = |F_t| |v_t| dt >= 0. Frictionless when mu = 0, dt = 0 or v_t = 0.
+ *
+ * Under the quasi-static solver (pf_rigid_force_static; docs/theory/quasi_static.md §8) friction
+ * is a tangential penalty with a stick/slip return mapping (Wriggers 2006, ch. 5; Simo & Laursen
+ * 1992): each point keeps its slip s_i (a point field), committed at converged load steps only;
+ * with D the surface's motion since the start, the elastic tangential displacement is
+ * g_t = (I - n n^T)(u_i - D - s_i), the trial force -k_t g_t, and the force
+ *   F_t = -k_t g_t  while k_t |g_t| <= mu F (stick),   F_t = -mu F g_t / |g_t|  else (slip).
+ * At a load step's equilibrium the slip takes what the elastic part does not hold,
+ * s_i = u_i - D + F_t / k_t (u_i - D for a point out of contact), and the slip increment's work
+ * |F_t| |g_t + F_t / k_t| is dissipated. */
 #include "contact/contact_impl.h"
 
 #include <math.h>
@@ -50,6 +60,8 @@ struct pf_rigid {
   double half_length; /* cylinder: L / 2 (INFINITY: infinite) */
   double stiffness;  /* N/m^5 (quadratic) or N/m (linear) */
   double friction;   /* Coulomb coefficient mu */
+  double tangential; /* quasi-static: the tangential penalty k_t, N/m (NAN: not given) */
+  double x0[3];      /* the initial position (quasi-static friction: D = x - x0) */
   double v[3];       /* velocity of the last advance (m/s; 0 before the first) */
   pf_expr *vel[3];
   uint64_t motion;   /* the deck's velocity node, hashed (pf_node_hash; 0: none) */
@@ -71,6 +83,9 @@ const pf_key pf_rigid_keys[] = {
     {"stiffness", PF_KEY_REAL, 0, "1e17", "N/m^5 | N/m",
      "k: quadratic law N/m^5 (default 1e17); linear law N/m (required)", NULL},
     {"friction", PF_KEY_REAL, 0, "0", "", "Coulomb friction coefficient mu >= 0", NULL},
+    {"tangential_stiffness", PF_KEY_REAL, 0, "stiffness", "N/m",
+     "quasi_static with friction: k_t of the tangential penalty F_t = -k_t g_t of a point that sticks (the "
+     "linear law's stiffness by default; required with the quadratic law)", NULL},
     {"bodies", PF_KEY_STRLIST, 0, "all", "", "the bodies the surface pushes", NULL},
     PF_KEY_END};
 
@@ -147,6 +162,9 @@ static int read_law(const pf_deck *d, const pf_node *map, pf_rigid *r) {
   if (!(r->friction >= 0) || isinf(r->friction))
     return pf_deck_error(d, pf_node_get(map, "friction"), "friction",
                          "must be a finite coefficient >= 0 (got %g)", r->friction);
+  r->tangential = r->law == LAW_LINEAR ? r->stiffness : NAN;
+  if (pf_node_get(map, "tangential_stiffness"))
+    PF_CALL(pf_deck_positive(d, map, "tangential_stiffness", &r->tangential));
   return 0;
 }
 
@@ -171,6 +189,7 @@ static int rigid_setup(const pf_deck *d, const pf_node *map, int nbodies,
   PF_CALL(pf_deck_string(d, map, "name", &name));
   snprintf(r->name, sizeof r->name, "%s", name);
   PF_CALL(read_shape(d, map, r));
+  memcpy(r->x0, r->x, sizeof r->x0);
   PF_CALL(read_law(d, map, r));
   PF_CALL(read_bodies(d, map, nbodies, body_names, r));
   if (pf_node_get(map, "velocity")) PF_CALL(pf_expr3_create(d, map, "velocity", r->vel));
@@ -201,6 +220,8 @@ int pf_rigid_destroy(pf_rigid **r) {
 }
 
 const char *pf_rigid_name(const pf_rigid *r) { return r->name; }
+double pf_rigid_friction(const pf_rigid *r) { return r->friction; }
+double pf_rigid_tangential_stiffness(const pf_rigid *r) { return r->tangential; }
 
 static int common_body(const pf_rigid *a, const pf_rigid *b) {
   if (!a->acts || !b->acts) return 1;
@@ -288,6 +309,50 @@ int pf_rigid_force_local(pf_rigid *r, pf_points *pts, double dt, double sums[4],
   return 0;
 }
 
+int pf_rigid_force_static(const pf_rigid *r, pf_points *pts, double *slip, double *terms, double sums[4]) {
+  double R[3] = {0, 0, 0}, U = 0, D[3], k = r->stiffness, kt = r->tangential;
+  for (int a = 0; a < 3; a++) D[a] = r->x[a] - r->x0[a];
+  for (pf_int i = 0; i < pts->n_owned; i++) {
+    double depth, dir[3], *s = &slip[3 * (size_t)i];
+    const double *u = &pts->u[3 * (size_t)i];
+    if (terms) terms[i] = 0;
+    if (!acts_on(r, pts, i)) continue;
+    if (!penetration(r, &pts->y[3 * (size_t)i], &depth, dir)) {
+      if (terms)
+        for (int a = 0; a < 3; a++) s[a] = u[a] - D[a]; /* out of contact: no elastic part */
+      continue;
+    }
+    double F;
+    if (r->law == LAW_QUADRATIC) {
+      F = k * depth * depth * pts->vol[i];
+      U += k * depth * depth * depth * pts->vol[i] / 3.0;
+    } else {
+      F = k * depth;
+      U += 0.5 * k * depth * depth;
+    }
+    double g[3], gn = 0, gt = 0, ft[3];
+    for (int a = 0; a < 3; a++) g[a] = u[a] - D[a] - s[a], gn += g[a] * dir[a];
+    for (int a = 0; a < 3; a++) g[a] -= gn * dir[a], gt += g[a] * g[a];
+    gt = sqrt(gt);
+    const double lim = r->friction * F, scale = kt * gt <= lim ? kt : lim / gt; /* stick | slip */
+    for (int a = 0; a < 3; a++) ft[a] = gt > 0 ? -scale * g[a] : 0.0;
+    const double T = scale * gt; /* |F_t| */
+    U += 0.5 * T * T / kt;
+    if (terms) { /* commit: the slip takes what the elastic part -F_t / k_t does not hold */
+      terms[i] = T * fmax(gt - T / kt, 0.0); /* (0 while it sticks, to round-off) */
+      for (int a = 0; a < 3; a++) s[a] = u[a] - D[a] + ft[a] / kt;
+      continue;
+    }
+    for (int a = 0; a < 3; a++) {
+      pts->f[3 * (size_t)i + a] += F * dir[a] + ft[a];
+      R[a] -= F * dir[a] + ft[a];
+    }
+  }
+  for (int a = 0; a < 3; a++) sums[a] = R[a];
+  sums[3] = U;
+  return 0;
+}
+
 int pf_rigid_force(pf_rigid *r, pf_points *pts, double dt, double reaction[3], double *energy,
                    double *dissipation) {
   double sums[4];
@@ -319,7 +384,8 @@ void pf_rigid_stiffness_bounds(const pf_rigid *r, const pf_points *pts, double *
     const double db = fmax(depth, 0) + pts->cell[i];
     const double kn = r->law == LAW_QUADRATIC ? 2 * r->stiffness * db * pts->vol[i] : r->stiffness;
     const double F = r->law == LAW_QUADRATIC ? r->stiffness * db * db * pts->vol[i] : r->stiffness * db;
-    const double kt = r->shape == RIGID_PLANE ? 0 : F / fmax(r->radius - db, 0.5 * r->radius);
+    double kt = r->shape == RIGID_PLANE ? 0 : F / fmax(r->radius - db, 0.5 * r->radius);
+    if (r->friction > 0) kt += r->tangential; /* the tangential penalty k_t (I - n n^T) */
     k[i] += sqrt(3.0) * kn + (1 + sqrt(3.0)) * kt;
   }
 }

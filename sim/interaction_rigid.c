@@ -10,7 +10,10 @@
  * Under the quasi-static solver (docs/theory/quasi_static.md §8) the surface is placed at each
  * load step's pseudo-time t (moved by dx = v(t - dt/2) dt) and its work booked at the load step's
  * equilibrium by the same rule, -(R_start + R_end)/2 . dx, with R_start the force of the points
- * at the load step's start; its penalty stiffness bounds the fictitious masses. */
+ * at the load step's start; its penalty stiffness bounds the fictitious masses. A surface with
+ * friction acts there by a tangential penalty with a stick/slip return mapping from each point's
+ * slip (the point field <name>_slip, committed at each load step's equilibrium, when the slip
+ * increments' work is booked in <name>_friction_work; pf_rigid_force_static). */
 #include "sim/sim_impl.h"
 
 #include <stdlib.h>
@@ -23,6 +26,7 @@ typedef struct {
   double r_old[3]; /* R at the step's start */
   double dx[3];    /* the step's motion */
   double x_start[3]; /* quasi-static: the position at the load step's start */
+  char slip[32];     /* quasi-static with friction: the slip's point field ("": none) */
 } rigid;
 
 /* A surface that repeats one given before it (the same shape, place and motion, on a body both
@@ -87,7 +91,15 @@ static int open_accounts(void *data, pf_sim *sim) {
   snprintf(name, sizeof name, "%s_work", n);
   PF_CALL(pf_ledger_open(l, name, "J", 1, -1, PF_BOOK_RUNNING, PF_BOOK_SHARED, T->work, &x->work));
   snprintf(name, sizeof name, "%s_impulse", n);
-  return pf_ledger_open(l, name, "N s", 3, 0, PF_BOOK_RUNNING, PF_BOOK_SHARED, -1, &x->impulse);
+  PF_CALL(pf_ledger_open(l, name, "N s", 3, 0, PF_BOOK_RUNNING, PF_BOOK_SHARED, -1, &x->impulse));
+  if (sim->solver.type != PF_SOLVER_QUASI_STATIC || !(pf_rigid_friction(x->r) > 0)) return 0;
+  if (!(pf_rigid_tangential_stiffness(x->r) > 0))
+    return pf_deck_error(sim->deck, x->map, "tangential_stiffness",
+                         "rigid surface '%s': friction with the quasi_static solver needs 'tangential_stiffness' "
+                         "(k_t, N/m) with the quadratic law", n);
+  int idx;
+  snprintf(x->slip, sizeof x->slip, "%.26s_slip", n); /* (a point field's name: 31 characters) */
+  return pf_points_field_register(sim->pts, x->slip, 3, PF_FIELD_RESTART, &idx);
 }
 
 static void midstep(void *data, const pf_interaction_step *s) {
@@ -107,6 +119,7 @@ static int nsums(const void *data) {
 
 static int force(void *data, const pf_interaction_step *s, double *sums) {
   rigid *x = data;
+  if (x->slip[0]) return pf_rigid_force_static(x->r, s->pts, pf_points_field_get(s->pts, x->slip), NULL, sums);
   double diss = 0;
   PF_CALL(pf_rigid_force_local(x->r, s->pts, s->dt, sums, &diss));
   pf_ledger_add(s->ledger, x->dissipation, diss);
@@ -139,14 +152,23 @@ static void place(void *data, const pf_interaction_step *s) {
   pf_rigid_advance(x->r, s->t - s->dt, s->dt, x->dx);
 }
 
-/* Quasi-static: the load step's work at its equilibrium. */
+/* Quasi-static: the load step's work at its equilibrium; with friction, each point's slip
+ * committed and the work of the slip increments (summed by pf_sim_solver_sums: the same bits on
+ * any number of ranks) dissipated. */
 static int settled(void *data, const pf_interaction_step *s, const double *g0, const double *u0) {
   (void)g0, (void)u0;
   rigid *x = data;
   double r_new[3];
   pf_ledger_get(s->ledger, x->force, r_new);
   pf_ledger_book_centred(s->ledger, x->work, x->r_old, r_new, x->dx);
-  return 0;
+  if (!x->slip[0]) return 0;
+  double *terms, unused[4], W;
+  PF_MALLOC(terms, s->pts->n_owned);
+  int ierr = pf_rigid_force_static(x->r, s->pts, pf_points_field_get(s->pts, x->slip), terms, unused);
+  if (!ierr) ierr = pf_sim_solver_sums(terms, s->pts->n_owned, 1, &W);
+  free(terms);
+  if (!ierr) pf_ledger_add(s->ledger, x->dissipation, (pf_comm_rank() == 0) * W);
+  return ierr;
 }
 
 static void stiffness_bounds(const void *data, const pf_points *pts, double *k) {

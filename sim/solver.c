@@ -28,7 +28,7 @@ const pf_key pf_sim_solver_keys[] = {
      "many times per load step, then the run stops with an error", NULL},
     PF_KEY_END};
 
-/* Friction on the items of a list (rigid surfaces, contact pairs) needs a step in time: refused. */
+/* Friction on the items of a list (contact pairs) needs a step in time: refused. */
 static int refuse_friction(const pf_deck *d, const pf_node *list, const char *what) {
   for (int j = 0; j < pf_node_count(list); j++) {
     const pf_node *item = pf_node_item(list, j);
@@ -47,13 +47,12 @@ static const pf_node *surfaces(const pf_node *root, int k) {
   return k == 0 ? pf_node_get(root, "indenters") : pf_node_get(pf_node_get(root, "contact"), "rigid_surfaces");
 }
 
-/* A rigid surface with a velocity is a load; friction, of a surface or of a contact pair (which
- * acts by its penalty alone), is refused. */
+/* A rigid surface with a velocity is a load; a contact pair's friction is refused (the pair acts by
+ * its penalty alone; a rigid surface's friction is a tangential penalty, contact/rigid.c). */
 static int check_surfaces(const pf_deck *d, const pf_node *root, int *moving) {
   *moving = 0;
   PF_CALL(refuse_friction(d, pf_node_get(pf_node_get(root, "contact"), "pairs"), "a contact pair"));
   for (int k = 0; k < 2; k++) {
-    PF_CALL(refuse_friction(d, surfaces(root, k), "a rigid surface"));
     for (int j = 0; j < pf_node_count(surfaces(root, k)); j++)
       *moving |= pf_node_get(pf_node_item(surfaces(root, k), j), "velocity") != NULL;
   }
