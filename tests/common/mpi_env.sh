@@ -26,3 +26,17 @@ digests_agree() {
   echo "$label: digests on 1, 2, 3 ranks: $*"
   [ $# = 3 ] && [ "$1" = "$2" ] && [ "$1" = "$3" ] || { echo "FAIL: $label: the digests differ"; return 1; }
 }
+# static_digests EXE DECK: DECK.yaml of this folder under the quasi-static solver cut to 2 load
+# steps at tolerance 1e-4, on 1, 2 and 3 ranks (each run in DECK<np>/): the same state digest
+# (status 1 and FAIL lines when not)
+static_digests() {
+  local exe=$1 deck=$2 digests="" np o st=0
+  for np in 1 2 3; do
+    mkdir -p "$deck$np"
+    o=$(cd "$deck$np" && run $np "$exe" --quiet --set solver.load_steps=2 --set solver.tolerance=1e-4 "../$deck.yaml" 2>&1) ||
+      { echo "FAIL: $deck on $np ranks: $o"; st=1; }
+    digests="$digests $(digest_of "$o")"
+  done
+  digests_agree "$deck" $digests || st=1
+  return $st
+}
