@@ -3,7 +3,7 @@
  * material; variable horizon and the transition forms of pd/), with beta(x) in [0, 1] from the
  * deck. With material_regions each element has its entry's material and each node, a point of
  * the operator, the latest entry's among its elements (mass rho V, constants and model its own:
- * docs/theory/interfaces.md §9). Elements whose eight nodes all have beta = 1 are not evaluated (the PD region, where
+ * docs/theory/interfaces.md §8). Elements whose eight nodes all have beta = 1 are not evaluated (the PD region, where
  * bonds may break). Two forms (the key `overlap`):
  * - force, a statics and patch-test tool (Seleson, Beneddine & Prudhomme 2013, force-based blending; D'Elia et al. 2021, §4):
  *     f_i = beta_i f_i^PD + (1 - beta_i) f_i^FE.
@@ -73,7 +73,7 @@ const pf_key *pf_coupled_body_keys(void) {
 int pf_coupled_body_requested(const pf_node *body) { return pf_node_get(body, "peridynamic") != NULL; }
 
 /* Several materials: each node, a PD point, takes the material of the latest material_regions entry
- * among its elements (docs/theory/interfaces.md §9), which the PD operator's part q (the q-th
+ * among its elements (docs/theory/interfaces.md §8), which the PD operator's part q (the q-th
  * entry's) carries. */
 static int node_parts(pf_coupled_body *c) {
   const pf_mesh *mesh = pf_fem_body_mesh(c->fe);

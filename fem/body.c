@@ -28,7 +28,7 @@ const pf_key pf_fem_body_keys[] = {
     {"material_regions", PF_KEY_LIST, 0, NULL, "",
      "other materials on some elements: each entry a material and a block or region (later entries take precedence); "
      "with a peridynamic: operator, of one continuum model and a constant horizon, each node taking the latest entry "
-     "among its elements (docs/theory/interfaces.md §9)", pf_fem_material_region_keys},
+     "among its elements (docs/theory/interfaces.md §8)", pf_fem_material_region_keys},
     {"mesh", PF_KEY_MAP, 1, NULL, "", "the hexahedral mesh", pf_mesh_keys},
     {"element", PF_KEY_STRING, 0, "reduced", "",
      "reduced (one point, hourglass control) | bbar (2x2x2 selective-reduced)", NULL},

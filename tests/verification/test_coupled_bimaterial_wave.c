@@ -1,5 +1,5 @@
 /* A wave across two material interfaces in one coupled PD/FE body (material_regions in a body
- * with a peridynamic: operator, docs/theory/interfaces.md §9), tests/data/coupled_bimaterial_wave.yaml
+ * with a peridynamic: operator, docs/theory/interfaces.md §8), tests/data/coupled_bimaterial_wave.yaml
  * at two resolutions.
  *
  * A bar along x, its lateral motion held (uniaxial strain), soft (aluminium-like) except stiff
