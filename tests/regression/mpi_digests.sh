@@ -107,7 +107,8 @@ printf 'parallel:\n  rebalance_threshold: 1.0\n' >> coupled_rebalance.yaml
 # (the consistent form is the default: coupled_bar runs it; a separate variant would repeat it)
 # two materials in one coupled body (tests/data/coupled_bimaterial_wave.yaml, the deck of
 # test_coupled_bimaterial_wave, cut to 20 us: the pulse reaches the interface in the peridynamic
-# part), also re-partitioned at output steps (each node's material travels with it)
+# part), also re-partitioned at output steps (each node's material is found again from its
+# elements, its mass must match the one that travelled with it)
 sed -E 's/^time: .*/time: {final_time: 20.0e-6}/; s/interval: 100, history_interval: 10/interval: 50, history_interval: 10/' \
   "$OLDPWD/data/coupled_bimaterial_wave.yaml" > coupled_bimaterial.yaml
 cp coupled_bimaterial.yaml coupled_bimaterial_rebalance.yaml
@@ -141,8 +142,8 @@ sed -E 's/model: pmb, density: 2000, bulk_modulus: 2.0e9/model: lps, density: 20
 not_on_2=" cylinder_rebalance mixed_rebalance sphere_on_block_rebalance coupled_rebalance coupled_bimaterial_rebalance horizon_consistent wave_spread disk_rigid_surface "
 # (and the decks whose uninterrupted 2-rank runs mpi_restart.sh compares with their 1-rank runs,
 # as the runs that write its checkpoints: the Taylor bar (the same 120 steps), the indenter (60 steps),
-# the sphere on the block and the coupled bar)
-not_on_2+="taylor_impact disk_impact_rigid sphere_on_block coupled_bar "
+# the sphere on the block, the coupled bar and the coupled body of two materials)
+not_on_2+="taylor_impact disk_impact_rigid sphere_on_block coupled_bar coupled_bimaterial "
 # The variants that change only how the run is split, written or held - re-partitioning at every
 # output step, spread output, the indenter written as a rigid surface - are their plain deck's run
 # on 1 rank: their 3-rank digest is compared with the plain deck's 1-rank digest (re-partitioning,
