@@ -1,7 +1,9 @@
 /* An FE body coupled to peridynamics by blending on its own nodes (docs/theory/coupling.md §3):
  * the nodes are also the points of a peridynamic operator (correspondence, the body's own
  * material; variable horizon and the transition forms of pd/), with beta(x) in [0, 1] from the
- * deck. Elements whose eight nodes all have beta = 1 are not evaluated (the PD region, where
+ * deck. With material_regions each element has its entry's material and each node, a point of
+ * the operator, the latest entry's among its elements (mass rho V, constants and model its own:
+ * docs/theory/interfaces.md §8). Elements whose eight nodes all have beta = 1 are not evaluated (the PD region, where
  * bonds may break). Two forms (the key `overlap`):
  * - force, a statics and patch-test tool (Seleson, Beneddine & Prudhomme 2013, force-based blending; D'Elia et al. 2021, §4):
  *     f_i = beta_i f_i^PD + (1 - beta_i) f_i^FE.
@@ -30,6 +32,8 @@ struct pf_coupled_body {
   pf_expr *beta_expr;    /* blending weight beta(x) */
   pf_nearest *fe_region; /* the nodes where the elements act (beta < 1), for the horizon's d_fe */
   double rho;            /* the material's density, kg/m^3 */
+  uint8_t *node_part;    /* [mesh nodes] material_regions: each node's part (the latest entry among
+                            its elements, 0 the body's material), or NULL with one material */
   pf_int first, n;       /* owned nodes [first, first + n) of the store */
   double *beta;          /* field "blending_weight" [store] */
   double *fsave;         /* [3n] scratch of the blended force */
@@ -68,6 +72,17 @@ const pf_key *pf_coupled_body_keys(void) {
 
 int pf_coupled_body_requested(const pf_node *body) { return pf_node_get(body, "peridynamic") != NULL; }
 
+/* Several materials: each node, a PD point, takes the material of the latest material_regions entry
+ * among its elements (docs/theory/interfaces.md §8), which the PD operator's part q (the q-th
+ * entry's) carries. */
+static int node_parts(pf_coupled_body *c) {
+  const pf_mesh *mesh = pf_fem_body_mesh(c->fe);
+  PF_MALLOC(c->node_part, mesh->nnodes + 1);
+  if (pf_fem_body_node_entries(c->fe, c->node_part)) return pf_pd_body_set_node_parts(c->pd, c->node_part, mesh->nnodes);
+  PF_FREE(c->node_part);
+  return 0;
+}
+
 /* The `peridynamic:` map: the PD operator, beta (checked at every mesh node), d_fe. */
 static int read_coupling(pf_coupled_body *c, const pf_node *body, const pf_node *materials) {
   const pf_node *map = pf_node_get(body, "peridynamic");
@@ -93,6 +108,7 @@ static int read_coupling(pf_coupled_body *c, const pf_node *body, const pf_node 
   free(fe);
   PF_CALL(ierr);
   pf_pd_body_set_fe_distance(c->pd, fe_distance, c->fe_region); /* the horizon's d_fe */
+  PF_CALL(node_parts(c));
   const pf_node *dmg = pf_node_get(map, "damage");
   const char *law = "none";
   PF_CALL(pf_deck_string(c->deck, dmg, "law", &law));
@@ -135,7 +151,7 @@ int pf_coupled_body_destroy(pf_coupled_body **pc) {
   pf_pd_body_destroy(&c->pd);
   pf_expr_destroy(&c->beta_expr);
   pf_nearest_destroy(&c->fe_region);
-  free(c->fsave);
+  free(c->fsave), free(c->node_part);
   PF_FREE(*pc);
   return 0;
 }
@@ -195,8 +211,9 @@ int pf_coupled_body_rows(const pf_coupled_body *c, const pf_points *pts, pf_int 
   return ierr;
 }
 
-/* The blending field and the masses: every node carries rho V (the PD operator's mass). */
-static int attach_blending(pf_coupled_body *c, pf_points *pts) {
+/* The blending field and the masses: every node carries rho V (the PD operator's mass; several
+ * materials: its part's rho). */
+static int attach_blending(pf_coupled_body *c, pf_points *pts, pf_gid gid0) {
   int idx;
   PF_CALL(pf_points_field_register(pts, "blending_weight", 1, PF_FIELD_GHOST | PF_FIELD_OUTPUT | PF_FIELD_CONSTANT, &idx));
   c->beta = pts->fields[idx].data;
@@ -205,7 +222,10 @@ static int attach_blending(pf_coupled_body *c, pf_points *pts) {
   pf_pd_body_set_blending(c->pd, c->beta, c->energy_form);
   PF_CALL(pf_fem_body_set_blending_field(c->fe, c->beta));
   pf_pd_body_set_fe_vector(c->pd, fe_vector, c);
-  for (pf_int i = c->first; i < c->first + c->n; i++) pts->m[i] = c->rho * pts->vol[i]; /* all nodes */
+  for (pf_int i = c->first; i < c->first + c->n; i++) { /* all nodes */
+    const double rho = c->node_part ? pf_pd_body_part_density(c->pd, c->node_part[pts->gid[i] - gid0]) : c->rho;
+    pts->m[i] = rho * pts->vol[i];
+  }
   free(c->fsave);
   PF_MALLOC(c->fsave, 3 * (size_t)c->n + 1);
   return 0;
@@ -215,7 +235,7 @@ int pf_coupled_body_attach(pf_coupled_body *c, int body, pf_points *pts, pf_int 
                            const pf_bond_rows *rows, const pf_int *local, int fresh) {
   c->first = first, c->n = n;
   PF_CALL(pf_fem_body_attach(c->fe, body, pts, first, n, gid0));
-  PF_CALL(attach_blending(c, pts));
+  PF_CALL(attach_blending(c, pts, gid0));
   PF_CALL(pf_pd_body_attach(c->pd, pts, first, n, rows, local, fresh));
   pf_fem_body_set_stable_dt(c->fe, fmin(pf_fem_body_stable_dt(c->fe), pf_pd_body_stable_dt(c->pd, pts)));
   return 0;

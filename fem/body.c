@@ -26,8 +26,9 @@ const pf_key pf_fem_body_keys[] = {
     {"type", PF_KEY_STRING, 1, NULL, "", "finite_element", NULL},
     {"material", PF_KEY_STRING, 1, NULL, "", "a name under materials: (an FE model)", NULL},
     {"material_regions", PF_KEY_LIST, 0, NULL, "",
-     "other materials on some elements: each entry a material and a block or region (later entries take precedence; "
-     "not in a body with a peridynamic: operator)", pf_fem_material_region_keys},
+     "other materials on some elements: each entry a material and a block or region (later entries take precedence); "
+     "with a peridynamic: operator, of one continuum model and a constant horizon, each node taking the latest entry "
+     "among its elements (docs/theory/interfaces.md §8)", pf_fem_material_region_keys},
     {"mesh", PF_KEY_MAP, 1, NULL, "", "the hexahedral mesh", pf_mesh_keys},
     {"element", PF_KEY_STRING, 0, "reduced", "",
      "reduced (one point, hourglass control) | bbar (2x2x2 selective-reduced)", NULL},

@@ -50,6 +50,10 @@ const uint8_t *pf_fem_body_eroded(const pf_fem_body *b, long *count);
 const pf_mesh *pf_fem_body_mesh(const pf_fem_body *b);
 /* The body's `material` (material_regions may give some elements others). */
 const pf_material *pf_fem_body_material(const pf_fem_body *b);
+/* Each mesh node's entry of material_regions: the latest entry (1, 2, ...) that gave one of its
+ * elements its material, 0 where the body's `material` holds all of them (entry[mesh nnodes]).
+ * Returns 1 when the body has material_regions, 0 (every entry 0) when not. */
+int pf_fem_body_node_entries(const pf_fem_body *b, uint8_t *entry);
 /* The least reference density and the largest bulk modulus of the body's materials (contact's
  * penalty constants; the one material's for a body of one), kg/m^3 and Pa (fem/materials.c). */
 void pf_fem_body_material_bounds(const pf_fem_body *b, double *density, double *bulk_modulus);

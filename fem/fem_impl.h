@@ -30,6 +30,8 @@ struct pf_fem_body {
   int nmat;                /* materials: [0] the body's `material`, then those `material_regions` add */
   pf_fem_material mats[PF_FEM_MAX_MATERIALS];
   uint8_t *mesh_mat;       /* [mesh.nelem] each element's material, or NULL (one material) */
+  uint8_t *mesh_entry;     /* [mesh.nelem] the material_regions entry (1, 2, ...) that gave each
+                              element its material, 0 the body's `material`; NULL with one */
   int nnames;              /* the output's state fields: the union of the materials' state names */
   const char *names[PF_FEM_MAX_STATE_NAMES];
   int8_t slot[PF_FEM_MAX_MATERIALS][PF_FEM_MAX_STATE_NAMES]; /* material m's index of name k, or -1 */

@@ -60,8 +60,8 @@ int pf_fem_materials_read(pf_fem_body *b, const pf_deck *d, const pf_node *body,
 
 void pf_fem_materials_destroy(pf_fem_body *b) {
   for (int m = 0; m < b->nmat; m++) pf_material_destroy(&b->mats[m].mat);
-  free(b->mesh_mat);
-  b->mesh_mat = NULL, b->nmat = 0;
+  free(b->mesh_mat), free(b->mesh_entry);
+  b->mesh_mat = b->mesh_entry = NULL, b->nmat = 0;
 }
 
 static int known_block(const pf_fem_body *b, const pf_deck *d, const pf_node *at, const char *name, int *blk) {
@@ -82,7 +82,7 @@ static int centroid_inside(const pf_mesh *m, pf_int e, const pf_region *r) {
 }
 
 /* One entry of `material_regions`: its material on the elements it selects. */
-static int read_entry(pf_fem_body *b, const pf_deck *d, const pf_node *item, const pf_node *materials) {
+static int read_entry(pf_fem_body *b, const pf_deck *d, const pf_node *item, int entry, const pf_node *materials) {
   const pf_node *bn = pf_node_get(item, "block"), *rn = pf_node_get(item, "region");
   if (!bn == !rn)
     return pf_deck_error(d, item, "material_regions", "body '%s': an entry gives %s of block and region (give exactly one)",
@@ -99,11 +99,22 @@ static int read_entry(pf_fem_body *b, const pf_deck *d, const pf_node *item, con
     PF_CALL(pf_region_from_deck(d, rn, NULL, -1, &r));
   pf_int count = 0;
   for (pf_int e = 0; e < b->mesh.nelem; e++)
-    if (bn ? b->mesh.block[e] == blk : centroid_inside(&b->mesh, e, &r)) b->mesh_mat[e] = (uint8_t)m, count++;
+    if (bn ? b->mesh.block[e] == blk : centroid_inside(&b->mesh, e, &r))
+      b->mesh_mat[e] = (uint8_t)m, b->mesh_entry[e] = (uint8_t)entry, count++;
   if (!count)
     return pf_deck_error(d, bn ? bn : rn, bn ? "block" : "region",
                          "body '%s': this entry of material_regions selects no element", b->name);
   return 0;
+}
+
+int pf_fem_body_node_entries(const pf_fem_body *b, uint8_t *entry) {
+  const pf_mesh *m = &b->mesh;
+  for (pf_int k = 0; k < m->nnodes; k++) {
+    entry[k] = 0;
+    for (int64_t q = b->mesh_node_off[k]; q < b->mesh_node_off[k + 1] && b->mesh_entry; q++)
+      if (b->mesh_entry[b->mesh_node_item[q]] > entry[k]) entry[k] = b->mesh_entry[b->mesh_node_item[q]];
+  }
+  return b->mesh_entry != NULL;
 }
 
 /* The union of the materials' state names, and where each material keeps each. */
@@ -126,13 +137,16 @@ static int state_names(pf_fem_body *b) {
 
 int pf_fem_materials_regions(pf_fem_body *b, const pf_deck *d, const pf_node *body, const pf_node *materials) {
   const pf_node *list = pf_node_get(body, "material_regions");
-  if (list && pf_node_get(body, "peridynamic"))
-    return pf_deck_error(d, list, "material_regions",
-                         "body '%s': material_regions in a body with a peridynamic: operator is not supported", b->name);
   if (list && !pf_node_count(list))
     return pf_deck_error(d, list, "material_regions", "body '%s': an empty list (leave the key out)", b->name);
-  if (list) PF_MALLOC(b->mesh_mat, b->mesh.nelem);
-  for (int i = 0; list && i < pf_node_count(list); i++) PF_CALL(read_entry(b, d, pf_node_item(list, i), materials));
+  if (list && pf_node_count(list) > UINT8_MAX)
+    return pf_deck_error(d, list, "material_regions", "body '%s': more than %d entries", b->name, UINT8_MAX);
+  if (list) {
+    PF_MALLOC(b->mesh_mat, b->mesh.nelem);
+    PF_MALLOC(b->mesh_entry, b->mesh.nelem);
+  }
+  for (int i = 0; list && i < pf_node_count(list); i++)
+    PF_CALL(read_entry(b, d, pf_node_item(list, i), i + 1, materials));
   return state_names(b);
 }
 

@@ -347,7 +347,7 @@ static int body_read(const pf_deck *d, const pf_node *owner, const pf_node *body
   PF_CALL(read_cracks(d, pf_node_get(body, "precracks"), &b->ncracks, &b->cracks));
   PF_CALL(pf_pd_damage_read(d, pf_node_get(body, "damage"), b));
   PF_CALL(check_variable_horizon(d, body, b));
-  return pf_pd_parts_read(d, body, materials, b);
+  return pf_pd_parts_read(d, b->coupled ? owner : body, materials, b); /* (coupled: the FE body's entries) */
 }
 
 static int create(const pf_deck *d, const pf_node *owner, const pf_node *map, const pf_node *materials,

@@ -191,8 +191,9 @@ static int corr_read_part(const pf_deck *d, const pf_node *mat, const char *name
   PF_CALL(pf_deck_string(d, mat, "model", &model));
   if (strcmp(model, p->model))
     return pf_deck_error(d, pf_node_get(part->node, "material"), "material", "material '%s' is model '%s', body "
-                         "'%s''s material '%s' is '%s': the materials of one correspondence body share a continuum "
-                         "model (their constants may differ)", name, model, b->name, b->material, p->model);
+                         "'%s''s material '%s' is '%s': the materials of one correspondence body%s share a continuum "
+                         "model (their constants may differ)", name, model, b->name, b->material, p->model,
+                         b->coupled ? " (the peridynamic: operator of a finite_element body)" : "");
   PF_CALL(pf_material_create(d, mat, name, &p->cms[q]));
   part->density = pf_material_density(p->cms[q]);
   part->K = pf_material_bulk_modulus(p->cms[q]);

@@ -52,15 +52,15 @@ static int read_part(const pf_deck *d, const pf_node *entry, const pf_node *mate
 }
 
 /* What several materials do not take yet, refused by name. */
-static int check_body(const pf_deck *d, const pf_node *list, const pf_node *body, const pf_pd_body *b) {
+static int check_body(const pf_deck *d, const pf_node *list, const pf_pd_body *b) {
   if (!b->ops->several_materials)
     return pf_deck_error(d, list, "material_regions", "body '%s' has model '%s'; several materials in one body "
                          "take %s and the continuum models (correspondence)", b->name, b->ops->name,
                          pf_pd_material_names_with(offsetof(pf_pd_material_ops, several_materials)));
-  if (b->coupled || b->hz_expr)
-    return pf_deck_error(d, list, "material_regions", "body '%s': several materials take a constant horizon and "
-                         "no elements (one material in a coupled or variable-horizon body)", b->name);
-  const pf_node *dmg = pf_node_get(body, "damage");
+  if (b->hz_expr)
+    return pf_deck_error(d, list, "material_regions", "body '%s': several materials take a constant horizon "
+                         "(one material in a variable-horizon body, coupled or not)", b->name);
+  const pf_node *dmg = pf_node_get(b->node, "damage"); /* (coupled: the peridynamic: map's) */
   if (pf_pd_energy_limited(b) || (dmg && pf_node_get(dmg, "energy_release_rate")))
     return pf_deck_error(d, dmg, "damage", "body '%s' has several materials: a critical stretch from an energy "
                          "release rate, or an energy limit, would be one material's; give critical_stretch",
@@ -133,7 +133,7 @@ int pf_pd_parts_read(const pf_deck *d, const pf_node *body, const pf_node *mater
   const int n = pf_node_count(list);
   if (n < 1 || n >= PF_PD_MAX_PARTS)
     return pf_deck_error(d, list, "material_regions", "give 1 to %d entries (got %d)", PF_PD_MAX_PARTS - 1, n);
-  PF_CALL(check_body(d, list, body, b));
+  PF_CALL(check_body(d, list, b));
   for (int q = 1; q <= n; q++) {
     const pf_node *entry = pf_node_item(list, q - 1), *rn = pf_node_get(entry, "region"), *bn = pf_node_get(entry, "block");
     if (!rn == !bn)
@@ -179,8 +179,9 @@ int pf_pd_parts_attach(pf_pd_body *b, pf_points *pts, int fresh) {
     const pf_gid j = pts->gid[i] - g0;
     PF_CHECK(!b->block_part || (j >= 0 && j < b->nblock_part), PF_ERR_INPUT, "body '%s': point %" PF_GID_FMT
              " is not in its cloud of %" PF_GID_FMT " points", b->name, pts->gid[i], b->nblock_part);
-    part[i] = b->block_part ? b->block_part[j] : 0; /* (the last block entry that claims it) */
-    for (int q = 1; q < b->nparts; q++) /* (later entries over earlier) */
+    part[i] = b->block_part ? b->block_part[j] : 0; /* (the last block entry that claims it; coupled: the
+                                                       last entry among the node's elements) */
+    for (int q = 1; q < b->nparts && !b->coupled; q++) /* (later entries over earlier) */
       if (!b->parts[q].block && q > part[i] && pf_region_selects(&b->parts[q].region, pts, i)) part[i] = q;
   }
   PF_CALL(pf_points_exchange(pts, part, 1));
@@ -188,6 +189,21 @@ int pf_pd_parts_attach(pf_pd_body *b, pf_points *pts, int fresh) {
   if (isfinite(b->interface_wc)) PF_CALL(fill_interface_energy(b));
   return fresh ? check_claims(b) : 0;
 }
+
+int pf_pd_body_set_node_parts(pf_pd_body *b, const uint8_t *entry, pf_gid nnodes) {
+  pf_pd_parts_free(b);
+  if (b->nparts < 2) return 0;
+  PF_MALLOC(b->block_part, nnodes + 1);
+  for (pf_gid k = 0; k < nnodes; k++) {
+    PF_CHECK(entry[k] < b->nparts, PF_ERR_INPUT, "body '%s': node %" PF_GID_FMT " has part %d of %d", b->name,
+             k + 1, (int)entry[k], b->nparts);
+    b->block_part[k] = entry[k];
+  }
+  b->nblock_part = nnodes;
+  return 0;
+}
+
+double pf_pd_body_part_density(const pf_pd_body *b, int q) { return b->parts[q].density; }
 
 void pf_pd_parts_free(pf_pd_body *b) {
   free(b->block_part);

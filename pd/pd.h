@@ -136,6 +136,12 @@ const pf_key *pf_pd_coupled_key_table(void);
 #define pf_pd_coupled_keys (pf_pd_coupled_key_table())
 int pf_pd_body_create_coupled(const pf_deck *d, const pf_node *owner, const pf_node *map,
                               const pf_node *materials, pf_pd_body **b);
+/* Coupled with material_regions (read from the owner's mapping, one part per entry): the part of
+ * each mesh node, entry[k] for node k (global id: the body's first + k), from the entries of its
+ * elements (pf_fem_body_node_entries); copied. The entries' regions are then not tested at the
+ * nodes. The density of part q (0: the body's material). */
+int pf_pd_body_set_node_parts(pf_pd_body *b, const uint8_t *entry, pf_gid nnodes);
+double pf_pd_body_part_density(const pf_pd_body *b, int q);
 /* Each store point's blending weight (FE-coupled bodies), read at attach: points with beta < 1
  * are overlap points (no damage). weight_states 0: the caller weights the operator's net force
  * at each point by beta (force blending); 1: each point's force state is weighted by its own

@@ -80,7 +80,8 @@ struct pf_pd_body {
   double *part;
   uint8_t *block_part; /* [cloud size] by block entries: the part of each point of the body's cloud
                           (index gid - the body's first gid), 0 where no block entry claims it; NULL
-                          without block entries */
+                          without block entries. Coupled: each mesh node's part, from its elements
+                          (pf_pd_body_set_node_parts), the regions then not tested */
   pf_gid nblock_part;
   pf_pd_interface_rule interface;
   /* the interface's own damage law (interface: damage:), for the bonds between two materials,

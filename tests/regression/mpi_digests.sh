@@ -105,6 +105,14 @@ cp "$OLDPWD/data/coupled_bar.yaml" coupled_bar.yaml
 cp coupled_bar.yaml coupled_rebalance.yaml
 printf 'parallel:\n  rebalance_threshold: 1.0\n' >> coupled_rebalance.yaml
 # (the consistent form is the default: coupled_bar runs it; a separate variant would repeat it)
+# two materials in one coupled body (tests/data/coupled_bimaterial_wave.yaml, the deck of
+# test_coupled_bimaterial_wave, cut to 20 us: the pulse reaches the interface in the peridynamic
+# part), also re-partitioned at output steps (each node's material is found again from its
+# elements, its mass must match the one that travelled with it)
+sed -E 's/^time: .*/time: {final_time: 20.0e-6}/; s/interval: 100, history_interval: 10/interval: 50, history_interval: 10/' \
+  "$OLDPWD/data/coupled_bimaterial_wave.yaml" > coupled_bimaterial.yaml
+cp coupled_bimaterial.yaml coupled_bimaterial_rebalance.yaml
+printf 'parallel:\n  rebalance_threshold: 1.0\n' >> coupled_bimaterial_rebalance.yaml
 
 # two materials in one PD body (material_regions), pulled apart across their interface until the
 # interface's own law breaks its bonds: PMB with the series micromodulus and the critical stretch,
@@ -131,21 +139,22 @@ sed -E 's/model: pmb, density: 2000, bulk_modulus: 2.0e9/model: lps, density: 20
         s/model: pmb, density: 2700, bulk_modulus: 8.0e9/model: lps, density: 2700, bulk_modulus: 8.0e9, shear_modulus: 4.8e9/;
         s/law: critical_stretch, critical_stretch: 0.004/law: critical_energy, energy_release_rate: 5.0/' interface_pmb.yaml > interface_lps.yaml
 
-not_on_2=" cylinder_rebalance mixed_rebalance sphere_on_block_rebalance coupled_rebalance horizon_consistent wave_spread disk_rigid_surface "
+not_on_2=" cylinder_rebalance mixed_rebalance sphere_on_block_rebalance coupled_rebalance coupled_bimaterial_rebalance horizon_consistent wave_spread disk_rigid_surface "
 # (and the decks whose uninterrupted 2-rank runs mpi_restart.sh compares with their 1-rank runs,
 # as the runs that write its checkpoints: the Taylor bar (the same 120 steps), the indenter (60 steps),
-# the sphere on the block and the coupled bar)
-not_on_2+="taylor_impact disk_impact_rigid sphere_on_block coupled_bar "
+# the sphere on the block, the coupled bar and the coupled body of two materials)
+not_on_2+="taylor_impact disk_impact_rigid sphere_on_block coupled_bar coupled_bimaterial "
 # The variants that change only how the run is split, written or held - re-partitioning at every
 # output step, spread output, the indenter written as a rigid surface - are their plain deck's run
 # on 1 rank: their 3-rank digest is compared with the plain deck's 1-rank digest (re-partitioning,
 # spreading or the rigid surface must change no bit), without a 1-rank run of their own.
 declare -A plain_of=([cylinder_rebalance]=fragmenting_cylinder [mixed_rebalance]=mixed
                      [sphere_on_block_rebalance]=sphere_on_block [coupled_rebalance]=coupled_bar
+                     [coupled_bimaterial_rebalance]=coupled_bimaterial
                      [wave_spread]=wave_in_bar [disk_rigid_surface]=disk_impact_rigid)
 declare -A one_rank=()
-rebalanced="cylinder_rebalance mixed_rebalance sphere_on_block_rebalance cylinder_contact tube_ep coupled_rebalance horizon_consistent dcb_family" # (the other two split evenly on 2 ranks)
-decks="disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar wave_variable_horizon wave_pd_to_fe cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block sphere_on_block_rebalance cylinder_contact tube_ep taylor_corr taylor_corr_regions damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance dcb_family interface_pmb interface_lps"
+rebalanced="cylinder_rebalance mixed_rebalance sphere_on_block_rebalance cylinder_contact tube_ep coupled_rebalance coupled_bimaterial_rebalance horizon_consistent dcb_family" # (the other two split evenly on 2 ranks)
+decks="disk_impact_rigid disk_rigid_surface fragmenting_cylinder wave_in_bar wave_variable_horizon wave_pd_to_fe cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block sphere_on_block_rebalance cylinder_contact tube_ep taylor_corr taylor_corr_regions damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance coupled_bimaterial coupled_bimaterial_rebalance dcb_family interface_pmb interface_lps"
 # The 1-rank runs first, two at a time (one process each: both cores busy; each deck writes files
 # of its own name), their output and status kept for the loop below.
 mkdir -p np1

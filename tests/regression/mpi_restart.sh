@@ -12,13 +12,15 @@
 #     adaptive step, rigid wall): a run with a checkpoint at step 80 on 2 ranks, restarted on
 #     3 and on 1, ends with the uninterrupted 1-rank run's digest, and so does the 2-rank run
 #     itself; the same with element erosion (elements deleted before and after the checkpoint).
-#  6. PD materials with history, the coupled bar, contact, and a rigid indenter (1 -> 1, 1 -> 3,
-#     2 -> 2, 2 -> 1): restarts, and the 2-rank runs that write their checkpoints, end with the
-#     uninterrupted 1-rank run's digest (these 2-rank runs are the decks' 2-rank runs:
-#     mpi_digests.sh runs taylor_impact, disk_impact_rigid, sphere_on_block and coupled_bar on
-#     1 and 3 ranks only). The uninterrupted 1-rank digests of the Taylor bar, the tube, the
-#     Johnson-Cook bar, the sphere on the block and the coupled bar are those of mpi_digests.sh's
-#     runs of the same decks when it left them.
+#  6. PD materials with history, the coupled bar, two materials in a coupled body, contact, and a
+#     rigid indenter (1 -> 1, 1 -> 3, 2 -> 2, 2 -> 1): restarts, and the 2-rank runs that write
+#     their checkpoints, end with the uninterrupted 1-rank run's digest (these 2-rank runs are
+#     the decks' 2-rank runs:
+#     mpi_digests.sh runs taylor_impact, disk_impact_rigid, sphere_on_block, coupled_bar and
+#     coupled_bimaterial on 1 and 3 ranks only). The uninterrupted 1-rank digests of the Taylor
+#     bar, the tube, the Johnson-Cook bar, the sphere on the block, the coupled bar and the coupled
+#     body of two materials are those of mpi_digests.sh's runs of the same decks when it left
+#     them.
 # usage: mpi_restart.sh PERIFEM SCRATCH [TESTS_BINARY_DIR]   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 bindir=${3:-} fail=0
@@ -148,12 +150,18 @@ sed -E 's/^(\s*)damage: \{law/\1formulation: corrected\n\1allow_in_dynamics: tru
 # block, then the FE ball, FE <-> PD and PD self-contact pairs; its node ids start after the
 # block's, which the restart must number the same way), checkpointed at step 100 of 150
 sed -E 's#\.\./\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/data/sphere_on_block.yaml" > sb$tag.yaml
-# (ep, jc, sb and cb are mpi_digests' tube_ep, damage_bar, sphere_on_block and coupled_bar with a
+# and two materials in one coupled body (tests/data/coupled_bimaterial_wave.yaml cut to 20 us as
+# mpi_digests cuts it: each node's material, found from its elements at set-up, must give the
+# masses the checkpoint holds), checkpointed at step 200
+sed -E 's/^time: .*/time: {final_time: 20.0e-6}/; s/interval: 100, history_interval: 10/interval: 50, history_interval: 10/' \
+  "$OLDPWD/data/coupled_bimaterial_wave.yaml" > bm$tag.yaml
+# (ep, jc, sb, cb and bm are mpi_digests' tube_ep, damage_bar, sphere_on_block, coupled_bar and coupled_bimaterial with a
 # restart section; its damage_bar writes output every 20 steps and is re-partitioned there)
 declare -A twin=([ep]="tube_ep $OLDPWD/data/expanding_tube_ep.yaml" [jc]="damage_bar $OLDPWD/data/damage_bar.yaml"
-                 [sb]="sphere_on_block $OLDPWD/data/sphere_on_block.yaml" [cb]="coupled_bar $OLDPWD/data/coupled_bar.yaml")
-for m in ep jc cb cc sb; do
-  printf 'restart:\n  file: ck%s.h5\n  interval: %d\n' $m $(case $m in ep) echo 60 ;; jc) echo 40 ;; sb) echo 100 ;; *) echo 25 ;; esac) >> $m$tag.yaml
+                 [sb]="sphere_on_block $OLDPWD/data/sphere_on_block.yaml" [cb]="coupled_bar $OLDPWD/data/coupled_bar.yaml"
+                 [bm]="coupled_bimaterial $OLDPWD/data/coupled_bimaterial_wave.yaml")
+for m in ep jc cb cc sb bm; do
+  printf 'restart:\n  file: ck%s.h5\n  interval: %d\n' $m $(case $m in ep) echo 60 ;; jc) echo 40 ;; sb) echo 100 ;; bm) echo 200 ;; *) echo 25 ;; esac) >> $m$tag.yaml
   check_restart $m$tag.yaml ck$m.h5 $m ${twin[$m]:-}
 done
 # A rigid indenter (inputs/disk_impact_rigid.yaml, reduced: radius 12 mm, 60 steps, checkpoint at
