@@ -240,7 +240,7 @@ int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts) {
     double w = 0, s[6] = {0}, h[PF_FEM_MAX_STATE_NAMES] = {0};
     for (int64_t q = b->node_off[i]; q < b->node_off[i + 1]; q++) {
       pf_int e = b->node_item[q] / 8;
-      const int8_t *slot = b->slot[b->mesh_mat ? b->mesh_mat[b->eid[e]] : 0]; /* (-1: none, counts 0) */
+      const int8_t *slot = b->slot[pf_fem_mesh_material(b, b->eid[e])]; /* (-1: none, counts 0) */
       for (int g = 0; g < nq && !pf_fem_element_eroded(b, e); g++) {
         for (int c = 0; c < 6; c++) s[c] += vq[e] * b->sigma[6 * ((size_t)nq * e + g) + c];
         for (int k = 0; k < b->nnames; k++)

@@ -48,7 +48,7 @@ int pf_fem_erosion_read(pf_fem_body *b, const pf_deck *d, const pf_node *body) {
     return pf_deck_error(d, pf_node_get(map, "max_volume_ratio"), "max_volume_ratio", "must exceed 1 (got %g)",
                          b->erode_jmax);
   PF_CALL(pf_deck_bool(d, map, "convert_to_particles", &b->convert));
-  if (b->convert && b->mesh_mat)
+  if (b->convert && b->mesh_entry)
     return pf_deck_error(d, pf_node_get(map, "convert_to_particles"), "convert_to_particles",
                          "body '%s': converting the elements of a body with material_regions is not supported", b->name);
   if (pf_node_count(map) == !!pf_node_get(map, "convert_to_particles"))

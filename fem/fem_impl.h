@@ -29,9 +29,9 @@ struct pf_fem_body {
   pf_mesh mesh; /* the whole mesh, read on every rank */
   int nmat;                /* materials: [0] the body's `material`, then those `material_regions` add */
   pf_fem_material mats[PF_FEM_MAX_MATERIALS];
-  uint8_t *mesh_mat;       /* [mesh.nelem] each element's material, or NULL (one material) */
   uint8_t *mesh_entry;     /* [mesh.nelem] the material_regions entry (1, 2, ...) that gave each
                               element its material, 0 the body's `material`; NULL with one */
+  uint8_t entry_mat[UINT8_MAX + 1]; /* each entry's material (entry 0: the body's, material 0) */
   int nnames;              /* the output's state fields: the union of the materials' state names */
   const char *names[PF_FEM_MAX_STATE_NAMES];
   int8_t slot[PF_FEM_MAX_MATERIALS][PF_FEM_MAX_STATE_NAMES]; /* material m's index of name k, or -1 */
@@ -96,8 +96,11 @@ extern const pf_key pf_fem_material_region_keys[];
 int pf_fem_materials_read(pf_fem_body *b, const pf_deck *d, const pf_node *body, const pf_node *materials);
 int pf_fem_materials_regions(pf_fem_body *b, const pf_deck *d, const pf_node *body, const pf_node *materials);
 void pf_fem_materials_destroy(pf_fem_body *b);
+static inline int pf_fem_mesh_material(const pf_fem_body *b, pf_int ge) { /* mesh element ge's material */
+  return b->mesh_entry ? b->entry_mat[b->mesh_entry[ge]] : 0;
+}
 static inline const pf_fem_material *pf_fem_element_material(const pf_fem_body *b, pf_int e) {
-  return &b->mats[b->mesh_mat ? b->mesh_mat[b->eid[e]] : 0];
+  return &b->mats[pf_fem_mesh_material(b, b->eid[e])];
 }
 int pf_fem_materials_init(pf_fem_body *b);
 void pf_fem_materials_update(pf_fem_body *b, pf_int e0, pf_int ne, double dt, const double *F, const double *D,

@@ -60,8 +60,8 @@ int pf_fem_materials_read(pf_fem_body *b, const pf_deck *d, const pf_node *body,
 
 void pf_fem_materials_destroy(pf_fem_body *b) {
   for (int m = 0; m < b->nmat; m++) pf_material_destroy(&b->mats[m].mat);
-  free(b->mesh_mat), free(b->mesh_entry);
-  b->mesh_mat = b->mesh_entry = NULL, b->nmat = 0;
+  free(b->mesh_entry);
+  b->mesh_entry = NULL, b->nmat = 0;
 }
 
 static int known_block(const pf_fem_body *b, const pf_deck *d, const pf_node *at, const char *name, int *blk) {
@@ -98,9 +98,10 @@ static int read_entry(pf_fem_body *b, const pf_deck *d, const pf_node *item, int
   } else
     PF_CALL(pf_region_from_deck(d, rn, NULL, -1, &r));
   pf_int count = 0;
+  b->entry_mat[entry] = (uint8_t)m;
   for (pf_int e = 0; e < b->mesh.nelem; e++)
     if (bn ? b->mesh.block[e] == blk : centroid_inside(&b->mesh, e, &r))
-      b->mesh_mat[e] = (uint8_t)m, b->mesh_entry[e] = (uint8_t)entry, count++;
+      b->mesh_entry[e] = (uint8_t)entry, count++;
   if (!count)
     return pf_deck_error(d, bn ? bn : rn, bn ? "block" : "region",
                          "body '%s': this entry of material_regions selects no element", b->name);
@@ -141,10 +142,8 @@ int pf_fem_materials_regions(pf_fem_body *b, const pf_deck *d, const pf_node *bo
     return pf_deck_error(d, list, "material_regions", "body '%s': an empty list (leave the key out)", b->name);
   if (list && pf_node_count(list) > UINT8_MAX)
     return pf_deck_error(d, list, "material_regions", "body '%s': more than %d entries", b->name, UINT8_MAX);
-  if (list) {
-    PF_MALLOC(b->mesh_mat, b->mesh.nelem);
-    PF_MALLOC(b->mesh_entry, b->mesh.nelem);
-  }
+  b->entry_mat[0] = 0;
+  if (list) PF_MALLOC(b->mesh_entry, b->mesh.nelem);
   for (int i = 0; list && i < pf_node_count(list); i++)
     PF_CALL(read_entry(b, d, pf_node_item(list, i), i + 1, materials));
   return state_names(b);
@@ -152,7 +151,7 @@ int pf_fem_materials_regions(pf_fem_body *b, const pf_deck *d, const pf_node *bo
 
 int pf_fem_materials_init(pf_fem_body *b) {
   const pf_int nq = b->nqp;
-  if (!b->mesh_mat) {
+  if (!b->mesh_entry) {
     pf_material_init(b->mats[0].mat, nq * b->nel, b->state);
     return 0;
   }
