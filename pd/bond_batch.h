@@ -243,6 +243,20 @@ static inline void pf_batch_live(const uint8_t *broken, int n, double live[PF_BA
 #endif
 }
 
+/* 1 when every bond of the batch [k0, min(k0 + PF_BATCH, end)) is broken. A bond loop skips such
+ * a batch: its lanes would add zeros (masked, or multiplied by a zero live[l]) to sums that are
+ * never -0, so the sums keep their bits, and a broken bond neither fails again nor sets smin. */
+static inline int pf_batch_dead(const uint8_t *broken, int64_t k0, int64_t end) {
+  const int n = end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH;
+#if defined(PF_BATCH_AVX512)
+  return !pf_batch_live_m(broken + k0, n);
+#else
+  for (int l = 0; l < n; l++)
+    if (!broken[k0 + l]) return 0;
+  return 1;
+#endif
+}
+
 /* out[l] = v[idx[l]]: eight scalar loads into one register and one vector store (see
  * pf_batch_live). */
 static inline void pf_batch_gather1(const double *restrict v, const int32_t idx[PF_BATCH],

@@ -26,6 +26,7 @@ dilatation_point(const pf_pd_body *restrict b, const double *restrict rec, pf_in
   *fresh = 0;
   const int64_t end = fam->offset[i - fam->first + 1];
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
+    if (pf_batch_dead(broken, k0, end)) continue;
     const int n = end - k0 < L ? (int)(end - k0) : L;
     int32_t idx[L];
     double a[PF_REC][L], live[L], fails[L];
@@ -71,6 +72,7 @@ force_point(const pf_pd_body *restrict b, const double *restrict rec, const doub
   int failed = 0;
   const int64_t end = fam->offset[i - fam->first + 1];
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
+    if (pf_batch_dead(broken, k0, end)) continue;
     const int n = end - k0 < L ? (int)(end - k0) : L;
     int32_t idx[L];
     double a[PF_REC][L], live[L], fails[L], rmj[L];
@@ -130,6 +132,7 @@ static inline __attribute__((always_inline)) double dilatation_point_avx512(cons
   *fresh = 0;
   const int64_t end = fam->offset[i - fam->first + 1];
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += PF_BATCH) {
+    if (pf_batch_dead(fam->broken, k0, end)) continue;
     __m512d a[PF_REC];
     pf_batch_geom g;
     pf_batch_stretch t;
@@ -156,6 +159,7 @@ static inline __attribute__((always_inline)) void force_point_avx512(const pf_pd
   __m512d F[3] = {_mm512_setzero_pd(), _mm512_setzero_pd(), _mm512_setzero_pd()};
   const int64_t end = fam->offset[i - fam->first + 1];
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += PF_BATCH) {
+    if (pf_batch_dead(fam->broken, k0, end)) continue;
     const int n = end - k0 < PF_BATCH ? (int)(end - k0) : PF_BATCH;
     const int32_t *idx = fam->neighbor + k0;
     __m512d a[PF_REC];

@@ -92,6 +92,7 @@ pmb_point(const pf_pd_body *restrict b, const double *restrict rec, pf_int i, do
   for (int l = 0; l < L; l++) sm[l] = INFINITY;
   const int64_t end = fam->offset[i - fam->first + 1];
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
+    if (pf_batch_dead(broken, k0, end)) continue;
     const int n = end - k0 < L ? (int)(end - k0) : L;
     double a[PF_REC][L], live[L], fails[L], cb[L], slim_if[L];
     pf_batch_lengths g;
@@ -151,6 +152,7 @@ static inline __attribute__((always_inline)) double pmb_point_avx512(const pf_pd
   int fresh = 0;
   const int64_t end = fam->offset[i - fam->first + 1];
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += PF_BATCH) {
+    if (pf_batch_dead(broken, k0, end)) continue;
     __m512d a[PF_REC];
     pf_batch_geom g;
     pf_batch_stretch t;
