@@ -31,16 +31,19 @@ static inline double bond_c(const pf_pd_body *b, pf_int i, pf_int j, double c) {
   return b->part ? c * pf_pd_bond_stiffness(b, i, j) : c;
 }
 
-/* The micropotential share of the directed bond k of point i, per V_i, at the positions y:
- * (1/4) c omega s^2 |xi| V_j (Silling & Askari 2005, eq. 6, half of the pair's to each end). */
-static double pmb_bond_energy(const pf_pd_body *b, const pf_points *pts, const double *y, pf_int i, int64_t k,
-                              double c) {
+/* The micropotential share of the directed bond k of point i, per V_i, (1/4) c omega s^2 |xi| V_j
+ * (Silling & Askari 2005, eq. 6, half of the pair's to each end), as the mean of its values at the
+ * positions y and yp; |xi|, omega, c and V_j formed once for both. */
+static double pmb_bond_energy_mean(const pf_pd_body *b, const pf_points *pts, const double *y, const double *yp,
+                                   pf_int i, int64_t k, double c) {
   const pf_family *fam = &b->fam;
   const pf_int j = fam->neighbor[k];
-  double r0, r, e[3];
+  double r0, r, rp, e[3];
   pf_pd_bond_lengths(pts->X, y, i, j, &r0, &r, e);
-  const double s = (r - r0) / r0;
-  return 0.25 * bond_c(b, i, j, c) * pf_pd_omega(&b->influence, r0) * s * s * r0 * pf_pd_bond_volume(fam, pts->vol, k, j);
+  pf_pd_bond_lengths(pts->X, yp, i, j, &r0, &rp, e);
+  const double s = (r - r0) / r0, sp = (rp - r0) / r0;
+  const double a = 0.25 * bond_c(b, i, j, c) * pf_pd_omega(&b->influence, r0), vj = pf_pd_bond_volume(fam, pts->vol, k, j);
+  return 0.5 * (a * s * s * r0 * vj + a * sp * sp * r0 * vj);
 }
 
 /* The energy (J) point i's bonds that failed in this pass held at the middle of the step: the
@@ -53,7 +56,7 @@ static __attribute__((noinline)) double pmb_release(const pf_pd_body *b, const p
   double w = 0;
   for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++)
     if (fam->broken[k] == PF_BOND_FRESH) {
-      w += 0.5 * (pmb_bond_energy(b, pts, pts->y, i, k, c) + pmb_bond_energy(b, pts, yp, i, k, c));
+      w += pmb_bond_energy_mean(b, pts, pts->y, yp, i, k, c);
       fam->broken[k] = PF_BOND_BROKEN;
       pf_pd_body_rest_at_break(b, pts, i, k);
     }
