@@ -235,50 +235,70 @@ double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_in
   return energy_density(b, pts, i, theta, m, ep, stride, PF_BOND_BROKEN | PF_BOND_FRESH);
 }
 
+/* Bond k of point i not yet broken and in i's own family: its |xi| into *r0, its omega V_j into
+ * *wv and its deformed lengths at the two positions y[0], y[1] into r[2] (the bits of
+ * pf_pd_bond_lengths); else 0. */
+static int release_bond(const pf_pd_body *b, const pf_points *pts, const double *const y[2], pf_int i, int64_t k,
+                        double *r0, double *wv, double r[2]) {
+  const pf_family *fam = &b->fam;
+  if (fam->broken[k] == PF_BOND_BROKEN) return 0;
+  const pf_int j = fam->neighbor[k];
+  double d2 = 0, e2[2] = {0, 0};
+  for (int a = 0; a < 3; a++) {
+    const double d = pts->X[3 * j + a] - pts->X[3 * i + a];
+    d2 += d * d;
+    for (int t = 0; t < 2; t++) {
+      const double e = y[t][3 * j + a] - y[t][3 * i + a];
+      e2[t] += e * e;
+    }
+  }
+  *r0 = sqrt(d2), r[0] = sqrt(e2[0]), r[1] = sqrt(e2[1]);
+  if (!pf_pd_in_family(b, i, *r0)) return 0;
+  *wv = pf_pd_omega(&b->influence, *r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+  return 1;
+}
+
 /* The change of point i's energy per reference volume when its PF_BOND_FRESH bonds F fail, at
- * the positions y (docs/theory/pd.md §5.1). With S the bonds that stay, a = 15 G / m and
- * ed = e - theta |xi| / 3 - ep,
+ * each of the positions y[0], y[1] (q[t] for y[t]; docs/theory/pd.md §5.1). With S the bonds that
+ * stay, a = 15 G / m and ed = e - theta |xi| / 3 - ep,
  *   W(theta, B) = (K/2) theta^2 + (a/2) sum_B omega ed^2 V,   g(theta) = W(theta, S),
  *   theta_w = (3/m) sum_{S+F} omega |xi| e V  (with F),   theta_o = (3/m) sum_S ...  (without),
  * the exact change W(theta_w, S+F) - W(theta_o, S) = Q + C of a quadratic g, delta = theta_w - theta_o:
  *   Q = (a/2) sum_F omega ed(theta_w)^2 V + (1/2) g'' delta^2 >= 0,  g'' = K + (a/9) sum_S omega |xi|^2 V,
  *   C = g'(theta_o) delta,  g'(theta_o) = K theta_o - (a/3) sum_S omega |xi| ed(theta_o) V,
  * the cross term of the dilatation that stays with the one the bonds took: negative where a
- * bond in tension leaves a point in compression more compressed. Q into q[0], C into q[1], the
- * weighted volume of F, sum_F omega |xi|^2 V, into q[2]. */
-static void release_at(const pf_pd_body *b, const pf_points *pts, const double *y, pf_int i, double m,
-                       const double *ep, int stride, double q[3]) {
+ * bond in tension leaves a point in compression more compressed. Q into q[t][0], C into q[t][1],
+ * the weighted volume of F, sum_F omega |xi|^2 V, into q[t][2]. Both positions in each pass
+ * over the family, the geometry of a bond formed once. */
+static void release_at(const pf_pd_body *b, const pf_points *pts, const double *const y[2], pf_int i, double m,
+                       const double *ep, int stride, double q[2][3]) {
   const pf_family *fam = &b->fam;
   const int64_t k0 = fam->offset[i - b->first], k1 = fam->offset[i - b->first + 1];
   const double K = pf_pd_K(b, i), a = 15.0 * pf_pd_G(b, i) / m;
-  double sum_s = 0, sum_f = 0, m_s = 0, e[3], r0, r;
-  q[2] = 0.0;
+  double sum_s[2] = {0, 0}, sum_f[2] = {0, 0}, m_s[2] = {0, 0}, r0, wv, r[2];
+  q[0][2] = q[1][2] = 0.0;
   for (int64_t k = k0; k < k1; k++) { /* the dilatation sums of S and F, their weighted volumes */
-    if (fam->broken[k] == PF_BOND_BROKEN) continue;
-    const pf_int j = fam->neighbor[k];
-    pf_pd_bond_lengths(pts->X, y, i, j, &r0, &r, e);
-    if (!pf_pd_in_family(b, i, r0)) continue;
-    const double wv = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
-    if (fam->broken[k] == PF_BOND_FRESH) sum_f += wv * r0 * (r - r0), q[2] += wv * r0 * r0;
-    else sum_s += wv * r0 * (r - r0), m_s += wv * r0 * r0;
+    if (!release_bond(b, pts, y, i, k, &r0, &wv, r)) continue;
+    for (int t = 0; t < 2; t++)
+      if (fam->broken[k] == PF_BOND_FRESH) sum_f[t] += wv * r0 * (r[t] - r0), q[t][2] += wv * r0 * r0;
+      else sum_s[t] += wv * r0 * (r[t] - r0), m_s[t] += wv * r0 * r0;
   }
-  const double th_o = 3.0 * sum_s / m, delta = 3.0 * sum_f / m, th_w = th_o + delta;
-  double dev_f = 0, cross_s = 0;
+  double th_o[2], delta[2], th_w[2], dev_f[2] = {0, 0}, cross_s[2] = {0, 0};
+  for (int t = 0; t < 2; t++) th_o[t] = 3.0 * sum_s[t] / m, delta[t] = 3.0 * sum_f[t] / m, th_w[t] = th_o[t] + delta[t];
   for (int64_t k = k0; k < k1; k++) { /* F's deviatoric energy at theta_w, S's slope at theta_o */
-    if (fam->broken[k] == PF_BOND_BROKEN) continue;
-    const pf_int j = fam->neighbor[k];
-    pf_pd_bond_lengths(pts->X, y, i, j, &r0, &r, e);
-    if (!pf_pd_in_family(b, i, r0)) continue;
-    const double wv = pf_pd_omega(&b->influence, r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    if (!release_bond(b, pts, y, i, k, &r0, &wv, r)) continue;
     const double p = ep ? ep[stride * k] : 0.0;
-    if (fam->broken[k] == PF_BOND_FRESH) {
-      const double ed = (r - r0) - th_w * r0 / 3 - p;
-      dev_f += wv * ed * ed;
-    } else
-      cross_s += wv * r0 * ((r - r0) - th_o * r0 / 3 - p);
+    for (int t = 0; t < 2; t++)
+      if (fam->broken[k] == PF_BOND_FRESH) {
+        const double ed = (r[t] - r0) - th_w[t] * r0 / 3 - p;
+        dev_f[t] += wv * ed * ed;
+      } else
+        cross_s[t] += wv * r0 * ((r[t] - r0) - th_o[t] * r0 / 3 - p);
   }
-  q[0] = 0.5 * a * dev_f + 0.5 * (K + a * m_s / 9.0) * delta * delta;
-  q[1] = (K * th_o - a * cross_s / 3.0) * delta;
+  for (int t = 0; t < 2; t++) {
+    q[t][0] = 0.5 * a * dev_f[t] + 0.5 * (K + a * m_s[t] / 9.0) * delta[t] * delta[t];
+    q[t][1] = (K * th_o[t] - a * cross_s[t] / 3.0) * delta[t];
+  }
 }
 
 /* The energy (J) point i's PF_BOND_FRESH bonds release, booked at the middle of the step: the
@@ -294,9 +314,10 @@ double pf_pd_lps_release_point(pf_pd_body *b, const pf_points *pts, pf_int i, do
   *redistribution = 0.0;
   while (k < k1 && fam->broken[k] != PF_BOND_FRESH) k++;
   if (k == k1) return 0.0;
-  double now[3], before[3];
-  release_at(b, pts, pts->y, i, m, ep, stride, now);
-  release_at(b, pts, pf_pd_previous_positions(pts), i, m, ep, stride, before);
+  const double *const y[2] = {pts->y, pf_pd_previous_positions(pts)};
+  double q[2][3];
+  release_at(b, pts, y, i, m, ep, stride, q);
+  const double *now = q[0], *before = q[1];
   for (; k < k1; k++)
     if (fam->broken[k] == PF_BOND_FRESH) fam->broken[k] = PF_BOND_BROKEN, pf_pd_body_rest_at_break(b, pts, i, k);
   b->lost_volume[i] += now[2];
