@@ -23,7 +23,7 @@ exe=$1 scratch=$2 fail=0
 root=$(cd .. && pwd)
 deck=$root/inputs/laminate_hole.yaml
 script=$root/scripts/laminate_hole.py
-BAND_FE=0.02,0.06 BAND_PD=0.25
+BAND_FE=0.02,0.06 BAND_PD=0.20
 command -v ccx >/dev/null || { echo "no ccx: skipped"; exit 77; }
 source common/mpi_env.sh
 rm -rf "$scratch" && mkdir -p "$scratch"/fe "$scratch"/pd && cd "$scratch"
