@@ -439,6 +439,33 @@ static void whole_families(pf_pd_body *b, const pf_points *pts) {
   }
 }
 
+/* A point whose whole family does not span three dimensions (shape_of's test on K0: fewer than
+ * three bonds, or det K0 <= 1e-6 (tr K0 / 3)^3) is detached from the first step, its bonds failed: a
+ * horizon below the spacing there, or a point alone. Said once, at the run's start, naming the
+ * first such point (the lowest global id); a coupled body's points that take no PD force (idle)
+ * are passed over. Collective. */
+static void warn_flat_families(const pf_pd_body *b, const pf_points *pts) {
+  const corr *p = b->mat;
+  double n = 0, gid = INFINITY, x[3] = {0, 0, 0};
+  for (pf_int li = 0; li < b->n; li++) {
+    double K0[3][3];
+    if (b->blend && (b->idle ? b->idle[li] : b->blend[b->first + li] == 0)) continue; /* (no PD force wanted) */
+    memcpy(K0, &p->K0[9 * li], sizeof K0);
+    const double tr = (K0[0][0] + K0[1][1] + K0[2][2]) / 3.0;
+    if (p->nfam[li] >= 3 && pf_mat3_det(K0) > 1e-6 * tr * tr * tr) continue;
+    n++, gid = fmin(gid, (double)pts->gid[b->first + li]);
+  }
+  if (!(pf_sum_all(n) > 0)) return;
+  const double first = pf_min_all(gid);
+  for (pf_int li = 0; li < b->n && gid == first; li++)
+    if ((double)pts->gid[b->first + li] == first) memcpy(x, &pts->X[3 * (b->first + li)], sizeof x);
+  for (int a = 0; a < 3; a++) x[a] = pf_sum_all(x[a]);
+  pf_deck_warn(b->deck, b->node, "horizon",
+               "body '%s': %.0f points have families that do not span three dimensions (the first at (%g, %g, %g) m): "
+               "they are detached and their bonds fail at the first step (a horizon below the spacing there?)",
+               b->name, pf_sum_all(n), x[0], x[1], x[2]);
+}
+
 static int corr_setup(pf_pd_body *b, pf_points *pts) {
   corr *p = b->mat;
   PF_CALL(register_fields(b, pts));
@@ -493,6 +520,7 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
     p->gx[GX * i + G_C] = c;
   }
   whole_families(b, pts);
+  if (b->fresh) warn_flat_families(b, pts);
   if (b->part) row_bounds(b);
   if (b->fresh)
     for (pf_int i = b->first; i < b->first + b->n; i++) p->step[i] = reference_step(b, pts, i);

@@ -103,11 +103,14 @@ int pf_sim_setup_time(pf_sim *sim) {
  * smallest of the fixed PD step, the correspondence points' and the elements' current stable
  * step (bulk viscosity included). The run ends with the first
  * step that reaches final_time (as with a fixed step: the last step is not cut short, which
- * would change the step abruptly). The minimum over ranks keeps every rank on the same step.
+ * would change the step abruptly). When no body bounds the step any more (each of its points
+ * detached), the last one stays. The minimum over ranks keeps every rank on the same step.
  * Collective. */
 static void next_dt(pf_sim *sim) {
   if (!sim->adaptive) return;
-  sim->dt = sim->safety * fmin(sim->pd_stable, pf_min_all(varying_step(sim)));
+  const double stable = fmin(sim->pd_stable, pf_min_all(varying_step(sim)));
+  if (isfinite(stable)) sim->dt = sim->safety * stable; /* (else nothing left bounds it: every point
+                                                           detached, say; the step stays) */
 }
 
 int pf_sim_finished(const pf_sim *sim) {

@@ -13,7 +13,10 @@
 #     ended at 0.4 % once failures were booked at mid-step): exactly the 1 % warning;
 #     the deck as the guide prints it passes 5 %: both energy warnings;
 #  4. on 2 ranks case 2 gives each warning once (not once per rank), the same summary as on one
-#     rank, and with --strict stops with the error.
+#     rank, and with --strict stops with the error;
+#  5. a correspondence sheet one point thick (a points file: every family flat) is named at set-up
+#     as detached, once on 1 and on 2 ranks, with its count and first point, and runs its steps
+#     (no stiffness is left to bound the step: the step stays).
 # usage: health.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$(cd "$(dirname "$1")" && pwd)/$(basename "$1") scratch=$2 fail=0
@@ -71,4 +74,24 @@ done
 run 2 "$exe" --strict --output-dir o4s box.yaml > strict2.log 2>&1 && bad "2 ranks --strict: exit 0"
 has strict2.log "interpenetrate at t = 0.0000e+00 s (step 0)"
 crash_in "$(cat strict2.log)" && bad "2 ranks --strict: crashed: $(cat strict2.log)"
+
+# 5. a flat correspondence sheet
+for i in $(seq 0 10); do for j in $(seq 0 10); do echo "$i.0e-3 $j.0e-3 0 1.0e-9"; done; done > sheet.txt
+cat > sheet.yaml <<'EOF'
+materials:
+  al: {model: elastic, density: 2700, youngs_modulus: 70.0e9, poissons_ratio: 0.3}
+bodies:
+  - name: sheet
+    material: al
+    horizon: 3.015e-3
+    geometry: {shape: points_file, file: sheet.txt}
+time: {steps: 2}
+EOF
+flat="perifem warning: sheet.yaml:4:5: key 'horizon': body 'sheet': 121 points have families that do not span three dimensions (the first at (0, 0, 0) m)"
+for np in 1 2; do
+  run $np "$exe" --output-dir o5_$np sheet.yaml > sheet$np.log 2>&1 || bad "flat sheet on $np rank(s): exit $?: $(tail -3 sheet$np.log)"
+  [ "$(grep -cF -- "$flat" sheet$np.log)" = 1 ] || bad "flat sheet on $np rank(s): set-up warnings: $(grep warning sheet$np.log)"
+  has sheet$np.log "perifem: 2 steps"
+done
 exit $fail
+
