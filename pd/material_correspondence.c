@@ -439,11 +439,17 @@ static void whole_families(pf_pd_body *b, const pf_points *pts) {
   }
 }
 
-/* A point whose whole family does not span three dimensions (shape_of's test on K0: fewer than
- * three bonds, or det K0 <= 1e-6 (tr K0 / 3)^3) is detached from the first step, its bonds failed: a
- * horizon below the spacing there, or a point alone. Said once, at the run's start, naming the
- * first such point (the lowest global id); a coupled body's points that take no PD force (idle)
- * are passed over. Collective. */
+/* Does a shape tensor K of nb bonds and determinant det span three dimensions:
+ * nb >= 3 and det K > 1e-6 (tr K / 3)^3 (docs/theory/materials.md §2)? */
+static int shape_spans(int nb, double det, double K[3][3]) {
+  const double tr = (K[0][0] + K[1][1] + K[2][2]) / 3.0;
+  return nb >= 3 && det > 1e-6 * tr * tr * tr;
+}
+
+/* A point whose whole family does not span three dimensions (shape_spans on K0) is detached from
+ * the first step, its bonds failed: a horizon below the spacing there, or a point alone. Said
+ * once, at the run's start, naming the first such point (the lowest global id); a coupled body's
+ * points that take no PD force (idle) are passed over. Collective. */
 static void warn_flat_families(const pf_pd_body *b, const pf_points *pts) {
   const corr *p = b->mat;
   double n = 0, gid = INFINITY, x[3] = {0, 0, 0};
@@ -451,8 +457,7 @@ static void warn_flat_families(const pf_pd_body *b, const pf_points *pts) {
     double K0[3][3];
     if (b->blend && (b->idle ? b->idle[li] : b->blend[b->first + li] == 0)) continue; /* (no PD force wanted) */
     memcpy(K0, &p->K0[9 * li], sizeof K0);
-    const double tr = (K0[0][0] + K0[1][1] + K0[2][2]) / 3.0;
-    if (p->nfam[li] >= 3 && pf_mat3_det(K0) > 1e-6 * tr * tr * tr) continue;
+    if (shape_spans(p->nfam[li], pf_mat3_det(K0), K0)) continue;
     n++, gid = fmin(gid, (double)pts->gid[b->first + li]);
   }
   if (!(pf_sum_all(n) > 0)) return;
@@ -778,10 +783,10 @@ static void shape_of(pf_pd_body *b, const pf_points *pts, pf_int i) {
     sums[0] += w * r0, sums[1] += w / r0;
     nb++;
   }
-  const double detK = pf_mat3_inverse(K, Ki), tr = (K[0][0] + K[1][1] + K[2][2]) / 3.0;
+  const double detK = pf_mat3_inverse(K, Ki);
   memcpy(&p->kinv[9 * li], Ki, sizeof Ki);
   c[0] = pf_sym3_min_eigenvalue(K), c[1] = sums[0], c[2] = sums[1];
-  c[3] = nb >= 3 && detK > 1e-6 * tr * tr * tr && (nb == p->nfam[li] || spans(p, li, K));
+  c[3] = shape_spans(nb, detK, K) && (nb == p->nfam[li] || spans(p, li, K));
   p->kcount[li] = nb;
 }
 
