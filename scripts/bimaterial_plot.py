@@ -81,7 +81,6 @@ def wave(path, out, check):
     R12, T12 = (Z2 - Z1) / (Z1 + Z2), 2 * Z2 / (Z1 + Z2)
     R21, T21 = (Z1 - Z2) / (Z1 + Z2), 2 * Z1 / (Z1 + Z2)
     TE = 4 * Z1 * Z2 / (Z1 + Z2) ** 2
-    s_inc = -Z1 * w["V"]  # the incident stress (compression), the piston's velocity times Z1
     e = netCDF4.Dataset(path)
     X = [np.array(e[c][:]) for c in ("coordx", "coordy", "coordz")]
     x = X[0]
