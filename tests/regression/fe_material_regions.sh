@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Several materials in one FE body (`material_regions`, fem/materials.c; docs/theory/fem.md §9c):
-#  - tests/data/bimaterial_bar_static.yaml, quasi-static: a steel half and an aluminium half in
+#  - inputs/bimaterial_bar.yaml, quasi-static: a steel half and an aluminium half in
 #    series under an end force F, nu = 0. The end displacement against the series springs'
 #    u(L) = F (L1 / (E1 A) + L2 / (E2 A)) within 1 %, and the nodal stress sigma_xx = F / A at every
 #    node, the interface's included, within 1e-6 (no jump at the interface: one stress in both
@@ -15,7 +15,7 @@ data=$(pwd)/data
 source common/mpi_env.sh
 source common/measure.sh
 rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch"
-cp "$data/bimaterial_bar_static.yaml" static.yaml
+cp "$data/../../inputs/bimaterial_bar.yaml" static.yaml
 out=$("$exe" static.yaml 2>&1) || { echo "FAIL: the static deck: $out"; exit 1; }
 res=$("$PY" - static.e static.h5 <<'PYEOF'
 import sys

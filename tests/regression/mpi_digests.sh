@@ -110,12 +110,12 @@ cp "$OLDPWD/data/coupled_bar.yaml" coupled_bar.yaml
 cp coupled_bar.yaml coupled_rebalance.yaml
 printf 'parallel:\n  rebalance_threshold: 1.0\n' >> coupled_rebalance.yaml
 # (the consistent form is the default: coupled_bar runs it; a separate variant would repeat it)
-# two materials in one coupled body (tests/data/coupled_bimaterial_wave.yaml, the deck of
+# two materials in one coupled body (inputs/bimaterial_wave.yaml, the deck of
 # test_coupled_bimaterial_wave, cut to 20 us: the pulse reaches the interface in the peridynamic
 # part), also re-partitioned at output steps (each node's material is found again from its
 # elements, its mass must match the one that travelled with it)
-sed -E 's/^time: .*/time: {final_time: 20.0e-6}/; s/interval: 100, history_interval: 10/interval: 50, history_interval: 10/' \
-  "$OLDPWD/data/coupled_bimaterial_wave.yaml" > coupled_bimaterial.yaml
+sed -E 's/^(\s*)final_time:.*/\1final_time: 20.0e-6/; s/^(\s*)time_interval:.*/\1interval: 50/' \
+  "$OLDPWD/../inputs/bimaterial_wave.yaml" > coupled_bimaterial.yaml
 cp coupled_bimaterial.yaml coupled_bimaterial_rebalance.yaml
 printf 'parallel:\n  rebalance_threshold: 1.0\n' >> coupled_bimaterial_rebalance.yaml
 

@@ -150,16 +150,16 @@ sed -E 's/^(\s*)damage: \{law/\1formulation: corrected\n\1allow_in_dynamics: tru
 # block, then the FE ball, FE <-> PD and PD self-contact pairs; its node ids start after the
 # block's, which the restart must number the same way), checkpointed at step 100 of 150
 sed -E 's#\.\./\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/data/sphere_on_block.yaml" > sb$tag.yaml
-# and two materials in one coupled body (tests/data/coupled_bimaterial_wave.yaml cut to 20 us as
+# and two materials in one coupled body (inputs/bimaterial_wave.yaml cut to 20 us as
 # mpi_digests cuts it: each node's material, found from its elements at set-up, must give the
 # masses the checkpoint holds), checkpointed at step 200
-sed -E 's/^time: .*/time: {final_time: 20.0e-6}/; s/interval: 100, history_interval: 10/interval: 50, history_interval: 10/' \
-  "$OLDPWD/data/coupled_bimaterial_wave.yaml" > bm$tag.yaml
+sed -E 's/^(\s*)final_time:.*/\1final_time: 20.0e-6/; s/^(\s*)time_interval:.*/\1interval: 50/' \
+  "$OLDPWD/../inputs/bimaterial_wave.yaml" > bm$tag.yaml
 # (ep, jc, sb, cb and bm are mpi_digests' tube_ep, damage_bar, sphere_on_block, coupled_bar and coupled_bimaterial with a
 # restart section; its damage_bar writes output every 20 steps and is re-partitioned there)
 declare -A twin=([ep]="tube_ep $OLDPWD/data/expanding_tube_ep.yaml" [jc]="damage_bar $OLDPWD/data/damage_bar.yaml"
                  [sb]="sphere_on_block $OLDPWD/data/sphere_on_block.yaml" [cb]="coupled_bar $OLDPWD/data/coupled_bar.yaml"
-                 [bm]="coupled_bimaterial $OLDPWD/data/coupled_bimaterial_wave.yaml")
+                 [bm]="coupled_bimaterial $OLDPWD/../inputs/bimaterial_wave.yaml")
 for m in ep jc cb cc sb bm; do
   printf 'restart:\n  file: ck%s.h5\n  interval: %d\n' $m $(case $m in ep) echo 60 ;; jc) echo 40 ;; sb) echo 100 ;; bm) echo 200 ;; *) echo 25 ;; esac) >> $m$tag.yaml
   check_restart $m$tag.yaml ck$m.h5 $m ${twin[$m]:-}

@@ -8,7 +8,7 @@
 # usage: run_examples.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
-run_once=" disk_impact_rigid fragmenting_cylinder wave_in_bar wave_variable_horizon wave_pd_to_fe taylor_impact panel_plate "
+run_once=" disk_impact_rigid fragmenting_cylinder wave_in_bar wave_variable_horizon wave_pd_to_fe taylor_impact panel_plate bimaterial_wave "
 rm -rf "$scratch" && mkdir -p "$scratch"
 for deck in ../inputs/*.yaml; do
   name=$(basename "$deck" .yaml)

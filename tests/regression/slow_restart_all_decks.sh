@@ -31,7 +31,8 @@ panel_plate 50 30 sphere_panel_force_z
 panel_impact 50 30 sphere_panel_force_z
 dcb 30 20 upper_reaction_y
 glass_branching 60 40 top_traction_impulse_y
-cluster_collision 30 20 kinetic_energy"
+cluster_collision 30 20 kinetic_energy
+bimaterial_wave 30 20 kinetic_energy"
 explicit=$(grep -L -E "^ +type: quasi_static" "$SRC"/../inputs/*.yaml | wc -l)
 [ "$(echo "$cases" | wc -l)" = "$explicit" ] ||
   { echo "inputs/ has $explicit explicit decks, this test covers $(echo "$cases" | wc -l)"; fail=1; }

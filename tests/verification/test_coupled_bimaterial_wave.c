@@ -1,5 +1,5 @@
 /* A wave across two material interfaces in one coupled PD/FE body (material_regions in a body
- * with a peridynamic: operator, docs/theory/interfaces.md §8), tests/data/coupled_bimaterial_wave.yaml
+ * with a peridynamic: operator, docs/theory/interfaces.md §8), the shipped inputs/bimaterial_wave.yaml
  * at two resolutions.
  *
  * A bar along x, its lateral motion held (uniaxial strain), soft (aluminium-like) except stiff
@@ -102,7 +102,7 @@ static double density_at(const pf_points *p, double x, double h) {
 /* One run at spacing h (the deck's 1 mm, or its variant), named "coarse" or "fine". */
 static void run(double h, const char *name) {
   const double delta = 3.015 * h, W = W_COARSE * (h / 1e-3); /* two elements across */
-  const char *deck = "data/coupled_bimaterial_wave.yaml";
+  const char *deck = "../inputs/bimaterial_wave.yaml";
   if (h != 1e-3) {
     char lines[4][256];
     snprintf(lines[0], sizeof lines[0], "            nx = %d", (int)lround(L / h));
