@@ -294,7 +294,7 @@ static void report(const char *what, int n, double E1, double rom, double E2, do
   snprintf(key, sizeof key, "%s_E1", what), pf_test_measure(key, E1 / 1e9, "GPa");
   snprintf(key, sizeof key, "%s_E2", what), pf_test_measure(key, E2 / 1e9, "GPa");
   if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
-    printf("%s n %d: E1 %.4g GPa (rule of mixtures %.4g, %+.2f %%), E2 %.4g GPa (ccx %.4g, %+.2f %%)\n", what, n,
+    printf("%s n %d: E1 %.6g GPa (rule of mixtures %.6g, %+.2f %%), E2 %.6g GPa (ccx %.6g, %+.2f %%)\n", what, n,
            E1 / 1e9, rom / 1e9, 100 * (E1 / rom - 1), E2 / 1e9, E2_ccx / 1e9, 100 * (E2 / E2_ccx - 1));
 }
 
