@@ -29,7 +29,8 @@ def read_run(path):
 
 def strain_xx(X, ux, a):
     """eps_xx at the cell's points of the layer z = h / 2 (central differences along x), with
-    their x, y; h the lattice spacing and eps the mean strain u_x(a) / a of that layer."""
+    their x, y; h the lattice spacing and eps the layer's mean strain (the points beyond the
+    face x = a follow u_x = eps x)."""
     h = np.min(np.diff(np.unique(np.round(X[:, 0], 12))))
     layer = np.abs(X[:, 2] - h / 2) < 1e-3 * h
     i = np.rint(X[layer, 0] / h - 0.5).astype(int)
@@ -41,7 +42,7 @@ def strain_xx(X, ux, a):
     n = int(round(a / h))
     ii, jj = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
     e = E[ii - i0 - 1, jj - j0]
-    mean = np.nanmean((U[n - i0, :] + U[n - 1 - i0, :]) / 2) / a  # u_x at x = a, over a
+    mean = np.nanmean(U[n - i0, :]) / ((n + 0.5) * h)  # the first layer beyond x = a: u_x = eps x
     return (ii + 0.5) * h, (jj + 0.5) * h, e, mean, n
 
 

@@ -51,7 +51,7 @@ def cmd_check(a):
     ok = True
     for name, got, want in (("A11", a11, c11), ("A21", a21, c21)):
         dev = got / want - 1
-        print(f"{name}: {got / 1e6:.6g} MN/m (CLT {want / 1e6:.6g}, {100 * dev:+.3f} %)")
+        print(f"{name}: {got / 1e6:.6g} MN/m (CLT {want / 1e6:.6g}, {dev:+.1e})")
         if not abs(dev) < a.band:
             print(f"FAIL: {name} is {100 * dev:+.3f} % from CLT (band {100 * a.band:g} %)")
             ok = False
@@ -83,9 +83,9 @@ def cmd_plot(a):
     ax1.plot(e * 1e6, c11 * e / 1e3, "k-", label=f"CLT $A_{{11}}$ = {c11 / 1e6:.3f} MN/m")
     ax1.plot(e * 1e6, c21 * e / 1e3, "k--", label=f"CLT $A_{{21}}$ = {c21 / 1e6:.4f} MN/m")
     ax1.plot(eps * 1e6, h["fx_reaction_x"] / L / 1e3, "o", color="C0",
-             label=f"perifem $N_x$ ($A_{{11}}$ {100 * (a11 / c11 - 1):+.3f} %)")
+             label=f"perifem $N_x$ ($A_{{11}}$ {a11 / c11 - 1:+.1e})")
     ax1.plot(eps * 1e6, h["fy_reaction_y"] / L / 1e3, "s", color="C1",
-             label=f"perifem $N_y$ ($A_{{21}}$ {100 * (a21 / c21 - 1):+.3f} %)")
+             label=f"perifem $N_y$ ($A_{{21}}$ {a21 / c21 - 1:+.1e})")
     ax1.set_xlabel(r"$\varepsilon_x$ (1e-6)")
     ax1.set_ylabel("force per width (N/mm)")
     ax1.set_title("reactions at each load step")
