@@ -281,6 +281,9 @@ static int ccx_moduli(int n, const unsigned char *in_fibre, double E[2]) {
   ierr = ierr || pf_test_ccx_grid_solve(&g, dir, "run_z", FZ);
   const double area[3] = {A * h, A * h, A * A};
   if (!ierr) moduli(FX, FZ, area, E);
+  if (!ierr && getenv("PF_TEST_VERBOSE"))
+    printf("ccx run X: C_xx %.6g GPa, C_yx %.6g GPa, C_zx %.6g GPa\n", FX[0] / (area[0] * EPS) / 1e9,
+           FX[1] / (area[1] * EPS) / 1e9, FX[2] / (area[2] * EPS) / 1e9);
   char cmd[128];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
   if (!ierr && system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
