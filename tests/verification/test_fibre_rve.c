@@ -31,10 +31,11 @@
  * 20); the PD model lps (default), correspondence or pmb (then nu = 1/4 for both phases in every
  * model and in CalculiX), its horizon m spacings (default 1.5); option: correspondence's
  * hourglass coefficient, pmb's interface micromodulus (series, mean).
- * Without a model (test_fibre_rve [N]) the PD cell is the shipped deck inputs/fibre_rve.yaml (the
- * same LPS cell at 1.5 h, run X; read from the tests/ folder) at N points across (as --set
- * parameters.n=N), its run Z by overrides of its boundary conditions; test_fibre_rve N deck PATH
- * takes the deck PATH. "N lps 1.5" is the same cell written by the test. */
+ * Without arguments the PD cell is the shipped deck inputs/fibre_rve.yaml (the same LPS cell at
+ * 1.5 h, run X, N = 20; read from the tests/ folder), its run Z by overrides of its boundary
+ * conditions; test_fibre_rve N deck PATH takes the deck PATH at N points across (as --set
+ * parameters.n=N; the deck's nine fibre regions all hold points for N <= 25 only). "20 lps 1.5"
+ * is the same cell written by the test. */
 #include "test_common.h"
 
 #include <math.h>
@@ -304,8 +305,8 @@ static void report(const char *what, int n, double E1, double rom, double E2, do
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
   const int n = argc > 1 ? atoi(argv[1]) : 20;
-  /* the PD cell: the shipped deck's (LPS, 1.5 h) at N points across, unless a model is given */
-  const char *deck = argc > 3 && !strcmp(argv[2], "deck") ? argv[3] : argc <= 2 ? "../inputs/fibre_rve.yaml" : NULL;
+  /* the PD cell: without arguments the shipped deck's (LPS, 1.5 h, n = 20) */
+  const char *deck = argc > 3 && !strcmp(argv[2], "deck") ? argv[3] : argc <= 1 ? "../inputs/fibre_rve.yaml" : NULL;
   pd_config cfg = {argc > 2 && !deck ? argv[2] : "lps", argc > 3 && !deck ? atof(argv[3]) : 1.5, ""};
   if (argc > 4 && !strcmp(cfg.model, "correspondence"))
     snprintf(cfg.keys, sizeof cfg.keys, "    hourglass: {coefficient: %s}\n", argv[4]);
