@@ -22,6 +22,12 @@ comparisons. The reading of Exodus and CalculiX files is scripts/plate_hole.py's
       (PERIFEM.e, with --fe) within --band-pd (default 0.25) on each ply's edge stress and the
       displacements; and CalculiX's laminate K within 10 % of Lekhnitskii's K_t.
 
+  laminate_hole.py plot PERIFEM.e OUT.png --ccx CCX.dat [--fe FE.e]
+      sigma_xx / sigma_nom along the ligament x = 0 from the hole's edge, per ply (the planes of
+      report), each run over its own sigma_nom: perifem's runs (nodes), CalculiX's (nodes), the
+      edge values report takes (open marks) and Lekhnitskii's with CLT's shares (a star)
+      (docs/examples/laminate_hole.png).
+
 Edge stress, elements: the nodal values (perifem: the volume-weighted mean of the elements'
 quadrature-point stresses round the node; CalculiX's Gauss-point stresses averaged to the nodes
 by the same rule) on the ligament x = 0 at r > a, fitted by c0 + c1 s + c2 s^2 + c3 s^3,
@@ -140,7 +146,7 @@ def measure(path):
     X, conn, u, sxx, beta, hor, sn = ph.read_exodus(path)
     pd = beta.max() > 0
     f = edge_point if pd else edge_fit
-    return dict(X=X, conn=conn, u=u, sxx=sxx, sn=sn, pd=pd, edge={p: f(X, sxx, p) for p in (0, 90)})
+    return dict(X=X, conn=conn, u=u, sxx=sxx, sn=sn, pd=pd, beta=beta, edge={p: f(X, sxx, p) for p in (0, 90)})
 
 
 def cmd_report(a):
@@ -186,6 +192,53 @@ def cmd_report(a):
     sys.exit(0 if ok or not a.bands else 1)
 
 
+def ligament(X, s, ply):
+    """r (the distance from the hole's centre) and sigma_xx on the ligament x = 0 of a ply's
+    planes, the mean over the sides y > 0, y < 0 and the planes at each r."""
+    k = np.concatenate(ply_nodes(X, ply))
+    r = np.round(np.abs(X[k, 1]), 12)
+    ru = np.unique(r)
+    return ru, np.array([s[k][r == v].mean() for v in ru])
+
+
+def cmd_plot(a):
+    """sigma_xx / sigma_nom along the ligament from the hole's edge, per ply: perifem's runs
+    against CalculiX's on the same mesh, and Lekhnitskii's edge value with CLT's shares."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    runs = {"perifem, PD plies round the hole": measure(a.perifem)}
+    if a.fe:
+        runs = {"perifem, elements only": measure(a.fe), **runs}
+    fe = next(iter(runs.values()))
+    uc, sc = ph.read_ccx(a.ccx, fe["X"], fe["conn"])
+    sn_ccx = ph.nominal(fe["X"], sc)
+    kinf, kt = lekhnitskii()
+    ex, nu, _, qb = clt()
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
+    for ax, ply in zip(axes, (0, 90)):
+        r, v = ligament(fe["X"], sc, ply)
+        ax.plot((r - A) * 1e3, v / sn_ccx, "k-", lw=1.5, label="CalculiX (C3D8), nodes")
+        for (name, run), m, c in zip(runs.items(), ("o", "s"), ("C0", "C1")):
+            # (a coupled body writes the stress of its PD points, blending weight > 0, only)
+            X = run["X"][run["beta"] > 0] if run["pd"] else run["X"]
+            r, v = ligament(X, run["sxx"][run["beta"] > 0] if run["pd"] else run["sxx"], ply)
+            ax.plot((r - A) * 1e3, v / run["sn"], m, color=c, ms=3.5, label=name + (" (its PD points)" if run["pd"] else ""))
+            ax.plot(0, run["edge"][ply] / run["sn"], m, color=c, ms=9, mfc="none", mew=1.5)
+        ax.plot(0, edge_fit(fe["X"], sc, ply) / sn_ccx, "kD", ms=7, mfc="none", label="edge values (open marks)")
+        ax.plot(0, (qb[ply][0] - nu * qb[ply][1]) / ex * kt, "r*", ms=11, label="Lekhnitskii x Heywood, CLT share")
+        ax.set_xlim(-0.5, 20.5)
+        ax.set_xlabel("distance from the hole's edge along x = 0 (mm)")
+        ax.set_ylabel(r"$\sigma_{xx}/\sigma_{\rm nom}$")
+        ax.set_title(f"{ply}° plies ({'faces z = ±2t' if ply == 0 else 'mid-plane z = 0'})", fontsize=10)
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=8)
+    fig.suptitle("[0/90]s T300/914C plate with a hole (2a/W = 0.2) in tension: the ligament's stress per ply")
+    fig.tight_layout()
+    fig.savefig(a.png, dpi=100)
+    print(f"wrote {a.png}")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     s = p.add_subparsers(dest="cmd", required=True)
@@ -201,8 +254,13 @@ def main():
     c.add_argument("--band-fe", default="0.01,0.01")
     c.add_argument("--band-pd", type=float, default=0.25)
     c.add_argument("--bands", action="store_true")
+    c = s.add_parser("plot")
+    c.add_argument("perifem")
+    c.add_argument("png")
+    c.add_argument("--ccx", required=True)
+    c.add_argument("--fe")
     a = p.parse_args()
-    {"inp": cmd_inp, "report": cmd_report}[a.cmd](a)
+    {"inp": cmd_inp, "report": cmd_report, "plot": cmd_plot}[a.cmd](a)
 
 
 if __name__ == "__main__":

@@ -30,7 +30,12 @@
  * usage: test_fibre_rve [N [model [m [option]]]]: N elements (points) across the cell (default
  * 20); the PD model lps (default), correspondence or pmb (then nu = 1/4 for both phases in every
  * model and in CalculiX), its horizon m spacings (default 1.5); option: correspondence's
- * hourglass coefficient, pmb's interface micromodulus (series, mean). */
+ * hourglass coefficient, pmb's interface micromodulus (series, mean).
+ * Without arguments the PD cell is the shipped deck inputs/fibre_rve.yaml (the same LPS cell at
+ * 1.5 h, run X, N = 20; read from the tests/ folder), its run Z by overrides of its boundary
+ * conditions; test_fibre_rve N deck PATH takes the deck PATH at N points across (as --set
+ * parameters.n=N; the deck's nine fibre regions all hold points for N <= 25 only). "20 lps 1.5"
+ * is the same cell written by the test. */
 #include "test_common.h"
 
 #include <math.h>
@@ -72,13 +77,16 @@ static void moduli(const double FX[3], const double FZ[3], const double area[3],
   E[1] = det / (C[0][0] * C[1][1] - C[0][1] * C[1][0]);
 }
 
-/* Build, run to the end and read the far faces' reactions <name>_reaction_<axis>. */
-static int run_deck(const char *deck, const char *const names[3], double F[3], perifem_sim **keep) {
+/* Build, run to the end and read the far faces' reactions <name>_reaction_<axis>: the deck's
+ * text, or (deck NULL) the deck file path with the overrides ovr[0 .. novr). */
+static int run_deck(const char *deck, const char *path, const char *const *ovr, int novr, const char *const names[3],
+                    double F[3], perifem_sim **keep) {
   perifem_options opt = {0};
-  opt.no_output = 1, opt.quiet = 1;
+  opt.no_output = 1, opt.quiet = 1, opt.overrides = ovr, opt.noverrides = novr;
   perifem_sim *sim = NULL;
-  if (perifem_create_from_string(deck, "fibre_rve.yaml", &opt, &sim) || perifem_run(sim)) {
-    fprintf(stderr, "perifem: %s\n%s", perifem_last_error(), deck);
+  if ((deck ? perifem_create_from_string(deck, "fibre_rve.yaml", &opt, &sim) : perifem_create(path, &opt, &sim)) ||
+      perifem_run(sim)) {
+    fprintf(stderr, "perifem: %s\n%s", perifem_last_error(), deck ? deck : path);
     perifem_destroy(&sim);
     return -1;
   }
@@ -131,7 +139,7 @@ static int fe_run(int n, int axis, double F[3]) {
            "time: {final_time: 1}\n",
            E_M, NU_M, E_F, NU_F, A / 2, A / 2, fibre_radius(), pf_test_pamgen_box(n, n, 1, lo, hi), bcs);
   const char *names[3] = {"fx", "fy", "fz"};
-  return run_deck(deck, names, F, NULL);
+  return run_deck(deck, NULL, NULL, 0, names, F, NULL);
 }
 
 /* Each fibre of the array (the cell's and its eight neighbours') that reaches the lattice
@@ -192,6 +200,21 @@ static void pd_material(char *out, size_t cap, const char *model, const char *na
     snprintf(out, cap, "  %s: {model: lps, density: 1000, bulk_modulus: %.17g, shear_modulus: %.17g}\n", name, K, G);
 }
 
+/* The PD cell's points (those in [0, a]^2 x [0, t], t > 0) into *count and their share in
+ * the fibre (the output field `material`: 0 the epoxy) into *vf. */
+static void cell_points(perifem_sim *sim, double t, double *vf, double *count) {
+  const long np = perifem_body_points(sim, 0);
+  double *X = malloc(3 * np * sizeof *X), *mat = malloc(np * sizeof *mat), c[2] = {0, 0};
+  perifem_field_read(sim, 0, "reference_position", X, 3 * np);
+  perifem_field_read(sim, 0, "material", mat, np);
+  for (long i = 0; i < np; i++)
+    if (X[3 * i] > 0 && X[3 * i] < A && X[3 * i + 1] > 0 && X[3 * i + 1] < A && X[3 * i + 2] > 0 && X[3 * i + 2] < t)
+      c[0] += mat[i] != 0, c[1] += 1;
+  MPI_Allreduce(MPI_IN_PLACE, c, 2, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  *vf = c[0] / c[1], *count = c[1];
+  free(X), free(mat);
+}
+
 /* The PD cell: points at the centroids of the n x n x 1 grid (spacing h = a / n), horizon
  * cfg->m h, partial volumes, and the layers beyond the faces; vf: the cell's points in the fibre
  * (the output field `material`: 0 the epoxy). */
@@ -216,18 +239,33 @@ static int pd_run(int n, const pd_config *cfg, int axis, double F[3], double *vf
            h, bcs);
   const char *names[3] = {"mx", "my", "mz"};
   perifem_sim *sim = NULL;
-  if (run_deck(deck, names, F, &sim)) return -1;
-  const long np = perifem_body_points(sim, 0);
-  double *X = malloc(3 * np * sizeof *X), *mat = malloc(np * sizeof *mat), c[2] = {0, 0};
-  perifem_field_read(sim, 0, "reference_position", X, 3 * np);
-  perifem_field_read(sim, 0, "material", mat, np);
-  for (long i = 0; i < np; i++)
-    if (X[3 * i] > 0 && X[3 * i] < A && X[3 * i + 1] > 0 && X[3 * i + 1] < A && X[3 * i + 2] > 0 && X[3 * i + 2] < t)
-      c[0] += mat[i] != 0, c[1] += 1;
-  MPI_Allreduce(MPI_IN_PLACE, c, 2, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-  *vf = c[0] / c[1];
-  free(X), free(mat);
+  if (run_deck(deck, NULL, NULL, 0, names, F, &sim)) return -1;
+  double count;
+  cell_points(sim, t, vf, &count);
   perifem_destroy(&sim);
+  return 0;
+}
+
+/* The shipped deck (inputs/fibre_rve.yaml: the LPS cell's run X) at n points across, and its
+ * run Z by overrides (the faces x held, z = 0 and z = t the moved pair), as pd_run's: F, and
+ * the fibre fraction vf of the cell's points, whose count must be n^2 (one layer). */
+static int deck_run(const char *path, int n, int axis, double F[3], double *vf) {
+  char set_n[64];
+  snprintf(set_n, sizeof set_n, "parameters.n=%d", n);
+  const char *ovr[7] = {set_n,
+                        "boundary_conditions.gx0.displacement=[\"0\", free, free]",
+                        "boundary_conditions.gx1.displacement=[\"0\", free, free]",
+                        "boundary_conditions.mx.displacement=[\"0\", free, free]",
+                        "boundary_conditions.gz0.displacement=[free, free, \"eps * z * t / T\"]",
+                        "boundary_conditions.gz1.displacement=[free, free, \"eps * z * t / T\"]",
+                        "boundary_conditions.mz.displacement=[free, free, \"eps * z * t / T\"]"};
+  const char *names[3] = {"mx", "my", "mz"};
+  perifem_sim *sim = NULL;
+  if (run_deck(NULL, path, ovr, axis == 2 ? 7 : 1, names, F, &sim)) return -1;
+  double count;
+  cell_points(sim, A / n, vf, &count);
+  perifem_destroy(&sim);
+  if (count != (double)n * n) return fprintf(stderr, "%s: %g points in the cell, not %d^2\n", path, count, n), -1;
   return 0;
 }
 
@@ -244,6 +282,9 @@ static int ccx_moduli(int n, const unsigned char *in_fibre, double E[2]) {
   ierr = ierr || pf_test_ccx_grid_solve(&g, dir, "run_z", FZ);
   const double area[3] = {A * h, A * h, A * A};
   if (!ierr) moduli(FX, FZ, area, E);
+  if (!ierr && getenv("PF_TEST_VERBOSE"))
+    printf("ccx run X: C_xx %.6g GPa, C_yx %.6g GPa, C_zx %.6g GPa\n", FX[0] / (area[0] * EPS) / 1e9,
+           FX[1] / (area[1] * EPS) / 1e9, FX[2] / (area[2] * EPS) / 1e9);
   char cmd[128];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
   if (!ierr && system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
@@ -257,14 +298,16 @@ static void report(const char *what, int n, double E1, double rom, double E2, do
   snprintf(key, sizeof key, "%s_E1", what), pf_test_measure(key, E1 / 1e9, "GPa");
   snprintf(key, sizeof key, "%s_E2", what), pf_test_measure(key, E2 / 1e9, "GPa");
   if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
-    printf("%s n %d: E1 %.4g GPa (rule of mixtures %.4g, %+.2f %%), E2 %.4g GPa (ccx %.4g, %+.2f %%)\n", what, n,
+    printf("%s n %d: E1 %.6g GPa (rule of mixtures %.6g, %+.2f %%), E2 %.6g GPa (ccx %.6g, %+.2f %%)\n", what, n,
            E1 / 1e9, rom / 1e9, 100 * (E1 / rom - 1), E2 / 1e9, E2_ccx / 1e9, 100 * (E2 / E2_ccx - 1));
 }
 
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
   const int n = argc > 1 ? atoi(argv[1]) : 20;
-  pd_config cfg = {argc > 2 ? argv[2] : "lps", argc > 3 ? atof(argv[3]) : 1.5, ""};
+  /* the PD cell: without arguments the shipped deck's (LPS, 1.5 h, n = 20) */
+  const char *deck = argc > 3 && !strcmp(argv[2], "deck") ? argv[3] : argc <= 1 ? "../inputs/fibre_rve.yaml" : NULL;
+  pd_config cfg = {argc > 2 && !deck ? argv[2] : "lps", argc > 3 && !deck ? atof(argv[3]) : 1.5, ""};
   if (argc > 4 && !strcmp(cfg.model, "correspondence"))
     snprintf(cfg.keys, sizeof cfg.keys, "    hourglass: {coefficient: %s}\n", argv[4]);
   if (argc > 4 && !strcmp(cfg.model, "pmb"))
@@ -293,13 +336,17 @@ int main(int argc, char **argv) {
   PF_TEST_CLOSE(Efe[1], rom_fe, 0.02, 0);
   PF_TEST_CLOSE(Efe[0], Eccx[0], 0.05, 0);
   const clock_t c0 = clock();
-  PF_TEST_OK(pd_run(n, &cfg, 0, FX, &vf_pd) || pd_run(n, &cfg, 2, FZ, &vf_pd));
+  if (deck) PF_TEST_OK(deck_run(deck, n, 0, FX, &vf_pd) || deck_run(deck, n, 2, FZ, &vf_pd));
+  else PF_TEST_OK(pd_run(n, &cfg, 0, FX, &vf_pd) || pd_run(n, &cfg, 2, FZ, &vf_pd));
+  if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
+    printf("pd run X: C_xx %.6g GPa, C_yx %.6g GPa, C_zx %.6g GPa\n", FX[0] / (area[0] * EPS) / 1e9,
+           FX[1] / (area[1] * EPS) / 1e9, FX[2] / (area[2] * EPS) / 1e9);
   moduli(FX, FZ, area, Epd);
   const double rom_pd = vf_pd * E_F + (1 - vf_pd) * E_M;
   report("pd", n, Epd[1], rom_pd, Epd[0], Eccx[0]);
   if (getenv("PF_TEST_VERBOSE") && pf_comm_rank() == 0)
-    printf("pd %s, horizon %.4g h%s: %.1f s of CPU (both runs)\n", cfg.model, cfg.m, cfg.keys[0] ? " (+ keys)" : "",
-           (double)(clock() - c0) / CLOCKS_PER_SEC);
+    printf("pd %s, horizon %.4g h%s%s%s: %.1f s of CPU (both runs)\n", cfg.model, cfg.m, cfg.keys[0] ? " (+ keys)" : "",
+           deck ? ", the deck " : "", deck ? deck : "", (double)(clock() - c0) / CLOCKS_PER_SEC);
   PF_TEST_CLOSE(vf_pd, vf_fe, 0, 1e-12); /* the lattice's points are the grid's centroids */
   PF_TEST_CLOSE(Epd[1], rom_pd, 0.02, 0);
   PF_TEST_CLOSE(Epd[0], Eccx[0], 0.05, 0);
