@@ -20,9 +20,11 @@ struct pf_bc {
   pf_int n;
   pf_int *points; /* owned points selected */
   char name[64];  /* the deck's `name:`, or "bc<k>" by its place in the list (k from 0) */
-  /* this rank's impulse of the reaction on its points, N s: accumulated, and over the step
-   * being taken (from the mid-step hook, which starts it, to the end-of-step hook) */
-  double impulse[3], step_impulse[3];
+  /* this rank's impulse of the reaction on its points, N s: over the last hook called (summed
+   * from 0, so that what is booked does not depend on what came before: a restarted run books
+   * the same bits), and over the step being taken (from the mid-step hook, which starts it, to
+   * the end-of-step hook) */
+  double hook_impulse[3], step_impulse[3];
 };
 
 const pf_key pf_bc_keys[] = {
@@ -130,13 +132,10 @@ pf_int pf_bc_npoints(const pf_bc *bc) { return bc->n; }
 
 const char *pf_bc_name(const pf_bc *bc) { return bc->name; }
 
-void pf_bc_impulse(const pf_bc *bc, double step[3], double total[3]) {
-  for (int c = 0; c < 3; c++) step[c] = bc->step_impulse[c], total[c] = bc->impulse[c];
+void pf_bc_impulse(const pf_bc *bc, double step[3], double hook[3]) {
+  for (int c = 0; c < 3; c++) step[c] = bc->step_impulse[c], hook[c] = bc->hook_impulse[c];
 }
 
-void pf_bc_impulse_set(pf_bc *bc, const double step[3], const double total[3]) {
-  for (int c = 0; c < 3; c++) bc->step_impulse[c] = step[c], bc->impulse[c] = total[c];
-}
 
 /* Setting a velocity component from v- (after the half kick of dt/2 by the force f) to v+ is
  * the impulse J = m (v+ - v-) of the condition's reaction over that half step (added to the
@@ -150,7 +149,7 @@ static void set_velocity(pf_bc *bc, pf_points *pts, pf_int i, int c, double vnew
   double vkick = pts->v[3 * i + c], v0 = vkick - half_dt * pts->f[3 * i + c] / pts->m[i];
   const double J = pts->m[i] * (vnew - vkick);
   work[pts->body[i]] += J * 0.5 * (v0 + vnew);
-  bc->impulse[c] += J, bc->step_impulse[c] += J;
+  bc->hook_impulse[c] += J, bc->step_impulse[c] += J;
   pts->v[3 * i + c] = vnew;
 }
 
@@ -163,6 +162,7 @@ static void set_velocity(pf_bc *bc, pf_points *pts, pf_int i, int c, double vnew
  * do. The midstep hook books that term with the impulse, so the balance closes to second order
  * for both kinds (tests/regression/ledger_order.sh). */
 void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt, double *work) {
+  for (int c = 0; c < 3; c++) bc->hook_impulse[c] = 0.0;
   if (bc->kind == BC_BODY_FORCE) return;
   for (int c = 0; c < 3; c++) bc->step_impulse[c] = 0.0; /* a new step */
   for (pf_int k = 0; k < bc->n; k++) {
@@ -180,6 +180,7 @@ void pf_bc_apply_midstep(pf_bc *bc, pf_points *pts, double t, double dt, double 
 }
 
 void pf_bc_apply_endstep(pf_bc *bc, pf_points *pts, double t, double dt, double *work) {
+  for (int c = 0; c < 3; c++) bc->hook_impulse[c] = 0.0;
   if (bc->kind == BC_BODY_FORCE) return;
   for (pf_int k = 0; k < bc->n; k++) {
     pf_int i = bc->points[k];
@@ -208,6 +209,7 @@ void pf_bc_mark(const pf_bc *bc, uint8_t *mask) {
  * v(t - dt/2), the mid-step velocity the points still hold when the forces are computed: for a
  * constant load the work summed over the steps is exactly F . u(t), the load's potential. */
 void pf_bc_apply_force(pf_bc *bc, pf_points *pts, double t, double dt, double *work) {
+  for (int c = 0; c < 3; c++) bc->hook_impulse[c] = 0.0;
   if (bc->kind != BC_BODY_FORCE) return;
   for (int c = 0; c < 3; c++) bc->step_impulse[c] = 0.0;
   for (pf_int k = 0; k < bc->n; k++) {
@@ -220,7 +222,7 @@ void pf_bc_apply_force(pf_bc *bc, pf_points *pts, double t, double dt, double *w
       if (dt <= 0) continue;
       const double Fmean = 0.5 * (pts->m[i] * pf_expr_eval(bc->e[c], x[0], x[1], x[2], t - dt) + F);
       work[pts->body[i]] += Fmean * dt * pts->v[3 * i + c];
-      bc->impulse[c] += Fmean * dt, bc->step_impulse[c] += Fmean * dt;
+      bc->hook_impulse[c] += Fmean * dt, bc->step_impulse[c] += Fmean * dt;
     }
   }
 }

@@ -563,10 +563,10 @@ int pf_bc_check_finite(const pf_bc *bc, const pf_points *pts, double t_end, int 
 pf_int pf_bc_npoints(const pf_bc *bc);
 const char *pf_bc_name(const pf_bc *bc);
 /* This rank's impulse of the condition's reaction on its owned points (N s, the momentum the
- * condition gave them): over the last step taken (0 before the first) and since the start. */
-void pf_bc_impulse(const pf_bc *bc, double step[3], double total[3]);
-/* Set them (a restart: rank 0 takes the sums over the ranks that wrote the checkpoint). */
-void pf_bc_impulse_set(pf_bc *bc, const double step[3], const double total[3]);
+ * condition gave them): over the last step taken (0 before the first) and over the last hook
+ * below that was called (its own sum from 0: what the ledger books, the same bits after a
+ * restart). */
+void pf_bc_impulse(const pf_bc *bc, double step[3], double hook[3]);
 /* Velocity Verlet hooks: after the first half kick (mid-step velocity at t + dt/2) and after
  * the second half kick (velocity at t; dt the step just taken). The work of the conditions'
  * reactions on owned point i is added to work[pts->body[i]] (J, per body; core/bc.c gives the

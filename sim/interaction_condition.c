@@ -68,11 +68,9 @@ typedef void (*bc_hook)(pf_bc *bc, pf_points *pts, double t, double dt, double *
 
 /* Run a hook of core/bc.c and book what it did: the work per body, the impulse. */
 static void apply(condition *x, const pf_interaction_step *s, bc_hook hook) {
-  double w[PF_MAX_BODIES] = {0}, step0[3], total0[3], step1[3], total1[3], d[3];
-  pf_bc_impulse(x->bc, step0, total0);
+  double w[PF_MAX_BODIES] = {0}, step[3], d[3];
   hook(x->bc, s->pts, s->t, s->dt, w);
-  pf_bc_impulse(x->bc, step1, total1);
-  for (int a = 0; a < 3; a++) d[a] = total1[a] - total0[a];
+  pf_bc_impulse(x->bc, step, d);
   pf_ledger_book(s->ledger, x->impulse, d);
   double all = 0;
   for (int b = 0; b < s->nbodies; b++) pf_ledger_add(s->ledger, s->body_work[b], w[b]), all += w[b];
@@ -90,8 +88,8 @@ static int force(void *data, const pf_interaction_step *s, double *sums) {
 static void endstep(void *data, const pf_interaction_step *s) {
   condition *x = data;
   apply(x, s, pf_bc_apply_endstep);
-  double step[3], total[3];
-  pf_bc_impulse(x->bc, step, total);
+  double step[3], hook[3];
+  pf_bc_impulse(x->bc, step, hook);
   for (int a = 0; a < 3; a++) step[a] /= s->dt;
   pf_ledger_set(s->ledger, x->reaction, step);
   double u[3]; /* this rank's part of the mean */
