@@ -3,8 +3,11 @@
 docs/examples/single_fibre.md): the reaction of the cell against its strain, one curve a run.
 
   single_fibre.py OUT.png RUN.h5 [RUN.h5 ...] [--ccx K_BONDED,K_HOLE] [--cell A]
+  single_fibre.py OUT.png TEST.log [--ccx K_BONDED,K_HOLE]
 
-Each RUN.h5 is a run's history and RUN.e, beside it, its Exodus output. The load is the history's
+Each RUN.h5 is a run's history and RUN.e, beside it, its Exodus output; or TEST.log, the output
+of `PF_TEST_VERBOSE=1 test_single_fibre 16 curve` (its lines `curve LAW M STRAIN LOAD DAMAGE`:
+the same runs, both laws at both horizons). The load is the history's
 mx_reaction_x (the reaction of the roller layer beyond x = A); the cell strain is the layer's
 mean displacement mx_displacement_x over its points' mean reference x, read from RUN.e (every
 point of the layer follows u_x = e x). A curve is labelled by its file's stem. --ccx draws the
@@ -36,6 +39,17 @@ def read_run(path, a):
     return u / layer_mean_x(os.path.splitext(path)[0] + ".e", a), R
 
 
+def read_log(path):
+    """The curves of verification/test_single_fibre_curve's verbose output, by law and horizon."""
+    curves = {}
+    for line in open(path):
+        w = line.split()
+        if len(w) == 6 and w[0] == "curve":
+            name = "%s, horizon %s h" % (("critical stretch", "critical energy")[int(w[1])], w[2])
+            curves.setdefault(name, []).append((float(w[3]), float(w[4])))
+    return [(name, *map(np.array, zip(*rows))) for name, rows in curves.items()]
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("out")
@@ -48,11 +62,15 @@ def main():
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(8, 5), dpi=125)
     emax = 0
+    runs = []
     for path in args.runs:
-        e, R = read_run(path, args.cell)
+        if path.endswith(".log"):
+            runs += read_log(path)
+        else:
+            runs.append((os.path.splitext(os.path.basename(path))[0], *read_run(path, args.cell)))
+    for name, e, R in runs:
         drop = next((k for k in range(len(R) - 1) if R[k + 1] < R[k]), None)
         tangent = (R[-1] - R[-5]) / ((e[-1] - e[-5]) * args.cell)
-        name = os.path.splitext(os.path.basename(path))[0]
         peak = "no drop" if drop is None else "debond load %.4g N at strain %.4g" % (R[drop], e[drop])
         print("%s: %s; tangent at the end %.4g N/m" % (name, peak, tangent))
         ax.plot(e * 1e3, R, ".-", label=name)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 47, item 5: inputs/laminate_hole.yaml, a [0/90]s laminate of T300/914C plies, 150 x 50 x
+# inputs/laminate_hole.yaml, a [0/90]s laminate of T300/914C plies, 150 x 50 x
 # 0.5 mm, with a hole of radius a = 5 mm, pulled along x (nominal strain 1e-4), one hexahedron
 # per ply through the thickness, PD (correspondence) plies round the hole and FE plies beyond in
 # one coupled body (docs/examples/laminate_hole.md), on the coarse mesh (parameters.h = 1 mm,
