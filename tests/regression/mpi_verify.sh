@@ -27,9 +27,10 @@
 # test_bimaterial_static_correspondence (four quasi-static bars), whose several correspondence
 # materials in one body run on 1, 2 and 3 ranks there as taylor_corr_regions; and
 # test_single_fibre (it runs CalculiX, and reads the interface bonds' stretches from one
-# rank's points): its body - PMB with material_regions under newton_krylov - runs on 1, 2 and 3
-# ranks in mpi_digests.sh as interface_pmb, and LPS with material_regions on 1 and 3 ranks here
-# as test_bimaterial_static.
+# rank's points): its deck, inputs/single_fibre.yaml - PMB with material_regions under
+# newton_krylov, interface bonds failing in damage passes - runs reduced on 1, 2 and 3 ranks in
+# mpi_digests.sh as single_fibre, and LPS with material_regions on 1 and 3 ranks here as
+# test_bimaterial_static.
 # The tests this script runs do so on 1 and 3 ranks, not on 2: 3 ranks already split every
 # body the 2-rank run splits, and the same physics runs on 1, 2 and 3 ranks with equal digests in
 # mpi_digests.sh (PD contact: cylinder_contact, sphere_on_block; FE: taylor_impact, mixed,
