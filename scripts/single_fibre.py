@@ -12,8 +12,8 @@ mx_reaction_x (the reaction of the roller layer beyond x = A); the cell strain i
 mean displacement mx_displacement_x over its points' mean reference x, read from RUN.e (every
 point of the layer follows u_x = e x). A curve is labelled by its file's stem. --ccx draws the
 lines F = k e A of CalculiX's cell with the fibre bonded and with the fibre a hole (N/m, as
-verification/test_single_fibre prints them). Prints, per run, the load at which it first drops
-(the debond load) and the tangent over the last four load steps.
+verification/test_single_fibre prints them). Prints, per run, the debond load (the largest load
+before the largest drop) and the tangent over the last four load steps.
 """
 import argparse
 import os
@@ -69,7 +69,8 @@ def main():
         else:
             runs.append((os.path.splitext(os.path.basename(path))[0], *read_run(path, args.cell)))
     for name, e, R in runs:
-        drop = next((k for k in range(len(R) - 1) if R[k + 1] < R[k]), None)
+        fall = int(np.argmax(R[:-1] - R[1:]))  # the largest drop: the debond runs
+        drop = int(np.argmax(R[:fall + 1])) if R[fall + 1] < R[fall] else None  # the peak before it
         tangent = (R[-1] - R[-5]) / ((e[-1] - e[-5]) * args.cell)
         peak = "no drop" if drop is None else "debond load %.4g N at strain %.4g" % (R[drop], e[drop])
         print("%s: %s; tangent at the end %.4g N/m" % (name, peak, tangent))

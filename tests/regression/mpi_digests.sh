@@ -30,8 +30,8 @@ declare -A reduce=(
   # quasi-static with interface bonds failing: 8 x 8 points, horizon 2.015 h, 3 load steps, the
   # second past the debond onset (two damage passes)
   [single_fibre]='s/^(\s*)n: 16 /\1n: 8 /; s/^(\s*)m: 3.015 /\1m: 2.015 /; s/^(\s*)layers: 8 /\1layers: 6 /;
-                  s/^(\s*)e2: 1.0e-3/\1e2: 8.0e-4/; s/^(\s*)strain: 3.0e-3/\1strain: 8.2e-4/;
-                  s/^(\s*)fine: 20/\1fine: 1/; s/^(\s*)coarse: 8/\1coarse: 1/'
+                  s/^(\s*)e2: 1.4e-3/\1e2: 8.0e-4/; s/^(\s*)strain: 3.0e-3/\1strain: 8.2e-4/;
+                  s/^(\s*)fine: 36/\1fine: 1/; s/^(\s*)coarse: 8/\1coarse: 1/'
   # the other quasi-static decks of several materials in one body, as shipped (a few seconds)
   [fibre_rve]='' [laminate]='' [bimaterial_bar]=''
 )

@@ -40,11 +40,12 @@
  *    onset (max_damage_passes 3): no bond fails at 0.98, some do at 1.02, for both laws at both
  *    horizons (the onset of section 3 of single_fibre.md is where the code's bonds fail);
  *  - with the argument curve (verification/test_single_fibre_curve, label slow): the deck's load
- *    path to the cell strain 3e-3 through the debond, each law at each horizon: the first bond
- *    fails at the first load step past the predicted onset (within 2 %), the load then drops from a
- *    peak (the debond load) at or above the onset, the tangent at the end is CalculiX's for the
- *    cell with the fibre a hole (E = 1e-6 E_m) within 10 %, and the debond load changes less
- *    between the horizons under the critical stretch than under the critical energy.
+ *    path through the debond (45 load steps to the cell strain 3e-3), each law at each horizon:
+ *    the first bond fails at the first load step past the predicted onset (within 2 %), the load
+ *    then drops from a peak (the debond load) at or above the onset, the tangent at the end is
+ *    CalculiX's for the cell with the fibre a hole (E = 1e-6 E_m), from 5 % below to 15 % above,
+ *    and the debond load changes less between the horizons under the critical stretch than under
+ *    the critical energy.
  * usage: test_single_fibre [n [probe | curve]]: n points across the cell (16). */
 #include "test_common.h"
 
@@ -195,7 +196,9 @@ static int curve(int n, double m, const char *law, double *e, double *R, double 
 /* The curves of both laws at both horizons (onset[l][hz] the predicted debond onset loads, k0 the
  * elastic stiffnesses, k_hole CalculiX's cell with the fibre a hole): the first bond fails at the
  * first load step past the onset; the load then drops, from a peak at or above the onset (the debond
- * load, peak[l][hz]); once debonded the cell's tangent is the hole's. */
+ * load, peak[l][hz]: the largest load before the largest drop); once debonded, the cell's tangent
+ * is the hole's, from 5 % below it (the lattice's own error, as k0's) to 15 % above (the interface
+ * bonds that stay, compressed at the fibre's poles, where the matrix closes onto it). */
 static void curves(int n, double onset[2][2], const double k0[2], double k_hole, double peak[2][2], int verbose) {
   const char *law[2] = {NULL, "critical_energy"};
   enum { CAP = 64 };
@@ -206,21 +209,24 @@ static void curves(int n, double onset[2][2], const double k0[2], double k_hole,
       PF_TEST_TRUE(rows > 8);
       if (rows <= 8) continue;
       const double e_onset = onset[l][hz] / (k0[hz] * A);
-      int first = -1, top = -1; /* the first damage, the last load step before the load drops */
+      int first = -1, fall = 0, top = 0; /* the first damage; the largest drop, after load step fall */
       for (int k = 0; k < rows; k++) {
         if (first < 0 && d[k] > 0) first = k;
-        if (top < 0 && k + 1 < rows && R[k + 1] < R[k]) top = k;
+        if (k + 1 < rows && R[k] - R[k + 1] > R[fall] - R[fall + 1]) fall = k;
         if (verbose) printf("curve %d %.3f %.6e %.6e %.6e\n", l, M_HORIZON[hz], e[k], R[k], d[k]);
       }
-      PF_TEST_TRUE(first > 0 && top >= first);
-      if (first < 1 || top < first) continue;
+      for (int k = 0; k <= fall; k++) top = R[k] > R[top] ? k : top; /* the debond load: the peak before it */
+      PF_TEST_TRUE(first > 0 && R[fall + 1] < R[fall]);
+      if (first < 1) continue;
       PF_TEST_TRUE(e[first] > 0.98 * e_onset && e[first - 1] < 1.02 * e_onset && R[top] > 0.98 * onset[l][hz]);
       const double tangent = (R[rows - 1] - R[rows - 5]) / ((e[rows - 1] - e[rows - 5]) * A);
       peak[l][hz] = R[top];
       if (verbose)
-        printf("%s m %.3f: first damage at strain %.4g (onset %.4g), peak %.4g N at %.4g, tangent at the end %.4g N/m (hole %.4g)\n",
-               l ? "critical energy" : "critical stretch", M_HORIZON[hz], e[first], e_onset, R[top], e[top], tangent, k_hole);
-      PF_TEST_CLOSE(tangent, k_hole, 0.1, 0);
+        printf("%s m %.3f: first damage at strain %.4g (onset %.4g), peak %.4g N at %.4g, drop to %.4g N at %.4g, "
+               "tangent at the end %.4g N/m (hole %.4g)\n",
+               l ? "critical energy" : "critical stretch", M_HORIZON[hz], e[first], e_onset, R[top], e[top],
+               R[fall + 1], e[fall + 1], tangent, k_hole);
+      PF_TEST_TRUE(tangent > 0.95 * k_hole && tangent < 1.15 * k_hole);
     }
 }
 
