@@ -136,7 +136,6 @@ void pf_bc_impulse(const pf_bc *bc, double step[3], double hook[3]) {
   for (int c = 0; c < 3; c++) step[c] = bc->step_impulse[c], hook[c] = bc->hook_impulse[c];
 }
 
-
 /* Setting a velocity component from v- (after the half kick of dt/2 by the force f) to v+ is
  * the impulse J = m (v+ - v-) of the condition's reaction over that half step (added to the
  * condition's impulses), during which the

@@ -101,7 +101,7 @@ static void onset(perifem_sim *sim, double h, double delta, double s, double Ks,
 /* inputs/single_fibre.yaml at n points across and horizon m h, with the interface's critical
  * stretch (law NULL: the deck's own, s_c from G0 at 3.015 h, the test's s) or its critical energy
  * (law "critical_energy", G0). e1 > 0: one load step to the cell strain e1 (at most 3 damage
- * passes); else the deck's load path through the debond (29 load steps, damage passes unbounded). */
+ * passes); else the deck's load path through the debond (45 load steps, damage passes unbounded). */
 static perifem_sim *fibre_sim(int n, double m, double e1, const char *law) {
   char set[7][160];
   const char *sets[7];
