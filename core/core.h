@@ -591,11 +591,13 @@ void pf_bc_displacement_sum(const pf_bc *bc, const pf_points *pts, double sum[3]
  * of the condition's books, one per selected owned point k (n = pf_bc_npoints), into
  * terms[j n + k]: j = 0, 1, 2 the force the condition exerts on the point (on each component it
  * prescribes, minus the point's force: its reaction; a body force: its load m b(X, t)), j = 3 the
- * work of that force over the load step from t - dt to t by the trapezoidal rule
- * (g0 + g) / 2 . (u - u0), j = 4, 5, 6 the point's displacement. g0, u0: [3 n_owned] the force
- * from outside and the displacement at the load step's start (a body force takes m b(X, t - dt)). */
+ * work of that force over the load step from t - dt to t by the trapezoidal rule along its path,
+ * (g0 + g1) / 2 . (u1 - u0) + (g1 + g) / 2 . (u - u1), j = 4, 5, 6 the point's displacement.
+ * g0, u0: [3 n_owned] the force from outside and the displacement at the load step's start (a
+ * body force takes m b(X, t - dt)); g1, u1: the same at its first equilibrium, before its damage
+ * checks failed a bond (a body force takes m b(X, t)); NULL: no bond failed (g1 = g, u1 = u). */
 void pf_bc_static_terms(const pf_bc *bc, const pf_points *pts, double t, double dt, const double *g0,
-                        const double *u0, double *terms);
+                        const double *u0, const double *g1, const double *u1, double *terms);
 
 /* ---- tables of global rows (core/table.c) ------------------------------------------- */
 /* Rows of a global [total][ncomp] table, each rank holding some of them (row id[k] is data[k]):

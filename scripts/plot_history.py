@@ -29,7 +29,7 @@ import numpy as np
 
 STORED = ["kinetic_energy", "elastic_energy", "fe_internal_energy", "contact_energy"]
 DISSIPATED = ["hourglass_energy", "bulk_viscosity_work", "wall_dissipation", "contact_dissipation",
-              "damage_dissipation"]
+              "damage_dissipation", "relaxation_dissipation"]
 # What each energy column holds (docs/user_guide.md §3.4), as the energies plot's legend says it:
 # the column named elastic_energy is the PD bodies' internal energy, plastic work included.
 LABELS = {
@@ -42,6 +42,7 @@ LABELS = {
     "wall_dissipation": "wall impacts (dissipated)",
     "contact_dissipation": "friction work (dissipated)",
     "damage_dissipation": "broken bonds (dissipated)",
+    "relaxation_dissipation": "relaxation damping after bonds fail (quasi-static)",
     "external_work": "external work",
 }
 

@@ -30,6 +30,9 @@ static int open_totals(pf_sim *sim) {
   PF_CALL(pf_ledger_open(l, "contact_dissipation", "J", 1, 0, S, N, -1, &T->contact_dissipation));
   PF_CALL(pf_ledger_open(l, "damage_dissipation", "J", 1, 0, S, N, -1, &T->damage));
   PF_CALL(pf_ledger_open(l, "damage_redistribution", "J", 1, 0, S, N, -1, &T->redistribution));
+  T->relaxation = -1; /* quasi-static only: what the relaxation's damping takes at a fixed load */
+  if (sim->solver.type == PF_SOLVER_QUASI_STATIC)
+    PF_CALL(pf_ledger_open(l, "relaxation_dissipation", "J", 1, 1, PF_BOOK_RUNNING, 0, -1, &T->relaxation));
   T->conversion = -1; /* a column only where some body's particles come from converted elements */
   return pf_sim_converts(sim) ? pf_ledger_open(l, "conversion_loss", "J", 1, 0, S, N, -1, &T->conversion) : 0;
 }

@@ -69,6 +69,10 @@ static int energy(pf_sim *sim) {
   else
     snprintf(whose, sizeof whose, "over the whole run, not one body: body '%s' changed most since step %ld (%+.3g J)",
              sim->body_name[worst], sim->health.step0, change);
+  const char *hint = sim->solver.type != PF_SOLVER_QUASI_STATIC ? ""
+                     : "; quasi-static: the loads' work is the trapezoid over each load step, exact for a response "
+                       "linear within it (yield, contact or a stiffening within a load step add to the error, "
+                       "a quarter as much at twice the load steps)";
   const double level[2] = {PF_HEALTH_ENERGY_LOW, PF_HEALTH_ENERGY_HIGH}, before = sim->health.error;
   sim->health.error = err;
   for (int k = 0; k < 2; k++) {
@@ -77,9 +81,9 @@ static int energy(pf_sim *sim) {
     snprintf(what, sizeof what, "energy error %g %%", 100 * level[k]);
     PF_CALL(pf_sim_health_warn(sim, what,
                                "energy balance error passed %g %% at t = %.4e s (step %ld): %.3g J, %.3g %% of the "
-                               "largest energy in play (%.3g J), %s",
+                               "largest energy in play (%.3g J), %s%s",
                                100 * level[k], sim->t, sim->step, pf_sim_total(sim, sim->acc.totals.error), 100 * err,
-                               pf_sim_energy_scale(sim), whose));
+                               pf_sim_energy_scale(sim), whose, hint));
   }
   return 0;
 }

@@ -65,10 +65,17 @@ void pf_sim_interactions_place(pf_sim *sim, double dt) {
     if (sim->inter[k].ops->place) sim->inter[k].ops->place(sim->inter[k].data, &s);
 }
 
-int pf_sim_interactions_settled(pf_sim *sim, double dt, const double *g0, const double *u0) {
+void pf_sim_interactions_loaded(pf_sim *sim, double dt) {
   const pf_interaction_step s = step_of(sim, dt);
   for (int k = 0; k < sim->ninter; k++)
-    if (sim->inter[k].ops->settled) PF_CALL(sim->inter[k].ops->settled(sim->inter[k].data, &s, g0, u0));
+    if (sim->inter[k].ops->loaded) sim->inter[k].ops->loaded(sim->inter[k].data, &s);
+}
+
+int pf_sim_interactions_settled(pf_sim *sim, double dt, const double *g0, const double *u0, const double *g1,
+                                const double *u1) {
+  const pf_interaction_step s = step_of(sim, dt);
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->settled) PF_CALL(sim->inter[k].ops->settled(sim->inter[k].data, &s, g0, u0, g1, u1));
   return 0;
 }
 

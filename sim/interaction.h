@@ -51,12 +51,18 @@ typedef struct {
    * surface: itself) at their values at s->t, s->dt the load step; s->dt < 0: the load step is
    * abandoned, go back to its start (the solver then puts the points back) [nothing]. */
   void (*place)(void *data, const pf_interaction_step *s);
+  /* Quasi-static loading: the load step from s->t - s->dt to s->t has reached its first
+   * equilibrium, before its damage check; past it the load stays while bonds fail and the state
+   * relaxes again: keep what the load step's work needs (a rigid surface: its force) [nothing]. */
+  void (*loaded)(void *data, const pf_interaction_step *s);
   /* Quasi-static loading: the load step from s->t - s->dt to s->t has reached equilibrium; g0,
    * u0: [3 n_owned] the force from outside on each owned component (on a prescribed one its
    * reaction, minus the point's force; on a free one the loads, without the forces of the
-   * interactions that book their own work) and the displacement at the load
-   * step's start: book its reactions and work. Collective [nothing]. */
-  int (*settled)(void *data, const pf_interaction_step *s, const double *g0, const double *u0);
+   * interactions that book their own work) and the displacement at the load step's start; g1,
+   * u1 the same at its first equilibrium (loaded), NULL when that is this one (no bond failed):
+   * book its reactions and work. Collective [nothing]. */
+  int (*settled)(void *data, const pf_interaction_step *s, const double *g0, const double *u0, const double *g1,
+                 const double *u1);
   /* Quasi-static loading: add to k[i] (N/m, over the owned points) a bound of the row sums of the
    * stiffness its forces add to point i, over the states the load step placed at s->t can reach
    * (the fictitious masses bound the interactions' stiffness with the bodies') [nothing]. */
@@ -125,7 +131,9 @@ void pf_sim_interactions_after_drift(pf_sim *sim, double dt);
 int pf_sim_interactions_force(pf_sim *sim, double dt, double *own);
 void pf_sim_interactions_endstep(pf_sim *sim, double dt);
 void pf_sim_interactions_place(pf_sim *sim, double dt);
-int pf_sim_interactions_settled(pf_sim *sim, double dt, const double *g0, const double *u0);
+void pf_sim_interactions_loaded(pf_sim *sim, double dt);
+int pf_sim_interactions_settled(pf_sim *sim, double dt, const double *g0, const double *u0, const double *g1,
+                                const double *u1);
 void pf_sim_interactions_stiffness_bounds(const pf_sim *sim, double *k);
 void pf_sim_interactions_project(const pf_sim *sim);
 double pf_sim_interactions_stable_dt(const pf_sim *sim);

@@ -24,6 +24,7 @@ typedef struct {
   const pf_node *map; /* its deck entry */
   int force, energy, dissipation, work, impulse; /* accounts */
   double r_old[3]; /* R at the step's start */
+  double r_loaded[3]; /* quasi-static: R at the load step's first equilibrium */
   double dx[3];    /* the step's motion */
   double x_start[3]; /* quasi-static: the position at the load step's start */
   char slip[32];     /* quasi-static with friction: the slip's point field ("": none) */
@@ -152,15 +153,23 @@ static void place(void *data, const pf_interaction_step *s) {
   pf_rigid_advance(x->r, s->t - s->dt, s->dt, x->dx);
 }
 
-/* Quasi-static: the load step's work at its equilibrium; with friction, each point's slip
- * committed and the work of the slip increments (summed by pf_sim_solver_sums: the same bits on
- * any number of ranks) dissipated. */
-static int settled(void *data, const pf_interaction_step *s, const double *g0, const double *u0) {
-  (void)g0, (void)u0;
+/* Quasi-static: the force at the load step's first equilibrium, where the surface has moved (past
+ * it the surface stays while bonds fail). */
+static void loaded(void *data, const pf_interaction_step *s) {
+  rigid *x = data;
+  pf_ledger_get(s->ledger, x->force, x->r_loaded);
+}
+
+/* Quasi-static: the load step's work at its equilibrium, the surface's force taken at the first
+ * (g1: after bonds failed); with friction, each point's slip committed and the work of the slip
+ * increments (summed by pf_sim_solver_sums: the same bits on any number of ranks) dissipated. */
+static int settled(void *data, const pf_interaction_step *s, const double *g0, const double *u0, const double *g1,
+                   const double *u1) {
+  (void)g0, (void)u0, (void)u1;
   rigid *x = data;
   double r_new[3];
   pf_ledger_get(s->ledger, x->force, r_new);
-  pf_ledger_book_centred(s->ledger, x->work, x->r_old, r_new, x->dx);
+  pf_ledger_book_centred(s->ledger, x->work, x->r_old, g1 ? x->r_loaded : r_new, x->dx);
   if (!x->slip[0]) return 0;
   double *terms, unused[4], W;
   PF_MALLOC(terms, s->pts->n_owned);
@@ -209,6 +218,7 @@ const pf_interaction_ops pf_interaction_kind_rigid = {
     .take_sums = take_sums,
     .endstep = endstep,
     .place = place,
+    .loaded = loaded,
     .settled = settled,
     .stiffness_bounds = stiffness_bounds,
     .books_own_work = 1,

@@ -19,7 +19,7 @@ enum { PF_SIM_PATH_MAX = 4000 };
  * bodies' and interactions' accounts), in this order. */
 typedef struct {
   int kinetic, elastic, contact, work, error, momentum, angular, damage_fraction, fe_internal, hourglass, viscous, wall,
-      contact_dissipation, damage, redistribution, conversion;
+      contact_dissipation, damage, redistribution, conversion, relaxation;
 } pf_sim_totals;
 /* A body's accounts (sim/accounts.c): its centre of mass and mean velocity, kinetic energy (and
  * the centred one the balance takes), internal energy (PD stored energy and element stress work,

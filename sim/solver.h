@@ -37,6 +37,8 @@ typedef struct {
   double *f_body;  /* the bodies' part of the last evaluation (the rest is the interactions') */
   double *f_own;   /* the part of the interactions that book their own work (rigid surfaces, walls) */
   double *u0, *g0; /* u and the applied force (reaction or load) at the load step's start */
+  double *u1, *g1; /* the same at its first equilibrium, before its damage checks failed a bond */
+  double held1;    /* the energy the ledger holds there, J (sim/solver_relaxation.c, loaded) */
   double *terms;   /* [PF_SOLVER_SUMS 3 n] each iteration's terms of its sums */
   uint8_t *fixed;  /* [3 n] prescribed components */
   double *nk;      /* newton_krylov: [NK_ARRAYS 3 n] (sim/solver_newton.c) */

@@ -25,17 +25,19 @@
 static int scratch(pf_sim_solver *s, pf_int n) {
   if (s->n == n && s->lambda) return 0;
   free(s->lambda), free(s->vel), free(s->f_old), free(s->u_last), free(s->f_body), free(s->u0), free(s->g0);
-  free(s->fixed), free(s->terms), free(s->f_own);
+  free(s->u1), free(s->g1), free(s->fixed), free(s->terms), free(s->f_own);
   const size_t n3 = 3 * (size_t)n + 1;
   s->lambda = calloc((size_t)n + 1, sizeof(double));
   s->vel = calloc(n3, sizeof(double)), s->f_old = calloc(n3, sizeof(double));
   s->u_last = calloc(n3, sizeof(double)), s->f_body = calloc(n3, sizeof(double));
   s->f_own = calloc(n3, sizeof(double));
   s->u0 = calloc(n3, sizeof(double)), s->g0 = calloc(n3, sizeof(double));
+  s->u1 = calloc(n3, sizeof(double)), s->g1 = calloc(n3, sizeof(double));
   s->terms = calloc(PF_SOLVER_SUMS * n3, sizeof(double));
   s->fixed = calloc(n3, 1);
   s->n = n;
-  PF_CHECK(s->lambda && s->vel && s->f_old && s->u_last && s->f_body && s->f_own && s->u0 && s->g0 && s->terms && s->fixed,
+  PF_CHECK(s->lambda && s->vel && s->f_old && s->u_last && s->f_body && s->f_own && s->u0 && s->g0 && s->u1 && s->g1 &&
+               s->terms && s->fixed,
            PF_ERR_MEMORY, "out of memory for the quasi-static solver's arrays (%" PF_INT_FMT " points)", n);
   return 0;
 }
@@ -172,6 +174,27 @@ static int too_many_passes(const pf_sim *sim, double failed) {
                         sim->solver.max_damage_passes);
 }
 
+/* The energy the ledger holds now, less the kinetic part (mid load step the points' velocities
+ * are the bodies' increments, not a motion): the stored energies, the dissipations and the work
+ * booked so far. Collective. */
+static int held(pf_sim *sim, double *e) {
+  PF_CALL(pf_sim_accounts_evaluate(sim, 0));
+  *e = pf_ledger_balance(&sim->ledger);
+  for (int b = 0; b < sim->nbodies; b++) *e -= pf_ledger_value(&sim->ledger, sim->acc.body[b].centred, 0);
+  return 0;
+}
+
+/* The load step's first equilibrium, before its damage check: u1, the applied forces g1, the
+ * energy held, and what the interactions keep of it (the load step's work is done here: past it
+ * the load stays while bonds fail; docs/theory/quasi_static.md §5.1). Collective. */
+static int loaded(pf_sim *sim) {
+  pf_sim_solver *s = &sim->solver;
+  const pf_points *p = sim->pts;
+  for (pf_int d = 0; d < 3 * p->n_owned; d++) s->u1[d] = p->u[d], s->g1[d] = loads(s, p, d);
+  pf_sim_interactions_loaded(sim, sim->dt);
+  return held(sim, &s->held1);
+}
+
 /* Relax, check the damage at the equilibrium, relax again at the same load while bonds fail:
  * *it iterations in all, *res the last relative residual, *passes the relaxations after the first;
  * *stop as relax leaves it. */
@@ -183,6 +206,7 @@ static int equilibrate(pf_sim *sim, long *it, double *res, long *passes, int *st
     PF_CALL(solve(sim, &n, res, stop));
     *it += n;
     if (*stop) return 0; /* (the guard check names a guard's stop; a signal abandons the load step) */
+    if (*passes == 0) PF_CALL(loaded(sim));
     PF_CALL(check_damage(sim, &failed));
     if (failed == 0) return 0;
     if (*passes == sim->solver.max_damage_passes) return too_many_passes(sim, failed);
@@ -217,20 +241,32 @@ static void predict(pf_sim *sim) {
 }
 
 /* The load step's end: the work of the reactions and loads over it into each body's external
- * work by the trapezoidal rule, (g0 + g1) / 2 . (u1 - u0); the interactions' books at the
- * equilibrium (the conditions' reactions, work and grip displacements); the increment kept; the
- * points at rest. Collective. */
-static int finish(pf_sim *sim) {
+ * work by the trapezoidal rule along its path, (g0 + g1) / 2 . (u1 - u0) to the first
+ * equilibrium and (g1 + g) / 2 . (u - u1) past it; after damage passes, what the relaxation's
+ * damping took at the fixed load into relaxation_dissipation: the loads' work past the first
+ * equilibrium less what the ledger holds more than there (docs/theory/quasi_static.md §5.1); the
+ * interactions' books at the equilibrium (the conditions' reactions, work and grip
+ * displacements); the increment kept; the points at rest. Collective. */
+static int finish(pf_sim *sim, long passes) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
-  double w[PF_MAX_BODIES] = {0}, *inc = pf_points_field_get(p, PF_SOLVER_INCREMENT);
-  PF_CALL(pf_sim_interactions_settled(sim, sim->dt, s->g0, s->u0));
-  for (pf_int d = 0; d < 3 * p->n_owned; d++) {
-    w[p->body[d / 3]] += 0.5 * (s->g0[d] + loads(s, p, d)) * (p->u[d] - s->u0[d]);
+  double w[PF_MAX_BODIES] = {0}, *inc = pf_points_field_get(p, PF_SOLVER_INCREMENT), past = 0, now = 0;
+  const pf_int n3 = 3 * p->n_owned;
+  if (passes == 0) /* (the equilibrium is the first: the same bits as one segment) */
+    for (pf_int d = 0; d < n3; d++) s->u1[d] = p->u[d], s->g1[d] = loads(s, p, d);
+  else PF_CALL(held(sim, &now));
+  PF_CALL(pf_sim_interactions_settled(sim, sim->dt, s->g0, s->u0, passes ? s->g1 : NULL, passes ? s->u1 : NULL));
+  for (pf_int d = 0; d < n3; d++) {
+    const double g = loads(s, p, d), to_first = 0.5 * (s->g0[d] + s->g1[d]) * (s->u1[d] - s->u0[d]);
+    const double beyond = 0.5 * (s->g1[d] + g) * (p->u[d] - s->u1[d]);
+    w[p->body[d / 3]] += to_first + beyond;
+    past += beyond;
     inc[d] = p->u[d] - s->u0[d];
     p->v[d] = 0;
   }
   for (int b = 0; b < sim->nbodies; b++) pf_ledger_add(&sim->ledger, sim->acc.body_work[b], w[b]);
+  if (passes > 0)
+    pf_ledger_add(&sim->ledger, sim->acc.totals.relaxation, past - (pf_comm_rank() == 0) * (now - s->held1));
   return 0;
 }
 
@@ -288,7 +324,7 @@ int pf_sim_solver_load_step(pf_sim *sim) {
   if (stop == STOP_SIGNAL) return abandon(sim, it);
   PF_CALL(freeze_damage(sim, 0));
   s->iterations += it, s->damage_passes += passes;
-  PF_CALL(finish(sim));
+  PF_CALL(finish(sim, passes));
   PF_CALL(pf_sim_guard_check(sim)); /* collective: a body that tripped, a non-finite force */
   for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_post_step(&sim->body[b], sim->pts));
   s->wall += pf_wtime() - wall0;
