@@ -39,7 +39,9 @@ G_bonds is the slope of the history's damage_dissipation (the energy each bond h
 failed) against A over the same outputs: what the bonds take. What a crack advance releases
 beyond it stays in the body as waves in a dynamic run (in E_el + K_c, so not in D: G = G_bonds
 there within about 1 %), and is removed by the relaxation's damping in a quasi-static one (so it
-is in D: G - G_bonds >= 0 is that share).
+is in D: G - G_bonds >= 0 is that share). --quasi-static also gives G_relaxation, the slope of
+the history's relaxation_dissipation (what the damping took after bonds failed at a fixed
+opening): G = G_bonds + G_relaxation, the balance closing.
 
 Crack area: a point next to the plane (|y| = dx/2, x > a0) has N bonds, Nc of them crossing the
 plane; when the crack has passed it, those Nc are broken and its damage (the broken share of
@@ -199,8 +201,9 @@ def main():
                  % np.count_nonzero(run))
     with h5py.File(a.h5, "r") as f:
         booked = f["damage_dissipation"][:]
+        relaxed = f["relaxation_dissipation"][:] if "relaxation_dissipation" in f else np.zeros_like(booked)
     if a.quasi_static and len(booked) < len(t):
-        booked = np.concatenate(([0.0], booked))
+        booked, relaxed = np.concatenate(([0.0], booked)), np.concatenate(([0.0], relaxed))
     out = {
         "G": float(np.polyfit(area[run], D[run], 1)[0]),
         "G_total": float(D[-1] / area[-1]),
@@ -212,6 +215,8 @@ def main():
         "kinetic_share_end": float(Kc[-1] / max(W[-1], 1e-300)),
         "G_bonds": float(np.polyfit(area[run], booked[rows][run], 1)[0]),
     }
+    if a.quasi_static:
+        out["G_relaxation"] = float(np.polyfit(area[run], relaxed[rows][run], 1)[0])
     if a.csv:
         np.savetxt(a.csv, np.column_stack((et, Dl, F, area, D)), delimiter=",",
                    header="time_s,opening_m,force_N,crack_area_m2,dissipated_J", comments="")
