@@ -13,7 +13,7 @@ PACKAGES=(build-essential cmake pkg-config
   libopenmpi-dev openmpi-bin
   libtrilinos-zoltan-dev libmetis-dev
   libexodusii-dev libnetcdf-mpi-dev libhdf5-openmpi-dev
-  libgmsh-dev libtrilinos-pamgen-dev libyaml-dev libmuparser-dev calculix-ccx
+  libgmsh-dev libtrilinos-pamgen-dev libyaml-dev libmuparser-dev petsc-dev calculix-ccx
   python3 python3-venv python3-pip python3-setuptools python3-numpy python3-h5py python3-netcdf4 python3-matplotlib python3-mpi4py python3-yaml netcdf-bin
   valgrind)
 

@@ -12,7 +12,9 @@ const pf_key pf_sim_solver_keys[] = {
      "dynamic relaxation; docs/theory/quasi_static.md)", NULL},
     {"method", PF_KEY_STRING, 0, "relaxation", "",
      "quasi_static: relaxation (adaptive dynamic relaxation) | newton_krylov (inexact Newton with a matrix-free "
-     "preconditioned conjugate-gradient step, relaxation where it gives up; no walls)", NULL},
+     "preconditioned conjugate-gradient step, relaxation where it gives up; no walls; the same bits on any number "
+     "of ranks) | snes (the same Newton step by PETSc's SNES and KSP; not the same bits on different numbers of "
+     "ranks)", NULL},
     {"load_steps", PF_KEY_INT, 0, "10", "",
      "quasi_static: load steps N; load step k applies the boundary conditions at t = k / N time.final_time", NULL},
     {"tolerance", PF_KEY_REAL, 0, "1e-6", "",
@@ -89,13 +91,16 @@ static int read_numbers(const pf_deck *d, const pf_node *sv, pf_sim_solver *s) {
   PF_CALL(pf_deck_int(d, sv, "max_damage_passes", &s->max_damage_passes));
   const char *method = "relaxation";
   PF_CALL(pf_deck_string(d, sv, "method", &method));
-  if (strcmp(method, "relaxation") && strcmp(method, "newton_krylov"))
-    return pf_deck_error(d, pf_node_get(sv, "method"), "method", "relaxation or newton_krylov (got '%s')", method);
-  s->method = strcmp(method, "relaxation") ? PF_SOLVER_NEWTON_KRYLOV : PF_SOLVER_RELAXATION;
-  if (s->method == PF_SOLVER_NEWTON_KRYLOV && pf_node_count(pf_node_get(pf_deck_root(d), "walls")) > 0)
+  if (strcmp(method, "relaxation") && strcmp(method, "newton_krylov") && strcmp(method, "snes"))
+    return pf_deck_error(d, pf_node_get(sv, "method"), "method", "relaxation, newton_krylov or snes (got '%s')",
+                         method);
+  s->method = !strcmp(method, "relaxation") ? PF_SOLVER_RELAXATION
+              : !strcmp(method, "snes")     ? PF_SOLVER_SNES
+                                            : PF_SOLVER_NEWTON_KRYLOV;
+  if (s->method != PF_SOLVER_RELAXATION && pf_node_count(pf_node_get(pf_deck_root(d), "walls")) > 0)
     return pf_deck_error(d, pf_node_get(sv, "method"), "method",
-                         "newton_krylov does not take walls (their points are projected back between relaxation "
-                         "iterations): use method: relaxation, or a rigid plane (contact.rigid_surfaces)");
+                         "%s does not take walls (their points are projected back between relaxation iterations): "
+                         "use method: relaxation, or a rigid plane (contact.rigid_surfaces)", method);
   if (s->load_steps < 1)
     return pf_deck_error(d, pf_node_get(sv, "load_steps"), "load_steps", "must be at least 1 (got %ld)", s->load_steps);
   if (!(s->tolerance > 0 && s->tolerance < 1))
@@ -147,9 +152,10 @@ void pf_sim_solver_summary(const pf_sim *sim) {
          "passes in %.2f s\n",
          sim->step - sim->loop_steps + (sim->loop_steps > 0), sim->step, s->load_steps, s->iterations, s->evaluations,
          s->damage_passes, s->wall);
-  if (s->method == PF_SOLVER_NEWTON_KRYLOV)
-    pf_log("  newton_krylov: %ld Newton steps, %ld conjugate-gradient steps; %ld equilibria finished by relaxation\n",
-           s->newton_steps, s->krylov_steps, s->fallbacks);
+  if (s->method != PF_SOLVER_RELAXATION)
+    pf_log("  %s: %ld Newton steps, %ld conjugate-gradient steps; %ld equilibria finished by relaxation\n",
+           s->method == PF_SOLVER_SNES ? "snes (PETSc)" : "newton_krylov", s->newton_steps, s->krylov_steps,
+           s->fallbacks);
 }
 
 void pf_sim_solver_free(pf_sim *sim) {

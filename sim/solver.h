@@ -14,7 +14,7 @@ enum { PF_SOLVER_SUMS = 7 }; /* the sums of an iteration (sim/solver_relaxation.
 enum { S_RESIDUAL, S_REFERENCE, S_INTERNAL, S_UKU, S_UU, S_TRIPPED, S_SIGNAL }; /* their order */
 enum { STOP_GUARD = 1, STOP_SIGNAL = 2 }; /* why a load step stopped before equilibrium */
 typedef enum { PF_SOLVER_EXPLICIT, PF_SOLVER_QUASI_STATIC } pf_solver_type;
-typedef enum { PF_SOLVER_RELAXATION, PF_SOLVER_NEWTON_KRYLOV } pf_solver_method;
+typedef enum { PF_SOLVER_RELAXATION, PF_SOLVER_NEWTON_KRYLOV, PF_SOLVER_SNES } pf_solver_method;
 
 typedef struct {
   pf_solver_type type;
@@ -76,6 +76,10 @@ double pf_sim_solver_residual(const double *q);
  * limit), the state left at its best point for the relaxation to go on from. *it force
  * evaluations. Collective. */
 int pf_sim_solver_newton(pf_sim *sim, long *it, double *res, int *stop, int *converged);
+/* sim/solver_snes.c: the same by PETSc's SNES (Newton with a backtracking line search, its
+ * Jacobian-free operator, CG preconditioned by the fictitious masses): not the same bits on any
+ * number of ranks (PETSc's sums depend on the partition). Collective. */
+int pf_sim_solver_snes(pf_sim *sim, long *it, double *res, int *stop, int *converged);
 /* A sum over every rank's terms x[0 .. n-1] that does not depend on how the terms are spread
  * over the ranks (each term rounded to a grid fixed by the largest |x| over the ranks, the
  * integers summed): the same bits on any number of ranks. m sums at once: x[j n .. j n + n-1]

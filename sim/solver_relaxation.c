@@ -130,9 +130,10 @@ static int relax(pf_sim *sim, long *it, double *res, int *stop) {
 static int solve(pf_sim *sim, long *it, double *res, int *stop) {
   long n = 0;
   *it = 0;
-  if (sim->solver.method == PF_SOLVER_NEWTON_KRYLOV) {
+  if (sim->solver.method != PF_SOLVER_RELAXATION) {
     int converged = 0;
-    PF_CALL(pf_sim_solver_newton(sim, &n, res, stop, &converged));
+    if (sim->solver.method == PF_SOLVER_SNES) PF_CALL(pf_sim_solver_snes(sim, &n, res, stop, &converged));
+    else PF_CALL(pf_sim_solver_newton(sim, &n, res, stop, &converged));
     *it = n;
     if (converged || *stop) return 0;
     sim->solver.fallbacks++;

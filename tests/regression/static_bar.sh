@@ -18,7 +18,10 @@
 #  - no boundary condition, an initial velocity and a load step that cannot converge in
 #    max_iterations: a message naming the key or the load step and a non-zero exit.
 # usage: static_bar.sh PERIFEM SCRATCH   (from the tests/ folder; the options in
-# STATIC_BAR_OPTIONS go to every run: static_newton.sh runs it all with newton_krylov)
+# STATIC_BAR_OPTIONS go to every run: static_newton.sh runs it all with newton_krylov;
+# STATIC_BAR_PARTITION=tolerance, for a method whose sums depend on the partition (snes): the
+# runs on 1, 2 and 3 ranks at the deck's tolerance, the grips' columns within 1e-7 of the largest
+# value of their quantity (work, reaction, displacement) in place of the same bits and digests)
 set -u
 exe=$1 scratch=$2 fail=0
 read -r -a opts <<< "${STATIC_BAR_OPTIONS:-}"
@@ -115,26 +118,35 @@ if not (np.abs(r_pd - 1) < LPS_BAND).all(): print("FAIL: the LPS bar's reaction 
 if not balance < 1e-6: print("FAIL: the LPS bar's grips' reactions do not balance"); ok = False
 sys.exit(0 if ok else 1)
 PYEOF
-digests=""
+digests="" bitwise=1 ranks_opts=(--set solver.load_steps=2 --set solver.tolerance=1e-4)
+[ "${STATIC_BAR_PARTITION:-}" = tolerance ] && bitwise=0 ranks_opts=()
 for np in 1 2 3; do
   mkdir -p np$np
-  o=$(cd np$np && run $np "$exe" --quiet "${opts[@]}" --set solver.load_steps=2 --set solver.tolerance=1e-4 "$deck" 2>&1) || { echo "FAIL: $np ranks: $o"; fail=1; }
+  o=$(cd np$np && run $np "$exe" --quiet "${opts[@]}" "${ranks_opts[@]}" "$deck" 2>&1) || { echo "FAIL: $np ranks: $o"; fail=1; }
   digests="$digests $(digest_of "$o")"
 done
 set -- $digests
-[ $# = 3 ] && [ "$1" = "$2" ] && [ "$1" = "$3" ] || { echo "FAIL: digests on 1, 2, 3 ranks:$digests"; fail=1; }
+[ $# = 3 ] && { [ $bitwise = 0 ] || { [ "$1" = "$2" ] && [ "$1" = "$3" ]; }; } || { echo "FAIL: digests on 1, 2, 3 ranks:$digests"; fail=1; }
 echo "digests on 1, 2, 3 ranks:$digests"
 # the grips' columns are the same bits on 1, 2 and 3 ranks (pf_sim_solver_sums)
-"$PY" - np1/static_bar.h5 np2/static_bar.h5 np3/static_bar.h5 <<'PYEOF' || fail=1
+"$PY" - $bitwise np1/static_bar.h5 np2/static_bar.h5 np3/static_bar.h5 <<'PYEOF' || fail=1
 import sys
 import h5py
 import numpy as np
-h = [h5py.File(f, "r") for f in sys.argv[1:]]
+bitwise = sys.argv[1] == "1"
+h = [h5py.File(f, "r") for f in sys.argv[2:]]
 cols = [g + c for g in ("fe_held", "fe_pulled", "pd_held", "pd_pulled")
         for c in ["_work"] + ["_%s_%s" % (q, a) for q in ("reaction", "displacement") for a in "xyz"]]
-bad = [k for k in cols for o in h[1:] if not np.array_equal(h[0][k][:], o[k][:])]
+# (a column's gap over the largest value of its quantity, work, reaction or displacement, over the grips)
+quantity = lambda k: next(q for q in ("_work", "_reaction", "_displacement") if q in k)
+scale = lambda k: max(np.abs(h[0][j][:]).max() for j in cols if quantity(j) == quantity(k))
+gap = lambda k, o: np.abs(h[0][k][:] - o[k][:]).max() / max(scale(k), 1e-300)
+same = (lambda k, o: np.array_equal(h[0][k][:], o[k][:])) if bitwise else (lambda k, o: gap(k, o) <= 1e-7)
+bad = [k for k in cols for o in h[1:] if not same(k, o)]
 if bad: print("FAIL: the grips' columns differ between 1, 2 and 3 ranks: %s (of %d)" % (bad, len(cols))); sys.exit(1)
-print("the grips' %d columns: the same bits on 1, 2 and 3 ranks" % len(cols))
+worst = max(gap(k, o) for k in cols for o in h[1:])
+print("the grips' %d columns on 1, 2 and 3 ranks: %s" % (len(cols), "the same bits" if bitwise else
+      "within %.2g of the largest value of its quantity" % worst))
 PYEOF
 # force control: the FE bar alone, its end face's nodes loaded by a body force of F = 2e4 N in all
 # (b = F / (rho A h/2), the face nodes' lumped mass), held at x = 0: u_x linear in x within 1e-8 of
