@@ -14,15 +14,24 @@
  * over the ranks, so the iterates are not the same bits on 1, 2 and 3 ranks (the hand-written
  * newton_krylov's are): the equilibria agree to the tolerance. It gives up, and the relaxation
  * goes on from its last iterate, when SNES does not converge (negative curvature in CG, a line
- * search that finds no decrease, NK_MAX_NEWTON iterations). PETSc is initialised at the first
- * load step (without its signal handlers: the run's own catch SIGTERM and SIGINT) and finalised
- * when MPI is (an attribute of MPI_COMM_SELF, deleted first by MPI_Finalize). */
+ * search that finds no decrease, NK_MAX_NEWTON iterations). PETSc's library is opened and
+ * initialised at the first load step (sim/petsc_library.h; without its signal handlers: the
+ * run's own catch SIGTERM and SIGINT) and finalised when MPI is (an attribute of MPI_COMM_SELF,
+ * deleted first by MPI_Finalize). */
+#include "sim/petsc_library.h"
 #include "sim/sim_impl.h"
 
 #include <math.h>
-#include <petscsnes.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* A PETSc call inside a PETSc callback or set-up: its error code returned as it is (PetscCall
+ * would report it through PetscError, which the table of sim/petsc_library.h leaves out). */
+#define PETSC_TRY(call)                                                                            \
+  do {                                                                                             \
+    PetscErrorCode e_ = (call);                                                                    \
+    if (e_) return e_;                                                                             \
+  } while (0)
 
 enum { SNES_MAX_NEWTON = 40 };
 static const double SNES_FORCING = 0.05;
@@ -47,6 +56,9 @@ static int finalize_petsc(MPI_Comm comm, int key, void *value, void *extra) {
 
 /* PETSc once per process, finalised at the start of MPI_Finalize. */
 static int start_petsc(void) {
+  char why[512];
+  PF_CHECK(pf_petsc_load(why, sizeof why) == 0, PF_ERR_LIB,
+           "solver.method snes needs PETSc's library, which could not be opened: %s (Debian: petsc-dev)", why);
   PetscBool up = PETSC_FALSE;
   PetscInitialized(&up);
   if (up) return 0;
@@ -88,16 +100,16 @@ static PetscErrorCode function(SNES snes, Vec x, Vec f, void *ctx) {
   snes_ctx *c = ctx;
   const PetscScalar *xa;
   PetscScalar *fa;
-  PetscCall(VecGetArrayRead(x, &xa));
+  PETSC_TRY(VecGetArrayRead(x, &xa));
   int ierr = evaluate_at(c, xa);
-  PetscCall(VecRestoreArrayRead(x, &xa));
+  PETSC_TRY(VecRestoreArrayRead(x, &xa));
   if (ierr) {
     c->failed = 1;
     return PETSC_ERR_USER;
   }
-  PetscCall(VecGetArray(f, &fa));
+  PETSC_TRY(VecGetArray(f, &fa));
   for (PetscInt k = 0; k < c->nfree; k++) fa[k] = -c->sim->pts->f[c->idx[k]];
-  PetscCall(VecRestoreArray(f, &fa));
+  PETSC_TRY(VecRestoreArray(f, &fa));
   return 0;
 }
 
@@ -109,10 +121,10 @@ static PetscErrorCode converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
   snes_ctx *c = ctx;
   Vec x;
   const PetscScalar *xa;
-  PetscCall(SNESGetSolution(snes, &x));
-  PetscCall(VecGetArrayRead(x, &xa));
+  PETSC_TRY(SNESGetSolution(snes, &x));
+  PETSC_TRY(VecGetArrayRead(x, &xa));
   int here = c->measured && !memcmp(xa, c->u_at, sizeof(double) * (size_t)c->nfree), ierr = here ? 0 : evaluate_at(c, xa);
-  PetscCall(VecRestoreArrayRead(x, &xa));
+  PETSC_TRY(VecRestoreArrayRead(x, &xa));
   if (ierr) {
     c->failed = 1;
     return PETSC_ERR_USER;
@@ -130,12 +142,12 @@ static PetscErrorCode precondition(PC pc, Vec r, Vec z) {
   snes_ctx *c;
   const PetscScalar *ra;
   PetscScalar *za;
-  PetscCall(PCShellGetContext(pc, &c));
-  PetscCall(VecGetArrayRead(r, &ra));
-  PetscCall(VecGetArray(z, &za));
+  PETSC_TRY(PCShellGetContext(pc, &c));
+  PETSC_TRY(VecGetArrayRead(r, &ra));
+  PETSC_TRY(VecGetArray(z, &za));
   for (PetscInt k = 0; k < c->nfree; k++) za[k] = ra[k] / c->sim->solver.lambda[c->idx[k] / 3];
-  PetscCall(VecRestoreArray(z, &za));
-  PetscCall(VecRestoreArrayRead(r, &ra));
+  PETSC_TRY(VecRestoreArray(z, &za));
+  PETSC_TRY(VecRestoreArrayRead(r, &ra));
   return 0;
 }
 
@@ -144,25 +156,25 @@ static PetscErrorCode build(snes_ctx *c, Vec x, Vec r, SNES *snes, Mat *J) {
   KSP ksp;
   PC pc;
   SNESLineSearch ls;
-  PetscCall(SNESCreate(PETSC_COMM_WORLD, snes));
-  PetscCall(SNESSetType(*snes, SNESNEWTONLS));
-  PetscCall(SNESSetFunction(*snes, r, function, c)); /* (r: its sizes make the operator's) */
-  PetscCall(MatCreateSNESMF(*snes, J));
-  PetscCall(SNESSetJacobian(*snes, *J, *J, MatMFFDComputeJacobian, NULL));
-  PetscCall(SNESSetConvergenceTest(*snes, converged, c, NULL));
-  PetscCall(SNESSetTolerances(*snes, 0, 0, 0, SNES_MAX_NEWTON, (PetscInt)c->sim->solver.max_iterations));
-  PetscCall(SNESGetLineSearch(*snes, &ls));
-  PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBT));
-  PetscCall(SNESGetKSP(*snes, &ksp));
-  PetscCall(KSPSetType(ksp, KSPCG));
-  PetscCall(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED)); /* (||F - K du|| <= eta ||F||, as newton_krylov) */
-  PetscCall(KSPSetTolerances(ksp, SNES_FORCING, 0, PETSC_DEFAULT, (PetscInt)c->sim->solver.max_iterations));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCSHELL));
-  PetscCall(PCShellSetContext(pc, c));
-  PetscCall(PCShellSetApply(pc, precondition));
-  PetscCall(SNESSetFromOptions(*snes)); /* (PETSC_OPTIONS may tune it) */
-  PetscCall(SNESSetSolution(*snes, x));
+  PETSC_TRY(SNESCreate(PETSC_COMM_WORLD, snes));
+  PETSC_TRY(SNESSetType(*snes, SNESNEWTONLS));
+  PETSC_TRY(SNESSetFunction(*snes, r, function, c)); /* (r: its sizes make the operator's) */
+  PETSC_TRY(MatCreateSNESMF(*snes, J));
+  PETSC_TRY(SNESSetJacobian(*snes, *J, *J, MatMFFDComputeJacobian, NULL));
+  PETSC_TRY(SNESSetConvergenceTest(*snes, converged, c, NULL));
+  PETSC_TRY(SNESSetTolerances(*snes, 0, 0, 0, SNES_MAX_NEWTON, (PetscInt)c->sim->solver.max_iterations));
+  PETSC_TRY(SNESGetLineSearch(*snes, &ls));
+  PETSC_TRY(SNESLineSearchSetType(ls, SNESLINESEARCHBT));
+  PETSC_TRY(SNESGetKSP(*snes, &ksp));
+  PETSC_TRY(KSPSetType(ksp, KSPCG));
+  PETSC_TRY(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED)); /* (||F - K du|| <= eta ||F||, as newton_krylov) */
+  PETSC_TRY(KSPSetTolerances(ksp, SNES_FORCING, 0, PETSC_DEFAULT, (PetscInt)c->sim->solver.max_iterations));
+  PETSC_TRY(KSPGetPC(ksp, &pc));
+  PETSC_TRY(PCSetType(pc, PCSHELL));
+  PETSC_TRY(PCShellSetContext(pc, c));
+  PETSC_TRY(PCShellSetApply(pc, precondition));
+  PETSC_TRY(SNESSetFromOptions(*snes)); /* (PETSC_OPTIONS may tune it) */
+  PETSC_TRY(SNESSetSolution(*snes, x));
   return 0;
 }
 
