@@ -6,7 +6,7 @@
  *   SNESNEWTONLS with the backtracking line search (SNESLINESEARCHBT; Dennis & Schnabel 1996 §6.3);
  *   the Jacobian-free product of MatCreateSNESMF (Knoll & Keyes 2004 §2.2; PETSc picks the
  *   differencing parameter);
- *   KSPCG to the relative residual NK_FORCING (as solver_newton.c), preconditioned by a PCSHELL
+ *   KSPCG to the relative residual SNES_FORCING (as solver_newton.c), preconditioned by a PCSHELL
  *   dividing by the fictitious masses lambda (the Gershgorin bounds of K's rows, §2);
  *   the convergence test the other methods use (pf_sim_solver_measure: the residual relative to
  *   the reference force, summed so that it is the same on any number of ranks).
@@ -14,7 +14,7 @@
  * over the ranks, so the iterates are not the same bits on 1, 2 and 3 ranks (the hand-written
  * newton_krylov's are): the equilibria agree to the tolerance. It gives up, and the relaxation
  * goes on from its last iterate, when SNES does not converge (negative curvature in CG, a line
- * search that finds no decrease, NK_MAX_NEWTON iterations). PETSc's library is opened and
+ * search that finds no decrease, SNES_MAX_NEWTON iterations). PETSc's library is opened and
  * initialised at the first load step (sim/petsc_library.h; without its signal handlers: the
  * run's own catch SIGTERM and SIGINT) and finalised when MPI is (an attribute of MPI_COMM_SELF,
  * deleted first by MPI_Finalize). */
