@@ -37,8 +37,13 @@ double pf_pd_partial_volume(const double x[3], const double c[3], double h, doub
   return (double)count / (NS * NS * NS);
 }
 
-/* Does the segment xi -> xj cross the pre-crack? */
-static int crosses(const pf_precrack *c, const double xi[3], const double xj[3]) {
+/* Does the segment between xi and xj cross the pre-crack? The same answer for (xi, xj) and
+ * (xj, xi), to the last bit: the segment is taken from its lexicographically smaller end, so a bond
+ * that crosses the plane exactly on the crack's edge is cut in both families or in neither (else
+ * the family is one-sided and the pair forces do not balance). */
+static int crosses(const pf_precrack *c, const double xa[3], const double xb[3]) {
+  const int swap = xb[0] < xa[0] || (xb[0] == xa[0] && (xb[1] < xa[1] || (xb[1] == xa[1] && xb[2] < xa[2])));
+  const double *xi = swap ? xb : xa, *xj = swap ? xa : xb;
   double n[3], p[3], d[3];
   if (c->kind == PF_CRACK_RECTANGLE) {
     n[0] = c->a[1] * c->b[2] - c->a[2] * c->b[1];
