@@ -1,4 +1,4 @@
-/* The run-health monitor: at every history row it looks at the run's energy balance, each
+/* The run-health monitor: at every history row it looks at the run's energy and momentum balances, each
  * finite-element body's hourglass energy, each body's damage and each contact pair's deepest
  * interpenetration, and warns (rank 0, "perifem warning: …", with the time, the step and the
  * body responsible) the first time a figure passes its threshold below; each warning is given
@@ -18,6 +18,7 @@
 #define PF_HEALTH_HOURGLASS 0.10   /* a body's hourglass energy over its internal energy ... */
 #define PF_HEALTH_HOURGLASS_FLOOR 1e-3 /* ... once it is this much of the largest energy in play */
 #define PF_HEALTH_DAMAGE_JUMP 0.10 /* rise of a body's damaged fraction between two history rows */
+#define PF_HEALTH_MOMENTUM 1e-6    /* momentum balance error over the momentum in play */
 
 /* A body's figure from the ledger's last evaluation (the sums over the ranks). */
 static double figure(const pf_sim *sim, int id) { return pf_ledger_value(&sim->ledger, id, 0); }
@@ -88,6 +89,49 @@ static int energy(pf_sim *sim) {
   return 0;
 }
 
+/* The run's momentum p and the impulse I of every load from outside (the accounts in N s: the
+ * conditions', rigid surfaces' and walls'), over the ranks. */
+static void momentum_books(const pf_sim *sim, double p[3], double I[3]) {
+  const pf_ledger *l = &sim->ledger;
+  for (int a = 0; a < 3; a++) p[a] = pf_ledger_value(l, sim->acc.totals.momentum, a), I[a] = 0;
+  for (int k = 0; k < l->n; k++)
+    if (l->a[k].ncomp == 3 && l->a[k].units && !strcmp(l->a[k].units, "N s"))
+      for (int a = 0; a < 3; a++) I[a] += pf_ledger_value(l, k, a);
+}
+
+/* The momentum in play: the bodies' sum of sqrt(2 M K), which bounds sum m |v| (Cauchy-Schwarz),
+ * so that a body whose parts fly apart with no net momentum is not measured by its round-off. */
+static double momentum_in_play(const pf_sim *sim) {
+  double s = 0;
+  for (int b = 0; b < sim->nbodies; b++) {
+    const double M = figure(sim, sim->acc.body[b].mass), K = figure(sim, sim->acc.body[b].kinetic);
+    s += sqrt(2 * fmax(M, 0.0) * fmax(K, 0.0));
+  }
+  return s;
+}
+
+/* Newton's third law: the momentum changes by the loads' impulse and nothing else (every force
+ * between points, bonds, elements, contact and coupling, acts on both sides). Dynamic runs only
+ * (quasi-static, the points are at rest and the impulse is over pseudo-time). Two rows in a row. */
+static int momentum(pf_sim *sim) {
+  pf_sim_health *h = &sim->health;
+  if (sim->solver.type == PF_SOLVER_QUASI_STATIC) return 0;
+  double p[3], I[3], e[3];
+  momentum_books(sim, p, I);
+  for (int a = 0; a < 3; a++) e[a] = p[a] - h->p0[a] - (I[a] - h->i0[a]);
+  const double dI = hypot(hypot(I[0] - h->i0[0], I[1] - h->i0[1]), I[2] - h->i0[2]);
+  h->p_scale = fmax(h->p_scale, momentum_in_play(sim) + dI);
+  const double err = h->p_scale > 0 ? hypot(hypot(e[0], e[1]), e[2]) / h->p_scale : 0, before = h->p_error;
+  h->p_error = err;
+  if (!(err > PF_HEALTH_MOMENTUM && before > PF_HEALTH_MOMENTUM)) return 0;
+  return pf_sim_health_warn(sim, "momentum balance",
+                            "momentum balance error passed %g of the momentum in play at t = %.4e s (step %ld): "
+                            "p - p0 - I = (%.3g, %.3g, %.3g) kg m/s against %.3g kg m/s in play (I the loads' "
+                            "impulse): forces between points that do not balance (a one-sided bond, contact "
+                            "or coupling force) or momentum lost without a load",
+                            PF_HEALTH_MOMENTUM, sim->t, sim->step, e[0], e[1], e[2], h->p_scale);
+}
+
 static int hourglass(pf_sim *sim) {
   const double floor = PF_HEALTH_HOURGLASS_FLOOR * pf_sim_energy_scale(sim);
   for (int b = 0; b < sim->nbodies; b++) {
@@ -128,9 +172,11 @@ int pf_sim_health_check(pf_sim *sim) {
   if (!h->started) { /* the first row: the reference of the bodies' energies and damage */
     h->started = 1, h->step0 = sim->step;
     for (int b = 0; b < sim->nbodies; b++) h->e0[b] = body_energy(sim, b), h->damage[b] = body_damage(sim, b);
+    momentum_books(sim, h->p0, h->i0);
   }
   PF_CALL(pf_sim_interactions_health(sim));
   PF_CALL(energy(sim));
+  PF_CALL(momentum(sim));
   PF_CALL(hourglass(sim));
   return damage(sim);
 }

@@ -62,6 +62,9 @@ typedef struct {
   double e0[PF_MAX_BODIES];     /* each body's energy at the first check, J */
   double damage[PF_MAX_BODIES]; /* each body's damaged fraction at the last check */
   double error;                 /* the relative energy error at the last check */
+  double p0[3], i0[3];          /* the momentum and the loads' impulse at the first check, kg m/s */
+  double p_scale;               /* the largest momentum in play so far (health.c), kg m/s */
+  double p_error;               /* the relative momentum error at the last check */
   long step0;                   /* the step of the first check */
   int started;                  /* the first check is done */
   int n;                        /* warnings given so far */

@@ -16,7 +16,12 @@
 #     rank, and with --strict stops with the error;
 #  5. a correspondence sheet one point thick (a points file: every family flat) is named at set-up
 #     as detached, once on 1 and on 2 ranks, with its count and first point, and runs its steps
-#     (no stiffness is left to bound the step: the step stays).
+#     (no stiffness is left to bound the step: the step stays);
+#  6. the momentum balance: a block whose horizon tapers (data/variable_horizon_block.yaml, LPS)
+#     with formulation auto, whose partial-stress points and one-sided bonds are a statics form
+#     (docs/theory/coupling.md §2.4: their forces do not balance pairwise), gets the momentum
+#     warning (beside the energy warnings the deck's header expects) and --strict stops it; the
+#     deck's own correspondence block with formulation consistent (forces in pairs) gets none.
 # usage: health.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$(cd "$(dirname "$1")" && pwd)/$(basename "$1") scratch=$2 fail=0
@@ -93,5 +98,20 @@ for np in 1 2; do
   [ "$(grep -cF -- "$flat" sheet$np.log)" = 1 ] || bad "flat sheet on $np rank(s): set-up warnings: $(grep warning sheet$np.log)"
   has sheet$np.log "perifem: 2 steps"
 done
+
+# 6. the momentum balance
+sed -E 's/\{model: neo_hookean, density: 7800, youngs_modulus: 200.0e9, poissons_ratio: 0.0\}/{model: lps, density: 7800, bulk_modulus: 66.7e9, shear_modulus: 100.0e9}/; /hourglass:/d' \
+  "$here/data/variable_horizon_block.yaml" > taper.yaml
+grep -q "model: lps" taper.yaml || bad "data/variable_horizon_block.yaml changed: its material line did not become LPS"
+sed 's/formulation: auto/formulation: consistent/' "$here/data/variable_horizon_block.yaml" > taper_consistent.yaml
+"$exe" --output-dir o6 taper.yaml > taper.log 2>&1 || bad "tapered block: exit $?"
+has taper.log "perifem warning: momentum balance error passed 1e-06 of the momentum in play"
+has taper.log "health: 3 warnings (momentum balance; energy error 1 %; energy error 5 %)"
+"$exe" --strict --output-dir o6s taper.yaml > taper_strict.log 2>&1
+rc=$?
+[ $rc = 1 ] || bad "tapered block --strict: exit $rc, expected 1"
+has taper_strict.log "stopped by --strict"
+"$exe" --output-dir o6c taper_consistent.yaml > taper_consistent.log 2>&1 || bad "consistent block: exit $?"
+has taper_consistent.log "health: ok"
 exit $fail
 
