@@ -46,6 +46,11 @@ void pf_error_context(const char *fmt, ...) __attribute__((format(printf, 1, 2))
  * rank has already raised (a failed write); pf_error_agree below is for a check whose message
  * is not raised yet, and gives every rank the same message. */
 int pf_agree(int ierr, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* A shared library opened on first use (core/shared_library.c): the handle, or NULL with why[]
+ * (dlerror's text); one of its symbols copied into *slot (a function or object pointer), or -1
+ * with why[] naming path and symbol. */
+void *pf_library_open(const char *path, char *why, size_t len);
+int pf_library_symbol(void *library, const char *path, const char *name, void *slot, char *why, size_t len);
 /* A file left open after a failed write or close: the process must not call MPI_Finalize. */
 void pf_io_abandon(void);
 int pf_io_abandoned(void);
