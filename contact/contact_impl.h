@@ -186,8 +186,9 @@ void pf_contact_grid_free(pf_grid *g);
 void pf_contact_grid_range(const pf_grid *g, const double p[3], double r, int lo[3], int hi[3]);
 /* Refresh the owned entities' y, v from the store and the ghosts' from their owners. */
 int pf_contact_exchange(pf_contact *c, const pf_points *pts);
-/* Rebuild when some entity of a pair's bodies moved more than half the skin since the pair's
- * last build (or never built): the ghosts, and the candidate lists of those pairs. Collective. */
+/* Rebuild when two entities of a pair's bodies may have moved relative to each other by more
+ * than the skin since the pair's last build (or never built): the ghosts, and the candidate
+ * lists of those pairs. Collective. */
 int pf_contact_search(pf_contact *c, const pf_points *pts);
 /* Owned entities from the bodies' owned ranges (after attach). */
 int pf_contact_collect_owned(pf_contact *c, const pf_points *pts);

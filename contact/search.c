@@ -1,10 +1,11 @@
 /* The contact search: the entities (PD particles of bodies in a pair, FE nodes on a pair's
  * surface) this rank owns, the ghosts it needs from other ranks, and each owned particle's
  * candidates, found in uniform bins (a counting sort, O(n)) with a skin s. A pair's candidates
- * are rebuilt only when some entity of the pair's bodies has moved more than s/2 since the
- * pair's last build: two entities that come within r_c of each other were then within r_c + s
- * at the build, whatever their speed, so a candidate list of every partner within r_c + s misses
- * no contact (Verlet 1967; the LAMMPS neighbor skin). Each pair has its own rule (pair_stale):
+ * are rebuilt only when two entities of the pair's bodies may have moved relative to each other
+ * by more than s since the pair's last build (each more than s/2, or more than s relative to
+ * the bodies' motion as a whole: pair_keeps, affine_keeps): two entities that come within r_c of
+ * each other were then within r_c + s at the build, whatever their speed, so a candidate list of
+ * every partner within r_c + s misses no contact (Verlet 1967; the LAMMPS neighbor skin). Each pair has its own rule (pair_stale):
  * a fast projectile's surface pair is rebuilt without its target's self-contact. The builds are
  * threaded over fixed chunks of entities (chunked_candidates). Ghosts: every rank sends the
  * entities that lie within a margin of another rank's box of owned entities, margin = r_c + 2 s
@@ -791,8 +792,111 @@ static int pair_keeps(const double *ma, const double *mb, int self, double s) {
   return bound <= s * (1 - 1e-12); /* (a margin for the rounding of the bound; NaN: rebuilt) */
 }
 
+/* The affine bound, for a pair that neither bound of pair_keeps keeps: with any a and B, each
+ * entity's move d_i = a + B y_i + r_i (y_i its position at the build, r_i the rest), so two
+ * entities y_b apart at the build are now at least |y_b| (1 - |B|) - 2 max |r| apart. A pair
+ * farther than r_c + s then does not come within r_c while 2 max |r| + |B| (r_c + s) <= s and
+ * |B| < 1; a kept partner is still within (r_c + s)(1 + |B|) + 2 max |r| <= r_c + 2 s of its
+ * entity, inside the ghost margin, as with the other bounds. a and B are the least-squares fit of the moves of the pair's bodies (the Frobenius
+ * norm bounds |B|); any fit gives a valid bound, a good one a tight one: a body that expands,
+ * stretches or turns as a whole keeps its lists while its parts move little relative to that
+ * motion. Three passes over the entities, each reduced over the ranks. Collective. */
+enum { FIT_N, FIT_Y, FIT_D = FIT_Y + 3, FIT_SUMS = FIT_D + 3 };
+enum { MOM_C, MOM_D = MOM_C + 9, MOM_N = MOM_D + 9 };
+
+static int in_pair(const pf_contact *c, const pf_contact_pair *p, pf_int e) {
+  return c->vbody[e] == p->a || c->vbody[e] == p->b;
+}
+
+/* The count and the sums of the positions at the build and of the moves, of pair k's entities. */
+static void fit_sums(const pf_contact *c, int k, double *sum) {
+  const pf_contact_pair *p = &c->pair[k];
+  const double *yb = &c->y_build[3 * (size_t)c->nown * (size_t)k];
+  for (int q = 0; q < FIT_SUMS; q++) sum[q] = 0;
+#pragma omp parallel for schedule(static) reduction(+ : sum[:FIT_SUMS])
+  for (pf_int e = 0; e < c->nown; e++)
+    if (in_pair(c, p, e)) {
+      sum[FIT_N] += 1;
+      for (int a = 0; a < 3; a++) sum[FIT_Y + a] += yb[3 * e + a], sum[FIT_D + a] += c->y[3 * e + a] - yb[3 * e + a];
+    }
+}
+
+/* The second moments about the means (m: FIT_Y, FIT_D of the reduced sums over their count):
+ * C = sum (y - ym)(y - ym)^T and D = sum (d - dm)(y - ym)^T. */
+static void fit_moments(const pf_contact *c, int k, const double *m, double *mom) {
+  const pf_contact_pair *p = &c->pair[k];
+  const double *yb = &c->y_build[3 * (size_t)c->nown * (size_t)k];
+  for (int q = 0; q < MOM_N; q++) mom[q] = 0;
+#pragma omp parallel for schedule(static) reduction(+ : mom[:MOM_N])
+  for (pf_int e = 0; e < c->nown; e++)
+    if (in_pair(c, p, e)) {
+      double y[3], d[3];
+      for (int a = 0; a < 3; a++) y[a] = yb[3 * e + a] - m[FIT_Y + a], d[a] = c->y[3 * e + a] - yb[3 * e + a] - m[FIT_D + a];
+      for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) mom[MOM_C + 3 * a + b] += y[a] * y[b], mom[MOM_D + 3 * a + b] += d[a] * y[b];
+    }
+}
+
+/* B = D C^-1, C regularised by 1e-9 of its trace (a flat or thin body: C is near singular); 0
+ * when C is not positive definite. */
+static void fit_gradient(const double *mom, double B[9]) {
+  double C[3][3], inv[3][3];
+  const double *D = &mom[MOM_D], tr = mom[MOM_C] + mom[MOM_C + 4] + mom[MOM_C + 8];
+  memset(B, 0, 9 * sizeof *B);
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++) C[a][b] = mom[MOM_C + 3 * a + b] + (a == b ? 1e-9 * tr : 0);
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++) {
+      const int a1 = (b + 1) % 3, a2 = (b + 2) % 3, b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+      inv[a][b] = C[a1][b1] * C[a2][b2] - C[a1][b2] * C[a2][b1]; /* the cofactor of C[b][a] */
+    }
+  const double det = C[0][0] * inv[0][0] + C[0][1] * inv[1][0] + C[0][2] * inv[2][0];
+  if (!(tr > 0 && det > 0 && isfinite(det))) return;
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++)
+      for (int q = 0; q < 3; q++) B[3 * a + b] += D[3 * a + q] * inv[q][b] / det;
+}
+
+/* The largest |r| of pair k's entities: r = d - dm - B (y - ym). */
+static double fit_rest(const pf_contact *c, int k, const double *m, const double B[9]) {
+  const pf_contact_pair *p = &c->pair[k];
+  const double *yb = &c->y_build[3 * (size_t)c->nown * (size_t)k];
+  double r2 = 0;
+#pragma omp parallel for schedule(static) reduction(max : r2)
+  for (pf_int e = 0; e < c->nown; e++)
+    if (in_pair(c, p, e)) {
+      double y[3], q = 0;
+      for (int a = 0; a < 3; a++) y[a] = yb[3 * e + a] - m[FIT_Y + a];
+      for (int a = 0; a < 3; a++) {
+        const double r = c->y[3 * e + a] - yb[3 * e + a] - m[FIT_D + a] - (B[3 * a] * y[0] + B[3 * a + 1] * y[1] + B[3 * a + 2] * y[2]);
+        q += r * r;
+      }
+      r2 = q > r2 ? q : r2; /* (NaN positions are the guard's to report) */
+    }
+  return sqrt(r2);
+}
+
+/* Pair k's affine bound (above) over all ranks: 1 when it keeps its lists. Collective. */
+static int affine_keeps(const pf_contact *c, int k, int *ok) {
+  double sum[FIT_SUMS], mom[MOM_N], B[9];
+  fit_sums(c, k, sum);
+  *ok &= MPI_Allreduce(MPI_IN_PLACE, sum, FIT_SUMS, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) == MPI_SUCCESS;
+  if (!(sum[FIT_N] > 0)) return 1; /* (no entity: nothing moved) */
+  for (int q = 1; q < FIT_SUMS; q++) sum[q] /= sum[FIT_N];
+  fit_moments(c, k, sum, mom);
+  *ok &= MPI_Allreduce(MPI_IN_PLACE, mom, MOM_N, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) == MPI_SUCCESS;
+  fit_gradient(mom, B);
+  double rest = fit_rest(c, k, sum, B), nb = 0;
+  *ok &= MPI_Allreduce(MPI_IN_PLACE, &rest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS;
+  for (int q = 0; q < 9; q++) nb += B[q] * B[q];
+  nb = sqrt(nb);
+  const double s = c->skin;
+  return nb < 1 && 2 * rest + nb * (c->pair[k].radius + s) <= s * (1 - 1e-12); /* (NaN: rebuilt) */
+}
+
 /* Marks the pairs whose candidates must be rebuilt: two entities of the pair's bodies moved
- * relative to each other by more than the skin since the pair's last build (pair_keeps). Two
+ * relative to each other by more than the skin since the pair's last build (pair_keeps, then
+ * affine_keeps). Two
  * entities that come within r_c of each other were then within r_c + skin at that build,
  * whatever their speed (Verlet 1967), and each pair's rule reads only the motion of its own
  * bodies, whose entities are all its candidates can be (the faces' nodes included: a point of a
@@ -818,11 +922,11 @@ static int pair_stale(pf_contact *c, int *nstale) {
         memcpy(&mv[(size_t)q * 2 * MOVE_N + MOVE_N], &mb[MOVE_N * c->pair[q].b], sizeof(double) * MOVE_N);
       }
   }
-  const int ok = MPI_Allreduce(MPI_IN_PLACE, mv, np * 2 * MOVE_N, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS;
+  int ok = MPI_Allreduce(MPI_IN_PLACE, mv, np * 2 * MOVE_N, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS;
   *nstale = 0;
-  for (int k = 0; k < np; k++) {
+  for (int k = 0; k < np && ok; k++) { /* (the same decisions on every rank: they read reduced moves) */
     const double *m = &mv[(size_t)k * 2 * MOVE_N];
-    *nstale += c->stale[k] = !pair_keeps(m, m + MOVE_N, c->pair[k].a == c->pair[k].b, c->skin);
+    *nstale += c->stale[k] = !pair_keeps(m, m + MOVE_N, c->pair[k].a == c->pair[k].b, c->skin) && !affine_keeps(c, k, &ok);
   }
   free(mv);
   PF_CHECK(ok, PF_ERR_LIB, "MPI_Allreduce failed on the contact's displacements");

@@ -2,8 +2,9 @@
 # The contact search's skin and rebuild rule change no bit of a run. The contact forces depend
 # only on the pairs within the contact radius r_c; a search redone from scratch at every step
 # (a skin of 0.1 um: every pair's list is rebuilt at every step) finds exactly those, so it is the
-# reference: the deck's own skin (each pair rebuilt when its own bodies have moved half the skin
-# since its last build, the other pair's list kept, contact/search.c), a skin twice as large, and
+# reference: the deck's own skin (each pair rebuilt when two entities of its own bodies may have
+# moved a skin relative to each other since its last build, the other pair's list kept,
+# contact/search.c), a skin twice as large, and
 # the deck's skin on 2 ranks (the kept lists' ghost partners renumbered at a rebuild of the other
 # pair) must give its state digest. A rule that let a list go stale would miss an interaction
 # and change the digest.
@@ -44,5 +45,46 @@ for c in "${cases[@]}"; do
     echo "FAIL: the deck's skin rebuilt at every step ($n): the test would not exercise the kept lists"
     fail=1
   fi
+done
+
+# A body whose grains move together with one affine map (expanding, or imploding, and spinning):
+# a pair keeps its lists while the grains move little relative to the map fitted to their moves
+# (contact/search.c, affine_keeps). Imploding, the grains touch; a bound looser than the rule
+# (the rest below s, without the factor 2 and the stretch term) misses interactions there and
+# changes the digest. Expanding, every grain travels at least 300 m/s x 300 steps x dt, and a
+# rule on each grain's own move (rebuilt at s/2) needs at least that path over s/2 rebuilds;
+# the affine rule must need fewer than half as many.
+ring=$here/tests/data/spinning_ring.yaml
+implode='bodies.ring.initial_velocity=["-300 * x / sqrt(x^2 + y^2) - 2.0e4 * y", "-300 * y / sqrt(x^2 + y^2) + 2.0e4 * x", "0"]'
+for motion in expanding imploding; do
+  extra=()
+  [[ $motion == imploding ]] && extra=(--set "$implode")
+  ref=""
+  for c in "every_step 1 1e-7" "deck_skin 1 5e-4" "deck_skin_2_ranks 2 5e-4"; do
+    read -r name np skin <<< "$c"
+    dir=ring_${motion}_$name
+    mkdir -p "$dir"
+    out=$(cd "$dir" && run "$np" "$exe" --output-dir . --set contact.skin="$skin" "${extra[@]}" "$ring" 2>&1) \
+      || { echo "$out"; echo "FAIL: $dir did not run"; exit 1; }
+    d=$(digest_of "$out")
+    n=$(rebuilds_of "$out")
+    dt=$(echo "$out" | sed -n 's/^perifem: [0-9]* steps of \([0-9.e+-]*\) s.*/\1/p')
+    echo "ring $motion, $name: $np rank(s), $n search rebuilds, digest $d"
+    [[ -n $d && -n $n && -n $dt ]] || { echo "$out"; echo "FAIL: $dir printed no digest, step or rebuild count"; exit 1; }
+    if [[ $name == every_step ]]; then
+      ref=$d
+    elif [[ $d != "$ref" ]]; then
+      echo "FAIL: ring $motion, $name: digest $d differs from the every-step search's $ref"
+      fail=1
+    fi
+    if [[ $motion == expanding && $name == deck_skin ]]; then
+      least=$(awk -v dt="$dt" -v s="$skin" 'BEGIN { printf "%d", 300 * 300 * dt / (s / 2) }')
+      echo "  a rule on each grain's own move: at least $least rebuilds"
+      if ((2 * n >= least)); then
+        echo "FAIL: ring expanding: $n rebuilds, not fewer than half of $least"
+        fail=1
+      fi
+    fi
+  done
 done
 exit $fail
