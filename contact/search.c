@@ -5,11 +5,12 @@
  * by more than s since the pair's last build (each more than s/2, or more than s relative to
  * the bodies' motion as a whole: pair_keeps, affine_keeps): two entities that come within r_c of
  * each other were then within r_c + s at the build, whatever their speed, so a candidate list of
- * every partner within r_c + s misses no contact (Verlet 1967; the LAMMPS neighbor skin). Each pair has its own rule (pair_stale):
- * a fast projectile's surface pair is rebuilt without its target's self-contact. The builds are
- * threaded over fixed chunks of entities (chunked_candidates). Ghosts: every rank sends the
- * entities that lie within a margin of another rank's box of owned entities, margin = r_c + 2 s
- * + twice the largest face size (a particle needs every node of a face within reach). */
+ * every partner within r_c + s misses no contact (Verlet 1967; the LAMMPS neighbor skin). Each
+ * pair has its own rule (pair_stale): a fast projectile's surface pair is rebuilt without its
+ * target's self-contact. The builds are threaded over fixed chunks of entities
+ * (chunked_candidates). Ghosts: every rank sends the entities that lie within a margin of
+ * another rank's box of owned entities, margin = r_c + 2 s + twice the largest face size (a
+ * particle needs every node of a face within reach). */
 #include "contact/contact_impl.h"
 
 #include <math.h>
@@ -797,10 +798,12 @@ static int pair_keeps(const double *ma, const double *mb, int self, double s) {
  * entities y_b apart at the build are now at least |y_b| (1 - |B|) - 2 max |r| apart. A pair
  * farther than r_c + s then does not come within r_c while 2 max |r| + |B| (r_c + s) <= s and
  * |B| < 1; a kept partner is still within (r_c + s)(1 + |B|) + 2 max |r| <= r_c + 2 s of its
- * entity, inside the ghost margin, as with the other bounds. a and B are the least-squares fit of the moves of the pair's bodies (the Frobenius
- * norm bounds |B|); any fit gives a valid bound, a good one a tight one: a body that expands,
- * stretches or turns as a whole keeps its lists while its parts move little relative to that
- * motion. Three passes over the entities, each reduced over the ranks. Collective. */
+ * entity, inside the ghost margin, as with the other bounds. a and B are the least-squares fit
+ * of the moves of the pair's bodies (the Frobenius norm bounds |B|); any fit gives a valid bound
+ * (the 1e-12 of the skin covers a fit rounded otherwise on another rank), a good one a tight
+ * one: a body that expands, stretches or turns as a whole keeps its lists while its parts move
+ * little relative to that motion. Three passes over the entities, each reduced over the ranks.
+ * Collective. */
 enum { FIT_N, FIT_Y, FIT_D = FIT_Y + 3, FIT_SUMS = FIT_D + 3 };
 enum { MOM_C, MOM_D = MOM_C + 9, MOM_N = MOM_D + 9 };
 
@@ -831,7 +834,8 @@ static void fit_moments(const pf_contact *c, int k, const double *m, double *mom
   for (pf_int e = 0; e < c->nown; e++)
     if (in_pair(c, p, e)) {
       double y[3], d[3];
-      for (int a = 0; a < 3; a++) y[a] = yb[3 * e + a] - m[FIT_Y + a], d[a] = c->y[3 * e + a] - yb[3 * e + a] - m[FIT_D + a];
+      for (int a = 0; a < 3; a++)
+        y[a] = yb[3 * e + a] - m[FIT_Y + a], d[a] = c->y[3 * e + a] - yb[3 * e + a] - m[FIT_D + a];
       for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++) mom[MOM_C + 3 * a + b] += y[a] * y[b], mom[MOM_D + 3 * a + b] += d[a] * y[b];
     }
@@ -868,7 +872,8 @@ static double fit_rest(const pf_contact *c, int k, const double *m, const double
       double y[3], q = 0;
       for (int a = 0; a < 3; a++) y[a] = yb[3 * e + a] - m[FIT_Y + a];
       for (int a = 0; a < 3; a++) {
-        const double r = c->y[3 * e + a] - yb[3 * e + a] - m[FIT_D + a] - (B[3 * a] * y[0] + B[3 * a + 1] * y[1] + B[3 * a + 2] * y[2]);
+        const double fit = m[FIT_D + a] + B[3 * a] * y[0] + B[3 * a + 1] * y[1] + B[3 * a + 2] * y[2];
+        const double r = c->y[3 * e + a] - yb[3 * e + a] - fit;
         q += r * r;
       }
       r2 = q > r2 ? q : r2; /* (NaN positions are the guard's to report) */
@@ -886,12 +891,14 @@ static int affine_keeps(const pf_contact *c, int k, int *ok) {
   fit_moments(c, k, sum, mom);
   *ok &= MPI_Allreduce(MPI_IN_PLACE, mom, MOM_N, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) == MPI_SUCCESS;
   fit_gradient(mom, B);
-  double rest = fit_rest(c, k, sum, B), nb = 0;
-  *ok &= MPI_Allreduce(MPI_IN_PLACE, &rest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS;
-  for (int q = 0; q < 9; q++) nb += B[q] * B[q];
-  nb = sqrt(nb);
+  double v[2] = {fit_rest(c, k, sum, B), 0}; /* the largest rest, |B| */
+  for (int q = 0; q < 9; q++) v[1] += B[q] * B[q];
+  v[1] = sqrt(v[1]);
+  /* (both taken as their largest over the ranks, which every rank then has bit for bit: the
+   * same decision everywhere, whatever rounding the sums took on the way) */
+  *ok &= MPI_Allreduce(MPI_IN_PLACE, v, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS;
   const double s = c->skin;
-  return nb < 1 && 2 * rest + nb * (c->pair[k].radius + s) <= s * (1 - 1e-12); /* (NaN: rebuilt) */
+  return v[1] < 1 && 2 * v[0] + v[1] * (c->pair[k].radius + s) <= s * (1 - 1e-12); /* (NaN: rebuilt) */
 }
 
 /* Marks the pairs whose candidates must be rebuilt: two entities of the pair's bodies moved
@@ -926,7 +933,8 @@ static int pair_stale(pf_contact *c, int *nstale) {
   *nstale = 0;
   for (int k = 0; k < np && ok; k++) { /* (the same decisions on every rank: they read reduced moves) */
     const double *m = &mv[(size_t)k * 2 * MOVE_N];
-    *nstale += c->stale[k] = !pair_keeps(m, m + MOVE_N, c->pair[k].a == c->pair[k].b, c->skin) && !affine_keeps(c, k, &ok);
+    const int self = c->pair[k].a == c->pair[k].b;
+    *nstale += c->stale[k] = !pair_keeps(m, m + MOVE_N, self, c->skin) && !affine_keeps(c, k, &ok);
   }
   free(mv);
   PF_CHECK(ok, PF_ERR_LIB, "MPI_Allreduce failed on the contact's displacements");
