@@ -260,6 +260,7 @@ static double pmb_point_energy(const pf_pd_body *b, const double *rec, pf_int i,
   double w[L] = {0}, total = 0;
   const int64_t end = fam->offset[i - fam->first + 1];
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
+    if (pf_batch_dead(fam->broken, k0, end)) continue; /* (its lanes would add +0 to sums never -0) */
     const int n = end - k0 < L ? (int)(end - k0) : L;
     double a[PF_REC][L], live[L], cb[L];
     pf_batch_lengths g;
