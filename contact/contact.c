@@ -465,6 +465,15 @@ void pf_contact_counts(const pf_contact *c, int64_t *pairs_tested, int64_t *fami
   *family_reads = c->family_reads;
 }
 
+void pf_contact_work(const pf_contact *c, int *w) {
+  if (!c->built) return;
+  for (pf_int e = 0; e < c->nown; e++)
+    for (int64_t q = c->cand_off[e]; q < c->cand_off[e + 1]; q++) {
+      const int cost = c->pair[c->cand[q].pair].method->candidate_work;
+      w[c->local[e]] += cost > 0 ? cost : 1;
+    }
+}
+
 int pf_contact_self_pair(const pf_contact *c, int b) {
   for (int k = 0; c && k < c->npairs; k++) {
     const pf_contact_pair *p = &c->pair[k];

@@ -178,6 +178,9 @@ void pf_contact_stats(const pf_contact *c, long *rebuilds, double *seconds);
  * and family entries read to tell bonded pairs from unbonded ones (at the search builds, and the
  * broken flags read at the evaluations). Deterministic, for tests of the contact's cost. */
 void pf_contact_counts(const pf_contact *c, int64_t *pairs_tested, int64_t *family_reads);
+/* Add to w[i] (owned points) the work the force evaluation spends on point i's candidates of the
+ * last build, in bond evaluations (each method's cost of a candidate; for re-partitioning). */
+void pf_contact_work(const pf_contact *c, int *w);
 
 /* ---- geometry of FE surfaces (contact/surface.c) ----------------------------------------- */
 /* A boundary face of a hexahedral mesh: its 4 mesh nodes ordered so that the right-hand rule

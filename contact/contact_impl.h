@@ -36,6 +36,8 @@ typedef struct {
   int bonds;             /* 1: a candidate of the entity's own body carries the bond of the
                           * entity's family to it, resolved at each build (pf_candidate.bond) */
   int signed_gap;        /* 1: the gap is a signed distance from a surface (pf_contact_gap.surface) */
+  int candidate_work;    /* the cost of one candidate at a force evaluation, in the bond
+                          * evaluations of the partition's weights (pf_contact_work; 0: 1) */
   int holds_offsets;     /* 1: against the surface of a body that deletes elements, a particle
                           * keeps the penetration it had when a face was uncovered under it (the
                           * point fields "contact_offset", "contact_reach": pairs.c) */

@@ -514,12 +514,16 @@ int pf_bond_rows_append_from(pf_bond_rows *r, pf_int count, const pf_gid *gid,
 int pf_bond_rows_append_row(pf_bond_rows *r, const pf_bond_rows *src, pf_int row);
 
 typedef enum { PF_PARTITION_RCB, PF_PARTITION_METIS } pf_partition_method;
+/* The work of owned point i as the partition weighs it, in bond evaluations: its bond count
+ * (broken or not: the kernels visit both) plus one, plus extra[i] when extra is not NULL (the
+ * work of its interactions). */
+int pf_partition_weight(const pf_bond_rows *rows, const int *extra, pf_int i);
 /* The owner rank of every global id (owner_of[n_global], the same on every rank) after
- * partitioning the owned points: Zoltan recursive coordinate bisection of X weighted by each
- * point's intact bond count plus one (intact: the bond's uint8 field "broken", when registered,
- * is 0), or METIS k-way on the bond graph with the same vertex weights. Collective. */
+ * partitioning the owned points: Zoltan recursive coordinate bisection of X weighted by
+ * pf_partition_weight, or METIS k-way on the bond graph with the same vertex weights. extra:
+ * NULL or [n_owned]. Collective. */
 int pf_partition_compute(pf_partition_method method, const pf_points *pts,
-                         const pf_bond_rows *rows, int **owner_of);
+                         const pf_bond_rows *rows, const int *extra, int **owner_of);
 /* Send each owned point (every array and field) and its bond row (every bond field, after
  * pf_bond_rows_fields_agree) to rank dest[i]. Afterwards the store holds what this rank
  * received, no ghosts, grouped by body (ascending) and in Morton order within a body;

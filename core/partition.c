@@ -1,7 +1,10 @@
 /* Partitioning the points over the ranks: Zoltan's recursive coordinate bisection
- * of the reference positions, each point weighted by its intact bond count plus one (the work
- * of its force loop), or METIS k-way on the bond graph with the same vertex weights. The result is
- * the owner of every global id, the same table on every rank. */
+ * of the reference positions, each point weighted by its bond count plus one (the work of its
+ * force loop: the batched kernels evaluate a broken bond under a mask, and the elastic-plastic
+ * loop's test of it costs about an intact bond's evaluation, docs/parallel.md sec. 5) plus, when
+ * the caller gives it, the work of its interactions (contact), or METIS k-way on the bond graph
+ * with the same vertex weights. The result is the owner of every global id, the same table on
+ * every rank. */
 #include "core/core.h"
 
 #include <metis.h>
@@ -12,16 +15,11 @@
 typedef struct {
   const pf_points *pts;
   const pf_bond_rows *rows;
+  const int *extra;
 } zctx;
 
-/* The work of point i's force loop: its intact bonds, plus one. A bond is intact unless its
- * uint8 bond field "broken" is registered and not 0. */
-static int weight(const pf_bond_rows *rows, pf_int i) {
-  const pf_bond_field *f = pf_bond_rows_field(rows, "broken");
-  const uint8_t *broken = f && f->type == PF_BOND_UINT8 ? f->data : NULL;
-  int w = 1;
-  for (int64_t k = rows->offset[i]; k < rows->offset[i + 1]; k++) w += broken ? !broken[k * f->ncomp] : 1;
-  return w;
+int pf_partition_weight(const pf_bond_rows *rows, const int *extra, pf_int i) {
+  return 1 + (int)(rows->offset[i + 1] - rows->offset[i]) + (extra ? extra[i] : 0);
 }
 
 static int z_num_obj(void *data, int *ierr) {
@@ -36,7 +34,7 @@ static void z_obj_list(void *data, int ngid, int nlid, ZOLTAN_ID_PTR gids, ZOLTA
   for (pf_int i = 0; i < z->pts->n_owned; i++) {
     gids[i] = (ZOLTAN_ID_TYPE)z->pts->gid[i];
     lids[i] = (ZOLTAN_ID_TYPE)i;
-    w[i] = (float)weight(z->rows, i);
+    w[i] = (float)pf_partition_weight(z->rows, z->extra, i);
   }
   *ierr = ZOLTAN_OK;
 }
@@ -56,7 +54,7 @@ static void z_geom_multi(void *data, int ngid, int nlid, int nobj, ZOLTAN_ID_PTR
 }
 
 /* Zoltan RCB: the new rank of each owned point into part[]. */
-static int rcb(const pf_points *pts, const pf_bond_rows *rows, int *part) {
+static int rcb(const pf_points *pts, const pf_bond_rows *rows, const int *extra, int *part) {
   static int initialized = 0;
   float ver;
   if (!initialized) PF_CHECK(Zoltan_Initialize(0, NULL, &ver) == ZOLTAN_OK, PF_ERR_LIB, "Zoltan_Initialize failed");
@@ -67,7 +65,7 @@ static int rcb(const pf_points *pts, const pf_bond_rows *rows, int *part) {
                              {"NUM_LID_ENTRIES", "1"}, {"OBJ_WEIGHT_DIM", "1"},     {"RETURN_LISTS", "PARTS"},
                              {"IMBALANCE_TOL", "1.01"}, {"RCB_OUTPUT_LEVEL", "0"}, {"KEEP_CUTS", "0"}};
   for (size_t k = 0; k < sizeof params / sizeof params[0]; k++) Zoltan_Set_Param(zz, params[k][0], params[k][1]);
-  zctx z = {pts, rows};
+  zctx z = {pts, rows, extra};
   Zoltan_Set_Num_Obj_Fn(zz, z_num_obj, &z);
   Zoltan_Set_Obj_List_Fn(zz, z_obj_list, &z);
   Zoltan_Set_Num_Geom_Fn(zz, z_num_geom, &z);
@@ -118,7 +116,7 @@ typedef struct {
   idx_t n, *xadj, *adj, *vwgt;
 } graph;
 
-static int gather_graph(const pf_points *pts, const pf_bond_rows *rows, graph *gr) {
+static int gather_graph(const pf_points *pts, const pf_bond_rows *rows, const int *extra, graph *gr) {
   int rank = pf_comm_rank(), n = pts->n_owned;
   int nnz = (int)rows->offset[n], *cnt = NULL, *dsp = NULL, *ecnt = NULL, *edsp = NULL, total, etotal;
   PF_CALL(gather_counts(n, &cnt, &dsp, &total));
@@ -127,7 +125,8 @@ static int gather_graph(const pf_points *pts, const pf_bond_rows *rows, graph *g
   int *len = NULL, *mylen = NULL, *w = NULL, *myw = NULL;
   PF_MALLOC(mylen, n);
   PF_MALLOC(myw, n);
-  for (int i = 0; i < n; i++) mylen[i] = (int)(rows->offset[i + 1] - rows->offset[i]), myw[i] = weight(rows, i);
+  for (int i = 0; i < n; i++)
+    mylen[i] = (int)(rows->offset[i + 1] - rows->offset[i]), myw[i] = pf_partition_weight(rows, extra, i);
   if (rank == 0) {
     PF_MALLOC(gid, total);
     PF_MALLOC(len, total);
@@ -155,9 +154,9 @@ static int gather_graph(const pf_points *pts, const pf_bond_rows *rows, graph *g
   return 0;
 }
 
-static int metis(const pf_points *pts, const pf_bond_rows *rows, int *owner_of) {
+static int metis(const pf_points *pts, const pf_bond_rows *rows, const int *extra, int *owner_of) {
   graph gr = {0};
-  PF_CALL(gather_graph(pts, rows, &gr));
+  PF_CALL(gather_graph(pts, rows, extra, &gr));
   int st = METIS_OK;
   if (pf_comm_rank() == 0) {
     idx_t ncon = 1, nparts = pf_comm_size(), objval, options[METIS_NOPTIONS], *part;
@@ -177,7 +176,7 @@ static int metis(const pf_points *pts, const pf_bond_rows *rows, int *owner_of) 
 }
 
 int pf_partition_compute(pf_partition_method method, const pf_points *pts, const pf_bond_rows *rows,
-                         int **owner_of) {
+                         const int *extra, int **owner_of) {
   PF_CHECK(pts->n_global < (pf_gid)INT32_MAX, PF_ERR_INPUT,
            "%" PF_GID_FMT " points: partitioning handles fewer than 2^31", pts->n_global);
   PF_MALLOC(*owner_of, pts->n_global);
@@ -189,10 +188,10 @@ int pf_partition_compute(pf_partition_method method, const pf_points *pts, const
     for (pf_gid g = 0; g < pts->n_global; g++) (*owner_of)[g] = (int)(g * size / pts->n_global);
     return 0;
   }
-  if (method == PF_PARTITION_METIS) return metis(pts, rows, *owner_of);
+  if (method == PF_PARTITION_METIS) return metis(pts, rows, extra, *owner_of);
   int *part;
   PF_MALLOC(part, pts->n_owned);
-  int ierr = rcb(pts, rows, part);
+  int ierr = rcb(pts, rows, extra, part);
   if (!ierr) ierr = owner_table(pts, part, *owner_of);
   free(part);
   return ierr;

@@ -15,8 +15,8 @@ const pf_key pf_parallel_keys[] = {
     {"decomposition", PF_KEY_STRING, 0, "rcb", "",
      "rcb (Zoltan recursive coordinate bisection) | metis (k-way on the bond graph)", NULL},
     {"rebalance_threshold", PF_KEY_REAL, 0, "0", "",
-     "at output steps, re-partition when the largest rank's work (intact bonds + points) exceeds "
-     "this multiple of the mean; 0: never", NULL},
+     "at output steps, re-partition when the largest rank's work (bonds + points + contact "
+     "candidates, docs/parallel.md sec. 5) exceeds this multiple of the mean; 0: never", NULL},
     PF_KEY_END};
 
 int pf_sim_setup_parallel(pf_sim *sim) {
@@ -66,10 +66,35 @@ static int make_slice(const pf_sim *sim, const pf_point_cloud *pc, const pf_gid 
   return 0;
 }
 
-int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh) {
+/* The work imbalance (max / mean over the ranks) of the owned points' weights w[] once each point
+ * is on rank owner[i] (owner NULL: where it is). Collective. */
+static int imbalance_of(const int *w, const int *owner, pf_int n, double *imbalance) {
+  const int size = pf_comm_size(), rank = pf_comm_rank();
+  double *load = calloc((size_t)size, sizeof *load);
+  PF_CHECK(load, PF_ERR_MEMORY, "out of memory");
+  for (pf_int i = 0; i < n; i++) load[owner ? owner[i] : rank] += w[i];
+  int ierr = MPI_Allreduce(MPI_IN_PLACE, load, size, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) != MPI_SUCCESS;
+  double max = 0, sum = 0;
+  for (int r = 0; r < size; r++) max = fmax(max, load[r]), sum += load[r];
+  *imbalance = sum > 0 ? max * size / sum : 1;
+  free(load);
+  PF_CHECK(!ierr, PF_ERR_LIB, "MPI_Allreduce of the ranks' work failed");
+  return 0;
+}
+
+int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, const int *extra, int fresh, double *imbalance) {
   int *owner_of = NULL, *dest = NULL;
   pf_int *local = NULL;
-  int ierr = pf_partition_compute(sim->decomposition, sim->pts, rows, &owner_of);
+  int ierr = pf_partition_compute(sim->decomposition, sim->pts, rows, extra, &owner_of);
+  if (!ierr && imbalance) { /* the work each rank will have, by the partition's own weights */
+    const size_t n = (size_t)sim->pts->n_owned + 1;
+    int *w = malloc(sizeof(int) * n), *to = malloc(sizeof(int) * n);
+    if (!w || !to) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+    for (pf_int i = 0; !ierr && i < sim->pts->n_owned; i++)
+      w[i] = pf_partition_weight(rows, extra, i), to[i] = owner_of[sim->pts->gid[i]];
+    if (!ierr) ierr = imbalance_of(w, to, sim->pts->n_owned, imbalance);
+    free(w), free(to);
+  }
   if (!ierr && !(dest = malloc(sizeof(int) * ((size_t)sim->pts->n_owned + 1))))
     ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
   for (pf_int i = 0; !ierr && i < sim->pts->n_owned; i++) dest[i] = owner_of[sim->pts->gid[i]];
@@ -115,26 +140,14 @@ int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc) {
     pf_error_context(NULL);
     first += n;
   }
-  if (!ierr) ierr = pf_sim_settle(sim, &rows, 1);
+  if (!ierr) ierr = pf_sim_settle(sim, &rows, NULL, 1, NULL);
   pf_bond_rows_free(&rows);
   return ierr;
 }
 
-/* Work of this rank: intact bonds plus points. */
-static double local_work(const pf_sim *sim) {
-  double w = sim->pts->n_owned;
-  for (int b = 0; b < sim->nbodies; b++) {
-    const pf_body *body = &sim->body[b];
-    const pf_family *fam = pf_body_family(body);
-    if (!fam) continue;
-    for (int64_t k = 0; k < pf_pd_family_nbonds(fam); k++) w += !fam->broken[k];
-  }
-  return w;
-}
-
 /* The bodies' tables over a re-partition, gathered whole before and set back after, with the
  * stable step of their last force evaluation. */
-static int settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows) {
+static int settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows, const int *extra, double *imbalance) {
   pf_table t[PF_MAX_BODIES];
   double *full[PF_MAX_BODIES] = {NULL}, stable[PF_MAX_BODIES];
   int n = 0, ierr = pf_sim_body_tables(sim, t, &n);
@@ -148,7 +161,7 @@ static int settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows) {
     k++;
   }
   pf_sim_body_tables_free(t, n);
-  if (!ierr) ierr = pf_sim_settle(sim, rows, 0);
+  if (!ierr) ierr = pf_sim_settle(sim, rows, extra, 0, imbalance);
   for (int b = 0; b < sim->nbodies; b++) {
     const pf_body *body = &sim->body[b];
     if (!ierr && full[b]) pf_body_table_set(body, full[b]);
@@ -158,19 +171,32 @@ static int settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows) {
   return ierr;
 }
 
+/* Each owned point's work as the partition weighs it (its intact bonds + 1 and its interactions'
+ * work, pf_sim_interactions_work) into w, and the interactions' part into extra. */
+static int point_work(const pf_sim *sim, const pf_bond_rows *rows, int *extra, int *w) {
+  memset(extra, 0, sizeof(int) * (size_t)sim->pts->n_owned);
+  pf_sim_interactions_work(sim, extra);
+  for (pf_int i = 0; i < sim->pts->n_owned; i++) w[i] = pf_partition_weight(rows, extra, i);
+  return 0;
+}
+
 int pf_sim_rebalance(pf_sim *sim) {
   if (sim->rebalance_threshold <= 0 || pf_comm_size() == 1) return 0;
-  double w = local_work(sim), mean = pf_sum_all(w) / pf_comm_size(), imbalance = pf_max_all(w) / mean;
-  if (!(imbalance > sim->rebalance_threshold)) return 0;
   pf_bond_rows rows;
   PF_CALL(pf_bond_rows_init(&rows));
-  int ierr = 0;
+  const size_t n = (size_t)sim->pts->n_owned + 1;
+  int *extra = malloc(sizeof(int) * n), *w = malloc(sizeof(int) * n), ierr = 0;
+  double before = 0, after = 0;
+  if (!extra || !w) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
   if (!ierr) ierr = pf_sim_bond_rows(sim, &rows);
-  if (!ierr) ierr = settle_keeping_tables(sim, &rows);
+  if (!ierr) ierr = point_work(sim, &rows, extra, w);
+  if (!ierr) ierr = imbalance_of(w, NULL, sim->pts->n_owned, &before);
+  free(w);
+  if (!ierr && before > sim->rebalance_threshold) ierr = settle_keeping_tables(sim, &rows, extra, &after);
+  free(extra);
   pf_bond_rows_free(&rows);
-  if (ierr) return ierr;
-  w = local_work(sim);
-  pf_log("step %ld: re-partitioned (work imbalance %.3f > %.3f); now %.3f\n", sim->step, imbalance,
-         sim->rebalance_threshold, pf_max_all(w) / (pf_sum_all(w) / pf_comm_size()));
+  if (ierr || !(before > sim->rebalance_threshold)) return ierr;
+  pf_log("step %ld: re-partitioned (work imbalance %.3f > %.3f); now %.3f\n", sim->step, before,
+         sim->rebalance_threshold, after);
   return 0;
 }

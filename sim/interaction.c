@@ -38,6 +38,11 @@ int pf_sim_interactions_attach(pf_sim *sim) {
   return 0;
 }
 
+void pf_sim_interactions_work(const pf_sim *sim, int *w) {
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->work) sim->inter[k].ops->work(sim->inter[k].data, sim->pts, w);
+}
+
 void pf_sim_interactions_mark(const pf_sim *sim, uint8_t *fixed) {
   for (int k = 0; k < sim->ninter; k++)
     if (sim->inter[k].ops->mark_prescribed) sim->inter[k].ops->mark_prescribed(sim->inter[k].data, fixed);

@@ -75,6 +75,10 @@ typedef struct {
    * surface's work, a fixed wall's none; its penalty energy is a potential), so the quasi-static
    * solver leaves its forces out of the trapezoid of the loads' work [0]. */
   int books_own_work;
+  /* Add to w[i] (over the owned points) the work its force evaluation spends on point i, in bond
+   * evaluations (the unit of the partition's weights, pf_partition_weight), for re-partitioning
+   * [nothing]. */
+  void (*work)(const void *data, const pf_points *pts, int *w);
   /* The stable step its penalties allow; collective [INFINITY]. */
   double (*stable_dt)(const void *data, const pf_points *pts);
   /* Checkpoint state besides the ledger's accounts (a surface's position): count, names
@@ -122,6 +126,8 @@ int pf_sim_interactions_build(pf_sim *sim);
 void pf_sim_interactions_destroy(pf_sim *sim);
 int pf_sim_interactions_open_accounts(pf_sim *sim);
 int pf_sim_interactions_attach(pf_sim *sim);
+/* Each owned point's work in the interactions' force evaluations, added to w[n_owned]. */
+void pf_sim_interactions_work(const pf_sim *sim, int *w);
 void pf_sim_interactions_mark(const pf_sim *sim, uint8_t *fixed);
 void pf_sim_interactions_midstep(pf_sim *sim, double dt);
 void pf_sim_interactions_after_drift(pf_sim *sim, double dt);

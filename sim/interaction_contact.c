@@ -139,6 +139,11 @@ static void stiffness_bounds(const void *data, const pf_points *pts, double *k) 
   pf_contact_stiffness_bounds(((const contact *)data)->c, pts, k);
 }
 
+static void work(const void *data, const pf_points *pts, int *w) {
+  (void)pts;
+  pf_contact_work(((const contact *)data)->c, w);
+}
+
 static int restored(void *data) { return pf_contact_restored(((contact *)data)->c); }
 static void masses_changed(void *data) { pf_contact_rebuild(((contact *)data)->c); }
 
@@ -204,6 +209,7 @@ const pf_interaction_ops pf_interaction_kind_contact = {
     /* (quasi-static: the pairs' forces are internal, their work is the change of their penalty
      * energy, booked in contact_energy; none of it is a load's) */
     .books_own_work = 1,
+    .work = work,
     .stable_dt = stable_dt,
     .restored = restored,
     .masses_changed = masses_changed,

@@ -176,7 +176,7 @@ int pf_sim_restore_points(pf_sim *sim, const pf_point_cloud *pc) {
   if (!ierr) ierr = pf_sim_check_restart_reference(sim, pc);
   if (!ierr) ierr = check_deck(sim, s->value); /* (the geometry named first; then the deck, before the masses) */
   sim->restart_nfields = sim->pts ? sim->pts->nfields : 0;
-  if (!ierr) ierr = pf_sim_settle(sim, &rows, 0);
+  if (!ierr) ierr = pf_sim_settle(sim, &rows, NULL, 0, NULL);
   pf_bond_rows_free(&rows);
   for (int b = 0; b < sim->nbodies && !ierr; b++) { /* the elements' state, whole on every rank */
     pf_body *body = &sim->body[b];

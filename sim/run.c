@@ -133,7 +133,7 @@ static int run_loop(pf_sim *sim, long n) {
     int his = last || pf_sim_output_due(sim->history_interval, sim->history_period, sim->step, t_before, sim->t);
     if (exo || his) {
       double t0 = pf_wtime();
-      if (exo) PF_CALL(pf_sim_rebalance(sim));
+      if (exo && !last) PF_CALL(pf_sim_rebalance(sim)); /* (not for the steps no run will take) */
       PF_CALL(pf_sim_globals_eval(sim, g, 0));
       PF_CALL(pf_sim_write_output(sim, g, exo, his, last));
       if (his) PF_CALL(pf_sim_health_check(sim));

@@ -177,12 +177,16 @@ int pf_sim_distribute(pf_sim *sim, const pf_point_cloud *pc);
 int pf_sim_sets_build(pf_sim *sim, const pf_point_cloud *pc);
 /* The bodies' global ids, consecutive in deck order: gid0[b + 1] = gid0[b] + count[b]. */
 void pf_sim_number_bodies(pf_sim *sim, const pf_gid *count);
-/* Re-partition when the work imbalance exceeds the deck's threshold (at output steps). */
+/* Re-partition when the work imbalance exceeds the deck's threshold (at output steps): the work
+ * of a point is its intact bonds + 1 and the work of its interactions (pf_sim_interactions_work),
+ * the weights the partition balances. */
 int pf_sim_rebalance(pf_sim *sim);
 int pf_sim_setup_time(pf_sim *sim);
-/* Partition, migrate, add ghosts and attach the bodies; fresh: initial state (set-up). The rows'
- * bonds are given back at the end (the bodies hold them then); the caller frees the rows. */
-int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, int fresh);
+/* Partition, migrate, add ghosts and attach the bodies; fresh: initial state (set-up). extra: NULL
+ * or each owned point's interaction work (pf_partition_weight); imbalance: NULL, or the work
+ * imbalance of the new partition by its weights. The rows' bonds are given back at the end (the
+ * bodies hold them then); the caller frees the rows. */
+int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, const int *extra, int fresh, double *imbalance);
 /* An output's path: given (or <deck name less its extension><ext>), under --output-dir unless
  * absolute. A path longer than PF_SIM_PATH_MAX is an error naming key (node: where the deck
  * gives it). */
