@@ -6,7 +6,7 @@
  *   u^(n+1)       = u^n + u-dot^(n+1/2)
  *   u-dot^(n+1/2) = ((2 - c^n) u-dot^(n-1/2) + 2 F^n / lambda) / (2 + c^n)
  *   c^n = 2 sqrt(u^T 1K u / u^T u),  1K_ii = -(F_i^n - F_i^(n-1)) / (lambda_i u-dot_i^(n-1/2))
- * over the free components; F is the force of the explicit step (bodies, then the loads), the
+ * over the free components, c^n each body's own over its components (theory §2); F is the force of the explicit step (bodies, then the loads), the
  * bodies reading an increment as their velocity over a step of 1: a body that keeps history the
  * load step's (its history put back as committed at the load step's start before each evaluation:
  * one backward-Euler increment from the last converged state), the others the iteration's. Every sum is
@@ -68,20 +68,49 @@ static double loads(const pf_sim_solver *s, const pf_points *p, pf_int d) {
   return s->fixed[d] ? -p->f[d] : p->f[d] - s->f_body[d] - s->f_own[d];
 }
 
-/* The next relaxation velocity of the free components (first: u-dot^(1/2)), then u moves by it. */
-static void advance(pf_sim *sim, const double *q, int first) {
+/* The damping coefficient of body b's components: c = 2 sqrt(u^T 1K u / u^T u) over them (the
+ * terms of pf_sim_solver_measure), 0 where the quotient is not positive, at most 2. With one body
+ * the iteration's sums q are its own. Collective. */
+static int damping(pf_sim *sim, const double *q, double *c) {
+  pf_sim_solver *s = &sim->solver;
+  const pf_points *p = sim->pts;
+  for (int b = 0; b < sim->nbodies; b++) {
+    double r[2] = {q[S_UKU], q[S_UU]};
+    if (sim->nbodies > 1) {
+      const pf_int d0 = 3 * sim->body_start[b], n = 3 * sim->body_start[b + 1] - d0;
+      double *t = s->terms;
+      for (pf_int k = 0; k < n; k++) {
+        const pf_int d = d0 + k;
+        const int fr = pf_sim_solver_is_free(s, d);
+        const double u = p->u[d], dv = s->vel[d] * s->lambda[d / 3];
+        t[k] = fr && dv != 0 ? -u * u * (p->f[d] - s->f_old[d]) / dv : 0;
+        t[n + k] = fr ? u * u : 0;
+      }
+      PF_CALL(pf_sim_solver_sums(t, n, 2, r));
+    }
+    const double ratio = r[1] > 0 ? r[0] / r[1] : 0;
+    c[b] = ratio > 0 ? fmin(2 * sqrt(ratio), 2.0) : 0;
+  }
+  return 0;
+}
+
+/* The next relaxation velocity of the free components (first: u-dot^(1/2)), each body's damped by
+ * its own coefficient, then u moves by it. */
+static int advance(pf_sim *sim, const double *q, int first) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
-  const double r = q[S_UU] > 0 ? q[S_UKU] / q[S_UU] : 0;
-  const double c = first || !(r > 0) ? 0 : fmin(2 * sqrt(r), 2.0);
-  for (pf_int d = 0; d < 3 * p->n_owned; d++) {
-    if (!pf_sim_solver_is_free(s, d)) continue;
-    const double a = p->f[d] / s->lambda[d / 3];
-    s->vel[d] = first ? 0.5 * a : ((2 - c) * s->vel[d] + 2 * a) / (2 + c);
-    s->f_old[d] = p->f[d];
-    p->u[d] += s->vel[d];
-    p->y[d] = p->X[d] + p->u[d];
-  }
+  double c[PF_MAX_BODIES] = {0};
+  if (!first) PF_CALL(damping(sim, q, c));
+  for (int b = 0; b < sim->nbodies; b++)
+    for (pf_int d = 3 * sim->body_start[b]; d < 3 * sim->body_start[b + 1]; d++) {
+      if (!pf_sim_solver_is_free(s, d)) continue;
+      const double a = p->f[d] / s->lambda[d / 3];
+      s->vel[d] = first ? 0.5 * a : ((2 - c[b]) * s->vel[d] + 2 * a) / (2 + c[b]);
+      s->f_old[d] = p->f[d];
+      p->u[d] += s->vel[d];
+      p->y[d] = p->X[d] + p->u[d];
+    }
+  return 0;
 }
 
 /* Points that went through a constraint (a wall) go back onto it, their inward relaxation
@@ -118,7 +147,7 @@ static int relax(pf_sim *sim, long *it, double *res, int *stop) {
     *stop = q[S_TRIPPED] > 0 || !isfinite(*res) ? STOP_GUARD : q[S_SIGNAL] > 0 ? STOP_SIGNAL : 0;
     if (*stop || *res <= s->tolerance) return 0;
     if (*it == s->max_iterations) return not_converged(sim, *it, *res);
-    advance(sim, q, *it == 0);
+    PF_CALL(advance(sim, q, *it == 0));
     project(sim);
     PF_CALL(pf_sim_solver_evaluate(sim));
     PF_CALL(pf_sim_solver_measure(sim, q));

@@ -4,8 +4,8 @@
 #  - every check of static_bar.sh with it: the FE bar against u_x = d x / L to 1e-8 of d, the
 #    LPS bar against the same closed form and its energy, the grips' reactions, force control,
 #    the same digest on 1, 2 and 3 ranks, the refusals;
-#  - on the same deck it needs fewer than half the force evaluations of the relaxation (measured
-#    522 against 2 094);
+#  - on the same deck it needs fewer force evaluations than the relaxation (measured 522 against
+#    790, each body damped by its own coefficient);
 #  - a deck with walls is refused with it, naming solver.method (walls are projections between
 #    relaxation iterations);
 #  - the correspondence bar (the deck's PD bar with model neo_hookean, the continuum model through
@@ -34,7 +34,7 @@ nk=$(count "$scratch/deck.log")
 saved=${3:-}/work_static_bar/deck.log dr=""
 [ -s "$saved" ] && [ "$saved" -nt "$exe" ] && [ "$saved" -nt "$deck" ] && dr=$(count "$saved")
 [ -n "$dr" ] && echo "relaxation: the force evaluations of static_bar's run ($saved)" || dr=$(evaluations relaxation)
-[ -n "$dr" ] && [ -n "$nk" ] && [ $((2 * nk)) -lt "$dr" ] ||
+[ -n "$dr" ] && [ -n "$nk" ] && [ "$nk" -lt "$dr" ] ||
   { echo "FAIL: force evaluations: newton_krylov '$nk', relaxation '$dr'"; fail=1; }
 echo "force evaluations: newton_krylov $nk, relaxation $dr"
 printf 'walls:\n  - {name: stop, point: [-1, 0, 0], normal: [1, 0, 0]}\n' | cat "$deck" - > "$scratch/walls.yaml"

@@ -5,8 +5,8 @@
 #    the refusals; on 1, 2 and 3 ranks at the deck's tolerance 1e-9 the grips' columns within
 #    1e-7 of the largest value of their quantity (measured 3.3e-10), not the same bits: PETSc's
 #    dot products and norms are MPI sums whose rounding depends on the partition;
-#  - on the same deck it needs fewer than half the force evaluations of the relaxation (measured
-#    557 against 2 094; newton_krylov 522);
+#  - on the same deck it needs fewer force evaluations than the relaxation (measured 557 against
+#    790, each body damped by its own coefficient; newton_krylov 522);
 #  - a deck with walls is refused with it, naming solver.method;
 #  - the crack of static_damage.sh's bar (tests/data/static_damage_bar.yaml): the same load step
 #    separates it, with the same damage fraction as newton_krylov's within 1e-9 (measured equal).
@@ -20,7 +20,7 @@ count() { sed -n 's/.* \([0-9]*\) force evaluations.*/\1/p' "$1"; }
 sn=$(count "$scratch/deck.log")
 "$exe" --output-dir "$scratch/relaxation" "$deck" > "$scratch/relaxation.log" 2>&1
 dr=$(count "$scratch/relaxation.log")
-[ -n "$dr" ] && [ -n "$sn" ] && [ $((2 * sn)) -lt "$dr" ] ||
+[ -n "$dr" ] && [ -n "$sn" ] && [ "$sn" -lt "$dr" ] ||
   { echo "FAIL: force evaluations: snes '$sn', relaxation '$dr'"; fail=1; }
 echo "force evaluations: snes $sn, relaxation $dr"
 grep -q "snes (PETSc): [0-9]* Newton steps" "$scratch/deck.log" || { echo "FAIL: no snes summary line"; fail=1; }
