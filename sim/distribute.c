@@ -171,8 +171,8 @@ static int settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows, const int *ext
   return ierr;
 }
 
-/* Each owned point's work as the partition weighs it (its intact bonds + 1 and its interactions'
- * work, pf_sim_interactions_work) into w, and the interactions' part into extra. */
+/* Each owned point's work as the partition weighs it (its bonds + 1 and its interactions' work,
+ * pf_sim_interactions_work) into w, and the interactions' part into extra. */
 static int point_work(const pf_sim *sim, const pf_bond_rows *rows, int *extra, int *w) {
   memset(extra, 0, sizeof(int) * (size_t)sim->pts->n_owned);
   pf_sim_interactions_work(sim, extra);

@@ -69,6 +69,9 @@ int pf_sim_solver_load_step(pf_sim *sim);
 int pf_sim_solver_is_free(const pf_sim_solver *s, pf_int d);
 int pf_sim_solver_evaluate(pf_sim *sim);
 int pf_sim_solver_measure(pf_sim *sim, double *q);
+/* Component d's terms of the damping's Rayleigh quotient (docs/theory/quasi_static.md §2):
+ * u_d 1K_dd u_d into *uku and u_d^2 into *uu, both 0 on a component that is not free. */
+void pf_sim_solver_quotient_terms(const pf_sim_solver *s, const pf_points *p, pf_int d, double *uku, double *uu);
 double pf_sim_solver_residual(const double *q);
 /* sim/solver_newton.c: equilibrium by inexact Newton with a matrix-free, Jacobi-preconditioned
  * conjugate-gradient step and a backtracking line search, from the current state; *converged 0

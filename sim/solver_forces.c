@@ -72,6 +72,13 @@ static double applied(const pf_sim_solver *s, const pf_points *p, pf_int d) {
   return s->fixed[d] ? -p->f[d] : p->f[d] - s->f_body[d];
 }
 
+void pf_sim_solver_quotient_terms(const pf_sim_solver *s, const pf_points *p, pf_int d, double *uku, double *uu) {
+  const int fr = pf_sim_solver_is_free(s, d);
+  const double u = p->u[d], dv = s->vel[d] * s->lambda[d / 3];
+  *uku = fr && dv != 0 ? -u * u * (p->f[d] - s->f_old[d]) / dv : 0;
+  *uu = fr ? u * u : 0;
+}
+
 /* The iteration's sums: the residual, the reference force and the internal forces (squared
  * 2-norms), u^T 1K u and u^T u of the damping coefficient, and whether a body tripped. */
 int pf_sim_solver_measure(pf_sim *sim, double *q) {
@@ -81,12 +88,11 @@ int pf_sim_solver_measure(pf_sim *sim, double *q) {
   double *t = s->terms;
   for (pf_int d = 0; d < n3; d++) {
     const int fr = pf_sim_solver_is_free(s, d);
-    const double g = applied(s, p, d), u = p->u[d], dv = s->vel[d] * s->lambda[d / 3];
+    const double g = applied(s, p, d);
     t[S_RESIDUAL * n3 + d] = fr ? p->f[d] * p->f[d] : 0;
     t[S_REFERENCE * n3 + d] = g * g;
     t[S_INTERNAL * n3 + d] = s->f_body[d] * s->f_body[d];
-    t[S_UKU * n3 + d] = fr && dv != 0 ? -u * u * (p->f[d] - s->f_old[d]) / dv : 0;
-    t[S_UU * n3 + d] = fr ? u * u : 0;
+    pf_sim_solver_quotient_terms(s, p, d, &t[S_UKU * n3 + d], &t[S_UU * n3 + d]);
     t[S_TRIPPED * n3 + d] = d == 0 ? sim->guard_tripped : 0;
     t[S_SIGNAL * n3 + d] = d == 0 ? pf_sim_signal_here() : 0;
   }

@@ -6,11 +6,12 @@
  *   u^(n+1)       = u^n + u-dot^(n+1/2)
  *   u-dot^(n+1/2) = ((2 - c^n) u-dot^(n-1/2) + 2 F^n / lambda) / (2 + c^n)
  *   c^n = 2 sqrt(u^T 1K u / u^T u),  1K_ii = -(F_i^n - F_i^(n-1)) / (lambda_i u-dot_i^(n-1/2))
- * over the free components, c^n each body's own over its components (theory §2); F is the force of the explicit step (bodies, then the loads), the
- * bodies reading an increment as their velocity over a step of 1: a body that keeps history the
- * load step's (its history put back as committed at the load step's start before each evaluation:
- * one backward-Euler increment from the last converged state), the others the iteration's. Every sum is
- * taken by pf_sim_solver_sums, so the iterations are the same on any number of ranks.
+ * over the free components, c^n each body's own over its components (theory §2); F is the force
+ * of the explicit step (bodies, then the loads), the bodies reading an increment as their velocity
+ * over a step of 1: a body that keeps history the load step's (its history put back as committed
+ * at the load step's start before each evaluation: one backward-Euler increment from the last
+ * converged state), the others the iteration's. Every sum is taken by pf_sim_solver_sums, so the
+ * iterations are the same on any number of ranks.
  * Damage only at equilibrium: the bodies' damage is frozen while the load step relaxes (no bond
  * fails at the out-of-balance states of the iterations); at the equilibrium reached one force
  * evaluation with the damage thawed fails the bonds whose limit is met, and if any failed the
@@ -68,8 +69,8 @@ static double loads(const pf_sim_solver *s, const pf_points *p, pf_int d) {
   return s->fixed[d] ? -p->f[d] : p->f[d] - s->f_body[d] - s->f_own[d];
 }
 
-/* The damping coefficient of body b's components: c = 2 sqrt(u^T 1K u / u^T u) over them (the
- * terms of pf_sim_solver_measure), 0 where the quotient is not positive, at most 2. With one body
+/* The damping coefficient c[b] of each body's components: 2 sqrt(u^T 1K u / u^T u) over them
+ * (pf_sim_solver_quotient_terms), 0 where the quotient is not positive, at most 2. With one body
  * the iteration's sums q are its own. Collective. */
 static int damping(pf_sim *sim, const double *q, double *c) {
   pf_sim_solver *s = &sim->solver;
@@ -79,13 +80,7 @@ static int damping(pf_sim *sim, const double *q, double *c) {
     if (sim->nbodies > 1) {
       const pf_int d0 = 3 * sim->body_start[b], n = 3 * sim->body_start[b + 1] - d0;
       double *t = s->terms;
-      for (pf_int k = 0; k < n; k++) {
-        const pf_int d = d0 + k;
-        const int fr = pf_sim_solver_is_free(s, d);
-        const double u = p->u[d], dv = s->vel[d] * s->lambda[d / 3];
-        t[k] = fr && dv != 0 ? -u * u * (p->f[d] - s->f_old[d]) / dv : 0;
-        t[n + k] = fr ? u * u : 0;
-      }
+      for (pf_int k = 0; k < n; k++) pf_sim_solver_quotient_terms(s, p, d0 + k, &t[k], &t[n + k]);
       PF_CALL(pf_sim_solver_sums(t, n, 2, r));
     }
     const double ratio = r[1] > 0 ? r[0] / r[1] : 0;
