@@ -1,5 +1,5 @@
 /* Two bond-loop designs perifem does not use, timed against its PMB force pass (issue 9,
- * bench/README.md "What 10x would take"). All three on test_bond_loop_speed's 30^3 lattice
+ * bench/measurements.md "What 10x would take"). All three on test_bond_loop_speed's 30^3 lattice
  * (pf_test_bond_lattice: horizon 3 spacings, 113 bonds a point inside, random displacements of
  * up to 0.5e-6 m), interleaved, best of 9:
  *  - production: pf_pd_body_force, every directed bond evaluated at its owner (owner computes),

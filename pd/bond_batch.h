@@ -4,7 +4,7 @@
  * X, V, y, s0). A batch of bonds reads its PF_BATCH neighbours' records and transposes them,
  * so that field f of the batch's neighbour l lands in out[f][l]: eight whole-line loads and
  * 24 two-source permutes with AVX-512, where the compiler's per-field gathers are
- * load-port-bound (bench/README.md, "Where the time goes"); four 4 x 4 transposes with AVX2; a
+ * load-port-bound (bench/measurements.md, "Where the time goes"); four 4 x 4 transposes with AVX2; a
  * plain copy otherwise. Either way the values are bitwise the records'. */
 #ifndef PF_BOND_BATCH_H
 #define PF_BOND_BATCH_H

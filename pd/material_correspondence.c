@@ -26,7 +26,7 @@
  * Fdot xi instead, with c scaled by tau = delta / c_L (the wave transit of the horizon, so that
  * C_hg ~ 1 damps a mode of wavelength ~ delta critically): it damps zero-energy modes without
  * resisting the slow, non-affine flow of plastic deformation.
- * Cost (bench/README.md, "Correspondence and modified Johnson-Cook"): K is reference geometry,
+ * Cost (bench/measurements.md, "Correspondence and modified Johnson-Cook"): K is reference geometry,
  * formed again only when a point's intact own bonds change; each pass is one walk over the row
  * (the bond failures of the step are tested in the first); the 3x3 products are lane-wise
  * vector multiply-adds in the order of the scalar sums, so the results are those of the formulas
