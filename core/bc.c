@@ -257,7 +257,7 @@ static double static_force(const pf_bc *bc, const pf_points *pts, pf_int i, int 
 }
 
 void pf_bc_static_terms(const pf_bc *bc, const pf_points *pts, double t, double dt, const double *g0,
-                        const double *u0, const double *g1, const double *u1, double *terms) {
+                        const double *u0, const double *g1, const double *u1, const double *beyond, double *terms) {
   const pf_int n = bc->n;
   for (pf_int k = 0; k < n; k++) {
     const pf_int i = bc->points[k];
@@ -270,7 +270,8 @@ void pf_bc_static_terms(const pf_bc *bc, const pf_points *pts, double t, double 
       if (!u1) w += 0.5 * (start + g) * (pts->u[d] - u0[d]);
       else {
         const double mid = body ? g : bc->e[c] ? g1[d] : 0;
-        w += 0.5 * (start + mid) * (u1[d] - u0[d]) + 0.5 * (mid + g) * (pts->u[d] - u1[d]);
+        w += 0.5 * (start + mid) * (u1[d] - u0[d]) +
+             (beyond ? (bc->e[c] ? beyond[d] : 0) : 0.5 * (mid + g) * (pts->u[d] - u1[d]));
       }
       terms[(size_t)c * n + k] = g;
       terms[(size_t)(4 + c) * n + k] = pts->u[d];

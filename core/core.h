@@ -604,9 +604,12 @@ void pf_bc_displacement_sum(const pf_bc *bc, const pf_points *pts, double sum[3]
  * (g0 + g1) / 2 . (u1 - u0) + (g1 + g) / 2 . (u - u1), j = 4, 5, 6 the point's displacement.
  * g0, u0: [3 n_owned] the force from outside and the displacement at the load step's start (a
  * body force takes m b(X, t - dt)); g1, u1: the same at its first equilibrium, before its damage
- * checks failed a bond (a body force takes m b(X, t)); NULL: no bond failed (g1 = g, u1 = u). */
+ * checks failed a bond (a body force takes m b(X, t)); NULL: no bond failed (g1 = g, u1 = u).
+ * beyond: under sequential failure, each component's work along the scaled path past the first
+ * equilibrium, taken for (g1 + g) / 2 . (u - u1) on the components the condition prescribes
+ * (NULL otherwise). */
 void pf_bc_static_terms(const pf_bc *bc, const pf_points *pts, double t, double dt, const double *g0,
-                        const double *u0, const double *g1, const double *u1, double *terms);
+                        const double *u0, const double *g1, const double *u1, const double *beyond, double *terms);
 
 /* ---- tables of global rows (core/table.c) ------------------------------------------- */
 /* Rows of a global [total][ncomp] table, each rank holding some of them (row id[k] is data[k]):

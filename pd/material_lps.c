@@ -142,6 +142,21 @@ static int lps_partial_stress(pf_pd_body *b, pf_points *pts) {
   return pf_points_exchange(pts, p->nu, 9);
 }
 
+/* Bond k of point i's energy per V_i V_j, w = (1/2) (t_ij + t_ji) e, with the last evaluation's
+ * dilatations and moments (the force pass's critical-energy test). */
+static double lps_bond_energy_at(const pf_pd_body *b, const pf_points *pts, pf_int i, int64_t k, double r0,
+                                 double ext) {
+  (void)pts;
+  const lps *p = b->mat;
+  const pf_int j = b->fam.neighbor[k];
+  const double w = pf_pd_omega(&b->influence, r0);
+  const double ai = pf_pd_lps_volumetric(pf_pd_K(b, i), pf_pd_G(b, i), p->theta[i], p->mom[i], p->m[i]);
+  const double aj = pf_pd_lps_volumetric(pf_pd_K(b, j), pf_pd_G(b, j), p->theta[j], p->mom[j], p->m[j]);
+  const double tij = pf_pd_in_family(b, i, r0) ? lps_t(ai, 15 * pf_pd_G(b, i) / p->m[i], p->theta[i], w, r0, ext) : 0.0;
+  const double tji = pf_pd_in_family(b, j, r0) ? lps_t(aj, 15 * pf_pd_G(b, j) / p->m[j], p->theta[j], w, r0, ext) : 0.0;
+  return 0.5 * (tij + tji) * ext;
+}
+
 /* The batched passes (pd/lps_batched.c): records with s0, then with Q = (3K - 5G) theta. */
 static int lps_force_batched(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
   lps *p = b->mat;
@@ -375,6 +390,7 @@ const pf_pd_material_ops pf_pd_material_lps = {
     .destroy = lps_destroy,
     .partial_stress = 1,
     .bond_energy = 1,
+    .bond_energy_at = lps_bond_energy_at,
     .several_materials = 1,
     .records_rest = 1,
 };

@@ -297,6 +297,15 @@ static double pmb_micromodulus(const pf_pd_body *b, double delta) {
   return ((const pmb *)b->mat)->c;
 }
 
+/* Bond k of point i's pair micropotential per V_i V_j, (1/2) c omega s^2 |xi| (Silling & Askari
+ * 2005, eq. 6; the force pass's critical-energy test). */
+static double pmb_bond_energy_at(const pf_pd_body *b, const pf_points *pts, pf_int i, int64_t k, double r0,
+                                 double ext) {
+  (void)pts;
+  const double s = ext / r0, c = bond_c(b, i, b->fam.neighbor[k], ((const pmb *)b->mat)->c);
+  return 0.5 * c * pf_pd_omega(&b->influence, r0) * s * s * r0;
+}
+
 static double pmb_critical_stretch(const pf_pd_body *b, double G0) {
   return pf_pd_pmb_critical_stretch(G0, b->bulk_modulus, b->horizon);
 }
@@ -315,6 +324,7 @@ const pf_pd_material_ops pf_pd_material_pmb = {
     .critical_stretch = pmb_critical_stretch,
     .destroy = pmb_destroy,
     .bond_energy = 1,
+    .bond_energy_at = pmb_bond_energy_at,
     .several_materials = 1,
     .records_rest = 1,
     .bond_rate = 2.3e8,

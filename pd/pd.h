@@ -196,6 +196,10 @@ int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts);
  * equilibrium reached (docs/theory/quasi_static.md §5). Nothing may re-attach the body while
  * frozen. */
 int pf_pd_body_freeze_damage(pf_pd_body *b, const pf_points *pts, int frozen);
+/* The largest failure ratio over the owned points' intact bonds at the last force evaluation's
+ * state: s / s_lim or sqrt(w / w_c), against the law's limits (also while frozen); 1 at the
+ * limit, 0 without one (pd/failure_ratio.c). */
+double pf_pd_body_failure_ratio(const pf_pd_body *b, const pf_points *pts);
 /* 1 when the body's material keeps history (a plastic or rate-form state its force advances). */
 int pf_pd_body_keeps_history(const pf_pd_body *b);
 /* Commit the body's history (restore 0: the material's history fields of its owned points and

@@ -23,6 +23,9 @@ int pf_body_post_step(const pf_body *b, pf_points *pts) { return b->ops->post_st
 int pf_body_freeze_damage(const pf_body *b, const pf_points *pts, int frozen) {
   return b->ops->freeze_damage ? b->ops->freeze_damage(b->data, pts, frozen) : 0;
 }
+double pf_body_failure_ratio(const pf_body *b, const pf_points *pts) {
+  return b->ops->failure_ratio ? b->ops->failure_ratio(b->data, pts) : 0.0;
+}
 int pf_body_keeps_history(const pf_body *b, pf_points *pts) {
   return b->ops->history && b->ops->history(b->data, pts, PF_HISTORY_KEPT) == 1;
 }

@@ -64,6 +64,10 @@ typedef struct {
    * by one force evaluation thawed at the equilibrium reached); NULL: a body without damage,
    * nothing to do. */
   int (*freeze_damage)(void *data, const pf_points *pts, int frozen);
+  /* Optional: the largest failure ratio over its owned intact bonds at the last force
+   * evaluation (1: a bond at its limit; a linear body's ratio scales with its state; quasi-static
+   * solver, failure: sequential); NULL with freeze_damage: the body cannot take that failure. */
+  double (*failure_ratio)(const void *data, const pf_points *pts);
   /* Optional: the body's history (plastic and rate-form state): whether it keeps any
    * (PF_HISTORY_KEPT: returns 1 or 0), commit the current one (PF_HISTORY_COMMIT) or put the
    * committed one back (PF_HISTORY_RESTORE). A body that keeps history has the quasi-static
@@ -169,6 +173,7 @@ int pf_body_step_varies(const pf_body *b);
 int pf_body_uses_velocity(const pf_body *b);
 int pf_body_post_step(const pf_body *b, pf_points *pts);
 int pf_body_freeze_damage(const pf_body *b, const pf_points *pts, int frozen);
+double pf_body_failure_ratio(const pf_body *b, const pf_points *pts); /* 0 without the op */
 int pf_body_keeps_history(const pf_body *b, pf_points *pts);
 int pf_body_history(const pf_body *b, pf_points *pts, pf_history_op op);
 /* The failed directed bonds of the body's owned rows (0 for a body without bonds). */

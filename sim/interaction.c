@@ -77,10 +77,10 @@ void pf_sim_interactions_loaded(pf_sim *sim, double dt) {
 }
 
 int pf_sim_interactions_settled(pf_sim *sim, double dt, const double *g0, const double *u0, const double *g1,
-                                const double *u1) {
+                                const double *u1, const double *beyond) {
   const pf_interaction_step s = step_of(sim, dt);
   for (int k = 0; k < sim->ninter; k++)
-    if (sim->inter[k].ops->settled) PF_CALL(sim->inter[k].ops->settled(sim->inter[k].data, &s, g0, u0, g1, u1));
+    if (sim->inter[k].ops->settled) PF_CALL(sim->inter[k].ops->settled(sim->inter[k].data, &s, g0, u0, g1, u1, beyond));
   return 0;
 }
 

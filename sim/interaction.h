@@ -59,10 +59,12 @@ typedef struct {
    * u0: [3 n_owned] the force from outside on each owned component (on a prescribed one its
    * reaction, minus the point's force; on a free one the loads, without the forces of the
    * interactions that book their own work) and the displacement at the load step's start; g1,
-   * u1 the same at its first equilibrium (loaded), NULL when that is this one (no bond failed):
-   * book its reactions and work. Collective [nothing]. */
+   * u1 the same at its first equilibrium (loaded), NULL when that is this one (no bond failed);
+   * beyond: with sequential failure, each component's work along the scaled path past the first
+   * equilibrium (else NULL: that part is the trapezoid from g1, u1 to the state now): book its
+   * reactions and work. Collective [nothing]. */
   int (*settled)(void *data, const pf_interaction_step *s, const double *g0, const double *u0, const double *g1,
-                 const double *u1);
+                 const double *u1, const double *beyond);
   /* Quasi-static loading: add to k[i] (N/m, over the owned points) a bound of the row sums of the
    * stiffness its forces add to point i, over the states the load step placed at s->t can reach
    * (the fictitious masses bound the interactions' stiffness with the bodies') [nothing]. */
@@ -139,7 +141,7 @@ void pf_sim_interactions_endstep(pf_sim *sim, double dt);
 void pf_sim_interactions_place(pf_sim *sim, double dt);
 void pf_sim_interactions_loaded(pf_sim *sim, double dt);
 int pf_sim_interactions_settled(pf_sim *sim, double dt, const double *g0, const double *u0, const double *g1,
-                                const double *u1);
+                                const double *u1, const double *beyond);
 void pf_sim_interactions_stiffness_bounds(const pf_sim *sim, double *k);
 void pf_sim_interactions_project(const pf_sim *sim);
 double pf_sim_interactions_stable_dt(const pf_sim *sim);

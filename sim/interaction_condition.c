@@ -106,12 +106,12 @@ static void place(void *data, const pf_interaction_step *s) {
  * displacement, each summed over the ranks by pf_sim_solver_sums and booked on rank 0 (0 on the
  * others: the ledger's sum over the ranks keeps the bits). */
 static int settled(void *data, const pf_interaction_step *s, const double *g0, const double *u0, const double *g1,
-                   const double *u1) {
+                   const double *u1, const double *beyond) {
   condition *x = data;
   const pf_int n = pf_bc_npoints(x->bc);
   double sums[7], *terms = malloc(sizeof(double) * (7 * (size_t)n + 1));
   PF_CHECK(terms, PF_ERR_MEMORY, "out of memory for the books of boundary condition '%s'", pf_bc_name(x->bc));
-  pf_bc_static_terms(x->bc, s->pts, s->t, s->dt, g0, u0, g1, u1, terms);
+  pf_bc_static_terms(x->bc, s->pts, s->t, s->dt, g0, u0, g1, u1, beyond, terms);
   int ierr = pf_sim_solver_sums(terms, n, 4, sums); /* reaction, work */
   if (!ierr) ierr = pf_sim_solver_sums(terms + 4 * (size_t)n, n, 3, sums + 4); /* displacement */
   free(terms);

@@ -164,8 +164,8 @@ static void loaded(void *data, const pf_interaction_step *s) {
  * (g1: after bonds failed); with friction, each point's slip committed and the work of the slip
  * increments (summed by pf_sim_solver_sums: the same bits on any number of ranks) dissipated. */
 static int settled(void *data, const pf_interaction_step *s, const double *g0, const double *u0, const double *g1,
-                   const double *u1) {
-  (void)g0, (void)u0, (void)u1;
+                   const double *u1, const double *beyond) {
+  (void)g0, (void)u0, (void)u1, (void)beyond; /* (sequential failure refuses rigid surfaces) */
   rigid *x = data;
   double r_new[3];
   pf_ledger_get(s->ledger, x->force, r_new);

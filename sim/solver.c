@@ -28,6 +28,12 @@ const pf_key pf_sim_solver_keys[] = {
      "quasi_static: bodies fail no bond while a load step relaxes; at equilibrium one damage check fails the "
      "bonds whose limit is met and, if any failed, the load step relaxes again at the same load: at most this "
      "many times per load step, then the run stops with an error", NULL},
+    {"failure", PF_KEY_STRING, 0, "at_equilibrium", "",
+     "quasi_static: at_equilibrium (the bonds are checked at each equilibrium the load steps reach) | sequential "
+     "(sequentially linear: before each check the state and the grips are scaled so that the most critical bond "
+     "just meets its limit; bonds then fail at their limit, not past it; prescribed displacements linear in t, "
+     "bodies without history, no walls, rigid surfaces, contact or body forces; docs/theory/quasi_static.md)",
+     NULL},
     PF_KEY_END};
 
 /* Friction on the items of a list (contact pairs) needs a step in time: refused. */
@@ -97,6 +103,11 @@ static int read_numbers(const pf_deck *d, const pf_node *sv, pf_sim_solver *s) {
   s->method = !strcmp(method, "relaxation") ? PF_SOLVER_RELAXATION
               : !strcmp(method, "snes")     ? PF_SOLVER_SNES
                                             : PF_SOLVER_NEWTON_KRYLOV;
+  const char *failure = "at_equilibrium";
+  PF_CALL(pf_deck_string(d, sv, "failure", &failure));
+  if (strcmp(failure, "at_equilibrium") && strcmp(failure, "sequential"))
+    return pf_deck_error(d, pf_node_get(sv, "failure"), "failure", "at_equilibrium or sequential (got '%s')", failure);
+  s->sequential = !strcmp(failure, "sequential");
   if (s->method != PF_SOLVER_RELAXATION && pf_node_count(pf_node_get(pf_deck_root(d), "walls")) > 0)
     return pf_deck_error(d, pf_node_get(sv, "method"), "method",
                          "%s does not take walls (their points are projected back between relaxation iterations): "
@@ -130,6 +141,7 @@ int pf_sim_setup_solver(pf_sim *sim) {
   s->load_step = pf_sim_solver_load_step;
   PF_CALL(read_numbers(d, sv, s));
   PF_CALL(check_deck(sim, sv));
+  if (s->sequential) PF_CALL(pf_sim_solver_sequential_check(sim, sv));
   int idx;
   PF_CALL(pf_points_field_register(sim->pts, PF_SOLVER_INCREMENT, 3, PF_FIELD_RESTART, &idx));
   sim->nsteps = s->load_steps; /* one step of the time loop per load step */
@@ -139,8 +151,8 @@ int pf_sim_setup_solver(pf_sim *sim) {
   if (!pf_node_get(out, "history_interval") && !pf_node_get(out, "history_time_interval") &&
       !pf_node_get(out, "history_frames"))
     sim->history_interval = 1;
-  pf_log("solver: quasi-static, %ld load steps of %g s (pseudo-time), tolerance %g, at most %ld iterations each\n",
-         s->load_steps, sim->dt, s->tolerance, s->max_iterations);
+  pf_log("solver: quasi-static, %ld load steps of %g s (pseudo-time), tolerance %g, at most %ld iterations each%s\n",
+         s->load_steps, sim->dt, s->tolerance, s->max_iterations, s->sequential ? ", sequential failure" : "");
   return 0;
 }
 
@@ -152,6 +164,7 @@ void pf_sim_solver_summary(const pf_sim *sim) {
          "passes in %.2f s\n",
          sim->step - sim->loop_steps + (sim->loop_steps > 0), sim->step, s->load_steps, s->iterations, s->evaluations,
          s->damage_passes, s->wall);
+  if (s->sequential) pf_log("  sequential failure: %ld scaled states\n", s->scalings);
   if (s->method != PF_SOLVER_RELAXATION)
     pf_log("  %s: %ld Newton steps, %ld conjugate-gradient steps; %ld equilibria finished by relaxation\n",
            s->method == PF_SOLVER_SNES ? "snes (PETSc)" : "newton_krylov", s->newton_steps, s->krylov_steps,
@@ -161,8 +174,8 @@ void pf_sim_solver_summary(const pf_sim *sim) {
 void pf_sim_solver_free(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   free(s->lambda), free(s->vel), free(s->f_old), free(s->u_last), free(s->f_body), free(s->u0), free(s->g0);
-  free(s->u1), free(s->g1), free(s->fixed), free(s->terms), free(s->f_own), free(s->nk);
-  s->terms = NULL, s->nk = NULL;
+  free(s->u1), free(s->g1), free(s->fixed), free(s->terms), free(s->f_own), free(s->nk), free(s->um);
+  s->terms = NULL, s->nk = NULL, s->um = s->gm = s->beyond = NULL;
   s->lambda = s->vel = s->f_old = s->u_last = s->f_body = s->f_own = s->u0 = s->g0 = s->u1 = s->g1 = NULL;
   s->fixed = NULL;
   s->n = 0;

@@ -24,6 +24,9 @@ typedef struct {
   double tolerance;    /* the residual relative to the reference force at convergence */
   long max_iterations; /* per load step */
   long max_damage_passes; /* re-equilibrations after bonds failed, per load step */
+  int sequential;      /* failure: sequential (the state scaled to each bond's limit; theory §5.2) */
+  long scalings;       /* sequential: the states scaled over every load step */
+  double lam;          /* sequential: the grips' place as a fraction of the load step's target */
   /* what the run did: iterations, force evaluations and damage passes over every load step */
   long iterations, evaluations, damage_passes;
   long newton_steps, krylov_steps, fallbacks; /* newton_krylov: its iterations, and load steps relaxed after it */
@@ -39,6 +42,8 @@ typedef struct {
   double *u0, *g0; /* u and the applied force (reaction or load) at the load step's start */
   double *u1, *g1; /* the same at its first equilibrium, before its damage checks failed a bond */
   double held1;    /* the energy the ledger holds there, J (sim/solver_relaxation.c, loaded) */
+  double *um, *gm; /* sequential: u and the applied force at the path's last mark */
+  double *beyond;  /* sequential: each component's work along the path past the first equilibrium, J */
   double *terms;   /* [PF_SOLVER_SUMS 3 n] each iteration's terms of its sums */
   uint8_t *fixed;  /* [3 n] prescribed components */
   double *nk;      /* newton_krylov: [NK_ARRAYS 3 n] (sim/solver_newton.c) */
@@ -63,6 +68,25 @@ void pf_sim_solver_free(pf_sim *sim);
  * not converge in max_iterations is a run error naming it, the residual and the iterations.
  * Collective. */
 int pf_sim_solver_load_step(pf_sim *sim);
+/* The force from outside whose work the solver books on component d: the reaction on a prescribed
+ * one; on a free one the interactions' force less that of the interactions that book their own
+ * work (a rigid surface's, a wall's). */
+static inline double pf_sim_solver_applied(const pf_sim_solver *s, const pf_points *p, pf_int d) {
+  return s->fixed[d] ? -p->f[d] : p->f[d] - s->f_body[d] - s->f_own[d];
+}
+/* sim/solver_sequential.c, failure: sequential (docs/theory/quasi_static.md §5.2): the deck's
+ * refusals (set-up; input errors naming file:line and key); a load step's prescribed components
+ * in proportion to t (its start; a run error otherwise); the largest failure ratio over the
+ * bodies and ranks; the path's mark at the current state (beyond zeroed: the first equilibrium)
+ * and the segment from the mark to the current state booked into beyond; the state scaled by a
+ * (lam with it; back at the target the load step places its components exactly), evaluated
+ * and booked as a segment. Collective (but the mark and the segment). */
+int pf_sim_solver_sequential_check(const pf_sim *sim, const pf_node *sv);
+int pf_sim_solver_proportional(pf_sim *sim);
+int pf_sim_solver_failure_ratio(pf_sim *sim, double *r);
+void pf_sim_solver_path_mark(pf_sim *sim);
+void pf_sim_solver_path_segment(pf_sim *sim);
+int pf_sim_solver_scale(pf_sim *sim, double a);
 /* sim/solver_forces.c, what both methods use: whether component d is free; the forces at the current
  * u (p->f: everything; s->f_body: the bodies'); the iteration's sums (q[PF_SOLVER_SUMS]); the
  * residual relative to the reference force. */

@@ -15,7 +15,9 @@
  * Damage only at equilibrium: the bodies' damage is frozen while the load step relaxes (no bond
  * fails at the out-of-balance states of the iterations); at the equilibrium reached one force
  * evaluation with the damage thawed fails the bonds whose limit is met, and if any failed the
- * load step relaxes again at the same load, until an equilibrium fails none. */
+ * load step relaxes again at the same load, until an equilibrium fails none; or, with
+ * solver.failure sequential, the state is scaled to where the most critical bond meets its limit
+ * before each check (equilibrate_sequential; sim/solver_sequential.c). */
 #include "sim/sim_impl.h"
 
 #include <math.h>
@@ -26,7 +28,7 @@
 static int scratch(pf_sim_solver *s, pf_int n) {
   if (s->n == n && s->lambda) return 0;
   free(s->lambda), free(s->vel), free(s->f_old), free(s->u_last), free(s->f_body), free(s->u0), free(s->g0);
-  free(s->u1), free(s->g1), free(s->fixed), free(s->terms), free(s->f_own);
+  free(s->u1), free(s->g1), free(s->fixed), free(s->terms), free(s->f_own), free(s->um);
   const size_t n3 = 3 * (size_t)n + 1;
   s->lambda = calloc((size_t)n + 1, sizeof(double));
   s->vel = calloc(n3, sizeof(double)), s->f_old = calloc(n3, sizeof(double));
@@ -34,11 +36,12 @@ static int scratch(pf_sim_solver *s, pf_int n) {
   s->f_own = calloc(n3, sizeof(double));
   s->u0 = calloc(n3, sizeof(double)), s->g0 = calloc(n3, sizeof(double));
   s->u1 = calloc(n3, sizeof(double)), s->g1 = calloc(n3, sizeof(double));
+  s->um = calloc(3 * n3, sizeof(double)), s->gm = s->um + n3, s->beyond = s->gm + n3;
   s->terms = calloc(PF_SOLVER_SUMS * n3, sizeof(double));
   s->fixed = calloc(n3, 1);
   s->n = n;
   PF_CHECK(s->lambda && s->vel && s->f_old && s->u_last && s->f_body && s->f_own && s->u0 && s->g0 && s->u1 && s->g1 &&
-               s->terms && s->fixed,
+               s->terms && s->fixed && s->um,
            PF_ERR_MEMORY, "out of memory for the quasi-static solver's arrays (%" PF_INT_FMT " points)", n);
   return 0;
 }
@@ -60,13 +63,6 @@ static void masses(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   pf_sim_interactions_stiffness_bounds(sim, s->lambda);
   for (pf_int i = 0; i < sim->pts->n_owned; i++) s->lambda[i] /= 4 * sim->safety * sim->safety;
-}
-
-/* The force from outside whose work the solver books on component d: the reaction on a prescribed
- * one; on a free one the interactions' force less that of the interactions that book their own
- * work (a rigid surface's, a wall's). */
-static double loads(const pf_sim_solver *s, const pf_points *p, pf_int d) {
-  return s->fixed[d] ? -p->f[d] : p->f[d] - s->f_body[d] - s->f_own[d];
 }
 
 /* The damping coefficient c[b] of each body's components: 2 sqrt(u^T 1K u / u^T u) over them
@@ -215,15 +211,59 @@ static int held(pf_sim *sim, double *e) {
 static int loaded(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   const pf_points *p = sim->pts;
-  for (pf_int d = 0; d < 3 * p->n_owned; d++) s->u1[d] = p->u[d], s->g1[d] = loads(s, p, d);
+  for (pf_int d = 0; d < 3 * p->n_owned; d++) s->u1[d] = p->u[d], s->g1[d] = pf_sim_solver_applied(s, p, d);
   pf_sim_interactions_loaded(sim, sim->dt);
+  if (s->sequential) pf_sim_solver_path_mark(sim);
   return held(sim, &s->held1);
+}
+
+static int nothing_failed(const pf_sim *sim, double r) {
+  return pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+                        "quasi-static load step %ld of %ld (t = %g s): the state was scaled to put its most critical "
+                        "bond at its limit (failure ratio %.6g before the scaling), but the damage check failed no "
+                        "bond: the bodies' failure ratio and their damage test disagree",
+                        sim->step, sim->solver.load_steps, sim->t, r);
+}
+
+/* Sequentially linear failure (sim/solver_sequential.c): relax at the grips' place lam (a fraction
+ * of the load step's target); at the equilibrium the largest failure ratio r says whether the
+ * target keeps every bond within its limit (r / lam <= 1): then the state goes to the target,
+ * relaxes there, and a check that fails nothing ends the load step; else the state is scaled by
+ * (1 + SEQUENTIAL_MARGIN) / r, which puts the most critical bonds just past their limit, the
+ * check fails them, and the state relaxes at those grips. Arguments as equilibrate's. */
+enum { SEQUENTIAL_MARGIN_PPM = 1000 }; /* the bonds within 0.1 % of the most critical fail together */
+static int equilibrate_sequential(pf_sim *sim, long *it, double *res, long *passes, int *stop) {
+  pf_sim_solver *s = &sim->solver;
+  *it = 0;
+  s->lam = 1;
+  for (*passes = 0;; ++*passes) {
+    long n = 0;
+    double failed = 0, r = 0;
+    PF_CALL(solve(sim, &n, res, stop));
+    *it += n;
+    if (*stop) return 0;
+    if (*passes == 0) PF_CALL(loaded(sim));
+    else pf_sim_solver_path_segment(sim);
+    PF_CALL(pf_sim_solver_failure_ratio(sim, &r));
+    if (r <= s->lam && s->lam < 1) {
+      PF_CALL(pf_sim_solver_scale(sim, 1 / s->lam));
+    } else if (r <= s->lam) {
+      PF_CALL(check_damage(sim, &failed));
+      if (failed == 0) return 0;
+    } else {
+      PF_CALL(pf_sim_solver_scale(sim, (1 + 1e-6 * SEQUENTIAL_MARGIN_PPM) / r));
+      PF_CALL(check_damage(sim, &failed));
+      if (failed == 0) return nothing_failed(sim, r);
+    }
+    if (*passes == sim->solver.max_damage_passes) return too_many_passes(sim, failed);
+  }
 }
 
 /* Relax, check the damage at the equilibrium, relax again at the same load while bonds fail:
  * *it iterations in all, *res the last relative residual, *passes the relaxations after the first;
  * *stop as relax leaves it. */
 static int equilibrate(pf_sim *sim, long *it, double *res, long *passes, int *stop) {
+  if (sim->solver.sequential) return equilibrate_sequential(sim, it, res, passes, stop);
   *it = 0;
   for (*passes = 0;; ++*passes) {
     long n = 0;
@@ -251,7 +291,7 @@ static int begin(pf_sim *sim) {
   memcpy(s->u_last, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
   memcpy(s->u0, p->u, sizeof(double) * 3 * (size_t)p->n_owned);
   PF_CALL(pf_sim_solver_evaluate(sim));
-  for (pf_int d = 0; d < 3 * p->n_owned; d++) s->g0[d] = loads(s, p, d);
+  for (pf_int d = 0; d < 3 * p->n_owned; d++) s->g0[d] = pf_sim_solver_applied(s, p, d);
   return 0;
 }
 
@@ -267,7 +307,8 @@ static void predict(pf_sim *sim) {
 
 /* The load step's end: the work of the reactions and loads over it into each body's external
  * work by the trapezoidal rule along its path, (g0 + g1) / 2 . (u1 - u0) to the first
- * equilibrium and (g1 + g) / 2 . (u - u1) past it; after damage passes, what the relaxation's
+ * equilibrium and (g1 + g) / 2 . (u - u1) past it (sequential failure: the legs of the scaled
+ * path past it, s->beyond); after damage passes, what the relaxation's
  * damping took at the fixed load into relaxation_dissipation: the loads' work past the first
  * equilibrium less what the ledger holds more than there (docs/theory/quasi_static.md §5.1); the
  * interactions' books at the equilibrium (the conditions' reactions, work and grip
@@ -278,12 +319,14 @@ static int finish(pf_sim *sim, long passes) {
   double w[PF_MAX_BODIES] = {0}, *inc = pf_points_field_get(p, PF_SOLVER_INCREMENT), past = 0, now = 0;
   const pf_int n3 = 3 * p->n_owned;
   if (passes == 0) /* (the equilibrium is the first: the same bits as one segment) */
-    for (pf_int d = 0; d < n3; d++) s->u1[d] = p->u[d], s->g1[d] = loads(s, p, d);
+    for (pf_int d = 0; d < n3; d++) s->u1[d] = p->u[d], s->g1[d] = pf_sim_solver_applied(s, p, d);
   else PF_CALL(held(sim, &now));
-  PF_CALL(pf_sim_interactions_settled(sim, sim->dt, s->g0, s->u0, passes ? s->g1 : NULL, passes ? s->u1 : NULL));
+  const double *path = s->sequential && passes ? s->beyond : NULL;
+  if (path) pf_sim_solver_path_segment(sim);
+  PF_CALL(pf_sim_interactions_settled(sim, sim->dt, s->g0, s->u0, passes ? s->g1 : NULL, passes ? s->u1 : NULL, path));
   for (pf_int d = 0; d < n3; d++) {
-    const double g = loads(s, p, d), to_first = 0.5 * (s->g0[d] + s->g1[d]) * (s->u1[d] - s->u0[d]);
-    const double beyond = 0.5 * (s->g1[d] + g) * (p->u[d] - s->u1[d]);
+    const double g = pf_sim_solver_applied(s, p, d), to_first = 0.5 * (s->g0[d] + s->g1[d]) * (s->u1[d] - s->u0[d]);
+    const double beyond = path ? path[d] : 0.5 * (s->g1[d] + g) * (p->u[d] - s->u1[d]);
     w[p->body[d / 3]] += to_first + beyond;
     past += beyond;
     inc[d] = p->u[d] - s->u0[d];
@@ -339,6 +382,7 @@ int pf_sim_solver_load_step(pf_sim *sim) {
   sim->step++;
   sim->t = (double)sim->step / (double)s->load_steps * sim->final_time;
   pf_sim_interactions_place(sim, sim->dt);
+  if (s->sequential) PF_CALL(pf_sim_solver_proportional(sim));
   masses(sim);
   predict(sim);
   project(sim);
