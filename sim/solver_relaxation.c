@@ -229,11 +229,12 @@ static int nothing_failed(const pf_sim *sim, double r) {
  * of the load step's target); at the equilibrium the largest failure ratio r says whether the
  * target keeps every bond within its limit (r / lam <= 1): then the state goes to the target,
  * relaxes there, and a check that fails nothing ends the load step; else the state is scaled by
- * (1 + SEQUENTIAL_MARGIN) / r, which puts the most critical bonds just past their limit, the
- * check fails them, and the state relaxes at those grips. Arguments as equilibrate's. */
-enum { SEQUENTIAL_MARGIN_PPM = 1000 }; /* the bonds within 0.1 % of the most critical fail together */
+ * (1 + margin) / r, which puts the most critical bonds just past their limit (the bonds within
+ * 0.1 % of it with them), the check fails them, and the state relaxes at those grips. Arguments
+ * as equilibrate's. */
 static int equilibrate_sequential(pf_sim *sim, long *it, double *res, long *passes, int *stop) {
   pf_sim_solver *s = &sim->solver;
+  const double margin = 1e-3;
   *it = 0;
   s->lam = 1;
   for (*passes = 0;; ++*passes) {
@@ -251,7 +252,7 @@ static int equilibrate_sequential(pf_sim *sim, long *it, double *res, long *pass
       PF_CALL(check_damage(sim, &failed));
       if (failed == 0) return 0;
     } else {
-      PF_CALL(pf_sim_solver_scale(sim, (1 + 1e-6 * SEQUENTIAL_MARGIN_PPM) / r));
+      PF_CALL(pf_sim_solver_scale(sim, (1 + margin) / r));
       PF_CALL(check_damage(sim, &failed));
       if (failed == 0) return nothing_failed(sim, r);
     }
