@@ -46,7 +46,6 @@ static int post_step(void *data, pf_points *pts) { return pd->post_step(pd_of(da
 static int freeze_damage(void *data, const pf_points *pts, int frozen) {
   return pd->freeze_damage(pd_of(data), pts, frozen);
 }
-static double failure_ratio(const void *data, const pf_points *pts) { return pd->failure_ratio(pd_of(data), pts); }
 static void take_damage_work(void *data, double w[2]) { pd->take_damage_work(pd_of(data), w); }
 /* History: the elements' and the PD operator's (both read the load step's increment over one
  * velocity field, so both take one increment from the committed state). */
@@ -106,7 +105,6 @@ const pf_body_ops pf_body_kind_coupled = {
     .uses_velocity = pf_body_always,
     .post_step = post_step,
     .freeze_damage = freeze_damage,
-    .failure_ratio = failure_ratio,
     .history = history,
     .take_damage_work = take_damage_work,
     .energies = energies,
