@@ -174,6 +174,7 @@ int pf_body_uses_velocity(const pf_body *b);
 int pf_body_post_step(const pf_body *b, pf_points *pts);
 int pf_body_freeze_damage(const pf_body *b, const pf_points *pts, int frozen);
 double pf_body_failure_ratio(const pf_body *b, const pf_points *pts); /* 0 without the op */
+int pf_body_fails_without_ratio(const pf_body *b); /* freeze_damage without failure_ratio */
 int pf_body_keeps_history(const pf_body *b, pf_points *pts);
 int pf_body_history(const pf_body *b, pf_points *pts, pf_history_op op);
 /* The failed directed bonds of the body's owned rows (0 for a body without bonds). */

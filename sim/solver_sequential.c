@@ -42,7 +42,7 @@ int pf_sim_solver_sequential_check(const pf_sim *sim, const pf_node *sv) {
     const pf_body *body = &sim->body[b];
     const char *why = pf_body_keeps_history(body, sim->pts)
                           ? "keeps history (plasticity, a rate form or elements), which a scaled state does not follow"
-                      : body->ops->freeze_damage && !body->ops->failure_ratio ? "has no failure ratio for its bonds"
+                      : pf_body_fails_without_ratio(body) ? "has no failure ratio for its bonds"
                                                                               : NULL;
     if (why)
       return pf_deck_error(sim->deck, pf_node_get(sv, "failure"), "failure",
