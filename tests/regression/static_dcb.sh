@@ -5,7 +5,7 @@
 # spacings, critical energy G0 = 12 J/m^2, the grips opened to 57.5 um in 20 load steps,
 # tolerance 1e-5. Run with each solver.failure: at_equilibrium (bonds checked at the load steps'
 # equilibria; about 9 s of CPU) and sequential (the state scaled to each bond's limit before it
-# fails; about 16 s, and the same on 2 and 3 ranks). Checks, for both:
+# fails; about 16 s). Checks, for both:
 #  - the crack grows by repeated equilibria: damage passes in at least 3 load steps, and the
 #    energy release rate comes from at least 3 load steps past one horizon of growth
 #    (scripts/dcb_energy_release.py --quasi-static, or --sequential);
@@ -30,8 +30,9 @@
 #    5 % for the crack-area count; and G >= that (the relaxation's damping takes what a bond's
 #    failure releases beyond it);
 #  - sequential only: G within 10 % of G0 (Willberg's band; measured 12.79, +6.6 %; at
-#    equilibrium 15.05, +25 %, the bonds found past their limit), and the same state digest on 1,
-#    2 and 3 ranks.
+#    equilibrium 15.05, +25 %, the bonds found past their limit). (Its digests on 1, 2 and 3
+#    ranks: static_damage.sh, on a bar: a relaxation's 20,000 iterations of sums on 3 ranks over
+#    2 cores take minutes.)
 # usage: static_dcb.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$(cd "$(dirname "$1")" && pwd)/$(basename "$1") scratch=$2 fail=0
@@ -106,10 +107,4 @@ PYEOF
 
 check at_equilibrium || fail=1
 check sequential || fail=1
-digests=$(digest_of "$out")
-for np in 2 3; do
-  quasi_static sequential $np || { echo "FAIL: sequential on $np ranks: $out"; fail=1; }
-  digests="$digests $(digest_of "$out")"
-done
-digests_agree sequential $digests || fail=1
 exit $fail
