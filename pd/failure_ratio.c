@@ -39,7 +39,7 @@ static double point_ratio(const pf_pd_body *b, const pf_points *pts, const limit
     if (ext <= 0) continue;
     if (slim > 0 && isfinite(slim)) rmax = fmax(rmax, ext / r0 / slim);
     const double wc = l->wc_bond ? l->wc_bond[k] : l->critical_energy;
-    if (energy && isfinite(wc)) rmax = fmax(rmax, sqrt(b->ops->bond_energy_at(b, pts, i, k, r0, ext) / wc));
+    if (energy && isfinite(wc)) rmax = fmax(rmax, sqrt(b->ops->bond_energy_at(b, i, k, r0, ext) / wc));
   }
   return rmax;
 }

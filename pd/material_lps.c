@@ -144,9 +144,7 @@ static int lps_partial_stress(pf_pd_body *b, pf_points *pts) {
 
 /* Bond k of point i's energy per V_i V_j, w = (1/2) (t_ij + t_ji) e, with the last evaluation's
  * dilatations and moments (the force pass's critical-energy test). */
-static double lps_bond_energy_at(const pf_pd_body *b, const pf_points *pts, pf_int i, int64_t k, double r0,
-                                 double ext) {
-  (void)pts;
+static double lps_bond_energy_at(const pf_pd_body *b, pf_int i, int64_t k, double r0, double ext) {
   const lps *p = b->mat;
   const pf_int j = b->fam.neighbor[k];
   const double w = pf_pd_omega(&b->influence, r0);

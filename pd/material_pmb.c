@@ -299,9 +299,7 @@ static double pmb_micromodulus(const pf_pd_body *b, double delta) {
 
 /* Bond k of point i's pair micropotential per V_i V_j, (1/2) c omega s^2 |xi| (Silling & Askari
  * 2005, eq. 6; the force pass's critical-energy test). */
-static double pmb_bond_energy_at(const pf_pd_body *b, const pf_points *pts, pf_int i, int64_t k, double r0,
-                                 double ext) {
-  (void)pts;
+static double pmb_bond_energy_at(const pf_pd_body *b, pf_int i, int64_t k, double r0, double ext) {
   const double s = ext / r0, c = bond_c(b, i, b->fam.neighbor[k], ((const pmb *)b->mat)->c);
   return 0.5 * c * pf_pd_omega(&b->influence, r0) * s * s * r0;
 }

@@ -168,7 +168,7 @@ struct pf_pd_material_ops {
   /* With bond_energy: the energy per V_i V_j of bond k of owned point i (extension ext > 0, rest
    * length r0) at the last force evaluation's state, as its kernel's energy test evaluates it
    * (pf_pd_body_failure_ratio). */
-  double (*bond_energy_at)(const pf_pd_body *b, const pf_points *pts, pf_int i, int64_t k, double r0, double ext);
+  double (*bond_energy_at)(const pf_pd_body *b, pf_int i, int64_t k, double r0, double ext);
   int several_materials; /* 1: its kernels read each point's constants (pf_pd_K, pf_pd_G,
                             pf_pd_bond_stiffness): the body may have material_regions */
   int records_rest;   /* 1: every bond its kernels fail passes through its release, which gives
