@@ -83,7 +83,7 @@ static inline double pf_sim_solver_applied(const pf_sim_solver *s, const pf_poin
  * and booked as a segment. Collective (but the mark and the segment). */
 int pf_sim_solver_sequential_check(const pf_sim *sim, const pf_node *sv);
 int pf_sim_solver_proportional(pf_sim *sim);
-int pf_sim_solver_failure_ratio(pf_sim *sim, double *r);
+double pf_sim_solver_failure_ratio(pf_sim *sim);
 void pf_sim_solver_path_mark(pf_sim *sim);
 void pf_sim_solver_path_segment(pf_sim *sim);
 int pf_sim_solver_scale(pf_sim *sim, double a);

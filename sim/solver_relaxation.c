@@ -239,13 +239,13 @@ static int equilibrate_sequential(pf_sim *sim, long *it, double *res, long *pass
   s->lam = 1;
   for (*passes = 0;; ++*passes) {
     long n = 0;
-    double failed = 0, r = 0;
+    double failed = 0;
     PF_CALL(solve(sim, &n, res, stop));
     *it += n;
     if (*stop) return 0;
     if (*passes == 0) PF_CALL(loaded(sim));
     else pf_sim_solver_path_segment(sim);
-    PF_CALL(pf_sim_solver_failure_ratio(sim, &r));
+    const double r = pf_sim_solver_failure_ratio(sim);
     if (r <= s->lam && s->lam < 1) {
       PF_CALL(pf_sim_solver_scale(sim, 1 / s->lam));
     } else if (r <= s->lam) {

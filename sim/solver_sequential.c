@@ -70,11 +70,10 @@ int pf_sim_solver_proportional(pf_sim *sim) {
                        t1, t0, off, big);
 }
 
-int pf_sim_solver_failure_ratio(pf_sim *sim, double *r) {
+double pf_sim_solver_failure_ratio(pf_sim *sim) {
   double local = 0;
   for (int b = 0; b < sim->nbodies; b++) local = fmax(local, pf_body_failure_ratio(&sim->body[b], sim->pts));
-  *r = pf_max_all(local);
-  return 0;
+  return pf_max_all(local);
 }
 
 void pf_sim_solver_path_mark(pf_sim *sim) {
