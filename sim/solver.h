@@ -37,6 +37,7 @@ typedef struct {
   double *vel;     /* the relaxation's velocity u-dot^(n-1/2), m per iteration */
   double *f_old;   /* F^(n-1), the force of the previous iteration */
   double *u_last;  /* u at the last force evaluation (the bodies read v = u - u_last, dt = 1) */
+  double *u_relax; /* u where the relaxation started (the damping's quotient reads u - u_relax) */
   double *f_body;  /* the bodies' part of the last evaluation (the rest is the interactions') */
   double *f_own;   /* the part of the interactions that book their own work (rigid surfaces, walls) */
   double *u0, *g0; /* u and the applied force (reaction or load) at the load step's start */

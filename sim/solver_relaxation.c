@@ -5,7 +5,9 @@
  *   u-dot^(1/2)   = F^0 / (2 lambda)
  *   u^(n+1)       = u^n + u-dot^(n+1/2)
  *   u-dot^(n+1/2) = ((2 - c^n) u-dot^(n-1/2) + 2 F^n / lambda) / (2 + c^n)
- *   c^n = 2 sqrt(u^T 1K u / u^T u),  1K_ii = -(F_i^n - F_i^(n-1)) / (lambda_i u-dot_i^(n-1/2))
+ *   c^n = 2 sqrt(w^T 1K w / w^T w),  1K_ii = -(F_i^n - F_i^(n-1)) / (lambda_i u-dot_i^(n-1/2))
+ * with w = u - u^s the displacement since this relaxation started (u^s; Kilic & Madenci's u from a
+ * start at rest, u = 0: a load step's predictor or a damage pass starts elsewhere, theory §2)
  * over the free components, c^n each body's own over its components (theory §2); F is the force
  * of the explicit step (bodies, then the loads), the bodies reading an increment as their velocity
  * over a step of 1: a body that keeps history the load step's (its history put back as committed
@@ -36,7 +38,7 @@ static int scratch(pf_sim_solver *s, pf_int n) {
   s->f_own = calloc(n3, sizeof(double));
   s->u0 = calloc(n3, sizeof(double)), s->g0 = calloc(n3, sizeof(double));
   s->u1 = calloc(n3, sizeof(double)), s->g1 = calloc(n3, sizeof(double));
-  s->um = calloc(3 * n3, sizeof(double)), s->gm = s->um + n3, s->beyond = s->gm + n3;
+  s->um = calloc(4 * n3, sizeof(double)), s->gm = s->um + n3, s->beyond = s->gm + n3, s->u_relax = s->beyond + n3;
   s->terms = calloc(PF_SOLVER_SUMS * n3, sizeof(double));
   s->fixed = calloc(n3, 1);
   s->n = n;
@@ -65,7 +67,7 @@ static void masses(pf_sim *sim) {
   for (pf_int i = 0; i < sim->pts->n_owned; i++) s->lambda[i] /= 4 * sim->safety * sim->safety;
 }
 
-/* The damping coefficient c[b] of each body's components: 2 sqrt(u^T 1K u / u^T u) over them
+/* The damping coefficient c[b] of each body's components: 2 sqrt(w^T 1K w / w^T w) over them
  * (pf_sim_solver_quotient_terms), 0 where the quotient is not positive, at most 2. With one body
  * the iteration's sums q are its own. Collective. */
 static int damping(pf_sim *sim, const double *q, double *c) {
@@ -131,6 +133,7 @@ static int relax(pf_sim *sim, long *it, double *res, int *stop) {
   pf_sim_solver *s = &sim->solver;
   double q[PF_SOLVER_SUMS];
   memset(s->vel, 0, sizeof(double) * 3 * (size_t)sim->pts->n_owned);
+  memcpy(s->u_relax, sim->pts->u, sizeof(double) * 3 * (size_t)sim->pts->n_owned);
   PF_CALL(pf_sim_solver_evaluate(sim));
   PF_CALL(pf_sim_solver_measure(sim, q));
   for (*it = 0;; ++*it) {
