@@ -36,7 +36,8 @@
 #    damage through load step 10, damage passes and scaled states in load step 11; the bonds fail
 #    at their limit, not up to 10 % past it, so they take less energy than at equilibrium
 #    (damage_dissipation; measured 0.0060 J against 0.0105 J); the energy balance closes within
-#    1e-4 of the work (measured 2.1e-6); the same state digest on 1, 2 and 3 ranks; grips not in
+#    1e-4 of the work (measured 2.1e-6); the same state digest on 1, 2 and 3 ranks, and when
+#    restarted on 2 ranks from a checkpoint of load step 10 written on 1; grips not in
 #    proportion to t (u = e x (t/T)^2): an error naming solver.failure and a non-zero exit.
 # usage: static_damage.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
@@ -162,6 +163,12 @@ for np in 2 3; do
   digests="$digests $(digest_of "$d")"
 done
 digests_agree sequential $digests || fail=1
+ck=(--quiet --set solver.failure=sequential --set 'restart={file: ck.h5, interval: 10}')
+"$exe" "${ck[@]}" --output-dir ck lps.yaml > ck.log 2>&1 || { echo "FAIL: sequential with a checkpoint: $(tail -3 ck.log)"; fail=1; }
+d=$(run 2 "$exe" "${ck[@]}" --restart ck/ck.h5 --output-dir restarted lps.yaml 2>&1) ||
+  { echo "FAIL: sequential restarted on 2 ranks: $d"; fail=1; }
+echo "sequential, restarted from load step 10 on 2 ranks: digest $(digest_of "$d")"
+[ "$(digest_of "$d")" = "${digests%% *}" ] || { echo "FAIL: not the uninterrupted run's ${digests%% *}"; fail=1; }
 echo "$o" | grep -E '^load step 1[12]/|scaled states'
 echo "$o" | grep -q '^load step 11/12 .* damage passes [1-9]' || { echo "FAIL: sequential: no damage pass in load step 11"; fail=1; }
 "$PY" - <<'PYEOF' || fail=1
