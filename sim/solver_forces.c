@@ -74,9 +74,9 @@ static double applied(const pf_sim_solver *s, const pf_points *p, pf_int d) {
 
 void pf_sim_solver_quotient_terms(const pf_sim_solver *s, const pf_points *p, pf_int d, double *uku, double *uu) {
   const int fr = pf_sim_solver_is_free(s, d);
-  const double u = p->u[d] - s->u_relax[d], dv = s->vel[d] * s->lambda[d / 3];
-  *uku = fr && dv != 0 ? -u * u * (p->f[d] - s->f_old[d]) / dv : 0;
-  *uu = fr ? u * u : 0;
+  const double w = p->u[d] - s->u_relax[d], dv = s->vel[d] * s->lambda[d / 3];
+  *uku = fr && dv != 0 ? -w * w * (p->f[d] - s->f_old[d]) / dv : 0;
+  *uu = fr ? w * w : 0;
 }
 
 /* The iteration's sums: the residual, the reference force and the internal forces (squared

@@ -30,20 +30,21 @@
 static int scratch(pf_sim_solver *s, pf_int n) {
   if (s->n == n && s->lambda) return 0;
   free(s->lambda), free(s->vel), free(s->f_old), free(s->u_last), free(s->f_body), free(s->u0), free(s->g0);
-  free(s->u1), free(s->g1), free(s->fixed), free(s->terms), free(s->f_own), free(s->um);
+  free(s->u1), free(s->g1), free(s->fixed), free(s->terms), free(s->f_own), free(s->um), free(s->u_relax);
   const size_t n3 = 3 * (size_t)n + 1;
   s->lambda = calloc((size_t)n + 1, sizeof(double));
   s->vel = calloc(n3, sizeof(double)), s->f_old = calloc(n3, sizeof(double));
-  s->u_last = calloc(n3, sizeof(double)), s->f_body = calloc(n3, sizeof(double));
+  s->u_last = calloc(n3, sizeof(double)), s->u_relax = calloc(n3, sizeof(double));
+  s->f_body = calloc(n3, sizeof(double));
   s->f_own = calloc(n3, sizeof(double));
   s->u0 = calloc(n3, sizeof(double)), s->g0 = calloc(n3, sizeof(double));
   s->u1 = calloc(n3, sizeof(double)), s->g1 = calloc(n3, sizeof(double));
-  s->um = calloc(4 * n3, sizeof(double)), s->gm = s->um + n3, s->beyond = s->gm + n3, s->u_relax = s->beyond + n3;
+  s->um = calloc(3 * n3, sizeof(double)), s->gm = s->um + n3, s->beyond = s->gm + n3;
   s->terms = calloc(PF_SOLVER_SUMS * n3, sizeof(double));
   s->fixed = calloc(n3, 1);
   s->n = n;
-  PF_CHECK(s->lambda && s->vel && s->f_old && s->u_last && s->f_body && s->f_own && s->u0 && s->g0 && s->u1 && s->g1 &&
-               s->terms && s->fixed && s->um,
+  PF_CHECK(s->lambda && s->vel && s->f_old && s->u_last && s->u_relax && s->f_body && s->f_own && s->u0 && s->g0 &&
+               s->u1 && s->g1 && s->terms && s->fixed && s->um,
            PF_ERR_MEMORY, "out of memory for the quasi-static solver's arrays (%" PF_INT_FMT " points)", n);
   return 0;
 }
