@@ -44,7 +44,7 @@ int pf_rigid_same_surface(const pf_rigid *a, const pf_rigid *b);
 int pf_rigid_force_local(pf_rigid *r, pf_points *pts, double dt, double sums[4], double *dissipation);
 int pf_rigid_force(pf_rigid *r, pf_points *pts, double dt, double reaction[3], double *energy,
                    double *dissipation);
-/* Quasi-static loading with friction (docs/theory/quasi_static.md §8): the normal penalty as
+/* Quasi-static loading with friction (docs/theory/quasi_static_methods.md §8): the normal penalty as
  * pf_rigid_force_local and the tangential penalty with its stick/slip return mapping from each
  * owned point's committed slip slip[3 i] (m; the surface's motion since the start D = x - x0):
  * terms NULL: add the forces to pts->f, sums[4] this rank's reaction (3) and energy (the normal

@@ -27,7 +27,7 @@
  * step (so friction cannot reverse the sliding within a step). The work dissipated over the
  * step is -F_t . v_t dt = |F_t| |v_t| dt >= 0. Frictionless when mu = 0, dt = 0 or v_t = 0.
  *
- * Under the quasi-static solver (pf_rigid_force_static; docs/theory/quasi_static.md §8) friction
+ * Under the quasi-static solver (pf_rigid_force_static; docs/theory/quasi_static_methods.md §8) friction
  * is a tangential penalty with a stick/slip return mapping (Wriggers 2006, ch. 5; Simo & Laursen
  * 1992): each point keeps its slip s_i (a point field), committed at converged load steps only;
  * with D the surface's motion since the start, the elastic tangential displacement is

@@ -70,7 +70,7 @@ void pf_fem_body_state_set(pf_fem_body *b, const double *full);
  * energies: the table rows above): commit the current one (restore 0), or put the committed one
  * back (restore 1). The quasi-static solver commits at each load step's start and restores before
  * each force evaluation, so that every evaluation is one increment from the last converged state
- * (docs/theory/quasi_static.md §6). Element deletion is not undone. */
+ * (docs/theory/quasi_static_failure.md §6). Element deletion is not undone. */
 int pf_fem_body_history(pf_fem_body *b, int restore);
 /* Restore the stable step of the last force evaluation (restart, re-partition). */
 void pf_fem_body_set_stable_dt(pf_fem_body *b, double dt);

@@ -6,7 +6,7 @@
  *            kernel evaluates it (pf_pd_material_ops.bond_energy_at), w_c its limit.
  * Both grow in proportion when a linear state is scaled, so a state scaled by 1 / r puts the
  * most critical bond exactly at its limit: the quasi-static solver's sequentially linear failure
- * (docs/theory/quasi_static.md §5.2; Rots & Invernizzi 2004, Ni et al. 2018). */
+ * (docs/theory/quasi_static_failure.md §5.2; Rots & Invernizzi 2004, Ni et al. 2018). */
 #include "pd/pd_impl.h"
 
 #include <math.h>

@@ -1,4 +1,4 @@
-/* A PD body's history for the quasi-static solver (docs/theory/quasi_static.md §6): the point
+/* A PD body's history for the quasi-static solver (docs/theory/quasi_static_failure.md §6): the point
  * fields its material's force advances (named by the material's setup, pf_pd_body_keep_history)
  * over the body's owned points, and the bonds' material state (fam.state), committed at a load
  * step's start and put back before each force evaluation, so that each evaluation is one

@@ -193,7 +193,7 @@ int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts);
  * which only compare against the limits the law leaves (pd/pd_impl.h), read none (every point's
  * critical stretch INFINITY, no energy limit); thawed, the law's limits are back as they were.
  * The quasi-static solver freezes the damage while it relaxes a load step and checks it at the
- * equilibrium reached (docs/theory/quasi_static.md §5). Nothing may re-attach the body while
+ * equilibrium reached (docs/theory/quasi_static_failure.md §5). Nothing may re-attach the body while
  * frozen. */
 int pf_pd_body_freeze_damage(pf_pd_body *b, const pf_points *pts, int frozen);
 /* The largest failure ratio over the owned points' intact bonds at the last force evaluation's
@@ -205,7 +205,7 @@ int pf_pd_body_keeps_history(const pf_pd_body *b);
 /* Commit the body's history (restore 0: the material's history fields of its owned points and
  * its bonds' state as they are now) or put the committed one back (restore 1). The
  * quasi-static solver commits at each load step's start and restores before each force
- * evaluation (docs/theory/quasi_static.md §6). */
+ * evaluation (docs/theory/quasi_static_failure.md §6). */
 int pf_pd_body_history(pf_pd_body *b, pf_points *pts, int restore);
 /* Stored elastic energy (J) of the body's owned points. */
 double pf_pd_body_energy(const pf_pd_body *b, const pf_points *pts);

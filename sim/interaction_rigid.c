@@ -7,7 +7,7 @@
  * work on the points -(R^n + R^(n+1))/2 . dx (<name>_work, in external_work) and the impulse
  * -(R^n + R^(n+1)) dt/2 (<name>_impulse): the trapezoidal rule of the ledger, second order in
  * the step, since d(K + W_el + U)/dt = -R . v.
- * Under the quasi-static solver (docs/theory/quasi_static.md §8) the surface is placed at each
+ * Under the quasi-static solver (docs/theory/quasi_static_methods.md §8) the surface is placed at each
  * load step's pseudo-time t (moved by dx = v(t - dt/2) dt) and its work booked at the load step's
  * equilibrium by the same rule, -(R_start + R_end)/2 . dx, with R_start the force of the points
  * at the load step's start; its penalty stiffness bounds the fictitious masses. A surface with

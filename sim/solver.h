@@ -24,7 +24,7 @@ typedef struct {
   double tolerance;    /* the residual relative to the reference force at convergence */
   long max_iterations; /* per load step */
   long max_damage_passes; /* re-equilibrations after bonds failed, per load step */
-  int sequential;      /* failure: sequential (the state scaled to each bond's limit; theory §5.2) */
+  int sequential;      /* failure: sequential (each bond's limit; docs/theory/quasi_static_failure.md §5.2) */
   long scalings;       /* sequential: the states scaled over every load step */
   double lam;          /* sequential: the grips' place as a fraction of the load step's target */
   /* what the run did: iterations, force evaluations and damage passes over every load step */
@@ -75,7 +75,7 @@ int pf_sim_solver_load_step(pf_sim *sim);
 static inline double pf_sim_solver_applied(const pf_sim_solver *s, const pf_points *p, pf_int d) {
   return s->fixed[d] ? -p->f[d] : p->f[d] - s->f_body[d] - s->f_own[d];
 }
-/* sim/solver_sequential.c, failure: sequential (docs/theory/quasi_static.md §5.2): the deck's
+/* sim/solver_sequential.c, failure: sequential (docs/theory/quasi_static_failure.md §5.2): the deck's
  * refusals (set-up; input errors naming file:line and key); a load step's prescribed components
  * in proportion to t (its start; a run error otherwise); the largest failure ratio over the
  * bodies and ranks; the path's mark at the current state (beyond zeroed: the first equilibrium)

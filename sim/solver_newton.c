@@ -1,5 +1,5 @@
 /* Equilibrium of a load step by an inexact Newton method with a matrix-free Krylov step
- * (solver.method: newton_krylov; docs/theory/quasi_static.md §9). With F(u) the force of the
+ * (solver.method: newton_krylov; docs/theory/quasi_static_methods.md §9). With F(u) the force of the
  * explicit step on the free components (the bodies' history put back as committed at the load
  * step's start before each evaluation, so F is a function of u alone) and K = -dF/du:
  *   solve K du = F(u) by conjugate gradients, preconditioned by the fictitious masses lambda

@@ -1,7 +1,7 @@
 /* One load step of the quasi-static solver by adaptive dynamic relaxation (Underwood 1983; Kilic &
  * Madenci 2010; docs/theory/quasi_static.md). With the fictitious time step 1 and a diagonal
  * fictitious mass lambda_i >= (1/4) sum_j |K_ij| (Gershgorin, from the bodies' stiffness bounds
- * plus the rigid surfaces' penalty stiffness, theory §8):
+ * plus the rigid surfaces' penalty stiffness, docs/theory/quasi_static_methods.md §8):
  *   u-dot^(1/2)   = F^0 / (2 lambda)
  *   u^(n+1)       = u^n + u-dot^(n+1/2)
  *   u-dot^(n+1/2) = ((2 - c^n) u-dot^(n-1/2) + 2 F^n / lambda) / (2 + c^n)
@@ -211,7 +211,7 @@ static int held(pf_sim *sim, double *e) {
 
 /* The load step's first equilibrium, before its damage check: u1, the applied forces g1, the
  * energy held, and what the interactions keep of it (the load step's work is done here: past it
- * the load stays while bonds fail; docs/theory/quasi_static.md §5.1). Collective. */
+ * the load stays while bonds fail; docs/theory/quasi_static_failure.md §5.1). Collective. */
 static int loaded(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   const pf_points *p = sim->pts;
@@ -315,7 +315,7 @@ static void predict(pf_sim *sim) {
  * equilibrium and (g1 + g) / 2 . (u - u1) past it (sequential failure: the legs of the scaled
  * path past it, s->beyond); after damage passes, what the relaxation's
  * damping took at the fixed load into relaxation_dissipation: the loads' work past the first
- * equilibrium less what the ledger holds more than there (docs/theory/quasi_static.md §5.1); the
+ * equilibrium less what the ledger holds more than there (docs/theory/quasi_static_failure.md §5.1); the
  * interactions' books at the equilibrium (the conditions' reactions, work and grip
  * displacements); the increment kept; the points at rest. Collective. */
 static int finish(pf_sim *sim, long passes) {

@@ -1,5 +1,5 @@
 /* Sequentially linear failure under the quasi-static solver (`solver.failure: sequential`;
- * docs/theory/quasi_static.md §5.2; Rots & Invernizzi 2004, and Ni et al. 2018 for
+ * docs/theory/quasi_static_failure.md §5.2; Rots & Invernizzi 2004, and Ni et al. 2018 for
  * peridynamics). A body that is linear at its current damage stays at equilibrium when its state
  * and its prescribed displacements are scaled together, and its bonds' failure ratios (stretch over
  * limit, or the square root of energy over limit: sim/body.h) scale with it. So instead of

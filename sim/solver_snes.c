@@ -1,4 +1,4 @@
-/* Equilibrium of a load step by PETSc's SNES (solver.method: snes; docs/theory/quasi_static.md
+/* Equilibrium of a load step by PETSc's SNES (solver.method: snes; docs/theory/quasi_static_methods.md
  * §9.1): the inexact Newton method of solver_newton.c, its parts taken from the library. With
  * F(u) the force on the free components (the bodies' history put back as committed at the load
  * step's start before each evaluation) the nonlinear function is -F, whose Jacobian K is the

@@ -9,7 +9,7 @@
 #    coupled run and of CalculiX within 3 % of Howland's 3.14 for 2a/W = 0.2 (Heywood's
 #    formula gives 3.140; Kirsch's infinite plate 3);
 #  - the energy balance of both runs within 1e-4 of the external work (their history kept one
-#    increment from the committed state: docs/theory/quasi_static.md §6);
+#    increment from the committed state: docs/theory/quasi_static_failure.md §6);
 # and times both runs (their summary lines); and the coupled deck on the coarse mesh
 # (parameters.h = 1 mm, relaxed to 1e-3): the same state digest on 1, 2 and 3 ranks.
 # Needs ccx and /usr/bin/python3 with numpy and netCDF4 (exit 77, skipped, without ccx).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Damage under quasi-static loading (docs/theory/quasi_static.md §5): bodies fail no bond while a
+# Damage under quasi-static loading (docs/theory/quasi_static_failure.md §5): bodies fail no bond while a
 # load step relaxes; at each equilibrium one damage check fails the bonds whose limit is met, and
 # the load step relaxes again at the same load until an equilibrium fails none. The deck
 # tests/data/static_damage_bar.yaml: an LPS bar, grips that follow uniform strain u_x = e x, a

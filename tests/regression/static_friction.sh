@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Friction on a rigid surface under the quasi-static solver (docs/theory/quasi_static.md §8): a
+# Friction on a rigid surface under the quasi-static solver (docs/theory/quasi_static_methods.md §8): a
 # tangential penalty k_t with a stick/slip return mapping from each point's slip, committed at
 # converged load steps only (contact/rigid.c, pf_rigid_force_static). tests/data/
 # static_friction_block.yaml: an FE block (one bbar hexahedron, its n = 4 bottom nodes on a rigid

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Contact pairs between PD points and FE surfaces, and between PD points, under the quasi-static
-# solver (docs/theory/quasi_static.md §10), each against the series-spring closed form of its
+# solver (docs/theory/quasi_static_methods.md §10), each against the series-spring closed form of its
 # penalty law (docs/theory/contact.md §1, §2). Every PD bar here is PMB, 2 x 2 points across: its
 # four end points are alike by the square's symmetry, so a contact pushes them alike and the bar
 # answers as it does to a displacement of its end layer. Each deck holds that bar alone, pushed at

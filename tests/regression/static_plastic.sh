@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Plastic history under quasi-static loading (docs/theory/quasi_static.md §6): an FE body's history
+# Plastic history under quasi-static loading (docs/theory/quasi_static_failure.md §6): an FE body's history
 # is committed at each load step's start and put back before each force evaluation, which reads
 # the whole load step's increment, so the return mapping is one backward-Euler increment from the
 # last converged state and the relaxation's path does not enter it. The deck

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Plastic history of peridynamic bodies under quasi-static loading (docs/theory/quasi_static.md
+# Plastic history of peridynamic bodies under quasi-static loading (docs/theory/quasi_static_failure.md
 # §6): the elastic-plastic model's bond plastic extensions and eqps, and the correspondence
 # form's stress, works and model state, are committed at each load step's start and put back
 # before each force evaluation, so that the relaxation's path does not enter them. The deck

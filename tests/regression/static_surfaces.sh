@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Rigid surfaces under the quasi-static solver (sim/solver_relaxation.c; docs/theory/
-# quasi_static.md §8). Two decks, each checked against a closed form:
+# quasi_static_methods.md §8). Two decks, each checked against a closed form:
 #  - tests/data/static_wall_bar.yaml: an FE bar on a fixed wall pushed at its other end by a
 #    displacement, and an FE bar held at one end and pushed by a rigid plane (linear penalty law),
 #    in 4 load steps. The wall's reaction against E A d / L at each load step: 1e-3 (measured
