@@ -597,6 +597,7 @@ int pf_pd_body_destroy(pf_pd_body **b) {
   free((*b)->wc_bond);
   pf_pd_parts_free(*b);
   free((*b)->history.committed);
+  pf_pd_body_failures_free(*b);
   pf_expr_destroy(&(*b)->hz_expr);
   PF_FREE(*b);
   return 0;

@@ -3,7 +3,8 @@
  * over the body's owned points, and the bonds' material state (fam.state), committed at a load
  * step's start and put back before each force evaluation, so that each evaluation is one
  * increment from the last converged state. Damage is not history: the solver freezes it while it
- * relaxes (pd/damage.c), and bonds failed at a damage check stay failed. */
+ * relaxes (pd/damage.c), and bonds failed at a damage check stay failed (a load step abandoned on
+ * a signal puts them back: pd/failures_kept.c). */
 #include "pd/pd_impl.h"
 
 #include <stdlib.h>

@@ -207,6 +207,12 @@ int pf_pd_body_keeps_history(const pf_pd_body *b);
  * quasi-static solver commits at each load step's start and restores before each force
  * evaluation (docs/theory/quasi_static_failure.md §6). */
 int pf_pd_body_history(pf_pd_body *b, pf_points *pts, int restore);
+/* Keep the bonds' failures as they are now (restore 0: broken flags, the contact's rest lengths
+ * and their record bits) or put the kept ones back (restore 1). The quasi-static solver keeps
+ * them at each load step's start and puts them back when a signal abandons the load step
+ * (pd/failures_kept.c). */
+int pf_pd_body_failures(pf_pd_body *b, int restore);
+void pf_pd_body_failures_free(pf_pd_body *b);
 /* Stored elastic energy (J) of the body's owned points. */
 double pf_pd_body_energy(const pf_pd_body *b, const pf_points *pts);
 /* The change of stored energy (J) of the body's owned points when bonds failed since the last

@@ -125,6 +125,13 @@ struct pf_pd_body {
     double *committed;
     size_t n;
   } history;
+  /* The bonds' failures kept at a quasi-static load step's start (pd/failures_kept.c). */
+  struct {
+    uint8_t *broken;
+    float *rest;
+    uint64_t *recorded;
+    int64_t nbonds;
+  } kept;
   /* The law's limits while the damage is frozen (pf_pd_body_freeze_damage): the body then holds
    * none (s0 the all-INFINITY none_s0 [none_n], no energy limit), so no kernel fails a bond. */
   struct {

@@ -33,6 +33,9 @@ int pf_body_keeps_history(const pf_body *b, pf_points *pts) {
 int pf_body_history(const pf_body *b, pf_points *pts, pf_history_op op) {
   return pf_body_keeps_history(b, pts) ? b->ops->history(b->data, pts, op) : 0;
 }
+int pf_body_failures(const pf_body *b, int restore) {
+  return b->ops->failures ? b->ops->failures(b->data, restore) : 0;
+}
 int64_t pf_body_broken_bonds(const pf_body *b) {
   const pf_family *fam = pf_body_family(b);
   int64_t n = 0;

@@ -76,6 +76,11 @@ typedef struct {
    * one increment from the last converged state. NULL, or 0 kept: the body's force keeps no
    * history, or one that the iterations advance (it reads the iteration's increment). */
   int (*history)(void *data, pf_points *pts, pf_history_op op);
+  /* Optional: keep the bonds' failures as they are now (restore 0) or put the kept ones back
+   * (restore 1): the quasi-static solver keeps them at each load step's start and puts them back
+   * when a signal abandons the load step, so that its checkpoint is the last equilibrium's. NULL:
+   * a body without bonds that fail. */
+  int (*failures)(void *data, int restore);
   /* Optional: the change of stored energy when bonds failed since the last call into w[0], and
    * the part of it that is moved, not released, into w[1] (<= 0; docs/theory/pd.md §5.1), J
    * (NULL: none). */
@@ -177,6 +182,7 @@ double pf_body_failure_ratio(const pf_body *b, const pf_points *pts); /* 0 witho
 int pf_body_fails_without_ratio(const pf_body *b); /* freeze_damage without failure_ratio */
 int pf_body_keeps_history(const pf_body *b, pf_points *pts);
 int pf_body_history(const pf_body *b, pf_points *pts, pf_history_op op);
+int pf_body_failures(const pf_body *b, int restore);
 /* The failed directed bonds of the body's owned rows (0 for a body without bonds). */
 int64_t pf_body_broken_bonds(const pf_body *b);
 void pf_body_take_damage_work(const pf_body *b, double w[2]);

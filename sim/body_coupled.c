@@ -47,6 +47,7 @@ static int freeze_damage(void *data, const pf_points *pts, int frozen) {
   return pd->freeze_damage(pd_of(data), pts, frozen);
 }
 static void take_damage_work(void *data, double w[2]) { pd->take_damage_work(pd_of(data), w); }
+static int failures(void *data, int restore) { return pd->failures(pd_of(data), restore); }
 /* History: the elements' and the PD operator's (both read the load step's increment over one
  * velocity field, so both take one increment from the committed state). */
 static int history(void *data, pf_points *pts, pf_history_op op) {
@@ -107,6 +108,7 @@ const pf_body_ops pf_body_kind_coupled = {
     .freeze_damage = freeze_damage,
     .history = history,
     .take_damage_work = take_damage_work,
+    .failures = failures,
     .energies = energies,
     .family = family,
     .bytes_per_bond = bytes_per_bond,

@@ -133,6 +133,7 @@ static int history(void *data, pf_points *pts, pf_history_op op) {
   if (op == PF_HISTORY_KEPT) return pf_pd_body_keeps_history(data);
   return pf_pd_body_history(data, pts, op == PF_HISTORY_RESTORE);
 }
+static int failures(void *data, int restore) { return pf_pd_body_failures(data, restore); }
 static void take_damage_work(void *data, double w[2]) {
   w[0] = pf_pd_body_take_damage_work(data), w[1] = pf_pd_body_take_damage_redistribution(data);
 }
@@ -181,6 +182,7 @@ const pf_body_ops pf_body_kind_pd = {
     .freeze_damage = freeze_damage,
     .failure_ratio = failure_ratio,
     .history = history,
+    .failures = failures,
     .take_damage_work = take_damage_work,
     .energies = energies,
     .family = family,

@@ -52,6 +52,14 @@ void pf_ledger_book_impulse(pf_ledger *l, int id, const double r_old[3], const d
   for (int c = 0; c < 3; c++) l->a[id].local[c] -= 0.5 * dt * (r_old[c] + r_new[c]);
 }
 
+void pf_ledger_keep(const pf_ledger *l, double *v) {
+  for (int k = 0; k < l->n; k++) memcpy(&v[3 * k], l->a[k].local, sizeof l->a[k].local);
+}
+
+void pf_ledger_put_back(pf_ledger *l, const double *v) {
+  for (int k = 0; k < l->n; k++) memcpy(l->a[k].local, &v[3 * k], sizeof l->a[k].local);
+}
+
 int pf_ledger_evaluate(pf_ledger *l, int first) {
   free(l->buf);
   PF_MALLOC(l->buf, 3 * (size_t)l->n + 1);

@@ -60,6 +60,11 @@ int pf_ledger_open(pf_ledger *l, const char *name, const char *units, int ncomp,
 /* The energy_error column (the balance minus its initial value); opened once, where it stands. */
 int pf_ledger_open_error(pf_ledger *l);
 void pf_ledger_free(pf_ledger *l);
+/* Every account's booking on this rank into v[3 n] (n the accounts open now), and back from it:
+ * the quasi-static solver keeps them at a load step's start and puts them back when a signal
+ * abandons the load step. */
+void pf_ledger_keep(const pf_ledger *l, double *v);
+void pf_ledger_put_back(pf_ledger *l, const double *v);
 
 /* Book x[ncomp] into an account (added to this rank's part), or set it. */
 static inline void pf_ledger_book(pf_ledger *l, int id, const double *x) {

@@ -175,8 +175,9 @@ void pf_sim_solver_free(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   free(s->lambda), free(s->vel), free(s->f_old), free(s->u_last), free(s->f_body), free(s->u0), free(s->g0);
   free(s->u1), free(s->g1), free(s->fixed), free(s->terms), free(s->f_own), free(s->nk), free(s->um);
-  free(s->u_relax);
-  s->terms = NULL, s->nk = NULL, s->um = s->gm = s->beyond = s->u_relax = NULL;
+  free(s->u_relax), free(s->kept);
+  s->terms = NULL, s->nk = NULL, s->um = s->gm = s->beyond = s->u_relax = s->kept = NULL;
+  s->kept_n = 0;
   s->lambda = s->vel = s->f_old = s->u_last = s->f_body = s->f_own = s->u0 = s->g0 = s->u1 = s->g1 = NULL;
   s->fixed = NULL;
   s->n = 0;

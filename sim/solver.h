@@ -46,6 +46,8 @@ typedef struct {
   double *um, *gm; /* sequential: u and the applied force at the path's last mark */
   double *beyond;  /* sequential: each component's work along the path past the first equilibrium, J */
   double *terms;   /* [PF_SOLVER_SUMS 3 n] each iteration's terms of its sums */
+  double *kept;    /* [kept_n] the load step's start: point fields, the ledger's bookings */
+  size_t kept_n;
   uint8_t *fixed;  /* [3 n] prescribed components */
   double *nk;      /* newton_krylov: [NK_ARRAYS 3 n] (sim/solver_newton.c) */
   pf_int nk_n;

@@ -343,15 +343,52 @@ static int finish(pf_sim *sim, long passes) {
   return 0;
 }
 
+/* Every checkpointed point field over the owned points (the bodies' history, and what failing
+ * bonds change besides their flags: an LPS point's lost weighted volume, for one) into v, or
+ * back from it (restore 1); the doubles it takes. */
+static size_t fields_kept(pf_points *p, double *v, int restore) {
+  size_t m = 0;
+  for (int k = 0; k < p->nfields; k++) {
+    const pf_field *f = &p->fields[k];
+    if (!(f->flags & PF_FIELD_RESTART)) continue;
+    const size_t len = (size_t)f->ncomp * (size_t)p->n_owned;
+    if (v && restore) memcpy(f->data, &v[m], sizeof(double) * len);
+    else if (v) memcpy(&v[m], f->data, sizeof(double) * len);
+    m += len;
+  }
+  return m;
+}
+
+/* The state a load step starts from besides the displacements (restore 0: kept), or put back
+ * (restore 1): the bonds' failures, the checkpointed point fields and the ledger's bookings. */
+static int start_state(pf_sim *sim, int restore) {
+  pf_sim_solver *s = &sim->solver;
+  const size_t nf = fields_kept(sim->pts, NULL, 0), n = nf + 3 * (size_t)sim->ledger.n;
+  for (int b = 0; b < sim->nbodies; b++) PF_CALL(pf_body_failures(&sim->body[b], restore));
+  if (restore) {
+    PF_CHECK(s->kept && s->kept_n == n, PF_ERR_RUN, "quasi-static load step %ld: its start was not kept", sim->step);
+  } else if (s->kept_n != n) {
+    free(s->kept);
+    s->kept_n = 0;
+    PF_MALLOC(s->kept, n + 1);
+    s->kept_n = n;
+  }
+  fields_kept(sim->pts, s->kept, restore);
+  if (restore) pf_ledger_put_back(&sim->ledger, &s->kept[nf]);
+  else pf_ledger_keep(&sim->ledger, &s->kept[nf]);
+  return 0;
+}
+
 /* SIGTERM or SIGINT during a load step: back to the last equilibrium (the load step's start:
- * displacements, and the forces, the bodies' history and fields evaluated there with the damage
- * still frozen; step and time), so that the checkpoint the time loop then writes, and the history
- * row, are those of the last load step; the restart takes this load step again. Bonds a damage
- * check of this load step failed stay failed. Collective (every rank stops at the same
- * iteration: the signal is one of the iteration's sums). */
-static int abandon(pf_sim *sim, long it) {
+ * displacements, the bonds its damage passes failed, the point fields, the ledger's bookings, and
+ * the forces, the bodies' history and fields evaluated there with the damage still frozen; step
+ * and time), so that the checkpoint the time loop then writes, and the history row, are those of
+ * the last load step; the restart takes this load step again, to the uninterrupted run's bits.
+ * Collective (every rank stops at the same iteration: the signal is one of the iteration's sums). */
+static int abandon(pf_sim *sim, long it, long passes) {
   pf_sim_solver *s = &sim->solver;
   pf_points *p = sim->pts;
+  PF_CALL(start_state(sim, 1));
   pf_sim_interactions_place(sim, -sim->dt); /* (dt < 0: the surfaces go back) */
   for (pf_int d = 0; d < 3 * p->n_owned; d++) p->u[d] = s->u0[d], p->y[d] = p->X[d] + p->u[d];
   PF_CALL(pf_sim_solver_evaluate(sim));
@@ -365,8 +402,8 @@ static int abandon(pf_sim *sim, long it) {
   sim->step--;
   sim->t = (double)sim->step / (double)s->load_steps * sim->final_time;
   s->iterations += it;
-  pf_log("load step %ld/%ld abandoned after %ld iterations: signal %d\n", sim->step + 1, s->load_steps, it,
-         pf_sim_signal_here());
+  pf_log("load step %ld/%ld abandoned after %ld iterations and %ld damage passes: signal %d\n", sim->step + 1,
+         s->load_steps, it, passes, pf_sim_signal_here());
   return pf_sim_guard_check(sim); /* (collective: sets sim->signal for the time loop's checkpoint) */
 }
 
@@ -382,6 +419,7 @@ int pf_sim_solver_load_step(pf_sim *sim) {
   pf_sim_solver *s = &sim->solver;
   const double wall0 = pf_wtime();
   PF_CALL(pf_sim_guard_save(sim));
+  PF_CALL(start_state(sim, 0));
   PF_CALL(freeze_damage(sim, 1)); /* (thawed at the load step's end: nothing re-attaches bodies within it) */
   PF_CALL(begin(sim));
   sim->step++;
@@ -395,7 +433,7 @@ int pf_sim_solver_load_step(pf_sim *sim) {
   double res = 0;
   int stop = 0;
   PF_CALL(equilibrate(sim, &it, &res, &passes, &stop));
-  if (stop == STOP_SIGNAL) return abandon(sim, it);
+  if (stop == STOP_SIGNAL) return abandon(sim, it, passes);
   PF_CALL(freeze_damage(sim, 0));
   s->iterations += it, s->damage_passes += passes;
   PF_CALL(finish(sim, passes));

@@ -12,10 +12,14 @@
 #    (the energy balance as that load step's row: a row at the abandoned iterate had the
 #    centred kinetic energy of its residual forces, -7e7 J);
 #  - the checkpoint written on 1 rank restarted on 3, the one written on 2 restarted on 1: the
-#    reference digest.
+#    reference digest;
+#  - a load step whose damage passes had failed bonds when the signal came (the reduced double
+#    cantilever beam, below): back to its start, bonds and ledger included; restarted on 2 ranks,
+#    the uninterrupted digest.
 # usage: static_signal.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
-exe=$1 scratch=$2 fail=0
+exe=$(cd "$(dirname "$1")" && pwd)/$(basename "$1") scratch=$2 fail=0
+src=$(cd .. && pwd)
 source common/mpi_env.sh
 export OMP_NUM_THREADS=1
 rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch"
@@ -57,4 +61,45 @@ PYEOF
   }
   cd ..
 done
+
+# The crack of the reduced double cantilever beam (static_dcb.sh's: 1 mm, 2.01 spacings, critical
+# energy, 20 load steps, failure: sequential, a checkpoint file): SIGTERM once load step 13 is
+# reported plus a delay, longer at each try (up to 4), until the signal catches a load step after
+# at least one damage pass failed bonds ("abandoned after N iterations and P damage passes", P >=
+# 1). The run goes back to the load step's start, bonds and ledger included; restarted on 2 ranks,
+# it ends with the uninterrupted run's digest (before the bonds were put back: another digest and
+# an energy error of 3-4 % of the energy in play at the next load step).
+beam=("$src/inputs/dcb.yaml" --set parameters.dx=1e-3 --set parameters.m=2.01
+  --set 'boundary_conditions.upper.displacement=[free, "0.5 * 57.5e-6 * t / 600e-6", free]'
+  --set 'boundary_conditions.lower.displacement=[free, "-0.5 * 57.5e-6 * t / 600e-6", free]'
+  --set "solver={type: quasi_static, load_steps: 20, tolerance: 1.0e-5, failure: sequential}"
+  --set restart.file=ck.h5 --set output.interval=0)
+dcb_run() { "$exe" "${beam[@]}" "$@"; }
+mkdir dref && ref=$(cd dref && dcb_run --quiet 2>&1) || { echo "FAIL: the beam's reference run: $ref"; exit 1; }
+ref=$(digest_of "$ref")
+echo "beam: reference digest $ref"
+caught=0
+for delay in 0.2 0.5 0.8 1.2; do
+  rm -rf dsig && mkdir dsig && cd dsig
+  ( dcb_run > run.log 2>&1; echo "exit $?" >> run.log ) &
+  for _ in $(seq 1200); do grep -q "^load step 13/" run.log 2>/dev/null && break; sleep 0.05; done
+  sleep $delay
+  pkill -TERM -f "^$exe $src/inputs/dcb.yaml"
+  wait
+  P=$(sed -n 's|^load step [0-9]*/20 abandoned after [0-9]* iterations and \([0-9]*\) damage passes.*|\1|p' run.log)
+  grep -q '^exit 0' run.log || { echo "FAIL: beam: the signalled run did not exit 0:"; tail -5 run.log; fail=1; break; }
+  if [ -n "$P" ] && [ "$P" -ge 1 ]; then caught=1; break; fi
+  echo "beam: the signal after $delay s caught no load step after a damage pass ($(grep -E 'abandoned|stopped' run.log | head -1)); again"
+  cd ..
+done
+if [ $caught = 1 ]; then
+  grep -E "abandoned" run.log
+  o=$(run 2 "$exe" "${beam[@]}" --quiet --restart ck.h5 --output-dir r2 2>&1) || { echo "FAIL: beam: restart on 2: $o"; fail=1; }
+  d=$(digest_of "$o")
+  [ "$d" = "$ref" ] || { echo "FAIL: beam: restarted on 2 ranks: digest $d, reference $ref"; fail=1; }
+  echo "beam: written on 1 rank in a load step with damage passes, restarted on 2: digest $d"
+  cd ..
+elif [ $fail = 0 ]; then
+  echo "FAIL: beam: four signals caught no load step after a damage pass"; fail=1
+fi
 exit $fail
