@@ -28,12 +28,16 @@
 
 /* Per-element scratch of one chunk. */
 typedef struct {
+  double X[8][3], x[8][3], v[8][3]; /* the nodes: reference, current positions, velocities */
+  double xm[8][3], Bm[8][3], Vm;    /* mid-step positions, their mean gradient and volume */
   double s_old[8][6]; /* rotated previous stress per quadrature point */
   double vmid[8];     /* quadrature-point volumes at mid-step */
   double trD;         /* tr D of the element mean velocity gradient */
   double V0;          /* reference volume */
   double Q_old[12];   /* rotated hourglass generalized forces */
   double B[8][3], V;  /* mean gradient and volume at the end of the step */
+  double len;         /* characteristic length there (the stable step) */
+  double gam[4][8];   /* hourglass vectors there (one-point elements with hourglass control) */
 } scratch;
 
 /* F, D, c, the scratch, and the states of a material with fewer than the body's (fem/materials.c). */
@@ -101,13 +105,40 @@ static void at_rest(int nq, double *F, double *D) {
   }
 }
 
-/* Pass 1: kinematics at mid-step, rotate stress and hourglass forces, F and D for the material. */
-static int kinematics(pf_fem_body *b, const pf_points *p, pf_int e, double dt, double *F, double *D, scratch *s) {
-  double X[8][3], x[8][3], xm[8][3], v[8][3], Bm[8][3], L[3][3], Lm[3][3], R[3][3];
+/* The nodes of elements [e, e + n), n <= PF_HEX8_LANES, into their scratch, with what depends on
+ * their positions alone: the mean gradients at mid-step and at the end of the step, the
+ * characteristic length and the hourglass vectors there, the elements across the vector lanes
+ * (each lane's bits those of one element at a time). Lanes past n repeat the first element. */
+static void gather_lanes(const pf_fem_body *b, const pf_points *p, pf_int e, int n, double dt, scratch *s) {
+  enum { W = PF_HEX8_LANES };
+  _Alignas(64) double x[8][3][W], xm[8][3][W], B[8][3][W], Bm[8][3][W], V[W], Vm[W], len[W], gam[4][8][W];
+  const int hourglass = !b->bbar && b->hg != PF_HG_NONE;
+  for (int l = 0; l < W; l++) {
+    if (l < n) gather_nodes(b, p, e + l, dt, s[l].X, s[l].x, s[l].xm, s[l].v);
+    const scratch *sl = &s[l < n ? l : 0];
+    for (int I = 0; I < 8; I++)
+      for (int i = 0; i < 3; i++) x[I][i][l] = sl->x[I][i], xm[I][i][l] = sl->xm[I][i];
+  }
+  pf_hex8_mean_gradient_lanes(x, B, V);
+  pf_hex8_mean_gradient_lanes(xm, Bm, Vm);
+  pf_hex8_char_length_lanes(x, V, len);
+  if (hourglass) pf_hex8_hourglass_vectors_lanes(x, B, gam);
+  for (int l = 0; l < n; l++) {
+    s[l].V = V[l], s[l].Vm = Vm[l], s[l].len = len[l];
+    for (int I = 0; I < 8; I++)
+      for (int i = 0; i < 3; i++) s[l].B[I][i] = B[I][i][l], s[l].Bm[I][i] = Bm[I][i][l];
+    for (int a = 0; a < 4 && hourglass; a++)
+      for (int I = 0; I < 8; I++) s[l].gam[a][I] = gam[a][I][l];
+  }
+}
+
+/* Pass 1: kinematics at mid-step, rotate stress and hourglass forces, F and D for the material
+ * (the nodes and mean gradients in s from gather_lanes). */
+static int kinematics(pf_fem_body *b, pf_int e, double dt, double *F, double *D, scratch *s) {
+  double L[3][3], Lm[3][3], R[3][3];
+  double(*x)[3] = s->x, (*xm)[3] = s->xm, (*v)[3] = s->v, (*Bm)[3] = s->Bm;
   double(*B0)[3] = (double(*)[3]) & b->ref[25 * (size_t)e];
-  gather_nodes(b, p, e, dt, X, x, xm, v);
-  double V0 = s->V0 = b->ref[25 * (size_t)e + 24], Vm = pf_hex8_mean_gradient(xm, Bm);
-  double V = s->V = pf_hex8_mean_gradient(x, s->B);
+  double V0 = s->V0 = b->ref[25 * (size_t)e + 24], Vm = s->Vm, V = s->V;
   if (!(V > 0)) return bad_element(b, e, x, "volume", V);
   if (!(Vm > 0)) return bad_element(b, e, xm, "mid-step volume", Vm);
   grad_product(v, Bm, Lm);
@@ -131,7 +162,7 @@ static int kinematics(pf_fem_body *b, const pf_points *p, pf_int e, double dt, d
   for (int g = 0; g < 8; g++) {
     double xi[3], g0[8][3], gm[8][3], Fm[3][3];
     pf_hex8_gauss_point(g, xi);
-    pf_hex8_gradients(X, xi, g0);
+    pf_hex8_gradients(s->X, xi, g0);
     s->vmid[g] = pf_hex8_gradients(xm, xi, gm);
     if (!(s->vmid[g] > 0)) return bad_element(b, e, xm, "mid-step Jacobian", s->vmid[g]);
     grad_product(v, gm, L);
@@ -147,10 +178,10 @@ static int kinematics(pf_fem_body *b, const pf_points *p, pf_int e, double dt, d
   return 0;
 }
 
-static void hourglass_force(pf_fem_body *b, pf_int e, double x[8][3], double v[8][3], double B[8][3],
-                            double V, double c, double rho, double dt, const scratch *s, double f[8][3]) {
-  double gam[4][8], qd[4][3] = {{0}}, *en = &b->energy[3 * (size_t)e];
-  pf_hex8_hourglass_vectors(x, B, gam);
+static void hourglass_force(pf_fem_body *b, pf_int e, double v[8][3], double B[8][3], double V, double c,
+                            double rho, double dt, const scratch *s, double f[8][3]) {
+  double qd[4][3] = {{0}}, *en = &b->energy[3 * (size_t)e];
+  const double(*gam)[8] = s->gam;
   for (int a = 0; a < 4; a++)
     for (int I = 0; I < 8; I++)
       for (int i = 0; i < 3; i++) qd[a][i] += v[I][i] * gam[a][I];
@@ -183,12 +214,11 @@ static void hourglass_force(pf_fem_body *b, pf_int e, double x[8][3], double v[8
 
 /* Pass 2: forces from the new stress, bulk viscosity, hourglass; energies; stable step; *tangled
  * when the body converts elements and a corner's Jacobian is negative (docs/theory/fem.md sec. 9b). */
-static int element_forces(pf_fem_body *b, const pf_points *p, pf_int e, double dt, const double *c,
-                          const double *D, const scratch *s, double *stable_dt, int *tangled) {
-  double X[8][3], x[8][3], xm[8][3], v[8][3], f[8][3] = {{0}};
-  double(*B)[3] = (double(*)[3])s->B;
-  gather_nodes(b, p, e, dt, X, x, xm, v);
-  double V = s->V, l = pf_hex8_char_length(x, V), cmax = 0;
+static int element_forces(pf_fem_body *b, pf_int e, double dt, const double *c, const double *D,
+                          const scratch *s, double *stable_dt, int *tangled) {
+  double f[8][3] = {{0}};
+  double(*B)[3] = (double(*)[3])s->B, (*x)[3] = (double(*)[3])s->x, (*v)[3] = (double(*)[3])s->v;
+  double V = s->V, l = s->len, cmax = 0;
   double rho = pf_fem_element_material(b, e)->rho * s->V0 / V, Vmid = 0;
   for (int g = 0; g < b->nqp; g++) cmax = fmax(cmax, c[g]);
   double q = 0;
@@ -225,7 +255,7 @@ static int element_forces(pf_fem_body *b, const pf_points *p, pf_int e, double d
    * applies the forces (docs/theory/fem.md §6) */
   en[2] += dt * 0.5 * (b->bvq[e] + q) * (-s->trD) * Vmid;
   b->bvq[e] = q;
-  if (!b->bbar && b->hg != PF_HG_NONE) hourglass_force(b, e, x, v, B, V, cmax, rho, dt, s, f);
+  if (!b->bbar && b->hg != PF_HG_NONE) hourglass_force(b, e, v, B, V, cmax, rho, dt, s, f);
   memcpy(&b->fe[24 * (size_t)e], f, sizeof f);
   double Qb = s->trD < 0 ? b->bv_linear * cmax + b->bv_quadratic * l * fabs(s->trD) : 0;
   *stable_dt = fmin(*stable_dt, l / (Qb + sqrt(Qb * Qb + cmax * cmax)));
@@ -241,9 +271,13 @@ static int evaluate_chunk(pf_fem_body *b, const pf_points *pts, double dt, pf_in
   const int nq = b->nqp;
   double *F = buf, *D = F + 9 * (size_t)nq * PF_FEM_CHUNK, *c = D + 6 * (size_t)nq * PF_FEM_CHUNK;
   scratch *s = (scratch *)(c + (size_t)nq * PF_FEM_CHUNK);
-  for (pf_int k = 0; k < ne; k++)
-    if (pf_fem_element_eroded(b, e0 + k)) at_rest(nq, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k]);
-    else PF_CALL(kinematics(b, pts, e0 + k, dt, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
+  for (pf_int k0 = 0; k0 < ne; k0 += PF_HEX8_LANES) {
+    const int nl = ne - k0 < PF_HEX8_LANES ? (int)(ne - k0) : PF_HEX8_LANES;
+    gather_lanes(b, pts, e0 + k0, nl, dt, &s[k0]);
+    for (pf_int k = k0; k < k0 + nl; k++)
+      if (pf_fem_element_eroded(b, e0 + k)) at_rest(nq, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k]);
+      else PF_CALL(kinematics(b, e0 + k, dt, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
+  }
   pf_fem_materials_update(b, e0, ne, dt, F, D, c, (double *)(s + PF_FEM_CHUNK));
   for (pf_int k = 0; k < ne; k++) {
     const pf_int e = e0 + k;
@@ -253,7 +287,7 @@ static int evaluate_chunk(pf_fem_body *b, const pf_points *pts, double dt, pf_in
       continue;
     }
     int tangled = 0;
-    PF_CALL(element_forces(b, pts, e, dt, &c[(size_t)nq * k], &D[6 * (size_t)nq * k], &s[k], stable_dt, &tangled));
+    PF_CALL(element_forces(b, e, dt, &c[(size_t)nq * k], &D[6 * (size_t)nq * k], &s[k], stable_dt, &tangled));
     if (b->erosion && (tangled || pf_fem_erosion_due(b, e, s[k].V / s[k].V0))) b->due[e] = b->eid[e];
   }
   return 0;

@@ -7,7 +7,8 @@
 /* ---- Flanagan-Belytschko hourglass control (fem/hourglass.c) ---- */
 typedef enum { PF_HG_NONE, PF_HG_VISCOUS, PF_HG_STIFFNESS } pf_hourglass_kind;
 /* gamma[a][I] = Gamma_aI - B_iI sum_J Gamma_aJ x_iJ (FB 1981, eq. 57). */
-void pf_hex8_hourglass_vectors(double x[8][3], double B[8][3], double gamma[4][8]);
+void pf_hex8_hourglass_vectors_lanes(double x[8][3][PF_HEX8_LANES], double B[8][3][PF_HEX8_LANES],
+                                     double gamma[4][8][PF_HEX8_LANES]);
 
 /* ---- FE bodies ---- */
 #define PF_FEM_CHUNK 64 /* elements per batched material call */

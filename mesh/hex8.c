@@ -6,6 +6,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* Parent coordinates (xi, eta, zeta) of the nodes. */
 const double pf_hex8_node_sign[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
@@ -51,8 +52,9 @@ double pf_hex8_gradients(double x[8][3], const double xi[3], double grad[8][3]) 
  * The integrands are quadratic in each parent coordinate, so the 2x2x2 Gauss rule gives C
  * exactly; W is computed once and kept as its nonzero entries. V = (1/3) sum_I x_I . dV/dx_I
  * (V is homogeneous of degree 3 in x). Every node has the same number of nonzero W_IJK (nine,
- * by the element's symmetry), kept per node in (J, K) order; the sum for a node runs in three
- * local accumulators, which the compiler keeps in registers. */
+ * by the element's symmetry), kept per node in (J, K) order. The nodes are taken relative to
+ * their centroid (B and V do not change under translation), so that the cross products do not
+ * cancel for elements far from the origin. */
 enum { PER_NODE = 9 };
 typedef struct {
   int8_t J, K;
@@ -84,32 +86,70 @@ static void build_triples(void) {
   built = 1;
 }
 
-double pf_hex8_mean_gradient(double x[8][3], double B[8][3]) {
-  if (!built) build_triples(); /* first call: at set-up, before any threaded loop */
-  /* B and V do not change under translation; taking the nodes relative to their centroid keeps
-   * the cross products from cancelling (elements far from the origin lose no digits) */
-  double c[8][3], o[3] = {0, 0, 0}, cr[8][8][3];
-  for (int I = 0; I < 8; I++)
-    for (int i = 0; i < 3; i++) o[i] += 0.125 * x[I][i];
-  for (int I = 0; I < 8; I++)
-    for (int i = 0; i < 3; i++) c[I][i] = x[I][i] - o[i];
-  for (int J = 0; J < 8; J++)
-    for (int K = J + 1; K < 8; K++) pf_vec3_cross(c[J], c[K], cr[J][K]);
-  for (int I = 0; I < 8; I++) {
-    double b0 = 0, b1 = 0, b2 = 0;
-    for (int t = 0; t < PER_NODE; t++) {
-      const pair_weight *q = &wtab[I][t];
-      const double *r = cr[q->J][q->K];
-      b0 += q->w * r[0], b1 += q->w * r[1], b2 += q->w * r[2];
-    }
-    B[I][0] = b0, B[I][1] = b1, B[I][2] = b2;
+/* The mean gradients of PF_HEX8_LANES elements at once, lane l of every array one element's: the
+ * loops over the elements are the vector loops, and each lane's result does not depend on the
+ * others (the same bits in any lane, pf_hex8_mean_gradient). */
+void pf_hex8_mean_gradient_lanes(double x[8][3][PF_HEX8_LANES], double B[8][3][PF_HEX8_LANES],
+                                 double V[PF_HEX8_LANES]) {
+  enum { W = PF_HEX8_LANES };
+  if (!built) build_triples();
+  _Alignas(64) double c[8][3][W], o[3][W], cr[8][8][3][W], v[W];
+  for (int i = 0; i < 3; i++) {
+#pragma omp simd
+    for (int l = 0; l < W; l++) o[i][l] = 0;
+    for (int I = 0; I < 8; I++)
+#pragma omp simd
+      for (int l = 0; l < W; l++) o[i][l] += 0.125 * x[I][i][l];
   }
-  double V = 0;
-  for (int I = 0; I < 8; I++) V += c[I][0] * B[I][0] + c[I][1] * B[I][1] + c[I][2] * B[I][2];
-  V /= 3.0;
   for (int I = 0; I < 8; I++)
-    for (int i = 0; i < 3; i++) B[I][i] /= V;
-  return V;
+    for (int i = 0; i < 3; i++)
+#pragma omp simd
+      for (int l = 0; l < W; l++) c[I][i][l] = x[I][i][l] - o[i][l];
+  for (int J = 0; J < 8; J++)
+    for (int K = J + 1; K < 8; K++) {
+      double(*a)[W] = c[J], (*b)[W] = c[K];
+      double(*r)[W] = cr[J][K];
+#pragma omp simd
+      for (int l = 0; l < W; l++) {
+        r[0][l] = a[1][l] * b[2][l] - a[2][l] * b[1][l];
+        r[1][l] = a[2][l] * b[0][l] - a[0][l] * b[2][l];
+        r[2][l] = a[0][l] * b[1][l] - a[1][l] * b[0][l];
+      }
+    }
+  for (int I = 0; I < 8; I++) {
+    _Alignas(64) double b[3][W] = {{0}};
+#pragma GCC unroll 9 /* (each t its vector loop: unrolled and jammed, the loop over l went scalar) */
+    for (int t = 0; t < PER_NODE; t++) {
+      const double w = wtab[I][t].w, (*r)[W] = (const double(*)[W])cr[wtab[I][t].J][wtab[I][t].K];
+#pragma omp simd
+      for (int l = 0; l < W; l++) b[0][l] += w * r[0][l], b[1][l] += w * r[1][l], b[2][l] += w * r[2][l];
+    }
+    memcpy(B[I], b, sizeof b);
+  }
+#pragma omp simd
+  for (int l = 0; l < W; l++) {
+    double s = 0;
+    for (int I = 0; I < 8; I++) s += c[I][0][l] * B[I][0][l] + c[I][1][l] * B[I][1][l] + c[I][2][l] * B[I][2][l];
+    v[l] = s / 3.0;
+  }
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++)
+#pragma omp simd
+      for (int l = 0; l < W; l++) B[I][i][l] /= v[l];
+#pragma omp simd
+  for (int l = 0; l < W; l++) V[l] = v[l];
+}
+
+/* One element: every lane the same element (the same bits as its lane of a batch). */
+double pf_hex8_mean_gradient(double x[8][3], double B[8][3]) {
+  _Alignas(64) double xl[8][3][PF_HEX8_LANES], Bl[8][3][PF_HEX8_LANES], V[PF_HEX8_LANES];
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++)
+      for (int l = 0; l < PF_HEX8_LANES; l++) xl[I][i][l] = x[I][i];
+  pf_hex8_mean_gradient_lanes(xl, Bl, V);
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++) B[I][i] = Bl[I][i][0];
+  return V[0];
 }
 
 /* Row-sum lumped mass: m_I = rho int N_I dV, exact with 2x2x2 Gauss (N_I det J is cubic in each
@@ -136,16 +176,33 @@ const int pf_hex8_face[6][4] = {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6},
  * Hallquist 2006, LS-DYNA Theory Manual eq. 20.4); for a cube of edge h, l = h. The face area of
  * a bilinear quadrilateral is taken as half the norm of its diagonals' cross product (exact for
  * planar faces). */
-double pf_hex8_char_length(double x[8][3], double V) {
-  double amax = 0;
+void pf_hex8_char_length_lanes(double x[8][3][PF_HEX8_LANES], const double V[PF_HEX8_LANES],
+                               double len[PF_HEX8_LANES]) {
+  enum { W = PF_HEX8_LANES };
+  _Alignas(64) double amax[W] = {0};
   for (int f = 0; f < 6; f++) {
     const int *q = pf_hex8_face[f];
-    double d1[3], d2[3], n[3];
-    for (int i = 0; i < 3; i++) d1[i] = x[q[2]][i] - x[q[0]][i], d2[i] = x[q[3]][i] - x[q[1]][i];
-    pf_vec3_cross(d1, d2, n);
-    amax = fmax(amax, 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+#pragma omp simd
+    for (int l = 0; l < W; l++) {
+      double d1[3], d2[3];
+      for (int i = 0; i < 3; i++) d1[i] = x[q[2]][i][l] - x[q[0]][i][l], d2[i] = x[q[3]][i][l] - x[q[1]][i][l];
+      const double n0 = d1[1] * d2[2] - d1[2] * d2[1], n1 = d1[2] * d2[0] - d1[0] * d2[2],
+                   n2 = d1[0] * d2[1] - d1[1] * d2[0], a = 0.5 * sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+      amax[l] = a > amax[l] ? a : amax[l]; /* (fmax for every area that is a number) */
+    }
   }
-  return V / amax;
+#pragma omp simd
+  for (int l = 0; l < W; l++) len[l] = V[l] / amax[l];
+}
+
+double pf_hex8_char_length(double x[8][3], double V) {
+  _Alignas(64) double xl[8][3][PF_HEX8_LANES], Vl[PF_HEX8_LANES], len[PF_HEX8_LANES];
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++)
+      for (int l = 0; l < PF_HEX8_LANES; l++) xl[I][i][l] = x[I][i];
+  for (int l = 0; l < PF_HEX8_LANES; l++) Vl[l] = V;
+  pf_hex8_char_length_lanes(xl, Vl, len);
+  return len[0];
 }
 
 /* The smallest Jacobian determinant det(dx/dxi) over the eight corners. At corner I the trilinear

@@ -68,8 +68,14 @@ void pf_hex8_gauss_point(int g, double xi[3]);
 double pf_hex8_gradients(double x[8][3], const double xi[3], double grad[8][3]);
 /* Mean gradient B[I][i] (Flanagan & Belytschko 1981) of the element with nodes x; returns V. */
 double pf_hex8_mean_gradient(double x[8][3], double B[8][3]);
+/* The same for PF_HEX8_LANES elements at once, lane l of each array one element's (the same bits). */
+#define PF_HEX8_LANES 8
+void pf_hex8_mean_gradient_lanes(double x[8][3][PF_HEX8_LANES], double B[8][3][PF_HEX8_LANES],
+                                 double V[PF_HEX8_LANES]);
 void pf_hex8_lumped_mass(double x[8][3], double rho, double m[8]);
 double pf_hex8_char_length(double x[8][3], double V);
+void pf_hex8_char_length_lanes(double x[8][3][PF_HEX8_LANES], const double V[PF_HEX8_LANES],
+                               double len[PF_HEX8_LANES]);
 /* The smallest det J over the eight corners (below 0: the element is tangled). */
 double pf_hex8_min_corner_jacobian(double x[8][3]);
 

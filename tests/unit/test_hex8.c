@@ -91,22 +91,48 @@ static void test_far_from_origin(void) {
     for (int i = 0; i < 3; i++) PF_TEST_CLOSE(C[I][i], B[I][i], 0, 1e-10 / 1e-3);
 }
 
-static void test_hourglass_vectors(void) {
-  double x[8][3], B[8][3], g[4][8];
-  distorted(x);
-  pf_hex8_mean_gradient(x, B);
-  pf_hex8_hourglass_vectors(x, B, g);
-  for (int a = 0; a < 4; a++) {
-    double s = 0, n = 0;
-    for (int I = 0; I < 8; I++) s += g[a][I], n += g[a][I] * g[a][I];
-    PF_TEST_CLOSE(s, 0.0, 0, 1e-12);
-    PF_TEST_TRUE(n > 1.0); /* not degenerate: |Gamma|^2 = 8 for a parallelepiped */
-    for (int j = 0; j < 3; j++) {
-      double t = 0;
-      for (int I = 0; I < 8; I++) t += g[a][I] * x[I][j];
-      PF_TEST_CLOSE(t, 0.0, 0, 1e-15);
-    }
+/* Lane l: the distorted element scaled by 1 + l / 4 and moved by l mm along x. */
+static void lanes_of_elements(double x[8][3][PF_HEX8_LANES], double one[PF_HEX8_LANES][8][3]) {
+  double d[8][3];
+  distorted(d);
+  for (int l = 0; l < PF_HEX8_LANES; l++)
+    for (int I = 0; I < 8; I++)
+      for (int i = 0; i < 3; i++) one[l][I][i] = x[I][i][l] = d[I][i] * (1 + 0.25 * l) + (i == 0) * 1e-3 * l;
+}
+
+/* A lane's mean gradient, volume and characteristic length have the bits of its element alone. */
+static void test_lanes_independent(void) {
+  enum { W = PF_HEX8_LANES };
+  double x[8][3][W], one[W][8][3], B[8][3][W], V[W], len[W];
+  lanes_of_elements(x, one);
+  pf_hex8_mean_gradient_lanes(x, B, V);
+  pf_hex8_char_length_lanes(x, V, len);
+  for (int l = 0; l < W; l++) {
+    double Bl[8][3], Vl = pf_hex8_mean_gradient(one[l], Bl);
+    PF_TEST_TRUE(Vl == V[l] && pf_hex8_char_length(one[l], Vl) == len[l]);
+    for (int I = 0; I < 8; I++)
+      for (int i = 0; i < 3; i++) PF_TEST_TRUE(Bl[I][i] == B[I][i][l]);
   }
+}
+
+static void test_hourglass_vectors(void) {
+  enum { W = PF_HEX8_LANES };
+  double x[8][3][W], one[W][8][3], B[8][3][W], V[W], g[4][8][W];
+  lanes_of_elements(x, one);
+  pf_hex8_mean_gradient_lanes(x, B, V);
+  pf_hex8_hourglass_vectors_lanes(x, B, g);
+  for (int l = 0; l < W; l++)
+    for (int a = 0; a < 4; a++) {
+      double s = 0, n = 0;
+      for (int I = 0; I < 8; I++) s += g[a][I][l], n += g[a][I][l] * g[a][I][l];
+      PF_TEST_CLOSE(s, 0.0, 0, 1e-12);
+      PF_TEST_TRUE(n > 1.0); /* not degenerate: |Gamma|^2 = 8 for a parallelepiped */
+      for (int j = 0; j < 3; j++) {
+        double t = 0;
+        for (int I = 0; I < 8; I++) t += g[a][I][l] * one[l][I][j];
+        PF_TEST_CLOSE(t, 0.0, 0, 1e-15 * (1 + 2.0 * l));
+      }
+    }
 }
 
 static void test_mass_and_length(void) {
@@ -150,6 +176,7 @@ int main(int argc, char **argv) {
   test_corner_jacobian();
   test_mean_gradient();
   test_far_from_origin();
+  test_lanes_independent();
   test_hourglass_vectors();
   test_mass_and_length();
   return pf_test_finish();
