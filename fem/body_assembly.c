@@ -229,11 +229,15 @@ int pf_fem_body_output_fields(pf_fem_body *b, pf_points *pts) {
   const int nq = b->nqp;
   PF_MALLOC(vq, b->nel); /* each element's current volume per quadrature point, once */
 #pragma omp parallel for schedule(static)
-  for (pf_int e = 0; e < b->nel; e++) {
-    double x[8][3], B[8][3];
-    for (int I = 0; I < 8; I++)
-      for (int a = 0; a < 3; a++) x[I][a] = pts->y[3 * (size_t)b->conn[8 * (size_t)e + I] + a];
-    vq[e] = pf_hex8_mean_gradient(x, B) / nq;
+  for (pf_int e0 = 0; e0 < b->nel; e0 += PF_HEX8_LANES) { /* (8 elements at a time: the lanes) */
+    _Alignas(64) double x[8][3][PF_HEX8_LANES], B[8][3][PF_HEX8_LANES], V[PF_HEX8_LANES];
+    for (int l = 0; l < PF_HEX8_LANES; l++) {
+      const pf_int e = e0 + l < b->nel ? e0 + l : e0; /* (lanes past the end repeat the first) */
+      for (int I = 0; I < 8; I++)
+        for (int a = 0; a < 3; a++) x[I][a][l] = pts->y[3 * (size_t)b->conn[8 * (size_t)e + I] + a];
+    }
+    pf_hex8_mean_gradient_lanes(x, B, V);
+    for (int l = 0; l < PF_HEX8_LANES && e0 + l < b->nel; l++) vq[e0 + l] = V[l] / nq;
   }
 #pragma omp parallel for schedule(static)
   for (pf_int i = 0; i < b->n; i++) { /* (each node its own sums, in its element order) */

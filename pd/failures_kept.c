@@ -1,41 +1,38 @@
 /* The bonds' failures kept at a quasi-static load step's start and put back when the load step is
  * abandoned (a signal: sim/solver_relaxation.c), so that the checkpoint then written is the last
  * equilibrium's, bonds included: the broken flags, and the rest lengths the contact records at a
- * break with their record bits. What a failing bond changes besides is put back elsewhere: its
- * booked energy with the ledger, the material's state with the body's history (pd/history.c); the
- * correspondence's shape cache follows the intact count (pd/material_correspondence.c). */
+ * break with their record bits (a family has all three: pd/family.c). What a failing bond changes
+ * besides is put back elsewhere: its booked energy with the ledger, the point fields with the
+ * solver's copy of them; the correspondence's shape cache follows the intact count
+ * (pd/material_correspondence.c). */
 #include "pd/pd_impl.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-static int keep(pf_pd_body *b, int64_t nb) {
-  pf_family *fam = &b->fam;
-  const int64_t nwords = nb / 64 + 1;
-  if (b->kept.nbonds != nb || !b->kept.broken) {
-    pf_pd_body_failures_free(b);
-    PF_MALLOC(b->kept.broken, nb > 0 ? nb : 1);
-    if (fam->rest) PF_MALLOC(b->kept.rest, nb > 0 ? nb : 1);
-    if (fam->recorded) PF_MALLOC(b->kept.recorded, nwords);
-    b->kept.nbonds = nb;
-  }
-  memcpy(b->kept.broken, fam->broken, (size_t)nb);
-  if (fam->rest) memcpy(b->kept.rest, fam->rest, sizeof(float) * (size_t)nb);
-  if (fam->recorded) memcpy(b->kept.recorded, fam->recorded, sizeof(uint64_t) * (size_t)nwords);
-  return 0;
-}
-
 int pf_pd_body_failures(pf_pd_body *b, int restore) {
   pf_family *fam = &b->fam;
-  const int64_t nb = pf_pd_family_nbonds(fam);
   if (!fam->broken) return 0;
-  if (!restore) return keep(b, nb);
-  PF_CHECK(b->kept.broken && b->kept.nbonds == nb && (!fam->rest || b->kept.rest) &&
-               (!fam->recorded || b->kept.recorded),
-           PF_ERR_RUN, "PD body '%s': no failures kept for its %" PF_INT_FMT " points", b->name, b->n);
-  memcpy(fam->broken, b->kept.broken, (size_t)nb);
-  if (fam->rest) memcpy(fam->rest, b->kept.rest, sizeof(float) * (size_t)nb);
-  if (fam->recorded) memcpy(fam->recorded, b->kept.recorded, sizeof(uint64_t) * (size_t)(nb / 64 + 1));
+  const int64_t nb = pf_pd_family_nbonds(fam), nwords = nb / 64 + 1;
+  if (restore) {
+    PF_CHECK(b->kept.broken && b->kept.nbonds == nb, PF_ERR_RUN,
+             "PD body '%s': no failures kept for its %" PF_INT_FMT " points", b->name, b->n);
+  } else if (b->kept.nbonds != nb || !b->kept.broken) {
+    pf_pd_body_failures_free(b);
+    PF_MALLOC(b->kept.broken, nb + 1);
+    PF_MALLOC(b->kept.rest, nb + 1);
+    PF_MALLOC(b->kept.recorded, nwords);
+    b->kept.nbonds = nb;
+  }
+  if (restore) {
+    memcpy(fam->broken, b->kept.broken, (size_t)nb);
+    memcpy(fam->rest, b->kept.rest, sizeof(float) * (size_t)nb);
+    memcpy(fam->recorded, b->kept.recorded, sizeof(uint64_t) * (size_t)nwords);
+  } else {
+    memcpy(b->kept.broken, fam->broken, (size_t)nb);
+    memcpy(b->kept.rest, fam->rest, sizeof(float) * (size_t)nb);
+    memcpy(b->kept.recorded, fam->recorded, sizeof(uint64_t) * (size_t)nwords);
+  }
   return 0;
 }
 
