@@ -88,6 +88,13 @@ static inline double pf_material_hypo_wave_speed(double K, double G, double rho0
   return sqrt((K + 4.0 * G / 3.0) * J / rho0);
 }
 
+/* ---- eigen-decomposition of symmetric 3x3 matrices across vector lanes (material/sym3_eigen.c) -- *
+ * Lane l of each array is one matrix: a (destroyed) = V diag(w) V^T, the columns of V orthonormal
+ * eigenvectors, each lane's bits those of the matrix decomposed alone (cyclic Jacobi). */
+#define PF_SYM3_LANES 8
+void pf_sym3_eigen_lanes(double a[3][3][PF_SYM3_LANES], double w[3][PF_SYM3_LANES],
+                         double V[3][3][PF_SYM3_LANES]);
+
 /* ---- radial return (material/material.c) ------------------------------------------------------- *
  * The consistency equation of J2 radial return with a flow stress that depends on the
  * increment dgam of equivalent plastic strain (hardening, rate):

@@ -139,55 +139,6 @@ static void mjc_init(const pf_material *m, pf_int n, double *restrict state) {
   }
 }
 
-/* Cyclic Jacobi eigen-decomposition of a symmetric 3x3 matrix a (Golub & Van Loan 2013, Matrix
- * Computations, 4th ed., sec. 8.5, Algorithms 8.5.1 "sym.schur2" and 8.5.3 "cyclic Jacobi"):
- * each rotation J(p, q, theta) zeros a_pq with
- *   tht = (a_qq - a_pp) / (2 a_pq),  t = sign(tht) / (|tht| + sqrt(1 + tht^2)),
- *   c = 1/sqrt(1 + t^2),  s = t c,   a <- J^T a J,   V <- V J,
- * i.e. a_pp -= t a_pq, a_qq += t a_pq, a_rp, a_rq rotated by (c, s). On return
- * a_in = V diag(w) V^T, the columns of V orthonormal eigenvectors. Off-diagonal entries below
- * 1e-22 |a|_F are set to zero instead of rotated (their effect on w is below round-off); the
- * sweeps stop when a sweep rotates nothing (quadratic convergence: a few sweeps). */
-static void sym3_eig(double a[3][3], double w[3], double V[3][3]) {
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) V[i][j] = i == j ? 1.0 : 0.0;
-  double fro = 0.0;
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) fro += a[i][j] * a[i][j];
-  const double tiny = 1e-22 * sqrt(fro);
-  static const int P[3] = {0, 0, 1}, Q[3] = {1, 2, 2};
-  for (int sweep = 0; sweep < 50; sweep++) {
-    int rotated = 0;
-    for (int k = 0; k < 3; k++) {
-      const int p = P[k], q = Q[k], r = 3 - p - q;
-      const double apq = a[p][q];
-      if (apq == 0.0) continue;
-      if (fabs(apq) <= tiny) {
-        a[p][q] = a[q][p] = 0.0;
-        continue;
-      }
-      rotated = 1;
-      const double tht = (a[q][q] - a[p][p]) / (2.0 * apq);
-      const double t = fabs(tht) > 1e150 ? 0.5 / tht
-                                         : (tht >= 0 ? 1.0 : -1.0) / (fabs(tht) + sqrt(1.0 + tht * tht));
-      const double c = 1.0 / sqrt(1.0 + t * t), s = t * c;
-      a[p][p] -= t * apq;
-      a[q][q] += t * apq;
-      a[p][q] = a[q][p] = 0.0;
-      const double arp = a[r][p], arq = a[r][q];
-      a[r][p] = a[p][r] = c * arp - s * arq;
-      a[r][q] = a[q][r] = s * arp + c * arq;
-      for (int i = 0; i < 3; i++) {
-        const double vp = V[i][p], vq = V[i][q];
-        V[i][p] = c * vp - s * vq;
-        V[i][q] = s * vp + c * vq;
-      }
-    }
-    if (!rotated) break;
-  }
-  for (int i = 0; i < 3; i++) w[i] = a[i][i];
-}
-
 typedef struct {
   double eqps, sigma0, eps0, n, C, xs; /* xs = 1 / (2 rate0 dt) */
 } mjc_flow_ctx;
@@ -224,81 +175,104 @@ static void inverse3(const double *restrict f, double Fi[3][3]) {
   Fi[2][2] = (f[0] * f[4] - f[1] * f[3]) / J;
 }
 
+/* b_e^tr - I = F A F^T + H + H^T + H H^T, A = Cp^-1 - I, H = F - I: no cancellation at small
+ * strain (the stored Cp^-1 is I exactly until the first plastic step). Lane l of B. */
+static void trial_b_minus_identity(const double *restrict f, const double *restrict st, int l,
+                                   double B[3][3][PF_SYM3_LANES]) {
+  double A[3][3], Hm[3][3], FA[3][3];
+  for (int v = 0; v < 6; v++)
+    A[vi[v]][vj[v]] = A[vj[v]][vi[v]] = st[S_CPINV + v] - (v < 3 ? 1.0 : 0.0);
+  for (int r = 0; r < 3; r++)
+    for (int c = 0; c < 3; c++) Hm[r][c] = f[3 * r + c] - (r == c ? 1.0 : 0.0);
+  for (int r = 0; r < 3; r++)
+    for (int c = 0; c < 3; c++)
+      FA[r][c] = f[3 * r] * A[0][c] + f[3 * r + 1] * A[1][c] + f[3 * r + 2] * A[2][c];
+  for (int r = 0; r < 3; r++)
+    for (int c = r; c < 3; c++) {
+      double b = Hm[r][c] + Hm[c][r];
+      for (int k = 0; k < 3; k++) b += FA[r][k] * f[3 * c + k] + Hm[r][k] * Hm[c][k];
+      B[r][c][l] = B[c][r][l] = b;
+    }
+}
+
+/* The rest of one point's step from the eigenvalues mu_a of b_e^tr - I and their vectors V
+ * (columns): principal logarithmic strains, the trial Kirchhoff stress, the radial return,
+ * Cp^-1, eqps and D, sigma (see the file comment). */
+static void point_update(const mjc *p, double K, double G, double dt, const double *restrict f,
+                         double *restrict st, double *restrict sg, const double mu[3], double V[3][3]) {
+  double eps[3], s[3];
+  for (int a = 0; a < 3; a++) eps[a] = 0.5 * log1p(mu[a]);
+  const double tr = eps[0] + eps[1] + eps[2], tau_m = K * tr;
+  for (int a = 0; a < 3; a++) s[a] = 2.0 * G * (eps[a] - tr / 3.0);
+  const double q = sqrt(1.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]));
+  const double eqps = st[S_EQPS];
+  /* (pow(1, n) is 1 exactly: the virgin points, most of a body, skip the call) */
+  const double Y0 = eqps == 0.0 ? p->sigma0 : p->sigma0 * pow(1.0 + eqps / p->eps0, p->n);
+  if (dt > 0 && q > Y0) {
+    const mjc_flow_ctx ctx = {eqps, p->sigma0, p->eps0, p->n, p->C, 0.5 / (p->rate0 * dt)};
+    const double dgam = pf_material_radial_return(q, 3.0 * G, (q - Y0) / (3.0 * G), mjc_flow, &ctx);
+    const double scale = 1.0 - 3.0 * G * dgam / q;
+    double be[3]; /* exp(2 eps_e) - 1 */
+    for (int a = 0; a < 3; a++) {
+      be[a] = expm1(2.0 * (eps[a] - 1.5 * dgam * s[a] / q));
+      s[a] *= scale;
+    }
+    /* Cp^-1 = F^-1 b_e F^-T with b_e = I + V diag(be) V^T, F^-1 = adj(F) / det F. */
+    double Fi[3][3], W[3][3];
+    inverse3(f, Fi);
+    for (int r = 0; r < 3; r++) /* W = F^-1 V */
+      for (int c = 0; c < 3; c++) W[r][c] = Fi[r][0] * V[0][c] + Fi[r][1] * V[1][c] + Fi[r][2] * V[2][c];
+    for (int v = 0; v < 6; v++) {
+      const int r = vi[v], c = vj[v];
+      double x = Fi[r][0] * Fi[c][0] + Fi[r][1] * Fi[c][1] + Fi[r][2] * Fi[c][2];
+      for (int a = 0; a < 3; a++) x += W[r][a] * be[a] * W[c][a];
+      st[S_CPINV + v] = x;
+    }
+    st[S_EQPS] = eqps + dgam;
+    /* Damage at the end-of-step triaxiality tau_m / q_{n+1} (= sigma_m / sigma_e). */
+    const double qn = scale * q;
+    if (p->has_damage && st[S_DAMAGE] < 1.0 && dgam > 0 && qn > 0) {
+      const double ef = mjc_failure_strain(p, tau_m / qn, dgam / dt);
+      st[S_DAMAGE] = fmin(1.0, st[S_DAMAGE] + dgam / ef);
+    }
+  }
+  /* sigma = V diag(tau_a / J) V^T. */
+  const double J = pf_det3(f);
+  double t[3];
+  for (int a = 0; a < 3; a++) t[a] = (tau_m + s[a]) / J;
+  for (int v = 0; v < 6; v++) {
+    const int r = vi[v], c = vj[v];
+    sg[v] = V[r][0] * t[0] * V[c][0] + V[r][1] * t[1] * V[c][1] + V[r][2] * t[2] * V[c][2];
+  }
+}
+
 /* One step per point (Simo 1992, box 1 / Simo & Hughes 1998, ch. 9, in principal logarithmic
  * strains; Tupek et al. 2013, sec. 2.3): b_e^tr = F Cp^-1 F^T -> eps_a = 1/2 ln(lambda_a^2) ->
  * tau_a = K tr(eps) + 2G dev(eps)_a -> radial return on q_tr with Y(eqps_n + dgam, dgam/dt) ->
  * eps_e, Cp^-1 = F^-1 exp(2 eps_e) F^-T, eqps, D -> sigma = tau / J (see the file comment). The
+ * eigen-decomposition of b_e^tr - I, most of the work, runs PF_SYM3_LANES points at a time across
+ * the vector lanes (material/sym3_eigen.c; lanes past n repeat the block's first point). The
  * incoming sigma and D are not used (hyperelastic). */
 static void mjc_update(const pf_material *m, pf_int n, double dt, const double *restrict F,
                        const double *restrict D, double *restrict sigma, double *restrict state) {
   (void)D;
   const mjc *p = m->data;
-  const double K = m->K, G = m->G;
-  for (pf_int i = 0; i < n; i++) {
-    const double *restrict f = F + 9 * (int64_t)i;
-    double *restrict st = state + (int64_t)NSTATE * i;
-    double *restrict sg = sigma + 6 * (int64_t)i;
-    /* b_e^tr - I = F A F^T + H + H^T + H H^T, A = Cp^-1 - I, H = F - I: no cancellation at
-     * small strain (the stored Cp^-1 is I exactly until the first plastic step). */
-    double A[3][3], Hm[3][3], FA[3][3], B[3][3];
-    for (int v = 0; v < 6; v++)
-      A[vi[v]][vj[v]] = A[vj[v]][vi[v]] = st[S_CPINV + v] - (v < 3 ? 1.0 : 0.0);
-    for (int r = 0; r < 3; r++)
-      for (int c = 0; c < 3; c++) Hm[r][c] = f[3 * r + c] - (r == c ? 1.0 : 0.0);
-    for (int r = 0; r < 3; r++)
-      for (int c = 0; c < 3; c++)
-        FA[r][c] = f[3 * r] * A[0][c] + f[3 * r + 1] * A[1][c] + f[3 * r + 2] * A[2][c];
-    for (int r = 0; r < 3; r++)
-      for (int c = r; c < 3; c++) {
-        double b = Hm[r][c] + Hm[c][r];
-        for (int k = 0; k < 3; k++) b += FA[r][k] * f[3 * c + k] + Hm[r][k] * Hm[c][k];
-        B[r][c] = B[c][r] = b;
-      }
-    double mu[3], V[3][3];
-    sym3_eig(B, mu, V);
-    /* Principal logarithmic strains and the trial Kirchhoff stress. */
-    double eps[3], s[3];
-    for (int a = 0; a < 3; a++) eps[a] = 0.5 * log1p(mu[a]);
-    const double tr = eps[0] + eps[1] + eps[2], tau_m = K * tr;
-    for (int a = 0; a < 3; a++) s[a] = 2.0 * G * (eps[a] - tr / 3.0);
-    const double q = sqrt(1.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]));
-    const double eqps = st[S_EQPS];
-    const double Y0 = p->sigma0 * pow(1.0 + eqps / p->eps0, p->n);
-    if (dt > 0 && q > Y0) {
-      const mjc_flow_ctx ctx = {eqps, p->sigma0, p->eps0, p->n, p->C, 0.5 / (p->rate0 * dt)};
-      const double dgam = pf_material_radial_return(q, 3.0 * G, (q - Y0) / (3.0 * G), mjc_flow, &ctx);
-      const double scale = 1.0 - 3.0 * G * dgam / q;
-      double be[3]; /* exp(2 eps_e) - 1 */
-      for (int a = 0; a < 3; a++) {
-        be[a] = expm1(2.0 * (eps[a] - 1.5 * dgam * s[a] / q));
-        s[a] *= scale;
-      }
-      /* Cp^-1 = F^-1 b_e F^-T with b_e = I + V diag(be) V^T, F^-1 = adj(F) / det F. */
-      double Fi[3][3], W[3][3];
-      inverse3(f, Fi);
-      for (int r = 0; r < 3; r++) /* W = F^-1 V */
-        for (int c = 0; c < 3; c++) W[r][c] = Fi[r][0] * V[0][c] + Fi[r][1] * V[1][c] + Fi[r][2] * V[2][c];
-      for (int v = 0; v < 6; v++) {
-        const int r = vi[v], c = vj[v];
-        double x = Fi[r][0] * Fi[c][0] + Fi[r][1] * Fi[c][1] + Fi[r][2] * Fi[c][2];
-        for (int a = 0; a < 3; a++) x += W[r][a] * be[a] * W[c][a];
-        st[S_CPINV + v] = x;
-      }
-      st[S_EQPS] = eqps + dgam;
-      /* Damage at the end-of-step triaxiality tau_m / q_{n+1} (= sigma_m / sigma_e). */
-      const double qn = scale * q;
-      if (p->has_damage && st[S_DAMAGE] < 1.0 && dgam > 0 && qn > 0) {
-        const double ef = mjc_failure_strain(p, tau_m / qn, dgam / dt);
-        st[S_DAMAGE] = fmin(1.0, st[S_DAMAGE] + dgam / ef);
-      }
+  for (pf_int i0 = 0; i0 < n; i0 += PF_SYM3_LANES) {
+    const int nl = n - i0 < PF_SYM3_LANES ? (int)(n - i0) : PF_SYM3_LANES;
+    _Alignas(64) double B[3][3][PF_SYM3_LANES], mu[3][PF_SYM3_LANES], V[3][3][PF_SYM3_LANES];
+    for (int l = 0; l < PF_SYM3_LANES; l++) {
+      const pf_int i = i0 + (l < nl ? l : 0);
+      trial_b_minus_identity(F + 9 * (int64_t)i, state + (int64_t)NSTATE * i, l, B);
     }
-    /* sigma = V diag(tau_a / J) V^T. */
-    const double J = pf_det3(f);
-    double t[3];
-    for (int a = 0; a < 3; a++) t[a] = (tau_m + s[a]) / J;
-    for (int v = 0; v < 6; v++) {
-      const int r = vi[v], c = vj[v];
-      sg[v] = V[r][0] * t[0] * V[c][0] + V[r][1] * t[1] * V[c][1] + V[r][2] * t[2] * V[c][2];
+    pf_sym3_eigen_lanes(B, mu, V);
+    for (int l = 0; l < nl; l++) {
+      const pf_int i = i0 + l;
+      double mul[3], Vl[3][3];
+      for (int a = 0; a < 3; a++) {
+        mul[a] = mu[a][l];
+        for (int c = 0; c < 3; c++) Vl[a][c] = V[a][c][l];
+      }
+      point_update(p, m->K, m->G, dt, F + 9 * (int64_t)i, state + (int64_t)NSTATE * i, sigma + 6 * (int64_t)i, mul, Vl);
     }
   }
 }
