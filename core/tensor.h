@@ -73,4 +73,66 @@ static inline void pf_sym6_rotate(double R[3][3], double s[6]) {
   }
 }
 
+/* ---- the same across vector lanes: lane l of each array is one tensor's, and each lane's bits
+ * are those of the one-tensor functions above (the same operations in the same order; the
+ * element kernels of fem/ run PF_TENSOR_LANES elements at once through them). */
+#define PF_TENSOR_LANES 8
+
+/* inv = A^-1 lane by lane, as pf_mat3_inverse. */
+static inline void pf_mat3_inverse_lanes(double A[3][3][PF_TENSOR_LANES], double inv[3][3][PF_TENSOR_LANES]) {
+#pragma omp simd
+  for (int l = 0; l < PF_TENSOR_LANES; l++) {
+    double c00 = A[1][1][l] * A[2][2][l] - A[1][2][l] * A[2][1][l], c01 = A[1][2][l] * A[2][0][l] - A[1][0][l] * A[2][2][l],
+           c02 = A[1][0][l] * A[2][1][l] - A[1][1][l] * A[2][0][l];
+    double det = A[0][0][l] * c00 + A[0][1][l] * c01 + A[0][2][l] * c02, r = 1.0 / det;
+    inv[0][0][l] = c00 * r;
+    inv[1][0][l] = c01 * r;
+    inv[2][0][l] = c02 * r;
+    inv[0][1][l] = (A[0][2][l] * A[2][1][l] - A[0][1][l] * A[2][2][l]) * r;
+    inv[1][1][l] = (A[0][0][l] * A[2][2][l] - A[0][2][l] * A[2][0][l]) * r;
+    inv[2][1][l] = (A[0][1][l] * A[2][0][l] - A[0][0][l] * A[2][1][l]) * r;
+    inv[0][2][l] = (A[0][1][l] * A[1][2][l] - A[0][2][l] * A[1][1][l]) * r;
+    inv[1][2][l] = (A[0][2][l] * A[1][0][l] - A[0][0][l] * A[1][2][l]) * r;
+    inv[2][2][l] = (A[0][0][l] * A[1][1][l] - A[0][1][l] * A[1][0][l]) * r;
+  }
+}
+
+/* R lane by lane, as pf_mat3_hughes_winget. */
+static inline void pf_mat3_hughes_winget_lanes(double L[3][3][PF_TENSOR_LANES], double dt,
+                                               double R[3][3][PF_TENSOR_LANES]) {
+  _Alignas(64) double Am[3][3][PF_TENSOR_LANES], Ap[3][3][PF_TENSOR_LANES], inv[3][3][PF_TENSOR_LANES];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+#pragma omp simd
+      for (int l = 0; l < PF_TENSOR_LANES; l++) {
+        double w = 0.5 * (L[i][j][l] - L[j][i][l]) * 0.5 * dt;
+        Am[i][j][l] = (i == j) - w;
+        Ap[i][j][l] = (i == j) + w;
+      }
+  pf_mat3_inverse_lanes(Am, inv);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+#pragma omp simd
+      for (int l = 0; l < PF_TENSOR_LANES; l++)
+        R[i][j][l] = inv[i][0][l] * Ap[0][j][l] + inv[i][1][l] * Ap[1][j][l] + inv[i][2][l] * Ap[2][j][l];
+}
+
+/* s <- R s R^T lane by lane, as pf_sym6_rotate. */
+static inline void pf_sym6_rotate_lanes(double R[3][3][PF_TENSOR_LANES], double s[6][PF_TENSOR_LANES]) {
+  _Alignas(64) double S[3][3][PF_TENSOR_LANES], T[3][3][PF_TENSOR_LANES];
+  for (int k = 0; k < 6; k++)
+#pragma omp simd
+    for (int l = 0; l < PF_TENSOR_LANES; l++) S[pf_voigt_i[k]][pf_voigt_j[k]][l] = S[pf_voigt_j[k]][pf_voigt_i[k]][l] = s[k][l];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+#pragma omp simd
+      for (int l = 0; l < PF_TENSOR_LANES; l++)
+        T[i][j][l] = S[i][0][l] * R[j][0][l] + S[i][1][l] * R[j][1][l] + S[i][2][l] * R[j][2][l];
+  for (int k = 0; k < 6; k++) {
+    int i = pf_voigt_i[k], j = pf_voigt_j[k];
+#pragma omp simd
+    for (int l = 0; l < PF_TENSOR_LANES; l++) s[k][l] = R[i][0][l] * T[0][j][l] + R[i][1][l] * T[1][j][l] + R[i][2][l] * T[2][j][l];
+  }
+}
+
 #endif

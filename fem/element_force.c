@@ -26,6 +26,9 @@
 #include <omp.h>
 #endif
 
+enum { W = PF_HEX8_LANES }; /* (= PF_TENSOR_LANES) */
+_Static_assert(PF_HEX8_LANES == PF_TENSOR_LANES, "the element lanes are the tensor helpers' lanes");
+
 /* Per-element scratch of one chunk. */
 typedef struct {
   double X[8][3], x[8][3], v[8][3]; /* the nodes: reference, current positions, velocities */
@@ -63,6 +66,18 @@ static void grad_product(double a[8][3], double g[8][3], double M[3][3]) {
       double s = 0;
       for (int I = 0; I < 8; I++) s += a[I][i] * g[I][j];
       M[i][j] = s;
+    }
+}
+
+/* grad_product lane by lane (the same bits). */
+static void grad_product_lanes(double a[8][3][W], double g[8][3][W], double M[3][3][W]) {
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+#pragma omp simd
+      for (int l = 0; l < W; l++) M[i][j][l] = 0;
+      for (int I = 0; I < 8; I++)
+#pragma omp simd
+        for (int l = 0; l < W; l++) M[i][j][l] += a[I][i][l] * g[I][j][l];
     }
 }
 
@@ -105,35 +120,93 @@ static void at_rest(int nq, double *F, double *D) {
   }
 }
 
-/* The nodes of elements [e, e + n), n <= PF_HEX8_LANES, into their scratch, with what depends on
- * their positions alone: the mean gradients at mid-step and at the end of the step, the
- * characteristic length and the hourglass vectors there, the elements across the vector lanes
- * (each lane's bits those of one element at a time). Lanes past n repeat the first element. */
-static void gather_lanes(const pf_fem_body *b, const pf_points *p, pf_int e, int n, double dt, scratch *s) {
-  enum { W = PF_HEX8_LANES };
-  _Alignas(64) double x[8][3][W], xm[8][3][W], B[8][3][W], Bm[8][3][W], V[W], Vm[W], len[W], gam[4][8][W];
+/* PF_HEX8_LANES elements across the vector lanes, lane l of each array one element's. */
+typedef struct {
+  _Alignas(64) double x[8][3][W], xm[8][3][W], v[8][3][W], B[8][3][W], Bm[8][3][W], V[W], Vm[W], len[W], gam[4][8][W];
+} lanes;
+
+/* The nodes of elements [e, e + n), n <= PF_HEX8_LANES, into their scratch and into q, with what
+ * depends on their positions alone: the mean gradients at mid-step and at the end of the step,
+ * the characteristic length and the hourglass vectors there, the elements across the vector
+ * lanes (each lane's bits those of one element at a time). Lanes past n repeat the first
+ * element. */
+static void gather_lanes(const pf_fem_body *b, const pf_points *p, pf_int e, int n, double dt, scratch *s, lanes *q) {
   const int hourglass = !b->bbar && b->hg != PF_HG_NONE;
   for (int l = 0; l < W; l++) {
     if (l < n) gather_nodes(b, p, e + l, dt, s[l].X, s[l].x, s[l].xm, s[l].v);
     const scratch *sl = &s[l < n ? l : 0];
     for (int I = 0; I < 8; I++)
-      for (int i = 0; i < 3; i++) x[I][i][l] = sl->x[I][i], xm[I][i][l] = sl->xm[I][i];
+      for (int i = 0; i < 3; i++) q->x[I][i][l] = sl->x[I][i], q->xm[I][i][l] = sl->xm[I][i], q->v[I][i][l] = sl->v[I][i];
   }
-  pf_hex8_mean_gradient_lanes(x, B, V);
-  pf_hex8_mean_gradient_lanes(xm, Bm, Vm);
-  pf_hex8_char_length_lanes(x, V, len);
-  if (hourglass) pf_hex8_hourglass_vectors_lanes(x, B, gam);
+  pf_hex8_mean_gradient_lanes(q->x, q->B, q->V);
+  pf_hex8_mean_gradient_lanes(q->xm, q->Bm, q->Vm);
+  pf_hex8_char_length_lanes(q->x, q->V, q->len);
+  if (hourglass) pf_hex8_hourglass_vectors_lanes(q->x, q->B, q->gam);
   for (int l = 0; l < n; l++) {
-    s[l].V = V[l], s[l].Vm = Vm[l], s[l].len = len[l];
+    s[l].V = q->V[l], s[l].Vm = q->Vm[l], s[l].len = q->len[l];
     for (int I = 0; I < 8; I++)
-      for (int i = 0; i < 3; i++) s[l].B[I][i] = B[I][i][l], s[l].Bm[I][i] = Bm[I][i][l];
+      for (int i = 0; i < 3; i++) s[l].B[I][i] = q->B[I][i][l], s[l].Bm[I][i] = q->Bm[I][i][l];
     for (int a = 0; a < 4 && hourglass; a++)
-      for (int I = 0; I < 8; I++) s[l].gam[a][I] = gam[a][I][l];
+      for (int I = 0; I < 8; I++) s[l].gam[a][I] = q->gam[a][I][l];
   }
 }
 
+/* Pass 1 of one-point elements [e, e + n) across the lanes of q (gather_lanes): what kinematics
+ * does, each lane with the operations of its element alone (the same bits), the cube root of
+ * store_F one lane at a time. Eroded elements get F = I, D = 0 (at_rest) and keep their stress. */
+static int kinematics_lanes(pf_fem_body *b, pf_int e, int n, double dt, lanes *q, double *F, double *D,
+                            scratch *s) {
+  _Alignas(64) double B0[8][3][W], ratio[W], cb[W], sig[6][W], hq[12][W], Lm[3][3][W], Fm[3][3][W], R[3][3][W], Dl[6][W], trD[W];
+  const int hg = b->hg != PF_HG_NONE;
+  for (int l = 0; l < W; l++) {
+    const pf_int el = e + (l < n ? l : 0);
+    const double *ref = &b->ref[25 * (size_t)el], *sg = &b->sigma[6 * (size_t)el];
+    for (int I = 0; I < 8; I++)
+      for (int i = 0; i < 3; i++) B0[I][i][l] = ref[3 * I + i];
+    ratio[l] = q->V[l] / ref[24];
+    for (int k = 0; k < 6; k++) sig[k][l] = sg[k];
+    for (int k = 0; k < 12; k++) hq[k][l] = hg ? b->hgq[12 * (size_t)el + k] : 0.0;
+  }
+  for (int l = 0; l < n; l++) {
+    if (pf_fem_element_eroded(b, e + l)) continue;
+    if (!(q->V[l] > 0)) return bad_element(b, e + l, s[l].x, "volume", q->V[l]);
+    if (!(q->Vm[l] > 0)) return bad_element(b, e + l, s[l].xm, "mid-step volume", q->Vm[l]);
+  }
+  grad_product_lanes(q->v, q->Bm, Lm);
+  pf_mat3_hughes_winget_lanes(Lm, dt, R);
+  grad_product_lanes(q->x, B0, Fm);
+  pf_sym6_rotate_lanes(R, sig);
+#pragma omp simd
+  for (int l = 0; l < W; l++) {
+    trD[l] = Lm[0][0][l] + Lm[1][1][l] + Lm[2][2][l];
+    ratio[l] = ratio[l] / (Fm[0][0][l] * (Fm[1][1][l] * Fm[2][2][l] - Fm[1][2][l] * Fm[2][1][l]) -
+                           Fm[0][1][l] * (Fm[1][0][l] * Fm[2][2][l] - Fm[1][2][l] * Fm[2][0][l]) +
+                           Fm[0][2][l] * (Fm[1][0][l] * Fm[2][1][l] - Fm[1][1][l] * Fm[2][0][l])); /* (pf_det3) */
+  }
+  for (int k = 0; k < 6; k++)
+#pragma omp simd
+    for (int l = 0; l < W; l++)
+      Dl[k][l] = 0.5 * (Lm[pf_voigt_i[k]][pf_voigt_j[k]][l] + Lm[pf_voigt_j[k]][pf_voigt_i[k]][l]);
+  for (int l = 0; l < n; l++) cb[l] = cbrt(ratio[l]);
+  for (int l = 0; l < n; l++) {
+    const pf_int el = e + l;
+    if (pf_fem_element_eroded(b, el)) {
+      at_rest(1, &F[9 * l], &D[6 * l]);
+      continue;
+    }
+    s[l].V0 = b->ref[25 * (size_t)el + 24], s[l].trD = trD[l], s[l].vmid[0] = q->Vm[l];
+    for (int k = 0; k < 9; k++) F[9 * l + k] = cb[l] * Fm[k / 3][k % 3][l];
+    for (int k = 0; k < 6; k++) D[6 * l + k] = Dl[k][l], s[l].s_old[0][k] = b->sigma[6 * (size_t)el + k] = sig[k][l];
+    for (int c = 0; c < 4 && hg; c++) /* (the viscous form's: for its work) */
+      for (int i = 0; i < 3; i++)
+        s[l].Q_old[3 * c + i] = R[i][0][l] * hq[3 * c][l] + R[i][1][l] * hq[3 * c + 1][l] + R[i][2][l] * hq[3 * c + 2][l];
+  }
+  return 0;
+}
+
 /* Pass 1: kinematics at mid-step, rotate stress and hourglass forces, F and D for the material
- * (the nodes and mean gradients in s from gather_lanes). */
+ * (the nodes and mean gradients in s from gather_lanes; one-point elements take
+ * kinematics_lanes). */
 static int kinematics(pf_fem_body *b, pf_int e, double dt, double *F, double *D, scratch *s) {
   double L[3][3], Lm[3][3], R[3][3];
   double(*x)[3] = s->x, (*xm)[3] = s->xm, (*v)[3] = s->v, (*Bm)[3] = s->Bm;
@@ -263,6 +336,116 @@ static int element_forces(pf_fem_body *b, pf_int e, double dt, const double *c, 
   return 0;
 }
 
+/* Pass 2 of one-point elements [e, e + n) across the lanes: what element_forces does, each lane
+ * with the operations of its element alone (the same bits); the viscous hourglass form's cube
+ * root and the corner test of a converting body one lane at a time. */
+static void forces_lanes(pf_fem_body *b, pf_int e, int n, double dt, const double *c, const double *Dv,
+                         const scratch *s, double *stable_dt) {
+  _Alignas(64) double B[8][3][W], v[8][3][W], gam[4][8][W], f[8][3][W], S[3][3][W], sg[6][W], so[6][W], Dl[6][W];
+  _Alignas(64) double V[W], len[W], cmax[W], rho[W], q[W], trD[W], vm[W], bvq[W], en[3][W], Qo[12][W], Q[12][W];
+  _Alignas(64) double qd[4][3][W], k4[W], cv[W], dte[W];
+  const int hg = b->hg != PF_HG_NONE;
+  for (int l = 0; l < W; l++) {
+    const int k = l < n ? l : 0;
+    const pf_int el = e + k;
+    const scratch *sl = &s[k];
+    const pf_fem_material *fm = pf_fem_element_material(b, el);
+    for (int I = 0; I < 8; I++)
+      for (int i = 0; i < 3; i++) B[I][i][l] = sl->B[I][i], v[I][i][l] = sl->v[I][i];
+    for (int a = 0; a < 4 && hg; a++)
+      for (int I = 0; I < 8; I++) gam[a][I][l] = sl->gam[a][I];
+    for (int m = 0; m < 12; m++) Qo[m][l] = hg ? sl->Q_old[m] : 0.0;
+    for (int m = 0; m < 6; m++) sg[m][l] = b->sigma[6 * (size_t)el + m], so[m][l] = sl->s_old[0][m], Dl[m][l] = Dv[6 * k + m];
+    for (int m = 0; m < 3; m++) en[m][l] = b->energy[3 * (size_t)el + m];
+    V[l] = sl->V, len[l] = sl->len, trD[l] = sl->trD, vm[l] = sl->vmid[0], bvq[l] = b->bvq[el];
+    cmax[l] = fmax(0, c[k]), rho[l] = fm->rho * sl->V0 / V[l], k4[l] = fm->K + 4.0 * fm->G / 3.0;
+  }
+  const double bq = b->bv_quadratic, bl = b->bv_linear, hc = b->hg_coef;
+#pragma omp simd
+  for (int l = 0; l < W; l++) {
+    const double qv = rho[l] * len[l] * (bq * len[l] * trD[l] * trD[l] - bl * cmax[l] * trD[l]);
+    q[l] = trD[l] < 0 ? qv : 0;
+  }
+  for (int m = 0; m < 6; m++)
+#pragma omp simd
+    for (int l = 0; l < W; l++) S[pf_voigt_i[m]][pf_voigt_j[m]][l] = S[pf_voigt_j[m]][pf_voigt_i[m]][l] = sg[m][l];
+  for (int i = 0; i < 3; i++)
+#pragma omp simd
+    for (int l = 0; l < W; l++) S[i][i][l] -= q[l];
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++)
+#pragma omp simd
+      for (int l = 0; l < W; l++) {
+        double t = S[i][0][l] * B[I][0][l] + S[i][1][l] * B[I][1][l] + S[i][2][l] * B[I][2][l];
+        f[I][i][l] = 0;
+        f[I][i][l] -= V[l] * t;
+      }
+#pragma omp simd
+  for (int l = 0; l < W; l++) { /* stress and bulk-viscosity work, as element_forces */
+    double avg[6];
+    for (int m = 0; m < 6; m++) avg[m] = 0.5 * (so[m][l] + sg[m][l]);
+    const double d = avg[0] * Dl[0][l] + avg[1] * Dl[1][l] + avg[2] * Dl[2][l] +
+                     2 * (avg[3] * Dl[3][l] + avg[4] * Dl[4][l] + avg[5] * Dl[5][l]); /* (sym_dot) */
+    double Vmid = 0;
+    en[0][l] += dt * vm[l] * d;
+    Vmid += vm[l];
+    en[2][l] += dt * 0.5 * (bvq[l] + q[l]) * (-trD[l]) * Vmid;
+  }
+  if (hg) {
+    for (int a = 0; a < 4; a++)
+      for (int i = 0; i < 3; i++) {
+#pragma omp simd
+        for (int l = 0; l < W; l++) qd[a][i][l] = 0;
+        for (int I = 0; I < 8; I++)
+#pragma omp simd
+          for (int l = 0; l < W; l++) qd[a][i][l] += v[I][i][l] * gam[a][I][l];
+      }
+    if (b->hg == PF_HG_VISCOUS)
+      for (int l = 0; l < W; l++) cv[l] = hc * rho[l] * cmax[l] * cbrt(V[l] * V[l]) / 4.0;
+    else
+#pragma omp simd
+      for (int l = 0; l < W; l++) {
+        double bb = 0;
+        for (int I = 0; I < 8; I++) bb += B[I][0][l] * B[I][0][l] + B[I][1][l] * B[I][1][l] + B[I][2][l] * B[I][2][l];
+        cv[l] = hc * k4[l] * V[l] * bb / 48.0;
+      }
+    const int viscous = b->hg == PF_HG_VISCOUS;
+    for (int a = 0; a < 4; a++)
+      for (int i = 0; i < 3; i++) {
+        const int m = 3 * a + i;
+#pragma omp simd
+        for (int l = 0; l < W; l++) {
+          Q[m][l] = viscous ? cv[l] * qd[a][i][l] : Qo[m][l] + dt * cv[l] * qd[a][i][l];
+          en[1][l] += dt * 0.5 * (Qo[m][l] + Q[m][l]) * qd[a][i][l];
+        }
+        for (int I = 0; I < 8; I++)
+#pragma omp simd
+          for (int l = 0; l < W; l++) f[I][i][l] -= Q[m][l] * gam[a][I][l];
+      }
+  }
+#pragma omp simd
+  for (int l = 0; l < W; l++) {
+    const double Qb = trD[l] < 0 ? bl * cmax[l] + bq * len[l] * fabs(trD[l]) : 0;
+    dte[l] = len[l] / (Qb + sqrt(Qb * Qb + cmax[l] * cmax[l]));
+  }
+  for (int l = 0; l < n; l++) {
+    const pf_int el = e + l;
+    if (b->erosion) b->due[el] = -1;
+    if (pf_fem_element_eroded(b, el)) {
+      memset(&b->fe[24 * (size_t)el], 0, sizeof(double) * 24);
+      continue;
+    }
+    for (int m = 0; m < 3; m++) b->energy[3 * (size_t)el + m] = en[m][l];
+    b->bvq[el] = q[l];
+    for (int m = 0; m < 12 && hg; m++) b->hgq[12 * (size_t)el + m] = Q[m][l];
+    for (int I = 0; I < 8; I++)
+      for (int i = 0; i < 3; i++) b->fe[24 * (size_t)el + 3 * I + i] = f[I][i][l];
+    *stable_dt = fmin(*stable_dt, dte[l]);
+    const int tangled = b->convert && pf_hex8_min_corner_jacobian((double(*)[3])s[l].x) < 0;
+    if (b->erosion && (tangled || pf_fem_erosion_due(b, el, s[l].V / s[l].V0))) b->due[el] = b->eid[el];
+  }
+}
+
 /* One chunk of elements [e0, e0 + ne) with its own scratch buf: kinematics, the batched material
  * call, forces into the element's own slots of fe (the nodes gather them in a fixed order,
  * pf_fem_body_node_force), erosion flags into due[e] (compacted in element order after). */
@@ -273,13 +456,21 @@ static int evaluate_chunk(pf_fem_body *b, const pf_points *pts, double dt, pf_in
   scratch *s = (scratch *)(c + (size_t)nq * PF_FEM_CHUNK);
   for (pf_int k0 = 0; k0 < ne; k0 += PF_HEX8_LANES) {
     const int nl = ne - k0 < PF_HEX8_LANES ? (int)(ne - k0) : PF_HEX8_LANES;
-    gather_lanes(b, pts, e0 + k0, nl, dt, &s[k0]);
+    lanes q;
+    gather_lanes(b, pts, e0 + k0, nl, dt, &s[k0], &q);
+    if (!b->bbar) {
+      PF_CALL(kinematics_lanes(b, e0 + k0, nl, dt, &q, &F[9 * (size_t)k0], &D[6 * (size_t)k0], &s[k0]));
+      continue;
+    }
     for (pf_int k = k0; k < k0 + nl; k++)
       if (pf_fem_element_eroded(b, e0 + k)) at_rest(nq, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k]);
       else PF_CALL(kinematics(b, e0 + k, dt, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
   }
   pf_fem_materials_update(b, e0, ne, dt, F, D, c, (double *)(s + PF_FEM_CHUNK));
-  for (pf_int k = 0; k < ne; k++) {
+  for (pf_int k0 = 0; k0 < ne && !b->bbar; k0 += PF_HEX8_LANES)
+    forces_lanes(b, e0 + k0, ne - k0 < PF_HEX8_LANES ? (int)(ne - k0) : PF_HEX8_LANES, dt, &c[k0], &D[6 * (size_t)k0], &s[k0],
+                 stable_dt);
+  for (pf_int k = 0; k < ne && b->bbar; k++) {
     const pf_int e = e0 + k;
     if (b->erosion) b->due[e] = -1;
     if (pf_fem_element_eroded(b, e)) {
