@@ -24,17 +24,19 @@ source common/mpi_env.sh
 export OMP_NUM_THREADS=1
 rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch"
 sed -e 's/^output:/restart: {file: ck.h5}\noutput:/' -e 's/tolerance: 1.0e-8/tolerance: 1.0e-10/' \
-  "$OLDPWD/data/static_plastic_pd.yaml" > bar.yaml
-mkdir ref && ref=$(cd ref && "$exe" --quiet ../bar.yaml 2>&1) || { echo "FAIL: the reference run: $ref"; exit 1; }
+  "$OLDPWD/data/static_plastic_pd.yaml" > signal_bar.yaml
+mkdir ref && ref=$(cd ref && "$exe" --quiet ../signal_bar.yaml 2>&1) || { echo "FAIL: the reference run: $ref"; exit 1; }
 ref=$(digest_of "$ref")
 echo "reference digest $ref"
 for np in 1 2; do
   rm -rf w$np && mkdir w$np && cd w$np
-  ( run $np "$exe" ../bar.yaml > run.log 2>&1; echo "exit $?" >> run.log ) &
+  ( run $np "$exe" ../signal_bar.yaml > run.log 2>&1; echo "exit $?" >> run.log ) &
   # (1 rank: once load step 1 is reported, 2 ranks: load step 2, when the bar has yielded, so that
   # the checkpoint holds plastic history)
   for _ in $(seq 600); do grep -q "^load step $np/" run.log 2>/dev/null && break; sleep 0.05; done
-  pkill -TERM -f "^$exe ../bar.yaml" # (every rank, as a batch system signals them)
+  # (every rank, as a batch system signals them; the deck's name is this test's alone, so that no
+  # other test's run is signalled when ctest runs tests side by side)
+  pkill -TERM -f "^$exe ../signal_bar.yaml"
   wait
   # (the load step the signal caught: 2 as a rule, a later one when this script was slow to send it)
   L=$(sed -n 's|^load step \([0-9]\)/4 abandoned.*|\1|p' run.log)
@@ -45,7 +47,7 @@ import os
 import h5py
 import numpy as np
 last = int(os.environ["LAST"])
-h = h5py.File("bar.h5", "r")
+h = h5py.File("signal_bar.h5", "r")
 step, err, w = (np.array(h[k]) for k in ("step", "energy_error", "external_work"))
 print("abandoned at load step %d; rows at steps %s" % (last + 1, list(step.astype(int))))
 # the last row is at load step last's equilibrium, as that load step's own row (not at the
@@ -54,7 +56,7 @@ if not (step[-1] == last and abs(err[-1] - err[step == last][0]) < 1e-3 * w[-1])
 PYEOF
   rp=$((np == 1 ? 3 : 1))
   {
-    o=$(run $rp "$exe" --quiet --restart ck.h5 --output-dir r$rp ../bar.yaml 2>&1) || { echo "FAIL: restart on $rp: $o"; fail=1; }
+    o=$(run $rp "$exe" --quiet --restart ck.h5 --output-dir r$rp ../signal_bar.yaml 2>&1) || { echo "FAIL: restart on $rp: $o"; fail=1; }
     d=$(digest_of "$o")
     [ "$d" = "$ref" ] || { echo "FAIL: written on $np, restarted on $rp: digest $d, reference $ref"; fail=1; }
     echo "written on $np ranks, restarted on $rp: digest $d"
@@ -81,11 +83,13 @@ echo "beam: reference digest $ref"
 caught=0
 for delay in 0.2 0.5 0.8 1.2; do
   rm -rf dsig && mkdir dsig && cd dsig
-  ( dcb_run > run.log 2>&1; echo "exit $?" >> run.log ) &
+  "$exe" "${beam[@]}" > run.log 2>&1 &
+  pid=$! # (this run alone: static_dcb runs the same deck beside it)
   for _ in $(seq 1200); do grep -q "^load step 13/" run.log 2>/dev/null && break; sleep 0.05; done
   sleep $delay
-  pkill -TERM -f "^$exe $src/inputs/dcb.yaml"
-  wait
+  kill -TERM $pid
+  wait $pid
+  echo "exit $?" >> run.log
   P=$(sed -n 's|^load step [0-9]*/20 abandoned after [0-9]* iterations and \([0-9]*\) damage passes.*|\1|p' run.log)
   grep -q '^exit 0' run.log || { echo "FAIL: beam: the signalled run did not exit 0:"; tail -5 run.log; fail=1; break; }
   if [ -n "$P" ] && [ "$P" -ge 1 ]; then caught=1; break; fi
