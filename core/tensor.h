@@ -78,13 +78,15 @@ static inline void pf_sym6_rotate(double R[3][3], double s[6]) {
  * element kernels of fem/ run PF_TENSOR_LANES elements at once through them). */
 #define PF_TENSOR_LANES 8
 
-/* inv = A^-1 lane by lane, as pf_mat3_inverse. */
-static inline void pf_mat3_inverse_lanes(double A[3][3][PF_TENSOR_LANES], double inv[3][3][PF_TENSOR_LANES]) {
+/* inv = A^-1 and det = det A lane by lane, as pf_mat3_inverse. */
+static inline void pf_mat3_inverse_lanes(double A[3][3][PF_TENSOR_LANES], double inv[3][3][PF_TENSOR_LANES],
+                                         double det_out[PF_TENSOR_LANES]) {
 #pragma omp simd
   for (int l = 0; l < PF_TENSOR_LANES; l++) {
     double c00 = A[1][1][l] * A[2][2][l] - A[1][2][l] * A[2][1][l], c01 = A[1][2][l] * A[2][0][l] - A[1][0][l] * A[2][2][l],
            c02 = A[1][0][l] * A[2][1][l] - A[1][1][l] * A[2][0][l];
     double det = A[0][0][l] * c00 + A[0][1][l] * c01 + A[0][2][l] * c02, r = 1.0 / det;
+    det_out[l] = det;
     inv[0][0][l] = c00 * r;
     inv[1][0][l] = c01 * r;
     inv[2][0][l] = c02 * r;
@@ -100,7 +102,7 @@ static inline void pf_mat3_inverse_lanes(double A[3][3][PF_TENSOR_LANES], double
 /* R lane by lane, as pf_mat3_hughes_winget. */
 static inline void pf_mat3_hughes_winget_lanes(double L[3][3][PF_TENSOR_LANES], double dt,
                                                double R[3][3][PF_TENSOR_LANES]) {
-  _Alignas(64) double Am[3][3][PF_TENSOR_LANES], Ap[3][3][PF_TENSOR_LANES], inv[3][3][PF_TENSOR_LANES];
+  _Alignas(64) double Am[3][3][PF_TENSOR_LANES], Ap[3][3][PF_TENSOR_LANES], inv[3][3][PF_TENSOR_LANES], det[PF_TENSOR_LANES];
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++)
 #pragma omp simd
@@ -109,7 +111,7 @@ static inline void pf_mat3_hughes_winget_lanes(double L[3][3][PF_TENSOR_LANES], 
         Am[i][j][l] = (i == j) - w;
         Ap[i][j][l] = (i == j) + w;
       }
-  pf_mat3_inverse_lanes(Am, inv);
+  pf_mat3_inverse_lanes(Am, inv, det);
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++)
 #pragma omp simd

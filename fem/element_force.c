@@ -85,17 +85,6 @@ static double sym_dot(const double a[6], const double d[6]) {
   return a[0] * d[0] + a[1] * d[1] + a[2] * d[2] + 2 * (a[3] * d[3] + a[4] * d[4] + a[5] * d[5]);
 }
 
-/* F scaled so that det F = J: the element's volume ratio, consistent with the mesh volumes. */
-static void store_F(double Fm[3][3], double J, double *F) {
-  double s = cbrt(J / pf_mat3_det(Fm));
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) F[3 * i + j] = s * Fm[i][j];
-}
-
-static void store_D(double L[3][3], double *D) {
-  for (int k = 0; k < 6; k++) D[k] = 0.5 * (L[pf_voigt_i[k]][pf_voigt_j[k]] + L[pf_voigt_j[k]][pf_voigt_i[k]]);
-}
-
 static int bad_element(const pf_fem_body *b, pf_int e, double x[8][3], const char *what, double value) {
   double c[3] = {0, 0, 0};
   for (int I = 0; I < 8; I++)
@@ -204,93 +193,93 @@ static int kinematics_lanes(pf_fem_body *b, pf_int e, int n, double dt, lanes *q
   return 0;
 }
 
-/* Pass 1: kinematics at mid-step, rotate stress and hourglass forces, F and D for the material
- * (the nodes and mean gradients in s from gather_lanes; one-point elements take
- * kinematics_lanes). */
-static int kinematics(pf_fem_body *b, pf_int e, double dt, double *F, double *D, scratch *s) {
-  double L[3][3], Lm[3][3], R[3][3];
-  double(*x)[3] = s->x, (*xm)[3] = s->xm, (*v)[3] = s->v, (*Bm)[3] = s->Bm;
-  double(*B0)[3] = (double(*)[3]) & b->ref[25 * (size_t)e];
-  double V0 = s->V0 = b->ref[25 * (size_t)e + 24], Vm = s->Vm, V = s->V;
-  if (!(V > 0)) return bad_element(b, e, x, "volume", V);
-  if (!(Vm > 0)) return bad_element(b, e, xm, "mid-step volume", Vm);
-  grad_product(v, Bm, Lm);
+/* Pass 1 of a B-bar element (the nodes and mean gradients in s from gather_lanes; one-point
+ * elements take kinematics_lanes): its eight Gauss points at once, lane g point g (the same bits
+ * as one point at a time): the velocity gradient with the element's mean dilatation, F-bar
+ * (det F = the element's volume ratio), D, the rotated stress. */
+static int kinematics_bbar(pf_fem_body *b, pf_int e, double dt, double *F, double *D, scratch *s) {
+  _Alignas(64) double g0[8][3][W], gm[8][3][W], vm[W], det0[W], vb[8][3][W], xb[8][3][W], L[3][3][W], Fm[3][3][W];
+  _Alignas(64) double R[3][3][W], sig[6][W], ratio[W], Lm[3][3];
+  double *sg = &b->sigma[6 * (size_t)b->nqp * e];
+  s->V0 = b->ref[25 * (size_t)e + 24];
+  if (!(s->V > 0)) return bad_element(b, e, s->x, "volume", s->V);
+  if (!(s->Vm > 0)) return bad_element(b, e, s->xm, "mid-step volume", s->Vm);
+  grad_product(s->v, s->Bm, Lm);
   s->trD = Lm[0][0] + Lm[1][1] + Lm[2][2];
-  pf_mat3_hughes_winget(Lm, dt, R);
-  for (int a = 0; a < 4 && b->hg != PF_HG_NONE; a++) /* (the viscous form's: for its work) */
-    for (int i = 0; i < 3; i++)
-      s->Q_old[3 * a + i] = R[i][0] * b->hgq[12 * e + 3 * a] + R[i][1] * b->hgq[12 * e + 3 * a + 1] +
-                            R[i][2] * b->hgq[12 * e + 3 * a + 2];
-  double *sig = &b->sigma[6 * (size_t)b->nqp * e];
-  if (!b->bbar) {
-    double Fm[3][3];
-    grad_product(x, B0, Fm);
-    store_F(Fm, V / V0, F);
-    store_D(Lm, D);
-    s->vmid[0] = Vm;
-    pf_sym6_rotate(R, sig);
-    memcpy(s->s_old[0], sig, sizeof s->s_old[0]);
-    return 0;
-  }
+  pf_hex8_gauss_gradients_lanes(s->X, g0, det0);
+  pf_hex8_gauss_gradients_lanes(s->xm, gm, vm);
   for (int g = 0; g < 8; g++) {
-    double xi[3], g0[8][3], gm[8][3], Fm[3][3];
-    pf_hex8_gauss_point(g, xi);
-    pf_hex8_gradients(s->X, xi, g0);
-    s->vmid[g] = pf_hex8_gradients(xm, xi, gm);
-    if (!(s->vmid[g] > 0)) return bad_element(b, e, xm, "mid-step Jacobian", s->vmid[g]);
-    grad_product(v, gm, L);
-    double corr = (s->trD - (L[0][0] + L[1][1] + L[2][2])) / 3.0; /* B-bar: mean dilatation */
-    for (int i = 0; i < 3; i++) L[i][i] += corr;
-    grad_product(x, g0, Fm);
-    store_F(Fm, V / V0, &F[9 * g]); /* F-bar: det F = the element's volume ratio */
-    store_D(L, &D[6 * g]);
-    pf_mat3_hughes_winget(L, dt, R);
-    pf_sym6_rotate(R, &sig[6 * g]);
-    memcpy(s->s_old[g], &sig[6 * g], sizeof s->s_old[g]);
+    s->vmid[g] = vm[g];
+    if (!(vm[g] > 0)) return bad_element(b, e, s->xm, "mid-step Jacobian", vm[g]);
+  }
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++)
+      for (int l = 0; l < W; l++) vb[I][i][l] = s->v[I][i], xb[I][i][l] = s->x[I][i];
+  grad_product_lanes(vb, gm, L);
+#pragma omp simd
+  for (int l = 0; l < W; l++) {
+    double corr = (s->trD - (L[0][0][l] + L[1][1][l] + L[2][2][l])) / 3.0; /* B-bar: mean dilatation */
+    for (int i = 0; i < 3; i++) L[i][i][l] += corr;
+  }
+  grad_product_lanes(xb, g0, Fm);
+  const double J = s->V / s->V0;
+#pragma omp simd
+  for (int l = 0; l < W; l++)
+    ratio[l] = J / (Fm[0][0][l] * (Fm[1][1][l] * Fm[2][2][l] - Fm[1][2][l] * Fm[2][1][l]) -
+                    Fm[0][1][l] * (Fm[1][0][l] * Fm[2][2][l] - Fm[1][2][l] * Fm[2][0][l]) +
+                    Fm[0][2][l] * (Fm[1][0][l] * Fm[2][1][l] - Fm[1][1][l] * Fm[2][0][l])); /* (pf_det3) */
+  pf_mat3_hughes_winget_lanes(L, dt, R);
+  for (int g = 0; g < 8; g++)
+    for (int k = 0; k < 6; k++) sig[k][g] = sg[6 * g + k];
+  pf_sym6_rotate_lanes(R, sig);
+  for (int g = 0; g < 8; g++) {
+    const double cb = cbrt(ratio[g]); /* F-bar: det F = the element's volume ratio */
+    for (int k = 0; k < 9; k++) F[9 * g + k] = cb * Fm[k / 3][k % 3][g];
+    for (int k = 0; k < 6; k++) {
+      D[6 * g + k] = 0.5 * (L[pf_voigt_i[k]][pf_voigt_j[k]][g] + L[pf_voigt_j[k]][pf_voigt_i[k]][g]);
+      s->s_old[g][k] = sg[6 * g + k] = sig[k][g];
+    }
   }
   return 0;
 }
 
-static void hourglass_force(pf_fem_body *b, pf_int e, double v[8][3], double B[8][3], double V, double c,
-                            double rho, double dt, const scratch *s, double f[8][3]) {
-  double qd[4][3] = {{0}}, *en = &b->energy[3 * (size_t)e];
-  const double(*gam)[8] = s->gam;
-  for (int a = 0; a < 4; a++)
-    for (int I = 0; I < 8; I++)
-      for (int i = 0; i < 3; i++) qd[a][i] += v[I][i] * gam[a][I];
-  if (b->hg == PF_HG_VISCOUS) { /* FB eq. 88: Q = q_hv rho c V^(2/3) / 4 qdot */
-    double cv = b->hg_coef * rho * c * cbrt(V * V) / 4.0, *Q = &b->hgq[12 * (size_t)e];
-    for (int a = 0; a < 4; a++)
-      for (int i = 0; i < 3; i++) {
-        Q[3 * a + i] = cv * qd[a][i];
-        /* the work over the step as velocity Verlet does it: the mean of the last and this
-         * evaluation's forces on the mid-step velocity (docs/theory/fem.md §6) */
-        en[1] += dt * 0.5 * (s->Q_old[3 * a + i] + Q[3 * a + i]) * qd[a][i];
-        for (int I = 0; I < 8; I++) f[I][i] -= Q[3 * a + i] * gam[a][I];
-      }
-    return;
+/* The B-bar stress divergence, f_iI -= sum_g V_g [sigma_ij dN_I/dx_j + tr(sigma)/3 (B_iI -
+ * dN_I/dx_i)] with sigma - q I, the eight Gauss points' gradients and terms in the lanes, summed
+ * into f in point order (the same bits as one point at a time). */
+static int bbar_forces(pf_fem_body *b, pf_int e, const scratch *s, double q, double f[8][3]) {
+  _Alignas(64) double gr[8][3][W], Vg[W], S[3][3][W], mean[W], t[8][3][W];
+  const double *sig = &b->sigma[6 * (size_t)b->nqp * e];
+  pf_hex8_gauss_gradients_lanes((double(*)[3])s->x, gr, Vg);
+  for (int g = 0; g < 8; g++)
+    if (!(Vg[g] > 0)) return bad_element(b, e, (double(*)[3])s->x, "Jacobian", Vg[g]);
+  for (int k = 0; k < 6; k++)
+    for (int g = 0; g < W; g++) S[pf_voigt_i[k]][pf_voigt_j[k]][g] = S[pf_voigt_j[k]][pf_voigt_i[k]][g] = sig[6 * g + k];
+#pragma omp simd
+  for (int l = 0; l < W; l++) {
+    mean[l] = (S[0][0][l] + S[1][1][l] + S[2][2][l]) / 3.0;
+    for (int i = 0; i < 3; i++) S[i][i][l] -= q;
   }
-  /* Stiffness form (FB eq. 90): Qdot = k qdot, k = q_hs (K + 4G/3) V B_iI B_iI / 48, scaled so
-   * that q_hs = 1 gives an hourglass mode of a cube about the stiffness it has in a fully
-   * integrated element (docs/theory/fem.md §4). */
-  double bb = 0;
-  for (int I = 0; I < 8; I++) bb += B[I][0] * B[I][0] + B[I][1] * B[I][1] + B[I][2] * B[I][2];
-  const pf_fem_material *fm = pf_fem_element_material(b, e); /* (the element's moduli) */
-  double k = b->hg_coef * (fm->K + 4.0 * fm->G / 3.0) * V * bb / 48.0, *Q = &b->hgq[12 * (size_t)e];
-  for (int a = 0; a < 4; a++)
-    for (int i = 0; i < 3; i++) {
-      Q[3 * a + i] = s->Q_old[3 * a + i] + dt * k * qd[a][i];
-      en[1] += dt * 0.5 * (s->Q_old[3 * a + i] + Q[3 * a + i]) * qd[a][i];
-      for (int I = 0; I < 8; I++) f[I][i] -= Q[3 * a + i] * gam[a][I];
-    }
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++)
+#pragma omp simd
+      for (int l = 0; l < W; l++) {
+        double ti = S[i][0][l] * gr[I][0][l] + S[i][1][l] * gr[I][1][l] + S[i][2][l] * gr[I][2][l];
+        ti += mean[l] * (s->B[I][i] - gr[I][i][l]);
+        t[I][i][l] = ti;
+      }
+  for (int g = 0; g < 8; g++)
+    for (int I = 0; I < 8; I++)
+      for (int i = 0; i < 3; i++) f[I][i] -= Vg[g] * t[I][i][g];
+  return 0;
 }
 
-/* Pass 2: forces from the new stress, bulk viscosity, hourglass; energies; stable step; *tangled
- * when the body converts elements and a corner's Jacobian is negative (docs/theory/fem.md sec. 9b). */
+/* Pass 2 of a B-bar element: forces from the new stress and bulk viscosity; energies; stable
+ * step; *tangled when the body converts elements and a corner's Jacobian is negative
+ * (docs/theory/fem.md sec. 9b). One-point elements take forces_lanes. */
 static int element_forces(pf_fem_body *b, pf_int e, double dt, const double *c, const double *D,
                           const scratch *s, double *stable_dt, int *tangled) {
   double f[8][3] = {{0}};
-  double(*B)[3] = (double(*)[3])s->B, (*x)[3] = (double(*)[3])s->x, (*v)[3] = (double(*)[3])s->v;
+  double(*x)[3] = (double(*)[3])s->x;
   double V = s->V, l = s->len, cmax = 0;
   double rho = pf_fem_element_material(b, e)->rho * s->V0 / V, Vmid = 0;
   for (int g = 0; g < b->nqp; g++) cmax = fmax(cmax, c[g]);
@@ -298,25 +287,7 @@ static int element_forces(pf_fem_body *b, pf_int e, double dt, const double *c, 
   if (s->trD < 0) q = rho * l * (b->bv_quadratic * l * s->trD * s->trD - b->bv_linear * cmax * s->trD);
   const double *sig = &b->sigma[6 * (size_t)b->nqp * e];
   double *en = &b->energy[3 * (size_t)e];
-  for (int g = 0; g < b->nqp; g++) {
-    double S[3][3], gr[8][3], Vg = V;
-    pf_sym6_to_mat(&sig[6 * g], S);
-    double mean = (S[0][0] + S[1][1] + S[2][2]) / 3.0;
-    for (int i = 0; i < 3; i++) S[i][i] -= q;
-    if (b->bbar) {
-      double xi[3];
-      pf_hex8_gauss_point(g, xi);
-      Vg = pf_hex8_gradients(x, xi, gr);
-      if (!(Vg > 0)) return bad_element(b, e, x, "Jacobian", Vg);
-    } else
-      memcpy(gr, B, sizeof gr);
-    for (int I = 0; I < 8; I++)
-      for (int i = 0; i < 3; i++) {
-        double t = S[i][0] * gr[I][0] + S[i][1] * gr[I][1] + S[i][2] * gr[I][2];
-        if (b->bbar) t += mean * (B[I][i] - gr[I][i]);
-        f[I][i] -= Vg * t;
-      }
-  }
+  PF_CALL(bbar_forces(b, e, s, q, f));
   /* stress work: trapezoid in time on the mid-step volumes, sum_g V_g (s_old + s_new)/2 : D */
   for (int g = 0; g < b->nqp; g++) {
     double avg[6];
@@ -328,7 +299,6 @@ static int element_forces(pf_fem_body *b, pf_int e, double dt, const double *c, 
    * applies the forces (docs/theory/fem.md §6) */
   en[2] += dt * 0.5 * (b->bvq[e] + q) * (-s->trD) * Vmid;
   b->bvq[e] = q;
-  if (!b->bbar && b->hg != PF_HG_NONE) hourglass_force(b, e, v, B, V, cmax, rho, dt, s, f);
   memcpy(&b->fe[24 * (size_t)e], f, sizeof f);
   double Qb = s->trD < 0 ? b->bv_linear * cmax + b->bv_quadratic * l * fabs(s->trD) : 0;
   *stable_dt = fmin(*stable_dt, l / (Qb + sqrt(Qb * Qb + cmax * cmax)));
@@ -336,14 +306,15 @@ static int element_forces(pf_fem_body *b, pf_int e, double dt, const double *c, 
   return 0;
 }
 
-/* Pass 2 of one-point elements [e, e + n) across the lanes: what element_forces does, each lane
- * with the operations of its element alone (the same bits); the viscous hourglass form's cube
- * root and the corner test of a converting body one lane at a time. */
-static void forces_lanes(pf_fem_body *b, pf_int e, int n, double dt, const double *c, const double *Dv,
-                         const scratch *s, double *stable_dt) {
-  _Alignas(64) double B[8][3][W], v[8][3][W], gam[4][8][W], f[8][3][W], S[3][3][W], sg[6][W], so[6][W], Dl[6][W];
-  _Alignas(64) double V[W], len[W], cmax[W], rho[W], q[W], trD[W], vm[W], bvq[W], en[3][W], Qo[12][W], Q[12][W];
-  _Alignas(64) double qd[4][3][W], k4[W], cv[W], dte[W];
+/* Pass 2 of one-point elements across the lanes (forces_lanes): their data, lane l element l. */
+typedef struct {
+  _Alignas(64) double B[8][3][W], v[8][3][W], gam[4][8][W], f[8][3][W], sg[6][W], so[6][W], Dl[6][W], Qo[12][W], Q[12][W];
+  _Alignas(64) double V[W], len[W], cmax[W], rho[W], q[W], trD[W], vm[W], bvq[W], en[3][W], k4[W];
+} pass2;
+
+/* Elements [e, e + n) into the lanes (lanes past n repeat the first). */
+static void pass2_load(const pf_fem_body *b, pf_int e, int n, const double *c, const double *Dv, const scratch *s,
+                       pass2 *r) {
   const int hg = b->hg != PF_HG_NONE;
   for (int l = 0; l < W; l++) {
     const int k = l < n ? l : 0;
@@ -351,82 +322,105 @@ static void forces_lanes(pf_fem_body *b, pf_int e, int n, double dt, const doubl
     const scratch *sl = &s[k];
     const pf_fem_material *fm = pf_fem_element_material(b, el);
     for (int I = 0; I < 8; I++)
-      for (int i = 0; i < 3; i++) B[I][i][l] = sl->B[I][i], v[I][i][l] = sl->v[I][i];
+      for (int i = 0; i < 3; i++) r->B[I][i][l] = sl->B[I][i], r->v[I][i][l] = sl->v[I][i];
     for (int a = 0; a < 4 && hg; a++)
-      for (int I = 0; I < 8; I++) gam[a][I][l] = sl->gam[a][I];
-    for (int m = 0; m < 12; m++) Qo[m][l] = hg ? sl->Q_old[m] : 0.0;
-    for (int m = 0; m < 6; m++) sg[m][l] = b->sigma[6 * (size_t)el + m], so[m][l] = sl->s_old[0][m], Dl[m][l] = Dv[6 * k + m];
-    for (int m = 0; m < 3; m++) en[m][l] = b->energy[3 * (size_t)el + m];
-    V[l] = sl->V, len[l] = sl->len, trD[l] = sl->trD, vm[l] = sl->vmid[0], bvq[l] = b->bvq[el];
-    cmax[l] = fmax(0, c[k]), rho[l] = fm->rho * sl->V0 / V[l], k4[l] = fm->K + 4.0 * fm->G / 3.0;
+      for (int I = 0; I < 8; I++) r->gam[a][I][l] = sl->gam[a][I];
+    for (int m = 0; m < 12; m++) r->Qo[m][l] = hg ? sl->Q_old[m] : 0.0;
+    for (int m = 0; m < 6; m++)
+      r->sg[m][l] = b->sigma[6 * (size_t)el + m], r->so[m][l] = sl->s_old[0][m], r->Dl[m][l] = Dv[6 * k + m];
+    for (int m = 0; m < 3; m++) r->en[m][l] = b->energy[3 * (size_t)el + m];
+    r->V[l] = sl->V, r->len[l] = sl->len, r->trD[l] = sl->trD, r->vm[l] = sl->vmid[0], r->bvq[l] = b->bvq[el];
+    r->cmax[l] = fmax(0, c[k]), r->rho[l] = fm->rho * sl->V0 / r->V[l], r->k4[l] = fm->K + 4.0 * fm->G / 3.0;
   }
-  const double bq = b->bv_quadratic, bl = b->bv_linear, hc = b->hg_coef;
+}
+
+/* Bulk viscosity q, the stress divergence f = -V (sigma - q I) B, the stress and bulk-viscosity
+ * work (element_forces' formulas). */
+static void pass2_divergence(const pf_fem_body *b, double dt, pass2 *r) {
+  _Alignas(64) double S[3][3][W];
+  const double bq = b->bv_quadratic, bl = b->bv_linear;
 #pragma omp simd
   for (int l = 0; l < W; l++) {
-    const double qv = rho[l] * len[l] * (bq * len[l] * trD[l] * trD[l] - bl * cmax[l] * trD[l]);
-    q[l] = trD[l] < 0 ? qv : 0;
+    const double qv = r->rho[l] * r->len[l] * (bq * r->len[l] * r->trD[l] * r->trD[l] - bl * r->cmax[l] * r->trD[l]);
+    r->q[l] = r->trD[l] < 0 ? qv : 0;
   }
   for (int m = 0; m < 6; m++)
 #pragma omp simd
-    for (int l = 0; l < W; l++) S[pf_voigt_i[m]][pf_voigt_j[m]][l] = S[pf_voigt_j[m]][pf_voigt_i[m]][l] = sg[m][l];
+    for (int l = 0; l < W; l++) S[pf_voigt_i[m]][pf_voigt_j[m]][l] = S[pf_voigt_j[m]][pf_voigt_i[m]][l] = r->sg[m][l];
   for (int i = 0; i < 3; i++)
 #pragma omp simd
-    for (int l = 0; l < W; l++) S[i][i][l] -= q[l];
+    for (int l = 0; l < W; l++) S[i][i][l] -= r->q[l];
   for (int I = 0; I < 8; I++)
     for (int i = 0; i < 3; i++)
 #pragma omp simd
       for (int l = 0; l < W; l++) {
-        double t = S[i][0][l] * B[I][0][l] + S[i][1][l] * B[I][1][l] + S[i][2][l] * B[I][2][l];
-        f[I][i][l] = 0;
-        f[I][i][l] -= V[l] * t;
+        double t = S[i][0][l] * r->B[I][0][l] + S[i][1][l] * r->B[I][1][l] + S[i][2][l] * r->B[I][2][l];
+        r->f[I][i][l] = 0;
+        r->f[I][i][l] -= r->V[l] * t;
       }
-#pragma omp simd
-  for (int l = 0; l < W; l++) { /* stress and bulk-viscosity work, as element_forces */
-    double avg[6];
-    for (int m = 0; m < 6; m++) avg[m] = 0.5 * (so[m][l] + sg[m][l]);
-    const double d = avg[0] * Dl[0][l] + avg[1] * Dl[1][l] + avg[2] * Dl[2][l] +
-                     2 * (avg[3] * Dl[3][l] + avg[4] * Dl[4][l] + avg[5] * Dl[5][l]); /* (sym_dot) */
-    double Vmid = 0;
-    en[0][l] += dt * vm[l] * d;
-    Vmid += vm[l];
-    en[2][l] += dt * 0.5 * (bvq[l] + q[l]) * (-trD[l]) * Vmid;
-  }
-  if (hg) {
-    for (int a = 0; a < 4; a++)
-      for (int i = 0; i < 3; i++) {
-#pragma omp simd
-        for (int l = 0; l < W; l++) qd[a][i][l] = 0;
-        for (int I = 0; I < 8; I++)
-#pragma omp simd
-          for (int l = 0; l < W; l++) qd[a][i][l] += v[I][i][l] * gam[a][I][l];
-      }
-    if (b->hg == PF_HG_VISCOUS)
-      for (int l = 0; l < W; l++) cv[l] = hc * rho[l] * cmax[l] * cbrt(V[l] * V[l]) / 4.0;
-    else
-#pragma omp simd
-      for (int l = 0; l < W; l++) {
-        double bb = 0;
-        for (int I = 0; I < 8; I++) bb += B[I][0][l] * B[I][0][l] + B[I][1][l] * B[I][1][l] + B[I][2][l] * B[I][2][l];
-        cv[l] = hc * k4[l] * V[l] * bb / 48.0;
-      }
-    const int viscous = b->hg == PF_HG_VISCOUS;
-    for (int a = 0; a < 4; a++)
-      for (int i = 0; i < 3; i++) {
-        const int m = 3 * a + i;
-#pragma omp simd
-        for (int l = 0; l < W; l++) {
-          Q[m][l] = viscous ? cv[l] * qd[a][i][l] : Qo[m][l] + dt * cv[l] * qd[a][i][l];
-          en[1][l] += dt * 0.5 * (Qo[m][l] + Q[m][l]) * qd[a][i][l];
-        }
-        for (int I = 0; I < 8; I++)
-#pragma omp simd
-          for (int l = 0; l < W; l++) f[I][i][l] -= Q[m][l] * gam[a][I][l];
-      }
-  }
 #pragma omp simd
   for (int l = 0; l < W; l++) {
-    const double Qb = trD[l] < 0 ? bl * cmax[l] + bq * len[l] * fabs(trD[l]) : 0;
-    dte[l] = len[l] / (Qb + sqrt(Qb * Qb + cmax[l] * cmax[l]));
+    double avg[6];
+    for (int m = 0; m < 6; m++) avg[m] = 0.5 * (r->so[m][l] + r->sg[m][l]);
+    const double d = avg[0] * r->Dl[0][l] + avg[1] * r->Dl[1][l] + avg[2] * r->Dl[2][l] +
+                     2 * (avg[3] * r->Dl[3][l] + avg[4] * r->Dl[4][l] + avg[5] * r->Dl[5][l]); /* (sym_dot) */
+    double Vmid = 0;
+    r->en[0][l] += dt * r->vm[l] * d;
+    Vmid += r->vm[l];
+    r->en[2][l] += dt * 0.5 * (r->bvq[l] + r->q[l]) * (-r->trD[l]) * Vmid;
+  }
+}
+
+/* Hourglass forces and their work. Viscous form (FB eq. 88): Q = q_hv rho c V^(2/3) / 4 qdot.
+ * Stiffness form (FB eq. 90): Qdot = k qdot, k = q_hs (K + 4G/3) V B_iI B_iI / 48, scaled so that
+ * q_hs = 1 gives an hourglass mode of a cube about the stiffness it has in a fully integrated
+ * element (docs/theory/fem.md §4). The work over the step as velocity Verlet does it: the mean of
+ * the last and this evaluation's forces on the mid-step velocity (docs/theory/fem.md §6). */
+static void pass2_hourglass(const pf_fem_body *b, double dt, pass2 *r) {
+  _Alignas(64) double qd[4][3][W], cv[W];
+  const double hc = b->hg_coef;
+  const int viscous = b->hg == PF_HG_VISCOUS;
+  for (int a = 0; a < 4; a++)
+    for (int i = 0; i < 3; i++) {
+#pragma omp simd
+      for (int l = 0; l < W; l++) qd[a][i][l] = 0;
+      for (int I = 0; I < 8; I++)
+#pragma omp simd
+        for (int l = 0; l < W; l++) qd[a][i][l] += r->v[I][i][l] * r->gam[a][I][l];
+    }
+  if (viscous)
+    for (int l = 0; l < W; l++) cv[l] = hc * r->rho[l] * r->cmax[l] * cbrt(r->V[l] * r->V[l]) / 4.0;
+  else
+#pragma omp simd
+    for (int l = 0; l < W; l++) {
+      double bb = 0;
+      for (int I = 0; I < 8; I++)
+        bb += r->B[I][0][l] * r->B[I][0][l] + r->B[I][1][l] * r->B[I][1][l] + r->B[I][2][l] * r->B[I][2][l];
+      cv[l] = hc * r->k4[l] * r->V[l] * bb / 48.0;
+    }
+  for (int a = 0; a < 4; a++)
+    for (int i = 0; i < 3; i++) {
+      const int m = 3 * a + i;
+#pragma omp simd
+      for (int l = 0; l < W; l++) {
+        r->Q[m][l] = viscous ? cv[l] * qd[a][i][l] : r->Qo[m][l] + dt * cv[l] * qd[a][i][l];
+        r->en[1][l] += dt * 0.5 * (r->Qo[m][l] + r->Q[m][l]) * qd[a][i][l];
+      }
+      for (int I = 0; I < 8; I++)
+#pragma omp simd
+        for (int l = 0; l < W; l++) r->f[I][i][l] -= r->Q[m][l] * r->gam[a][I][l];
+    }
+}
+
+/* The stable step, and elements [e, e + n) out of the lanes: forces, energies, q, Q; erosion flags
+ * (the corner test of a converting body lane by lane). */
+static void pass2_store(pf_fem_body *b, pf_int e, int n, const scratch *s, const pass2 *r, double *stable_dt) {
+  _Alignas(64) double dte[W];
+  const double bq = b->bv_quadratic, bl = b->bv_linear;
+#pragma omp simd
+  for (int l = 0; l < W; l++) {
+    const double Qb = r->trD[l] < 0 ? bl * r->cmax[l] + bq * r->len[l] * fabs(r->trD[l]) : 0;
+    dte[l] = r->len[l] / (Qb + sqrt(Qb * Qb + r->cmax[l] * r->cmax[l]));
   }
   for (int l = 0; l < n; l++) {
     const pf_int el = e + l;
@@ -435,15 +429,26 @@ static void forces_lanes(pf_fem_body *b, pf_int e, int n, double dt, const doubl
       memset(&b->fe[24 * (size_t)el], 0, sizeof(double) * 24);
       continue;
     }
-    for (int m = 0; m < 3; m++) b->energy[3 * (size_t)el + m] = en[m][l];
-    b->bvq[el] = q[l];
-    for (int m = 0; m < 12 && hg; m++) b->hgq[12 * (size_t)el + m] = Q[m][l];
+    for (int m = 0; m < 3; m++) b->energy[3 * (size_t)el + m] = r->en[m][l];
+    b->bvq[el] = r->q[l];
+    for (int m = 0; m < 12 && b->hg != PF_HG_NONE; m++) b->hgq[12 * (size_t)el + m] = r->Q[m][l];
     for (int I = 0; I < 8; I++)
-      for (int i = 0; i < 3; i++) b->fe[24 * (size_t)el + 3 * I + i] = f[I][i][l];
+      for (int i = 0; i < 3; i++) b->fe[24 * (size_t)el + 3 * I + i] = r->f[I][i][l];
     *stable_dt = fmin(*stable_dt, dte[l]);
     const int tangled = b->convert && pf_hex8_min_corner_jacobian((double(*)[3])s[l].x) < 0;
     if (b->erosion && (tangled || pf_fem_erosion_due(b, el, s[l].V / s[l].V0))) b->due[el] = b->eid[el];
   }
+}
+
+/* Pass 2 of one-point elements [e, e + n) across the lanes: what element_forces does for a B-bar
+ * element, each lane with the operations of its element alone (the same bits). */
+static void forces_lanes(pf_fem_body *b, pf_int e, int n, double dt, const double *c, const double *Dv,
+                         const scratch *s, double *stable_dt) {
+  pass2 r;
+  pass2_load(b, e, n, c, Dv, s, &r);
+  pass2_divergence(b, dt, &r);
+  if (b->hg != PF_HG_NONE) pass2_hourglass(b, dt, &r);
+  pass2_store(b, e, n, s, &r, stable_dt);
 }
 
 /* One chunk of elements [e0, e0 + ne) with its own scratch buf: kinematics, the batched material
@@ -464,7 +469,7 @@ static int evaluate_chunk(pf_fem_body *b, const pf_points *pts, double dt, pf_in
     }
     for (pf_int k = k0; k < k0 + nl; k++)
       if (pf_fem_element_eroded(b, e0 + k)) at_rest(nq, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k]);
-      else PF_CALL(kinematics(b, e0 + k, dt, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
+      else PF_CALL(kinematics_bbar(b, e0 + k, dt, &F[9 * (size_t)nq * k], &D[6 * (size_t)nq * k], &s[k]));
   }
   pf_fem_materials_update(b, e0, ne, dt, F, D, c, (double *)(s + PF_FEM_CHUNK));
   for (pf_int k0 = 0; k0 < ne && !b->bbar; k0 += PF_HEX8_LANES)

@@ -61,6 +61,7 @@ typedef struct {
   double w;
 } pair_weight;
 static pair_weight wtab[8][PER_NODE];
+static double gauss_dN[8][3][PF_HEX8_LANES]; /* dN_I/dxi_k at Gauss point g in lane g */
 static int built = 0;
 
 static void build_triples(void) {
@@ -69,6 +70,8 @@ static void build_triples(void) {
     double xi[3], dN[8][3];
     pf_hex8_gauss_point(g, xi);
     parent_derivatives(xi, dN);
+    for (int I = 0; I < 8; I++)
+      for (int k = 0; k < 3; k++) gauss_dN[I][k][g] = dN[I][k];
     for (int I = 0; I < 8; I++)
       for (int J = 0; J < 8; J++)
         for (int K = 0; K < 8; K++) C[I][J][K] += dN[I][0] * dN[J][1] * dN[K][2];
@@ -138,6 +141,30 @@ void pf_hex8_mean_gradient_lanes(double x[8][3][PF_HEX8_LANES], double B[8][3][P
       for (int l = 0; l < W; l++) B[I][i][l] /= v[l];
 #pragma omp simd
   for (int l = 0; l < W; l++) V[l] = v[l];
+}
+
+/* pf_hex8_gradients at the eight Gauss points of one element at once, lane g Gauss point g
+ * (pf_hex8_gauss_point): the same operations lane by lane, so the same bits. */
+void pf_hex8_gauss_gradients_lanes(double x[8][3], double grad[8][3][PF_HEX8_LANES], double det[PF_HEX8_LANES]) {
+  enum { W = PF_HEX8_LANES };
+  _Static_assert(PF_HEX8_LANES == 8 && PF_TENSOR_LANES == 8, "a lane for each of the 8 Gauss points");
+  if (!built) build_triples();
+  _Alignas(64) double J[3][3][W], inv[3][3][W];
+  for (int i = 0; i < 3; i++)
+    for (int k = 0; k < 3; k++)
+#pragma omp simd
+      for (int l = 0; l < W; l++) J[i][k][l] = 0;
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++)
+      for (int k = 0; k < 3; k++)
+#pragma omp simd
+        for (int l = 0; l < W; l++) J[i][k][l] += x[I][i] * gauss_dN[I][k][l];
+  pf_mat3_inverse_lanes(J, inv, det);
+  for (int I = 0; I < 8; I++)
+    for (int i = 0; i < 3; i++)
+#pragma omp simd
+      for (int l = 0; l < W; l++)
+        grad[I][i][l] = gauss_dN[I][0][l] * inv[0][i][l] + gauss_dN[I][1][l] * inv[1][i][l] + gauss_dN[I][2][l] * inv[2][i][l];
 }
 
 /* One element: every lane the same element (the same bits as its lane of a batch). */

@@ -72,6 +72,9 @@ double pf_hex8_mean_gradient(double x[8][3], double B[8][3]);
 #define PF_HEX8_LANES 8
 void pf_hex8_mean_gradient_lanes(double x[8][3][PF_HEX8_LANES], double B[8][3][PF_HEX8_LANES],
                                  double V[PF_HEX8_LANES]);
+/* pf_hex8_gradients at the eight Gauss points at once, lane g Gauss point g (the same bits);
+ * det J into det. */
+void pf_hex8_gauss_gradients_lanes(double x[8][3], double grad[8][3][PF_HEX8_LANES], double det[PF_HEX8_LANES]);
 void pf_hex8_lumped_mass(double x[8][3], double rho, double m[8]);
 double pf_hex8_char_length(double x[8][3], double V);
 void pf_hex8_char_length_lanes(double x[8][3][PF_HEX8_LANES], const double V[PF_HEX8_LANES],
