@@ -45,7 +45,7 @@ BASELINE=(
   "pmb             pmb.yaml                  2 10 11.7864"
   "lps_inv_dist    lps_inverse_distance.yaml 2 10 24.2414"
   "correspondence  correspondence.yaml       2 10 11.3331"
-  "hex8            hex8.yaml                 2 10 8.4454"
+  "hex8            hex8.yaml                 2 10 8.3062"
   "contact         contact.yaml              2 10 5.1130"
   "fragments       fragments.yaml           12 10 5.5916"
 )
