@@ -78,6 +78,15 @@ static inline void pf_sym6_rotate(double R[3][3], double s[6]) {
  * element kernels of fem/ run PF_TENSOR_LANES elements at once through them). */
 #define PF_TENSOR_LANES 8
 
+/* det A lane by lane, as pf_mat3_det. */
+static inline void pf_mat3_det_lanes(double F[3][3][PF_TENSOR_LANES], double det[PF_TENSOR_LANES]) {
+#pragma omp simd
+  for (int l = 0; l < PF_TENSOR_LANES; l++)
+    det[l] = F[0][0][l] * (F[1][1][l] * F[2][2][l] - F[1][2][l] * F[2][1][l]) -
+             F[0][1][l] * (F[1][0][l] * F[2][2][l] - F[1][2][l] * F[2][0][l]) +
+             F[0][2][l] * (F[1][0][l] * F[2][1][l] - F[1][1][l] * F[2][0][l]);
+}
+
 /* inv = A^-1 and det = det A lane by lane, as pf_mat3_inverse. */
 static inline void pf_mat3_inverse_lanes(double A[3][3][PF_TENSOR_LANES], double inv[3][3][PF_TENSOR_LANES],
                                          double det_out[PF_TENSOR_LANES]) {

@@ -140,12 +140,15 @@ static void gather_lanes(const pf_fem_body *b, const pf_points *p, pf_int e, int
   }
 }
 
-/* Pass 1 of one-point elements [e, e + n) across the lanes of q (gather_lanes): what kinematics
- * does, each lane with the operations of its element alone (the same bits), the cube root of
- * store_F one lane at a time. Eroded elements get F = I, D = 0 (at_rest) and keep their stress. */
+/* Pass 1 of one-point elements [e, e + n) across the lanes of q (gather_lanes), each lane with the
+ * operations of its element alone (the same bits): the velocity gradient L = sum_I v_I (x) Bm_I at
+ * mid-step, the Hughes-Winget rotation of the stress and of the hourglass forces, D = sym L, and
+ * F = (J / det F0)^(1/3) F0 with F0 = sum_I x_I (x) B0_I (det F = the element's volume ratio J;
+ * the cube root lane by lane). Eroded elements get F = I, D = 0 (at_rest) and keep their stress. */
 static int kinematics_lanes(pf_fem_body *b, pf_int e, int n, double dt, lanes *q, double *F, double *D,
                             scratch *s) {
-  _Alignas(64) double B0[8][3][W], ratio[W], cb[W], sig[6][W], hq[12][W], Lm[3][3][W], Fm[3][3][W], R[3][3][W], Dl[6][W], trD[W];
+  _Alignas(64) double B0[8][3][W], ratio[W], det[W], cb[W], sig[6][W], hq[12][W], Lm[3][3][W], Fm[3][3][W], R[3][3][W];
+  _Alignas(64) double Dl[6][W], trD[W];
   const int hg = b->hg != PF_HG_NONE;
   for (int l = 0; l < W; l++) {
     const pf_int el = e + (l < n ? l : 0);
@@ -165,12 +168,11 @@ static int kinematics_lanes(pf_fem_body *b, pf_int e, int n, double dt, lanes *q
   pf_mat3_hughes_winget_lanes(Lm, dt, R);
   grad_product_lanes(q->x, B0, Fm);
   pf_sym6_rotate_lanes(R, sig);
+  pf_mat3_det_lanes(Fm, det);
 #pragma omp simd
   for (int l = 0; l < W; l++) {
     trD[l] = Lm[0][0][l] + Lm[1][1][l] + Lm[2][2][l];
-    ratio[l] = ratio[l] / (Fm[0][0][l] * (Fm[1][1][l] * Fm[2][2][l] - Fm[1][2][l] * Fm[2][1][l]) -
-                           Fm[0][1][l] * (Fm[1][0][l] * Fm[2][2][l] - Fm[1][2][l] * Fm[2][0][l]) +
-                           Fm[0][2][l] * (Fm[1][0][l] * Fm[2][1][l] - Fm[1][1][l] * Fm[2][0][l])); /* (pf_det3) */
+    ratio[l] = ratio[l] / det[l];
   }
   for (int k = 0; k < 6; k++)
 #pragma omp simd
@@ -199,7 +201,7 @@ static int kinematics_lanes(pf_fem_body *b, pf_int e, int n, double dt, lanes *q
  * (det F = the element's volume ratio), D, the rotated stress. */
 static int kinematics_bbar(pf_fem_body *b, pf_int e, double dt, double *F, double *D, scratch *s) {
   _Alignas(64) double g0[8][3][W], gm[8][3][W], vm[W], det0[W], vb[8][3][W], xb[8][3][W], L[3][3][W], Fm[3][3][W];
-  _Alignas(64) double R[3][3][W], sig[6][W], ratio[W], Lm[3][3];
+  _Alignas(64) double R[3][3][W], sig[6][W], det[W], ratio[W], Lm[3][3];
   double *sg = &b->sigma[6 * (size_t)b->nqp * e];
   s->V0 = b->ref[25 * (size_t)e + 24];
   if (!(s->V > 0)) return bad_element(b, e, s->x, "volume", s->V);
@@ -223,11 +225,9 @@ static int kinematics_bbar(pf_fem_body *b, pf_int e, double dt, double *F, doubl
   }
   grad_product_lanes(xb, g0, Fm);
   const double J = s->V / s->V0;
+  pf_mat3_det_lanes(Fm, det);
 #pragma omp simd
-  for (int l = 0; l < W; l++)
-    ratio[l] = J / (Fm[0][0][l] * (Fm[1][1][l] * Fm[2][2][l] - Fm[1][2][l] * Fm[2][1][l]) -
-                    Fm[0][1][l] * (Fm[1][0][l] * Fm[2][2][l] - Fm[1][2][l] * Fm[2][0][l]) +
-                    Fm[0][2][l] * (Fm[1][0][l] * Fm[2][1][l] - Fm[1][1][l] * Fm[2][0][l])); /* (pf_det3) */
+  for (int l = 0; l < W; l++) ratio[l] = J / det[l];
   pf_mat3_hughes_winget_lanes(L, dt, R);
   for (int g = 0; g < 8; g++)
     for (int k = 0; k < 6; k++) sig[k][g] = sg[6 * g + k];
@@ -440,8 +440,9 @@ static void pass2_store(pf_fem_body *b, pf_int e, int n, const scratch *s, const
   }
 }
 
-/* Pass 2 of one-point elements [e, e + n) across the lanes: what element_forces does for a B-bar
- * element, each lane with the operations of its element alone (the same bits). */
+/* Pass 2 of one-point elements [e, e + n) across the lanes, each lane with the operations of its
+ * element alone (the same bits): forces from the new stress, bulk viscosity and hourglass
+ * control, their work, the stable step, erosion flags. */
 static void forces_lanes(pf_fem_body *b, pf_int e, int n, double dt, const double *c, const double *Dv,
                          const scratch *s, double *stable_dt) {
   pass2 r;
