@@ -5,7 +5,8 @@
 #   bash tests/perf/step_guard.sh path/to/step_guard WORKDIR     (ctest: perf/step_guard)
 #
 # For each deck of tests/perf/decks (PMB; LPS with omega = 1/|xi|; correspondence with the
-# stiffness hourglass control; reduced hex8 finite elements; FE <-> PD penalty contact with the
+# stiffness hourglass control; reduced hex8 finite elements, elastic and yielding under modified
+# Johnson-Cook; FE <-> PD penalty contact with the
 # PD block's self-contact; two PMB blocks in collision whose bonds break, the contact of
 # fragments), step_guard builds the simulation, takes WARMUP steps, and valgrind's
 # callgrind counts the instructions of STEPS whole steps (pf_sim_step: forces, damage, contact,
@@ -45,7 +46,8 @@ BASELINE=(
   "pmb             pmb.yaml                  2 10 11.7864"
   "lps_inv_dist    lps_inverse_distance.yaml 2 10 24.2414"
   "correspondence  correspondence.yaml       2 10 11.3331"
-  "hex8            hex8.yaml                 2 10 8.3062"
+  "hex8            hex8.yaml                 2 10 8.3074"
+  "hex8_mjc        hex8_mjc.yaml             2 10 6.2420"
   "contact         contact.yaml              2 10 5.1130"
   "fragments       fragments.yaml           12 10 5.5916"
 )
