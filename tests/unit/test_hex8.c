@@ -115,6 +115,29 @@ static void test_lanes_independent(void) {
   }
 }
 
+/* The gradients at the 8 Gauss points at once (lane g, Gauss point g): the bits of
+ * pf_hex8_gradients at each point, for each of the lanes' elements; and their volumes sum to the
+ * element's (2x2x2 Gauss integrates det J, a polynomial of degree 2 in each coordinate, exactly). */
+static void test_gauss_lanes(void) {
+  enum { W = PF_HEX8_LANES };
+  double x[8][3][W], one[W][8][3], B[8][3][W], V[W];
+  lanes_of_elements(x, one);
+  pf_hex8_mean_gradient_lanes(x, B, V);
+  for (int e = 0; e < W; e++) {
+    double gr[8][3][W], det[W], sum = 0;
+    pf_hex8_gauss_gradients_lanes(one[e], gr, det);
+    for (int g = 0; g < 8; g++) {
+      double xi[3], gg[8][3];
+      pf_hex8_gauss_point(g, xi);
+      PF_TEST_TRUE(pf_hex8_gradients(one[e], xi, gg) == det[g]);
+      for (int I = 0; I < 8; I++)
+        for (int i = 0; i < 3; i++) PF_TEST_TRUE(gg[I][i] == gr[I][i][g]);
+      sum += det[g];
+    }
+    PF_TEST_CLOSE(sum, V[e], 1e-13, 0);
+  }
+}
+
 static void test_hourglass_vectors(void) {
   enum { W = PF_HEX8_LANES };
   double x[8][3][W], one[W][8][3], B[8][3][W], V[W], g[4][8][W];
@@ -177,6 +200,7 @@ int main(int argc, char **argv) {
   test_mean_gradient();
   test_far_from_origin();
   test_lanes_independent();
+  test_gauss_lanes();
   test_hourglass_vectors();
   test_mass_and_length();
   return pf_test_finish();
