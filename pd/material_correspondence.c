@@ -55,6 +55,9 @@ static inline v4d v4d_load(const double *q) {
  * §2). */
 enum { G_PK = 0, G_F = 9, G_FDOT = 18, G_DETACHED = 27, G_DAMAGE = 28, G_C = 29, G_NU = 30, GX = 39 };
 
+/* The cached shape of each point's intact own bonds (kshape): the entries step_rates reads. */
+enum { KS_LMIN = 0, KS_LEN = 1, KS_INV = 2, KS_SPANS = 3, KS_SPREAD = 4, KS = 5 };
+
 typedef struct {
   pf_material *cm; /* the continuum model (of the body's material: part 0) */
   /* several materials (docs/theory/interfaces.md §3a): part q's continuum model, of the body's
@@ -94,7 +97,8 @@ typedef struct {
    * while the point's count of intact own bonds is kcount (-1: to compute). */
   int *kcount;       /* [n] */
   double *kinv;      /* [9n] K^-1 */
-  double *kshape;    /* [4n] lambda_min(K), sum_j w V_j |xi|, sum_j w V_j / |xi|, 1 if K spans */
+  double *kshape;    /* [KS n] lambda_min(K), sum_j w V_j |xi|, sum_j w V_j / |xi|, 1 if K spans,
+                        sum_j w V_j |K^-1 xi| */
   uint8_t *fails;    /* [store] last step's record of each point, for the bond failures:
                         bit 0 detached, bit 1 damage above D_c, bit 2 in the PD region */
   uint8_t *nearz;    /* [n] the point or one in its row takes the consistent form */
@@ -248,19 +252,21 @@ static int register_fields(pf_pd_body *b, pf_points *pts) {
  * and the force density -(c:(U (x) b')) b' with b' = Fbar^-T b, so omega <= c |b'| <= c gamma
  * beta / sigma_min(Fbar), where beta = sum_j w V_j |xi| / lambda_min(K) would bound |b| if every
  * sin(k.xi) could be 1 at once, gamma (wave_factor) is the largest fraction of it a wave reaches
- * in the continuum, and c is the model's current P-wave speed. The stiffness-form hourglass
- * force adds at most omega_hg^2 = 4 C_hg c_hg sum_j w V_j / |xi| / rho (the PMB bound of Silling
- * & Askari 2005, eq. 16, doubled: both ends' deviations act on a bond); eigenvalues of a sum add,
- * so omega^2 sums. Computes rate = gamma beta / sigma_min (0 for a point without stiffness) and
- * omega_hg^2; the step is 2 / sqrt((c rate)^2 + omega_hg^2). */
+ * in the continuum, and c is the model's current P-wave speed. |b| <= sum_j w V_j |K^-1 xi|
+ * (spread, spread_of) holds for any family, without gamma, and is the smaller where K is nearly
+ * flat. The stiffness-form hourglass force adds at most omega_hg^2 = 4 C_hg c_hg sum_j w V_j /
+ * |xi| / rho (the PMB bound of Silling & Askari 2005, eq. 16, doubled: both ends' deviations act
+ * on a bond); eigenvalues of a sum add, so omega^2 sums. Computes rate = min(gamma beta, spread) /
+ * sigma_min (0 for a point without stiffness) and omega_hg^2; the step is 2 / sqrt((c rate)^2 +
+ * omega_hg^2). */
 static void step_rates(const pf_pd_body *b, pf_int i, double lk, double Fb[3][3],
-                       const double sums[2], double *rate, double *whg2) {
+                       const double sums[2], double spread, double *rate, double *whg2) {
   const corr *p = b->mat;
   double C[3][3];
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) C[r][c] = Fb[0][r] * Fb[0][c] + Fb[1][r] * Fb[1][c] + Fb[2][r] * Fb[2][c];
   const double lc = pf_sym3_min_eigenvalue(C); /* lk = lambda_min(K) */
-  *rate = lk > 0 && lc > 0 ? p->gamma * sums[0] / (lk * sqrt(lc)) : 0.0;
+  *rate = lk > 0 && lc > 0 ? fmin(p->gamma * sums[0] / (lk * sqrt(lc)), spread / sqrt(lc)) : 0.0;
   const double chg = b->part ? p->crow[i - b->first] : p->gx[GX * i + G_C];
   if (b->part) *rate *= sqrt(p->mrow[i - b->first]); /* (the row's stiffest neighbour: an upper bound) */
   *whg2 = p->viscous ? 0.0 : 4.0 * p->hg * chg * sums[1] / pf_pd_density(b, i);
@@ -285,11 +291,26 @@ static void row_bounds(pf_pd_body *b) {
   }
 }
 
+/* sum_j w V_j |K^-1 xi| over the intact own bonds of point i, K^-1 = Ki (step_rates): on a
+ * complete family, where K is isotropic, sum_j w V_j |xi| / lambda(K); where bonds are missing
+ * only a bond's component along K's weak direction is amplified by 1 / lambda_min(K)
+ * (docs/theory/materials.md §2.6). */
+static double spread_of(const pf_pd_body *b, const pf_points *pts, pf_int i, double Ki[3][3]) {
+  double sum = 0;
+  for (int64_t k = b->fam.offset[i - b->first]; k < b->fam.offset[i - b->first + 1]; k++) {
+    double xi[3], r0, w, z[3];
+    if (!pf_pd_own_bond(b, pts, i, k, xi, &r0, &w)) continue;
+    for (int r = 0; r < 3; r++) z[r] = Ki[r][0] * xi[0] + Ki[r][1] * xi[1] + Ki[r][2] * xi[2];
+    sum += w * sqrt(z[0] * z[0] + z[1] * z[1] + z[2] * z[2]);
+  }
+  return sum;
+}
+
 /* A point's stable step in the reference configuration (Fbar = I, the model's initial P-wave
  * speed), before its first evaluation. */
 static double reference_step(const pf_pd_body *b, const pf_points *pts, pf_int i) {
   const pf_family *fam = &b->fam;
-  double K[3][3] = {{0}}, I[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, sums[2] = {0, 0}, rate, whg2;
+  double K[3][3] = {{0}}, Ki[3][3], I[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, sums[2] = {0, 0}, rate, whg2;
   for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
     double xi[3], r0, w;
     if (!pf_pd_own_bond(b, pts, i, k, xi, &r0, &w)) continue;
@@ -297,7 +318,8 @@ static double reference_step(const pf_pd_body *b, const pf_points *pts, pf_int i
       for (int c = 0; c < 3; c++) K[r][c] += w * xi[r] * xi[c];
     sums[0] += w * r0, sums[1] += w / r0;
   }
-  step_rates(b, i, pf_sym3_min_eigenvalue(K), I, sums, &rate, &whg2);
+  const double spread = pf_mat3_inverse(K, Ki) > 0 ? spread_of(b, pts, i, Ki) : INFINITY;
+  step_rates(b, i, pf_sym3_min_eigenvalue(K), I, sums, spread, &rate, &whg2);
   const double cl = cl_at(b, i);
   return 2.0 / sqrt(cl * cl * rate * rate + whg2);
 }
@@ -485,7 +507,7 @@ static int corr_setup(pf_pd_body *b, pf_points *pts) {
     p->nfam = p->kcount = NULL;
     PF_MALLOC(p->kcount, b->n);
     PF_MALLOC(p->kinv, 9 * (size_t)b->n);
-    PF_MALLOC(p->kshape, 4 * (size_t)b->n);
+    PF_MALLOC(p->kshape, KS * (size_t)b->n);
     PF_MALLOC(p->nearz, b->n);
     PF_MALLOC(p->Ki, 9 * (size_t)b->n);
     PF_MALLOC(p->K0, 9 * (size_t)b->n);
@@ -773,7 +795,7 @@ static void rereference(pf_pd_body *b, pf_int i, double Fb[3][3], double L[3][3]
 static void shape_of(pf_pd_body *b, const pf_points *pts, pf_int i) {
   corr *p = b->mat;
   const pf_int li = i - b->first;
-  double K[3][3] = {{0}}, Ki[3][3], sums[2] = {0, 0}, *c = &p->kshape[4 * li];
+  double K[3][3] = {{0}}, Ki[3][3], sums[2] = {0, 0}, *c = &p->kshape[KS * li];
   int nb = 0;
   for (int64_t k = b->fam.offset[li]; k < b->fam.offset[li + 1]; k++) {
     double xi[3], r0, w;
@@ -785,8 +807,9 @@ static void shape_of(pf_pd_body *b, const pf_points *pts, pf_int i) {
   }
   const double detK = pf_mat3_inverse(K, Ki);
   memcpy(&p->kinv[9 * li], Ki, sizeof Ki);
-  c[0] = pf_sym3_min_eigenvalue(K), c[1] = sums[0], c[2] = sums[1];
-  c[3] = shape_spans(nb, detK, K) && (nb == p->nfam[li] || spans(p, li, K));
+  c[KS_LMIN] = pf_sym3_min_eigenvalue(K), c[KS_LEN] = sums[0], c[KS_INV] = sums[1];
+  c[KS_SPANS] = shape_spans(nb, detK, K) && (nb == p->nfam[li] || spans(p, li, K));
+  c[KS_SPREAD] = detK > 0 ? spread_of(b, pts, i, Ki) : INFINITY;
   p->kcount[li] = nb;
 }
 
@@ -850,9 +873,9 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
   } else nb = row_sums(b, pts, i, A, B);
   p->jump[li] = p->lost[li] ? old_half_work(b, pts, i, Pn) : NAN;
   if (nb != p->kcount[li]) shape_of(b, pts, i);
-  const double *c = &p->kshape[4 * li];
+  const double *c = &p->kshape[KS * li];
   memcpy(Ki, &p->kinv[9 * li], sizeof Ki);
-  int ok = c[3] != 0;
+  int ok = c[KS_SPANS] != 0;
   if (ok) {
     mat_mul(A, Ki, Fb), mat_mul(B, Ki, Fd);
     for (int r = 0; r < 3; r++)
@@ -861,7 +884,7 @@ static int kinematics(pf_pd_body *b, const pf_points *pts, pf_int i) {
         Fm[r][s] = Fb[r][s] - 0.5 * b->dt * Fd[r][s];
       }
     ok = pf_mat3_det(Fb) > PF_CORR_MIN_J && (p->Jm[li] = pf_mat3_inverse(Fm, Fmi)) > 0;
-    if (ok) step_rates(b, i, c[0], Fb, &c[1], &p->rate[li], &p->whg2[li]);
+    if (ok) step_rates(b, i, c[KS_LMIN], Fb, &c[KS_LEN], c[KS_SPREAD], &p->rate[li], &p->whg2[li]);
   }
   if (!ok) { /* the model sees a state at rest; its result is discarded */
     if (!p->lost[li]) p->jump[li] = old_half_work(b, pts, i, Pn); /* (its force state goes) */
