@@ -106,6 +106,51 @@ static void correspondence_step(void) {
   pf_sim_destroy(&sim);
 }
 
+/* A nearly flat family (docs/theory/materials.md §2.6, the second bound): a point of the lower
+ * layer of a plate two points thick (w = 1, delta = 3.01 h, elastic, at rest) has its in-plane
+ * disc and the bonds to the layer above, so K = diag(a, a, c) with c << a (square-lattice
+ * symmetry). Its step must be 2 / (c_L min(gamma sum_j V |xi| / c, sum_j V |K^-1 xi|)), both sums
+ * enumerated here over the lattice offsets; the second is the smaller here, so the gamma bound
+ * alone fails the check. */
+static void flat_family_step(void) {
+  const double h = 1e-3, delta = 3.01 * h, E = 200e9, nu = 0.3, rho = 7800;
+  char deck[1024];
+  snprintf(deck, sizeof deck,
+           "materials: {s: {model: elastic, density: %g, youngs_modulus: %g, poissons_ratio: %g}}\n"
+           "bodies:\n  - {name: b, material: s, horizon: %.17g, hourglass: {type: none},\n"
+           "     geometry: {shape: box, lo: [0, 0, 0], hi: [%.17g, %.17g, %.17g], spacing: %.17g}}\n"
+           "time: {steps: 0}\n", rho, E, nu, delta, 12 * h, 12 * h, h, h);
+  pf_sim *sim = pf_test_sim("stable_dt_flat", deck);
+  const pf_points *p = pf_sim_points(sim);
+  const double *step = pf_points_field_get(p, "stable_step");
+  PF_TEST_TRUE(step != NULL);
+  double a = 0, c = 0, len = 0, gamma = 0, V = h * h * h;
+  for (int pass = 0; pass < 2; pass++) /* K first, then sum |K^-1 xi| */
+    for (int i = -3; i <= 3; i++)
+      for (int j = -3; j <= 3; j++)
+        for (int k = 0; k <= 1; k++) {
+          const double x = i * h, y = j * h, z = k * h, r = sqrt(x * x + y * y + z * z);
+          if (r == 0 || r > delta) continue;
+          if (pass == 0) a += V * x * x, c += V * z * z, len += V * r;
+          else gamma += V * sqrt(x * x / (a * a) + y * y / (a * a) + z * z / (c * c));
+        }
+  const double spread = gamma;
+  gamma = 0;
+  for (double q = 0.001; q < 30; q += 0.001)
+    gamma = fmax(gamma, 4 * (3 * sin(q) - 3 * q * cos(q) - q * q * sin(q)) / pow(q, 4));
+  PF_TEST_TRUE(c < a && spread < gamma * len / c); /* the second bound is the sharper one here */
+  const double K = E / (3 * (1 - 2 * nu)), G = E / (2 * (1 + nu)), cl = sqrt((K + 4 * G / 3) / rho);
+  int found = 0;
+  for (pf_int i = 0; step && i < p->n_owned; i++)
+    if (fabs(p->X[3 * i] - 6 * h) + fabs(p->X[3 * i + 1] - 6 * h) + fabs(p->X[3 * i + 2]) < 1e-9) {
+      PF_TEST_CLOSE(step[i], 2 / (cl * spread), 1e-9, 0);
+      found++;
+    }
+  PF_TEST_TRUE(pf_sum_all(found) == 1);
+  pf_test_measure("flat_family_bound_ratio", spread / (gamma * len / c), "1");
+  pf_sim_destroy(&sim);
+}
+
 int main(int argc, char **argv) {
   pf_test_init(&argc, &argv);
   const double h = 5e-4, want[4] = {9.66e-8, 1.355e-7, 1.863e-7, 2.298e-7};
@@ -131,5 +176,6 @@ int main(int argc, char **argv) {
   check_min_eigenvalue(4, 1e-3, 1e-3);
   check_relative_eigenvalue();
   correspondence_step();
+  flat_family_step();
   return pf_test_finish();
 }
