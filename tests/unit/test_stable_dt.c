@@ -72,15 +72,23 @@ static void check_relative_eigenvalue(void) {
   PF_TEST_CLOSE(pf_sym3_min_relative_eigenvalue(K0, Z), 0.0, 0, 0);
 }
 
-static void correspondence_step(void) {
-  const double h = 1e-3, delta = 3.01 * h, E = 200e9, nu = 0.3, rho = 7800;
+/* The correspondence tests' material (steel, elastic, no hourglass control), h = 1 mm, delta =
+ * 3.01 h, on a box of lattice points 12 h x 12 h x height, at rest. */
+static const double CH = 1e-3, CDELTA = 3.01e-3, CE = 200e9, CNU = 0.3, CRHO = 7800;
+
+static pf_sim *correspondence_box(const char *name, double height) {
   char deck[1024];
   snprintf(deck, sizeof deck,
            "materials: {s: {model: elastic, density: %g, youngs_modulus: %g, poissons_ratio: %g}}\n"
            "bodies:\n  - {name: b, material: s, horizon: %.17g, hourglass: {type: none},\n"
            "     geometry: {shape: box, lo: [0, 0, 0], hi: [%.17g, %.17g, %.17g], spacing: %.17g}}\n"
-           "time: {steps: 0}\n", rho, E, nu, delta, 12 * h, 12 * h, 12 * h, h);
-  pf_sim *sim = pf_test_sim("stable_dt_corr", deck);
+           "time: {steps: 0}\n", CRHO, CE, CNU, CDELTA, 12 * CH, 12 * CH, height, CH);
+  return pf_test_sim(name, deck);
+}
+
+static void correspondence_step(void) {
+  const double h = CH, delta = CDELTA, E = CE, nu = CNU, rho = CRHO;
+  pf_sim *sim = correspondence_box("stable_dt_corr", 12 * h);
   const pf_points *p = pf_sim_points(sim);
   const double *step = pf_points_field_get(p, "stable_step");
   PF_TEST_TRUE(step != NULL);
@@ -113,14 +121,8 @@ static void correspondence_step(void) {
  * enumerated here over the lattice offsets; the second is the smaller here, so the gamma bound
  * alone fails the check. */
 static void flat_family_step(void) {
-  const double h = 1e-3, delta = 3.01 * h, E = 200e9, nu = 0.3, rho = 7800;
-  char deck[1024];
-  snprintf(deck, sizeof deck,
-           "materials: {s: {model: elastic, density: %g, youngs_modulus: %g, poissons_ratio: %g}}\n"
-           "bodies:\n  - {name: b, material: s, horizon: %.17g, hourglass: {type: none},\n"
-           "     geometry: {shape: box, lo: [0, 0, 0], hi: [%.17g, %.17g, %.17g], spacing: %.17g}}\n"
-           "time: {steps: 0}\n", rho, E, nu, delta, 12 * h, 12 * h, h, h);
-  pf_sim *sim = pf_test_sim("stable_dt_flat", deck);
+  const double h = CH, delta = CDELTA, E = CE, nu = CNU, rho = CRHO;
+  pf_sim *sim = correspondence_box("stable_dt_flat", h);
   const pf_points *p = pf_sim_points(sim);
   const double *step = pf_points_field_get(p, "stable_step");
   PF_TEST_TRUE(step != NULL);
