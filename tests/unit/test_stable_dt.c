@@ -126,7 +126,7 @@ static void flat_family_step(void) {
   const pf_points *p = pf_sim_points(sim);
   const double *step = pf_points_field_get(p, "stable_step");
   PF_TEST_TRUE(step != NULL);
-  double a = 0, c = 0, len = 0, gamma = 0, V = h * h * h;
+  double a = 0, c = 0, len = 0, spread = 0, gamma = 0, V = h * h * h;
   for (int pass = 0; pass < 2; pass++) /* K first, then sum |K^-1 xi| */
     for (int i = -3; i <= 3; i++)
       for (int j = -3; j <= 3; j++)
@@ -134,10 +134,8 @@ static void flat_family_step(void) {
           const double x = i * h, y = j * h, z = k * h, r = sqrt(x * x + y * y + z * z);
           if (r == 0 || r > delta) continue;
           if (pass == 0) a += V * x * x, c += V * z * z, len += V * r;
-          else gamma += V * sqrt(x * x / (a * a) + y * y / (a * a) + z * z / (c * c));
+          else spread += V * sqrt(x * x / (a * a) + y * y / (a * a) + z * z / (c * c));
         }
-  const double spread = gamma;
-  gamma = 0;
   for (double q = 0.001; q < 30; q += 0.001)
     gamma = fmax(gamma, 4 * (3 * sin(q) - 3 * q * cos(q) - q * q * sin(q)) / pow(q, 4));
   PF_TEST_TRUE(c < a && spread < gamma * len / c); /* the second bound is the sharper one here */
