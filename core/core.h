@@ -518,10 +518,15 @@ typedef enum { PF_PARTITION_RCB, PF_PARTITION_METIS } pf_partition_method;
  * (broken or not: the kernels visit both) plus one, plus extra[i] when extra is not NULL (the
  * work of its interactions). */
 int pf_partition_weight(const pf_bond_rows *rows, const int *extra, pf_int i);
+/* 2 when extra[] holds work on some rank (the interactions' phase, balanced on its own beside
+ * the bodies' force loop), else 1. Collective. */
+int pf_partition_phases(const int *extra, pf_int n);
 /* The owner rank of every global id (owner_of[n_global], the same on every rank) after
  * partitioning the owned points: Zoltan recursive coordinate bisection of X weighted by
  * pf_partition_weight, or METIS k-way on the bond graph with the same vertex weights. extra:
- * NULL or [n_owned]. Collective. */
+ * NULL or [n_owned]; when it holds work (pf_partition_phases 2) each point carries two
+ * weights, its bonds + 1 and extra[i], and both are balanced (multicriteria RCB, METIS's
+ * multi-constraint k-way). Collective. */
 int pf_partition_compute(pf_partition_method method, const pf_points *pts,
                          const pf_bond_rows *rows, const int *extra, int **owner_of);
 /* Send each owned point (every array and field) and its bond row (every bond field, after

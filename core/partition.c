@@ -1,10 +1,14 @@
 /* Partitioning the points over the ranks: Zoltan's recursive coordinate bisection
  * of the reference positions, each point weighted by its bond count plus one (the work of its
  * force loop: the batched kernels evaluate a broken bond under a mask, and the elastic-plastic
- * loop's test of it costs about an intact bond's evaluation, docs/parallel.md sec. 5) plus, when
- * the caller gives it, the work of its interactions (contact), or METIS k-way on the bond graph
- * with the same vertex weights. The result is the owner of every global id, the same table on
- * every rank. */
+ * loop's test of it costs about an intact bond's evaluation, docs/parallel.md sec. 5), or METIS
+ * k-way on the bond graph with the same vertex weights. When the caller gives the work of the
+ * points' interactions (contact) and some rank has any, that is a second weight, balanced on its
+ * own: the interactions are a phase of the step after the bodies' forces, and a rank light in
+ * one phase waits for the others in it. Zoltan's RCB then tries a cut along every axis and keeps
+ * the one whose larger imbalance of the two weights is smallest (RCB_MULTICRITERIA_NORM 3;
+ * zoltan/src/rcb/rcb.c), METIS takes them as two constraints (Karypis & Kumar 1998). The result
+ * is the owner of every global id, the same table on every rank. */
 #include "core/core.h"
 
 #include <metis.h>
@@ -16,10 +20,26 @@ typedef struct {
   const pf_points *pts;
   const pf_bond_rows *rows;
   const int *extra;
+  int phases;
 } zctx;
 
 int pf_partition_weight(const pf_bond_rows *rows, const int *extra, pf_int i) {
   return 1 + (int)(rows->offset[i + 1] - rows->offset[i]) + (extra ? extra[i] : 0);
+}
+
+/* Point i's work in each phase of the step: w[0] its bonds + 1 (the bodies' force loop), and
+ * with two phases w[1] = extra[i] (the interactions'), which the ranks reach one after the
+ * other. */
+static void phase_weights(const pf_bond_rows *rows, const int *extra, int phases, pf_int i, int *w) {
+  w[0] = pf_partition_weight(rows, NULL, i);
+  if (phases > 1) w[1] = extra[i];
+}
+
+int pf_partition_phases(const int *extra, pf_int n) {
+  long long sum = 0;
+  for (pf_int i = 0; extra && i < n; i++) sum += extra[i];
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+  return sum > 0 ? 2 : 1;
 }
 
 static int z_num_obj(void *data, int *ierr) {
@@ -29,12 +49,14 @@ static int z_num_obj(void *data, int *ierr) {
 
 static void z_obj_list(void *data, int ngid, int nlid, ZOLTAN_ID_PTR gids, ZOLTAN_ID_PTR lids,
                        int wdim, float *w, int *ierr) {
-  (void)ngid, (void)nlid, (void)wdim;
+  (void)ngid, (void)nlid;
   const zctx *z = data;
   for (pf_int i = 0; i < z->pts->n_owned; i++) {
     gids[i] = (ZOLTAN_ID_TYPE)z->pts->gid[i];
     lids[i] = (ZOLTAN_ID_TYPE)i;
-    w[i] = (float)pf_partition_weight(z->rows, z->extra, i);
+    int pw[2];
+    phase_weights(z->rows, z->extra, z->phases, i, pw);
+    for (int k = 0; k < wdim; k++) w[(size_t)wdim * i + k] = (float)pw[k];
   }
   *ierr = ZOLTAN_OK;
 }
@@ -62,10 +84,14 @@ static int rcb(const pf_points *pts, const pf_bond_rows *rows, const int *extra,
   struct Zoltan_Struct *zz = Zoltan_Create(MPI_COMM_WORLD);
   PF_CHECK(zz, PF_ERR_LIB, "Zoltan_Create failed");
   const char *params[][2] = {{"DEBUG_LEVEL", "0"},     {"LB_METHOD", "RCB"},        {"NUM_GID_ENTRIES", "1"},
-                             {"NUM_LID_ENTRIES", "1"}, {"OBJ_WEIGHT_DIM", "1"},     {"RETURN_LISTS", "PARTS"},
-                             {"IMBALANCE_TOL", "1.01"}, {"RCB_OUTPUT_LEVEL", "0"}, {"KEEP_CUTS", "0"}};
+                             {"NUM_LID_ENTRIES", "1"}, {"RETURN_LISTS", "PARTS"},  {"IMBALANCE_TOL", "1.01"},
+                             {"RCB_OUTPUT_LEVEL", "0"}, {"KEEP_CUTS", "0"}};
   for (size_t k = 0; k < sizeof params / sizeof params[0]; k++) Zoltan_Set_Param(zz, params[k][0], params[k][1]);
-  zctx z = {pts, rows, extra};
+  zctx z = {pts, rows, extra, pf_partition_phases(extra, pts->n_owned)};
+  /* Two phases: Zoltan's multicriteria RCB, each cut along whichever axis gives the smallest
+   * largest imbalance of the two weights (the max-norm, RCB_MULTICRITERIA_NORM 3). */
+  Zoltan_Set_Param(zz, "OBJ_WEIGHT_DIM", z.phases > 1 ? "2" : "1");
+  if (z.phases > 1) Zoltan_Set_Param(zz, "RCB_MULTICRITERIA_NORM", "3");
   Zoltan_Set_Num_Obj_Fn(zz, z_num_obj, &z);
   Zoltan_Set_Obj_List_Fn(zz, z_obj_list, &z);
   Zoltan_Set_Num_Geom_Fn(zz, z_num_geom, &z);
@@ -113,38 +139,44 @@ static int owner_table(const pf_points *pts, const int *part, int *owner_of) {
 
 /* The bond graph in METIS's CSR form, vertices in global-id order (rank 0 only). */
 typedef struct {
-  idx_t n, *xadj, *adj, *vwgt;
+  idx_t n, ncon, *xadj, *adj, *vwgt;
 } graph;
 
 static int gather_graph(const pf_points *pts, const pf_bond_rows *rows, const int *extra, graph *gr) {
   int rank = pf_comm_rank(), n = pts->n_owned;
   int nnz = (int)rows->offset[n], *cnt = NULL, *dsp = NULL, *ecnt = NULL, *edsp = NULL, total, etotal;
+  const int nc = pf_partition_phases(extra, n);
   PF_CALL(gather_counts(n, &cnt, &dsp, &total));
   PF_CALL(gather_counts(nnz, &ecnt, &edsp, &etotal));
   pf_gid *gid = NULL, *nbr = NULL;
   int *len = NULL, *mylen = NULL, *w = NULL, *myw = NULL;
   PF_MALLOC(mylen, n);
-  PF_MALLOC(myw, n);
-  for (int i = 0; i < n; i++)
-    mylen[i] = (int)(rows->offset[i + 1] - rows->offset[i]), myw[i] = pf_partition_weight(rows, extra, i);
+  PF_MALLOC(myw, nc * n);
+  for (int i = 0; i < n; i++) mylen[i] = (int)(rows->offset[i + 1] - rows->offset[i]);
+  for (int i = 0; i < n; i++) phase_weights(rows, extra, nc, i, &myw[nc * i]);
   if (rank == 0) {
     PF_MALLOC(gid, total);
     PF_MALLOC(len, total);
-    PF_MALLOC(w, total);
+    PF_MALLOC(w, nc * total);
     PF_MALLOC(nbr, etotal);
   }
   MPI_Gatherv(pts->gid, n, PF_GID_MPI, gid, cnt, dsp, PF_GID_MPI, 0, MPI_COMM_WORLD);
   MPI_Gatherv(mylen, n, MPI_INT, len, cnt, dsp, MPI_INT, 0, MPI_COMM_WORLD);
-  MPI_Gatherv(myw, n, MPI_INT, w, cnt, dsp, MPI_INT, 0, MPI_COMM_WORLD);
+  if (nc > 1) /* (the counts in weights) */
+    for (int r = 0; r < pf_comm_size(); r++) cnt[r] *= nc, dsp[r] *= nc;
+  MPI_Gatherv(myw, nc * n, MPI_INT, w, cnt, dsp, MPI_INT, 0, MPI_COMM_WORLD);
   MPI_Gatherv(rows->gid, nnz, PF_GID_MPI, nbr, ecnt, edsp, PF_GID_MPI, 0, MPI_COMM_WORLD);
   if (rank == 0) {
-    gr->n = total;
+    gr->n = total, gr->ncon = nc;
     PF_MALLOC(gr->xadj, total + 1);
-    PF_MALLOC(gr->vwgt, total);
+    PF_MALLOC(gr->vwgt, nc * total);
     PF_MALLOC(gr->adj, etotal);
     int64_t *start;
     PF_MALLOC(start, total + 1);
-    for (int k = 0; k < total; k++) start[gid[k] + 1] = len[k], gr->vwgt[gid[k]] = w[k];
+    for (int k = 0; k < total; k++) {
+      start[gid[k] + 1] = len[k];
+      for (int c = 0; c < nc; c++) gr->vwgt[nc * gid[k] + c] = w[nc * k + c];
+    }
     for (int g = 0; g < total; g++) start[g + 1] += start[g], gr->xadj[g + 1] = (idx_t)start[g + 1];
     for (int k = 0, e = 0; k < total; e += len[k], k++)
       for (int q = 0; q < len[k]; q++) gr->adj[start[gid[k]] + q] = (idx_t)nbr[e + q];
@@ -159,12 +191,12 @@ static int metis(const pf_points *pts, const pf_bond_rows *rows, const int *extr
   PF_CALL(gather_graph(pts, rows, extra, &gr));
   int st = METIS_OK;
   if (pf_comm_rank() == 0) {
-    idx_t ncon = 1, nparts = pf_comm_size(), objval, options[METIS_NOPTIONS], *part;
+    idx_t nparts = pf_comm_size(), objval, options[METIS_NOPTIONS], *part;
     PF_MALLOC(part, gr.n);
     METIS_SetDefaultOptions(options);
     options[METIS_OPTION_SEED] = 20240101; /* fixed: the same partition on every run */
     options[METIS_OPTION_UFACTOR] = 10;    /* 1 % load imbalance */
-    st = METIS_PartGraphKway(&gr.n, &ncon, gr.xadj, gr.adj, gr.vwgt, NULL, NULL, &nparts, NULL, NULL,
+    st = METIS_PartGraphKway(&gr.n, &gr.ncon, gr.xadj, gr.adj, gr.vwgt, NULL, NULL, &nparts, NULL, NULL,
                              options, &objval, part);
     for (idx_t g = 0; g < gr.n; g++) owner_of[g] = (int)part[g];
     free(part), free(gr.xadj), free(gr.adj), free(gr.vwgt);

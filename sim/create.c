@@ -354,6 +354,7 @@ int pf_sim_destroy(pf_sim **s) {
   pf_sim_unlock_outputs(sim);
   pf_sim_provenance_free(sim);
   free(sim->exo_fields);
+  free(sim->row_work), free(sim->row_work_gid);
   for (int b = 0; b < sim->nbodies; b++)
     if (sim->body[b].ops) sim->body[b].ops->destroy(&sim->body[b].data);
   pf_sim_interactions_destroy(sim);

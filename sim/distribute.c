@@ -15,8 +15,9 @@ const pf_key pf_parallel_keys[] = {
     {"decomposition", PF_KEY_STRING, 0, "rcb", "",
      "rcb (Zoltan recursive coordinate bisection) | metis (k-way on the bond graph)", NULL},
     {"rebalance_threshold", PF_KEY_REAL, 0, "0", "",
-     "at output steps, re-partition when the largest rank's work (bonds + points + contact "
-     "candidates, docs/parallel.md sec. 5) exceeds this multiple of the mean; 0: never", NULL},
+     "at output steps, re-partition when the ranks' work (bonds + points, and the contact "
+     "candidates as a second phase balanced on its own, docs/parallel.md sec. 5) exceeds this "
+     "multiple of its mean; 0: never", NULL},
     PF_KEY_END};
 
 int pf_sim_setup_parallel(pf_sim *sim) {
@@ -66,20 +67,60 @@ static int make_slice(const pf_sim *sim, const pf_point_cloud *pc, const pf_gid 
   return 0;
 }
 
-/* The work imbalance (max / mean over the ranks) of the owned points' weights w[] once each point
- * is on rank owner[i] (owner NULL: where it is). Collective. */
-static int imbalance_of(const int *w, const int *owner, pf_int n, double *imbalance) {
-  const int size = pf_comm_size(), rank = pf_comm_rank();
-  double *load = calloc((size_t)size, sizeof *load);
+/* The work imbalance of the owned points (rows[i]: point i's bonds + 1; extra[i]: its
+ * interactions' work, or NULL) once each point is on rank owner[i] (owner NULL: where it is).
+ * With the bodies' force loop and the interactions as two phases that every rank passes one
+ * after the other (pf_partition_phases), a step takes the sum over the phases of the largest
+ * rank's work, so the imbalance is that sum over the sum of the phases' means (one phase:
+ * max / mean). Collective. */
+static int imbalance_of(const int *rows, const int *extra, const int *owner, pf_int n, double *imbalance) {
+  const int size = pf_comm_size(), rank = pf_comm_rank(), phases = pf_partition_phases(extra, n);
+  double *load = calloc((size_t)(2 * size), sizeof *load);
   PF_CHECK(load, PF_ERR_MEMORY, "out of memory");
-  for (pf_int i = 0; i < n; i++) load[owner ? owner[i] : rank] += w[i];
-  int ierr = MPI_Allreduce(MPI_IN_PLACE, load, size, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) != MPI_SUCCESS;
-  double max = 0, sum = 0;
-  for (int r = 0; r < size; r++) max = fmax(max, load[r]), sum += load[r];
-  *imbalance = sum > 0 ? max * size / sum : 1;
+  for (pf_int i = 0; i < n; i++) {
+    const int r = owner ? owner[i] : rank;
+    load[r] += rows[i];
+    if (extra) load[(phases - 1) * size + r] += extra[i]; /* (one phase: all zero) */
+  }
+  int ierr = MPI_Allreduce(MPI_IN_PLACE, load, 2 * size, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) != MPI_SUCCESS;
+  double slowest = 0, sum = 0;
+  for (int p = 0; p < 2; p++) {
+    double max = 0;
+    for (int r = 0; r < size; r++) max = fmax(max, load[p * size + r]), sum += load[p * size + r];
+    slowest += max;
+  }
+  *imbalance = sum > 0 ? slowest * size / sum : 1;
   free(load);
   PF_CHECK(!ierr, PF_ERR_LIB, "MPI_Allreduce of the ranks' work failed");
   return 0;
+}
+
+/* Each owned point's bonds + 1 (pf_partition_weight without interactions) into w. */
+static void row_weights(const pf_bond_rows *rows, pf_int n, int *w) {
+  for (pf_int i = 0; i < n; i++) w[i] = pf_partition_weight(rows, NULL, i);
+}
+
+/* Keep the owned points' row weights and ids of a partition for the next checks (rows in the
+ * points' order); on failure the checks build the rows. */
+static void keep_row_work(pf_sim *sim, const pf_bond_rows *rows) {
+  const pf_int n = sim->pts->n_owned;
+  free(sim->row_work), free(sim->row_work_gid);
+  sim->row_work = malloc(sizeof(int) * ((size_t)n + 1));
+  sim->row_work_gid = malloc(sizeof(pf_gid) * ((size_t)n + 1));
+  sim->row_work_n = sim->row_work && sim->row_work_gid ? n : -1;
+  if (sim->row_work_n < 0) return;
+  row_weights(rows, n, sim->row_work);
+  memcpy(sim->row_work_gid, sim->pts->gid, sizeof(pf_gid) * (size_t)n);
+}
+
+/* The kept row weights, when the owned points are still those they were kept for (no element
+ * became a particle since; an eroded element's nodes are weighed with their rows of the last
+ * partition until the next). */
+static const int *kept_row_work(const pf_sim *sim) {
+  const pf_int n = sim->pts->n_owned;
+  if (sim->row_work_n != n || (n > 0 && memcmp(sim->row_work_gid, sim->pts->gid, sizeof(pf_gid) * (size_t)n)))
+    return NULL;
+  return sim->row_work;
 }
 
 int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, const int *extra, int fresh, double *imbalance) {
@@ -90,9 +131,9 @@ int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, const int *extra, int fresh, 
     const size_t n = (size_t)sim->pts->n_owned + 1;
     int *w = malloc(sizeof(int) * n), *to = malloc(sizeof(int) * n);
     if (!w || !to) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
-    for (pf_int i = 0; !ierr && i < sim->pts->n_owned; i++)
-      w[i] = pf_partition_weight(rows, extra, i), to[i] = owner_of[sim->pts->gid[i]];
-    if (!ierr) ierr = imbalance_of(w, to, sim->pts->n_owned, imbalance);
+    for (pf_int i = 0; !ierr && i < sim->pts->n_owned; i++) to[i] = owner_of[sim->pts->gid[i]];
+    if (!ierr) row_weights(rows, sim->pts->n_owned, w);
+    if (!ierr) ierr = imbalance_of(w, extra, to, sim->pts->n_owned, imbalance);
     free(w), free(to);
   }
   if (!ierr && !(dest = malloc(sizeof(int) * ((size_t)sim->pts->n_owned + 1))))
@@ -100,6 +141,7 @@ int pf_sim_settle(pf_sim *sim, pf_bond_rows *rows, const int *extra, int fresh, 
   for (pf_int i = 0; !ierr && i < sim->pts->n_owned; i++) dest[i] = owner_of[sim->pts->gid[i]];
   if (!ierr) ierr = pf_points_migrate(sim->pts, rows, dest, sim->nbodies, sim->body_start);
   free(dest);
+  if (!ierr) keep_row_work(sim, rows);
   if (!ierr && !(local = malloc(sizeof(pf_int) * ((size_t)rows->offset[rows->n] + 1))))
     ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
   if (!ierr) ierr = pf_points_add_ghosts(sim->pts, rows, owner_of, local);
@@ -171,30 +213,41 @@ static int settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows, const int *ext
   return ierr;
 }
 
-/* Each owned point's work as the partition weighs it (its bonds + 1 and its interactions' work,
- * pf_sim_interactions_work) into w, and the interactions' part into extra. */
-static int point_work(const pf_sim *sim, const pf_bond_rows *rows, int *extra, int *w) {
-  memset(extra, 0, sizeof(int) * (size_t)sim->pts->n_owned);
-  pf_sim_interactions_work(sim, extra);
-  for (pf_int i = 0; i < sim->pts->n_owned; i++) w[i] = pf_partition_weight(rows, extra, i);
-  return 0;
+/* The re-partition check: this partition's imbalance (imbalance_of) by the row weights kept at
+ * the last partition (built from the bodies' rows when they are not there) and the
+ * interactions' current work in extra. Collective. */
+static int current_imbalance(pf_sim *sim, const int *extra, double *before) {
+  const int *kept = kept_row_work(sim);
+  if (pf_max_all(kept ? 0 : 1) == 0) /* (every rank takes the same way) */
+    return imbalance_of(kept, extra, NULL, sim->pts->n_owned, before);
+  int *w = NULL, ierr;
+  pf_bond_rows rows;
+  PF_CALL(pf_bond_rows_init(&rows));
+  ierr = pf_sim_bond_rows(sim, &rows);
+  if (!ierr && !(w = malloc(sizeof(int) * ((size_t)sim->pts->n_owned + 1))))
+    ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+  if (!ierr) row_weights(&rows, sim->pts->n_owned, w);
+  if (!ierr) ierr = imbalance_of(w, extra, NULL, sim->pts->n_owned, before);
+  free(w);
+  pf_bond_rows_free(&rows);
+  return ierr;
 }
 
 int pf_sim_rebalance(pf_sim *sim) {
   if (sim->rebalance_threshold <= 0 || pf_comm_size() == 1) return 0;
-  pf_bond_rows rows;
-  PF_CALL(pf_bond_rows_init(&rows));
-  const size_t n = (size_t)sim->pts->n_owned + 1;
-  int *extra = malloc(sizeof(int) * n), *w = malloc(sizeof(int) * n), ierr = 0;
+  int *extra = calloc((size_t)sim->pts->n_owned + 1, sizeof *extra), ierr = 0;
   double before = 0, after = 0;
-  if (!extra || !w) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
-  if (!ierr) ierr = pf_sim_bond_rows(sim, &rows);
-  if (!ierr) ierr = point_work(sim, &rows, extra, w);
-  if (!ierr) ierr = imbalance_of(w, NULL, sim->pts->n_owned, &before);
-  free(w);
-  if (!ierr && before > sim->rebalance_threshold) ierr = settle_keeping_tables(sim, &rows, extra, &after);
+  if (!extra) ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+  if (!ierr) pf_sim_interactions_work(sim, extra); /* (each point's interactions' work) */
+  if (!ierr) ierr = current_imbalance(sim, extra, &before);
+  if (!ierr && before > sim->rebalance_threshold) {
+    pf_bond_rows rows;
+    ierr = pf_bond_rows_init(&rows);
+    if (!ierr) ierr = pf_sim_bond_rows(sim, &rows);
+    if (!ierr) ierr = settle_keeping_tables(sim, &rows, extra, &after);
+    pf_bond_rows_free(&rows);
+  }
   free(extra);
-  pf_bond_rows_free(&rows);
   if (ierr || !(before > sim->rebalance_threshold)) return ierr;
   pf_log("step %ld: re-partitioned (work imbalance %.3f > %.3f); now %.3f\n", sim->step, before,
          sim->rebalance_threshold, after);

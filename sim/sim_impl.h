@@ -98,6 +98,9 @@ struct pf_sim {
   /* parallel */
   pf_partition_method decomposition;
   double rebalance_threshold; /* re-partition when max/mean work exceeds this (0: never) */
+  int *row_work;              /* each owned point's bonds + 1 when last partitioned, */
+  pf_gid *row_work_gid;       /* with its global id (the re-partition check's weights) */
+  pf_int row_work_n;
   int spread_output;          /* one Exodus file per rank */
   /* time */
   double t, dt, final_time;

@@ -10,9 +10,13 @@
 #     work too. The work imbalance logged must be the one counted here on the lattice,
 #     independently of the code: (N + B + C) / ((2 N + 2 B + C) / 2), N points, B bonds
 #     (offsets within 1.5 h) and C candidates (offsets within 1.1 h) of a block, to 5e-4 (the
-#     log's 3 decimals); the new partition must be balanced by the same weights (at most 1.02);
-#     and the next output steps, whose work is the same, must not re-partition again. With RCB
-#     and with METIS; the state digest equals the run without re-partitioning.
+#     log's 3 decimals; the bodies' forces and the contact are two phases, and here the left
+#     rank is the largest in both, so the sum of the phases' maxima is this count's maximum);
+#     the new partition must balance both phases by the same weights (at most 1.02: a cut
+#     across both blocks; a cut that balances only their sum, between the blocks, logs 1.216
+#     and re-partitions at every output step); and the next output steps, whose work is the
+#     same, must not re-partition again. With RCB and with METIS; the state digest equals the
+#     run without re-partitioning.
 #  2. tests/data/mixed_pd_fe.yaml (a PD plate and an FE bar, nothing breaks) with a threshold of
 #     1.02 on 2 and 3 ranks: at most one re-partition, and every logged "now" at most 1.02. When
 #     the check counted an FE node as 1 and the partition weighed it by its row, the partition
