@@ -333,11 +333,13 @@ static double ep_point_energy(const pf_pd_body *b, const pf_points *pts, pf_int 
   const ep *p = b->mat;
   const double eq = p->eqps[i];
   const int q = b->part ? (int)b->part[i] : 0;
-  return pts->vol[i] * (pf_pd_lps_energy_density(b, pts, i, p->theta[i], p->m[i], b->fam.state, NSTATE) +
+  return pts->vol[i] * (pf_pd_lps_energy_density(b, p->rec.rec, i, p->theta[i], p->m[i], b->fam.state, NSTATE) +
                         p->Y0q[q] * eq + 0.5 * p->Hq[q] * eq * eq);
 }
 
 static double ep_energy(const pf_pd_body *b, const pf_points *pts) {
+  ep *p = b->mat; /* (the records are scratch: every force pass fills them again) */
+  if (pf_batch_records_fill(&p->rec, pts, NULL)) return NAN; /* (out of memory: shows in the balance) */
   return pf_pd_body_point_sum(b, pts, ep_point_energy);
 }
 

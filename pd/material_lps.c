@@ -227,25 +227,40 @@ static int lps_force(pf_pd_body *b, pf_points *pts) {
 
 /* W_i = (K/2) theta^2 + (15 G / (2 m)) sum_j omega (e^d - e^dp)^2 V_j (Silling et al. 2007, eq.
  * 92; e^dp = ep[stride k], a plastic extension, or 0 when ep is NULL), per reference volume, over
- * the bonds whose broken flag has no bit of skip. */
-static double energy_density(const pf_pd_body *b, const pf_points *pts, pf_int i, double theta, double m,
-                             const double *ep, int stride, int skip) {
+ * the intact bonds (not broken, not failing now). The neighbours come from the batch records rec
+ * of every store point (X, V and y: pf_batch_records_fill), eight at a time, one cache line each;
+ * their lengths are formed as pf_pd_bond_lengths forms them and summed in the row's order. */
+double pf_pd_lps_energy_density(const pf_pd_body *b, const double *rec, pf_int i, double theta, double m,
+                                const double *ep, int stride) {
+  enum { L = PF_BATCH };
   const pf_family *fam = &b->fam;
-  double dev = 0, e[3], r0, r;
-  for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
-    if (fam->broken[k] & skip) continue;
-    pf_int j = fam->neighbor[k];
-    pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
-    if (!pf_pd_in_family(b, i, r0)) continue;
-    double ed = (r - r0) - theta * r0 / 3 - (ep ? ep[stride * k] : 0.0);
-    dev += pf_pd_omega(&b->influence, r0) * ed * ed * pf_pd_bond_volume(fam, pts->vol, k, j);
+  const int64_t k0 = fam->offset[i - b->first], k1 = fam->offset[i - b->first + 1];
+  const double *ri = rec + (size_t)PF_REC * (size_t)i;
+  double dev = 0;
+  for (int64_t kb = k0; kb < k1; kb += L) {
+    const int n = k1 - kb < L ? (int)(k1 - kb) : L;
+    int32_t idx[L];
+    double a[PF_REC][L], r0[L], r[L];
+    for (int l = 0; l < L; l++) idx[l] = l < n ? fam->neighbor[kb + l] : i; /* (past the row: i itself) */
+    pf_batch_gather(rec, idx, a);
+#pragma omp simd
+    for (int l = 0; l < L; l++) {
+      double d2 = 0, e2 = 0;
+      for (int c = 0; c < 3; c++) {
+        const double d = a[REC_X + c][l] - ri[REC_X + c], e = a[REC_Y + c][l] - ri[REC_Y + c];
+        d2 += d * d, e2 += e * e;
+      }
+      r0[l] = sqrt(d2), r[l] = sqrt(e2);
+    }
+    for (int l = 0; l < n; l++) { /* (in the row's order) */
+      const int64_t k = kb + l;
+      if (fam->broken[k] & (PF_BOND_BROKEN | PF_BOND_FRESH) || !pf_pd_in_family(b, i, r0[l])) continue;
+      const double ed = (r[l] - r0[l]) - theta * r0[l] / 3 - (ep ? ep[stride * k] : 0.0);
+      const double vj = fam->vfrac ? a[REC_V][l] * fam->vfrac[k] : a[REC_V][l];
+      dev += pf_pd_omega(&b->influence, r0[l]) * ed * ed * vj;
+    }
   }
   return 0.5 * pf_pd_K(b, i) * theta * theta + 7.5 * pf_pd_G(b, i) / m * dev;
-}
-
-double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_int i, double theta, double m,
-                                const double *ep, int stride) {
-  return energy_density(b, pts, i, theta, m, ep, stride, PF_BOND_BROKEN | PF_BOND_FRESH);
 }
 
 /* Bond k of point i not yet broken and in i's own family: its |xi| into *r0, its omega V_j into
@@ -348,10 +363,12 @@ double pf_pd_lps_release(pf_pd_body *b, const pf_points *pts, pf_int i, double m
 
 static double lps_point_energy(const pf_pd_body *b, const pf_points *pts, pf_int i) {
   const lps *p = b->mat;
-  return pts->vol[i] * pf_pd_lps_energy_density(b, pts, i, p->theta[i], p->m[i], NULL, 0);
+  return pts->vol[i] * pf_pd_lps_energy_density(b, p->rec.rec, i, p->theta[i], p->m[i], NULL, 0);
 }
 
 static double lps_energy(const pf_pd_body *b, const pf_points *pts) {
+  lps *p = b->mat; /* (the records are scratch: every force pass fills them again) */
+  if (pf_batch_records_fill(&p->rec, pts, NULL)) return NAN; /* (out of memory: shows in the balance) */
   return pf_pd_body_point_sum(b, pts, lps_point_energy);
 }
 

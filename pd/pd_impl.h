@@ -343,8 +343,9 @@ static inline double pf_pd_omega(const pf_influence *w, double r) {
 double pf_pd_lps_micromodulus(const pf_pd_body *b, double delta);
 double pf_pd_lps_critical_stretch(const pf_pd_body *b, double G0);
 /* The LPS strain energy per reference volume of store point i (Silling et al. 2007, eq. 92),
- * with the deviatoric extensions less ep[stride k] when ep is given (elastic_plastic). */
-double pf_pd_lps_energy_density(const pf_pd_body *b, const pf_points *pts, pf_int i, double theta, double m,
+ * with the deviatoric extensions less ep[stride k] when ep is given (elastic_plastic), from the
+ * batch records rec of every store point (pd/bond_batch.h, filled with the current positions). */
+double pf_pd_lps_energy_density(const pf_pd_body *b, const double *rec, pf_int i, double theta, double m,
                                 const double *ep, int stride);
 /* The change of stored energy (J) when point i loses its PF_BOND_FRESH bonds, V_i (W_i - W_i'),
  * W_i' the LPS energy (with ep, as above) without them and with the dilatation they no longer
