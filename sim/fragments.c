@@ -2,10 +2,10 @@
  * peridynamic body (and of each FE body's coupled peridynamic nodes, whose rows also hold the
  * element neighbours), as in Peridigm's and LAMMPS's fragment post-processing of the expanding
  * tube and fragmenting cylinder. A point's fragment is the smallest global id in its component:
- * label propagation, each owned point taking the smallest label over itself and its intact
- * bonds until no label changes on any rank (one halo exchange per sweep). The fixpoint is the
- * component minimum whatever the order or the partition, so the labels - and the fragment
- * masses - are the same on any number of ranks. Bonds are broken from both ends alike by every
+ * each rank joins its owned points through their intact bonds (union-find), and its local
+ * components take the smallest label over themselves and the ghosts they are bonded to until no
+ * label changes on any rank. The fixpoint is the component minimum whatever the order or the
+ * partition, so the labels - and the fragment masses - are the same on any number of ranks. Bonds are broken from both ends alike by every
  * damage law here (the rows are symmetric), so a bond joins its ends or neither.
  *
  * Output: the point field "fragment" (-1 on bodies without bonds) at every Exodus step, and
@@ -28,35 +28,78 @@ static const pf_family *body_family(const pf_sim *sim, int b) {
   return pf_body_family(body);
 }
 
-/* One sweep over the owned points of body b: label <- min over intact bonds. Changes counted. */
-static long sweep(const pf_family *fam, double *label) {
-  long changed = 0;
-  for (pf_int i = 0; i < fam->n; i++) {
-    const pf_int p = fam->first + i;
-    double m = label[p];
-    for (int64_t k = fam->offset[i]; k < fam->offset[i + 1]; k++)
-      if (!fam->broken[k] && label[fam->neighbor[k]] < m) m = label[fam->neighbor[k]];
-    changed += m < label[p];
-    label[p] = m;
-  }
-  return changed;
+/* The representative of owned point p (path halving). */
+static pf_int root_of(pf_int *parent, pf_int p) {
+  while (parent[p] != p) p = parent[p] = parent[parent[p]];
+  return p;
 }
 
-/* Label every point with its fragment. Collective. */
+/* Join the owned ends of the intact bonds (the smaller root becomes the representative) and
+ * list the intact bonds whose other end is a ghost, as (owned, ghost) pairs into *cross. */
+static int join_owned(const pf_sim *sim, pf_int *parent, pf_int **cross, int64_t *ncross) {
+  const pf_int n = sim->pts->n_owned;
+  int64_t cap = 0;
+  *cross = NULL, *ncross = 0;
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_family *fam = body_family(sim, b);
+    for (pf_int i = 0; fam && i < fam->n; i++)
+      for (int64_t k = fam->offset[i]; k < fam->offset[i + 1]; k++) {
+        if (fam->broken[k]) continue;
+        const pf_int p = fam->first + i, j = fam->neighbor[k];
+        if (j < n) { /* (each bond once: the rows are symmetric, so j's row holds p) */
+          if (j < p) continue;
+          const pf_int rp = root_of(parent, p), rj = root_of(parent, j);
+          if (rp < rj) parent[rj] = rp;
+          else parent[rp] = rj;
+          continue;
+        }
+        if (*ncross == cap) {
+          cap = 2 * cap + 1024;
+          pf_int *grown = realloc(*cross, sizeof **cross * 2 * (size_t)cap);
+          PF_CHECK(grown, PF_ERR_MEMORY, "out of memory for the fragments' bonds across ranks");
+          *cross = grown;
+        }
+        (*cross)[2 * *ncross] = p, (*cross)[2 * *ncross + 1] = j, (*ncross)++;
+      }
+  }
+  return 0;
+}
+
+/* Label every point with its fragment: the owned points joined through their intact bonds
+ * (union-find, one pass over the bonds), each local component taking the smallest label over
+ * its points and the ghosts it is bonded to, until no label changes on any rank (one halo
+ * exchange a round; a round a rank boundary that a component crosses). Collective. */
 static int label_fragments(pf_sim *sim, double *label) {
   pf_points *pts = sim->pts;
-  for (pf_int i = 0; i < pts->n_owned; i++) label[i] = -1;
+  const pf_int n = pts->n_owned;
+  for (pf_int i = 0; i < n; i++) label[i] = -1;
   for (int b = 0; b < sim->nbodies; b++) {
     const pf_family *fam = body_family(sim, b);
     for (pf_int i = 0; fam && i < fam->n; i++) label[fam->first + i] = (double)pts->gid[fam->first + i];
   }
-  for (;;) {
-    PF_CALL(pf_points_exchange(pts, label, 1));
+  pf_int *parent = malloc(sizeof *parent * ((size_t)n + 1)), *cross = NULL;
+  double *low = malloc(sizeof *low * ((size_t)n + 1));
+  int64_t ncross = 0;
+  int ierr = parent && low ? 0 : pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");
+  for (pf_int i = 0; !ierr && i < n; i++) parent[i] = i;
+  if (!ierr) ierr = join_owned(sim, parent, &cross, &ncross);
+  for (pf_int i = 0; !ierr && i < n; i++) parent[i] = root_of(parent, i);
+  ierr = pf_agree(ierr, "labelling the fragments"); /* (every rank takes the rounds, or none) */
+  while (!ierr) {
+    ierr = pf_points_exchange(pts, label, 1);
+    if (ierr) break;
+    for (pf_int i = 0; i < n; i++) low[i] = INFINITY;
+    for (pf_int i = 0; i < n; i++)
+      if (label[i] >= 0) low[parent[i]] = fmin(low[parent[i]], label[i]);
+    for (int64_t c = 0; c < ncross; c++)
+      if (label[cross[2 * c + 1]] >= 0) low[parent[cross[2 * c]]] = fmin(low[parent[cross[2 * c]]], label[cross[2 * c + 1]]);
     long changed = 0;
-    for (int b = 0; b < sim->nbodies; b++)
-      if (body_family(sim, b)) changed += sweep(body_family(sim, b), label);
-    if (pf_max_all((double)changed) == 0) return 0;
+    for (pf_int i = 0; i < n; i++)
+      if (label[i] >= 0 && low[parent[i]] < label[i]) label[i] = low[parent[i]], changed++;
+    if (pf_max_all((double)changed) == 0) break;
   }
+  free(parent), free(low), free(cross);
+  return ierr;
 }
 
 static int by_id(const void *a, const void *b) {
