@@ -5,8 +5,9 @@
  * each rank joins its owned points through their intact bonds (union-find), and its local
  * components take the smallest label over themselves and the ghosts they are bonded to until no
  * label changes on any rank. The fixpoint is the component minimum whatever the order or the
- * partition, so the labels - and the fragment masses - are the same on any number of ranks. Bonds are broken from both ends alike by every
- * damage law here (the rows are symmetric), so a bond joins its ends or neither.
+ * partition, so the labels - and the fragment masses - are the same on any number of ranks.
+ * Bonds are broken from both ends alike by every damage law here (the rows are symmetric), so a
+ * bond joins its ends or neither.
  *
  * Output: the point field "fragment" (-1 on bodies without bonds) at every Exodus step, and
  * <file>.fragments.csv (rank 0) with one row per fragment per Exodus step: time, body, fragment
@@ -46,8 +47,7 @@ static int join_owned(const pf_sim *sim, pf_int *parent, pf_int **cross, int64_t
       for (int64_t k = fam->offset[i]; k < fam->offset[i + 1]; k++) {
         if (fam->broken[k]) continue;
         const pf_int p = fam->first + i, j = fam->neighbor[k];
-        if (j < n) { /* (each bond once: the rows are symmetric, so j's row holds p) */
-          if (j < p) continue;
+        if (j < n) {
           const pf_int rp = root_of(parent, p), rj = root_of(parent, j);
           if (rp < rj) parent[rj] = rp;
           else parent[rp] = rj;
@@ -92,7 +92,10 @@ static int label_fragments(pf_sim *sim, double *label) {
     for (pf_int i = 0; i < n; i++)
       if (label[i] >= 0) low[parent[i]] = fmin(low[parent[i]], label[i]);
     for (int64_t c = 0; c < ncross; c++)
-      if (label[cross[2 * c + 1]] >= 0) low[parent[cross[2 * c]]] = fmin(low[parent[cross[2 * c]]], label[cross[2 * c + 1]]);
+      if (label[cross[2 * c + 1]] >= 0) {
+        const pf_int r = parent[cross[2 * c]];
+        low[r] = fmin(low[r], label[cross[2 * c + 1]]);
+      }
     long changed = 0;
     for (pf_int i = 0; i < n; i++)
       if (label[i] >= 0 && low[parent[i]] < label[i]) label[i] = low[parent[i]], changed++;
