@@ -308,4 +308,23 @@ static inline __attribute__((always_inline)) void pf_batch_lengths_of(const doub
   for (int l = 0; l < PF_BATCH; l++) g->r0[l] = d2[l] * g->ir0[l], g->r[l] = e2[l] * g->ir[l];
 }
 
+/* The lengths of one batch by square roots, as pf_pd_bond_lengths computes them, to the same
+ * bits: r0 = |xi|, r = |y_j - y_i| and the current bond vectors e[3][l] (the elastic-plastic
+ * passes and the LPS energy, which take differences of these lengths). */
+static inline __attribute__((always_inline)) void pf_batch_sqrt_lengths(const double *restrict ri,
+                                                                        double a[PF_REC][PF_BATCH],
+                                                                        double r0[PF_BATCH], double r[PF_BATCH],
+                                                                        double e[3][PF_BATCH]) {
+#pragma omp simd
+  for (int l = 0; l < PF_BATCH; l++) {
+    double d2 = 0, e2 = 0;
+    for (int c = 0; c < 3; c++) {
+      const double d = a[REC_X + c][l] - ri[REC_X + c];
+      e[c][l] = a[REC_Y + c][l] - ri[REC_Y + c];
+      d2 += d * d, e2 += e[c][l] * e[c][l];
+    }
+    r0[l] = sqrt(d2), r[l] = sqrt(e2);
+  }
+}
+
 #endif

@@ -110,23 +110,6 @@ static int ep_setup(pf_pd_body *b, pf_points *pts) {
   return pf_pd_weighted_volumes(b, pts, p->m);
 }
 
-/* The lengths of a batch of point i (record ri) from its neighbours' transposed records a, as
- * pf_pd_bond_lengths computes them (r0 = |xi|, r = |y_j - y_i|, e = y_j - y_i): the same bits. */
-static inline __attribute__((always_inline)) void ep_lengths(const double *restrict ri, double a[PF_REC][PF_BATCH],
-                                                             double r0[PF_BATCH], double r[PF_BATCH],
-                                                             double e[3][PF_BATCH]) {
-#pragma omp simd
-  for (int l = 0; l < PF_BATCH; l++) {
-    double d2 = 0, e2 = 0;
-    for (int c = 0; c < 3; c++) {
-      const double d = a[REC_X + c][l] - ri[REC_X + c];
-      e[c][l] = a[REC_Y + c][l] - ri[REC_Y + c];
-      d2 += d * d, e2 += e[c][l] * e[c][l];
-    }
-    r0[l] = sqrt(d2), r[l] = sqrt(e2);
-  }
-}
-
 /* Grow the row scratch to n bonds for each of the threads, and the released energies to the
  * body's points. */
 static int ep_scratch_room(ep *p, int64_t n, int threads, pf_int points) {
@@ -173,7 +156,7 @@ static inline __attribute__((always_inline)) void ep_point(pf_pd_body *b, const 
     double a[PF_REC][L], r0[L], r[L], e[3][L], s[L], om[L], vj[L];
     for (int l = 0; l < L; l++) idx[l] = fam->neighbor[kb + l];
     pf_batch_gather(rec, idx, a);
-    ep_lengths(ri, a, r0, r, e);
+    pf_batch_sqrt_lengths(ri, a, r0, r, e);
 #pragma omp simd
     for (int l = 0; l < L; l++) {
       s[l] = (r[l] - r0[l]) / r0[l];
@@ -245,7 +228,7 @@ static inline __attribute__((always_inline)) void ep_point_force(const pf_pd_bod
     pf_batch_gather1(p->beta, idx, betaj);
     for (int l = 0; l < L; l++) /* (the state has no slack past the last row) */
       e0[l] = l < n ? edp[NSTATE * (kb + l)] : 0.0, e1[l] = l < n ? edp[NSTATE * (kb + l) + 1] : 0.0;
-    ep_lengths(ri, a, r0, r, e);
+    pf_batch_sqrt_lengths(ri, a, r0, r, e);
 #pragma omp simd
     for (int l = 0; l < L; l++) {
       const double ext = r[l] - r0[l], w = weighted ? pf_pd_omega(&b->influence, r0[l]) : 1.0;

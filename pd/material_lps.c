@@ -240,18 +240,10 @@ double pf_pd_lps_energy_density(const pf_pd_body *b, const double *rec, pf_int i
   for (int64_t kb = k0; kb < k1; kb += L) {
     const int n = k1 - kb < L ? (int)(k1 - kb) : L;
     int32_t idx[L];
-    double a[PF_REC][L], r0[L], r[L];
+    double a[PF_REC][L], r0[L], r[L], e[3][L];
     for (int l = 0; l < L; l++) idx[l] = l < n ? fam->neighbor[kb + l] : i; /* (past the row: i itself) */
     pf_batch_gather(rec, idx, a);
-#pragma omp simd
-    for (int l = 0; l < L; l++) {
-      double d2 = 0, e2 = 0;
-      for (int c = 0; c < 3; c++) {
-        const double d = a[REC_X + c][l] - ri[REC_X + c], e = a[REC_Y + c][l] - ri[REC_Y + c];
-        d2 += d * d, e2 += e * e;
-      }
-      r0[l] = sqrt(d2), r[l] = sqrt(e2);
-    }
+    pf_batch_sqrt_lengths(ri, a, r0, r, e);
     for (int l = 0; l < n; l++) { /* (in the row's order) */
       const int64_t k = kb + l;
       if (fam->broken[k] & (PF_BOND_BROKEN | PF_BOND_FRESH) || !pf_pd_in_family(b, i, r0[l])) continue;
