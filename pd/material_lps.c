@@ -289,16 +289,22 @@ static int release_bond(const pf_pd_body *b, const pf_points *pts, const double 
  * the cross term of the dilatation that stays with the one the bonds took: negative where a
  * bond in tension leaves a point in compression more compressed. Q into q[t][0], C into q[t][1],
  * the weighted volume of F, sum_F omega |xi|^2 V, into q[t][2]. Both positions in each pass
- * over the family, the geometry of a bond formed once. */
+ * over the family; the first pass keeps each bond's geometry for the second (a row of up to
+ * RELEASE_ROW bonds; a longer row's further bonds are formed again, to the same bits). */
+enum { RELEASE_ROW = 256 };
 static void release_at(const pf_pd_body *b, const pf_points *pts, const double *const y[2], pf_int i, double m,
                        const double *ep, int stride, double q[2][3]) {
   const pf_family *fam = &b->fam;
   const int64_t k0 = fam->offset[i - b->first], k1 = fam->offset[i - b->first + 1];
   const double K = pf_pd_K(b, i), a = 15.0 * pf_pd_G(b, i) / m;
   double sum_s[2] = {0, 0}, sum_f[2] = {0, 0}, m_s[2] = {0, 0}, r0, wv, r[2];
+  double geo[RELEASE_ROW][4]; /* r0 (-1: the bond takes no part), wv, r[0], r[1] */
   q[0][2] = q[1][2] = 0.0;
   for (int64_t k = k0; k < k1; k++) { /* the dilatation sums of S and F, their weighted volumes */
+    double *g = k - k0 < RELEASE_ROW ? geo[k - k0] : NULL;
+    if (g) g[0] = -1.0;
     if (!release_bond(b, pts, y, i, k, &r0, &wv, r)) continue;
+    if (g) g[0] = r0, g[1] = wv, g[2] = r[0], g[3] = r[1];
     for (int t = 0; t < 2; t++)
       if (fam->broken[k] == PF_BOND_FRESH) sum_f[t] += wv * r0 * (r[t] - r0), q[t][2] += wv * r0 * r0;
       else sum_s[t] += wv * r0 * (r[t] - r0), m_s[t] += wv * r0 * r0;
@@ -306,7 +312,12 @@ static void release_at(const pf_pd_body *b, const pf_points *pts, const double *
   double th_o[2], delta[2], th_w[2], dev_f[2] = {0, 0}, cross_s[2] = {0, 0};
   for (int t = 0; t < 2; t++) th_o[t] = 3.0 * sum_s[t] / m, delta[t] = 3.0 * sum_f[t] / m, th_w[t] = th_o[t] + delta[t];
   for (int64_t k = k0; k < k1; k++) { /* F's deviatoric energy at theta_w, S's slope at theta_o */
-    if (!release_bond(b, pts, y, i, k, &r0, &wv, r)) continue;
+    if (k - k0 < RELEASE_ROW) {
+      const double *g = geo[k - k0];
+      if (g[0] < 0) continue;
+      r0 = g[0], wv = g[1], r[0] = g[2], r[1] = g[3];
+    } else if (!release_bond(b, pts, y, i, k, &r0, &wv, r))
+      continue;
     const double p = ep ? ep[stride * k] : 0.0;
     for (int t = 0; t < 2; t++)
       if (fam->broken[k] == PF_BOND_FRESH) {
