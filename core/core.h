@@ -410,8 +410,11 @@ int pf_morton_order(pf_int n, const double *X, pf_int *perm);
 double pf_sum_all(double local);
 double pf_min_all(double local);
 double pf_max_all(double local);
-/* Before MPI_Init: MPI settings perifem needs, unless the user set them (core/comm.c). */
+/* Before MPI_Init: MPI settings perifem needs, unless the user set them (core/comm.c); after
+ * it, pf_mpi_defaults_release takes back those that only MPI_Init reads, so that no process this
+ * one starts (a Python campaign's mpirun) inherits them. */
 void pf_mpi_defaults(void);
+void pf_mpi_defaults_release(void);
 int pf_comm_rank(void);
 int pf_comm_size(void);
 /* The OpenMP threads a parallel region of this rank runs (omp_get_max_threads; 1 without OpenMP). */

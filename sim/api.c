@@ -63,7 +63,9 @@ static int start_mpi(void) {
   PF_CHECK(!fin, PF_ERR_LIB, "MPI has been finalized in this process; perifem needs it running");
   if (init) return 0;
   pf_mpi_defaults();
-  PF_CHECK(MPI_Init(NULL, NULL) == MPI_SUCCESS, PF_ERR_LIB, "MPI_Init failed");
+  const int ok = MPI_Init(NULL, NULL) == MPI_SUCCESS;
+  pf_mpi_defaults_release();
+  PF_CHECK(ok, PF_ERR_LIB, "MPI_Init failed");
   started_mpi = 1;
   return 0;
 }

@@ -245,6 +245,7 @@ int main(int argc, char **argv) {
   pf_sim_catch_signals_early(); /* (MPI_Init takes a second or more: a signal then had no message) */
   pf_mpi_defaults();
   MPI_Init(&argc, &argv);
+  pf_mpi_defaults_release();
   static cli c; /* (large: not on the stack) */
   command_line(argc, argv, c.command, sizeof c.command);
   int status = parse_args(argc, argv, &c);

@@ -2,7 +2,8 @@
 # "Nothing silently wrong", messages that do not name their cause: a SIGTERM that arrives while
 # MPI starts (MPI_Init takes a second or more, before the set-up catches signals) ended perifem
 # with no message at all. It must print the set-up's message and exit with status 143. The
-# signal is sent once the process has forked MPI's helper, which it does inside MPI_Init.
+# signal is sent once the process has forked MPI's helper, which it does inside MPI_Init when
+# the singleton is not isolated (OMPI_MCA_ess_singleton_isolated=0, set here).
 #
 #   bash tests/regression/early_signal.sh PERIFEM SCRATCH_DIR [TESTS_BINARY_DIR (unused)]
 set -u
@@ -16,6 +17,9 @@ $PY - "$exe" "$here/../inputs/wave_in_bar.yaml" "$scratch" <<'PY'
 import os, signal, subprocess, sys, time
 exe, deck, out = sys.argv[1:4]
 env = {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_", "PMI_"))}
+# (a singleton starts isolated unless told otherwise, in 0.07 s and without a helper:
+# docs/parallel.md, "Start-up"; with the helper MPI_Init is slow, as under a user's own settings)
+env["OMPI_MCA_ess_singleton_isolated"] = "0"
 p = subprocess.Popen([exe, "--output-dir", out, deck], stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
 def children(pid):
     kids = []
