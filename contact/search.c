@@ -8,9 +8,10 @@
  * every partner within r_c + s misses no contact (Verlet 1967; the LAMMPS neighbor skin). Each
  * pair has its own rule (pair_stale): a fast projectile's surface pair is rebuilt without its
  * target's self-contact. The builds are threaded over fixed chunks of entities
- * (chunked_candidates). Ghosts: every rank sends the entities that lie within a margin of
- * another rank's box of owned entities, margin = r_c + 2 s + twice the largest face size (a
- * particle needs every node of a face within reach). */
+ * (chunked_candidates). Ghosts: every rank sends an entity to each rank whose box of owned
+ * entities of a body that needs it (its partners' body in a pair) lies within the pair's margin,
+ * r_c + 2 s + twice the largest face size (a particle needs every node of a face within reach;
+ * send_lists). */
 #include "contact/contact_impl.h"
 
 #include <math.h>
@@ -209,14 +210,74 @@ static int face_sizes(pf_contact *c, const pf_points *pts) {
   return 0;
 }
 
-/* Send lists: owned entities within the margin of each other rank's box. Collective. */
+/* 1 when pair p's owned entities of body E need the entities of body P as ghosts: E has
+ * entities in the pair (a PD body; an FE body whose nodes have candidates, fe_entities) and P
+ * holds their partners (the other body; the body itself in a self pair), or P is E's own FE body,
+ * whose faces give a node its normal (node_normal). */
+static int needs_body(const pf_contact *c, const pf_contact_pair *p, int E, int P) {
+  if ((p->a != E && p->b != E) || (p->a != P && p->b != P)) return 0;
+  const int fe = c->body[E].is_fe;
+  if (fe && !p->method->fe_entities) return 0;
+  return P == (p->a == E ? p->b : p->a) || fe;
+}
+
+/* margin[B * nb + E]: the largest margin of the pairs in which the entities of body E need
+ * those of body B (needs_body), -1 where none does. A pair's margin is r_c + 2 s + 2 l: a
+ * partner within r_c at any time before the next build was within r_c + s at this one, the
+ * nodes of a face whose grown box holds a particle within r_c + s + 2 l of it, and the face may
+ * grow by the skin before the next build. c->margin: the largest. */
+static void body_margins(pf_contact *c, double *margin) {
+  const int nb = c->nbodies;
+  for (int q = 0; q < nb * nb; q++) margin[q] = -1;
+  c->margin = c->skin;
+  for (int k = 0; k < c->npairs; k++) {
+    const pf_contact_pair *p = &c->pair[k];
+    const double m = fmax(c->skin, p->radius + 2 * c->skin + 2 * face_size(p));
+    c->margin = fmax(c->margin, m);
+    for (int B = 0; B < nb; B++)
+      for (int E = 0; E < nb; E++)
+        if (needs_body(c, p, E, B)) margin[B * nb + E] = fmax(margin[B * nb + E], m);
+  }
+}
+
+/* 1 when owned entity e is within the margin of rank r's box of owned entities of some body
+ * whose entities need e's (boxes: [R][nb][6], lo then hi; an empty box, +inf to -inf, holds
+ * nothing). */
+static int sent_to(const pf_contact *c, const double *boxes, const double *margin, int r, pf_int e) {
+  const int nb = c->nbodies, B = c->vbody[e];
+  const double *y = &c->y[3 * e];
+  for (int E = 0; E < nb; E++) {
+    const double m = margin[B * nb + E], *b = &boxes[6 * ((size_t)r * nb + E)];
+    if (m < 0) continue;
+    int in = 1;
+    for (int a = 0; a < 3; a++) in &= y[a] >= b[a] - m && y[a] <= b[3 + a] + m;
+    if (in) return 1;
+  }
+  return 0;
+}
+
+/* Send lists: each owned entity to every other rank whose owned entities of a body that needs
+ * it lie within the pair's margin (body_margins), by the ranks' boxes of each body's owned
+ * entities: a rank gets the particles that may touch its own and the nodes of the faces its
+ * particles may touch, not every entity near any of its entities (a projectile's nodes owned by
+ * one rank inside a tube owned by the other need the tube's particles on neither). Collective. */
 static int send_lists(pf_contact *c) {
   int me = pf_comm_rank(), R = c->nranks;
-  double box[6] = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY}, *all;
-  for (pf_int e = 0; e < c->nown; e++)
+  const int nb = c->nbodies;
+  double *mine, *all, *margin;
+  PF_MALLOC(mine, 6 * (size_t)nb + (size_t)nb * nb);
+  margin = mine + 6 * (size_t)nb;
+  for (int b = 0; b < nb; b++)
+    for (int a = 0; a < 3; a++) mine[6 * b + a] = INFINITY, mine[6 * b + 3 + a] = -INFINITY;
+  for (pf_int e = 0; e < c->nown; e++) {
+    double *box = &mine[6 * c->vbody[e]];
     for (int a = 0; a < 3; a++) box[a] = fmin(box[a], c->y[3 * e + a]), box[3 + a] = fmax(box[3 + a], c->y[3 * e + a]);
-  PF_MALLOC(all, 6 * R);
-  MPI_Allgather(box, 6, MPI_DOUBLE, all, 6, MPI_DOUBLE, MPI_COMM_WORLD);
+  }
+  body_margins(c, margin);
+  all = malloc(sizeof *all * 6 * (size_t)nb * (size_t)R);
+  if (!all) free(mine);
+  PF_CHECK(all, PF_ERR_MEMORY, "out of memory for the contact's boxes");
+  MPI_Allgather(mine, 6 * nb, MPI_DOUBLE, all, 6 * nb, MPI_DOUBLE, MPI_COMM_WORLD);
   free(c->send);
   c->send = NULL;
   pf_int total = 0;
@@ -224,20 +285,17 @@ static int send_lists(pf_contact *c) {
     total = 0;
     for (int r = 0; r < R; r++) {
       c->sdispl[r] = total;
-      const double *b = &all[6 * r];
       for (pf_int e = 0; e < c->nown && r != me; e++) {
-        const double *y = &c->y[3 * e];
-        int in = 1;
-        for (int a = 0; a < 3; a++) in &= y[a] >= b[a] - c->margin && y[a] <= b[3 + a] + c->margin;
-        if (!in) continue;
+        if (!sent_to(c, all, margin, r, e)) continue;
         if (pass) c->send[total] = e;
         total++;
       }
       c->scount[r] = total - c->sdispl[r];
     }
-    if (!pass) PF_MALLOC(c->send, total);
+    if (!pass && !(c->send = malloc(sizeof *c->send * (size_t)(total + 1)))) break;
   }
-  free(all);
+  free(all), free(mine);
+  PF_CHECK(c->send, PF_ERR_MEMORY, "out of memory for the contact's send lists");
   MPI_Alltoall(c->scount, 1, MPI_INT, c->rcount, 1, MPI_INT, MPI_COMM_WORLD);
   pf_int nrecv = 0;
   for (int r = 0; r < R; r++) c->rdispl[r] = nrecv, nrecv += c->rcount[r];
@@ -949,12 +1007,6 @@ int pf_contact_search(pf_contact *c, const pf_points *pts) {
   } else
     for (int k = 0; k < c->npairs; k++) c->stale[k] = 1;
   PF_CALL(face_sizes(c, pts));
-  c->margin = c->skin;
-  /* a partner within r_c at any time before the next build was within r_c + skin at this one;
-   * the nodes of a face whose grown box holds a particle within r_c + skin + 2 l of it; and the
-   * face may grow by the skin before the next build */
-  for (int k = 0; k < c->npairs; k++)
-    c->margin = fmax(c->margin, c->pair[k].radius + 2 * c->skin + 2 * face_size(&c->pair[k]));
   /* the last view's ghosts, to renumber the kept candidates' partners */
   const pf_int nlast = c->built ? c->nview - c->nown : 0;
   pf_gid *last_gid = NULL;
