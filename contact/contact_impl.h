@@ -139,7 +139,6 @@ struct pf_contact {
   uint8_t **surface_node; /* [nbodies] FE bodies: [nnodes] 1 when on a pair's surface */
   long *eroded_seen;      /* [nbodies] FE bodies: deleted elements when the surfaces were built */
   double skin;
-  double margin;          /* ghost margin of the last build, m */
   int has_fe;             /* some pair is FE <-> PD: node shares travel between ranks */
   /* the view: owned entities (points of contact bodies: PD particles, FE surface nodes), then
    * ghosts received from other ranks at the last build */

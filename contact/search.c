@@ -225,15 +225,13 @@ static int needs_body(const pf_contact *c, const pf_contact_pair *p, int E, int 
  * those of body B (needs_body), -1 where none does. A pair's margin is r_c + 2 s + 2 l: a
  * partner within r_c at any time before the next build was within r_c + s at this one, the
  * nodes of a face whose grown box holds a particle within r_c + s + 2 l of it, and the face may
- * grow by the skin before the next build. c->margin: the largest. */
-static void body_margins(pf_contact *c, double *margin) {
+ * grow by the skin before the next build. */
+static void body_margins(const pf_contact *c, double *margin) {
   const int nb = c->nbodies;
   for (int q = 0; q < nb * nb; q++) margin[q] = -1;
-  c->margin = c->skin;
   for (int k = 0; k < c->npairs; k++) {
     const pf_contact_pair *p = &c->pair[k];
     const double m = fmax(c->skin, p->radius + 2 * c->skin + 2 * face_size(p));
-    c->margin = fmax(c->margin, m);
     for (int B = 0; B < nb; B++)
       for (int E = 0; E < nb; E++)
         if (needs_body(c, p, E, B)) margin[B * nb + E] = fmax(margin[B * nb + E], m);
