@@ -33,11 +33,14 @@ static int grow_exact(pf_bond_rows *r, int64_t cap) {
   pf_gid *g = realloc(r->gid, sizeof(pf_gid) * (size_t)cap);
   PF_CHECK(g, PF_ERR_MEMORY, "out of memory for %" PRId64 " bonds", cap);
   r->gid = g;
+  pf_memory_huge_pages(g, sizeof(pf_gid) * (size_t)cap);
   for (int k = 0; k < r->nfields; k++) {
     pf_bond_field *f = &r->field[k];
-    void *d = realloc(f->data, pf_bond_type_size(f->type) * (size_t)f->ncomp * (size_t)cap);
+    const size_t bytes = pf_bond_type_size(f->type) * (size_t)f->ncomp * (size_t)cap;
+    void *d = realloc(f->data, bytes);
     PF_CHECK(d, PF_ERR_MEMORY, "out of memory for the bond field '%s' of %" PRId64 " bonds", f->name, cap);
     f->data = d;
+    pf_memory_huge_pages(d, bytes);
   }
   r->cap = cap;
   return 0;
@@ -72,9 +75,7 @@ int pf_bond_rows_release(pf_bond_rows *r) {
   return 0;
 }
 
-/* A new row of count bonds with neighbours gid (NULL: zeros); its first bond is *at. The
- * fields' values are for the caller to set. */
-static int add_row(pf_bond_rows *r, pf_int count, const pf_gid *gid, int64_t *at) {
+int pf_bond_rows_append_unset(pf_bond_rows *r, pf_int count, int64_t *at) {
   PF_CHECK(count >= 0, PF_ERR_RUN, "a bond row of %" PF_INT_FMT " bonds", count);
   if (r->n + 1 >= r->row_cap) {
     pf_int cap = r->row_cap + r->row_cap / 2 + 1024;
@@ -85,10 +86,17 @@ static int add_row(pf_bond_rows *r, pf_int count, const pf_gid *gid, int64_t *at
   }
   *at = r->offset[r->n];
   PF_CALL(grow(r, *at + count));
-  if (gid && count > 0) memcpy(r->gid + *at, gid, sizeof(pf_gid) * (size_t)count);
-  else if (count > 0) memset(r->gid + *at, 0, sizeof(pf_gid) * (size_t)count);
   r->offset[r->n + 1] = *at + count;
   r->n++;
+  return 0;
+}
+
+/* A new row of count bonds with neighbours gid (NULL: zeros); its first bond is *at. The
+ * fields' values are for the caller to set. */
+static int add_row(pf_bond_rows *r, pf_int count, const pf_gid *gid, int64_t *at) {
+  PF_CALL(pf_bond_rows_append_unset(r, count, at));
+  if (gid && count > 0) memcpy(r->gid + *at, gid, sizeof(pf_gid) * (size_t)count);
+  else if (count > 0) memset(r->gid + *at, 0, sizeof(pf_gid) * (size_t)count);
   return 0;
 }
 

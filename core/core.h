@@ -76,12 +76,16 @@ int pf_error_agree(int ok, int code, const char *file, int line, const char *fun
     if (pf_call_ierr_)                                                                             \
       return pf_error_raise(pf_call_ierr_, __FILE__, __LINE__, __func__, "called from here");      \
   } while (0)
+/* Mark an array of bytes at p as wanting transparent huge pages, when it is large (a few MB)
+ * and not yet touched: PF_MALLOC and PF_GROW do, and the bond rows' growth (core/huge_pages.c). */
+void pf_memory_huge_pages(void *p, size_t bytes);
 #define PF_MALLOC(ptr, count)                                                                      \
   do {                                                                                             \
     size_t pf_n_ = (size_t)(count);                                                                \
     (ptr) = calloc(pf_n_ ? pf_n_ : 1, sizeof(*(ptr)));                                             \
     PF_CHECK((ptr), PF_ERR_MEMORY, "out of memory allocating %zu x %zu bytes", pf_n_,             \
              sizeof(*(ptr)));                                                                      \
+    pf_memory_huge_pages((ptr), pf_n_ * sizeof(*(ptr)));                                           \
   } while (0)
 /* Room for one more element at index n of a growing array (ptr, its capacity cap, an int64_t):
  * when full, the capacity becomes 2 cap + extra. */
@@ -93,6 +97,7 @@ int pf_error_agree(int ok, int code, const char *file, int line, const char *fun
       PF_CHECK(pf_q_, PF_ERR_MEMORY, "out of memory growing an array to %lld x %zu bytes",         \
                (long long)pf_cap_, sizeof(*(ptr)));                                                \
       (ptr) = pf_q_, (cap) = pf_cap_;                                                              \
+      pf_memory_huge_pages((ptr), sizeof(*(ptr)) * (size_t)pf_cap_);                               \
     }                                                                                              \
   } while (0)
 #define PF_FREE(ptr)                                                                               \

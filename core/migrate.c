@@ -82,8 +82,8 @@ static const char *unpack_point(const char *p, pf_points *pts, pf_int k, int nre
 
 /* Append the row of nb bonds packed at p (neighbours, then each field). */
 static int unpack_row(const char *p, int32_t nb, pf_bond_rows *rows) {
-  PF_CALL(pf_bond_rows_append(rows, nb, NULL, 0, NULL)); /* then the bonds' bytes over it */
-  const int64_t at = rows->offset[rows->n - 1];
+  int64_t at;
+  PF_CALL(pf_bond_rows_append_unset(rows, nb, &at)); /* (every byte of it from the record) */
   memcpy(rows->gid + at, p, sizeof(pf_gid) * (size_t)nb), p += sizeof(pf_gid) * (size_t)nb;
   for (int q = 0; q < rows->nfields; q++) {
     const pf_bond_field *f = &rows->field[q];

@@ -9,6 +9,8 @@ python/examples/campaign_disk.py wrote example.csv (6 replicas, seed 3, s00 norm
   - the spread: with the same seed (the same normal deviates), s00's CoV 0.2 gives a standard
     deviation of the damage fraction more than twice that of CoV 0.02;
   - the lattice perturbation (amplitude 0.05 h): each replica its own seed, digests all different;
+  - the workers' allocator asks for huge pages: a worker sees the user's glibc tunables with
+    glibc.malloc.hugetlb=1 after them, and the user's environment is as it was after the run;
   - the distributions: 2000 draws of each give back its parameters (the Weibull ones by
     perifem.basis' fit);
   - a replica whose drawn s00 is not positive fails alone (perifem refuses the value), the
@@ -34,6 +36,11 @@ def check(ok, what):
     print(("ok    " if ok else "FAIL  ") + what)
     if not ok:
         failures.append(what)
+
+
+def worker_tunables(history):
+    """1 when this worker's glibc tunables are the test's own followed by the huge-page switch."""
+    return float(os.environ.get("GLIBC_TUNABLES") == "glibc.malloc.arena_max=4:glibc.malloc.hugetlb=1")
 
 
 def run(folder, replicas, scatter, seed, perturbation=None):
@@ -108,4 +115,15 @@ if __name__ == "__main__":
     check(len(set(seeds)) == 2 and len(shaken_digests) == 2 and not shaken_digests & digests,
           "lattice perturbation 0.05 h, seeds %s: digests %s, unlike the unperturbed run's"
           % (seeds, sorted(shaken_digests)))
+
+    before = os.environ.get("GLIBC_TUNABLES")
+    os.environ["GLIBC_TUNABLES"] = "glibc.malloc.arena_max=4"
+    tuned = campaign.run(deck, 1, outputs={"tunables": worker_tunables}, folder="tunables", workers=1,
+                         overrides=SMALL)
+    check(list(tuned.values("tunables")) == [1.0] and os.environ["GLIBC_TUNABLES"] == "glibc.malloc.arena_max=4",
+          "the worker's glibc tunables: the user's, then glibc.malloc.hugetlb=1; the user's kept")
+    if before is None:
+        del os.environ["GLIBC_TUNABLES"]
+    else:
+        os.environ["GLIBC_TUNABLES"] = before
     sys.exit(1 if failures else 0)
