@@ -126,6 +126,9 @@ static int create(const char *deck_path, const char *yaml, const perifem_options
   perifem_sim *s;
   PF_MALLOC(s, 1);
   int ierr = copy_options(s, deck_path, yaml, o);
+  const int dir_err = !ierr && s->output_dir && !o->no_output ? pf_sim_dir_creatable(s->output_dir) : 0;
+  if (dir_err) /* (before the set-up, which can take minutes) */
+    ierr = RAISE(PF_ERR_INPUT, "output folder %s: cannot create the folder: %s", s->output_dir, strerror(dir_err));
   if (!ierr) {
     const pf_sim_options so = {.output_dir = s->output_dir, .no_output = o->no_output, .restart_from = s->restart_from,
                                .sets = (const char *const *)s->overrides, .nsets = s->noverrides,

@@ -284,6 +284,32 @@ int pf_sim_check_checkpoint_path(pf_sim *sim, const char *path, char *target, si
   return ierr;
 }
 
+/* The deepest existing folder of path (cut in place): 0, ENOTDIR when a file stands where a
+ * folder must, or the errno of stat. */
+static int deepest_existing(char *path) {
+  struct stat st;
+  while (stat(path, &st)) {
+    if (errno != ENOENT) return errno;
+    char *slash = strrchr(path, '/');
+    if (slash == path) slash[1] = '\0'; /* "/a" -> "/" */
+    else if (slash) *slash = '\0';
+    else strcpy(path, "."); /* a relative path's first level */
+  }
+  return S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
+}
+
+int pf_sim_dir_creatable(const char *dir) {
+  int err = 0;
+  if (pf_comm_rank() == 0) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s", dir);
+    err = deepest_existing(path);
+    if (!err && strcmp(path, dir) && access(path, W_OK | X_OK)) err = errno;
+  }
+  MPI_Bcast(&err, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return err;
+}
+
 /* mkdir -p, one level at a time (an existing folder is fine), then the whole path a folder. */
 int pf_sim_make_dir(const char *dir) {
   int err = 0;

@@ -94,6 +94,10 @@ int pf_deck_reference(FILE *out);
 /* mkdir -p dir on rank 0 (an output folder, before a run opens its files): 0 or an errno, the
  * same on every rank. Collective (sim/paths.c). */
 int pf_sim_make_dir(const char *dir);
+/* Whether pf_sim_make_dir(dir) can succeed, before the set-up, making nothing: 0 when dir is a
+ * folder or its deepest existing ancestor is one this process may write in, else an errno
+ * (ENOTDIR: a file where a folder must be; EACCES). Collective (sim/paths.c). */
+int pf_sim_dir_creatable(const char *dir);
 /* The command line, before MPI_Init: a SIGTERM or SIGINT from then on ends the process with the
  * set-up's message (sim/signals.c), on the rank the launcher calls 0. */
 void pf_sim_catch_signals_early(void);
