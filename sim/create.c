@@ -314,6 +314,7 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   PF_CALL(validate_materials(sim->deck, pf_node_get(root, "materials")));
   pf_sim_warn_unit_slips(sim->deck, pf_node_get(root, "materials"));
   PF_CALL(pf_sim_setup_parallel(sim));
+  PF_CALL(pf_sim_check_time_keys(sim));
   PF_CALL(build_bodies(sim, root));
   PF_CALL(pf_sim_interactions_build(sim));
   PF_CALL(pf_sim_setup_time(sim));

@@ -184,6 +184,11 @@ void pf_sim_number_bodies(pf_sim *sim, const pf_gid *count);
  * of a point is its intact bonds + 1 and the work of its interactions (pf_sim_interactions_work),
  * the weights the partition balances. */
 int pf_sim_rebalance(pf_sim *sim);
+/* The time section's keys that need no model (max_motion, safety_factor, dt, exactly one of
+ * final_time and steps, each in range): checked before the bodies are built, so that a slip there
+ * is reported at once rather than after the set-up. */
+int pf_sim_check_time_keys(const pf_sim *sim);
+/* The step and the run's length from the time keys and the bodies' stable step. */
 int pf_sim_setup_time(pf_sim *sim);
 /* Partition, migrate, add ghosts and attach the bodies; fresh: initial state (set-up). extra: NULL
  * or each owned point's interaction work (pf_partition_weight); imbalance: NULL, or the work

@@ -38,6 +38,37 @@ int pf_sim_refresh_fixed_step(pf_sim *sim) {
  * double's exact integers, so that the step count and step * dt neither overflow nor round. */
 #define PF_MAX_STEPS 1e12
 
+int pf_sim_check_time_keys(const pf_sim *sim) {
+  const pf_deck *d = sim->deck;
+  const pf_node *tm = pf_node_get(pf_deck_root(d), "time");
+  double safety = 0.8, motion = 0.5, dt = 1, final_time = 0;
+  PF_CALL(pf_deck_real(d, tm, "safety_factor", &safety));
+  PF_CALL(pf_deck_real(d, tm, "max_motion", &motion));
+  if (!(motion > 0)) return pf_deck_error(d, pf_node_get(tm, "max_motion"), "max_motion", "must be positive (got %g)", motion);
+  if (!(safety > 0 && safety <= 1))
+    return pf_deck_error(d, pf_node_get(tm, "safety_factor"), "safety_factor", "must be in (0, 1] (got %g)", safety);
+  if (pf_node_get(tm, "dt")) {
+    PF_CALL(pf_deck_real(d, tm, "dt", &dt));
+    if (!(dt > 0)) return pf_deck_error(d, pf_node_get(tm, "dt"), "dt", "must be positive (got %g)", dt);
+  }
+  const int hf = pf_node_get(tm, "final_time") != NULL, hs = pf_node_get(tm, "steps") != NULL;
+  if (hf == hs) return pf_deck_error(d, tm, "final_time", "give exactly one of 'final_time' and 'steps'");
+  if (hs) {
+    long steps;
+    PF_CALL(pf_deck_int(d, tm, "steps", &steps));
+    if (steps < 0) return pf_deck_error(d, pf_node_get(tm, "steps"), "steps", "must not be negative");
+    if (steps > PF_MAX_STEPS)
+      return pf_deck_error(d, pf_node_get(tm, "steps"), "steps", "%ld steps: at most %.0e are allowed", steps,
+                           PF_MAX_STEPS);
+    return 0;
+  }
+  PF_CALL(pf_deck_real(d, tm, "final_time", &final_time));
+  if (!(final_time >= 0 && isfinite(final_time)))
+    return pf_deck_error(d, pf_node_get(tm, "final_time"), "final_time", "must be finite and not negative (got %g)",
+                         final_time);
+  return 0;
+}
+
 int pf_sim_setup_time(pf_sim *sim) {
   const pf_deck *d = sim->deck;
   const pf_node *tm = pf_node_get(pf_deck_root(d), "time");
@@ -45,10 +76,6 @@ int pf_sim_setup_time(pf_sim *sim) {
   PF_CALL(pf_deck_real(d, tm, "safety_factor", &safety));
   sim->max_motion = 0.5;
   PF_CALL(pf_deck_real(d, tm, "max_motion", &sim->max_motion));
-  if (!(sim->max_motion > 0))
-    return pf_deck_error(d, pf_node_get(tm, "max_motion"), "max_motion", "must be positive (got %g)", sim->max_motion);
-  if (!(safety > 0 && safety <= 1))
-    return pf_deck_error(d, pf_node_get(tm, "safety_factor"), "safety_factor", "must be in (0, 1] (got %g)", safety);
   double stable = stable_step(sim);
   sim->safety = safety;
   sim->dt = safety * stable;
@@ -57,7 +84,6 @@ int pf_sim_setup_time(pf_sim *sim) {
   sim->adaptive = varies && !pf_node_get(tm, "dt");
   if (pf_node_get(tm, "dt")) {
     PF_CALL(pf_deck_real(d, tm, "dt", &sim->dt));
-    if (!(sim->dt > 0)) return pf_deck_error(d, pf_node_get(tm, "dt"), "dt", "must be positive (got %g)", sim->dt);
     if (sim->dt > stable)
       pf_log("warning: dt = %g s exceeds the stable step %g s\n", sim->dt, stable);
   }
@@ -68,20 +94,12 @@ int pf_sim_setup_time(pf_sim *sim) {
                          "materials' moduli and densities, or give time.dt",
                          sim->dt, stable);
   }
-  int hf = pf_node_get(tm, "final_time") != NULL, hs = pf_node_get(tm, "steps") != NULL;
-  if (hf == hs) return pf_deck_error(d, tm, "final_time", "give exactly one of 'final_time' and 'steps'");
+  const int hs = pf_node_get(tm, "steps") != NULL; /* (one of the two: pf_sim_check_time_keys) */
   if (hs) {
     PF_CALL(pf_deck_int(d, tm, "steps", &sim->nsteps));
-    if (sim->nsteps < 0) return pf_deck_error(d, pf_node_get(tm, "steps"), "steps", "must not be negative");
-    if (sim->nsteps > PF_MAX_STEPS)
-      return pf_deck_error(d, pf_node_get(tm, "steps"), "steps", "%ld steps: at most %.0e are allowed", sim->nsteps,
-                           PF_MAX_STEPS);
     sim->final_time = sim->nsteps * sim->dt;
   } else {
     PF_CALL(pf_deck_real(d, tm, "final_time", &sim->final_time));
-    if (!(sim->final_time >= 0 && isfinite(sim->final_time)))
-      return pf_deck_error(d, pf_node_get(tm, "final_time"), "final_time", "must be finite and not negative (got %g)",
-                           sim->final_time);
     const double n = ceil(sim->final_time / sim->dt - 1e-9);
     /* (a quasi-static run takes solver.load_steps steps over its pseudo-time, whatever the stable step) */
     const char *solver = "explicit";
