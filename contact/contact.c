@@ -57,6 +57,11 @@ const pf_key pf_contact_pair_keys[] = {
     {"spring_constant", PF_KEY_REAL, 0, NULL, "Pa", "short range: k_s (default: the larger bulk modulus)", NULL},
     {"horizon", PF_KEY_REAL, 0, NULL, "m", "short range: delta (default: the larger horizon)", NULL},
     {"friction", PF_KEY_REAL, 0, "0", "", "Coulomb friction coefficient", NULL},
+    {"tangential_stiffness", PF_KEY_REAL, 0, "stiffness", "N/m",
+     "quasi_static with friction, pairs with an FE body: k_t of the tangential penalty f_t = -k_t g_t of a point "
+     "that sticks (g_t its tangential displacement relative to the surface point it meets since its committed "
+     "slip; docs/theory/quasi_static_methods.md §8)",
+     NULL},
     {"all_points", PF_KEY_BOOL, 0, "false", "", "short range: also between bonded points", NULL},
     PF_KEY_END};
 
@@ -164,7 +169,12 @@ static int read_pair(const pf_deck *d, const pf_node *map, int nbodies, const pf
   PF_CALL(pf_deck_real(d, map, "friction", &p->friction));
   if (!(p->friction >= 0))
     return pf_deck_error(d, pf_node_get(map, "friction"), "friction", "must not be negative (got %g)", p->friction);
-  return 0;
+  p->tangential = p->stiffness;
+  if (pf_node_get(map, "tangential_stiffness") && !p->method->pushes)
+    return pf_deck_error(d, pf_node_get(map, "tangential_stiffness"), "tangential_stiffness",
+                         "'tangential_stiffness' is a key of pairs with an FE body (short-range pairs have no "
+                         "quasi-static friction)");
+  return pf_deck_positive(d, map, "tangential_stiffness", &p->tangential);
 }
 
 /* Mark the mesh nodes of each FE body that lie on some pair's surface. */
@@ -399,21 +409,64 @@ int pf_contact_restored(pf_contact *c) {
   return 0;
 }
 
-int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, double *dissipation) {
-  double t0 = pf_wtime();
+/* The interactions at the current positions into c->force, *U and *dissipation. Collective. */
+static int evaluate(pf_contact *c, pf_points *pts, double dt, double *U, double *dissipation) {
   PF_CALL(offsets(c, pts));
   PF_CALL(follow_erosion(c));
   if (!c->built) PF_CALL(pf_contact_collect_owned(c, pts));
   PF_CALL(pf_contact_exchange(c, pts));
   PF_CALL(pf_contact_search(c, pts));
-  double U = 0;
-  PF_CALL(pf_contact_pairs_evaluate(c, dt, &U, dissipation));
+  c->slip = c->static_friction ? pf_points_field_get(pts, "contact_slip") : NULL;
+  PF_CALL(pf_contact_pairs_evaluate(c, dt, U, dissipation));
   fresh_done(c);
+  return 0;
+}
+
+int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, double *dissipation) {
+  double t0 = pf_wtime();
+  double U = 0;
+  PF_CALL(evaluate(c, pts, dt, &U, dissipation));
   PF_CALL(add_forces(c, pts));
   for (int k = 0; k < c->npairs; k++) memcpy(&sums[3 * k], c->pair[k].force, sizeof c->pair[k].force);
   sums[3 * c->npairs] = U;
   c->seconds += pf_wtime() - t0;
   return 0;
+}
+
+int pf_contact_quasi_static(pf_contact *c, const pf_deck *d, const pf_node *map, pf_points *pts) {
+  const pf_node *pairs = pf_node_get(map, "pairs");
+  for (int k = 0; k < c->npairs; k++) {
+    if (!(c->pair[k].friction > 0)) continue;
+    if (!c->pair[k].method->pushes)
+      return pf_deck_error(d, pf_node_get(pf_node_item(pairs, k), "friction"), "friction",
+                           "the friction of short-range pairs (PD <-> PD) is not supported with the quasi_static "
+                           "solver (its regularized Coulomb force needs a time step); pairs with an FE body take "
+                           "friction there");
+    c->static_friction = 1;
+  }
+  int idx;
+  return c->static_friction ? pf_points_field_register(pts, "contact_slip", 4, PF_FIELD_RESTART, &idx) : 0;
+}
+
+int pf_contact_commit_slips(pf_contact *c, pf_points *pts, double *terms) {
+  memset(terms, 0, sizeof *terms * (size_t)pts->n_owned);
+  if (!c->static_friction) return 0;
+  c->slip_next = calloc(4 * (size_t)c->nown + 1, sizeof *c->slip_next);
+  c->slip_work = calloc((size_t)c->nown + 1, sizeof *c->slip_work);
+  double U = 0, diss = 0;
+  int ierr = c->slip_next && c->slip_work ? evaluate(c, pts, 0.0, &U, &diss) : PF_ERR_MEMORY;
+  for (pf_int e = 0; e < c->nown && !ierr; e++) { /* (a point out of contact: no slip set) */
+    const double *next = &c->slip_next[4 * (size_t)e], w = next[3];
+    double *s = &c->slip[4 * (size_t)c->local[e]];
+    for (int a = 0; a < 3; a++) s[a] = w > 0 ? next[a] / w : 0.0;
+    s[3] = w > 0;
+    terms[c->local[e]] = c->slip_work[e];
+  }
+  PF_FREE(c->slip_next);
+  PF_FREE(c->slip_work);
+  PF_CHECK(ierr != PF_ERR_MEMORY, PF_ERR_MEMORY, "out of memory for the contact slips of %lld points",
+           (long long)c->nown);
+  return ierr;
 }
 
 double pf_contact_min_mass(const pf_contact_body *b, const pf_points *pts) {
@@ -442,15 +495,20 @@ double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts) {
  * between two points adds k_i to the diagonal and as much off it, along one direction n, whose
  * 3 x 3 block n n^T has row sums of |n_a n_b| at most sqrt 3: 2 sqrt(3) m_i w2. Every point of the
  * bodies takes it (contact may reach any of them), which slows the relaxation of a body in contact
- * by at most that of its stiffest penalty. Collective (stable_w2 reduces). */
+ * by at most that of its stiffest penalty. With quasi-static friction each penalty k has a
+ * tangential one k_t (I - n n^T) beside it, whose rows sum to at most (1 + sqrt 3) k_t: the pair's
+ * k_t / k of that on and off the diagonal. Collective (stable_w2 reduces). */
 void pf_contact_stiffness_bounds(const pf_contact *c, const pf_points *pts, double *k) {
   for (int q = 0; q < c->npairs; q++) {
     const pf_contact_pair *p = &c->pair[q];
     const double w2 = p->method->stable_w2(c, p, pts);
     for (int side = 0; side < (p->a == p->b ? 1 : 2); side++) {
       const pf_contact_body *b = &c->body[side ? p->b : p->a];
-      for (pf_int i = b->first; i < b->first + b->n && i < pts->n_owned; i++)
-        k[i] += 2 * sqrt(3.0) * (pts->m[i] > 0 ? pts->m[i] : b->density * pts->vol[i]) * w2;
+      for (pf_int i = b->first; i < b->first + b->n && i < pts->n_owned; i++) {
+        const double m = pts->m[i] > 0 ? pts->m[i] : b->density * pts->vol[i];
+        k[i] += 2 * sqrt(3.0) * m * w2;
+        if (c->static_friction && p->friction > 0) k[i] += 2 * (1 + sqrt(3.0)) * m * w2 * p->tangential / p->stiffness;
+      }
     }
   }
 }

@@ -147,6 +147,16 @@ void pf_contact_sums_take(pf_contact *c, const double *sums, double *energy);
 /* The stable step the penalties allow (2 / omega of the stiffest contact a point can see).
  * Collective. */
 double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts);
+/* Quasi-static loading (the solver's open): the pairs with friction take it as a tangential penalty
+ * on each point's slip relative to the surface point it meets (docs/theory/quasi_static_methods.md
+ * §8), kept in the point field "contact_slip" (registered here; carried by re-partitions and
+ * checkpoints); a short-range pair's friction is refused (an error naming the key of `map`, the
+ * deck's `contact:`). */
+int pf_contact_quasi_static(pf_contact *c, const pf_deck *d, const pf_node *map, pf_points *pts);
+/* Quasi-static loading, at a load step's equilibrium: each owned point's slip takes what the
+ * elastic part of its friction does not hold (none: a point out of contact), and terms[i] (over the
+ * owned points) the work of its slip increment, J. Collective. */
+int pf_contact_commit_slips(pf_contact *c, pf_points *pts, double *terms);
 /* Quasi-static: add to k[i] (N/m, owned points) a bound of the row sums of the pairs' penalty
  * stiffness at point i (the fictitious masses). Collective. */
 void pf_contact_stiffness_bounds(const pf_contact *c, const pf_points *pts, double *k);

@@ -38,6 +38,8 @@ typedef struct {
   int signed_gap;        /* 1: the gap is a signed distance from a surface (pf_contact_gap.surface) */
   int candidate_work;    /* the cost of one candidate at a force evaluation, in the bond
                           * evaluations of the partition's weights (pf_contact_work; 0: 1) */
+  int pushes;            /* 1: its forces go through pf_contact_push, whose friction the quasi-static
+                          * solver takes as a tangential penalty on the committed slip */
   int holds_offsets;     /* 1: against the surface of a body that deletes elements, a particle
                           * keeps the penetration it had when a face was uncovered under it (the
                           * point fields "contact_offset", "contact_reach": pairs.c) */
@@ -93,6 +95,7 @@ struct pf_contact_pair {
   double radius;     /* contact radius r_c, m */
   double stiffness;  /* short range: C in f = C (r_c - r) V_i V_j (N/m^7); FE: k in f = k (r_c - g) (N/m) */
   double friction;   /* Coulomb coefficient */
+  double tangential; /* quasi-static friction: the tangential penalty k_t, N/m (methods that push) */
   int nside;         /* 0 (short range), 1 (FE <-> PD: body a's surface), 2 (FE <-> FE: a's, then b's) */
   pf_contact_side side[2];
   double force[3];   /* total force on body a at the last evaluation (all ranks), N */
@@ -154,7 +157,15 @@ struct pf_contact {
                    * previous evaluation, at this one) */
   double *rad; /* [nview] a point's own contact radius (the point field "contact_radius" where
                   positive: a particle made from an element, fem/particles.c), else INFINITY */
-  double *X;              /* [3 nview] reference positions (short range within a body) */
+  double *X;              /* [3 nview] reference positions (short range within a body; the
+                           * relative displacement of quasi-static friction) */
+  /* quasi-static friction (pf_contact_quasi_static): the point field "contact_slip" at this
+   * evaluation (4 a point: the committed slip relative to the surface point it meets, and 1 when
+   * set, 0 until the point is in contact at a load step's equilibrium), else NULL; while the slips
+   * are committed, each owned entity's sums of its pushes' new slips weighted by their normal
+   * force, and of their slip increments' work (else NULL) */
+  int static_friction;
+  double *slip, *slip_next, *slip_work;
   double *y_build;        /* [npairs][3 nown] positions at each pair's last build */
   uint8_t *stale;         /* [npairs] the pair's candidates are rebuilt at this build */
   long *built_at;         /* [npairs] the build (rebuilds count) that last rebuilt the pair */

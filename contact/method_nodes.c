@@ -30,6 +30,7 @@ const pf_contact_method pf_contact_method_nodes = {
     .name = "nodes",
     .claims = PF_CONTACT_FE_PD,
     .partners = PF_CONTACT_PARTNER_POINTS,
+    .pushes = 1,
     .read = pf_contact_fe_pd_read,
     .evaluate = evaluate_nodes,
     .stable_w2 = pf_contact_fe_pd_stable_w2,

@@ -24,6 +24,7 @@ const pf_contact_method pf_contact_method_surface = {
     .partners = PF_CONTACT_PARTNER_FACES,
     .signed_gap = 1,
     .holds_offsets = 1,
+    .pushes = 1,
     .candidate_work = 8, /* a face's closest point: about 8 bond evaluations (docs/parallel.md sec. 5) */
     .read = pf_contact_fe_pd_read,
     .evaluate = evaluate_surface,

@@ -92,6 +92,7 @@ const pf_contact_method pf_contact_method_surfaces = {
     .partners = PF_CONTACT_PARTNER_FACES,
     .fe_entities = 1,
     .signed_gap = 1,
+    .pushes = 1,
     .candidate_work = 8, /* a face's closest point: about 8 bond evaluations (docs/parallel.md sec. 5) */
     .read = read_surfaces,
     .evaluate = evaluate_surfaces,

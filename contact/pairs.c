@@ -7,6 +7,8 @@
  * mid-step velocity, F_t = -min(mu |F_n|, m* |v_t| / dt) v_t / |v_t| with m* the reduced mass of
  * the two sides: never more than stops the sliding in one step (the stick limit of explicit
  * codes), so the regularization adds no stability limit. Its work |F_t| |v_t| dt is dissipated.
+ * Under the quasi-static solver a pushed entity's friction is a tangential penalty on its slip
+ * relative to the surface point it meets (static_friction below).
  *
  * Each interaction is computed by the owner of its particle (short range: by each end's owner,
  * with the same arithmetic on the pair ordered by global id, so the two ends get exactly
@@ -57,6 +59,35 @@ double pf_contact_friction(double mu, double Fn, const double n[3], const double
   return F * s * dt;
 }
 
+/* Quasi-static friction of entity e pushed off the surface point sum_q wt_q x_q (the file head of
+ * contact/rigid.c and docs/theory/quasi_static_methods.md §8, on the relative displacement): with
+ * r = u_e - sum_q wt_q u_q and s_e its committed slip (c->slip; none yet: no elastic part),
+ * g_t = (I - n n^T)(r - s_e) and f_t = -k_t g_t while k_t |g_t| <= mu F (stick), else
+ * -mu F g_t / |g_t| (slip). Returns the elastic part's energy |f_t|^2 / (2 k_t). While the slips
+ * are committed, adds F (r + f_t / k_t) and F to e's sums of new slips and the slip increment's
+ * work |f_t| |g_t + f_t / k_t| to e's. */
+static double static_friction(pf_contact *c, const pf_contact_pair *p, pf_int e, const pf_int *nv, int nn,
+                              const double *wt, double F, const double n[3], double ft[3]) {
+  const double *s = &c->slip[4 * (size_t)c->local[e]], kt = p->tangential;
+  double r[3], g[3], gn = 0, gt = 0;
+  for (int a = 0; a < 3; a++) r[a] = c->y[3 * e + a] - c->X[3 * e + a];
+  for (int q = 0; q < nn; q++)
+    for (int a = 0; a < 3; a++) r[a] -= wt[q] * (c->y[3 * nv[q] + a] - c->X[3 * nv[q] + a]);
+  for (int a = 0; a < 3; a++) g[a] = s[3] > 0 ? r[a] - s[a] : 0.0, gn += g[a] * n[a];
+  for (int a = 0; a < 3; a++) g[a] -= gn * n[a], gt += g[a] * g[a];
+  gt = sqrt(gt);
+  const double lim = p->friction * F, scale = kt * gt <= lim ? kt : lim / gt; /* stick | slip */
+  for (int a = 0; a < 3; a++) ft[a] = gt > 0 ? -scale * g[a] : 0.0;
+  const double T = scale * gt; /* |f_t| */
+  if (c->slip_next) {
+    double *next = &c->slip_next[4 * (size_t)e];
+    for (int a = 0; a < 3; a++) next[a] += F * (r[a] + ft[a] / kt);
+    next[3] += F;
+    c->slip_work[e] += T * fmax(gt - T / kt, 0.0); /* (0 while it sticks, to round-off) */
+  }
+  return 0.5 * T * T / kt;
+}
+
 /* A chunk's sums (contact_impl.h). */
 enum {
   SUM_ENERGY = PF_CONTACT_SUM_ENERGY,
@@ -78,7 +109,8 @@ int pf_contact_push(pf_contact *c, int k, int body, pf_int e, const pf_int *nv, 
   double F = p->stiffness * (rc - g);
   double *gap = &sums[SUM_FORCE + 3 * c->npairs + k];
   *gap = fmin(*gap, g / p->length);
-  sums[SUM_DISSIPATION] += pf_contact_friction(p->friction, F, n, vrel, c->m[e] * ms / (c->m[e] + ms), dt, ft);
+  if (c->slip && p->friction > 0) sums[SUM_ENERGY] += static_friction(c, p, e, nv, nn, wt, F, n, ft);
+  else sums[SUM_DISSIPATION] += pf_contact_friction(p->friction, F, n, vrel, c->m[e] * ms / (c->m[e] + ms), dt, ft);
   const double on_a = body == p->a ? -1.0 : 1.0;
   for (int a = 0; a < 3; a++) {
     f[a] = F * n[a] + ft[a];

@@ -3,7 +3,9 @@
  * pair's force on its first body (<pair>_force), the penalty energy (in contact_energy) and the
  * friction work (in contact_dissipation) of all pairs. At each history row it checks the pairs'
  * interpenetration for the run-health monitor. Under the quasi-static solver the pairs act by their
- * penalties (no friction) and bound the fictitious masses. */
+ * penalties, their friction by a tangential penalty on each point's committed slip (the slips
+ * committed, and their work dissipated, at each load step's equilibrium), and bound the
+ * fictitious masses. */
 #include "sim/sim_impl.h"
 
 #include <math.h>
@@ -94,8 +96,10 @@ static int open_accounts(void *data, pf_sim *sim) {
   }
   PF_CALL(pf_ledger_open(l, "contact:pairs_energy", "J", 1, 1, PF_BOOK_LAST, PF_BOOK_SHARED | PF_BOOK_HIDDEN,
                          T->contact, &x->energy));
-  return pf_ledger_open(l, "contact:pairs_dissipation", "J", 1, 1, PF_BOOK_RUNNING, PF_BOOK_HIDDEN,
-                        T->contact_dissipation, &x->dissipation);
+  PF_CALL(pf_ledger_open(l, "contact:pairs_dissipation", "J", 1, 1, PF_BOOK_RUNNING, PF_BOOK_HIDDEN,
+                         T->contact_dissipation, &x->dissipation));
+  if (sim->solver.type != PF_SOLVER_QUASI_STATIC) return 0;
+  return pf_contact_quasi_static(x->c, sim->deck, pf_node_get(pf_deck_root(sim->deck), "contact"), sim->pts);
 }
 
 static int attach(void *data, pf_sim *sim) {
@@ -117,6 +121,22 @@ static int force(void *data, const pf_interaction_step *s, double *sums) {
   PF_CALL(pf_contact_force(x->c, s->pts, s->dt, sums, &diss));
   pf_ledger_add(s->ledger, x->dissipation, diss);
   return 0;
+}
+
+/* Quasi-static: at the load step's equilibrium the points' slips are committed and the work of
+ * their increments (summed by pf_sim_solver_sums: the same bits on any number of ranks)
+ * dissipated. The pairs' work is their penalty energy's change (books_own_work). */
+static int settled(void *data, const pf_interaction_step *s, const double *g0, const double *u0, const double *g1,
+                   const double *u1, const double *beyond) {
+  (void)g0, (void)u0, (void)g1, (void)u1, (void)beyond;
+  contact *x = data;
+  double *terms, W;
+  PF_MALLOC(terms, s->pts->n_owned + 1);
+  int ierr = pf_contact_commit_slips(x->c, s->pts, terms);
+  if (!ierr) ierr = pf_sim_solver_sums(terms, s->pts->n_owned, 1, &W);
+  free(terms);
+  if (!ierr) pf_ledger_add(s->ledger, x->dissipation, (pf_comm_rank() == 0) * W);
+  return ierr;
 }
 
 static void take_sums(void *data, const pf_interaction_step *s, const double *sums) {
@@ -205,6 +225,7 @@ const pf_interaction_ops pf_interaction_kind_contact = {
     .nsums = nsums,
     .force = force,
     .take_sums = take_sums,
+    .settled = settled,
     .stiffness_bounds = stiffness_bounds,
     /* (quasi-static: the pairs' forces are internal, their work is the change of their penalty
      * energy, booked in contact_energy; none of it is a load's) */

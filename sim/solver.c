@@ -36,44 +36,26 @@ const pf_key pf_sim_solver_keys[] = {
      NULL},
     PF_KEY_END};
 
-/* Friction on the items of a list (contact pairs) needs a step in time: refused. */
-static int refuse_friction(const pf_deck *d, const pf_node *list, const char *what) {
-  for (int j = 0; j < pf_node_count(list); j++) {
-    const pf_node *item = pf_node_item(list, j);
-    double mu = 0;
-    PF_CALL(pf_deck_real(d, item, "friction", &mu));
-    if (mu != 0)
-      return pf_deck_error(d, pf_node_get(item, "friction"), "friction",
-                           "%s's friction is not yet supported with the quasi_static solver (the regularized "
-                           "Coulomb force needs a time step)", what);
-  }
-  return 0;
-}
-
 /* The rigid surfaces of the deck (`indenters:` and `contact: rigid_surfaces:`): list k of 2. */
 static const pf_node *surfaces(const pf_node *root, int k) {
   return k == 0 ? pf_node_get(root, "indenters") : pf_node_get(pf_node_get(root, "contact"), "rigid_surfaces");
 }
 
-/* A rigid surface with a velocity is a load; a contact pair's friction is refused (the pair acts by
- * its penalty alone; a rigid surface's friction is a tangential penalty, contact/rigid.c). */
-static int check_surfaces(const pf_deck *d, const pf_node *root, int *moving) {
-  *moving = 0;
-  PF_CALL(refuse_friction(d, pf_node_get(pf_node_get(root, "contact"), "pairs"), "a contact pair"));
-  for (int k = 0; k < 2; k++) {
+/* A rigid surface with a velocity is a load (friction, of a rigid surface or a contact pair, is a
+ * tangential penalty under this solver: contact/rigid.c, contact/pairs.c). */
+static int surfaces_move(const pf_node *root) {
+  int moving = 0;
+  for (int k = 0; k < 2; k++)
     for (int j = 0; j < pf_node_count(surfaces(root, k)); j++)
-      *moving |= pf_node_get(pf_node_item(surfaces(root, k), j), "velocity") != NULL;
-  }
-  return 0;
+      moving |= pf_node_get(pf_node_item(surfaces(root, k), j), "velocity") != NULL;
+  return moving;
 }
 
 /* What a quasi-static run needs of the rest of the deck. */
 static int check_deck(const pf_sim *sim, const pf_node *sv) {
   const pf_deck *d = sim->deck;
   const pf_node *root = pf_deck_root(d), *n;
-  int moving = 0;
-  PF_CALL(check_surfaces(d, root, &moving));
-  if (pf_node_count(pf_node_get(root, "boundary_conditions")) == 0 && !moving)
+  if (pf_node_count(pf_node_get(root, "boundary_conditions")) == 0 && !surfaces_move(root))
     return pf_deck_error(d, pf_node_get(sv, "type"), "type",
                          "a quasi_static solver needs a load: give boundary_conditions (displacement, velocity or "
                          "body_force) or a rigid surface that moves (indenters or contact.rigid_surfaces with a "

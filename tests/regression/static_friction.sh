@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
-# Friction on a rigid surface under the quasi-static solver (docs/theory/quasi_static_methods.md §8): a
-# tangential penalty k_t with a stick/slip return mapping from each point's slip, committed at
-# converged load steps only (contact/rigid.c, pf_rigid_force_static). tests/data/
-# static_friction_block.yaml: an FE block (one bbar hexahedron, its n = 4 bottom nodes on a rigid
-# plane, linear law k = k_t = 1e7 N/m, mu = 0.3) pressed down by its top in 2 load steps, pushed
-# along x in 6, pushed back in 2 (the deck's header). Checked, with T and N the tangential and
-# normal force on the plane and u the bottom nodes' mean motion along x:
+# Friction under the quasi-static solver (docs/theory/quasi_static_methods.md §8): a tangential
+# penalty k_t with a stick/slip return mapping from each point's slip, committed at converged load
+# steps only, on a rigid surface (contact/rigid.c, pf_rigid_force_static) and between the bodies
+# of a contact pair, on the slip relative to the surface point a point meets (contact/pairs.c,
+# static_friction). Two decks, one load path: tests/data/static_friction_block.yaml, an FE block
+# (one bbar hexahedron, its n = 4 bottom nodes on a rigid plane, linear law k = k_t = 1e7 N/m,
+# mu = 0.3), and tests/data/static_friction_pair.yaml, the same block on a held FE base (a pair,
+# FE <-> FE surfaces, the same k, k_t and mu a node), each pressed down by its top in 2 load steps,
+# pushed along x in 6, pushed back in 2 (the decks' headers). Checked on each, with T and N the
+# tangential and normal force on the plane (the base) and u the bottom nodes' mean motion along x:
 #  - pressing: T = 0 (1e-9 of mu N);
 #  - sticking from rest (load step 3): T = n k_t u (Coulomb's law holds the springs: 1e-6), T < mu N;
 #  - sliding (load steps 4 to 8): T = mu N (1e-6; measured 2.2e-16); the friction work of load
@@ -20,8 +23,15 @@
 #  - the same state digest on 1, 2 and 3 ranks, and restarted from the checkpoint of load step 9
 #    (pushed back: the springs hold the slip the sliding left) on 1, 2 and 3 ranks: the slip is in
 #    the checkpoint (without it, a restart from a sliding load step ends alike: the return mapping
-#    forgets the slip of a point that slides);
-#  - the quadratic law with friction and no tangential_stiffness: an input error naming the key.
+#    forgets the slip of a point that slides).
+# Then tests/data/static_friction_pd.yaml: an FE block (2 x 2 hexahedra) pressed on a PMB base and
+# pushed along x, 100 particles under its face (FE <-> PD surface pair, friction on the particles'
+# slips): |T| never above mu N (1e-9), T_x at least 0.999 mu N while it slides (the base's
+# particles tilt their friction out of x by their own sideways motion: measured 0.99955), no
+# tangential force while pressing, the same digest on 1, 2 and 3 ranks and restarted from load
+# step 6 (sliding) on 1, 2 and 3 ranks.
+# Refused: the quadratic law with friction and no tangential_stiffness (an input error naming the
+# key); a short-range pair's friction under this solver, and tangential_stiffness on such a pair.
 # usage: static_friction.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
 exe=$1 scratch=$2 fail=0
@@ -29,21 +39,25 @@ data=$(cd data && pwd)
 source common/mpi_env.sh
 source common/measure.sh
 rm -rf "$scratch" && mkdir -p "$scratch" && cd "$scratch"
-cp "$data/static_friction_block.yaml" block.yaml
-ref=$("$exe" --quiet --set restart.interval=9 --set restart.file=ck.h5 block.yaml 2>&1) || { echo "FAIL: block: $ref"; fail=1; }
-mkdir -p nk
-o=$(cd nk && "$exe" --quiet --set solver.method=newton_krylov ../block.yaml 2>&1) || { echo "FAIL: block by newton_krylov: $o"; fail=1; }
-res=$("$PY" - block.h5 nk/block.h5 <<'PYEOF'
+# one_deck NAME DECK WORK: the closed forms (WORK: the history column of the friction work), by
+# relaxation and newton_krylov, and the digests on 1, 2, 3 ranks, uninterrupted and restarted
+one_deck() {
+  local name=$1 deck=$2 work=$3 st=0 o ref res digests="" restarts=""
+  mkdir -p "$name" && cd "$name" && cp "$data/$deck" "$name.yaml"
+  ref=$("$exe" --quiet --set restart.interval=9 --set restart.file=ck.h5 "$name.yaml" 2>&1) || { echo "FAIL: $name: $ref"; st=1; }
+  mkdir -p nk
+  o=$(cd nk && "$exe" --quiet --set solver.method=newton_krylov "../$name.yaml" 2>&1) || { echo "FAIL: $name by newton_krylov: $o"; st=1; }
+  res=$("$PY" - "$name.h5" "nk/$name.h5" "$work" <<'PYEOF'
 import sys
 import h5py
 import numpy as np
 ok = True
 n, kt, mu = 4, 1e7, 0.3
 h = h5py.File(sys.argv[1], "r")
-T = h["floor_force_x"][1:]  # the points' force on the plane along x
+T = h["floor_force_x"][1:]  # the points' force on the plane (the base) along x
 N = -h["floor_force_z"][1:]
 u = h["bottom_displacement_x"][1:]
-W = h["floor_friction_work"][1:]
+W = h[sys.argv[3]][1:]
 err = h["energy_error"][1:]
 work = h["external_work"][-1]
 press, stick, slide, back = slice(0, 2), 2, slice(3, 8), slice(8, 10)
@@ -80,23 +94,68 @@ print("newton_krylov: T within %.2g of mu N of relaxation's" % e_nk)
 if not e_nk < 1e-6: print("FAIL: newton_krylov's forces differ"); ok = False
 sys.exit(0 if ok else 1)
 PYEOF
+) || st=1
+  echo "$res" | sed "/^MEASURE/d; s/^/$name: /"
+  local prefix="${name}_"
+  [ "$name" = block ] && prefix=""
+  echo "$res" | sed -n 's/^MEASURE //p' | while read -r k v; do pf_measure "$prefix$k" "$v" 1; done
+  restart_digests "$name" 9 "$ref" || st=1
+  cd ..
+  return $st
+}
+# restart_digests NAME STEP REF: NAME.yaml's digest on 1, 2, 3 ranks, and restarted from ck.h5 (the
+# checkpoint of load step STEP) on 1, 2, 3 ranks, against the uninterrupted run's (REF's output)
+restart_digests() {
+  local name=$1 step=$2 ref=$3 np o st=0 digests="" restarts=""
+  for np in 1 2 3; do
+    mkdir -p np$np rs$np
+    o=$(cd np$np && run $np "$exe" --quiet "../$name.yaml" 2>&1) || { echo "FAIL: $name on $np ranks: $o"; st=1; }
+    digests="$digests $(digest_of "$o")"
+    o=$(cd rs$np && run $np "$exe" --quiet --restart ../ck.h5 --set restart.interval=$step --set restart.file=ck.h5 "../$name.yaml" 2>&1) || { echo "FAIL: $name's restart on $np ranks: $o"; st=1; }
+    restarts="$restarts $(digest_of "$o")"
+  done
+  digests_agree "$name" $digests || st=1
+  digests_agree "$name restarted at load step $step" $restarts || st=1
+  [ "$(digest_of "$ref")" = "$(echo $restarts | cut -d' ' -f1)" ] || { echo "FAIL: $name: the restart's digest is not the uninterrupted run's $(digest_of "$ref")"; st=1; }
+  return $st
+}
+one_deck block static_friction_block.yaml floor_friction_work || fail=1
+one_deck pair static_friction_pair.yaml contact_dissipation || fail=1
+# the block on a PD base
+mkdir -p pd && cd pd && cp "$data/static_friction_pd.yaml" pd.yaml
+ref=$("$exe" --quiet --set restart.interval=6 --set restart.file=ck.h5 pd.yaml 2>&1) || { echo "FAIL: pd: $ref"; fail=1; }
+res=$("$PY" - pd.h5 <<'PYEOF'
+import sys
+import h5py
+import numpy as np
+mu = 0.3
+h = h5py.File(sys.argv[1], "r")
+Tx, Ty = h["floor_force_x"][1:], h["floor_force_y"][1:]  # the base's force on the block
+N = h["floor_force_z"][1:]
+over = (np.hypot(Tx, Ty) / (mu * N)).max()
+slide = (-Tx[3:] / (mu * N[3:])).min()
+press = np.abs(Tx[:2] / (mu * N[:2])).max()
+print("pd: |T| / mu N at most %.10f; sliding T_x / mu N at least %.5f; pressing %.2g" % (over, slide, press))
+print("MEASURE pd_slide %.6g" % slide)
+ok = over <= 1 + 1e-9 and slide >= 0.999 and press < 1e-3
+if not ok: print("FAIL: the PD base's friction is not Coulomb's")
+sys.exit(0 if ok else 1)
+PYEOF
 ) || fail=1
 echo "$res" | grep -v '^MEASURE'
 echo "$res" | sed -n 's/^MEASURE //p' | while read -r k v; do pf_measure "$k" "$v" 1; done
-# the same digest on 1, 2, 3 ranks; restarted from load step 9's checkpoint on 1, 2, 3 ranks
-digests="" restarts=""
-for np in 1 2 3; do
-  mkdir -p np$np rs$np
-  o=$(cd np$np && run $np "$exe" --quiet ../block.yaml 2>&1) || { echo "FAIL: block on $np ranks: $o"; fail=1; }
-  digests="$digests $(digest_of "$o")"
-  o=$(cd rs$np && run $np "$exe" --quiet --restart ../ck.h5 --set restart.interval=9 --set restart.file=ck.h5 ../block.yaml 2>&1) || { echo "FAIL: the restart on $np ranks: $o"; fail=1; }
-  restarts="$restarts $(digest_of "$o")"
-done
-digests_agree block $digests || fail=1
-digests_agree "block restarted at load step 9" $restarts || fail=1
-[ "$(digest_of "$ref")" = "$(echo $restarts | cut -d' ' -f1)" ] || { echo "FAIL: the restart's digest is not the uninterrupted run's $(digest_of "$ref")"; fail=1; }
-sed 's/      law: linear/      law: quadratic/; s/      stiffness: 1.0e7/      stiffness: 1.0e17/' block.yaml > quadratic.yaml
+restart_digests pd 6 "$ref" || fail=1
+cd ..
+sed 's/      law: linear/      law: quadratic/; s/      stiffness: 1.0e7/      stiffness: 1.0e17/' block/block.yaml > quadratic.yaml
 msg=$("$exe" quadratic.yaml 2>&1); rc=$?
 [ $rc -eq 2 ] && echo "$msg" | grep -q "quadratic.yaml:.*key 'tangential_stiffness': .*needs 'tangential_stiffness'" ||
   { echo "FAIL: the quadratic law without tangential_stiffness: exit $rc: $msg"; fail=1; }
+sed 's/friction: 0.3}/friction: 0.3}\n    - {name: fragments, bodies: [base, base], friction: 0.2}/' pd/pd.yaml > short_range.yaml
+msg=$("$exe" short_range.yaml 2>&1); rc=$?
+[ $rc -eq 2 ] && echo "$msg" | grep -q "short_range.yaml:[0-9]*:.*key 'friction': the friction of short-range pairs (PD <-> PD) is not supported with the quasi_static solver" ||
+  { echo "FAIL: a short-range pair's friction under the quasi-static solver: exit $rc: $msg"; fail=1; }
+sed 's/friction: 0.3}/friction: 0.3}\n    - {name: fragments, bodies: [base, base], tangential_stiffness: 1.0e7}/' pd/pd.yaml > short_range_kt.yaml
+msg=$("$exe" short_range_kt.yaml 2>&1); rc=$?
+[ $rc -eq 2 ] && echo "$msg" | grep -q "short_range_kt.yaml:[0-9]*:.*key 'tangential_stiffness': 'tangential_stiffness' is a key of pairs with an FE body" ||
+  { echo "FAIL: tangential_stiffness on a short-range pair: exit $rc: $msg"; fail=1; }
 exit $fail
