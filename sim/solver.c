@@ -52,8 +52,7 @@ static int surfaces_move(const pf_node *root) {
 }
 
 /* What a quasi-static run needs of the rest of the deck. */
-static int check_deck(const pf_sim *sim, const pf_node *sv) {
-  const pf_deck *d = sim->deck;
+static int check_deck(const pf_deck *d, const pf_node *sv) {
   const pf_node *root = pf_deck_root(d), *n;
   if (pf_node_count(pf_node_get(root, "boundary_conditions")) == 0 && !surfaces_move(root))
     return pf_deck_error(d, pf_node_get(sv, "type"), "type",
@@ -62,10 +61,12 @@ static int check_deck(const pf_sim *sim, const pf_node *sv) {
                          "velocity)");
   const pf_node *bodies = pf_node_get(root, "bodies");
   for (int b = 0; b < pf_node_count(bodies); b++)
-    if ((n = pf_node_get(pf_node_item(bodies, b), "initial_velocity")))
+    if ((n = pf_node_get(pf_node_item(bodies, b), "initial_velocity"))) {
+      const char *name = "";
+      PF_CALL(pf_deck_string(d, pf_node_item(bodies, b), "name", &name));
       return pf_deck_error(d, n, "initial_velocity",
-                           "a quasi_static solver starts at rest: remove the initial velocity of body '%s'",
-                           sim->body_name[b]);
+                           "a quasi_static solver starts at rest: remove the initial velocity of body '%s'", name);
+    }
   if (!pf_node_get(pf_node_get(root, "time"), "final_time"))
     return pf_deck_error(d, pf_node_get(root, "time"), "final_time",
                          "a quasi_static solver needs time.final_time: the pseudo-time of the last load step");
@@ -107,22 +108,34 @@ static int read_numbers(const pf_deck *d, const pf_node *sv, pf_sim_solver *s) {
   return 0;
 }
 
-int pf_sim_setup_solver(pf_sim *sim) {
-  const pf_deck *d = sim->deck;
-  const pf_node *root = pf_deck_root(d), *sv = pf_node_get(root, "solver");
-  pf_sim_solver *s = &sim->solver;
+/* The solver section into *s (its type, and a quasi-static solver's numbers) and what a
+ * quasi-static solver needs of the rest of the deck: all that needs no model. */
+static int read_section(const pf_deck *d, pf_sim_solver *s) {
+  const pf_node *sv = pf_node_get(pf_deck_root(d), "solver");
   *s = (pf_sim_solver){.type = PF_SOLVER_EXPLICIT, .load_steps = 10, .tolerance = 1e-6, .max_iterations = 100000,
                         .max_damage_passes = 1000};
   const char *chosen = "explicit";
   PF_CALL(pf_deck_string(d, sv, "type", &chosen));
-  if (!strcmp(chosen, "explicit"))
-    return pf_body_kinds_check_dynamic_forms(d, sim->nsteps, sim->body_name);
+  if (!strcmp(chosen, "explicit")) return 0;
   if (strcmp(chosen, "quasi_static"))
     return pf_deck_error(d, pf_node_get(sv, "type"), "type", "explicit or quasi_static (got '%s')", chosen);
   s->type = PF_SOLVER_QUASI_STATIC;
-  s->load_step = pf_sim_solver_load_step;
   PF_CALL(read_numbers(d, sv, s));
-  PF_CALL(check_deck(sim, sv));
+  return check_deck(d, sv);
+}
+
+int pf_sim_check_solver_keys(const pf_deck *d) {
+  pf_sim_solver s;
+  return read_section(d, &s);
+}
+
+int pf_sim_setup_solver(pf_sim *sim) {
+  const pf_deck *d = sim->deck;
+  const pf_node *root = pf_deck_root(d), *sv = pf_node_get(root, "solver");
+  pf_sim_solver *s = &sim->solver;
+  PF_CALL(read_section(d, s));
+  if (s->type == PF_SOLVER_EXPLICIT) return pf_body_kinds_check_dynamic_forms(d, sim->nsteps, sim->body_name);
+  s->load_step = pf_sim_solver_load_step;
   if (s->sequential) PF_CALL(pf_sim_solver_sequential_check(sim, sv));
   int idx;
   PF_CALL(pf_points_field_register(sim->pts, PF_SOLVER_INCREMENT, 3, PF_FIELD_RESTART, &idx));

@@ -60,9 +60,12 @@ typedef struct {
 /* sim/solver.c: the `solver:` keys; read the section (after the time and output set-up: the
  * load steps replace time.dt and the step count, history rows come at every load step unless
  * a history key of the output says otherwise); refuse decks the quasi-static solver cannot run (no
- * load: neither a boundary condition nor a moving rigid surface; an initial velocity; friction
- * of a contact pair) as input errors naming file:line and key; the summary line; free the scratch. */
+ * load: neither a boundary condition nor a moving rigid surface; an initial velocity; no
+ * time.final_time) as input errors naming file:line and key; the summary line; free the scratch.
+ * pf_sim_check_solver_keys does the checks that need no model before the bodies are built, so
+ * that a slip there is reported at once rather than after the set-up. */
 extern const pf_key pf_sim_solver_keys[];
+int pf_sim_check_solver_keys(const pf_deck *d);
 int pf_sim_setup_solver(pf_sim *sim);
 void pf_sim_solver_summary(const pf_sim *sim);
 void pf_sim_solver_free(pf_sim *sim);
