@@ -128,7 +128,7 @@ for m in $models; do
       "$perifem" --output-dir "$out" "$work/${m}_$c.yaml" >"$log" 2>&1 \
         || { tail -30 "$log" >&2; die "perifem failed on ${m}_$c.yaml (log above)"; }
       grep -E '^perifem:|contact:|damage' "$log" >&2 || true
-      l=$(grab 's/.*(time loop \([0-9.eE+-]*\) s).*/\1/p' "$log" "time loop")
+      l=$(grab 's/.*(time loop \([0-9.eE+-]*\) s[,)].*/\1/p' "$log" "time loop")
       if [[ -z ${loop[$k]:-} ]] || awk -v a="$l" -v b="${loop[$k]}" 'BEGIN { exit !(a < b) }'; then
         loop[$k]=$l
         dtv[$k]=$(grab 's/^perifem: [0-9]* steps of \([0-9.eE+-]*\) s.*/\1/p' "$log" "steps of")

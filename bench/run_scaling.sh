@@ -61,7 +61,7 @@ EOF
     || { tail -20 "$work/log_$R" >&2; die "perifem failed on radius $R"; }
   grep -E '^perifem:|points' "$work/log_$R" >&2
   wall=$(grab 's/.* in \([0-9.]*\) s (time loop.*/\1/p' "$work/log_$R" "in X s")
-  loop=$(grab 's/.*(time loop \([0-9.eE+-]*\) s).*/\1/p' "$work/log_$R" "time loop")
+  loop=$(grab 's/.*(time loop \([0-9.eE+-]*\) s[,)].*/\1/p' "$work/log_$R" "time loop")
   npts=$(grab 's/.*points \([0-9]*\), directed.*/\1/p' "$work/log_$R" "points")
   nb=$(grab 's/.*directed bonds \([0-9]*\) .*/\1/p' "$work/log_$R" "directed bonds")
   rows+=("$R $npts $nb $wall $loop")
