@@ -444,26 +444,37 @@ int pf_contact_quasi_static(pf_contact *c, const pf_deck *d, const pf_node *map,
                            "friction there");
     c->static_friction = 1;
   }
+  if (!c->static_friction || pf_points_field_get(pts, "contact_slip")) return 0; /* (a restart's: kept) */
   int idx;
-  return c->static_friction ? pf_points_field_register(pts, "contact_slip", 4, PF_FIELD_RESTART, &idx) : 0;
+  PF_CALL(pf_points_field_register(pts, "contact_slip", 4, PF_FIELD_RESTART, &idx));
+  /* at rest at the start (u = 0): every point's slip is set there, r = 0, whatever it meets first */
+  double *slip = pts->fields[idx].data;
+  for (pf_int i = 0; i < pts->n_total; i++) slip[4 * (size_t)i] = slip[4 * (size_t)i + 1] = slip[4 * (size_t)i + 2] = 0, slip[4 * (size_t)i + 3] = 1;
+  return 0;
 }
 
 int pf_contact_commit_slips(pf_contact *c, pf_points *pts, double *terms) {
   memset(terms, 0, sizeof *terms * (size_t)pts->n_owned);
   if (!c->static_friction) return 0;
-  c->slip_next = calloc(4 * (size_t)c->nown + 1, sizeof *c->slip_next);
-  c->slip_work = calloc((size_t)c->nown + 1, sizeof *c->slip_work);
-  double U = 0, diss = 0;
-  int ierr = c->slip_next && c->slip_work ? evaluate(c, pts, 0.0, &U, &diss) : PF_ERR_MEMORY;
-  for (pf_int e = 0; e < c->nown && !ierr; e++) { /* (a point out of contact: no slip set) */
-    const double *next = &c->slip_next[4 * (size_t)e], w = next[3];
-    double *s = &c->slip[4 * (size_t)c->local[e]];
-    for (int a = 0; a < 3; a++) s[a] = w > 0 ? next[a] / w : 0.0;
-    s[3] = w > 0;
-    terms[c->local[e]] = c->slip_work[e];
+  c->commit = malloc(sizeof *c->commit * PF_CONTACT_COMMIT * ((size_t)c->nown + 1));
+  for (pf_int e = 0; c->commit && e < c->nown; e++) {
+    double *m = &c->commit[PF_CONTACT_COMMIT * (size_t)e];
+    for (int q = 0; q < PF_CONTACT_COMMIT; q++) m[q] = 0;
+    m[PF_CONTACT_COMMIT_DIST] = INFINITY;
   }
-  PF_FREE(c->slip_next);
-  PF_FREE(c->slip_work);
+  double U = 0, diss = 0;
+  int ierr = c->commit ? evaluate(c, pts, 0.0, &U, &diss) : PF_ERR_MEMORY;
+  for (pf_int e = 0; e < c->nown && !ierr; e++) {
+    /* pushed: the new slips; else near a surface: the displacement relative to it (no elastic
+     * part); else none */
+    const double *m = &c->commit[PF_CONTACT_COMMIT * (size_t)e], w = m[3];
+    const int near = !(w > 0) && m[PF_CONTACT_COMMIT_DIST] < INFINITY;
+    double *s = &c->slip[4 * (size_t)c->local[e]];
+    for (int a = 0; a < 3; a++) s[a] = w > 0 ? m[a] / w : near ? m[PF_CONTACT_COMMIT_NEAR + a] : 0.0;
+    s[3] = w > 0 || near;
+    terms[c->local[e]] = m[PF_CONTACT_COMMIT_WORK];
+  }
+  PF_FREE(c->commit);
   PF_CHECK(ierr != PF_ERR_MEMORY, PF_ERR_MEMORY, "out of memory for the contact slips of %lld points",
            (long long)c->nown);
   return ierr;

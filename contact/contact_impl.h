@@ -161,11 +161,13 @@ struct pf_contact {
                            * relative displacement of quasi-static friction) */
   /* quasi-static friction (pf_contact_quasi_static): the point field "contact_slip" at this
    * evaluation (4 a point: the committed slip relative to the surface point it meets, and 1 when
-   * set, 0 until the point is in contact at a load step's equilibrium), else NULL; while the slips
-   * are committed, each owned entity's sums of its pushes' new slips weighted by their normal
-   * force, and of their slip increments' work (else NULL) */
+   * set, 0 while the point has been near no surface at a load step's equilibrium), else NULL;
+   * while the slips are committed, PF_CONTACT_COMMIT doubles an owned entity (else NULL): the
+   * sums of its pushes' new slips weighted by their normal forces, and of their slip increments'
+   * work, then its displacement relative to the nearest surface point within the search's reach
+   * that does not push it, and that point's distance */
   int static_friction;
-  double *slip, *slip_next, *slip_work;
+  double *slip, *commit;
   double *y_build;        /* [npairs][3 nown] positions at each pair's last build */
   uint8_t *stale;         /* [npairs] the pair's candidates are rebuilt at this build */
   long *built_at;         /* [npairs] the build (rebuilds count) that last rebuilt the pair */
@@ -206,6 +208,13 @@ int pf_contact_search(pf_contact *c, const pf_points *pts);
 int pf_contact_collect_owned(pf_contact *c, const pf_points *pts);
 
 /* contact/pairs.c */
+/* The commit scratch of an entity (pf_contact.commit): new slips x normal force (3), normal force,
+ * slip work, relative displacement to the nearest surface point out of contact (3), its distance. */
+enum { PF_CONTACT_COMMIT_WORK = 4, PF_CONTACT_COMMIT_NEAR = 5, PF_CONTACT_COMMIT_DIST = 8, PF_CONTACT_COMMIT = 9 };
+/* While the slips are committed: entity e is distance d from the surface point sum_q wt_q x_q
+ * (view entities nv[nn]) of a pair with friction, beyond its contact radius; the nearest such
+ * point gives its slip when nothing pushes it (it then starts to stick from there). */
+void pf_contact_slip_near(pf_contact *c, pf_int e, const pf_int *nv, int nn, const double *wt, double d);
 /* Regularized Coulomb friction (pairs.c file head) on the side moving at vrel relative to the
  * other, pressed with the normal force Fn >= 0 along the unit normal n, m the (reduced) mass:
  * the tangential force into ft[3] (zero when mu, dt or the sliding is zero); returns the work

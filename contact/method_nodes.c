@@ -17,7 +17,10 @@ static int evaluate_nodes(pf_contact *c, int k, pf_int e0, pf_int e1, int64_t q0
       double d[3], r = 0;
       for (int a = 0; a < 3; a++) d[a] = c->y[3 * e + a] - c->y[3 * j + a], r += d[a] * d[a];
       r = sqrt(r);
-      if (r >= fmin(p->radius, c->rad[e]) || r == 0) continue;
+      if (r >= fmin(p->radius, c->rad[e]) || r == 0) {
+        if (c->commit && r > 0 && p->friction > 0) pf_contact_slip_near(c, e, &j, 1, (const double[]){1.0}, r);
+        continue;
+      }
       double n[3] = {d[0] / r, d[1] / r, d[2] / r}, wt = 1;
       PF_CALL(pf_contact_push(c, k, p->a, e, &j, 1, &wt, r, n, dt, w));
     }

@@ -65,25 +65,37 @@ double pf_contact_friction(double mu, double Fn, const double n[3], const double
  * g_t = (I - n n^T)(r - s_e) and f_t = -k_t g_t while k_t |g_t| <= mu F (stick), else
  * -mu F g_t / |g_t| (slip). Returns the elastic part's energy |f_t|^2 / (2 k_t). While the slips
  * are committed, adds F (r + f_t / k_t) and F to e's sums of new slips and the slip increment's
- * work |f_t| |g_t + f_t / k_t| to e's. */
+ * work |f_t| |g_t + f_t / k_t| to e's (pf_contact.commit). */
+static void relative_displacement(const pf_contact *c, pf_int e, const pf_int *nv, int nn, const double *wt,
+                                  double r[3]) {
+  for (int a = 0; a < 3; a++) r[a] = c->y[3 * e + a] - c->X[3 * e + a];
+  for (int q = 0; q < nn; q++)
+    for (int a = 0; a < 3; a++) r[a] -= wt[q] * (c->y[3 * nv[q] + a] - c->X[3 * nv[q] + a]);
+}
+
+void pf_contact_slip_near(pf_contact *c, pf_int e, const pf_int *nv, int nn, const double *wt, double d) {
+  double *near = &c->commit[PF_CONTACT_COMMIT * (size_t)e];
+  if (!(d < near[PF_CONTACT_COMMIT_DIST])) return;
+  relative_displacement(c, e, nv, nn, wt, &near[PF_CONTACT_COMMIT_NEAR]);
+  near[PF_CONTACT_COMMIT_DIST] = d;
+}
+
 static double static_friction(pf_contact *c, const pf_contact_pair *p, pf_int e, const pf_int *nv, int nn,
                               const double *wt, double F, const double n[3], double ft[3]) {
   const double *s = &c->slip[4 * (size_t)c->local[e]], kt = p->tangential;
   double r[3], g[3], gn = 0, gt = 0;
-  for (int a = 0; a < 3; a++) r[a] = c->y[3 * e + a] - c->X[3 * e + a];
-  for (int q = 0; q < nn; q++)
-    for (int a = 0; a < 3; a++) r[a] -= wt[q] * (c->y[3 * nv[q] + a] - c->X[3 * nv[q] + a]);
+  relative_displacement(c, e, nv, nn, wt, r);
   for (int a = 0; a < 3; a++) g[a] = s[3] > 0 ? r[a] - s[a] : 0.0, gn += g[a] * n[a];
   for (int a = 0; a < 3; a++) g[a] -= gn * n[a], gt += g[a] * g[a];
   gt = sqrt(gt);
   const double lim = p->friction * F, scale = kt * gt <= lim ? kt : lim / gt; /* stick | slip */
   for (int a = 0; a < 3; a++) ft[a] = gt > 0 ? -scale * g[a] : 0.0;
   const double T = scale * gt; /* |f_t| */
-  if (c->slip_next) {
-    double *next = &c->slip_next[4 * (size_t)e];
+  if (c->commit) {
+    double *next = &c->commit[PF_CONTACT_COMMIT * (size_t)e];
     for (int a = 0; a < 3; a++) next[a] += F * (r[a] + ft[a] / kt);
     next[3] += F;
-    c->slip_work[e] += T * fmax(gt - T / kt, 0.0); /* (0 while it sticks, to round-off) */
+    next[PF_CONTACT_COMMIT_WORK] += T * fmax(gt - T / kt, 0.0); /* (0 while it sticks, to round-off) */
   }
   return 0.5 * T * T / kt;
 }
@@ -246,7 +258,10 @@ int pf_contact_closest_face(pf_contact *c, int k, pf_int e, int64_t s, int64_t t
   }
   if (uncovers && c->offset)
     bg += held(c, e, best < INFINITY ? bg : INFINITY, fmin(p->radius, c->rad[e]), sd->fresh && bf >= 0 && sd->fresh[bf]);
-  if (best == INFINITY || bg >= fmin(p->radius, c->rad[e])) return 0;
+  if (best == INFINITY || bg >= fmin(p->radius, c->rad[e])) {
+    if (c->commit && best < INFINITY && p->friction > 0) pf_contact_slip_near(c, e, bv, 4, bw, best);
+    return 0;
+  }
   return pf_contact_push(c, k, sd->body, e, bv, 4, bw, bg, bn, dt, ev);
 }
 

@@ -24,6 +24,10 @@
 #    (pushed back: the springs hold the slip the sliding left) on 1, 2 and 3 ranks: the slip is in
 #    the checkpoint (without it, a restart from a sliding load step ends alike: the return mapping
 #    forgets the slip of a point that slides).
+# The pair deck again with the block 1e-6 m above the base, pressed and pushed together from the
+# start: T = min(mu N, n k_t u) at every load step (1e-6), sticking from rest in load step 1, where
+# it meets the base (each point's slip is set at the start, and at each equilibrium to its
+# displacement relative to the nearest surface point within the search's reach).
 # Then tests/data/static_friction_pd.yaml: an FE block (2 x 2 hexahedra) pressed on a PMB base and
 # pushed along x, 100 particles under its face (FE <-> PD surface pair, friction on the particles'
 # slips): |T| never above mu N (1e-9), T_x at least 0.999 mu N while it slides (the base's
@@ -123,6 +127,30 @@ restart_digests() {
 }
 one_deck block static_friction_block.yaml floor_friction_work || fail=1
 one_deck pair static_friction_pair.yaml contact_dissipation || fail=1
+# the pair with the block 1e-6 m above the base, pressed and pushed along x together from the start
+# (1e-5 m t): it meets the base in load step 1 and, its slip there being the start's, sticks from
+# rest at once, T = min(mu N, n k_t u) at every load step (a point whose slip waited for its first
+# equilibrium in contact carried nothing in load step 1)
+mkdir -p gap && cd gap
+sed 's/gmin = 0 0 0/gmin = 0 0 1.0e-6/; s/gmax = 0.01 0.01 0.01$/gmax = 0.01 0.01 0.010001/
+     s/lo: \[-1, -1, 0.009\]/lo: [-1, -1, 0.0095]/; s/hi: \[1, 1, 0.001\]}/hi: [1, 1, 0.0005]}/
+     s/displacement: \["t <= 0.2 ? 0 : [^"]*"/displacement: ["1.0e-5 * t"/' "$data/static_friction_pair.yaml" > gap.yaml
+o=$("$exe" --quiet gap.yaml 2>&1) || { echo "FAIL: gap: $o"; fail=1; }
+"$PY" - gap.h5 <<'PYEOF' || fail=1
+import sys
+import h5py
+import numpy as np
+n, kt, mu = 4, 1e7, 0.3
+h = h5py.File(sys.argv[1], "r")
+T, N, u = h["floor_force_x"][1:], -h["floor_force_z"][1:], h["bottom_displacement_x"][1:]
+closed = np.minimum(mu * N, n * kt * u)
+e = np.abs(T / closed - 1).max()
+print("gap: T against min(mu N, n k_t u) within %.2g (load step 1: T / mu N = %.4f, sticking)" % (e, T[0] / (mu * N[0])))
+ok = e < 1e-6 and T[0] < mu * N[0]
+if not ok: print("FAIL: the block arriving from a gap: not Coulomb's springs from rest")
+sys.exit(0 if ok else 1)
+PYEOF
+cd ..
 # the block on a PD base
 mkdir -p pd && cd pd && cp "$data/static_friction_pd.yaml" pd.yaml
 ref=$("$exe" --quiet pd.yaml 2>&1) || { echo "FAIL: pd: $ref"; fail=1; }
