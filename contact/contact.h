@@ -154,8 +154,9 @@ double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts);
  * deck's `contact:`). */
 int pf_contact_quasi_static(pf_contact *c, const pf_deck *d, const pf_node *map, pf_points *pts);
 /* Quasi-static loading, at a load step's equilibrium: each owned point's slip takes what the
- * elastic part of its friction does not hold (none: a point out of contact), and terms[i] (over the
- * owned points) the work of its slip increment, J. Collective. */
+ * elastic part of its friction does not hold (a point that nothing pushes: its displacement
+ * relative to the nearest surface point within the search's reach; none beyond it), and terms[i]
+ * (over the owned points) the work of its slip increment, J. Collective. */
 int pf_contact_commit_slips(pf_contact *c, pf_points *pts, double *terms);
 /* Quasi-static: add to k[i] (N/m, owned points) a bound of the row sums of the pairs' penalty
  * stiffness at point i (the fictitious masses). Collective. */

@@ -59,13 +59,8 @@ double pf_contact_friction(double mu, double Fn, const double n[3], const double
   return F * s * dt;
 }
 
-/* Quasi-static friction of entity e pushed off the surface point sum_q wt_q x_q (the file head of
- * contact/rigid.c and docs/theory/quasi_static_methods.md §8, on the relative displacement): with
- * r = u_e - sum_q wt_q u_q and s_e its committed slip (c->slip; none yet: no elastic part),
- * g_t = (I - n n^T)(r - s_e) and f_t = -k_t g_t while k_t |g_t| <= mu F (stick), else
- * -mu F g_t / |g_t| (slip). Returns the elastic part's energy |f_t|^2 / (2 k_t). While the slips
- * are committed, adds F (r + f_t / k_t) and F to e's sums of new slips and the slip increment's
- * work |f_t| |g_t + f_t / k_t| to e's (pf_contact.commit). */
+/* r = u_e - sum_q wt_q u_q: the displacement of entity e relative to the surface point
+ * sum_q wt_q x_q of the view entities nv[nn]. */
 static void relative_displacement(const pf_contact *c, pf_int e, const pf_int *nv, int nn, const double *wt,
                                   double r[3]) {
   for (int a = 0; a < 3; a++) r[a] = c->y[3 * e + a] - c->X[3 * e + a];
@@ -80,6 +75,13 @@ void pf_contact_slip_near(pf_contact *c, pf_int e, const pf_int *nv, int nn, con
   near[PF_CONTACT_COMMIT_DIST] = d;
 }
 
+/* Quasi-static friction of entity e pushed off the surface point sum_q wt_q x_q (the file head of
+ * contact/rigid.c and docs/theory/quasi_static_methods.md §8, on the relative displacement): with
+ * r = u_e - sum_q wt_q u_q and s_e its committed slip (c->slip; none yet: no elastic part),
+ * g_t = (I - n n^T)(r - s_e) and f_t = -k_t g_t while k_t |g_t| <= mu F (stick), else
+ * -mu F g_t / |g_t| (slip). Returns the elastic part's energy |f_t|^2 / (2 k_t). While the slips
+ * are committed, adds F (r + f_t / k_t) and F to e's sums of new slips and the slip increment's
+ * work |f_t| |g_t + f_t / k_t| to e's (pf_contact.commit). */
 static double static_friction(pf_contact *c, const pf_contact_pair *p, pf_int e, const pf_int *nv, int nn,
                               const double *wt, double F, const double n[3], double ft[3]) {
   const double *s = &c->slip[4 * (size_t)c->local[e]], kt = p->tangential;
