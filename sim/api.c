@@ -188,7 +188,7 @@ static int advance(perifem_sim *s, long n) {
   pf_sim *sim = s->sim;
   if (!sim->run && s->output_dir && !sim->opt.no_output) {
     const int err = pf_sim_make_dir(s->output_dir);
-    PF_CHECK(!err, PF_ERR_INPUT, "output folder %s: cannot create it: %s", s->output_dir, strerror(err));
+    PF_CHECK(!err, PF_ERR_INPUT, "output folder %s: cannot create the folder: %s", s->output_dir, strerror(err));
   }
   PF_CHECK(n >= -1, PF_ERR_INPUT, "perifem_step: the number of steps is negative (%ld)", n);
   PF_CALL(pf_sim_run_advance(sim, n));

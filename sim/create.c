@@ -316,6 +316,7 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   PF_CALL(pf_sim_setup_parallel(sim));
   PF_CALL(pf_sim_check_time_keys(sim));
   PF_CALL(pf_sim_check_solver_keys(sim->deck));
+  PF_CALL(pf_sim_check_output_keys(sim->deck));
   PF_CALL(build_bodies(sim, root));
   PF_CALL(pf_sim_interactions_build(sim));
   PF_CALL(pf_sim_setup_time(sim));

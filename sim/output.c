@@ -29,10 +29,10 @@ static double frames_span(const pf_sim *sim) {
   return isfinite(sim->final_time) ? sim->final_time : (double)sim->nsteps * sim->dt;
 }
 
-/* One schedule of the output: keys[0] steps between writes, keys[1] seconds between them,
- * keys[2] a count over the run; at most one given. *period > 0 when by time. */
-static int read_schedule(pf_sim *sim, const pf_node *out, const char *const keys[3], long *every, double *period) {
-  const pf_deck *d = sim->deck;
+/* One schedule of the output: keys[0] steps between writes (at least `least`), keys[1] seconds
+ * between them, keys[2] a count over the run; at most one given, each in its range. Needs no
+ * model. */
+static int check_schedule(const pf_deck *d, const pf_node *out, const char *const keys[3], long least) {
   const char *first = NULL;
   for (int k = 0; k < 3; k++) {
     if (!pf_node_get(out, keys[k])) continue;
@@ -41,15 +41,42 @@ static int read_schedule(pf_sim *sim, const pf_node *out, const char *const keys
                            "given: '%s')", keys[0], keys[1], keys[2], first);
     first = keys[k];
   }
-  *period = 0;
+  double period = 1;
+  long n = least;
   if (pf_node_get(out, keys[1])) {
-    PF_CALL(pf_deck_real(d, out, keys[1], period));
-    if (!(*period > 0 && isfinite(*period)))
-      return pf_deck_error(d, pf_node_get(out, keys[1]), keys[1], "must be a positive finite time (got %g)", *period);
+    PF_CALL(pf_deck_real(d, out, keys[1], &period));
+    if (!(period > 0 && isfinite(period)))
+      return pf_deck_error(d, pf_node_get(out, keys[1]), keys[1], "must be a positive finite time (got %g)", period);
   } else if (pf_node_get(out, keys[2])) {
-    long n = 0;
     PF_CALL(pf_deck_int(d, out, keys[2], &n));
     if (n < 1) return pf_deck_error(d, pf_node_get(out, keys[2]), keys[2], "must be at least 1 (got %ld)", n);
+  } else if (pf_node_get(out, keys[0])) {
+    PF_CALL(pf_deck_int(d, out, keys[0], &n));
+    if (n < least)
+      return pf_deck_error(d, pf_node_get(out, keys[0]), keys[0], "must be at least %ld (got %ld)", least, n);
+  }
+  return 0;
+}
+
+static const char *const frame_keys[3] = {"interval", "time_interval", "frames"};
+static const char *const row_keys[3] = {"history_interval", "history_time_interval", "history_frames"};
+
+int pf_sim_check_output_keys(const pf_deck *d) {
+  const pf_node *out = pf_node_get(pf_deck_root(d), "output");
+  PF_CALL(check_schedule(d, out, frame_keys, 0));
+  return check_schedule(d, out, row_keys, 1);
+}
+
+/* One schedule (check_schedule's keys) into *every or, by time, *period > 0. */
+static int read_schedule(pf_sim *sim, const pf_node *out, const char *const keys[3], long least, long *every,
+                         double *period) {
+  const pf_deck *d = sim->deck;
+  PF_CALL(check_schedule(d, out, keys, least));
+  *period = 0;
+  if (pf_node_get(out, keys[1])) PF_CALL(pf_deck_real(d, out, keys[1], period));
+  else if (pf_node_get(out, keys[2])) {
+    long n = 0;
+    PF_CALL(pf_deck_int(d, out, keys[2], &n));
     *period = frames_span(sim) / (double)n;
     if (!(*period > 0 && isfinite(*period)))
       return pf_deck_error(d, pf_node_get(out, keys[2]), keys[2], "the run's end time is %g s: no time to divide",
@@ -68,21 +95,15 @@ int pf_sim_setup_output(pf_sim *sim) {
   const pf_deck *d = sim->deck;
   const pf_node *out = pf_node_get(pf_deck_root(d), "output");
   const char *file = NULL, *hfile = NULL;
-  static const char *const frames[3] = {"interval", "time_interval", "frames"};
-  static const char *const rows[3] = {"history_interval", "history_time_interval", "history_frames"};
   sim->output_interval = 100;
   sim->history_interval = 10;
   PF_CALL(pf_deck_string(d, out, "file", &file));
   PF_CALL(pf_deck_string(d, out, "history_file", &hfile));
-  PF_CALL(read_schedule(sim, out, frames, &sim->output_interval, &sim->output_period));
-  PF_CALL(read_schedule(sim, out, rows, &sim->history_interval, &sim->history_period));
+  PF_CALL(read_schedule(sim, out, frame_keys, 0, &sim->output_interval, &sim->output_period));
+  PF_CALL(read_schedule(sim, out, row_keys, 1, &sim->history_interval, &sim->history_period));
   PF_CALL(pf_deck_bool(d, out, "fragments", &sim->fragments));
   PF_CALL(pf_sim_fragments_setup(sim));
   PF_CALL(pf_sim_setup_probes(sim));
-  if (sim->output_interval < 0)
-    return pf_deck_error(d, pf_node_get(out, "interval"), "interval", "must not be negative");
-  if (sim->history_interval < 1)
-    return pf_deck_error(d, pf_node_get(out, "history_interval"), "history_interval", "must be at least 1");
   PF_CALL(pf_sim_output_name(sim, pf_node_get(out, "file"), "file", file, ".e", sim->exodus_path,
                              sizeof sim->exodus_path));
   PF_CALL(pf_sim_output_name(sim, pf_node_get(out, "history_file"), "history_file", hfile, ".h5", sim->history_path,

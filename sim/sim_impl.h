@@ -257,6 +257,9 @@ int pf_sim_signal_here(void);
  * before put back (perifem_catch_signals). */
 void pf_sim_catch_run_signals(int on);
 int pf_sim_setup_output(pf_sim *sim);
+/* The output section's schedules (interval, time_interval, frames and their history twins: at
+ * most one of each three, each in range), checked before the bodies are built. */
+int pf_sim_check_output_keys(const pf_deck *d);
 /* Whether a step (from t_before to t) writes a frame or a history row: by time (period > 0) when
  * t reaches the next multiple of the period, else every `every` steps (0: never). Depends on
  * the step's times only, so a restarted run keeps the schedule. */
