@@ -31,7 +31,7 @@
 # Then tests/data/static_friction_pd.yaml: an FE block (2 x 2 hexahedra) pressed on a PMB base and
 # pushed along x, 100 particles under its face (FE <-> PD surface pair, friction on the particles'
 # slips): |T| never above mu N (1e-9), T_x at least 0.999 mu N while it slides (the base's
-# particles tilt their friction out of x by their own sideways motion: measured 0.99955), no
+# particles tilt their friction out of x by their own sideways motion: measured 0.99952), no
 # tangential force while pressing, the same digest on 1, 2 and 3 ranks.
 # Refused: the quadratic law with friction and no tangential_stiffness (an input error naming the
 # key); a short-range pair's friction under this solver, and tangential_stiffness on such a pair.
