@@ -63,6 +63,11 @@ const pf_key pf_contact_pair_keys[] = {
      "slip; docs/theory/quasi_static_methods.md §8)",
      NULL},
     {"all_points", PF_KEY_BOOL, 0, "false", "", "short range: also between bonded points", NULL},
+    {"soft", PF_KEY_BOOL, 0, "false", "",
+     "explicit runs: lower the stiffness (the default or the one given) as far as needed for the pair's stable step "
+     "not to fall below the smaller stable step of its two bodies at the start, so that the penalty does not set the "
+     "time step (docs/theory/contact.md §4a); refused by the quasi_static solver",
+     NULL},
     PF_KEY_END};
 
 const pf_key pf_contact_keys[] = {
@@ -169,6 +174,7 @@ static int read_pair(const pf_deck *d, const pf_node *map, int nbodies, const pf
   PF_CALL(pf_deck_real(d, map, "friction", &p->friction));
   if (!(p->friction >= 0))
     return pf_deck_error(d, pf_node_get(map, "friction"), "friction", "must not be negative (got %g)", p->friction);
+  PF_CALL(pf_deck_bool(d, map, "soft", &p->soft));
   p->tangential = p->stiffness;
   if (pf_node_get(map, "tangential_stiffness") && !p->method->pushes)
     return pf_deck_error(d, pf_node_get(map, "tangential_stiffness"), "tangential_stiffness",
@@ -435,6 +441,11 @@ int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, dou
 
 int pf_contact_quasi_static(pf_contact *c, const pf_deck *d, const pf_node *map, pf_points *pts) {
   const pf_node *pairs = pf_node_get(map, "pairs");
+  for (int k = 0; k < c->npairs; k++)
+    if (c->pair[k].soft)
+      return pf_deck_error(d, pf_node_get(pf_node_item(pairs, k), "soft"), "soft",
+                           "a soft pair's stiffness is set by the bodies' stable time step, which the quasi_static "
+                           "solver does not take; give the pair its 'stiffness' instead");
   for (int k = 0; k < c->npairs; k++) {
     if (!(c->pair[k].friction > 0)) continue;
     if (!c->pair[k].method->pushes)
@@ -497,6 +508,47 @@ double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts) {
   double dt = INFINITY;
   for (int k = 0; k < c->npairs; k++) dt = fmin(dt, 2.0 / sqrt(c->pair[k].method->stable_w2(c, &c->pair[k], pts)));
   return dt;
+}
+
+/* Soft pairs: every penalty of a pair is linear in its stiffness, so is its omega^2; the stiffness
+ * times w2_b / w2, w2_b = 4 / dt_b^2, puts the pair's stable step 2 / omega at dt_b, the smaller of
+ * its bodies' (when it is below). Collective (stable_w2 reduces). */
+int pf_contact_soften(pf_contact *c, const pf_points *pts, const double *body_dt, const char *const *body_name) {
+  for (int k = 0; k < c->npairs; k++) {
+    pf_contact_pair *p = &c->pair[k];
+    if (!p->soft) continue;
+    const double dt_b = fmin(body_dt[p->a], body_dt[p->b]), w2 = p->method->stable_w2(c, p, pts);
+    const int by = body_dt[p->a] <= body_dt[p->b] ? p->a : p->b;
+    if (!(dt_b > 0 && isfinite(dt_b) && w2 > 4.0 / (dt_b * dt_b))) continue; /* (its step is not below) */
+    const double k0 = p->stiffness;
+    p->stiffness *= 4.0 / (dt_b * dt_b) / w2;
+    p->tangential *= p->stiffness / k0;
+    pf_log("contact pair '%s' (soft): stiffness %.4g -> %.4g %s, its stable step %.4g -> %.4g s, that of body '%s'\n",
+           p->name, k0, p->stiffness, p->nside ? "N/m" : "N/m^7", 2.0 / sqrt(w2), dt_b, body_name[by]);
+  }
+  return 0;
+}
+
+int pf_contact_pair_soft(const pf_contact *c, int k) { return c->pair[k].soft; }
+
+int pf_contact_nsoft(const pf_contact *c) {
+  int n = 0;
+  for (int k = 0; c && k < c->npairs; k++) n += c->pair[k].soft;
+  return n;
+}
+
+void pf_contact_soft_stiffness_get(const pf_contact *c, double *v) {
+  for (int k = 0, q = 0; k < c->npairs; k++)
+    if (c->pair[k].soft) v[q++] = c->pair[k].stiffness;
+}
+
+void pf_contact_soft_stiffness_set(pf_contact *c, const double *v) {
+  for (int k = 0, q = 0; k < c->npairs; k++) {
+    pf_contact_pair *p = &c->pair[k];
+    if (!p->soft) continue;
+    p->tangential *= v[q] / p->stiffness;
+    p->stiffness = v[q++];
+  }
 }
 
 /* Quasi-static: a bound of the row sums of the penalties' stiffness at each owned point of a

@@ -147,6 +147,16 @@ void pf_contact_sums_take(pf_contact *c, const double *sums, double *energy);
 /* The stable step the penalties allow (2 / omega of the stiffest contact a point can see).
  * Collective. */
 double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts);
+/* Lower the stiffness of each pair with `soft: true` until its stable step is the smaller of its
+ * two bodies' (body_dt[b], over all ranks), logging each change; pairs whose step is not below
+ * keep theirs (docs/theory/contact.md §4a). Set-up, before the time step is chosen; collective. */
+int pf_contact_soften(pf_contact *c, const pf_points *pts, const double *body_dt, const char *const *body_name);
+/* The soft pairs' count, whether pair k is one, and their stiffnesses in pair order (set: a
+ * restart's, which keeps the run's). */
+int pf_contact_nsoft(const pf_contact *c);
+int pf_contact_pair_soft(const pf_contact *c, int k);
+void pf_contact_soft_stiffness_get(const pf_contact *c, double *v);
+void pf_contact_soft_stiffness_set(pf_contact *c, const double *v);
 /* Quasi-static loading (the solver's open): the pairs with friction take it as a tangential penalty
  * on each point's slip relative to the surface point it meets (docs/theory/quasi_static_methods.md
  * §8), kept in the point field "contact_slip" (registered here; carried by re-partitions and

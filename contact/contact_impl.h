@@ -96,6 +96,8 @@ struct pf_contact_pair {
   double stiffness;  /* short range: C in f = C (r_c - r) V_i V_j (N/m^7); FE: k in f = k (r_c - g) (N/m) */
   double friction;   /* Coulomb coefficient */
   double tangential; /* quasi-static friction: the tangential penalty k_t, N/m (methods that push) */
+  int soft;          /* the stiffness lowered, at set-up, until the pair's stable step is its bodies'
+                      * (pf_contact_soften) */
   int nside;         /* 0 (short range), 1 (FE <-> PD: body a's surface), 2 (FE <-> FE: a's, then b's) */
   pf_contact_side side[2];
   double force[3];   /* total force on body a at the last evaluation (all ranks), N */

@@ -232,6 +232,40 @@ static void print_bodies(const pf_sim *sim, totals *t) {
            "-", "-");
 }
 
+/* Each body's and each interaction's stable step over all ranks, and which sets the time step
+ * (the smallest; docs/user_guide.md, "What `--check` prints"): where one body's step is much smaller than
+ * the others', its share of the step's work bounds what subcycling it could gain. Collective. An
+ * explicit run's alone (a quasi-static run's load steps are not bounded by it). */
+/* Entry k's stable step: body k, else interaction k - nbodies. Collective. */
+static double stable_step_of(const pf_sim *sim, int k) {
+  if (k < sim->nbodies) return pf_min_all(sim->body[k].ops->stable_dt(sim->body[k].data, sim->pts));
+  return pf_sim_interaction_stable_dt(sim, k - sim->nbodies);
+}
+
+static void print_stable_steps(const pf_sim *sim) {
+  if (sim->solver.load_step) return;
+  const int n = sim->nbodies + sim->ninter;
+  double smallest = INFINITY;
+  int at = -1;
+  for (int k = 0; k < n; k++) {
+    const double dt = stable_step_of(sim, k);
+    if (dt < smallest) smallest = dt, at = k;
+  }
+  char line[1024];
+  size_t len = (size_t)snprintf(line, sizeof line, "  stable steps:");
+  for (int k = 0, shown = 0; k < n; k++) {
+    const double dt = stable_step_of(sim, k); /* (collective: every rank, every entry) */
+    if (!isfinite(dt) || len >= sizeof line) continue;
+    const char *name = k < sim->nbodies ? sim->body_name[k] : pf_sim_interaction_name(sim, k - sim->nbodies);
+    len += (size_t)snprintf(line + len, sizeof line - len, "%s %s %.4e s%s", shown++ ? "," : "", name, dt,
+                            k == at ? " (the smallest)" : "");
+  }
+  pf_log("%s%s%s\n", line, at < 0 ? " none bounds the step" : "",
+         at >= sim->nbodies ? "; a penalty sets the step (a contact pair's stiffness, with `soft: true`, is lowered "
+                              "until its bodies set it: docs/theory/contact.md §4a)"
+                            : "");
+}
+
 /* The calibration's steps and the run time from them; without them (or when they failed) the
  * rough estimate from the rates. */
 static void estimate_time(const pf_sim *sim, const totals *t, const pf_sim_calibration *c, int ierr,
@@ -264,6 +298,7 @@ int pf_sim_check_report(pf_sim *sim) {
   print_memory(sim, t.bytes);
   pf_sim_calibration c; /* (before the output's count: the fields the first forces register count) */
   const int ierr = pf_sim_check_calibrate(sim, &c);
+  if (!ierr) print_stable_steps(sim); /* (after the first forces: the elements' step is theirs) */
   double frame_bytes;
   print_output(sim, t.points, t.bonds, t.elements, t.bond_bytes, &frame_bytes);
   estimate_time(sim, &t, &c, ierr, frame_bytes);

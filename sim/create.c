@@ -326,7 +326,8 @@ static int sim_build(pf_sim *sim, const char *deck_path) {
   PF_CALL(pf_sim_accounts_open(sim));
   PF_CALL(pf_sim_setup_restart(sim));
   if (sim->opt.restart_from) PF_CALL(pf_sim_restore_state(sim)); /* (renames the outputs) */
-  if (sim->opt.restart_from && pf_sim_converts(sim)) PF_CALL(pf_sim_refresh_fixed_step(sim)); /* the restored masses */
+  /* (the restored masses; a soft contact pair's restored stiffness) */
+  if (sim->opt.restart_from) PF_CALL(pf_sim_refresh_fixed_step(sim));
   if (sim->opt.restart_from) PF_CALL(pf_sim_interactions_restored(sim));
   pf_sim_fragments_name(sim);
   PF_CALL(pf_sim_check_paths(sim));

@@ -144,6 +144,17 @@ double pf_sim_interactions_stable_dt(const pf_sim *sim) {
   return dt;
 }
 
+double pf_sim_interaction_stable_dt(const pf_sim *sim, int k) {
+  const pf_interaction *x = &sim->inter[k];
+  return x->ops->stable_dt ? x->ops->stable_dt(x->data, sim->pts) : INFINITY;
+}
+
+int pf_sim_interactions_fit_step(pf_sim *sim) {
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->fit_step) PF_CALL(sim->inter[k].ops->fit_step(sim->inter[k].data, sim));
+  return 0;
+}
+
 static int nstate(const pf_interaction *x) { return x->ops->nstate ? x->ops->nstate(x->data) : 0; }
 
 int pf_sim_interactions_nstate(const pf_sim *sim) {

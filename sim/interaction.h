@@ -83,6 +83,9 @@ typedef struct {
   void (*work)(const void *data, const pf_points *pts, int *w);
   /* The stable step its penalties allow; collective [INFINITY]. */
   double (*stable_dt)(const void *data, const pf_points *pts);
+  /* At set-up (a restart's too), before the time step is chosen: set what follows the bodies'
+   * stable steps (a soft contact pair's stiffness); collective [nothing]. */
+  int (*fit_step)(void *data, pf_sim *sim);
   /* Checkpoint state besides the ledger's accounts (a surface's position): count, names
    * (96 characters each), values and their restoring [none]; after a restart restored
    * everything [nothing]. */
@@ -145,6 +148,9 @@ int pf_sim_interactions_settled(pf_sim *sim, double dt, const double *g0, const 
 void pf_sim_interactions_stiffness_bounds(const pf_sim *sim, double *k);
 void pf_sim_interactions_project(const pf_sim *sim);
 double pf_sim_interactions_stable_dt(const pf_sim *sim);
+int pf_sim_interactions_fit_step(pf_sim *sim);
+/* Interaction k's stable step (--check); collective. */
+double pf_sim_interaction_stable_dt(const pf_sim *sim, int k);
 int pf_sim_interactions_nstate(const pf_sim *sim);
 void pf_sim_interactions_state_names(const pf_sim *sim, char (*names)[96]);
 void pf_sim_interactions_state_get(const pf_sim *sim, double *v);

@@ -155,6 +155,29 @@ static double stable_dt(const void *data, const pf_points *pts) {
   return pf_contact_stable_dt(((const contact *)data)->c, pts);
 }
 
+/* Soft pairs: each body's stable step at the set-up (over all ranks) sets their stiffness. */
+static int fit_step(void *data, pf_sim *sim) {
+  contact *x = data;
+  if (!pf_contact_nsoft(x->c)) return 0;
+  double dt[PF_MAX_BODIES];
+  for (int b = 0; b < sim->nbodies; b++) {
+    const pf_body *body = &sim->body[b];
+    dt[b] = pf_min_all(body->ops->stable_dt(body->data, sim->pts));
+  }
+  return pf_contact_soften(x->c, sim->pts, dt, (const char *const *)sim->body_name);
+}
+
+/* The soft pairs' stiffnesses go in the checkpoint: a restart keeps the run's, whatever the
+ * restored bodies' steps (a correspondence body's are its points' last). */
+static int nstate(const void *data) { return pf_contact_nsoft(((const contact *)data)->c); }
+static void state_names(const void *data, char (*names)[96]) {
+  const pf_contact *c = ((const contact *)data)->c;
+  for (int k = 0, q = 0; k < pf_contact_npairs(c); k++)
+    if (pf_contact_pair_soft(c, k)) snprintf(names[q++], 96, "contact:%.60s_soft_stiffness", pf_contact_pair_name(c, k));
+}
+static void state_get(const void *data, double *v) { pf_contact_soft_stiffness_get(((const contact *)data)->c, v); }
+static void state_set(void *data, const double *v) { pf_contact_soft_stiffness_set(((contact *)data)->c, v); }
+
 static void stiffness_bounds(const void *data, const pf_points *pts, double *k) {
   pf_contact_stiffness_bounds(((const contact *)data)->c, pts, k);
 }
@@ -232,6 +255,11 @@ const pf_interaction_ops pf_interaction_kind_contact = {
     .books_own_work = 1,
     .work = work,
     .stable_dt = stable_dt,
+    .fit_step = fit_step,
+    .nstate = nstate,
+    .state_names = state_names,
+    .state_get = state_get,
+    .state_set = state_set,
     .restored = restored,
     .masses_changed = masses_changed,
     .health = health,

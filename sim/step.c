@@ -76,6 +76,7 @@ int pf_sim_setup_time(pf_sim *sim) {
   PF_CALL(pf_deck_real(d, tm, "safety_factor", &safety));
   sim->max_motion = 0.5;
   PF_CALL(pf_deck_real(d, tm, "max_motion", &sim->max_motion));
+  PF_CALL(pf_sim_interactions_fit_step(sim)); /* (soft contact pairs: from the bodies' steps) */
   double stable = stable_step(sim);
   sim->safety = safety;
   sim->dt = safety * stable;
