@@ -232,16 +232,16 @@ static void print_bodies(const pf_sim *sim, totals *t) {
            "-", "-");
 }
 
-/* Each body's and each interaction's stable step over all ranks, and which sets the time step
- * (the smallest; docs/user_guide.md, "What `--check` prints"): where one body's step is much smaller than
- * the others', its share of the step's work bounds what subcycling it could gain. Collective. An
- * explicit run's alone (a quasi-static run's load steps are not bounded by it). */
 /* Entry k's stable step: body k, else interaction k - nbodies. Collective. */
 static double stable_step_of(const pf_sim *sim, int k) {
   if (k < sim->nbodies) return pf_min_all(sim->body[k].ops->stable_dt(sim->body[k].data, sim->pts));
   return pf_sim_interaction_stable_dt(sim, k - sim->nbodies);
 }
 
+/* Each body's and each interaction's stable step over all ranks, and which sets the time step
+ * (the smallest; docs/user_guide.md, "What `--check` prints"): where one body's step is much
+ * smaller than the others', its share of the step's work bounds what subcycling it could gain.
+ * Collective. An explicit run's alone (a quasi-static run's load steps are not bounded by it). */
 static void print_stable_steps(const pf_sim *sim) {
   if (sim->solver.load_step) return;
   const int n = sim->nbodies + sim->ninter;
