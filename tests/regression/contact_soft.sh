@@ -15,6 +15,9 @@
 #    the uninterrupted run's, with the plate as shipped and as a correspondence body (whose
 #    stable step at a restart's set-up is its points' last, not the reference one: the
 #    checkpoint carries the pair's stiffness; without it that restart's digest differs);
+#  - a short-range pair (PD self-contact, C in N/m^7) soft too: kept at the default spring constant
+#    (its step is not below the plate's), lowered alike at k_s = 1e13 Pa; a pair whose step ties
+#    its body's leaves the body named as the smallest;
 #  - refused by the quasi_static solver, naming the pair's `soft` and its line.
 # usage: contact_soft.sh PERIFEM SCRATCH   (from the tests/ folder)
 set -u
@@ -43,6 +46,19 @@ awk -v a="$sa" -v s0="$s0" -v b="$sb" -v s1="$s1" -v p="$p1" -v q="$b1" \
   bad "the soft pair's step $sb (logged from $sa) is not the smaller body step of ($p1, $b1), or $sa is not the default's $s0"
 awk -v k0="$k0" -v k="$k" -v a="$sa" -v b="$sb" 'BEGIN {r = (k / k0) / ((a / b) ^ 2); exit !(r > 0.998 && r < 1.002)}' ||
   bad "k / k0 = $k / $k0 is not (S0 / S1)^2 = ($sa / $sb)^2"
+
+# a short-range pair (C in N/m^7) soft as well: at the default spring constant its step is not
+# below the plate's and it keeps its stiffness; at k_s = 1e13 Pa it is, and it is lowered alike
+sed 's/    - {bodies: \[block, plate\], soft: true}/&\n    - {bodies: [plate, plate], soft: true}/' soft.yaml > self.yaml
+sed 's/{bodies: \[plate, plate\], soft: true}/{bodies: [plate, plate], soft: true, spring_constant: 1.0e13}/' self.yaml > self_stiff.yaml
+"$exe" --check self.yaml > self.txt 2>&1 || bad "self --check exited $?: $(tail -3 self.txt)"
+"$exe" --check self_stiff.yaml > self_stiff.txt 2>&1 || bad "self_stiff --check exited $?: $(tail -3 self_stiff.txt)"
+grep -q "^contact pair 'plate_plate'" self.txt && bad "the short-range pair at the default spring constant was lowered: $(grep plate_plate self.txt)"
+read -r c0 c sa2 sb2 <<< "$(sed -n "s/^contact pair 'plate_plate' (soft): stiffness \([0-9.e+-]*\) -> \([0-9.e+-]*\) N\/m^7, its stable step \([0-9.e+-]*\) -> \([0-9.e+-]*\) s, that of body 'plate'$/\1 \2 \3 \4/p" self_stiff.txt)"
+echo "short-range pair at k_s = 1e13 Pa: C $c0 -> $c N/m^7, its step $sa2 -> $sb2 s"
+awk -v k0="$c0" -v k="$c" -v a="$sa2" -v b="$sb2" -v p="$p1" 'BEGIN {r = (k / k0) / ((a / b) ^ 2); exit !(r > 0.998 && r < 1.002 && (b - p) ^ 2 < (2e-3 * p) ^ 2)}' ||
+  bad "short-range: C / C0 = $c / $c0 is not (S0 / S1)^2 = ($sa2 / $sb2)^2, or $sb2 is not the plate's $p1"
+grep -q "^  stable steps: plate [0-9.e+-]* s (the smallest)" self.txt || bad "a tie of the pair with its body names the pair: $(grep 'stable steps' self.txt)"
 
 # ---- the runs ------------------------------------------------------------------------------
 steps_of() { echo "$1" | sed -n 's/^perifem: \([0-9]*\) steps of .*/\1/p'; }
