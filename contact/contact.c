@@ -546,6 +546,9 @@ void pf_contact_soft_stiffness_set(pf_contact *c, const double *v) {
   for (int k = 0, q = 0; k < c->npairs; k++) {
     pf_contact_pair *p = &c->pair[k];
     if (!p->soft) continue;
+    if (v[q] != p->stiffness) /* (the set-up's fit logged its own: say which the run keeps) */
+      pf_log("contact pair '%s' (soft): stiffness %.4g %s from the checkpoint, not the set-up's %.4g\n", p->name, v[q],
+             p->nside ? "N/m" : "N/m^7", p->stiffness);
     p->tangential *= v[q] / p->stiffness;
     p->stiffness = v[q++];
   }

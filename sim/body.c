@@ -79,6 +79,9 @@ void pf_body_table_set(const pf_body *b, const double *full) {
   if (b->ops->table_set) b->ops->table_set(b->data, full);
 }
 int pf_body_carries_stable_dt(const pf_body *b) { return b->ops->set_stable_dt != NULL; }
+double pf_body_stable_dt_all(const pf_body *b, const pf_points *pts) {
+  return pf_min_all(b->ops->stable_dt(b->data, pts));
+}
 void pf_body_set_stable_dt(const pf_body *b, double dt) {
   if (b->ops->set_stable_dt) b->ops->set_stable_dt(b->data, dt);
 }
@@ -95,7 +98,7 @@ int pf_body_stiffness_bounds(const pf_body *b, const pf_points *pts, pf_int firs
     for (pf_int i = 0; i < n; i++) k[i] = b->ops->stiffness_bound(b->data, pts, first + i);
     return 0;
   }
-  const double dt = pf_min_all(b->ops->stable_dt(b->data, pts));
+  const double dt = pf_body_stable_dt_all(b, pts);
   for (pf_int i = 0; i < n; i++) k[i] = isfinite(dt) && dt > 0 ? 4 * pts->m[first + i] / (dt * dt) : 0;
   return 0;
 }

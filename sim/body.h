@@ -183,6 +183,8 @@ int pf_body_fails_without_ratio(const pf_body *b); /* freeze_damage without fail
 int pf_body_keeps_history(const pf_body *b, pf_points *pts);
 int pf_body_history(const pf_body *b, pf_points *pts, pf_history_op op);
 int pf_body_failures(const pf_body *b, int restore);
+/* The body's stable step now, the smallest over all ranks (s). Collective. */
+double pf_body_stable_dt_all(const pf_body *b, const pf_points *pts);
 /* The failed directed bonds of the body's owned rows (0 for a body without bonds). */
 int64_t pf_body_broken_bonds(const pf_body *b);
 void pf_body_take_damage_work(const pf_body *b, double w[2]);

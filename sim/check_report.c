@@ -9,6 +9,7 @@
 #include "sim/sim_impl.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* Rates per rank measured on this project's 2-core benchmark machine: hex8 element cycles per
@@ -234,7 +235,7 @@ static void print_bodies(const pf_sim *sim, totals *t) {
 
 /* Entry k's stable step: body k, else interaction k - nbodies. Collective. */
 static double stable_step_of(const pf_sim *sim, int k) {
-  if (k < sim->nbodies) return pf_min_all(sim->body[k].ops->stable_dt(sim->body[k].data, sim->pts));
+  if (k < sim->nbodies) return pf_body_stable_dt_all(&sim->body[k], sim->pts);
   return pf_sim_interaction_stable_dt(sim, k - sim->nbodies);
 }
 
@@ -242,28 +243,30 @@ static double stable_step_of(const pf_sim *sim, int k) {
  * (the smallest; docs/user_guide.md, "What `--check` prints"): where one body's step is much
  * smaller than the others', its share of the step's work bounds what subcycling it could gain.
  * Collective. An explicit run's alone (a quasi-static run's load steps are not bounded by it). */
-static void print_stable_steps(const pf_sim *sim) {
-  if (sim->solver.load_step) return;
+static int print_stable_steps(const pf_sim *sim) {
+  if (sim->solver.load_step) return 0;
   const int n = sim->nbodies + sim->ninter;
-  double smallest = INFINITY;
+  double *dt, smallest = INFINITY;
+  PF_MALLOC(dt, n);
   int at = -1;
   for (int k = 0; k < n; k++) {
-    const double dt = stable_step_of(sim, k);
-    if (dt < smallest * (1 - 1e-12)) smallest = dt, at = k; /* (a soft pair equal to a body: the body) */
+    dt[k] = stable_step_of(sim, k); /* (collective: every rank, every entry) */
+    if (dt[k] < smallest * (1 - 1e-12)) smallest = dt[k], at = k; /* (a soft pair equal to a body: the body) */
   }
   char line[1024];
   size_t len = (size_t)snprintf(line, sizeof line, "  stable steps:");
   for (int k = 0, shown = 0; k < n; k++) {
-    const double dt = stable_step_of(sim, k); /* (collective: every rank, every entry) */
-    if (!isfinite(dt) || len >= sizeof line) continue;
+    if (!isfinite(dt[k]) || len >= sizeof line) continue;
     const char *name = k < sim->nbodies ? sim->body_name[k] : pf_sim_interaction_name(sim, k - sim->nbodies);
-    len += (size_t)snprintf(line + len, sizeof line - len, "%s %s %.4e s%s", shown++ ? "," : "", name, dt,
+    len += (size_t)snprintf(line + len, sizeof line - len, "%s %s %.4e s%s", shown++ ? "," : "", name, dt[k],
                             k == at ? " (the smallest)" : "");
   }
+  free(dt);
   pf_log("%s%s%s\n", line, at < 0 ? " none bounds the step" : "",
          at >= sim->nbodies ? "; a penalty sets the step (a contact pair's stiffness, with `soft: true`, is lowered "
                               "until its bodies set it: docs/theory/contact.md §4a)"
                             : "");
+  return 0;
 }
 
 /* The calibration's steps and the run time from them; without them (or when they failed) the
@@ -298,7 +301,7 @@ int pf_sim_check_report(pf_sim *sim) {
   print_memory(sim, t.bytes);
   pf_sim_calibration c; /* (before the output's count: the fields the first forces register count) */
   const int ierr = pf_sim_check_calibrate(sim, &c);
-  if (!ierr) print_stable_steps(sim); /* (after the first forces: the elements' step is theirs) */
+  if (!ierr) PF_CALL(print_stable_steps(sim)); /* (after the first forces: the elements' step is theirs) */
   double frame_bytes;
   print_output(sim, t.points, t.bonds, t.elements, t.bond_bytes, &frame_bytes);
   estimate_time(sim, &t, &c, ierr, frame_bytes);

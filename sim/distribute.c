@@ -195,7 +195,7 @@ static int settle_keeping_tables(pf_sim *sim, pf_bond_rows *rows, const int *ext
   int n = 0, ierr = pf_sim_body_tables(sim, t, &n);
   for (int k = 0, b = 0; b < sim->nbodies; b++) {
     const pf_body *body = &sim->body[b];
-    stable[b] = pf_body_carries_stable_dt(body) ? pf_min_all(body->ops->stable_dt(body->data, sim->pts)) : INFINITY;
+    stable[b] = pf_body_carries_stable_dt(body) ? pf_body_stable_dt_all(body, sim->pts) : INFINITY;
     if (ierr || !pf_body_table_shape(body, &(pf_gid){0}, &(int){0}, &(pf_int){0})) continue;
     if (!(full[b] = malloc(sizeof(double) * ((size_t)t[k].total * t[k].ncomp + 1))))
       ierr = pf_error_raise(PF_ERR_MEMORY, __FILE__, __LINE__, __func__, "out of memory");

@@ -160,10 +160,7 @@ static int fit_step(void *data, pf_sim *sim) {
   contact *x = data;
   if (!pf_contact_nsoft(x->c)) return 0;
   double dt[PF_MAX_BODIES];
-  for (int b = 0; b < sim->nbodies; b++) {
-    const pf_body *body = &sim->body[b];
-    dt[b] = pf_min_all(body->ops->stable_dt(body->data, sim->pts));
-  }
+  for (int b = 0; b < sim->nbodies; b++) dt[b] = pf_body_stable_dt_all(&sim->body[b], sim->pts);
   return pf_contact_soften(x->c, sim->pts, dt, (const char *const *)sim->body_name);
 }
 

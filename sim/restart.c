@@ -88,7 +88,7 @@ static int scalars_fill(pf_sim *sim, int books, pf_sim_scalars *s) {
   }
   for (int b = 0; b < sim->nbodies; b++) {
     const pf_body *body = &sim->body[b]; /* the carried stable steps */
-    v[at_stable() + b] = pf_body_carries_stable_dt(body) ? pf_min_all(body->ops->stable_dt(body->data, sim->pts)) : 0;
+    v[at_stable() + b] = pf_body_carries_stable_dt(body) ? pf_body_stable_dt_all(body, sim->pts) : 0;
   }
   pf_sim_geometry_scalars(sim, &v[at_geometry(sim)]);
   if (!books) return 0;
