@@ -510,6 +510,12 @@ double pf_contact_stable_dt(const pf_contact *c, const pf_points *pts) {
   return dt;
 }
 
+/* Pair p's stiffness set to k, its tangential penalty (quasi-static friction) scaled with it. */
+static void set_stiffness(pf_contact_pair *p, double k) {
+  p->tangential *= k / p->stiffness;
+  p->stiffness = k;
+}
+
 /* Soft pairs: every penalty of a pair is linear in its stiffness, so is its omega^2; the stiffness
  * times w2_b / w2, w2_b = 4 / dt_b^2, puts the pair's stable step 2 / omega at dt_b, the smaller of
  * its bodies' (when it is below). Collective (stable_w2 reduces). */
@@ -521,8 +527,7 @@ int pf_contact_soften(pf_contact *c, const pf_points *pts, const double *body_dt
     const int by = body_dt[p->a] <= body_dt[p->b] ? p->a : p->b;
     if (!(dt_b > 0 && isfinite(dt_b) && w2 > 4.0 / (dt_b * dt_b))) continue; /* (its step is not below) */
     const double k0 = p->stiffness;
-    p->stiffness *= 4.0 / (dt_b * dt_b) / w2;
-    p->tangential *= p->stiffness / k0;
+    set_stiffness(p, k0 * (4.0 / (dt_b * dt_b) / w2));
     pf_log("contact pair '%s' (soft): stiffness %.4g -> %.4g %s, its stable step %.4g -> %.4g s, that of body '%s'\n",
            p->name, k0, p->stiffness, p->nside ? "N/m" : "N/m^7", 2.0 / sqrt(w2), dt_b, body_name[by]);
   }
@@ -549,8 +554,7 @@ void pf_contact_soft_stiffness_set(pf_contact *c, const double *v) {
     if (v[q] != p->stiffness) /* (the set-up's fit logged its own: say which the run keeps) */
       pf_log("contact pair '%s' (soft): stiffness %.4g %s from the checkpoint, not the set-up's %.4g\n", p->name, v[q],
              p->nside ? "N/m" : "N/m^7", p->stiffness);
-    p->tangential *= v[q] / p->stiffness;
-    p->stiffness = v[q++];
+    set_stiffness(p, v[q++]);
   }
 }
 

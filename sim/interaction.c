@@ -137,16 +137,15 @@ void pf_sim_interactions_endstep(pf_sim *sim, double dt) {
     if (sim->inter[k].ops->endstep) sim->inter[k].ops->endstep(sim->inter[k].data, &s);
 }
 
-double pf_sim_interactions_stable_dt(const pf_sim *sim) {
-  double dt = INFINITY;
-  for (int k = 0; k < sim->ninter; k++)
-    if (sim->inter[k].ops->stable_dt) dt = fmin(dt, sim->inter[k].ops->stable_dt(sim->inter[k].data, sim->pts));
-  return dt;
-}
-
 double pf_sim_interaction_stable_dt(const pf_sim *sim, int k) {
   const pf_interaction *x = &sim->inter[k];
   return x->ops->stable_dt ? x->ops->stable_dt(x->data, sim->pts) : INFINITY;
+}
+
+double pf_sim_interactions_stable_dt(const pf_sim *sim) {
+  double dt = INFINITY;
+  for (int k = 0; k < sim->ninter; k++) dt = fmin(dt, pf_sim_interaction_stable_dt(sim, k));
+  return dt;
 }
 
 int pf_sim_interactions_fit_step(pf_sim *sim) {
