@@ -546,6 +546,8 @@ static int check_masses(const pf_pd_body *b, const pf_points *pts, pf_int first,
   return 0;
 }
 
+static int family_shortfalls(pf_pd_body *b, pf_points *pts);
+
 int pf_pd_body_attach(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n,
                       const pf_bond_rows *rows, const pf_int *local, int fresh) {
   b->first = first;
@@ -570,6 +572,7 @@ int pf_pd_body_attach(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n,
   PF_CALL(pf_pd_damage_setup(b, pts, fresh));
   b->fresh = fresh;
   if (b->ops->setup) PF_CALL(b->ops->setup(b, pts));
+  if (b->ops->family_stiffness) PF_CALL(family_shortfalls(b, pts));
   int idx;
   PF_CALL(pf_points_field_register(pts, "damage", 1, PF_FIELD_OUTPUT, &idx));
   return 0;
@@ -776,7 +779,14 @@ int pf_pd_weighted_volumes(const pf_pd_body *b, pf_points *pts, double *m) {
   return pf_points_exchange(pts, m, 1); /* the ghosts' m for the force pass */
 }
 
-double pf_pd_stable_dt_point(const pf_pd_body *b, const pf_points *pts, pf_int i, double c) {
+/* The bound's slack: a face halves a family and doubles its LPS bonds' stiffness, and the
+ * quasi-static masses of the bound below relax such points at the default safety factor in every
+ * shipped deck; the shortfall counts beyond that factor 2 (docs/theory/quasi_static.md §2). */
+#define PF_PD_BOUND_SLACK 2.0
+
+/* sum_j V_j c_ij omega / |xi| over point i's family, c_ij = c (times the parts' micromodulus
+ * scale), and times max(1, (g_i + g_j) / (2 slack)) when g (the family shortfalls) is given. */
+static double stiffness_row(const pf_pd_body *b, const pf_points *pts, pf_int i, double c, const double *g) {
   const pf_family *fam = &b->fam;
   double sum = 0;
   for (int64_t k = fam->offset[i - fam->first]; k < fam->offset[i - fam->first + 1]; k++) {
@@ -786,8 +796,14 @@ double pf_pd_stable_dt_point(const pf_pd_body *b, const pf_points *pts, pf_int i
     double r0 = sqrt(r2);
     if (!pf_pd_in_family(b, i, r0)) continue;
     const double cb = b->part ? c * fmax(pf_pd_part_at(b, i)->mscale, pf_pd_part_at(b, j)->mscale) : c;
-    sum += pf_pd_bond_volume(fam, pts->vol, k, j) * cb * pf_pd_omega(&b->influence, r0) / r0;
+    const double term = pf_pd_bond_volume(fam, pts->vol, k, j) * cb * pf_pd_omega(&b->influence, r0) / r0;
+    sum += g ? term * fmax(1.0, 0.5 * (g[i] + g[j]) / PF_PD_BOUND_SLACK) : term;
   }
+  return sum;
+}
+
+double pf_pd_stable_dt_point(const pf_pd_body *b, const pf_points *pts, pf_int i, double c) {
+  const double sum = stiffness_row(b, pts, i, c, NULL);
   return sum > 0 ? sqrt(2.0 * pf_pd_density(b, i) / sum) : INFINITY;
 }
 
@@ -807,11 +823,59 @@ double pf_pd_body_stable_dt(const pf_pd_body *b, const pf_points *pts) {
   return dt;
 }
 
-double pf_pd_body_stiffness_bound(const pf_pd_body *b, const pf_points *pts, pf_int i) {
-  const double h = b->hz[i];
-  const double c = b->ops->micromodulus ? b->ops->micromodulus(b, h) : pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, h);
-  const double dt = pf_pd_stable_dt_point(b, pts, i, c);
-  return isfinite(dt) ? 4 * pts->m[i] / (dt * dt) : 0;
+/* The smallest own step of point i's family, itself included (a row of the stiffness couples i to
+ * its neighbours' states: the stiffest of them bounds it). */
+static double family_step(const pf_pd_body *b, const double *step, pf_int i) {
+  double dt = step[i];
+  for (int64_t k = b->fam.offset[i - b->first]; k < b->fam.offset[i - b->first + 1]; k++)
+    dt = fmin(dt, step[b->fam.neighbor[k]]);
+  return dt;
+}
+
+int pf_pd_body_stiffness_bounds(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n, double *k) {
+  double *step = b->ops->point_steps ? b->ops->point_steps(b) : NULL;
+  if (step) PF_CALL(pf_points_exchange(pts, step, 1)); /* (the ghosts': their last evaluation's) */
+  for (pf_int i = first; i < first + n; i++) {
+    const double h = b->hz[i];
+    const double c = b->ops->micromodulus ? b->ops->micromodulus(b, h) : pf_pd_pmb_micromodulus(b->bulk_modulus, &b->influence, h);
+    const double sum = stiffness_row(b, pts, i, c, b->shortfall);
+    const double own = step ? family_step(b, step, i) : INFINITY;
+    const double dt = sum > 0 ? fmin(sqrt(2.0 * pf_pd_density(b, i) / sum), own) : INFINITY;
+    k[i - first] = isfinite(dt) ? 4 * pts->m[i] / (dt * dt) : 0;
+  }
+  return 0;
+}
+
+/* m_whole(delta) = int_0^delta omega(r) r^2 4 pi r^2 dr, the weighted volume of a whole
+ * spherical family (midpoint rule, 256 intervals: only ratios at equal horizons matter). */
+static double whole_family_volume(const pf_pd_body *b, double delta) {
+  const int n = 256;
+  double s = 0;
+  for (int k = 0; k < n; k++) {
+    const double r = (k + 0.5) * delta / n;
+    s += pf_pd_omega(&b->influence, r) * r * r * r * r;
+  }
+  return 4 * PF_PI * s * delta / n;
+}
+
+/* A whole family of a cubic lattice holds 0.92-1.13 of the continuum's weighted volume at 2 to 6
+ * spacings (omega = 1 and 1/r): the share that stands for a whole family in a body that has none. */
+#define PF_PD_WHOLE_SHARE 0.9
+
+/* The family shortfalls g_i of a family_stiffness material (docs/theory/quasi_static.md §2):
+ * rho_i = m_i / m_whole(delta_i) the point's share of a whole family's weighted volume, g_i =
+ * rho_top / rho_i with rho_top the largest over the body (every rank) or PF_PD_WHOLE_SHARE if
+ * larger, 1 where within 1e-9 of it (a family the lattice repeats: its rounding). Ghosts too.
+ * Collective. */
+static int family_shortfalls(pf_pd_body *b, pf_points *pts) {
+  int idx;
+  PF_CALL(pf_points_field_register(pts, "family_shortfall", 1, PF_FIELD_GHOST, &idx));
+  double *g = b->shortfall = pts->fields[idx].data, top = 0;
+  PF_CALL(pf_pd_weighted_volumes(b, pts, g));
+  for (pf_int i = b->first; i < b->first + b->n; i++) top = fmax(top, g[i] /= whole_family_volume(b, b->hz[i]));
+  top = fmax(pf_max_all(top), PF_PD_WHOLE_SHARE);
+  for (pf_int i = b->first; i < b->first + b->n; i++) g[i] = top / g[i] < 1 + 1e-9 ? 1.0 : top / g[i];
+  return pf_points_exchange(pts, g, 1);
 }
 
 int pf_pd_lost_volume_fields(pf_pd_body *b, pf_points *pts, double **mom) {

@@ -1178,6 +1178,9 @@ static double corr_stable_dt(const pf_pd_body *b, const pf_points *pts) {
   return dt;
 }
 
+/* The points' own stable steps (field stable_step, their last evaluation), by store index. */
+static double *corr_point_steps(pf_pd_body *b) { return ((corr *)b->mat)->step; }
+
 static void corr_destroy(pf_pd_body *b) {
   corr *p = b->mat;
   pf_material_destroy(&p->cm);
@@ -1200,6 +1203,7 @@ const pf_pd_material_ops pf_pd_material_correspondence = {
     .force = corr_force,
     .energy = corr_energy,
     .stable_dt = corr_stable_dt,
+    .point_steps = corr_point_steps,
     .destroy = corr_destroy,
     .partial_stress = 1,
     .gradient_forms = 1,

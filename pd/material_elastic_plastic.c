@@ -351,6 +351,7 @@ const pf_pd_material_ops pf_pd_material_elastic_plastic = {
     .critical_stretch = pf_pd_lps_critical_stretch, /* LPS closed forms: elastic fracture */
     .destroy = ep_destroy,
     .several_materials = 1,
+    .family_stiffness = 1,
     .records_rest = 1,
     .read_part = ep_read_part,
 };

@@ -408,6 +408,7 @@ const pf_pd_material_ops pf_pd_material_lps = {
     .destroy = lps_destroy,
     .partial_stress = 1,
     .bond_energy = 1,
+    .family_stiffness = 1,
     .bond_energy_at = lps_bond_energy_at,
     .several_materials = 1,
     .records_rest = 1,

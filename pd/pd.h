@@ -245,10 +245,14 @@ double pf_pd_body_bond_rate(const pf_pd_body *b);
 /* Stable step of store point i of body b: sqrt(2 rho / sum_j V_j c omega / |xi|) over its own
  * family (Silling & Askari 2005, eq. 15 with the Peridigm form). */
 double pf_pd_stable_dt_point(const pf_pd_body *b, const pf_points *pts, pf_int i, double c);
-/* The Gershgorin bound of store point i's block row of the linearised stiffness, N/m:
- * sum_j |K_ij| <= 2 V_i sum_j V_j c omega / |xi| = 4 m_i / dt_i^2 with dt_i the point's stable step
- * above, c the micromodulus of its horizon (for LPS and correspondence the PMB-equivalent of the
- * body's bulk modulus; 0 for a point without bonds). */
-double pf_pd_body_stiffness_bound(const pf_pd_body *b, const pf_points *pts, pf_int i);
+/* The Gershgorin bounds of store points first .. first + n - 1's block rows of the linearised
+ * stiffness into k[0 .. n-1], N/m: sum_j |K_ij| <= 2 V_i sum_j V_j c_ij omega / |xi| = 4 m_i / dt_i^2,
+ * c the micromodulus of the point's horizon (for LPS, elastic-plastic and correspondence the
+ * PMB-equivalent of the body's bulk modulus), times the mean family shortfall of the bond's ends
+ * beyond a factor 2 for LPS and elastic-plastic; dt_i no more than the smallest own stable step
+ * over the point's family for correspondence; 0 for a point without bonds
+ * (docs/theory/quasi_static.md §2).
+ * Collective (the own steps' ghosts are exchanged). */
+int pf_pd_body_stiffness_bounds(pf_pd_body *b, pf_points *pts, pf_int first, pf_int n, double *k);
 
 #endif

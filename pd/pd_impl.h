@@ -59,6 +59,9 @@ struct pf_pd_body {
   const void *fe_vector_ctx;
   pf_pd_formulation form;
   double *hz;              /* field "horizon" [store]: each point's own horizon, ghosts too */
+  double *shortfall;       /* field "family_shortfall" [store] (family_stiffness materials, else
+                              NULL): g_i = rho_top / rho_i >= 1, rho_i = m_i / m_whole(delta_i),
+                              rho_top the body's fullest (at least 0.9); 1 within 1e-9 of it */
   double *region;          /* field "region" [store]: bit 0 (1) the partial-stress force, bit 1
                               (2) an overlap point (blending weight < 1), bit 2 (4) the
                               ghost-corrected standard force, bit 3 (8) the consistent
@@ -165,6 +168,10 @@ struct pf_pd_material_ops {
   /* the body's current stable step, for a material whose step changes as it deforms (then
    * micromodulus is unused and the time loop asks for it every step); NULL: fixed */
   double (*stable_dt)(const pf_pd_body *b, const pf_points *pts);
+  /* the points' own stable steps at the last evaluation, a store array whose owned entries are
+   * set, where the material has them (they bound a point's stiffness where its family is cut
+   * short: the quasi-static masses take them, pf_pd_body_stiffness_bounds); NULL: none */
+  double *(*point_steps)(pf_pd_body *b);
   double (*critical_stretch)(const pf_pd_body *b, double G0); /* from G0, or NULL */
   void (*destroy)(pf_pd_body *b);
   int partial_stress; /* 1: takes a variable horizon and the partial-stress form */
@@ -172,6 +179,10 @@ struct pf_pd_material_ops {
   int gradient_forms; /* 1: takes the corrected and consistent forms (a deformation gradient) */
   int uses_velocity;  /* 1: its forces read the neighbours' velocities (a rate form) */
   int bond_energy;    /* 1: its force kernel evaluates each bond's energy (critical_energy law) */
+  int family_stiffness; /* 1: a bond's stiffness goes as 1 / m of its ends' families (an ordinary
+                           state: 15 G / m_i), so a bond of a family a face cuts short is stiffer
+                           than a whole family's: the quasi-static masses take it
+                           (pf_pd_body_stiffness_bounds) */
   /* With bond_energy: the energy per V_i V_j of bond k of owned point i (extension ext > 0, rest
    * length r0) at the last force evaluation's state, as its kernel's energy test evaluates it
    * (pf_pd_body_failure_ratio). */

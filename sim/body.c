@@ -93,11 +93,8 @@ struct pf_fem_particles *pf_body_as_particles(const pf_body *b) {
 
 /* The default: an explicit operator is stable for dt < 2 / omega_max, so a body whose stable step
  * is dt_b has omega_max^2 = K_i / m_i <= 4 / dt_b^2 at each point: K_i ~ 4 m_i / dt_b^2. */
-int pf_body_stiffness_bounds(const pf_body *b, const pf_points *pts, pf_int first, pf_int n, double *k) {
-  if (b->ops->stiffness_bound) {
-    for (pf_int i = 0; i < n; i++) k[i] = b->ops->stiffness_bound(b->data, pts, first + i);
-    return 0;
-  }
+int pf_body_stiffness_bounds(const pf_body *b, pf_points *pts, pf_int first, pf_int n, double *k) {
+  if (b->ops->stiffness_bounds) return b->ops->stiffness_bounds(b->data, pts, first, n, k);
   const double dt = pf_body_stable_dt_all(b, pts);
   for (pf_int i = 0; i < n; i++) k[i] = isfinite(dt) && dt > 0 ? 4 * pts->m[first + i] / (dt * dt) : 0;
   return 0;

@@ -123,10 +123,11 @@ typedef struct {
   /* Optional: a stable step carried across re-partitions and restarts (that of the last force
    * evaluation, which the state alone does not give back). */
   void (*set_stable_dt)(void *data, double dt);
-  /* Optional: a bound of the diagonal stiffness of store point i, the Gershgorin row sum
-   * sum_j |K_ij| of its block row, N/m (the quasi-static solver's fictitious masses; NULL: the
-   * stable-step form 4 m_i / dt_b^2, dt_b the body's stable step over every rank). */
-  double (*stiffness_bound)(const void *data, const pf_points *pts, pf_int i);
+  /* Optional: bounds of the diagonal stiffness of store points first .. first + n - 1 into k,
+   * the Gershgorin row sums sum_j |K_ij| of their block rows, N/m (the quasi-static solver's
+   * fictitious masses; NULL: the stable-step form 4 m_i / dt_b^2, dt_b the body's stable step
+   * over every rank). Collective. */
+  int (*stiffness_bounds)(void *data, pf_points *pts, pf_int first, pf_int n, double *k);
   /* Optional, for tests and tools (pf_sim_body, pf_sim_fem_body): the body's PD or FE operator. */
   pf_pd_body *(*as_pd)(void *data);
   struct pf_fem_body *(*as_fem)(void *data);
@@ -206,7 +207,7 @@ int pf_body_carries_stable_dt(const pf_body *b);
 void pf_body_set_stable_dt(const pf_body *b, double dt);
 /* The stiffness bound of the body's owned points first .. first + n - 1 into k[0 .. n-1], N/m
  * (the op's, or its default). Collective (the default's stable step is the minimum over ranks). */
-int pf_body_stiffness_bounds(const pf_body *b, const pf_points *pts, pf_int first, pf_int n, double *k);
+int pf_body_stiffness_bounds(const pf_body *b, pf_points *pts, pf_int first, pf_int n, double *k);
 pf_pd_body *pf_body_as_pd(const pf_body *b);
 struct pf_fem_body *pf_body_as_fem(const pf_body *b);
 struct pf_fem_particles *pf_body_as_particles(const pf_body *b);

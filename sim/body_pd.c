@@ -119,8 +119,8 @@ static int force(void *data, pf_points *pts, double dt, double t, long step, int
 }
 
 static double stable_dt(const void *data, const pf_points *pts) { return pf_pd_body_stable_dt(data, pts); }
-static double stiffness_bound(const void *data, const pf_points *pts, pf_int i) {
-  return pf_pd_body_stiffness_bound(data, pts, i);
+static int stiffness_bounds(void *data, pf_points *pts, pf_int first, pf_int n, double *k) {
+  return pf_pd_body_stiffness_bounds(data, pts, first, n, k);
 }
 static int step_varies(const void *data) { return pf_pd_body_step_varies(data); }
 static int uses_velocity(const void *data) { return pf_pd_body_uses_velocity(data); }
@@ -175,7 +175,7 @@ const pf_body_ops pf_body_kind_pd = {
     .attach = attach,
     .force = force,
     .stable_dt = stable_dt,
-    .stiffness_bound = stiffness_bound,
+    .stiffness_bounds = stiffness_bounds,
     .step_varies = step_varies,
     .uses_velocity = uses_velocity,
     .post_step = post_step,

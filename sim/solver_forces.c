@@ -102,5 +102,5 @@ int pf_sim_solver_measure(pf_sim *sim, double *q) {
 /* The residual relative to the reference force (the loads' and reactions', else the internal). */
 double pf_sim_solver_residual(const double *q) {
   const double ref = q[S_REFERENCE] > 0 ? q[S_REFERENCE] : q[S_INTERNAL];
-  return q[S_RESIDUAL] > 0 ? sqrt(q[S_RESIDUAL] / ref) : 0;
+  return q[S_RESIDUAL] == 0 ? 0 : sqrt(q[S_RESIDUAL] / ref); /* (NaN or inf, the guard's stop, when the forces are not finite) */
 }

@@ -407,6 +407,39 @@ static int abandon(pf_sim *sim, long it, long passes) {
   return pf_sim_guard_check(sim); /* (collective: sets sim->signal for the time loop's checkpoint) */
 }
 
+/* A load step stopped by the guard: a body tripped it (its rank's message is out), or the
+ * out-of-balance force is no longer finite, the relaxation having diverged (the fictitious masses
+ * do not bound the stiffness somewhere). Then the rank holding the point of the largest
+ * out-of-balance force names it and trips the guard too. The guard's check puts back the load
+ * step's start on every rank and stops the run. Collective. */
+static int stopped(pf_sim *sim, long it) {
+  const pf_sim_solver *s = &sim->solver;
+  const pf_points *p = sim->pts;
+  struct { double f; int rank; } mine = {-1.0, pf_comm_rank()}, top;
+  pf_int at = -1;
+  for (pf_int i = 0; i < p->n_owned; i++) {
+    double f2 = 0;
+    for (int a = 0; a < 3; a++)
+      if (pf_sim_solver_is_free(s, 3 * i + a)) f2 += p->f[3 * i + a] * p->f[3 * i + a];
+    if (!(f2 <= mine.f)) mine.f = isfinite(f2) ? f2 : INFINITY, at = i; /* (NaN too) */
+  }
+  PF_CHECK(MPI_Allreduce(&mine, &top, 1, MPI_DOUBLE_INT, MPI_MAXLOC, MPI_COMM_WORLD) == MPI_SUCCESS, PF_ERR_LIB,
+           "MPI_Allreduce failed naming the quasi-static solver's largest force");
+  const int tripped = pf_max_all(sim->guard_tripped) > 0; /* (a body's guard: its message is out) */
+  if (!tripped && top.rank == mine.rank && at >= 0) {
+    sim->guard_tripped = 1;
+    pf_error_raise(PF_ERR_RUN, __FILE__, __LINE__, __func__,
+                   "quasi-static load step %ld of %ld (t = %g s): the out-of-balance force is not finite after %ld "
+                   "iterations; the largest, %g N, is on point %" PF_GID_FMT " (body '%s') at (%g, %g, %g) m: the "
+                   "relaxation diverged there (the fictitious masses do not bound its stiffness: lower "
+                   "time.safety_factor; docs/theory/quasi_static.md section 2), or a prescribed motion or load is "
+                   "too large",
+                   sim->step, s->load_steps, sim->t, it, sqrt(mine.f), p->gid[at], sim->body_name[p->body[at]],
+                   p->X[3 * at], p->X[3 * at + 1], p->X[3 * at + 2]);
+  }
+  return pf_sim_guard_check(sim);
+}
+
 static int progress(pf_sim *sim, long it, double res, long passes) {
   PF_CALL(pf_sim_accounts_evaluate(sim, 0)); /* (collective) the damage fraction */
   pf_log("load step %ld/%ld  t = %.4e s  iterations %ld  residual %.3e  damage passes %ld  damage %.4g\n",
@@ -434,6 +467,7 @@ int pf_sim_solver_load_step(pf_sim *sim) {
   int stop = 0;
   PF_CALL(equilibrate(sim, &it, &res, &passes, &stop));
   if (stop == STOP_SIGNAL) return abandon(sim, it, passes);
+  if (stop == STOP_GUARD) PF_CALL(stopped(sim, it));
   PF_CALL(freeze_damage(sim, 0));
   s->iterations += it, s->damage_passes += passes;
   PF_CALL(finish(sim, passes));
