@@ -781,7 +781,8 @@ int pf_pd_weighted_volumes(const pf_pd_body *b, pf_points *pts, double *m) {
 
 /* The bound's slack: a face halves a family and doubles its LPS bonds' stiffness, and the
  * quasi-static masses of the bound below relax such points at the default safety factor in every
- * shipped deck; the shortfall counts beyond that factor 2 (docs/theory/quasi_static.md §2). */
+ * shipped deck; the shortfall counts beyond that factor 2, in those masses and in the explicit
+ * step (docs/theory/quasi_static.md §2, pd.md §4). */
 #define PF_PD_BOUND_SLACK 2.0
 
 /* sum_j V_j c_ij omega / |xi| over point i's family, c_ij = c (times the parts' micromodulus
@@ -803,7 +804,7 @@ static double stiffness_row(const pf_pd_body *b, const pf_points *pts, pf_int i,
 }
 
 double pf_pd_stable_dt_point(const pf_pd_body *b, const pf_points *pts, pf_int i, double c) {
-  const double sum = stiffness_row(b, pts, i, c, NULL);
+  const double sum = stiffness_row(b, pts, i, c, b->shortfall);
   return sum > 0 ? sqrt(2.0 * pf_pd_density(b, i) / sum) : INFINITY;
 }
 

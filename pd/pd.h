@@ -243,7 +243,8 @@ double pf_pd_body_bytes_per_bond(const pf_pd_body *b);
 double pf_pd_body_bond_rate(const pf_pd_body *b);
 
 /* Stable step of store point i of body b: sqrt(2 rho / sum_j V_j c omega / |xi|) over its own
- * family (Silling & Askari 2005, eq. 15 with the Peridigm form). */
+ * family (Silling & Askari 2005, eq. 15 with the Peridigm form); for LPS and elastic-plastic each
+ * term times max(1, (g_i + g_j) / 4), g the family shortfalls (docs/theory/pd.md §4). */
 double pf_pd_stable_dt_point(const pf_pd_body *b, const pf_points *pts, pf_int i, double c);
 /* The Gershgorin bounds of store points first .. first + n - 1's block rows of the linearised
  * stiffness into k[0 .. n-1], N/m: sum_j |K_ij| <= 2 V_i sum_j V_j c_ij omega / |xi| = 4 m_i / dt_i^2,
