@@ -866,8 +866,7 @@ static double whole_family_volume(const pf_pd_body *b, double delta) {
 /* The family shortfalls g_i of a family_stiffness material (docs/theory/quasi_static.md §2):
  * rho_i = m_i / m_whole(delta_i) the point's share of a whole family's weighted volume, g_i =
  * rho_top / rho_i with rho_top the largest over the body (every rank) or PF_PD_WHOLE_SHARE if
- * larger, 1 where within 1e-9 of it (a family the lattice repeats: its rounding). Ghosts too.
- * Collective. */
+ * larger. Ghosts too. Collective. */
 static int family_shortfalls(pf_pd_body *b, pf_points *pts) {
   int idx;
   PF_CALL(pf_points_field_register(pts, "family_shortfall", 1, PF_FIELD_GHOST, &idx));
@@ -875,7 +874,7 @@ static int family_shortfalls(pf_pd_body *b, pf_points *pts) {
   PF_CALL(pf_pd_weighted_volumes(b, pts, g));
   for (pf_int i = b->first; i < b->first + b->n; i++) top = fmax(top, g[i] /= whole_family_volume(b, b->hz[i]));
   top = fmax(pf_max_all(top), PF_PD_WHOLE_SHARE);
-  for (pf_int i = b->first; i < b->first + b->n; i++) g[i] = top / g[i] < 1 + 1e-9 ? 1.0 : top / g[i];
+  for (pf_int i = b->first; i < b->first + b->n; i++) g[i] = top / g[i];
   return pf_points_exchange(pts, g, 1);
 }
 
