@@ -61,7 +61,7 @@ struct pf_pd_body {
   double *hz;              /* field "horizon" [store]: each point's own horizon, ghosts too */
   double *shortfall;       /* field "family_shortfall" [store] (family_stiffness materials, else
                               NULL): g_i = rho_top / rho_i >= 1, rho_i = m_i / m_whole(delta_i),
-                              rho_top the body's fullest (at least 0.9); 1 within 1e-9 of it */
+                              rho_top the body's fullest (at least 0.9) */
   double *region;          /* field "region" [store]: bit 0 (1) the partial-stress force, bit 1
                               (2) an overlap point (blending weight < 1), bit 2 (4) the
                               ghost-corrected standard force, bit 3 (8) the consistent
@@ -181,8 +181,8 @@ struct pf_pd_material_ops {
   int bond_energy;    /* 1: its force kernel evaluates each bond's energy (critical_energy law) */
   int family_stiffness; /* 1: a bond's stiffness goes as 1 / m of its ends' families (an ordinary
                            state: 15 G / m_i), so a bond of a family a face cuts short is stiffer
-                           than a whole family's: the quasi-static masses take it
-                           (pf_pd_body_stiffness_bounds) */
+                           than a whole family's: the explicit step and the quasi-static
+                           masses take it (pf_pd_stable_dt_point, pf_pd_body_stiffness_bounds) */
   /* With bond_energy: the energy per V_i V_j of bond k of owned point i (extension ext > 0, rest
    * length r0) at the last force evaluation's state, as its kernel's energy test evaluates it
    * (pf_pd_body_failure_ratio). */
