@@ -597,6 +597,7 @@ int pf_pd_body_destroy(pf_pd_body **b) {
   free((*b)->idle);
   free((*b)->cracks);
   free((*b)->damage_data);
+  free((*b)->soft_lost);
   free((*b)->wc_bond);
   pf_pd_parts_free(*b);
   free((*b)->history.committed);

@@ -172,6 +172,8 @@ int pf_pd_body_post_step(pf_pd_body *b, pf_points *pts) {
   return b->damage->post_step ? b->damage->post_step(b, pts) : 0;
 }
 
+int64_t pf_pd_body_softened(const pf_pd_body *b) { return b->soft_ratio > 0 ? b->soft_grown : -1; }
+
 double pf_pd_body_take_damage_redistribution(pf_pd_body *b) {
   const double r = b->damage_redistribution;
   b->damage_redistribution = 0;

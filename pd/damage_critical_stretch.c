@@ -17,7 +17,7 @@ static const pf_key keys[] = {
     PF_KEY_END};
 
 /* Constant s0, given or from G0 through the material's closed form. */
-static int read_critical_stretch(const pf_deck *d, const pf_node *map, pf_pd_body *b) {
+int pf_pd_damage_read_stretch(const pf_deck *d, const pf_node *map, pf_pd_body *b) {
   double s0 = INFINITY;
   int has_s0 = pf_node_get(map, "critical_stretch") != NULL;
   int has_g0 = pf_node_get(map, "energy_release_rate") != NULL;
@@ -41,5 +41,5 @@ static int read_critical_stretch(const pf_deck *d, const pf_node *map, pf_pd_bod
 const pf_pd_damage_ops pf_pd_damage_critical_stretch = {
     .name = "critical_stretch",
     .keys = keys,
-    .read = read_critical_stretch,
+    .read = pf_pd_damage_read_stretch,
 };

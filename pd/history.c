@@ -19,11 +19,15 @@ int pf_pd_body_keep_history(pf_pd_body *b, int field) {
   return 0;
 }
 
-int pf_pd_body_keeps_history(const pf_pd_body *b) { return b->history.nfields > 0 || b->fam.nstate > 0; }
+/* The bonds' state is the material's history, unless it is the softening's damage (pd/softening.c),
+ * which like a failure changes at damage checks only and is kept with them (pd/failures_kept.c). */
+static int state_is_history(const pf_pd_body *b) { return b->fam.nstate > 0 && b->soft_ratio == 0; }
+
+int pf_pd_body_keeps_history(const pf_pd_body *b) { return b->history.nfields > 0 || state_is_history(b); }
 
 /* The committed copy's length: each field's owned rows of the body, then the bonds' state. */
 static size_t history_length(const pf_pd_body *b, const pf_points *pts) {
-  size_t n = (size_t)b->fam.nstate * (size_t)(b->fam.state ? b->fam.offset[b->fam.n] : 0);
+  size_t n = state_is_history(b) ? (size_t)b->fam.nstate * (size_t)(b->fam.state ? b->fam.offset[b->fam.n] : 0) : 0;
   for (int k = 0; k < b->history.nfields; k++) n += (size_t)pts->fields[b->history.field[k]].ncomp * (size_t)b->n;
   return n;
 }
@@ -37,7 +41,7 @@ static void history_copy(pf_pd_body *b, pf_points *pts, double *buf, int out) {
     memcpy(out ? buf : data, out ? data : buf, sizeof(double) * len);
     buf += len;
   }
-  if (b->fam.nstate > 0 && b->fam.state) {
+  if (state_is_history(b) && b->fam.state) {
     const size_t len = (size_t)b->fam.nstate * (size_t)b->fam.offset[b->fam.n];
     memcpy(out ? buf : b->fam.state, out ? b->fam.state : buf, sizeof(double) * len);
   }

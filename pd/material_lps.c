@@ -61,7 +61,8 @@ static int lps_setup(pf_pd_body *b, pf_points *pts) {
   }
   double special = 0; /* points of the transition, the overlap or the corrected force */
   for (pf_int i = b->first; i < b->first + b->n; i++) special += b->region[i] != 0;
-  p->batched = !b->one_sided && !b->interface_law && pf_sum_all(special) == 0; /* (the same on every rank) */
+  p->batched = !b->one_sided && !b->interface_law && b->soft_ratio == 0 &&
+               pf_sum_all(special) == 0; /* (the same on every rank) */
   PF_CALL(pf_pd_weighted_volumes(b, pts, p->m));
   free(p->rm); /* (m is fixed, ghosts included, until the next set-up) */
   p->rm_n = pts->n_total;
@@ -71,10 +72,12 @@ static int lps_setup(pf_pd_body *b, pf_points *pts) {
 }
 
 /* Pass 1: dilatation of point i; fails bonds beyond the critical stretch, booking the energy
- * they release. */
+ * they release. Where the bonds soften each bond has the weight (1 - d) omega, and the weighted
+ * volume the softening took, sum_j d omega |xi|^2 V_j, goes into soft_lost (a failed bond's
+ * generalised: pf_pd_dilatation_moment; docs/theory/bond_failure.md §8). */
 static double lps_dilatation(pf_pd_body *b, const pf_points *pts, pf_int i, double m) {
   const pf_family *fam = &b->fam;
-  double sum = 0, smin = INFINITY, e[3], r0, r;
+  double sum = 0, smin = INFINITY, e[3], r0, r, took = 0;
   int fresh = 0;
   for (int64_t k = fam->offset[i - b->first]; k < fam->offset[i - b->first + 1]; k++) {
     if (fam->broken[k]) continue;
@@ -88,8 +91,16 @@ static double lps_dilatation(pf_pd_body *b, const pf_points *pts, pf_int i, doub
     }
     if (!pf_pd_in_family(b, i, r0)) continue;
     smin = fmin(smin, s);
-    sum += pf_pd_omega(&b->influence, r0) * r0 * (r - r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    const double term = pf_pd_omega(&b->influence, r0) * r0 * (r - r0) * pf_pd_bond_volume(fam, pts->vol, k, j);
+    if (b->soft_ratio == 0) {
+      sum += term;
+      continue;
+    }
+    const double w = pf_pd_soft_weight(b, k);
+    sum += term * w;
+    took += (1 - w) * pf_pd_omega(&b->influence, r0) * r0 * r0 * pf_pd_bond_volume(fam, pts->vol, k, j);
   }
+  if (b->soft_lost) b->soft_lost[i - b->first] = took;
   b->smin[i - b->first] = smin;
   if (fresh) b->damage_work += pf_pd_lps_release(b, pts, i, m, NULL, 0);
   return 3.0 * sum / m;
@@ -195,7 +206,7 @@ static int lps_force_general(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
       if (fam->broken[k]) continue;
       pf_int j = fam->neighbor[k];
       pf_pd_bond_lengths(pts->X, pts->y, i, j, &r0, &r, e);
-      const double ext = r - r0, w = pf_pd_omega(&b->influence, r0);
+      const double ext = r - r0, w = pf_pd_omega(&b->influence, r0) * pf_pd_soft_weight(b, k);
       const double Kj = pf_pd_K(b, j), Gj = pf_pd_G(b, j), thj = p->theta[j];
       const double aj = pf_pd_lps_volumetric(Kj, Gj, thj, p->mom[j], p->m[j]), bj = 15 * Gj / p->m[j];
       const double tij = pf_pd_in_family(b, i, r0) ? lps_t(ai, bi, thi, w, r0, ext) : 0.0;
@@ -216,6 +227,8 @@ static int lps_force_general(pf_pd_body *b, pf_points *pts, int64_t *nfailed) {
 static int lps_force(pf_pd_body *b, pf_points *pts) {
   lps *p = b->mat;
   int64_t nfailed = 0;
+  if (b->soft_ratio > 0) /* (pd/softening.c; theta still the last evaluation's) */
+    PF_CALL(pf_pd_softening_update(b, pts, 0.0, p->m, p->theta));
   PF_CALL(p->batched ? lps_force_batched(b, pts, &nfailed) : lps_force_general(b, pts, &nfailed));
   if (nfailed) /* (the same bits for the points that lost no bond) */
     for (pf_int i = b->first; i < b->first + b->n; i++) {
@@ -226,7 +239,8 @@ static int lps_force(pf_pd_body *b, pf_points *pts) {
 }
 
 /* W_i = (K/2) theta^2 + (15 G / (2 m)) sum_j omega (e^d - e^dp)^2 V_j (Silling et al. 2007, eq.
- * 92; e^dp = ep[stride k], a plastic extension, or 0 when ep is NULL), per reference volume, over
+ * 92; e^dp = ep[stride k], a plastic extension, or 0 when ep is NULL; where the bonds soften omega
+ * times the bond's weight 1 - d), per reference volume, over
  * the intact bonds (not broken, not failing now). The neighbours come from the batch records rec
  * of every store point (X, V and y: pf_batch_records_fill), eight at a time, one cache line each;
  * their lengths are formed as pf_pd_bond_lengths forms them and summed in the row's order. */
@@ -249,7 +263,7 @@ double pf_pd_lps_energy_density(const pf_pd_body *b, const double *rec, pf_int i
       if (fam->broken[k] & (PF_BOND_BROKEN | PF_BOND_FRESH) || !pf_pd_in_family(b, i, r0[l])) continue;
       const double ed = (r[l] - r0[l]) - theta * r0[l] / 3 - (ep ? ep[stride * k] : 0.0);
       const double vj = fam->vfrac ? a[REC_V][l] * fam->vfrac[k] : a[REC_V][l];
-      dev += pf_pd_omega(&b->influence, r0[l]) * ed * ed * vj;
+      dev += pf_pd_omega(&b->influence, r0[l]) * ed * ed * vj * pf_pd_soft_weight(b, k);
     }
   }
   return 0.5 * pf_pd_K(b, i) * theta * theta + 7.5 * pf_pd_G(b, i) / m * dev;

@@ -230,6 +230,11 @@ static __attribute__((noinline)) int pmb_force_mixed(pf_pd_body *b, pf_points *p
  * order, so the bits do not depend on the thread count. */
 static int pmb_force(pf_pd_body *b, pf_points *pts) {
   const double c = ((const pmb *)b->mat)->c;
+  if (b->soft_ratio > 0) { /* bonds that soften (pd/softening.c) */
+    PF_CALL(pf_pd_softening_update(b, pts, c, NULL, NULL));
+    pf_pd_softening_pmb_force(b, pts, c);
+    return 0;
+  }
   PF_CALL(pf_batch_records_fill(&((pmb *)b->mat)->rec, pts, b->s0));
   const pf_influence_kind kind = b->influence.kind;
   const int partial = b->fam.vfrac != NULL, energy = pf_pd_energy_limited(b);
@@ -252,7 +257,7 @@ static int pmb_force(pf_pd_body *b, pf_points *pts) {
 }
 
 /* Point i's share of the stored energy per V_i, sum_j (1/4) c omega s^2 |xi| V_j over its
- * intact bonds, in batches as pmb_point. */
+ * intact bonds (each times its weight 1 - d where the bonds soften), in batches as pmb_point. */
 static double pmb_point_energy(const pf_pd_body *b, const double *rec, pf_int i, double c) {
   enum { L = PF_BATCH };
   const pf_family *fam = &b->fam;
@@ -273,7 +278,7 @@ static double pmb_point_energy(const pf_pd_body *b, const double *rec, pf_int i,
       const double r0 = g.r0[l], s = (g.r[l] - r0) * g.ir0[l];
       const double vj = fam->vfrac ? a[REC_V][l] * fam->vfrac[k0 + l] : a[REC_V][l];
       const double wl = 0.25 * cb[l] * pf_pd_omega(&b->influence, r0) * s * s * r0 * vj;
-      w[l] += live[l] > 0 ? wl : 0.0;
+      w[l] += live[l] > 0 ? (b->soft_ratio > 0 ? wl * pf_pd_soft_weight(b, k0 + l) : wl) : 0.0;
     }
   }
   for (int l = 0; l < L; l++) total += w[l];

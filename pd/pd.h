@@ -200,6 +200,10 @@ int pf_pd_body_freeze_damage(pf_pd_body *b, const pf_points *pts, int frozen);
  * state: s / s_lim or sqrt(w / w_c), against the law's limits (also while frozen); 1 at the
  * limit, 0 without one (pd/failure_ratio.c). */
 double pf_pd_body_failure_ratio(const pf_pd_body *b, const pf_points *pts);
+/* Bonds that soften (law softening): the bonds whose damage grew by more than its tolerance at
+ * the evaluations with the damage thawed, counted over the run; -1 for a body whose bonds do not
+ * soften. */
+int64_t pf_pd_body_softened(const pf_pd_body *b);
 /* 1 when the body's material keeps history (a plastic or rate-form state its force advances). */
 int pf_pd_body_keeps_history(const pf_pd_body *b);
 /* Commit the body's history (restore 0: the material's history fields of its owned points and

@@ -7,6 +7,9 @@
 #include <math.h>
 
 enum { PF_PD_MAX_NO_FAIL = 8 }; /* regions in a body's damage.no_fail list */
+/* Bonds that soften: a damage check in which some bond's damage grows by more than this (or a bond
+ * fails) is followed by another relaxation at the same load (docs/theory/bond_failure.md §8). */
+#define PF_PD_SOFT_TOL 1e-3
 
 typedef struct pf_pd_material_ops pf_pd_material_ops;
 
@@ -107,6 +110,26 @@ struct pf_pd_body {
   double *wc_bond;        /* [bonds] each bond's own w_c (critical_energy, calibration: family),
                              or NULL: every bond has critical_energy */
   double *s0;        /* field "critical_stretch": per point, used by the force kernels */
+  /* A law whose bonds soften (law softening, pd/softening.c): s1 / s0 > 1, or 0 when the bonds
+   * fail at once. Each bond's state (fam.state, nstate 2) is its largest stretch s_max and its
+   * damage d, and it acts with the weight 1 - d (pf_pd_soft_weight). */
+  double soft_ratio;
+  double *soft_lost;   /* [n] LPS: sum_j d omega |xi|^2 V_j over each point's intact bonds (the
+                          weighted volume the softening took; pf_pd_dilatation_moment) */
+  int64_t soft_grown;  /* the bonds whose damage grew by more than PF_PD_SOFT_TOL, counted over the
+                          run (the quasi-static solver relaxes again while it grows) */
+  /* Under the quasi-static solver (pd/softening.c, pd/failures_kept.c): the bonds' state at the
+   * load step's start (put back when a signal abandons it) and at the pass's start (the last
+   * check's), each owned point's dilatation there (theta_stale: to be taken at the next
+   * evaluation), and the pass: 0 dynamics, 1 the load step's first relaxation (the weights stay),
+   * 2 a relaxation after a check (each evaluation's damage from the pass's start and the stretch
+   * now, booked by the next check). */
+  struct {
+    double *kept, *base, *theta;
+    int64_t n;      /* 2 x the bonds */
+    pf_int npoints; /* the owned points of theta */
+    int pass, theta_stale;
+  } soft_qs;
   double *smin;      /* [n] smallest stretch of each point's intact bonds this step */
   double *lost_volume; /* field "lost_weighted_volume" of the LPS family (lps, elastic_plastic):
                           sum of omega |xi|^2 V_j over each point's failed bonds, added to by
@@ -438,9 +461,28 @@ int pf_pd_lost_volume_fields(pf_pd_body *b, pf_points *pts, double **mom);
  * second term given as pm), times beta (docs/theory/materials.md §1, "Failed bonds"); 0 while i lost no bond. */
 static inline double pf_pd_dilatation_moment(const pf_pd_body *b, pf_int i, double theta, double pm,
                                              double beta) {
-  const double ml = b->lost_volume[i];
+  const double ml = b->soft_lost ? b->lost_volume[i] + b->soft_lost[i - b->first] : b->lost_volume[i];
   return ml > 0 ? beta * (theta * ml / 3 - pm) : 0.0;
 }
+
+/* The weight 1 - d of bond k in a body whose bonds soften (its damage d in fam.state), else 1. */
+static inline double pf_pd_soft_weight(const pf_pd_body *b, int64_t k) {
+  return b->soft_ratio > 0 ? 1.0 - b->fam.state[2 * k + 1] : 1.0;
+}
+/* pd/softening.c (docs/theory/bond_failure.md §8). Before a force evaluation of a body whose bonds
+ * soften: in dynamics and at a quasi-static damage check, each intact bond's s_max and d from the
+ * current stretch (at a check, from the pass's start), the bonds at d = 1 failed, and the energy the
+ * change dissipates booked into damage_work, each bond's dW/d(1 - d) integrated along its envelope
+ * (PMB: m and theta NULL, c its micromodulus, the bond law's closed form; LPS: m the weighted
+ * volumes, theta the dilatations of the last evaluation); in a quasi-static relaxation after a
+ * check, the damage of this evaluation's stretch from the pass's start, nothing failed or booked;
+ * in the load step's first relaxation, nothing. */
+int pf_pd_softening_update(pf_pd_body *b, const pf_points *pts, double c, const double *m, const double *theta);
+/* The PMB forces of a body whose bonds soften: f = (1 - d) c omega s V_j e / r, added to pts->f. */
+void pf_pd_softening_pmb_force(pf_pd_body *b, pf_points *pts, double c);
+/* Read s_c (from critical_stretch or from energy_release_rate through the material's closed form)
+ * into b->s0_init: the stretch laws' common key pair (pd/damage_critical_stretch.c). */
+int pf_pd_damage_read_stretch(const pf_deck *d, const pf_node *map, pf_pd_body *b);
 
 /* The positions of the last force evaluation (PF_PREVIOUS_POSITIONS), or the current ones where
  * the integrator keeps none (a kernel driven alone, as in the unit tests). */

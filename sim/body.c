@@ -27,6 +27,7 @@ double pf_body_failure_ratio(const pf_body *b, const pf_points *pts) {
   return b->ops->failure_ratio ? b->ops->failure_ratio(b->data, pts) : 0.0;
 }
 int pf_body_fails_without_ratio(const pf_body *b) { return b->ops->freeze_damage && !b->ops->failure_ratio; }
+int64_t pf_body_softened(const pf_body *b) { return b->ops->softened ? b->ops->softened(b->data) : -1; }
 int pf_body_keeps_history(const pf_body *b, pf_points *pts) {
   return b->ops->history && b->ops->history(b->data, pts, PF_HISTORY_KEPT) == 1;
 }

@@ -68,6 +68,10 @@ typedef struct {
    * evaluation (1: a bond at its limit; a linear body's ratio scales with its state; quasi-static
    * solver, failure: sequential); NULL with freeze_damage: the body cannot take that failure. */
   double (*failure_ratio)(const void *data, const pf_points *pts);
+  /* Optional: for bonds that soften (their damage grows with their stretch), the bonds whose
+   * damage grew by more than the law's tolerance, counted over the run (the quasi-static solver
+   * relaxes again while it grows, as while bonds fail); -1, or NULL: no bond softens. */
+  int64_t (*softened)(const void *data);
   /* Optional: the body's history (plastic and rate-form state): whether it keeps any
    * (PF_HISTORY_KEPT: returns 1 or 0), commit the current one (PF_HISTORY_COMMIT) or put the
    * committed one back (PF_HISTORY_RESTORE). A body that keeps history has the quasi-static
@@ -181,6 +185,7 @@ int pf_body_post_step(const pf_body *b, pf_points *pts);
 int pf_body_freeze_damage(const pf_body *b, const pf_points *pts, int frozen);
 double pf_body_failure_ratio(const pf_body *b, const pf_points *pts); /* 0 without the op */
 int pf_body_fails_without_ratio(const pf_body *b); /* freeze_damage without failure_ratio */
+int64_t pf_body_softened(const pf_body *b);        /* -1 without the op */
 int pf_body_keeps_history(const pf_body *b, pf_points *pts);
 int pf_body_history(const pf_body *b, pf_points *pts, pf_history_op op);
 int pf_body_failures(const pf_body *b, int restore);

@@ -126,6 +126,7 @@ static int step_varies(const void *data) { return pf_pd_body_step_varies(data); 
 static int uses_velocity(const void *data) { return pf_pd_body_uses_velocity(data); }
 static int post_step(void *data, pf_points *pts) { return pf_pd_body_post_step(data, pts); }
 static double failure_ratio(const void *data, const pf_points *pts) { return pf_pd_body_failure_ratio(data, pts); }
+static int64_t softened(const void *data) { return pf_pd_body_softened(data); }
 static int freeze_damage(void *data, const pf_points *pts, int frozen) {
   return pf_pd_body_freeze_damage(data, pts, frozen);
 }
@@ -181,6 +182,7 @@ const pf_body_ops pf_body_kind_pd = {
     .post_step = post_step,
     .freeze_damage = freeze_damage,
     .failure_ratio = failure_ratio,
+    .softened = softened,
     .history = history,
     .failures = failures,
     .take_damage_work = take_damage_work,

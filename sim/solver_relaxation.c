@@ -177,11 +177,14 @@ static int freeze_damage(pf_sim *sim, int frozen) {
 static double broken_bonds(const pf_sim *sim) {
   int64_t n = 0;
   for (int b = 0; b < sim->nbodies; b++) n += pf_body_broken_bonds(&sim->body[b]);
+  for (int b = 0; b < sim->nbodies; b++) n += pf_body_softened(&sim->body[b]) > 0 ? pf_body_softened(&sim->body[b]) : 0;
   return pf_sum_all((double)n);
 }
 
 /* The damage check at an equilibrium: one force evaluation with the damage thawed (the bodies fail
- * the bonds whose limit the state meets, their energy booked); *failed the bonds it failed. */
+ * the bonds whose limit the state meets, their energy booked; bonds that soften take the damage of
+ * their stretch); *failed the bonds it failed, and those whose damage grew by more than the law's
+ * tolerance. */
 static int check_damage(pf_sim *sim, double *failed) {
   const double before = broken_bonds(sim);
   PF_CALL(freeze_damage(sim, 0));

@@ -42,6 +42,8 @@ int pf_sim_solver_sequential_check(const pf_sim *sim, const pf_node *sv) {
     const pf_body *body = &sim->body[b];
     const char *why = pf_body_keeps_history(body, sim->pts)
                           ? "keeps history (plasticity, a rate form or elements), which a scaled state does not follow"
+                      : pf_body_softened(body) >= 0 ? "has bonds that soften (law softening), which a scaled state "
+                                                      "does not follow"
                       : pf_body_fails_without_ratio(body) ? "has no failure ratio for its bonds"
                                                                               : NULL;
     if (why)
