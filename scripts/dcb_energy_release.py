@@ -31,7 +31,8 @@ K_c = 0 and D = W - E_el; the opening is read from the grips' own displacement c
 lower_work): in a load step where the crack grows the grips first move with the crack as it
 was, to a force above the row's, and then stay while it grows, so the rows' trapezoid int F
 dDelta misses the peak of each saw-tooth; it is checked to equal the columns (1e-6) until the
-crack grows and to stay below them after. There G_secant is the area method: at each
+crack grows (or, under the damage law softening, its bonds start to soften) and to stay below them
+after. There G_secant is the area method: at each
 equilibrium a linear body holds F Delta / 2 (Clapeyron), so D = W - F Delta / 2 is the area
 between the loading path and the secant to the current state.
 
@@ -82,7 +83,8 @@ def history(path, quasi_static=False, sequential=False):
             kinetic = f["kinetic_energy"][:]
         elastic = f["elastic_energy"][:]
         booked = f["upper_work"][:] + f["lower_work"][:] if quasi_static else None
-        damaged = f["damage_fraction"][:] > 0
+        # (bonds that soften dissipate before any fails: their process zone counts as damage)
+        damaged = (f["damage_fraction"][:] > 0) | (f["damage_dissipation"][:] > 0)
     if quasi_static and t[0] > 0:  # the rows are the load steps; the unloaded state comes first
         t, force, opening, elastic, booked = (np.concatenate(([0.0], c)) for c in (t, force, opening, elastic, booked))
         damaged = np.concatenate(([False], damaged))
