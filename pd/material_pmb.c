@@ -267,18 +267,19 @@ static double pmb_point_energy(const pf_pd_body *b, const double *rec, pf_int i,
   for (int64_t k0 = fam->offset[i - fam->first]; k0 < end; k0 += L) {
     if (pf_batch_dead(fam->broken, k0, end)) continue; /* (its lanes would add +0 to sums never -0) */
     const int n = end - k0 < L ? (int)(end - k0) : L;
-    double a[PF_REC][L], live[L], cb[L];
+    double a[PF_REC][L], live[L], cb[L], sw[L];
     pf_batch_lengths g;
     pf_batch_live(fam->broken + k0, n, live);
     pf_batch_gather(rec, fam->neighbor + k0, a);
     pf_batch_lengths_of(ri, a, &g);
     for (int l = 0; l < L; l++) cb[l] = bond_c(b, i, fam->neighbor[k0 + l], c);
+    for (int l = 0; l < L; l++) sw[l] = l < n ? pf_pd_soft_weight(b, k0 + l) : 1.0; /* (the state has no slack) */
 #pragma omp simd
     for (int l = 0; l < L; l++) {
       const double r0 = g.r0[l], s = (g.r[l] - r0) * g.ir0[l];
       const double vj = fam->vfrac ? a[REC_V][l] * fam->vfrac[k0 + l] : a[REC_V][l];
       const double wl = 0.25 * cb[l] * pf_pd_omega(&b->influence, r0) * s * s * r0 * vj;
-      w[l] += live[l] > 0 ? (b->soft_ratio > 0 ? wl * pf_pd_soft_weight(b, k0 + l) : wl) : 0.0;
+      w[l] += live[l] > 0 ? (b->soft_ratio > 0 ? wl * sw[l] : wl) : 0.0;
     }
   }
   for (int l = 0; l < L; l++) total += w[l];
