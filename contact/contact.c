@@ -213,13 +213,17 @@ static int mark_surfaces(pf_contact *c) {
 /* The faces of side sd (sorted by element and face, as pf_contact_surface_faces gives them) that
  * the previous faces old[0 .. nold) did not have: uncovered by this deletion. */
 static int mark_fresh(pf_contact_side *sd, const pf_contact_face *old, pf_int nold) {
-  PF_FREE(sd->fresh);
-  PF_MALLOC(sd->fresh, sd->nface);
+  uint8_t *was = sd->fresh; /* (uncovered earlier since the last evaluation: the search ahead of it) */
+  sd->fresh = calloc((size_t)sd->nface + 1, sizeof *sd->fresh);
+  if (!sd->fresh) free(was);
+  PF_CHECK(sd->fresh, PF_ERR_MEMORY, "out of memory marking the faces a deletion uncovered");
   for (pf_int f = 0, j = 0; f < sd->nface; f++) {
     const pf_contact_face *x = &sd->face[f];
     while (j < nold && (old[j].elem < x->elem || (old[j].elem == x->elem && old[j].face < x->face))) j++;
-    sd->fresh[f] = !(j < nold && old[j].elem == x->elem && old[j].face == x->face);
+    const int kept = j < nold && old[j].elem == x->elem && old[j].face == x->face;
+    sd->fresh[f] = !kept || (was && was[j]);
   }
+  free(was);
   return 0;
 }
 
@@ -415,13 +419,31 @@ int pf_contact_restored(pf_contact *c) {
   return 0;
 }
 
-/* The interactions at the current positions into c->force, *U and *dissipation. Collective. */
+/* The owned entities (when not built), the ghosts' positions and the candidates at the current
+ * positions. Collective. */
+static int search_here(pf_contact *c, pf_points *pts) {
+  if (!c->built) PF_CALL(pf_contact_collect_owned(c, pts));
+  PF_CALL(pf_contact_exchange(c, pts));
+  return pf_contact_search(c, pts);
+}
+
+int pf_contact_prepare(pf_contact *c, pf_points *pts) {
+  const double t0 = pf_wtime();
+  PF_CALL(follow_erosion(c));
+  PF_CALL(search_here(c, pts));
+  c->prepared = 1;
+  c->seconds += pf_wtime() - t0;
+  return 0;
+}
+
+/* The interactions at the current positions into c->force, *U and *dissipation; the search done
+ * ahead (pf_contact_prepare) is kept unless elements were deleted or points took or lost mass
+ * since (the search is then done here from the start). Collective. */
 static int evaluate(pf_contact *c, pf_points *pts, double dt, double *U, double *dissipation) {
   PF_CALL(offsets(c, pts));
   PF_CALL(follow_erosion(c));
-  if (!c->built) PF_CALL(pf_contact_collect_owned(c, pts));
-  PF_CALL(pf_contact_exchange(c, pts));
-  PF_CALL(pf_contact_search(c, pts));
+  if (!c->prepared || !c->built) PF_CALL(search_here(c, pts));
+  c->prepared = 0;
   c->slip = c->static_friction ? pf_points_field_get(pts, "contact_slip") : NULL;
   PF_CALL(pf_contact_pairs_evaluate(c, dt, U, dissipation));
   fresh_done(c);

@@ -141,6 +141,11 @@ void pf_contact_rebuild(pf_contact *c);
  * fresh (they were uncovered before the checkpoint). */
 int pf_contact_restored(pf_contact *c);
 int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, double *dissipation);
+/* The search (the ghosts' positions and the candidates) ahead of the next pf_contact_force at the
+ * same positions and velocities, which then only evaluates the pairs: called before the bodies'
+ * forces, its exchanges and reductions meet the ranks together instead of waiting for the
+ * slowest rank's bodies. Collective. */
+int pf_contact_prepare(pf_contact *c, pf_points *pts);
 /* The sums over the ranks: keep the pairs' forces (pf_contact_pair_force); *energy gets the
  * penalty energy, J. */
 void pf_contact_sums_take(pf_contact *c, const double *sums, double *energy);

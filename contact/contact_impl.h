@@ -186,6 +186,7 @@ struct pf_contact {
   pf_candidate *cand;
   int64_t cand_cap;
   int built;
+  int prepared; /* the search was done ahead of this force evaluation (pf_contact_prepare) */
   /* work counters (pf_contact_counts): candidate pairs tested at the force evaluations, and
    * family entries read to tell whether a pair is bonded (at the builds and the evaluations) */
   int64_t pairs_tested, family_reads;

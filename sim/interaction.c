@@ -84,6 +84,13 @@ int pf_sim_interactions_settled(pf_sim *sim, double dt, const double *g0, const 
   return 0;
 }
 
+int pf_sim_interactions_prepare(pf_sim *sim, double dt) {
+  const pf_interaction_step s = step_of(sim, dt);
+  for (int k = 0; k < sim->ninter; k++)
+    if (sim->inter[k].ops->prepare) PF_CALL(sim->inter[k].ops->prepare(sim->inter[k].data, &s));
+  return 0;
+}
+
 static int nsums(const pf_interaction *x) { return x->ops->nsums ? x->ops->nsums(x->data) : 0; }
 
 /* Each interaction's forces and its part of the sums, one reduction for all, then each takes its

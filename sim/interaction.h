@@ -41,6 +41,10 @@ typedef struct {
   /* The step's hooks [nothing]. */
   void (*midstep)(void *data, const pf_interaction_step *s);
   void (*after_drift)(void *data, const pf_interaction_step *s);
+  /* Before the bodies' forces of an explicit step, at the positions and velocities force will
+   * see: work that needs nothing of the bodies' forces (contact's search), whose exchanges then
+   * meet the ranks together [nothing; force does it all]. */
+  int (*prepare)(void *data, const pf_interaction_step *s);
   /* Forces at the current positions: add to pts->f, write this rank's part of nsums values into
    * sums; take_sums gets them summed over the ranks [no sums]. */
   int (*nsums)(const void *data);
@@ -136,6 +140,8 @@ void pf_sim_interactions_work(const pf_sim *sim, int *w);
 void pf_sim_interactions_mark(const pf_sim *sim, uint8_t *fixed);
 void pf_sim_interactions_midstep(pf_sim *sim, double dt);
 void pf_sim_interactions_after_drift(pf_sim *sim, double dt);
+/* Each interaction's prepare ahead of the bodies' forces (explicit steps). Collective. */
+int pf_sim_interactions_prepare(pf_sim *sim, double dt);
 /* Forces of every interaction at the current positions with one reduction of their sums;
  * dt: the step just taken; own: NULL, or [3 n_owned] set to the part of the forces from the
  * interactions that book their own work (books_own_work). Collective. */

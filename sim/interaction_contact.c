@@ -110,6 +110,8 @@ static int attach(void *data, pf_sim *sim) {
 
 static int nsums(const void *data) { return pf_contact_nsums(((const contact *)data)->c); }
 
+static int prepare(void *data, const pf_interaction_step *s) { return pf_contact_prepare(((contact *)data)->c, s->pts); }
+
 /* The bodies in short-range contact with themselves first give their bonds broken since the last
  * evaluation their rest lengths; then the pairs' forces. */
 static int force(void *data, const pf_interaction_step *s, double *sums) {
@@ -243,6 +245,7 @@ const pf_interaction_ops pf_interaction_kind_contact = {
     .open_accounts = open_accounts,
     .attach = attach,
     .nsums = nsums,
+    .prepare = prepare,
     .force = force,
     .take_sums = take_sums,
     .settled = settled,

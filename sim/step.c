@@ -185,8 +185,10 @@ int pf_sim_body_forces(pf_sim *sim, double dt) {
   return 0;
 }
 
-/* Forces at the current positions: the bodies', then the interactions'. */
+/* Forces at the current positions: the bodies', then the interactions' (their search ahead of the
+ * bodies', so that its exchanges do not wait for the rank whose bodies take longest). */
 static int compute_forces(pf_sim *sim, double dt) {
+  PF_CALL(pf_sim_interactions_prepare(sim, dt));
   PF_CALL(pf_sim_body_forces(sim, dt));
   return pf_sim_interactions_force(sim, dt, NULL);
 }
