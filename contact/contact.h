@@ -144,7 +144,7 @@ int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, dou
 /* The search (the ghosts' positions and the candidates) ahead of the next pf_contact_force at the
  * same positions and velocities, which then only evaluates the pairs: called before the bodies'
  * forces, its exchanges and reductions meet the ranks together instead of waiting for the
- * slowest rank's bodies. Collective. */
+ * slowest rank's bodies. On one rank it leaves the search to pf_contact_force. Collective. */
 int pf_contact_prepare(pf_contact *c, pf_points *pts);
 /* The sums over the ranks: keep the pairs' forces (pf_contact_pair_force); *energy gets the
  * penalty energy, J. */
