@@ -49,6 +49,10 @@ sed -E 's/^indenters:/contact:\n  rigid_surfaces:/; /^contact:$/d' disk_impact_r
 # self-contact between every pair of neighbours of the cylinder (all points, radius above the
 # spacing: active from the first step) with re-partitioning at every output step
 sed -E 's#\.\./\.\./meshes/#'"$OLDPWD"'/../meshes/#' "$OLDPWD/data/sphere_on_block.yaml" > sphere_on_block.yaml
+# the sphere deleting the elements it crushes (29 of 575): the contact's search, done ahead of the
+# bodies' forces on 2 and 3 ranks, done again when a deletion in those forces changed the surface
+sed -E 's/^(    initial_velocity: \["20")/    erosion: {min_volume_ratio: 0.995}\n\1/' sphere_on_block.yaml > sphere_on_block_erosion.yaml
+grep -q "erosion:" sphere_on_block_erosion.yaml || { echo "sphere_on_block_erosion: the deck was not made"; fail=1; }
 # the same sphere on block re-partitioned at every output step: the rest lengths of the bonds
 # broken in the crushed zone travel with their rows (the self-contact of the fragments uses them)
 cp sphere_on_block.yaml sphere_on_block_rebalance.yaml
@@ -163,7 +167,7 @@ declare -A plain_of=([cylinder_rebalance]=fragmenting_cylinder [mixed_rebalance]
                      [wave_spread]=wave_in_bar [disk_rigid_surface]=disk_impact_rigid)
 declare -A one_rank=()
 rebalanced="cylinder_rebalance mixed_rebalance sphere_on_block_rebalance cylinder_contact tube_ep coupled_rebalance coupled_bimaterial_rebalance horizon_consistent dcb_family" # (the other two split evenly on 2 ranks)
-decks="disk_impact_rigid disk_rigid_surface fragmenting_cylinder single_fibre fibre_rve laminate bimaterial_bar wave_in_bar wave_variable_horizon wave_pd_to_fe cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block sphere_on_block_rebalance cylinder_contact tube_ep taylor_corr taylor_corr_regions damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance coupled_bimaterial coupled_bimaterial_rebalance dcb_family interface_pmb interface_lps"
+decks="disk_impact_rigid disk_rigid_surface fragmenting_cylinder single_fibre fibre_rve laminate bimaterial_bar wave_in_bar wave_variable_horizon wave_pd_to_fe cylinder_lps_metis cylinder_rebalance wave_spread two_points taylor_impact mixed mixed_rebalance sphere_on_block sphere_on_block_rebalance sphere_on_block_erosion cylinder_contact tube_ep taylor_corr taylor_corr_regions damage_bar horizon_corr horizon_lps horizon_consistent coupled_bar coupled_rebalance coupled_bimaterial coupled_bimaterial_rebalance dcb_family interface_pmb interface_lps"
 # The 1-rank runs first, two at a time (one process each: both cores busy; each deck writes files
 # of its own name), their output and status kept for the loop below.
 mkdir -p np1
@@ -199,6 +203,9 @@ for deck in $decks; do
   echo "$deck: $own" >> digests.txt # (this deck's own digest: the 3-rank one for the variants)
 done
 
+# the eroding sphere deleted elements while in contact
+grep -Eq "body 'ball': [1-9][0-9]* of [0-9]+ elements deleted" np1/sphere_on_block_erosion.out ||
+  { echo "sphere_on_block_erosion: no element deleted"; fail=1; }
 # the rigid surface of the contact section gives the foundation indenter's run, bit for bit
 d1=$(grep '^disk_impact_rigid:' digests.txt | cut -d' ' -f2) d2=$(grep '^disk_rigid_surface:' digests.txt | cut -d' ' -f2)
 [ -n "$d1" ] && [ "$d1" = "$d2" ] || { echo "disk_rigid_surface digest $d2 differs from disk_impact_rigid $d1"; fail=1; }
