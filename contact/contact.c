@@ -211,7 +211,8 @@ static int mark_surfaces(pf_contact *c) {
 }
 
 /* The faces of side sd (sorted by element and face, as pf_contact_surface_faces gives them) that
- * the previous faces old[0 .. nold) did not have: uncovered by this deletion. */
+ * the previous faces old[0 .. nold) did not have, or that were fresh among them: uncovered since
+ * the last evaluation (by this deletion, or by one the search ahead of it saw). */
 static int mark_fresh(pf_contact_side *sd, const pf_contact_face *old, pf_int nold) {
   uint8_t *was = sd->fresh; /* (uncovered earlier since the last evaluation: the search ahead of it) */
   sd->fresh = calloc((size_t)sd->nface + 1, sizeof *sd->fresh);
@@ -354,7 +355,7 @@ int pf_contact_attach(pf_contact *c, const pf_contact_body *bodies) {
     c->body[b].n = bodies[b].n;
     c->body[b].fam = bodies[b].fam;
   }
-  c->built = 0;
+  c->built = c->prepared = 0;
   return 0;
 }
 
@@ -375,7 +376,7 @@ static int add_forces(pf_contact *c, pf_points *pts) {
 
 int pf_contact_nsums(const pf_contact *c) { return 3 * c->npairs + 1; }
 
-void pf_contact_rebuild(pf_contact *c) { c->built = 0; }
+void pf_contact_rebuild(pf_contact *c) { c->built = c->prepared = 0; }
 
 void pf_contact_sums_take(pf_contact *c, const double *sums, double *energy) {
   for (int k = 0; k < c->npairs; k++) memcpy(c->pair[k].force, &sums[3 * k], sizeof c->pair[k].force);
@@ -414,6 +415,7 @@ static void fresh_done(pf_contact *c) {
 }
 
 int pf_contact_restored(pf_contact *c) {
+  c->prepared = 0;
   PF_CALL(follow_erosion(c));
   fresh_done(c);
   return 0;
@@ -439,13 +441,14 @@ int pf_contact_prepare(pf_contact *c, pf_points *pts) {
 }
 
 /* The interactions at the current positions into c->force, *U and *dissipation; the search done
- * ahead (pf_contact_prepare) is kept unless elements were deleted or points took or lost mass
- * since (the search is then done here from the start). Collective. */
+ * ahead (pf_contact_prepare) is kept unless the bodies' forces since deleted elements (the
+ * search is then done here from the start). Collective. */
 static int evaluate(pf_contact *c, pf_points *pts, double dt, double *U, double *dissipation) {
+  const int ahead = c->prepared;
+  c->prepared = 0;
   PF_CALL(offsets(c, pts));
   PF_CALL(follow_erosion(c));
-  if (!c->prepared || !c->built) PF_CALL(search_here(c, pts));
-  c->prepared = 0;
+  if (!ahead || !c->built) PF_CALL(search_here(c, pts));
   c->slip = c->static_friction ? pf_points_field_get(pts, "contact_slip") : NULL;
   PF_CALL(pf_contact_pairs_evaluate(c, dt, U, dissipation));
   fresh_done(c);

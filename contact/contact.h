@@ -124,7 +124,7 @@ int pf_contact_create(const pf_deck *d, const pf_node *map, int nbodies,
                       const pf_contact_body *bodies, pf_contact **c);
 int pf_contact_destroy(pf_contact **c);
 /* Give the contact the bodies' current owned ranges and families (after every (re)partition);
- * the next force evaluation rebuilds the search. */
+ * the next search (pf_contact_prepare or pf_contact_force) is built anew. */
 int pf_contact_attach(pf_contact *c, const pf_contact_body *bodies);
 /* Add the contact forces at the current positions pts->y (friction from the mid-step velocities
  * pts->v over the step dt; dt 0: none) to the owned points, each point summing its
@@ -134,18 +134,19 @@ int pf_contact_attach(pf_contact *c, const pf_contact_body *bodies);
  * the friction work of this rank over dt is added to *dissipation. The per-point contact force
  * goes to the output field "contact_force". Collective (the search's exchanges). */
 int pf_contact_nsums(const pf_contact *c);
-/* Rebuild the search at the next force evaluation (points took or lost mass: a point of mass 0
- * takes no part in contact). */
+/* The search (the contact ghosts' positions and the candidates) ahead of the next pf_contact_force
+ * at the same positions and velocities (the store's ghosts' positions exchanged: a face's size
+ * reads them), which then only evaluates the pairs: called before the bodies' forces, its
+ * exchanges and reductions meet the ranks together instead of waiting for the slowest rank's
+ * bodies. On one rank it leaves the search to pf_contact_force. Collective. */
+int pf_contact_prepare(pf_contact *c, pf_points *pts);
+/* Build the search anew at the next pf_contact_prepare or pf_contact_force (points took or lost
+ * mass: a point of mass 0 takes no part in contact). */
 void pf_contact_rebuild(pf_contact *c);
 /* After a restart restored the deleted elements: the surfaces without them, none of their faces
  * fresh (they were uncovered before the checkpoint). */
 int pf_contact_restored(pf_contact *c);
 int pf_contact_force(pf_contact *c, pf_points *pts, double dt, double *sums, double *dissipation);
-/* The search (the ghosts' positions and the candidates) ahead of the next pf_contact_force at the
- * same positions and velocities, which then only evaluates the pairs: called before the bodies'
- * forces, its exchanges and reductions meet the ranks together instead of waiting for the
- * slowest rank's bodies. On one rank it leaves the search to pf_contact_force. Collective. */
-int pf_contact_prepare(pf_contact *c, pf_points *pts);
 /* The sums over the ranks: keep the pairs' forces (pf_contact_pair_force); *energy gets the
  * penalty energy, J. */
 void pf_contact_sums_take(pf_contact *c, const double *sums, double *energy);

@@ -6,7 +6,8 @@
  *
  * One step (sim/step.c) calls, in list order:
  *   half kick;  midstep (prescribed velocities);  drift;  after_drift (walls put points back,
- *   rigid surfaces move);  body forces;  force (each rank's part of the sums) -> one reduction
+ *   rigid surfaces move);  the ghosts' positions;  prepare (contact's search);  body forces;
+ *   force (each rank's part of the sums) -> one reduction
  *   for every interaction -> take_sums (reactions, penalty energies into the ledger);  half kick;
  *   endstep (prescribed velocities, the step's work and impulse booked by the ledger's rule). */
 #ifndef PF_SIM_INTERACTION_H
@@ -20,7 +21,7 @@
 typedef struct {
   pf_points *pts;
   pf_ledger *ledger;
-  double t;             /* the step's start (midstep, after_drift) or end (force, endstep), s */
+  double t;             /* the step's start (midstep, after_drift) or end (prepare, force, endstep), s */
   double dt;            /* the step, s (0: forces that advance nothing: the initial ones) */
   int nbodies;
   const int *body_work; /* [nbodies] each body's external-work account (sim/ledger.h) */
@@ -41,9 +42,11 @@ typedef struct {
   /* The step's hooks [nothing]. */
   void (*midstep)(void *data, const pf_interaction_step *s);
   void (*after_drift)(void *data, const pf_interaction_step *s);
-  /* Before the bodies' forces of an explicit step, at the positions and velocities force will
-   * see: work that needs nothing of the bodies' forces (contact's search), whose exchanges then
-   * meet the ranks together [nothing; force does it all]. */
+  /* Before the bodies' forces of an explicit step (and of the initial forces), the ghosts'
+   * positions exchanged, at the positions and velocities force will see (no body's or
+   * interaction's force moves a point or changes a velocity): work that needs nothing of the
+   * bodies' forces (contact's search), whose exchanges then meet the ranks together [nothing;
+   * force does it all]. */
   int (*prepare)(void *data, const pf_interaction_step *s);
   /* Forces at the current positions: add to pts->f, write this rank's part of nsums values into
    * sums; take_sums gets them summed over the ranks [no sums]. */

@@ -164,8 +164,9 @@ int pf_sim_converts(const pf_sim *sim);
  * current masses, after conversions changed them or a restart restored them. Collective. */
 int pf_sim_refresh_fixed_step(pf_sim *sim);
 /* sim/step.c: the bodies' forces at the current positions into f (the ghosts exchanged, the failed
- * bonds' energy booked; the interactions' come after, pf_sim_interactions_force). Collective. */
-int pf_sim_body_forces(pf_sim *sim, double dt);
+ * bonds' energy booked; the interactions' come after, pf_sim_interactions_force); ahead: the
+ * interactions' prepare after the ghosts' exchange (explicit steps). Collective. */
+int pf_sim_body_forces(pf_sim *sim, double dt, int ahead);
 extern const pf_key pf_parallel_keys[];
 int pf_sim_setup_parallel(pf_sim *sim);
 /* sim/output.c: output.fields, precision and compression, checked against the output fields. */

@@ -58,7 +58,7 @@ int pf_sim_solver_evaluate(pf_sim *sim) {
   pf_points *p = sim->pts;
   const pf_int n3 = 3 * p->n_owned;
   PF_CALL(velocities(sim));
-  PF_CALL(pf_sim_body_forces(sim, 1.0));
+  PF_CALL(pf_sim_body_forces(sim, 1.0, 0));
   memcpy(s->f_body, p->f, sizeof(double) * (size_t)n3);
   PF_CALL(pf_sim_interactions_force(sim, 0.0, s->f_own));
   memcpy(s->u_last, p->u, sizeof(double) * (size_t)n3);

@@ -168,11 +168,13 @@ static int previous_positions(pf_points *p, double **yp) {
 }
 
 /* The bodies' forces at the current positions (f set to them); dt is the step just taken (0 for
- * the initial forces: no time has passed, so the element stresses must not advance). */
-int pf_sim_body_forces(pf_sim *sim, double dt) {
+ * the initial forces: no time has passed, so the element stresses must not advance); ahead: the
+ * interactions' prepare once the ghosts have their positions. */
+int pf_sim_body_forces(pf_sim *sim, double dt, int ahead) {
   pf_points *p = sim->pts;
   double *yp;
   PF_CALL(pf_points_exchange_positions(p)); /* the ghosts' u and y */
+  if (ahead) PF_CALL(pf_sim_interactions_prepare(sim, dt));
   PF_CALL(previous_positions(p, &yp));
   int rates = 0; /* element and correspondence rates of deformation need the ghosts' v */
   for (int b = 0; b < sim->nbodies; b++) rates |= pf_body_uses_velocity(&sim->body[b]);
@@ -188,8 +190,7 @@ int pf_sim_body_forces(pf_sim *sim, double dt) {
 /* Forces at the current positions: the bodies', then the interactions' (their search ahead of the
  * bodies', so that its exchanges do not wait for the rank whose bodies take longest). */
 static int compute_forces(pf_sim *sim, double dt) {
-  PF_CALL(pf_sim_interactions_prepare(sim, dt));
-  PF_CALL(pf_sim_body_forces(sim, dt));
+  PF_CALL(pf_sim_body_forces(sim, dt, 1));
   return pf_sim_interactions_force(sim, dt, NULL);
 }
 
