@@ -110,7 +110,9 @@ static int attach(void *data, pf_sim *sim) {
 
 static int nsums(const void *data) { return pf_contact_nsums(((const contact *)data)->c); }
 
-static int prepare(void *data, const pf_interaction_step *s) { return pf_contact_prepare(((contact *)data)->c, s->pts); }
+static int prepare(void *data, const pf_interaction_step *s) {
+  return pf_contact_prepare(((contact *)data)->c, s->pts);
+}
 
 /* The bodies in short-range contact with themselves first give their bonds broken since the last
  * evaluation their rest lengths; then the pairs' forces. */
