@@ -83,7 +83,7 @@ struct pf_contact_side {
   double size;       /* largest node-to-node distance of a face at the last build, m */
   pf_int *node_off;  /* method surfaces: [nnodes + 1] CSR of the faces of each mesh node */
   pf_int *node_face;
-  uint8_t *fresh;    /* [nface] or NULL: 1 for a face a deletion uncovered since the last evaluation */
+  uint8_t *fresh;    /* [nface] or NULL: 1 for a face a deletion uncovered at this evaluation */
 };
 
 /* One entry of `contact: pairs:`. */

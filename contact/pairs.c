@@ -197,7 +197,7 @@ static void node_normal(const pf_contact *c, const pf_contact_side *own, pf_int 
 
 /* The penetration owned particle e keeps without force against the surface of a body that
  * deletes elements (docs/theory/contact.md sec. 2.5), given its gap g to the closest face
- * (INFINITY: none in reach) and its radius rc; `fresh` when that face was uncovered since the last
+ * (INFINITY: none in reach) and its radius rc; `fresh` when that face was uncovered at this
  * evaluation. Its offset o (the point field "contact_offset") is set to its penetration
  * max(0, rc - g) when the face was uncovered under it, when the particle is new (o < 0:
  * fem/particles.c), or when it is behind the face (g < 0) without having been in reach of the
