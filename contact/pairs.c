@@ -227,6 +227,7 @@ int pf_contact_closest_face(pf_contact *c, int k, pf_int e, int64_t s, int64_t t
   const pf_int *view = c->node_view[sd->body];
   double best = INFINITY, bg = 0, bn[3] = {0, 0, 0}, bw[4] = {0, 0, 0, 0}, ne[3] = {0, 0, 0};
   pf_int bv[4] = {0, 0, 0, 0}, bf = -1;
+  double deep = 0; /* the deepest gap behind a face beyond the reach (health only) */
   if (fe_node) node_normal(c, sd == &p->side[0] ? &p->side[1] : &p->side[0], e, ne);
   const pf_contact_body *fb = &c->body[sd->body];
   long ndead = 0; /* (the faces' body deletes elements: its erosion flags exist) */
@@ -246,6 +247,14 @@ int pf_contact_closest_face(pf_contact *c, int k, pf_int e, int64_t s, int64_t t
      * was not pushed through it but uncovered by a deletion (the face was inside the body until
      * then); it is not pulled back through (docs/theory/contact.md sec. 2.5) */
     if (uncovers && g < -c->body[c->vbody[e]].spacing) continue;
+    /* a face farther than the pair's length (r_c; half the finer spacing for FE <-> FE), in front
+     * or behind, is out of reach: the search finds every face within it whatever the skin, and
+     * only some beyond it, so a face there would make the forces depend on the skin; one the
+     * entity is behind goes to the run's health alone */
+    if (fabs(g) > p->length) {
+      deep = fmin(deep, g);
+      continue;
+    }
     /* two faces at the same distance (to round-off) that disagree on the side: the closest point
      * is an edge or corner they share, which is convex (at a concave one a point whose closest
      * point is the edge is behind both faces), so the point is outside: the face that sees it in
@@ -258,6 +267,7 @@ int pf_contact_closest_face(pf_contact *c, int k, pf_int e, int64_t s, int64_t t
       memcpy(bn, n, sizeof bn), memcpy(bw, w, sizeof bw), memcpy(bv, nv, sizeof bv);
     }
   }
+  if (deep < 0) ev->sums[SUM_FORCE + 3 * c->npairs + k] = fmin(ev->sums[SUM_FORCE + 3 * c->npairs + k], deep / p->length);
   if (uncovers && c->offset)
     bg += held(c, e, best < INFINITY ? bg : INFINITY, fmin(p->radius, c->rad[e]), sd->fresh && bf >= 0 && sd->fresh[bf]);
   if (best == INFINITY || bg >= fmin(p->radius, c->rad[e])) {

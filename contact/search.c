@@ -222,7 +222,8 @@ static int needs_body(const pf_contact *c, const pf_contact_pair *p, int E, int 
 }
 
 /* margin[B * nb + E]: the largest margin of the pairs in which the entities of body E need
- * those of body B (needs_body), -1 where none does. A pair's margin is r_c + 2 s + 2 l: a
+ * those of body B (needs_body), -1 where none does. A pair's margin is r_c + 2 s + 2 l (r_c: the
+ * pair's length, which is half the finer spacing for a pair of FE bodies that meet at r_c = 0): a
  * partner within r_c at any time before the next build was within r_c + s at this one, the
  * nodes of a face whose grown box holds a particle within r_c + s + 2 l of it, and the face may
  * grow by the skin before the next build. */
@@ -231,7 +232,7 @@ static void body_margins(const pf_contact *c, double *margin) {
   for (int q = 0; q < nb * nb; q++) margin[q] = -1;
   for (int k = 0; k < c->npairs; k++) {
     const pf_contact_pair *p = &c->pair[k];
-    const double m = fmax(c->skin, p->radius + 2 * c->skin + 2 * face_size(p));
+    const double m = fmax(c->skin, p->length + 2 * c->skin + 2 * face_size(p));
     for (int B = 0; B < nb; B++)
       for (int E = 0; E < nb; E++)
         if (needs_body(c, p, E, B)) margin[B * nb + E] = fmax(margin[B * nb + E], m);
@@ -455,7 +456,7 @@ typedef struct {
   pf_int n;
   pf_int *face;   /* [n] face index of the side */
   double *box;    /* [6n] */
-  double reach;   /* r_c + skin */
+  double reach;   /* r_c + skin (r_c: the pair's length) */
   double lo[3], cell;
   int dim[3];
   pf_int *start;  /* [nbins + 1] */
@@ -496,7 +497,7 @@ static int face_set_build(const pf_contact *c, const pf_contact_pair *p, const p
   memset(s, 0, sizeof *s);
   PF_MALLOC(s->face, sd->nface);
   PF_MALLOC(s->box, 6 * sd->nface);
-  s->reach = p->radius + c->skin;
+  s->reach = p->length + c->skin;
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   for (pf_int f = 0; f < sd->nface; f++) {
     const pf_int *nd = sd->face[f].node;
@@ -781,7 +782,7 @@ static int stale_bins(const pf_contact *c, double cell, body_bins *bins, face_se
  * excludes) makes every pair stale and the whole list is built again, on every rank. */
 static int build_candidates(pf_contact *c, const pf_points *pts, const pf_gid *last_gid, pf_int nlast) {
   double cell = 0;
-  for (int k = 0; k < c->npairs; k++) cell = fmax(cell, c->pair[k].radius + c->skin);
+  for (int k = 0; k < c->npairs; k++) cell = fmax(cell, c->pair[k].length + c->skin);
   int all = 1;
   for (int k = 0; k < c->npairs; k++) all &= c->stale[k];
   body_bins *bins = calloc((size_t)c->nbodies + 1, sizeof *bins);

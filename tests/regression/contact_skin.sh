@@ -10,7 +10,8 @@
 # and change the digest.
 #   bash contact_skin.sh PERIFEM WORKDIR
 # Deck: tests/data/sphere_on_block.yaml (an FE sphere at 200 m/s on a PD block with friction,
-# and the block's self-contact), 150 steps; a few seconds.
+# and the block's self-contact), 150 steps; a few seconds. Then a spinning ring, and the expanding
+# tube with element conversion (below; about a minute).
 set -euo pipefail
 exe=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 work=$2
@@ -86,5 +87,32 @@ for motion in expanding imploding; do
       fi
     fi
   done
+done
+
+# Faces a particle is far behind (docs/theory/contact.md sec. 5): the closest face is sought among
+# the faces within the pair's r_c, which every skin finds; a skin also lists some faces beyond it,
+# and when the closest face was taken among all the candidates, a Lexan particle made from a
+# deleted element 1.1 mm behind two faces met one with the deck's default skin and another with
+# 0.2 mm, and the digests parted at 27.05 us. The expanding tube with element conversion to 27.2 us
+# (the first conversions at about 15 us), the default skin (the largest r_c, 0.675 mm) and 0.2 mm,
+# on 2 ranks: one digest.
+conv=$here/tests/data/expanding_tube_conversion.yaml
+ref=""
+for skin in default 2.0e-4; do
+  extra=()
+  [[ $skin != default ]] && extra=(--set contact.skin="$skin")
+  dir=conversion_$skin
+  mkdir -p "$dir"
+  out=$(cd "$dir" && run 2 "$exe" --output-dir . --set time.final_time=27.2e-6 --set output.interval=0 \
+        --set output.history_interval=1000 "${extra[@]}" "$conv" 2>&1) || { echo "$out"; echo "FAIL: $dir did not run"; exit 1; }
+  d=$(digest_of "$out")
+  echo "conversion, skin $skin: 2 ranks, $(rebuilds_of "$out") search rebuilds, digest $d"
+  [[ -n $d ]] || { echo "$out"; echo "FAIL: $dir printed no digest"; exit 1; }
+  if [[ -z $ref ]]; then
+    ref=$d
+  elif [[ $d != "$ref" ]]; then
+    echo "FAIL: conversion: the skin $skin gives $d, the default skin $ref"
+    fail=1
+  fi
 done
 exit $fail
