@@ -214,6 +214,18 @@ static double held(pf_contact *c, pf_int e, double g, double rc, int fresh) {
   return *o;
 }
 
+/* 1 when a face at gap g is closer than the closest so far (|gap| best, gap bg; INFINITY: none).
+ * Two faces at the same distance (to round-off) that disagree on the side: the closest point is
+ * an edge or corner they share, which is convex (at a concave one a point whose closest point is
+ * the edge is behind both faces), so the point is outside: the face that sees it in front wins,
+ * as the sign of the edge's pseudonormal says (Baerentzen & Aanaes 2005). A fold of the surface
+ * (a sheet one crushed element thick, left by deletions) gives such ties (docs/theory/contact.md
+ * sec. 2). Otherwise the nearer; at equal distance the first. */
+static int closer(double g, double best, double bg) {
+  const int split = best < INFINITY && (g < 0) != (bg < 0) && fabs(fabs(g) - best) <= 1e-9 * best;
+  return split ? g >= 0 : fabs(g) < best;
+}
+
 /* Entity e (a particle, or an FE node of a pair of FE bodies: fe_node) against the closest face
  * among its candidates [s, t) of pair k, on the side its body faces. An FE node meets only the
  * faces that face it, whose normal opposes its own (at an edge of the other body the side faces
@@ -227,7 +239,7 @@ int pf_contact_closest_face(pf_contact *c, int k, pf_int e, int64_t s, int64_t t
   const pf_int *view = c->node_view[sd->body];
   double best = INFINITY, bg = 0, bn[3] = {0, 0, 0}, bw[4] = {0, 0, 0, 0}, ne[3] = {0, 0, 0};
   pf_int bv[4] = {0, 0, 0, 0}, bf = -1;
-  double deep = 0; /* the deepest gap behind a face beyond the reach (health only) */
+  double far = INFINITY, far_g = 0; /* the closest face beyond the reach: |g|, g (health only) */
   if (fe_node) node_normal(c, sd == &p->side[0] ? &p->side[1] : &p->side[0], e, ne);
   const pf_contact_body *fb = &c->body[sd->body];
   long ndead = 0; /* (the faces' body deletes elements: its erosion flags exist) */
@@ -249,25 +261,22 @@ int pf_contact_closest_face(pf_contact *c, int k, pf_int e, int64_t s, int64_t t
     if (uncovers && g < -c->body[c->vbody[e]].spacing) continue;
     /* a face farther than the pair's length (r_c; half the finer spacing for FE <-> FE), in front
      * or behind, is out of reach: the search finds every face within it whatever the skin, and
-     * only some beyond it, so a face there would make the forces depend on the skin; one the
-     * entity is behind goes to the run's health alone */
+     * only some beyond it, so a face there would make the forces depend on the skin. The closest
+     * of those (the same tie rule as below) goes to the run's health alone, when no face is in
+     * reach and the entity is behind it */
     if (fabs(g) > p->length) {
-      deep = fmin(deep, g);
+      if (closer(g, far, far_g)) far = fabs(g), far_g = g;
       continue;
     }
-    /* two faces at the same distance (to round-off) that disagree on the side: the closest point
-     * is an edge or corner they share, which is convex (at a concave one a point whose closest
-     * point is the edge is behind both faces), so the point is outside: the face that sees it in
-     * front wins, as the sign of the edge's pseudonormal says (Baerentzen & Aanaes 2005). A fold
-     * of the surface (a sheet one crushed element thick, left by deletions) gives such ties
-     * (docs/theory/contact.md sec. 2) */
-    const int split = best < INFINITY && (g < 0) != (bg < 0) && fabs(fabs(g) - best) <= 1e-9 * best;
-    if (split ? g >= 0 : fabs(g) < best) {
+    if (closer(g, best, bg)) {
       best = fabs(g), bg = g, bf = c->cand[q].j;
       memcpy(bn, n, sizeof bn), memcpy(bw, w, sizeof bw), memcpy(bv, nv, sizeof bv);
     }
   }
-  if (deep < 0) ev->sums[SUM_FORCE + 3 * c->npairs + k] = fmin(ev->sums[SUM_FORCE + 3 * c->npairs + k], deep / p->length);
+  if (best == INFINITY && far_g < 0 && !uncovers) { /* (inside the other body, out of reach) */
+    double *gap = &ev->sums[SUM_FORCE + 3 * c->npairs + k];
+    *gap = fmin(*gap, far_g / p->length);
+  }
   if (uncovers && c->offset)
     bg += held(c, e, best < INFINITY ? bg : INFINITY, fmin(p->radius, c->rad[e]), sd->fresh && bf >= 0 && sd->fresh[bf]);
   if (best == INFINITY || bg >= fmin(p->radius, c->rad[e])) {

@@ -955,7 +955,7 @@ static int affine_keeps(const pf_contact *c, int k, int *ok) {
    * same decision everywhere, whatever rounding the sums took on the way) */
   *ok &= MPI_Allreduce(MPI_IN_PLACE, v, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD) == MPI_SUCCESS;
   const double s = c->skin;
-  return v[1] < 1 && 2 * v[0] + v[1] * (c->pair[k].radius + s) <= s * (1 - 1e-12); /* (NaN: rebuilt) */
+  return v[1] < 1 && 2 * v[0] + v[1] * (c->pair[k].length + s) <= s * (1 - 1e-12); /* (NaN: rebuilt) */
 }
 
 /* Marks the pairs whose candidates must be rebuilt: two entities of the pair's bodies moved
