@@ -89,11 +89,11 @@ for motion in expanding imploding; do
   done
 done
 
-# Faces a particle is far behind (docs/theory/contact.md sec. 5): the closest face is sought among
-# the faces within the pair's r_c, which every skin finds; a skin also lists some faces beyond it,
-# and when the closest face was taken among all the candidates, a Lexan particle made from a
-# deleted element 1.1 mm behind two faces met one with the deck's default skin and another with
-# 0.2 mm, and the digests parted at 27.05 us. The expanding tube with element conversion to 27.2 us
+# Faces a particle is far behind (docs/theory/contact.md sec. 2, "Reach"): the closest face is
+# sought among the faces within the pair's r_c, which every skin finds; a skin also lists some
+# faces beyond it, and when the closest face was taken among all the candidates, a Lexan particle
+# made from a deleted element 1.1 mm behind two faces met one with the deck's default skin and
+# another with 0.2 mm, and the digests parted at 27.05 us. The expanding tube with element conversion to 27.2 us
 # (the first conversions at about 15 us), the default skin (the largest r_c, 0.675 mm) and 0.2 mm,
 # on 2 ranks: one digest.
 conv=$here/tests/data/expanding_tube_conversion.yaml
