@@ -4,6 +4,8 @@
 
 #include "contact/contact.h"
 
+#include <math.h>
+
 typedef struct pf_contact_pair pf_contact_pair;
 typedef struct pf_contact_side pf_contact_side;
 typedef struct pf_contact_eval pf_contact_eval;
@@ -230,6 +232,12 @@ int pf_contact_pairs_evaluate(pf_contact *c, double dt, double *energy, double *
  * k's force at sums[PF_CONTACT_SUM_FORCE + 3 k], and after the forces pair k's smallest gap over
  * its length at sums[PF_CONTACT_SUM_FORCE + 3 npairs + k] (a minimum, not a sum). */
 enum { PF_CONTACT_SUM_ENERGY, PF_CONTACT_SUM_DISSIPATION, PF_CONTACT_SUM_FORCE };
+
+/* Pair k's smallest gap over its length in a chunk's sums: takes gap if it is smaller. */
+static inline void pf_contact_gap_note(double *sums, const pf_contact *c, int k, double gap) {
+  double *slot = &sums[PF_CONTACT_SUM_FORCE + 3 * c->npairs + k];
+  *slot = fmin(*slot, gap);
+}
 /* What a method's evaluate adds to, for a chunk of owned entities (pairs.c). */
 typedef struct pf_contact_shares pf_contact_shares;
 struct pf_contact_eval {

@@ -68,8 +68,7 @@ static void short_range(pf_contact *c, int k, pf_int e, pf_int j, int64_t b, dou
   r = sqrt(r);
   const double rc = pair_radius(c, p, lo, hi, b);
   if (r >= rc || r == 0) return;
-  double *gap = &sums[PF_CONTACT_SUM_FORCE + 3 * c->npairs + k];
-  *gap = fmin(*gap, r / rc);
+  pf_contact_gap_note(sums, c, k, r / rc);
   double n[3] = {d[0] / r, d[1] / r, d[2] / r}, vrel[3], ft[3];
   double F = p->stiffness * (rc - r) * (c->vol[lo] * c->vol[hi]);
   for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * lo + a] - c->v[3 * hi + a];

@@ -121,8 +121,7 @@ int pf_contact_push(pf_contact *c, int k, int body, pf_int e, const pf_int *nv, 
   for (int a = 0; a < 3; a++) vrel[a] = c->v[3 * e + a] - vs[a];
   const double rc = fmin(p->radius, c->rad[e]); /* (a particle made from an element: its own radius) */
   double F = p->stiffness * (rc - g);
-  double *gap = &sums[SUM_FORCE + 3 * c->npairs + k];
-  *gap = fmin(*gap, g / p->length);
+  pf_contact_gap_note(sums, c, k, g / p->length);
   if (c->slip && p->friction > 0) sums[SUM_ENERGY] += static_friction(c, p, e, nv, nn, wt, F, n, ft);
   else sums[SUM_DISSIPATION] += pf_contact_friction(p->friction, F, n, vrel, c->m[e] * ms / (c->m[e] + ms), dt, ft);
   const double on_a = body == p->a ? -1.0 : 1.0;
@@ -273,10 +272,8 @@ int pf_contact_closest_face(pf_contact *c, int k, pf_int e, int64_t s, int64_t t
       memcpy(bn, n, sizeof bn), memcpy(bw, w, sizeof bw), memcpy(bv, nv, sizeof bv);
     }
   }
-  if (best == INFINITY && far_g < 0 && !uncovers) { /* (inside the other body, out of reach) */
-    double *gap = &ev->sums[SUM_FORCE + 3 * c->npairs + k];
-    *gap = fmin(*gap, far_g / p->length);
-  }
+  if (best == INFINITY && far_g < 0 && !uncovers) /* (inside the other body, out of reach) */
+    pf_contact_gap_note(ev->sums, c, k, far_g / p->length);
   if (uncovers && c->offset)
     bg += held(c, e, best < INFINITY ? bg : INFINITY, fmin(p->radius, c->rad[e]), sd->fresh && bf >= 0 && sd->fresh[bf]);
   if (best == INFINITY || bg >= fmin(p->radius, c->rad[e])) {
